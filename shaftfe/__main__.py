@@ -1,0 +1,5 @@
+import sys
+
+from shaftfe.cli import main
+
+sys.exit(main())

@@ -1,0 +1,64 @@
+"""Command-line interface: a thin layer over the Python API.
+
+Each command group lives in its own module under ``shaftfe.commands`` and exposes
+``register(subparsers)``. Those modules import only the standard library at module level; the
+numerical stack (numpy for balancing, gmsh / scikit-fem / pyvista / matplotlib for FE work) is
+imported inside the handlers, so ``shaftfe --help`` stays instant.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+
+from shaftfe import __version__
+from shaftfe.errors import ShaftfeError
+
+# Command modules, in the order they appear in --help.
+COMMAND_MODULES = (
+    "shaftfe.commands.balance",
+    "shaftfe.commands.variant",
+    "shaftfe.commands.mesh",
+    "shaftfe.commands.demo",
+)
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse that reports usage errors as one line with exit code 2 (no usage dump)."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="shaftfe",
+        description="Balancer-shaft design and assessment: balancing, beam and 3D FE statics, "
+        "fatigue and rotor dynamics.",
+    )
+    parser.add_argument("--version", action="version", version=f"shaftfe {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    for name in COMMAND_MODULES:
+        importlib.import_module(name).register(sub)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if not getattr(args, "handler", None):
+        parser.print_help()
+        return 0
+    try:
+        return int(args.handler(args) or 0)
+    except ShaftfeError as exc:
+        print(f"shaftfe: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("shaftfe: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,1 @@
+"""CLI command groups. Each module: ``register(subparsers)``; stdlib-only imports at top level."""

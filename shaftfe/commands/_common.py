@@ -1,0 +1,79 @@
+"""Small helpers shared by the command modules (stdlib only)."""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+import tempfile
+from pathlib import Path
+
+from shaftfe.errors import InputError
+
+
+def parse_range(text: str, option: str, *, lo: float | None = None,
+                hi: float | None = None) -> tuple[float, float, float | None]:
+    """Parse ``a:b`` or ``a:b:step`` (or a single value ``a``) given for ``option``.
+
+    Returns (start, stop, step) with step None when not given. Reversed ranges, a
+    non-positive step and values outside [lo, hi] raise InputError.
+    """
+    parts = text.split(":")
+    allowed = "a, a:b or a:b:step with a <= b, step > 0"
+    if lo is not None or hi is not None:
+        allowed += f", values in [{lo if lo is not None else '-inf'}, "
+        allowed += f"{hi if hi is not None else 'inf'}]"
+    try:
+        nums = [float(p) for p in parts]
+    except ValueError:
+        raise InputError(option, option, allowed, got=text) from None
+    if len(nums) not in (1, 2, 3):
+        raise InputError(option, option, allowed, got=text)
+    start = nums[0]
+    stop = nums[1] if len(nums) >= 2 else nums[0]
+    step = nums[2] if len(nums) == 3 else None
+    if stop < start or (step is not None and step <= 0):
+        raise InputError(option, option, allowed, got=text)
+    for v in (start, stop):
+        if (lo is not None and v < lo) or (hi is not None and v > hi):
+            raise InputError(option, option, allowed, got=text)
+    return start, stop, step
+
+
+def write_atomic(path: str | os.PathLike, data: str | bytes) -> Path:
+    """Write a file so that a failure never leaves a half-written output behind."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    mode = "wb" if isinstance(data, bytes) else "w"
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, mode) as fh:
+            fh.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
+
+
+def print_json(obj: object) -> None:
+    json.dump(obj, sys.stdout, indent=2, sort_keys=False)
+    sys.stdout.write("\n")
+
+
+def print_table(headers: list[str], rows: list[list[object]], title: str | None = None) -> None:
+    """Plain fixed-width table for terminals."""
+    cells = [[str(h) for h in headers]] + [[_fmt(c) for c in r] for r in rows]
+    widths = [max(len(r[i]) for r in cells) for i in range(len(headers))]
+    if title:
+        print(title)
+    for k, row in enumerate(cells):
+        print("  ".join(c.rjust(w) for c, w in zip(row, widths, strict=True)))
+        if k == 0:
+            print("  ".join("-" * w for w in widths))
+
+
+def _fmt(v: object) -> str:
+    if isinstance(v, float):
+        return f"{v:.4g}" if abs(v) < 1e-3 and v != 0 else f"{v:,.2f}".replace(",", " ")
+    return str(v)

@@ -1,0 +1,8 @@
+"""`shaftfe balance` command group (stub: filled in by its issue)."""
+
+from __future__ import annotations
+
+
+def register(sub) -> None:
+    p = sub.add_parser("balance", help="(not yet available)")
+    p.set_defaults(handler=lambda args: print("shaftfe balance: not yet available") or 1)
