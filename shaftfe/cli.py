@@ -19,6 +19,7 @@ from shaftfe.errors import ShaftfeError
 COMMAND_MODULES = (
     "shaftfe.commands.balance",
     "shaftfe.commands.variant",
+    "shaftfe.commands.beam",
     "shaftfe.commands.mesh",
     "shaftfe.commands.demo",
 )
