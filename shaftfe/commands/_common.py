@@ -26,17 +26,17 @@ def parse_range(text: str, option: str, *, lo: float | None = None,
     try:
         nums = [float(p) for p in parts]
     except ValueError:
-        raise InputError(option, option, allowed, got=text) from None
+        raise InputError("command line", option, allowed, got=text) from None
     if len(nums) not in (1, 2, 3):
-        raise InputError(option, option, allowed, got=text)
+        raise InputError("command line", option, allowed, got=text)
     start = nums[0]
     stop = nums[1] if len(nums) >= 2 else nums[0]
     step = nums[2] if len(nums) == 3 else None
     if stop < start or (step is not None and step <= 0):
-        raise InputError(option, option, allowed, got=text)
+        raise InputError("command line", option, allowed, got=text)
     for v in (start, stop):
         if (lo is not None and v < lo) or (hi is not None and v > hi):
-            raise InputError(option, option, allowed, got=text)
+            raise InputError("command line", option, allowed, got=text)
     return start, stop, step
 
 
@@ -49,6 +49,9 @@ def write_atomic(path: str | os.PathLike, data: str | bytes) -> Path:
     try:
         with os.fdopen(fd, mode) as fh:
             fh.write(data)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)  # mkstemp creates 0600; give the usual file mode
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
@@ -57,8 +60,14 @@ def write_atomic(path: str | os.PathLike, data: str | bytes) -> Path:
 
 
 def print_json(obj: object) -> None:
-    json.dump(obj, sys.stdout, indent=2, sort_keys=False)
-    sys.stdout.write("\n")
+    """Print JSON to stdout; a closed pipe (``| head``) ends quietly instead of a traceback."""
+    try:
+        json.dump(obj, sys.stdout, indent=2, sort_keys=False)
+        sys.stdout.write("\n")
+        sys.stdout.flush()
+    except BrokenPipeError:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
 
 
 def print_table(headers: list[str], rows: list[list[object]], title: str | None = None) -> None:
