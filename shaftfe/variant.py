@@ -5,18 +5,36 @@ side) to the right end (x = total length); y, z transverse. An eccentricity angl
 along +y, 90° along +z (right-handed about +x). The loader ``load_variant`` (below) reads
 ``geometry/<name>.toml`` (with its includes), validates it and returns a ``Variant``.
 
+For balancer shaft C the gear (with counterweight 1 bolted to it) is at the left end (x = 0,
+M10×0.75 thread, KM 0 nut) and counterweight 2 at the right end (M15×1 thread, KM 2 nut, hex
+socket for the water-pump drive). See ``geometry/RECONSTRUCTION.md``.
+
 Units: mm, N, MPa, kg (masses in files and reports), kg·mm² (inertias), t/mm³ (densities).
-Every numeric value in the files carries its provenance: "seed" or "reconstructed" (see
-``Provenance``).
+Every numeric value in the files carries its provenance (see ``Provenance``): "seed" (stated
+in a seed document), "reconstructed" (chosen or fitted by us; the note says to what),
+"derived" (computed from other values by a stated formula) or "standard" (taken from a cited
+standard or catalogue, not from the seeds).
 """
 
 from __future__ import annotations
 
+import dataclasses
+import hashlib
+import json
+import math
+import tomllib
 from dataclasses import dataclass, field
+from pathlib import Path
 from types import MappingProxyType
-from typing import Literal
+from typing import Any, Literal
 
-Source = Literal["seed", "reconstructed", "derived"]
+from shaftfe.errors import InputError
+
+Source = Literal["seed", "reconstructed", "derived", "standard"]
+SOURCES: tuple[str, ...] = ("seed", "reconstructed", "derived", "standard")
+
+#: Default directory of the variant files (``geometry/`` at the project root).
+GEOMETRY_DIR = Path(__file__).resolve().parents[1] / "geometry"
 
 
 @dataclass(frozen=True)
@@ -27,6 +45,7 @@ class Material:
     density_t_mm3: float      # t/mm³ (7.85e-9 for steel)
     yield_MPa: float
     ultimate_MPa: float
+    description: str = ""
 
 
 @dataclass(frozen=True)
@@ -82,6 +101,8 @@ class Bearing:
     axial: bool = False
     tilt_stiffness_Nmm_per_rad: float = 0.0   # 0 = tilt free (seed)
     life_exponent: float = 3.0                # ISO 281: 3 for ball bearings
+    bore_mm: float = 0.0
+    outer_diameter_mm: float = 0.0
 
     @property
     def x_start_mm(self) -> float:
@@ -100,7 +121,12 @@ class Attachment:
     m e ω² acts in the direction ``angle_deg`` and is applied to the half of that seat it presses
     on. Parts bolted to another part (counterweight 1 on the gear) name the same seat.
     Inertias are about the part's own centroid: polar (about the part's axis parallel to x)
-    and diametral (about a transverse axis)."""
+    and diametral (about a transverse axis).
+
+    ``seed_load_case`` marks the parts whose forces the seed applied (gear, counterweight 1,
+    counterweight 2: seed 000 §8.2.2, Inventor's shaft module); the others (screws, keys, nuts,
+    washers) complete the mass properties. ``Variant.with_seed_load_case()`` keeps only the
+    former."""
     name: str
     seat_x_start_mm: float
     seat_x_end_mm: float
@@ -111,10 +137,15 @@ class Attachment:
     polar_inertia_kg_mm2: float = 0.0
     diametral_inertia_kg_mm2: float = 0.0
     material: str = ""
+    seed_load_case: bool = False
+    seat_segment: str = ""            # name of the segment the seat was given as ("" if by x)
+
+    @property
+    def seat_center_mm(self) -> float:
+        return 0.5 * (self.seat_x_start_mm + self.seat_x_end_mm)
 
     def force_N(self, rpm: float) -> float:
         """Centrifugal force m e ω² in N at ``rpm``."""
-        import math
         omega = rpm * 2.0 * math.pi / 60.0
         return self.mass_kg * self.eccentricity_mm * 1e-3 * omega**2
 
@@ -122,9 +153,42 @@ class Attachment:
 @dataclass(frozen=True)
 class Provenance:
     """Where each value came from: maps a dotted field path (e.g. "segments.seat_gear.length_mm")
-    to "seed", "reconstructed" or "derived", plus a free-text note per path."""
+    to "seed", "reconstructed", "derived" or "standard", plus a free-text note per path (the
+    notes are keyed by the table path, e.g. "segments.gear_seat")."""
     source: MappingProxyType = field(default_factory=lambda: MappingProxyType({}))
     note: MappingProxyType = field(default_factory=lambda: MappingProxyType({}))
+
+
+@dataclass(frozen=True)
+class BalanceTarget:
+    """The seed's whole-balancer figures for a variant (seed 000 §8.2.2 table) and the crank's
+    reciprocating m_pos R used for X2 (seed 000 §8.1)."""
+    X2_percent: float
+    mass_kg: float
+    gamma2_mm: float
+    x_T_mm: float
+    m_pos_kg: float = 0.0
+    crank_radius_mm: float = 0.0
+
+
+@dataclass(frozen=True)
+class MassProperties:
+    """Whole balancer (shaft body + attachments), x from the shaft's left end face.
+
+    ``gamma2_mm`` = |Σ m e| / m (the seed's γ2); ``x_T_mm`` = axial centroid minus the crankcase
+    parting plane (positive towards the right, counterweight-2 end); inertias in kg·mm²,
+    polar about the shaft axis, diametral about a transverse axis through the centroid (mean
+    of the y and z axes)."""
+    mass_kg: float
+    shaft_mass_kg: float
+    x_centroid_mm: float
+    me_y_kg_mm: float
+    me_z_kg_mm: float
+    gamma2_mm: float
+    x_T_mm: float
+    polar_inertia_kg_mm2: float
+    diametral_inertia_kg_mm2: float
+    shaft_polar_inertia_kg_mm2: float
 
 
 @dataclass(frozen=True)
@@ -141,6 +205,10 @@ class Variant:
     provenance: Provenance = field(default_factory=Provenance)
     source_files: tuple[str, ...] = ()
     content_hash: str = ""             # sha256 of the canonical geometry+physics content
+    materials: tuple[Material, ...] = ()          # every material the files define
+    balance_target: BalanceTarget | None = None
+    clearance_mm: float | None = None             # the seed's smallest clearance (1.4 mm)
+    stock_diameter_mm: float | None = None        # bar stock of the shaft (Ø25)
 
     @property
     def length_mm(self) -> float:
@@ -152,8 +220,688 @@ class Variant:
                 return s
         raise ValueError(f"x = {x_mm} mm is outside the shaft")
 
+    def segment(self, name: str) -> Segment:
+        return next(s for s in self.segments if s.name == name)
+
     def bearing(self, name: str) -> Bearing:
         return next(b for b in self.bearings if b.name == name)
 
     def attachment(self, name: str) -> Attachment:
         return next(a for a in self.attachments if a.name == name)
+
+    def material_named(self, name: str) -> Material:
+        return next(m for m in self.materials if m.name == name)
+
+    def with_seed_load_case(self) -> Variant:
+        """The same variant carrying only the attachments the seed loaded the shaft with
+        (gear, counterweight 1, counterweight 2), as Inventor's shaft module did."""
+        return dataclasses.replace(
+            self, attachments=tuple(a for a in self.attachments if a.seed_load_case))
+
+    def mass_properties(self) -> MassProperties:
+        return mass_properties(self)
+
+
+# ---------------------------------------------------------------------------------------------
+# Mass properties (pure functions, stdlib only)
+
+def keyway_volume_mm3(d_mm: float, kw: Keyway) -> float:
+    """Material removed by a round-ended keyway of width b, depth t1 (measured at the slot's
+    centre line from the cylinder surface) and length l in a shaft of diameter d: the
+    transverse section b·t1 minus the sliver outside the circle, times the straight part
+    (l − b), plus the two half-round ends as a cylinder of diameter b and mean depth."""
+    r, b, t1 = 0.5 * d_mm, kw.width_mm, kw.depth_mm
+    s = r - math.sqrt(r * r - 0.25 * b * b)                       # sagitta over the slot width
+    segment = r * r * math.acos((r - s) / r) - (r - s) * math.sqrt(2 * r * s - s * s)
+    a_t = b * t1 - (b * s - segment)
+    return a_t * (kw.length_mm - b) + 0.25 * math.pi * b * b * (t1 - 0.5 * s)
+
+
+def keyway_centroid_radius_mm(d_mm: float, kw: Keyway) -> float:
+    r, b = 0.5 * d_mm, kw.width_mm
+    s = r - math.sqrt(r * r - 0.25 * b * b)
+    return r - 0.5 * s - 0.5 * kw.depth_mm
+
+
+def hexagon_area_mm2(across_flats_mm: float) -> float:
+    return math.sqrt(3.0) / 2.0 * across_flats_mm**2
+
+
+def hexagon_polar_moment_mm4(across_flats_mm: float) -> float:
+    """Polar second moment of area of a regular hexagon about its centre, (5√3/8) a⁴."""
+    a = across_flats_mm / math.sqrt(3.0)
+    return 5.0 * math.sqrt(3.0) / 8.0 * a**4
+
+
+def shaft_body_properties(v: Variant) -> tuple[float, float, float, float, float, float]:
+    """(mass kg, x·mass kg·mm, m·e_y, m·e_z kg·mm, polar J kg·mm², Σ(m x² + Id) kg·mm² about
+    x = 0) of the shaft body: cylinders minus keyways minus the hex socket."""
+    rho = v.material.density_t_mm3 * 1e3                         # kg/mm³
+    m = mx = qy = qz = jp = jd = 0.0
+    for s in v.segments:
+        r = 0.5 * s.diameter_mm
+        mi = rho * math.pi * r * r * s.length_mm
+        xc = s.x_start_mm + 0.5 * s.length_mm
+        m += mi
+        mx += mi * xc
+        jp += 0.5 * mi * r * r
+        jd += mi * (0.25 * r * r + s.length_mm**2 / 12.0 + xc * xc)
+        for kw in s.keyways:
+            mk = rho * keyway_volume_mm3(s.diameter_mm, kw)
+            rc = keyway_centroid_radius_mm(s.diameter_mm, kw)
+            ang = math.radians(kw.angle_deg)
+            m -= mk
+            mx -= mk * kw.x_center_mm
+            qy -= mk * rc * math.cos(ang)
+            qz -= mk * rc * math.sin(ang)
+            jp -= mk * rc * rc
+            jd -= mk * (kw.x_center_mm**2 + 0.5 * rc * rc)
+    hs = v.hex_socket
+    if hs is not None:
+        mh = rho * hexagon_area_mm2(hs.across_flats_mm) * hs.depth_mm
+        x_end = v.segments[-1].x_end_mm if hs.end == "right" else v.segments[0].x_start_mm
+        xc = x_end - 0.5 * hs.depth_mm if hs.end == "right" else x_end + 0.5 * hs.depth_mm
+        m -= mh
+        mx -= mh * xc
+        jh = rho * hs.depth_mm * hexagon_polar_moment_mm4(hs.across_flats_mm)
+        jp -= jh
+        jd -= 0.5 * jh + mh * (hs.depth_mm**2 / 12.0 + xc * xc)
+    return m, mx, qy, qz, jp, jd
+
+
+def mass_properties(v: Variant) -> MassProperties:
+    """Mass, γ2, x_T and inertias of the whole balancer (shaft body + every attachment)."""
+    ms, mx, qy, qz, jp, jd0 = shaft_body_properties(v)
+    m_tot, mx_tot, jp_tot = ms, mx, jp
+    jd_x0 = jd0                                    # Σ (Id + m x²) about a transverse axis at x=0
+    for a in v.attachments:
+        ang = math.radians(a.angle_deg)
+        m_tot += a.mass_kg
+        mx_tot += a.mass_kg * a.x_centroid_mm
+        qy += a.mass_kg * a.eccentricity_mm * math.cos(ang)
+        qz += a.mass_kg * a.eccentricity_mm * math.sin(ang)
+        jp_tot += a.polar_inertia_kg_mm2 + a.mass_kg * a.eccentricity_mm**2
+        jd_x0 += (a.diametral_inertia_kg_mm2
+                  + a.mass_kg * (a.x_centroid_mm**2 + 0.5 * a.eccentricity_mm**2))
+    xc = mx_tot / m_tot
+    return MassProperties(
+        mass_kg=m_tot, shaft_mass_kg=ms, x_centroid_mm=xc, me_y_kg_mm=qy, me_z_kg_mm=qz,
+        gamma2_mm=math.hypot(qy, qz) / m_tot, x_T_mm=xc - v.parting_plane_x_mm,
+        polar_inertia_kg_mm2=jp_tot, diametral_inertia_kg_mm2=jd_x0 - m_tot * xc * xc,
+        shaft_polar_inertia_kg_mm2=jp)
+
+
+def seat_loads(v: Variant, rpm: float, seed_case: bool = True) -> list[tuple[float, float, float]]:
+    """Centrifugal forces lumped per seat: [(x of the seat centre, Fy N, Fz N), ...] in seat
+    order (the gear and counterweight 1 share the gear seat: F1 of the seed)."""
+    out: dict[tuple[float, float], list[float]] = {}
+    for a in v.attachments:
+        if seed_case and not a.seed_load_case:
+            continue
+        f = a.force_N(rpm)
+        ang = math.radians(a.angle_deg)
+        key = (round(a.seat_x_start_mm, 9), round(a.seat_x_end_mm, 9))
+        acc = out.setdefault(key, [0.0, 0.0])
+        acc[0] += f * math.cos(ang)
+        acc[1] += f * math.sin(ang)
+    return [(0.5 * (k[0] + k[1]), fy, fz) for k, (fy, fz) in sorted(out.items())]
+
+
+# ---------------------------------------------------------------------------------------------
+# Loader
+
+_TABLE_KINDS = {"materials", "bearing_types", "parts"}       # merged across files by sub-key
+_PROV_KEYS = {*SOURCES, "note"}
+
+
+class _Ctx:
+    """File bookkeeping: which file defined which top-level item (for error messages)."""
+
+    def __init__(self) -> None:
+        self.origin: dict[str, str] = {}
+        self.files: list[str] = []
+        self.source: dict[str, str] = {}
+        self.note: dict[str, str] = {}
+
+    def file_of(self, key: str, default: str) -> str:
+        return self.origin.get(key, default)
+
+
+def list_variants(directory: str | Path | None = None) -> list[str]:
+    """Names of the variant files in ``geometry/`` (``<name>.toml``; ``common/`` excluded)."""
+    d = Path(directory) if directory is not None else GEOMETRY_DIR
+    return sorted(p.stem for p in d.glob("*.toml") if p.is_file())
+
+
+def _resolve(name_or_path: str | Path) -> Path:
+    text = str(name_or_path)
+    p = Path(text)
+    if text.endswith(".toml") or "/" in text or p.exists():
+        if not p.is_file():
+            raise InputError(text, "path", "an existing .toml variant file", got=text)
+        return p
+    cand = GEOMETRY_DIR / f"{text}.toml"
+    if not cand.is_file():
+        raise InputError("variant", "name", f"one of {list_variants()} or a path to a .toml",
+                         got=text)
+    return cand
+
+
+def _read_toml(path: Path, shown: str) -> dict:
+    try:
+        with path.open("rb") as fh:
+            return tomllib.load(fh)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(shown, "file", "valid TOML", reason=f"is not valid TOML ({exc})") \
+            from None
+    except OSError as exc:
+        raise InputError(shown, "file", "a readable file", reason=f"cannot be read ({exc})") \
+            from None
+
+
+def _show(path: Path) -> str:
+    try:
+        return str(path.resolve().relative_to(Path.cwd().resolve()))
+    except ValueError:
+        return str(path)
+
+
+def _merge(path: Path, merged: dict, ctx: _Ctx, stack: tuple[Path, ...]) -> None:
+    shown = _show(path)
+    doc = _read_toml(path, shown)
+    ctx.files.append(shown)
+    includes = doc.pop("include", [])
+    if not isinstance(includes, list) or not all(isinstance(i, str) for i in includes):
+        raise InputError(shown, "include", "a list of file names relative to this file",
+                         got=includes)
+    for i, inc in enumerate(includes):
+        ip = (path.parent / inc).resolve()
+        if not ip.is_file():
+            raise InputError(shown, f"include[{i}]", "an existing file relative to this file",
+                             got=inc)
+        if ip in stack:
+            raise InputError(shown, f"include[{i}]", "no include cycles", got=inc)
+        _merge(ip, merged, ctx, (*stack, ip))
+    for key, val in doc.items():
+        if key in _TABLE_KINDS:
+            if not isinstance(val, dict):
+                raise InputError(shown, key, "a table of named entries", got=type(val).__name__)
+            dest = merged.setdefault(key, {})
+            for sub, entry in val.items():
+                if sub in dest:
+                    raise InputError(shown, f"{key}.{sub}", "defined once (in one file only)",
+                                     reason=f"is also defined in {ctx.origin[f'{key}.{sub}']}")
+                dest[sub] = entry
+                ctx.origin[f"{key}.{sub}"] = shown
+        else:
+            if key in merged:
+                raise InputError(shown, key, "defined once (in one file only)",
+                                 reason=f"is also defined in {ctx.origin[key]}")
+            merged[key] = val
+            ctx.origin[key] = shown
+
+
+def _is_num(x: Any) -> bool:
+    return isinstance(x, int | float) and not isinstance(x, bool)
+
+
+def _is_numeric_value(x: Any) -> bool:
+    if _is_num(x):
+        return True
+    if isinstance(x, list) and x:
+        return all(_is_numeric_value(e) for e in x)
+    return False
+
+
+def _table(val: Any, src: str, fld: str) -> dict:
+    if not isinstance(val, dict):
+        raise InputError(src, fld, "a table", got=type(val).__name__)
+    return val
+
+
+def _check_keys(t: dict, allowed: set[str], src: str, fld: str) -> None:
+    for k in t:
+        if k not in allowed and k not in _PROV_KEYS:
+            raise InputError(src, f"{fld}.{k}", "one of " + ", ".join(sorted(allowed)),
+                             reason="is not a known field")
+
+
+def _num(t: dict, key: str, src: str, fld: str, *, default: float | None = None,
+         required: bool = True) -> float | None:
+    if key not in t:
+        if required and default is None:
+            raise InputError(src, f"{fld}.{key}", "a number", reason="is missing")
+        return default
+    v = t[key]
+    if not _is_num(v) or not math.isfinite(float(v)):
+        raise InputError(src, f"{fld}.{key}", "a finite number", got=v)
+    return float(v)
+
+
+def _str(t: dict, key: str, src: str, fld: str, default: str | None = None) -> str:
+    if key not in t:
+        if default is None:
+            raise InputError(src, f"{fld}.{key}", "a string", reason="is missing")
+        return default
+    v = t[key]
+    if not isinstance(v, str) or not v:
+        raise InputError(src, f"{fld}.{key}", "a non-empty string", got=v)
+    return v
+
+
+def _need(ok: bool, src: str, fld: str, allowed: str, got: Any) -> None:
+    if not ok:
+        raise InputError(src, fld, allowed, got=got)
+
+
+def _provenance(t: dict, src: str, fld: str, path: str, ctx: _Ctx) -> None:
+    """Every numeric key of table ``t`` must be in exactly one of the lists seed / reconstructed
+    / derived / standard; record them under ``path``."""
+    numeric = {k for k, v in t.items() if k not in _PROV_KEYS and _is_numeric_value(v)}
+    seen: dict[str, str] = {}
+    for s in SOURCES:
+        lst = t.get(s, [])
+        if not isinstance(lst, list) or not all(isinstance(e, str) for e in lst):
+            raise InputError(src, f"{fld}.{s}", "a list of key names", got=lst)
+        for k in lst:
+            if k not in t:
+                raise InputError(src, f"{fld}.{k}", f"a number (it is listed in '{s}')",
+                                 reason="is missing")
+            if k not in numeric:
+                raise InputError(src, f"{fld}.{k}", "a number or a list of numbers",
+                                 got=t[k])
+            if k in seen:
+                raise InputError(src, f"{fld}.{k}", "listed in exactly one provenance list",
+                                 reason=f"is listed in both '{seen[k]}' and '{s}'")
+            seen[k] = s
+    for k in sorted(numeric - set(seen)):
+        raise InputError(src, f"{fld}.{k}",
+                         "listed in one of seed / reconstructed / derived / standard",
+                         reason="has no provenance")
+    for k, s in seen.items():
+        ctx.source[f"{path}.{k}"] = s
+    note = t.get("note")
+    if note is not None:
+        if not isinstance(note, str):
+            raise InputError(src, f"{fld}.note", "a string", got=note)
+        ctx.note[path] = note
+
+
+def _material(name: str, t: dict, src: str, ctx: _Ctx) -> Material:
+    fld = f"materials.{name}"
+    t = _table(t, src, fld)
+    _check_keys(t, {"description", "E_MPa", "nu", "density_t_mm3", "yield_MPa",
+                    "ultimate_MPa"}, src, fld)
+    _provenance(t, src, fld, fld, ctx)
+    E = _num(t, "E_MPa", src, fld)
+    nu = _num(t, "nu", src, fld)
+    rho = _num(t, "density_t_mm3", src, fld)
+    fy = _num(t, "yield_MPa", src, fld)
+    fu = _num(t, "ultimate_MPa", src, fld)
+    _need(E > 0, src, f"{fld}.E_MPa", "> 0", E)
+    _need(0.0 < nu < 0.5, src, f"{fld}.nu", "0 < nu < 0.5", nu)
+    _need(0 < rho < 1e-7, src, f"{fld}.density_t_mm3", "0 < value < 1e-7 t/mm³", rho)
+    _need(fy > 0, src, f"{fld}.yield_MPa", "> 0", fy)
+    _need(fu >= fy, src, f"{fld}.ultimate_MPa", f">= yield_MPa ({fy})", fu)
+    return Material(name=name, E_MPa=E, nu=nu, density_t_mm3=rho, yield_MPa=fy,
+                    ultimate_MPa=fu, description=str(t.get("description", "")))
+
+
+def _segments(shaft: dict, src: str, ctx: _Ctx, stock: float | None) -> tuple[Segment, ...]:
+    raw = shaft.get("segments")
+    if not isinstance(raw, list) or not raw:
+        raise InputError(src, "segments", "a non-empty list of [[shaft.segments]] tables",
+                         got=raw)
+    segs: list[Segment] = []
+    names: set[str] = set()
+    x = _num(shaft, "x_start_mm", src, "shaft", default=0.0) or 0.0
+    for i, t in enumerate(raw):
+        fld = f"segments[{i}]"
+        t = _table(t, src, fld)
+        _check_keys(t, {"name", "length_mm", "diameter_mm", "fillet_mm", "kind", "keyways",
+                        "thread"}, src, fld)
+        name = _str(t, "name", src, fld)
+        _need(name not in names, src, f"{fld}.name", "unique segment names", name)
+        names.add(name)
+        _provenance(t, src, fld, f"segments.{name}", ctx)
+        length = _num(t, "length_mm", src, fld)
+        dia = _num(t, "diameter_mm", src, fld)
+        fil = _num(t, "fillet_mm", src, fld, default=0.0)
+        kind = _str(t, "kind", src, fld, default="plain")
+        _need(length > 0, src, f"{fld}.length_mm", "> 0", length)
+        _need(dia > 0, src, f"{fld}.diameter_mm", "> 0", dia)
+        if stock is not None:
+            _need(dia <= stock + 1e-9, src, f"{fld}.diameter_mm",
+                  f"<= stock diameter {stock:g} mm", dia)
+        _need(fil >= 0, src, f"{fld}.fillet_mm", ">= 0", fil)
+        _need(kind in ("plain", "seat", "thread"), src, f"{fld}.kind",
+              "plain | seat | thread", kind)
+        kws: list[Keyway] = []
+        for j, k in enumerate(t.get("keyways", [])):
+            kf = f"{fld}.keyways[{j}]"
+            k = _table(k, src, kf)
+            _check_keys(k, {"width_mm", "depth_mm", "length_mm", "x_center_mm", "angle_deg"},
+                        src, kf)
+            _provenance(k, src, kf, f"segments.{name}.keyways[{j}]", ctx)
+            kw = Keyway(width_mm=_num(k, "width_mm", src, kf),
+                        depth_mm=_num(k, "depth_mm", src, kf),
+                        length_mm=_num(k, "length_mm", src, kf),
+                        x_center_mm=_num(k, "x_center_mm", src, kf),
+                        angle_deg=_num(k, "angle_deg", src, kf, default=0.0) or 0.0)
+            _need(kw.width_mm > 0, src, f"{kf}.width_mm", "> 0", kw.width_mm)
+            _need(0 < kw.depth_mm < 0.5 * dia, src, f"{kf}.depth_mm",
+                  f"0 < depth < radius ({0.5 * dia:g})", kw.depth_mm)
+            _need(kw.width_mm < dia, src, f"{kf}.width_mm", f"< diameter ({dia:g})",
+                  kw.width_mm)
+            _need(kw.length_mm >= kw.width_mm, src, f"{kf}.length_mm",
+                  f">= width ({kw.width_mm:g})", kw.length_mm)
+            lo, hi = kw.x_center_mm - 0.5 * kw.length_mm, kw.x_center_mm + 0.5 * kw.length_mm
+            _need(x - 1e-9 <= lo and hi <= x + length + 1e-9, src, f"{kf}.x_center_mm",
+                  f"slot [{lo:g}, {hi:g}] inside the segment [{x:g}, {x + length:g}]",
+                  kw.x_center_mm)
+            kws.append(kw)
+        segs.append(Segment(name=name, x_start_mm=x, length_mm=length, diameter_mm=dia,
+                            fillet_mm=fil, keyways=tuple(kws), kind=kind))
+        x += length
+    # fillets: a shoulder fillet must fit the step height and the smaller segment's length
+    for i in range(len(segs) - 1):
+        a, b = segs[i], segs[i + 1]
+        fld = f"segments[{i}].fillet_mm"
+        step = 0.5 * abs(a.diameter_mm - b.diameter_mm)
+        if step < 1e-9:
+            _need(a.fillet_mm == 0, src, fld, "0 (no step to the next segment)", a.fillet_mm)
+            continue
+        small = a if a.diameter_mm < b.diameter_mm else b
+        limit = min(step, small.length_mm)
+        _need(a.fillet_mm <= limit + 1e-12, src, fld,
+              f"<= step height {step:g} and <= length of the smaller segment "
+              f"{small.length_mm:g}", a.fillet_mm)
+    return tuple(segs)
+
+
+def _bearings(shaft: dict, types: dict, segs: tuple[Segment, ...], ctx: _Ctx, src: str
+              ) -> tuple[Bearing, ...]:
+    raw = shaft.get("bearings")
+    if not isinstance(raw, list) or len(raw) < 2:
+        raise InputError(src, "bearings", "a list of at least two [[shaft.bearings]] tables",
+                         got=raw if raw is None else len(raw))
+    x0, x1 = segs[0].x_start_mm, segs[-1].x_end_mm
+    out: list[Bearing] = []
+    for i, t in enumerate(raw):
+        fld = f"bearings[{i}]"
+        t = _table(t, src, fld)
+        _check_keys(t, {"name", "type", "x_center_mm", "axial"}, src, fld)
+        name = _str(t, "name", src, fld)
+        _provenance(t, src, fld, f"bearings.{name}", ctx)
+        typ = _str(t, "type", src, fld)
+        if typ not in types:
+            raise InputError(src, f"{fld}.type", "one of " + ", ".join(sorted(types)), got=typ)
+        tsrc = ctx.file_of(f"bearing_types.{typ}", src)
+        tf = f"bearing_types.{typ}"
+        bt = _table(types[typ], tsrc, tf)
+        _check_keys(bt, {"designation", "bore_mm", "outer_diameter_mm", "width_mm", "C_N",
+                         "C0_N", "K_N_per_mm", "life_exponent", "tilt_stiffness_Nmm_per_rad"},
+                    tsrc, tf)
+        _provenance(bt, tsrc, tf, tf, ctx)
+        K = bt.get("K_N_per_mm")
+        ok = (isinstance(K, list) and len(K) == 2
+              and all(isinstance(r, list) and len(r) == 2 and all(_is_num(e) for e in r)
+                      for r in K))
+        _need(ok, tsrc, f"{tf}.K_N_per_mm", "[[K11, K12], [K21, K22]] in N/mm", K)
+        (k11, k12), (k21, k22) = ((float(K[0][0]), float(K[0][1])),
+                                  (float(K[1][0]), float(K[1][1])))
+        _need(abs(k12 - k21) <= 1e-9 * max(abs(k11), abs(k22), 1.0), tsrc,
+              f"{tf}.K_N_per_mm", "symmetric (K12 = K21)", K)
+        _need(k11 > 0 and k22 > 0 and k11 * k22 - k12 * k21 > 0, tsrc, f"{tf}.K_N_per_mm",
+              "positive definite (K11 > 0, K22 > 0, K11 K22 - K12² > 0)", K)
+        width = _num(bt, "width_mm", tsrc, tf)
+        bore = _num(bt, "bore_mm", tsrc, tf)
+        C = _num(bt, "C_N", tsrc, tf)
+        C0 = _num(bt, "C0_N", tsrc, tf)
+        _need(width > 0, tsrc, f"{tf}.width_mm", "> 0", width)
+        _need(C > 0, tsrc, f"{tf}.C_N", "> 0", C)
+        _need(C0 > 0, tsrc, f"{tf}.C0_N", "> 0", C0)
+        xc = _num(t, "x_center_mm", src, fld)
+        lo, hi = xc - 0.5 * width, xc + 0.5 * width
+        _need(x0 - 1e-9 <= lo and hi <= x1 + 1e-9, src, f"{fld}.x_center_mm",
+              f"bearing [{lo:g}, {hi:g}] inside the shaft [{x0:g}, {x1:g}]", xc)
+        under = [s for s in segs if s.x_end_mm > lo + 1e-9 and s.x_start_mm < hi - 1e-9]
+        bad = [s.name for s in under if abs(s.diameter_mm - bore) > 1e-6]
+        _need(not bad, src, f"{fld}.x_center_mm",
+              f"a bearing seat of diameter = bore {bore:g} mm over [{lo:g}, {hi:g}]",
+              f"{xc:g} (over {', '.join(bad)})")
+        axial = t.get("axial", False)
+        _need(isinstance(axial, bool), src, f"{fld}.axial", "true | false", axial)
+        out.append(Bearing(
+            name=name, designation=_str(bt, "designation", tsrc, tf), x_center_mm=xc,
+            width_mm=width, C_N=C, C0_N=C0, K_N_per_mm=((k11, k12), (k21, k22)), axial=axial,
+            tilt_stiffness_Nmm_per_rad=_num(bt, "tilt_stiffness_Nmm_per_rad", tsrc, tf,
+                                            default=0.0) or 0.0,
+            life_exponent=_num(bt, "life_exponent", tsrc, tf, default=3.0) or 3.0,
+            bore_mm=bore, outer_diameter_mm=_num(bt, "outer_diameter_mm", tsrc, tf,
+                                                 default=0.0) or 0.0))
+    _need(sum(b.axial for b in out) == 1, src, "bearings[*].axial",
+          "exactly one bearing with axial = true", sum(b.axial for b in out))
+    names = [b.name for b in out]
+    _need(len(set(names)) == len(names), src, "bearings[*].name", "unique names", names)
+    return tuple(sorted(out, key=lambda b: b.x_center_mm))
+
+
+_ATT_KEYS = {"name", "part", "seat", "seat_x_mm", "mass_kg", "eccentricity_mm", "angle_deg",
+             "x_centroid_mm", "polar_inertia_kg_mm2", "diametral_inertia_kg_mm2", "material",
+             "seed_load_case", "shape", "description"}
+
+
+def _attachment(t: dict, src: str, fld: str, segs: tuple[Segment, ...], mats: dict,
+                ctx: _Ctx, name: str) -> Attachment:
+    _check_keys(t, _ATT_KEYS, src, fld)
+    _provenance(t, src, fld, f"attachments.{name}", ctx)
+    shape = t.get("shape")
+    if shape is not None:
+        shape = _table(shape, src, f"{fld}.shape")
+        _provenance(shape, src, f"{fld}.shape", f"attachments.{name}.shape", ctx)
+    seat_name = ""
+    if "seat" in t:
+        seat_name = _str(t, "seat", src, fld)
+        seg = next((s for s in segs if s.name == seat_name), None)
+        if seg is None:
+            raise InputError(src, f"{fld}.seat", "the name of a shaft segment: "
+                             + ", ".join(s.name for s in segs), got=seat_name)
+        lo, hi = seg.x_start_mm, seg.x_end_mm
+    elif "seat_x_mm" in t:
+        sx = t["seat_x_mm"]
+        _need(isinstance(sx, list) and len(sx) == 2 and all(_is_num(e) for e in sx), src,
+              f"{fld}.seat_x_mm", "[x_start, x_end] in mm", sx)
+        lo, hi = float(sx[0]), float(sx[1])
+        _need(hi > lo, src, f"{fld}.seat_x_mm", "x_start < x_end", sx)
+        x0, x1 = segs[0].x_start_mm, segs[-1].x_end_mm
+        _need(x0 - 1e-9 <= lo and hi <= x1 + 1e-9, src, f"{fld}.seat_x_mm",
+              f"on the shaft [{x0:g}, {x1:g}]", sx)
+    else:
+        raise InputError(src, f"{fld}.seat", "a segment name (or seat_x_mm = [a, b])",
+                         reason="is missing")
+    m = _num(t, "mass_kg", src, fld)
+    e = _num(t, "eccentricity_mm", src, fld)
+    _need(m > 0, src, f"{fld}.mass_kg", "> 0", m)
+    _need(e >= 0, src, f"{fld}.eccentricity_mm", ">= 0", e)
+    jp = _num(t, "polar_inertia_kg_mm2", src, fld, default=0.0) or 0.0
+    jd = _num(t, "diametral_inertia_kg_mm2", src, fld, default=0.0) or 0.0
+    _need(jp >= 0, src, f"{fld}.polar_inertia_kg_mm2", ">= 0", jp)
+    _need(jd >= 0, src, f"{fld}.diametral_inertia_kg_mm2", ">= 0", jd)
+    mat = _str(t, "material", src, fld)
+    if mat not in mats:
+        raise InputError(src, f"{fld}.material", "one of " + ", ".join(sorted(mats)), got=mat)
+    slc = t.get("seed_load_case", False)
+    _need(isinstance(slc, bool), src, f"{fld}.seed_load_case", "true | false", slc)
+    return Attachment(
+        name=name, seat_x_start_mm=lo, seat_x_end_mm=hi, mass_kg=m, eccentricity_mm=e,
+        x_centroid_mm=_num(t, "x_centroid_mm", src, fld),
+        angle_deg=_num(t, "angle_deg", src, fld, default=0.0) or 0.0,
+        polar_inertia_kg_mm2=jp, diametral_inertia_kg_mm2=jd, material=mat,
+        seed_load_case=slc, seat_segment=seat_name)
+
+
+def _canonical(obj: Any) -> Any:
+    if dataclasses.is_dataclass(obj):
+        return {f.name: _canonical(getattr(obj, f.name)) for f in dataclasses.fields(obj)}
+    if isinstance(obj, tuple | list):
+        return [_canonical(e) for e in obj]
+    if isinstance(obj, bool) or obj is None or isinstance(obj, str):
+        return obj
+    if isinstance(obj, int | float):
+        return float(obj)
+    raise TypeError(f"cannot canonicalise {type(obj).__name__}")
+
+
+def content_hash(v: Variant) -> str:
+    """sha256 of a canonical JSON of the resolved physical content: segments, bearings,
+    attachments, materials, hex socket, parting plane and clearance station. Names of the
+    variant, descriptions, provenance and file names are left out, so comments, whitespace,
+    notes and the include layout do not change it."""
+    skip = {"name", "description", "provenance", "source_files", "content_hash",
+            "balance_target"}
+    body = {f.name: _canonical(getattr(v, f.name)) for f in dataclasses.fields(v)
+            if f.name not in skip}
+    text = json.dumps(body, sort_keys=True, separators=(",", ":"), ensure_ascii=True)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def load_variant(name_or_path: str | Path) -> Variant:
+    """Read, resolve the includes of, validate and return a variant.
+
+    ``name_or_path`` is a variant name (``geometry/<name>.toml``) or a path to a TOML file.
+    Anything impossible raises ``InputError(file, field, allowed, got)``."""
+    path = _resolve(name_or_path)
+    ctx = _Ctx()
+    merged: dict = {}
+    _merge(path.resolve(), merged, ctx, (path.resolve(),))
+    top = _show(path.resolve())
+    allowed_top = {"name", "description", "shaft", "materials", "bearing_types", "parts",
+                   "use_parts", "attachments", "balance"}
+    for k in merged:
+        if k not in allowed_top:
+            raise InputError(ctx.file_of(k, top), k, "one of " + ", ".join(sorted(allowed_top)),
+                             reason="is not a known top-level key")
+    name = merged.get("name")
+    if not isinstance(name, str) or not name:
+        raise InputError(top, "name", "a non-empty string", got=name)
+    desc = merged.get("description", "")
+
+    mats_raw = merged.get("materials", {})
+    mats = {k: _material(k, v, ctx.file_of(f"materials.{k}", top), ctx)
+            for k, v in mats_raw.items()}
+    if "shaft" not in merged:
+        raise InputError(top, "shaft", "a [shaft] table (usually from an include)",
+                         reason="is missing")
+    ssrc = ctx.file_of("shaft", top)
+    shaft = _table(merged["shaft"], ssrc, "shaft")
+    _check_keys(shaft, {"name", "material", "stock_diameter_mm", "parting_plane_x_mm",
+                        "clearance_station_x_mm", "clearance_to_crankshaft_mm", "x_start_mm",
+                        "segments", "bearings", "hex_socket"}, ssrc, "shaft")
+    _provenance(shaft, ssrc, "shaft", "shaft", ctx)
+    stock = _num(shaft, "stock_diameter_mm", ssrc, "shaft", required=False)
+    segs = _segments(shaft, ssrc, ctx, stock)
+    x0, x1 = segs[0].x_start_mm, segs[-1].x_end_mm
+    smat = _str(shaft, "material", ssrc, "shaft")
+    if smat not in mats:
+        raise InputError(ssrc, "shaft.material", "one of " + ", ".join(sorted(mats)) if mats
+                         else "a material defined in [materials.*]", got=smat)
+    bearings = _bearings(shaft, merged.get("bearing_types", {}), segs, ctx, ssrc)
+
+    hs = None
+    if "hex_socket" in shaft:
+        ht = _table(shaft["hex_socket"], ssrc, "shaft.hex_socket")
+        _check_keys(ht, {"end", "across_flats_mm", "depth_mm"}, ssrc, "shaft.hex_socket")
+        _provenance(ht, ssrc, "shaft.hex_socket", "hex_socket", ctx)
+        end = _str(ht, "end", ssrc, "shaft.hex_socket")
+        _need(end in ("left", "right"), ssrc, "hex_socket.end", "left | right", end)
+        s = _num(ht, "across_flats_mm", ssrc, "hex_socket")
+        depth = _num(ht, "depth_mm", ssrc, "hex_socket")
+        end_seg = segs[-1] if end == "right" else segs[0]
+        corners = 2.0 * s / math.sqrt(3.0)
+        _need(0 < s and corners < end_seg.diameter_mm, ssrc, "hex_socket.across_flats_mm",
+              f"> 0 with across-corners {corners:.3f} < end diameter "
+              f"{end_seg.diameter_mm:g}", s)
+        _need(0 < depth < x1 - x0, ssrc, "hex_socket.depth_mm",
+              f"0 < depth < shaft length {x1 - x0:g}", depth)
+        hs = HexSocket(end=end, across_flats_mm=s, depth_mm=depth)
+
+    pp = _num(shaft, "parting_plane_x_mm", ssrc, "shaft")
+    _need(x0 <= pp <= x1, ssrc, "shaft.parting_plane_x_mm", f"on the shaft [{x0:g}, {x1:g}]", pp)
+    cs = _num(shaft, "clearance_station_x_mm", ssrc, "shaft", required=False)
+    if cs is not None:
+        _need(x0 <= cs <= x1, ssrc, "shaft.clearance_station_x_mm",
+              f"on the shaft [{x0:g}, {x1:g}]", cs)
+
+    # attachments: shared parts named in use_parts, then the variant's own [[attachments]]
+    parts = merged.get("parts", {})
+    atts: list[Attachment] = []
+    use = merged.get("use_parts", [])
+    usrc = ctx.file_of("use_parts", top)
+    _need(isinstance(use, list) and all(isinstance(u, str) for u in use), usrc, "use_parts",
+          "a list of part names", use)
+    for i, pn in enumerate(use):
+        if pn not in parts:
+            raise InputError(usrc, f"use_parts[{i}]", "one of " + ", ".join(sorted(parts)),
+                             got=pn)
+        psrc = ctx.file_of(f"parts.{pn}", top)
+        atts.append(_attachment(_table(parts[pn], psrc, f"parts.{pn}"), psrc, f"parts.{pn}",
+                                segs, mats, ctx, pn))
+    asrc = ctx.file_of("attachments", top)
+    raw = merged.get("attachments", [])
+    _need(isinstance(raw, list), asrc, "attachments", "a list of [[attachments]] tables", raw)
+    for i, t in enumerate(raw):
+        fld = f"attachments[{i}]"
+        t = _table(t, asrc, fld)
+        an = _str(t, "name", asrc, fld)
+        atts.append(_attachment(t, asrc, fld, segs, mats, ctx, an))
+    anames = [a.name for a in atts]
+    dup = sorted({n for n in anames if anames.count(n) > 1})
+    _need(not dup, asrc, "attachments[*].name", "unique names", dup)
+
+    target = None
+    if "balance" in merged:
+        bsrc = ctx.file_of("balance", top)
+        bt = _table(merged["balance"], bsrc, "balance")
+        _check_keys(bt, {"X2_percent", "mass_kg", "gamma2_mm", "x_T_mm", "m_pos_kg",
+                         "crank_radius_mm"}, bsrc, "balance")
+        _provenance(bt, bsrc, "balance", "balance", ctx)
+        target = BalanceTarget(
+            X2_percent=_num(bt, "X2_percent", bsrc, "balance"),
+            mass_kg=_num(bt, "mass_kg", bsrc, "balance"),
+            gamma2_mm=_num(bt, "gamma2_mm", bsrc, "balance"),
+            x_T_mm=_num(bt, "x_T_mm", bsrc, "balance"),
+            m_pos_kg=_num(bt, "m_pos_kg", bsrc, "balance", default=0.0) or 0.0,
+            crank_radius_mm=_num(bt, "crank_radius_mm", bsrc, "balance", default=0.0) or 0.0)
+
+    v = Variant(
+        name=name, description=str(desc), segments=segs, bearings=bearings,
+        attachments=tuple(atts), material=mats[smat], parting_plane_x_mm=pp, hex_socket=hs,
+        clearance_station_x_mm=cs,
+        provenance=Provenance(source=MappingProxyType(dict(ctx.source)),
+                              note=MappingProxyType(dict(ctx.note))),
+        source_files=tuple(ctx.files), materials=tuple(mats[k] for k in sorted(mats)),
+        balance_target=target,
+        clearance_mm=_num(shaft, "clearance_to_crankshaft_mm", ssrc, "shaft", required=False),
+        stock_diameter_mm=stock)
+    return dataclasses.replace(v, content_hash=content_hash(v))
+
+
+def rigid_support_reactions(v: Variant, rpm: float, seed_case: bool = True
+                            ) -> tuple[tuple[str, float], ...]:
+    """Radial reaction magnitudes (N) of two simple supports at the bearing centres under the
+    seat-lumped centrifugal forces (the seed's Inventor shaft-module idealisation). Needs
+    exactly two bearings; returns ((bearing name, |R|), ...) in x order."""
+    if len(v.bearings) != 2:
+        raise ValueError("rigid_support_reactions needs exactly two bearings")
+    a, b = v.bearings
+    span = b.x_center_mm - a.x_center_mm
+    loads = seat_loads(v, rpm, seed_case)
+    out = []
+    for comp in (1, 2):
+        f_tot = sum(ld[comp] for ld in loads)
+        rb = sum(ld[comp] * (ld[0] - a.x_center_mm) for ld in loads) / span
+        out.append((f_tot - rb, rb))
+    ra = math.hypot(out[0][0], out[1][0])
+    rb_ = math.hypot(out[0][1], out[1][1])
+    return ((a.name, ra), (b.name, rb_))

@@ -1,8 +1,214 @@
-"""`shaftfe variant` command group (stub: filled in by its issue)."""
+"""`shaftfe variant`: list, show and check the balancer-shaft variant files (geometry/*.toml).
+
+Stdlib only at module level; ``shaftfe.variant`` is imported inside the handlers.
+"""
 
 from __future__ import annotations
 
+from shaftfe.errors import InputError
+
 
 def register(sub) -> None:
-    p = sub.add_parser("variant", help="(not yet available)")
-    p.set_defaults(handler=lambda args: print("shaftfe variant: not yet available") or 1)
+    p = sub.add_parser("variant", help="list, show or check balancer-shaft variant files",
+                       description="Variant files (geometry/<name>.toml with includes): list "
+                       "them, show one (segments, bearings, attachments with provenance, mass "
+                       "properties, attachment forces), or validate a file.")
+    vs = p.add_subparsers(dest="variant_command", metavar="SUBCOMMAND",
+                          parser_class=type(p))
+    pl = vs.add_parser("list", help="list the variants in geometry/")
+    pl.add_argument("--json", action="store_true", help="print JSON")
+    pl.set_defaults(handler=run_list)
+    ps = vs.add_parser("show", help="show one variant",
+                       description="Segments, bearings and attachments with their provenance, "
+                       "the whole-balancer mass properties against the seed's table, and the "
+                       "attachment forces m e ω² with rigid-support reactions.")
+    ps.add_argument("variant", help="variant name (e.g. x2_57) or path to a .toml file")
+    ps.add_argument("--rpm", default="7000,10000",
+                    help="speeds for the forces, comma-separated (default 7000,10000)")
+    ps.add_argument("--json", action="store_true", help="print JSON instead of tables")
+    ps.set_defaults(handler=run_show)
+    pc = vs.add_parser("check", help="validate a variant file (exit 2 with one line if bad)")
+    pc.add_argument("path", help="path to a variant .toml (or a variant name)")
+    pc.add_argument("--json", action="store_true", help="print JSON")
+    pc.set_defaults(handler=run_check)
+    p.set_defaults(handler=lambda args: p.print_help() or 0)
+
+
+def _parse_rpms(text: str) -> list[float]:
+    allowed = "comma-separated speeds in rpm, each >= 0"
+    try:
+        vals = [float(t) for t in text.split(",") if t.strip()]
+    except ValueError:
+        raise InputError("--rpm", "--rpm", allowed, got=text) from None
+    if not vals or any(not (0 <= v < float("inf")) for v in vals):
+        raise InputError("--rpm", "--rpm", allowed, got=text)
+    return vals
+
+
+def run_list(args) -> int:
+    from shaftfe.commands._common import print_json, print_table
+    from shaftfe.variant import list_variants, load_variant
+
+    rows = []
+    for name in list_variants():
+        v = load_variant(name)
+        mp = v.mass_properties()
+        rows.append({"name": v.name, "description": v.description,
+                     "mass_kg": round(mp.mass_kg, 4), "gamma2_mm": round(mp.gamma2_mm, 3),
+                     "x_T_mm": round(mp.x_T_mm, 3), "content_hash": v.content_hash})
+    if args.json:
+        print_json(rows)
+    else:
+        print_table(["name", "mass kg", "γ2 mm", "x_T mm", "description"],
+                    [[r["name"], f"{r['mass_kg']:.4f}", f"{r['gamma2_mm']:.3f}",
+                      f"{r['x_T_mm']:.3f}", r["description"]] for r in rows])
+    return 0
+
+
+def _src(v, path: str) -> str:
+    return v.provenance.source.get(path, "?")
+
+
+def _report(v, rpms: list[float]) -> dict:
+    from shaftfe.variant import rigid_support_reactions, seat_loads
+
+    mp = v.mass_properties()
+    tgt = v.balance_target
+    segs = [{"name": s.name, "kind": s.kind, "x_start_mm": s.x_start_mm, "x_end_mm": s.x_end_mm,
+             "length_mm": s.length_mm, "diameter_mm": s.diameter_mm, "fillet_mm": s.fillet_mm,
+             "keyways": [{"width_mm": k.width_mm, "depth_mm": k.depth_mm,
+                          "length_mm": k.length_mm, "x_center_mm": k.x_center_mm,
+                          "angle_deg": k.angle_deg} for k in s.keyways],
+             "source": {f: _src(v, f"segments.{s.name}.{f}")
+                        for f in ("length_mm", "diameter_mm", "fillet_mm")}}
+            for s in v.segments]
+    brgs = []
+    for b in v.bearings:
+        brgs.append({"name": b.name, "designation": b.designation, "x_center_mm": b.x_center_mm,
+                     "width_mm": b.width_mm, "C_N": b.C_N, "C0_N": b.C0_N,
+                     "K_N_per_mm": [list(r) for r in b.K_N_per_mm], "axial": b.axial,
+                     "source": {"x_center_mm": _src(v, f"bearings.{b.name}.x_center_mm")}})
+    atts = []
+    for a in v.attachments:
+        atts.append({"name": a.name, "seat": a.seat_segment,
+                     "seat_x_mm": [a.seat_x_start_mm, a.seat_x_end_mm], "mass_kg": a.mass_kg,
+                     "eccentricity_mm": a.eccentricity_mm, "angle_deg": a.angle_deg,
+                     "x_centroid_mm": a.x_centroid_mm,
+                     "polar_inertia_kg_mm2": a.polar_inertia_kg_mm2,
+                     "diametral_inertia_kg_mm2": a.diametral_inertia_kg_mm2,
+                     "material": a.material, "seed_load_case": a.seed_load_case,
+                     "source": {f: _src(v, f"attachments.{a.name}.{f}")
+                                for f in ("mass_kg", "eccentricity_mm", "x_centroid_mm")},
+                     "force_N": {f"{r:g}": a.force_N(r) for r in rpms}})
+    x2 = None
+    if tgt and tgt.m_pos_kg > 0 and tgt.crank_radius_mm > 0:
+        x2 = 100.0 * mp.mass_kg * mp.gamma2_mm / (tgt.m_pos_kg * tgt.crank_radius_mm)
+    mass = {"mass_kg": mp.mass_kg, "shaft_mass_kg": mp.shaft_mass_kg,
+            "gamma2_mm": mp.gamma2_mm, "sum_me_kg_mm": mp.mass_kg * mp.gamma2_mm,
+            "x_centroid_mm": mp.x_centroid_mm, "x_T_mm": mp.x_T_mm, "X2_percent": x2,
+            "polar_inertia_kg_mm2": mp.polar_inertia_kg_mm2,
+            "diametral_inertia_kg_mm2": mp.diametral_inertia_kg_mm2,
+            "seed": None if tgt is None else {
+                "X2_percent": tgt.X2_percent, "mass_kg": tgt.mass_kg,
+                "gamma2_mm": tgt.gamma2_mm, "x_T_mm": tgt.x_T_mm}}
+    loads = []
+    for r in rpms:
+        for case in ("seed", "full"):
+            lumped = seat_loads(v, r, seed_case=(case == "seed"))
+            reac = rigid_support_reactions(v, r, seed_case=(case == "seed")) \
+                if len(v.bearings) == 2 else ()
+            loads.append({"rpm": r, "case": case,
+                          "seat_forces": [{"x_mm": x, "Fy_N": fy, "Fz_N": fz}
+                                          for x, fy, fz in lumped],
+                          "rigid_reactions_N": {n: val for n, val in reac}})
+    return {"name": v.name, "description": v.description, "content_hash": v.content_hash,
+            "source_files": list(v.source_files), "length_mm": v.length_mm,
+            "material": v.material.name, "parting_plane_x_mm": v.parting_plane_x_mm,
+            "clearance_station_x_mm": v.clearance_station_x_mm,
+            "hex_socket": None if v.hex_socket is None else {
+                "end": v.hex_socket.end, "across_flats_mm": v.hex_socket.across_flats_mm,
+                "depth_mm": v.hex_socket.depth_mm},
+            "segments": segs, "bearings": brgs, "attachments": atts,
+            "mass_properties": mass, "loads": loads}
+
+
+def run_show(args) -> int:
+    from shaftfe.commands._common import print_json, print_table
+    from shaftfe.variant import load_variant
+
+    rpms = _parse_rpms(args.rpm)
+    v = load_variant(args.variant)
+    rep = _report(v, rpms)
+    if args.json:
+        print_json(rep)
+        return 0
+    print(f"{v.name}: {v.description}")
+    print(f"files: {', '.join(v.source_files)}")
+    print(f"content hash: {v.content_hash}")
+    print(f"length {v.length_mm:g} mm, material {v.material.name}, x = 0 at the gear end; "
+          f"parting plane x = {v.parting_plane_x_mm:g}, clearance station x = "
+          f"{v.clearance_station_x_mm}")
+    print()
+    print_table(["segment", "kind", "x0", "x1", "Ø mm", "fillet", "keyway", "source L/Ø/r"],
+                [[s["name"], s["kind"], s["x_start_mm"], s["x_end_mm"], s["diameter_mm"],
+                  s["fillet_mm"],
+                  ", ".join(f"{k['width_mm']:g}×{k['depth_mm']:g}×{k['length_mm']:g}"
+                            f"@{k['x_center_mm']:g}" for k in s["keyways"]) or "-",
+                  "/".join(s["source"][f] for f in ("length_mm", "diameter_mm", "fillet_mm"))]
+                 for s in rep["segments"]])
+    print()
+    print_table(["bearing", "type", "x mm", "width", "C N", "C0 N", "K11/K12 N/mm", "axial",
+                 "source x"],
+                [[b["name"], b["designation"], b["x_center_mm"], b["width_mm"], b["C_N"],
+                  b["C0_N"], f"{b['K_N_per_mm'][0][0]:g}/{b['K_N_per_mm'][0][1]:g}",
+                  "yes" if b["axial"] else "no", b["source"]["x_center_mm"]]
+                 for b in rep["bearings"]])
+    print()
+    hdr = ["attachment", "seat", "m kg", "e mm", "x mm", "Ip", "Id", "seed case",
+           "source m/e"] + [f"F@{r:g} N" for r in rpms]
+    print_table(hdr, [[a["name"], a["seat"], f"{a['mass_kg']:.5f}", f"{a['eccentricity_mm']:.3f}",
+                       a["x_centroid_mm"], a["polar_inertia_kg_mm2"],
+                       a["diametral_inertia_kg_mm2"], "yes" if a["seed_load_case"] else "no",
+                       f"{a['source']['mass_kg']}/{a['source']['eccentricity_mm']}"]
+                      + [f"{a['force_N'][f'{r:g}']:.0f}" for r in rpms]
+                      for a in rep["attachments"]])
+    print()
+    m = rep["mass_properties"]
+    s = {k: f"{val:g}" for k, val in (m["seed"] or {}).items()}
+    rows = [["mass kg", f"{m['mass_kg']:.4f}", s.get("mass_kg", "-")],
+            ["γ2 mm", f"{m['gamma2_mm']:.3f}", s.get("gamma2_mm", "-")],
+            ["x_T mm", f"{m['x_T_mm']:.3f}", s.get("x_T_mm", "-")],
+            ["X2 %", "-" if m["X2_percent"] is None else f"{m['X2_percent']:.2f}",
+             s.get("X2_percent", "-")],
+            ["Σ m e kg·mm", f"{m['sum_me_kg_mm']:.4f}", "-"],
+            ["shaft mass kg", f"{m['shaft_mass_kg']:.4f}", "-"],
+            ["polar J kg·mm²", f"{m['polar_inertia_kg_mm2']:.2f}", "-"],
+            ["diametral J kg·mm²", f"{m['diametral_inertia_kg_mm2']:.2f}", "-"]]
+    print_table(["whole balancer", "files", "seed table"], rows)
+    print()
+    lrows = []
+    for ld in rep["loads"]:
+        forces = "  ".join(f"{f['Fy_N']:.0f}@{f['x_mm']:g}" for f in ld["seat_forces"])
+        reac = "  ".join(f"{n} {val:.0f}" for n, val in ld["rigid_reactions_N"].items())
+        lrows.append([f"{ld['rpm']:g}", ld["case"], forces, reac])
+    print_table(["rpm", "case", "seat forces N @ x mm", "rigid-support reactions N"], lrows)
+    return 0
+
+
+def run_check(args) -> int:
+    from shaftfe.commands._common import print_json
+    from shaftfe.variant import load_variant
+
+    v = load_variant(args.path)
+    mp = v.mass_properties()
+    info = {"ok": True, "name": v.name, "files": list(v.source_files),
+            "content_hash": v.content_hash, "segments": len(v.segments),
+            "bearings": len(v.bearings), "attachments": len(v.attachments),
+            "mass_kg": mp.mass_kg, "values_with_provenance": len(v.provenance.source)}
+    if args.json:
+        print_json(info)
+    else:
+        print(f"OK {v.name}: {len(v.segments)} segments, {len(v.bearings)} bearings, "
+              f"{len(v.attachments)} attachments, {len(v.provenance.source)} values with "
+              f"provenance, mass {mp.mass_kg:.4f} kg, hash {v.content_hash[:16]}")
+    return 0

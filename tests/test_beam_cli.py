@@ -1,0 +1,102 @@
+"""CLI `shaftfe beam`: output, options, errors (exit 2, one line, no half-written file)."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import shaftfe.variant as variant_mod
+from shaftfe.cli import main
+from shaftfe.variant import Attachment, Bearing, Material, Segment, Variant
+
+ROOT = Path(__file__).resolve().parents[1]
+K = ((35_030.0, 8756.0), (8756.0, 35_030.0))
+
+
+def _fake_variant(n_bearings: int = 2) -> Variant:
+    segs = (Segment("a", 0.0, 25.0, 17.0, 1.0), Segment("b", 25.0, 50.0, 22.0, 1.0),
+            Segment("c", 75.0, 35.0, 17.0))
+    brgs = (Bearing("gear_side", "3203", 30.0, 10.0, 14_400.0, 9000.0, K, axial=True),
+            Bearing("free_side", "3203", 70.0, 10.0, 14_400.0, 9000.0, K))[:n_bearings]
+    atts = (Attachment("gear", 5.0, 20.0, 0.152, 1.36, 12.0),
+            Attachment("cw2", 80.0, 105.0, 0.24, 20.23, 92.0, angle_deg=180.0))
+    return Variant("fake", "test", segs, brgs, atts,
+                   Material("14220", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0), 0.0,
+                   clearance_station_x_mm=50.0)
+
+
+@pytest.fixture
+def fake_loader(monkeypatch):
+    def load(name):
+        return _fake_variant(1 if name == "one_bearing" else 2)
+    monkeypatch.setattr(variant_mod, "load_variant", load, raising=False)
+
+
+def test_json_two_speeds_and_equilibrium(fake_loader, capsys):
+    """Reactions balance the centrifugal loads m e ω² (statics) and the 7000 rpm forces are
+    (7000/10000)² of the 10 000 rpm ones."""
+    assert main(["beam", "--variant", "fake", "--rpm", "10000,7000", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    r10, r7 = out["results"]
+    w = 10_000 * 2 * math.pi / 60
+    Fy = 0.152 * 1.36e-3 * w**2 - 0.24 * 20.23e-3 * w**2
+    assert sum(b["Fy_N"] for b in r10["bearings"]) == pytest.approx(-Fy, rel=1e-9)
+    for b10, b7 in zip(r10["bearings"], r7["bearings"], strict=True):
+        assert b7["F_N"] == pytest.approx(b10["F_N"] * 0.49, rel=1e-12)
+    assert set(r10["stations"]) >= {"gear", "cw2", "clearance", "gear_side", "free_side"}
+    assert len(r10["notches"]) == 2
+
+
+def test_table_output_and_plot(fake_loader, capsys, tmp_path):
+    png = tmp_path / "out" / "beam.png"
+    assert main(["beam", "--variant", "fake", "--rigid-supports", "--plot", str(png)]) == 0
+    text = capsys.readouterr().out
+    assert "reactions" in text and "L10h" in text and "Kt" in text
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_singular_model_is_one_line_exit_2(fake_loader, capsys, tmp_path):
+    png = tmp_path / "x.png"
+    assert main(["beam", "--variant", "one_bearing", "--plot", str(png)]) == 2
+    err = capsys.readouterr().err
+    assert "singular" in err and len(err.strip().splitlines()) == 1
+    assert not png.exists()
+
+
+@pytest.mark.parametrize("argv", [["--rpm", "abc"], ["--rpm", "-5"], ["--plot", "out.txt"],
+                                  ["--max-element", "0"]])
+def test_bad_options_exit_2_one_line(argv, tmp_path):
+    out = subprocess.run([sys.executable, "-m", "shaftfe", "beam", "--variant", "x2_57", *argv],
+                         capture_output=True, text=True, cwd=tmp_path)
+    assert out.returncode == 2
+    assert "Traceback" not in out.stderr
+    assert len(out.stderr.strip().splitlines()) == 1
+    assert not (tmp_path / "out.txt").exists()
+
+
+def _real_variant_available() -> bool:
+    return (ROOT / "geometry" / "x2_57.toml").exists() and hasattr(variant_mod, "load_variant")
+
+
+@pytest.mark.skipif(not _real_variant_available(),
+                    reason="geometry/x2_57.toml or shaftfe.variant.load_variant not present yet")
+def test_real_variant_x2_57_runs():
+    """End-to-end on the real variant file: two bearings, reactions balance the attachments'
+    m e ω² (statics), finite stresses."""
+    out = subprocess.run([sys.executable, "-m", "shaftfe", "beam", "--variant", "x2_57",
+                          "--rigid-supports", "--json"], capture_output=True, text=True,
+                         cwd=ROOT)
+    assert out.returncode == 0, out.stderr
+    res = json.loads(out.stdout)["results"][0]
+    v = variant_mod.load_variant("x2_57")
+    Fy = sum(a.force_N(10_000) * math.cos(math.radians(a.angle_deg)) for a in v.attachments)
+    Fz = sum(a.force_N(10_000) * math.sin(math.radians(a.angle_deg)) for a in v.attachments)
+    scale = max(a.force_N(10_000) for a in v.attachments)
+    assert abs(sum(b["Fy_N"] for b in res["bearings"]) + Fy) < 1e-9 * scale
+    assert abs(sum(b["Fz_N"] for b in res["bearings"]) + Fz) < 1e-9 * scale
+    assert math.isfinite(res["max_sigma_vm_nominal_MPa"])

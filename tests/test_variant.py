@@ -1,0 +1,291 @@
+"""Variant files: loader, includes, provenance, validation errors, content hash, CLI (issue 3)."""
+
+import dataclasses
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from shaftfe.errors import InputError
+from shaftfe.variant import GEOMETRY_DIR, SOURCES, list_variants, load_variant
+
+VARIANTS = ("x2_31", "x2_42", "x2_50", "x2_57")
+
+
+def _copy_geometry(tmp_path: Path) -> Path:
+    dst = tmp_path / "geometry"
+    shutil.copytree(GEOMETRY_DIR, dst, ignore=shutil.ignore_patterns("*.md", "engines"))
+    return dst
+
+
+def _edit(path: Path, old: str, new: str) -> None:
+    text = path.read_text(encoding="utf-8")
+    assert text.count(old) == 1, f"{old!r} must occur once in {path.name}"
+    path.write_text(text.replace(old, new), encoding="utf-8")
+
+
+def test_list_variants_has_the_four_counterweight_pairs():
+    assert list_variants() == list(VARIANTS)
+
+
+@pytest.mark.parametrize("name", VARIANTS)
+def test_variant_loads_with_contiguous_segments_and_files(name):
+    v = load_variant(name)
+    assert v.name == name
+    assert v.source_files[0].endswith(f"{name}.toml")
+    assert len(v.source_files) == 5                      # the variant + 4 common includes
+    for a, b in zip(v.segments, v.segments[1:], strict=False):
+        assert b.x_start_mm == pytest.approx(a.x_end_mm)
+    assert v.segments[0].x_start_mm == 0.0
+    assert [b.name for b in v.bearings] == ["gear_side", "free_side"]
+    assert [b.axial for b in v.bearings] == [True, False]
+
+
+def test_load_by_path_equals_load_by_name():
+    a = load_variant("x2_57")
+    b = load_variant(GEOMETRY_DIR / "x2_57.toml")
+    assert a.content_hash == b.content_hash
+    assert a == b
+
+
+@pytest.mark.parametrize("name", VARIANTS)
+def test_every_numeric_value_has_exactly_one_known_source(name):
+    """Provenance: the loader rejects a numeric key without a source, so every numeric value in
+    the resolved files appears in Variant.provenance with one of the four sources."""
+    v = load_variant(name)
+    assert set(v.provenance.source.values()) <= set(SOURCES)
+    for s in v.segments:
+        for f in ("length_mm", "diameter_mm", "fillet_mm"):
+            assert f"segments.{s.name}.{f}" in v.provenance.source
+    for a in v.attachments:
+        for f in ("mass_kg", "eccentricity_mm", "x_centroid_mm"):
+            assert f"attachments.{a.name}.{f}" in v.provenance.source
+    assert v.provenance.source["bearing_types.zkl_3203.K_N_per_mm"] == "seed"
+    assert v.provenance.source["bearing_types.zkl_3203.C_N"] == "derived"
+    assert "segments.collar" in v.provenance.note
+
+
+def test_seed_and_reconstructed_counterweights_are_marked():
+    """x2_57's counterweight masses are seed (§8.2.2 forces); the other variants' are fitted."""
+    v57, v31 = load_variant("x2_57"), load_variant("x2_31")
+    assert v57.provenance.source["attachments.counterweight_2.mass_kg"] == "seed"
+    assert v31.provenance.source["attachments.counterweight_2.mass_kg"] == "reconstructed"
+    assert v31.provenance.source["attachments.counterweight_1.eccentricity_mm"] == \
+        "reconstructed"
+
+
+def test_seed_load_case_keeps_gear_and_counterweights_only():
+    v = load_variant("x2_57").with_seed_load_case()
+    assert sorted(a.name for a in v.attachments) == ["counterweight_1", "counterweight_2", "gear"]
+
+
+# --- content hash -----------------------------------------------------------------------------
+
+def test_hash_ignores_comments_whitespace_and_notes(tmp_path):
+    g = _copy_geometry(tmp_path)
+    ref = load_variant(g / "x2_57.toml").content_hash
+    shaft = g / "common" / "shaft_c.toml"
+    shaft.write_text("# a new comment\n\n" + shaft.read_text(encoding="utf-8")
+                     .replace("length_mm = 17.5\ndiameter_mm = 22.0",
+                              "length_mm   =   17.5\ndiameter_mm = 22.000"), encoding="utf-8")
+    _edit(g / "x2_57.toml", 'note = "The web joining', 'note = "Edited note. The web joining')
+    assert load_variant(g / "x2_57.toml").content_hash == ref
+
+
+def test_hash_changes_with_geometry(tmp_path):
+    g = _copy_geometry(tmp_path)
+    ref = load_variant(g / "x2_57.toml").content_hash
+    _edit(g / "common" / "shaft_c.toml", "diameter_mm = 22.0", "diameter_mm = 21.0")
+    assert load_variant(g / "x2_57.toml").content_hash != ref
+
+
+def test_hash_differs_between_variants():
+    hashes = {load_variant(n).content_hash for n in VARIANTS}
+    assert len(hashes) == len(VARIANTS)
+    assert all(len(h) == 64 for h in hashes)
+
+
+# --- impossible files: one InputError naming the file and the field ---------------------------
+
+SHAFT = "common/shaft_c.toml"
+BEAR = "common/bearings.toml"
+COLLAR = 'name = "collar"\nkind = "plain"\nlength_mm = 17.5\ndiameter_mm = 22.0\nfillet_mm = 0.6'
+
+BAD_CASES = {
+    "negative_length": (SHAFT, COLLAR, COLLAR.replace("length_mm = 17.5", "length_mm = -3.0"),
+                        SHAFT, "segments[4].length_mm"),
+    "zero_diameter": (SHAFT, COLLAR, COLLAR.replace("diameter_mm = 22.0", "diameter_mm = 0.0"),
+                      SHAFT, "segments[4].diameter_mm"),
+    "fillet_larger_than_step": (SHAFT, COLLAR, COLLAR.replace("fillet_mm = 0.6",
+                                                              "fillet_mm = 3.0"),
+                                SHAFT, "segments[4].fillet_mm"),
+    "fillet_without_step": (SHAFT, 'name = "gear_seat"\nkind = "seat"\nlength_mm = 10.0\n'
+                            'diameter_mm = 17.0\nfillet_mm = 0.0',
+                            'name = "gear_seat"\nkind = "seat"\nlength_mm = 10.0\n'
+                            'diameter_mm = 17.0\nfillet_mm = 0.5', SHAFT, "segments[1].fillet_mm"),
+    "fillet_longer_than_segment": (SHAFT, "length_mm = 7.0\ndiameter_mm = 13.773",
+                                   "length_mm = 0.3\ndiameter_mm = 13.773",
+                                   SHAFT, "segments[6].fillet_mm"),
+    "above_stock": (SHAFT, COLLAR, COLLAR.replace("diameter_mm = 22.0", "diameter_mm = 26.0"),
+                    SHAFT, "segments[4].diameter_mm"),
+    "keyway_outside_segment": (SHAFT, "x_center_mm = 11.0", "x_center_mm = 3.0",
+                               SHAFT, "segments[1].keyways[0].x_center_mm"),
+    "keyway_too_deep": (SHAFT, "depth_mm = 3.0\nlength_mm = 8.0\nx_center_mm = 11.0",
+                        "depth_mm = 9.0\nlength_mm = 8.0\nx_center_mm = 11.0",
+                        SHAFT, "segments[1].keyways[0].depth_mm"),
+    "bearing_outside_shaft": (SHAFT, "x_center_mm = 38.25", "x_center_mm = 5.0",
+                              SHAFT, "bearings[0].x_center_mm"),
+    "bearing_on_collar": (SHAFT, "x_center_mm = 73.25", "x_center_mm = 56.0",
+                          SHAFT, "bearings[1].x_center_mm"),
+    "bearing_without_stiffness": (BEAR, "K_N_per_mm = [[35030.0, 8756.0], [8756.0, 35030.0]]\n",
+                                  "", BEAR, "bearing_types.zkl_3203.K_N_per_mm"),
+    "K_not_symmetric": (BEAR, "[[35030.0, 8756.0], [8756.0, 35030.0]]",
+                        "[[35030.0, 8756.0], [8000.0, 35030.0]]",
+                        BEAR, "bearing_types.zkl_3203.K_N_per_mm"),
+    "K_not_positive_definite": (BEAR, "[[35030.0, 8756.0], [8756.0, 35030.0]]",
+                                "[[5000.0, 8756.0], [8756.0, 5000.0]]",
+                                BEAR, "bearing_types.zkl_3203.K_N_per_mm"),
+    "K_wrong_shape": (BEAR, "[[35030.0, 8756.0], [8756.0, 35030.0]]", "[35030.0, 8756.0]",
+                      BEAR, "bearing_types.zkl_3203.K_N_per_mm"),
+    "two_axial_bearings": (SHAFT, "axial = false", "axial = true", SHAFT, "bearings[*].axial"),
+    "unknown_shaft_material": (SHAFT, 'material = "14220"', 'material = "99999"',
+                               SHAFT, "shaft.material"),
+    "unknown_attachment_material": ("x2_57.toml", 'material = "12050"\nseed_load_case = true\n'
+                                    'seed = ["mass_kg", "eccentricity_mm"]\nreconstructed = '
+                                    '["angle_deg", "x_centroid_mm"]\nderived = ["polar_inertia_'
+                                    'kg_mm2", "diametral_inertia_kg_mm2"]\nnote = """m and e: '
+                                    'seed §8.2.2 (F_v1',
+                                    'material = "unobtainium"\nseed_load_case = true\n'
+                                    'seed = ["mass_kg", "eccentricity_mm"]\nreconstructed = '
+                                    '["angle_deg", "x_centroid_mm"]\nderived = ["polar_inertia_'
+                                    'kg_mm2", "diametral_inertia_kg_mm2"]\nnote = """m and e: '
+                                    'seed §8.2.2 (F_v1', "x2_57.toml", "attachments[0].material"),
+    "unknown_include": ("x2_57.toml", '"common/parts.toml"]', '"common/parts.toml", '
+                        '"common/nope.toml"]', "x2_57.toml", "include[4]"),
+    "seat_not_a_segment": ("x2_57.toml", 'seat = "cw2_seat"', 'seat = "nowhere"',
+                           "x2_57.toml", "attachments[1].seat"),
+    "negative_mass": ("x2_57.toml", "mass_kg = 0.24\n", "mass_kg = -0.24\n",
+                      "x2_57.toml", "attachments[1].mass_kg"),
+    "missing_provenance": (SHAFT, 'reconstructed = ["length_mm", "diameter_mm", "fillet_mm"]\n'
+                           'note = """Collar', 'reconstructed = ["diameter_mm", "fillet_mm"]\n'
+                           'note = """Collar', SHAFT, "segments[4].length_mm"),
+    "double_provenance": (BEAR, 'derived = ["C_N"]', 'derived = ["C_N", "bore_mm"]',
+                          BEAR, "bearing_types.zkl_3203.bore_mm"),
+    "unknown_field": (SHAFT, COLLAR, COLLAR + "\ndiametre_mm = 3.0", SHAFT,
+                      "segments[4].diametre_mm"),
+    "hex_too_big_for_end": (SHAFT, "across_flats_mm = 8.0", "across_flats_mm = 12.5",
+                            SHAFT, "hex_socket.across_flats_mm"),
+    "parting_plane_off_shaft": (SHAFT, "parting_plane_x_mm = 54.107", "parting_plane_x_mm = 200.0",
+                                SHAFT, "shaft.parting_plane_x_mm"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_CASES))
+def test_impossible_file_gives_one_input_error_naming_file_and_field(tmp_path, case):
+    rel, old, new, bad_file, field = BAD_CASES[case]
+    g = _copy_geometry(tmp_path)
+    _edit(g / rel, old, new)
+    with pytest.raises(InputError) as exc:
+        load_variant(g / "x2_57.toml")
+    err = exc.value
+    assert err.field == field
+    assert Path(err.source).name == Path(bad_file).name
+    assert "\n" not in str(err)
+
+
+def test_invalid_toml_is_an_input_error(tmp_path):
+    p = tmp_path / "broken.toml"
+    p.write_text('name = "x"\n[shaft\n', encoding="utf-8")
+    with pytest.raises(InputError) as exc:
+        load_variant(p)
+    assert exc.value.field == "file"
+
+
+def test_unknown_variant_name():
+    with pytest.raises(InputError) as exc:
+        load_variant("x2_99")
+    assert "x2_57" in exc.value.allowed
+
+
+def test_include_cycle_is_rejected(tmp_path):
+    g = _copy_geometry(tmp_path)
+    mats = g / "common" / "materials.toml"
+    mats.write_text('include = ["../x2_57.toml"]\n' + mats.read_text(encoding="utf-8"),
+                    encoding="utf-8")
+    with pytest.raises(InputError) as exc:
+        load_variant(g / "x2_57.toml")
+    assert exc.value.field == "include[0]"
+
+
+def test_duplicate_definition_across_files_is_rejected(tmp_path):
+    g = _copy_geometry(tmp_path)
+    parts = g / "common" / "parts.toml"
+    parts.write_text(parts.read_text(encoding="utf-8")
+                     + '\n[materials.14220]\nE_MPa = 1.0\nstandard = ["E_MPa"]\n',
+                     encoding="utf-8")
+    with pytest.raises(InputError) as exc:
+        load_variant(g / "x2_57.toml")
+    assert exc.value.field == "materials.14220"
+
+
+# --- CLI ----------------------------------------------------------------------------------------
+
+def _cli(*args):
+    return subprocess.run([sys.executable, "-m", "shaftfe", *args], capture_output=True,
+                          text=True)
+
+
+def test_cli_check_bad_file_is_one_line_exit_2(tmp_path):
+    g = _copy_geometry(tmp_path)
+    _edit(g / SHAFT, COLLAR, COLLAR.replace("length_mm = 17.5", "length_mm = -3.0"))
+    out = _cli("variant", "check", str(g / "x2_57.toml"))
+    assert out.returncode == 2
+    assert "Traceback" not in out.stderr
+    lines = out.stderr.strip().splitlines()
+    assert len(lines) == 1
+    assert "shaft_c.toml" in lines[0] and "segments[4].length_mm" in lines[0]
+    assert "> 0" in lines[0]
+
+
+def test_cli_check_good_file():
+    out = _cli("variant", "check", str(GEOMETRY_DIR / "x2_31.toml"))
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.startswith("OK x2_31")
+
+
+def test_cli_show_json_matches_api():
+    out = _cli("variant", "show", "x2_57", "--json", "--rpm", "10000")
+    assert out.returncode == 0, out.stderr
+    rep = json.loads(out.stdout)
+    v = load_variant("x2_57")
+    assert rep["content_hash"] == v.content_hash
+    assert [s["name"] for s in rep["segments"]] == [s.name for s in v.segments]
+    cw2 = next(a for a in rep["attachments"] if a["name"] == "counterweight_2")
+    assert cw2["source"]["mass_kg"] == "seed"
+    assert cw2["force_N"]["10000"] == pytest.approx(v.attachment("counterweight_2")
+                                                    .force_N(10000))
+    assert rep["mass_properties"]["mass_kg"] == pytest.approx(v.mass_properties().mass_kg)
+
+
+def test_cli_show_table_and_list_run():
+    out = _cli("variant", "show", "x2_42")
+    assert out.returncode == 0, out.stderr
+    assert "counterweight_2" in out.stdout and "rigid-support reactions" in out.stdout
+    out = _cli("variant", "list")
+    assert out.returncode == 0, out.stderr
+    assert all(n in out.stdout for n in VARIANTS)
+
+
+def test_cli_bad_rpm_is_one_line_exit_2():
+    out = _cli("variant", "show", "x2_57", "--rpm", "fast")
+    assert out.returncode == 2
+    assert len(out.stderr.strip().splitlines()) == 1
+
+
+def test_variant_is_frozen():
+    v = load_variant("x2_57")
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        v.name = "other"  # type: ignore[misc]
