@@ -84,5 +84,7 @@ def print_table(headers: list[str], rows: list[list[object]], title: str | None 
 
 def _fmt(v: object) -> str:
     if isinstance(v, float):
-        return f"{v:.4g}" if abs(v) < 1e-3 and v != 0 else f"{v:,.2f}".replace(",", " ")
+        if v != 0 and abs(v) < 1:
+            return f"{v:.4g}"       # small values keep 4 significant digits (0.06712 mm)
+        return f"{v:,.2f}".replace(",", " ")
     return str(v)

@@ -70,6 +70,34 @@ def _balancing(out, print_table) -> dict:
                              for k, v in best.items()}}
 
 
-def _beam(out, print_table) -> dict | None:
-    """Beam check of the x2_57 variant (filled in when the variant files and beam model land)."""
-    return None
+def _beam(out, print_table) -> dict:
+    """Beam check of x2_57 against the Inventor shaft-module figures (seed 000 §8.2.2)."""
+    from shaftfe import beam
+    from shaftfe.commands._common import write_atomic
+    from shaftfe.commands.beam import plot_results
+    from shaftfe.variant import load_variant
+
+    variant = load_variant("x2_57").with_seed_load_case()
+    rigid = beam.solve(beam.build_model(variant, rigid_supports=True), [10000.0, 7000.0])
+    eb = beam.solve(beam.build_model(variant, rigid_supports=True, shear_deformation=False),
+                    [10000.0])[0]
+    springs = beam.solve(beam.build_model(variant), [7000.0])[0]
+    r10, r7 = rigid
+    gear, free = (b.name for b in variant.bearings)
+    reac10 = {b.name: b.F_N for b in r10.bearings}
+    reac7 = {b.name: b.F_N for b in r7.bearings}
+    life7 = {b.name: b.L10h for b in springs.bearings}
+    rows = [
+        ["reaction gear side, 10 000 rpm [N]", 2689.0, reac10[gear]],
+        ["reaction free side, 10 000 rpm [N]", 5921.0, reac10[free]],
+        ["reaction gear side, 7000 rpm [N]", 1308.0, reac7[gear]],
+        ["reaction free side, 7000 rpm [N]", 2931.0, reac7[free]],
+        ["deflection under the gear [mm] (Timoshenko)", 0.063, r10.stations["gear"].u_mm],
+        ["deflection under the gear [mm] (Euler-Bernoulli)", 0.063, eb.stations["gear"].u_mm],
+        ["max nominal von Mises [MPa]", 263.157, r10.max_sigma_vm_MPa],
+        ["L10h free-side bearing, 7000 rpm [h]", 283.4, life7[free]],
+    ]
+    print("\nBeam check, x2_57, seed load case (rigid supports as Inventor; L10h on springs)")
+    print_table(["quantity", "seed", "shaftfe"], rows)
+    write_atomic(out / "beam_x2_57.png", plot_results(rigid))
+    return {"rows": [{"quantity": q, "seed": a, "shaftfe": b} for q, a, b in rows]}
