@@ -1,0 +1,208 @@
+"""S-N curves and fatigue material cards (``geometry/common/sn_curves.toml``).
+
+An S-N curve is a table of (cycles to failure N, alternating stress S_a) at zero mean stress,
+interpolated linearly in log N - log S_a between its points. Outside the table:
+
+* above the first point (S_a > S_a[0], N < N[0]): the first segment's power law continues;
+* below the last point (S_a < S_a[-1], N > N[-1]) — ``beyond_last``:
+  - ``"cutoff"`` (default): the last point is an endurance limit; smaller amplitudes have the
+    life ``infinite_life_cycles`` (default ∞, i.e. no damage). This is what the Ansys Fatigue
+    Tool does with a tabular S-N curve: below the lowest alternating stress the life is its
+    "Infinite Life" setting (default 1e9 cycles; give ``infinite_life_cycles = 1e9`` to copy
+    that exactly);
+  - ``"extrapolate"``: the last segment's power law continues (Miner "elementary", no
+    endurance limit; conservative for variable amplitudes).
+
+A ``FatigueMaterial`` is an S-N curve plus the static strengths the mean-stress theories need
+(yield for Soderberg, ultimate for Goodman and Gerber).
+
+Card keys: ``description``, ``source``, ``yield_MPa``, ``ultimate_MPa``, ``mean_stress_MPa``
+(must be 0: the mean-stress theories correct to a zero-mean curve), ``beyond_last``,
+``infinite_life_cycles`` (optional), and either a table ``cycles`` + ``alternating_MPa`` or a
+Basquin line ``knee_cycles`` + ``knee_alternating_MPa`` + ``slope_k`` (S_a^k N = const; stored as
+the two-point table (N_D/1000, S_D·1000^(1/k)), (N_D, S_D), which is the same power law).
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from shaftfe.errors import InputError
+
+SN_FILE = Path(__file__).resolve().parents[2] / "geometry" / "common" / "sn_curves.toml"
+BEYOND_LAST = ("cutoff", "extrapolate")
+
+
+@dataclass(frozen=True)
+class SNCurve:
+    """Zero-mean S-N table; see the module docstring for the behaviour outside it."""
+
+    cycles: tuple[float, ...]            # N, strictly increasing, > 0
+    alternating_MPa: tuple[float, ...]   # S_a, strictly decreasing, > 0
+    beyond_last: str = "cutoff"
+    infinite_life_cycles: float = math.inf
+
+    def __post_init__(self) -> None:
+        n = np.asarray(self.cycles, dtype=float)
+        s = np.asarray(self.alternating_MPa, dtype=float)
+        src = "S-N curve"
+        if n.ndim != 1 or n.size < 2 or n.size != s.size:
+            raise InputError(src, "cycles/alternating_MPa", "two equally long lists, >= 2 points",
+                             got=(n.size, s.size))
+        if not (np.all(np.isfinite(n)) and np.all(n > 0) and np.all(np.diff(n) > 0)):
+            raise InputError(src, "cycles", "finite, > 0, strictly increasing",
+                             got=list(self.cycles))
+        if not (np.all(np.isfinite(s)) and np.all(s > 0) and np.all(np.diff(s) < 0)):
+            raise InputError(src, "alternating_MPa", "finite, > 0, strictly decreasing",
+                             got=list(self.alternating_MPa))
+        if self.beyond_last not in BEYOND_LAST:
+            raise InputError(src, "beyond_last", " | ".join(BEYOND_LAST), got=self.beyond_last)
+        if not (self.infinite_life_cycles >= n[-1]):
+            raise InputError(src, "infinite_life_cycles", f">= the last point ({n[-1]:g})",
+                             got=self.infinite_life_cycles)
+
+    @property
+    def endurance_MPa(self) -> float:
+        """The last point's amplitude: no damage below it with ``beyond_last = "cutoff"``."""
+        return float(self.alternating_MPa[-1])
+
+    def log_tables(self) -> tuple[np.ndarray, np.ndarray]:
+        """(log10 S_a ascending, log10 N matching) for ``np.interp``."""
+        ls = np.log10(np.asarray(self.alternating_MPa, dtype=float))[::-1].copy()
+        ln = np.log10(np.asarray(self.cycles, dtype=float))[::-1].copy()
+        return ls, ln
+
+    def cycles_to_failure(self, sa) -> np.ndarray:
+        """N(S_a) for any array of equivalent zero-mean amplitudes (MPa); ∞ → 0 cycles."""
+        return 10.0 ** (-self.log_inverse_life(np.asarray(sa, dtype=float)))
+
+    def log_inverse_life(self, sa: np.ndarray) -> np.ndarray:
+        """log10(1/N(S_a)) (= −log10 N). S_a = ∞ gives +∞ (N = 0); S_a below the cutoff gives
+        −log10(infinite_life_cycles) (−∞ by default: no damage)."""
+        ls_tab, ln_tab = self.log_tables()
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ls = np.log10(sa)
+        out = np.interp(ls, ls_tab, ln_tab)
+        hi = ls > ls_tab[-1]
+        if hi.any():
+            slope = (ln_tab[-1] - ln_tab[-2]) / (ls_tab[-1] - ls_tab[-2])
+            out = np.where(hi, ln_tab[-1] + slope * (ls - ls_tab[-1]), out)
+        lo = ls < ls_tab[0]
+        if lo.any():
+            if self.beyond_last == "cutoff":
+                out = np.where(lo, math.log10(self.infinite_life_cycles), out)
+            else:
+                slope = (ln_tab[1] - ln_tab[0]) / (ls_tab[1] - ls_tab[0])
+                out = np.where(lo, ln_tab[0] + slope * (ls - ls_tab[0]), out)
+        out = np.where(np.isposinf(ls), -np.inf, out)   # infinite amplitude: N = 0
+        return -out
+
+    def amplitude_at(self, cycles) -> np.ndarray:
+        """Inverse: S_a at N cycles (log-log, same extrapolation); NaN beyond a cutoff."""
+        n = np.asarray(cycles, dtype=float)
+        ls_tab, ln_tab = self.log_tables()
+        x, y = ln_tab[::-1], ls_tab[::-1]     # log N ascending, log S descending
+        ln = np.log10(n)
+        out = np.interp(ln, x, y)
+        s0 = (y[1] - y[0]) / (x[1] - x[0])
+        out = np.where(ln < x[0], y[0] + s0 * (ln - x[0]), out)
+        if self.beyond_last == "extrapolate":
+            s1 = (y[-1] - y[-2]) / (x[-1] - x[-2])
+            out = np.where(ln > x[-1], y[-1] + s1 * (ln - x[-1]), out)
+        else:
+            out = np.where(ln > x[-1], np.nan, out)
+        return 10.0 ** out
+
+
+@dataclass(frozen=True)
+class FatigueMaterial:
+    name: str
+    yield_MPa: float
+    ultimate_MPa: float
+    sn: SNCurve
+    description: str = ""
+    source: str = ""
+
+
+_CARD_KEYS = {"description", "source", "yield_MPa", "ultimate_MPa", "mean_stress_MPa",
+              "beyond_last", "infinite_life_cycles", "cycles", "alternating_MPa", "knee_cycles",
+              "knee_alternating_MPa", "slope_k", "note"}
+
+
+def known_materials(path: str | Path = SN_FILE) -> list[str]:
+    return sorted(_read(Path(path)).keys())
+
+
+def load_material(name: str, path: str | Path = SN_FILE, *,
+                  beyond_last: str | None = None,
+                  infinite_life_cycles: float | None = None) -> FatigueMaterial:
+    """Material card ``name`` from ``path`` (default ``geometry/common/sn_curves.toml``); the
+    optional arguments override the card's endurance treatment."""
+    path = Path(path)
+    cards = _read(path)
+    if name not in cards:
+        raise InputError(str(path), "material", f"one of {sorted(cards)}", got=name)
+    card = cards[name]
+    src = str(path)
+    where = f"sn_curves.{name}"
+    unknown = sorted(set(card) - _CARD_KEYS)
+    if unknown:
+        raise InputError(src, f"{where}.{unknown[0]}", f"one of {sorted(_CARD_KEYS)}",
+                         reason="is not a known key")
+
+    def num(key: str, allowed: str, ok, default=None) -> float:
+        if key not in card:
+            if default is not None:
+                return default
+            raise InputError(src, f"{where}.{key}", allowed, reason="is missing")
+        v = card[key]
+        if isinstance(v, bool) or not isinstance(v, int | float) or not ok(float(v)):
+            raise InputError(src, f"{where}.{key}", allowed, got=v)
+        return float(v)
+
+    sy = num("yield_MPa", "> 0", lambda v: v > 0)
+    su = num("ultimate_MPa", ">= yield_MPa", lambda v: v >= sy)
+    num("mean_stress_MPa", "0 (a zero-mean S-N curve)", lambda v: v == 0.0, default=0.0)
+    if "cycles" in card or "alternating_MPa" in card:
+        lists = []
+        for key in ("cycles", "alternating_MPa"):
+            v = card.get(key)
+            if not isinstance(v, list) or not all(isinstance(x, int | float) and
+                                                  not isinstance(x, bool) for x in v):
+                raise InputError(src, f"{where}.{key}", "a list of numbers", got=v)
+            lists.append(tuple(float(x) for x in v))
+        cycles, amps = lists
+    else:
+        nd = num("knee_cycles", "> 1000", lambda v: v > 1000)
+        sd = num("knee_alternating_MPa", "> 0", lambda v: v > 0)
+        k = num("slope_k", "in (1, 100]", lambda v: 1 < v <= 100)
+        cycles, amps = (nd / 1000.0, nd), (sd * 1000.0 ** (1.0 / k), sd)
+    bl = beyond_last if beyond_last is not None else card.get("beyond_last", "cutoff")
+    inf_life = (infinite_life_cycles if infinite_life_cycles is not None
+                else num("infinite_life_cycles", "> 0", lambda v: v > 0, default=math.inf))
+    try:
+        sn = SNCurve(cycles, amps, bl, inf_life)
+    except InputError as exc:
+        raise InputError(src, f"{where}.{exc.field}", exc.allowed, got=exc.got) from None
+    return FatigueMaterial(name, sy, su, sn, str(card.get("description", "")),
+                           str(card.get("source", "")))
+
+
+def _read(path: Path) -> dict:
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise InputError(str(path), "file", "an existing S-N card file",
+                         reason="does not exist") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(str(path), "TOML", "valid TOML", reason=f"does not parse ({exc})")\
+            from None
+    cards = data.get("sn_curves")
+    if not isinstance(cards, dict) or not cards:
+        raise InputError(str(path), "sn_curves", "a table [sn_curves.<name>]", reason="is missing")
+    return cards

@@ -1,0 +1,322 @@
+"""Engine-speed histories for the fatigue study → a validated, frozen ``LoadHistory``.
+
+The balancer shaft is loaded by centrifugal forces F = m e ω², so every load is proportional to
+rpm². The static FE solution is computed once at a reference speed ``rpm_ref`` (seed 000 §8.3:
+7000 rpm) and the time history enters only through the load factor
+
+    load_factor(t) = (rpm(t) / rpm_ref)²
+
+Three file formats are read (SPEC §3):
+
+``normalised`` (the seed's ``rpm.dat``, seed 000 appendix 5)
+    one value ``rpm² / rpm_ref²`` per line, equally spaced in time. ``rpm_ref`` comes from a
+    header comment ``# reference_rpm = 7000`` or the ``rpm_ref`` argument (if both are given they
+    must agree); the sample rate from ``# sample_rate_hz = 1`` or the argument, default 1 Hz (the
+    seed's: 300 samples = 5 min).
+``rpm``
+    one engine speed in rpm per line, equally spaced; the sample rate is required (header
+    ``# sample_rate_hz = ...`` or argument).
+``csv``
+    a data-logger export with the header ``time_s,rpm`` and one ``time, rpm`` row per sample,
+    any (even irregular) but strictly increasing times.
+
+Lines starting with ``#`` are comments; ``# key = value`` comments before the first data line
+are header keys (``format``, ``reference_rpm``, ``sample_rate_hz``); blank lines are skipped.
+Automatic format choice: ``.csv`` → csv; otherwise the header's ``format`` key; otherwise
+``normalised`` if every value is ≤ 50 (50 rpm is far below any idle speed, and a normalised value
+of 50 would mean 7 × rpm_ref), else ``rpm``.
+
+Time and duration. Equally spaced formats: ``time_s[i] = i / f`` and ``duration_s = n / f`` (each
+sample holds for one interval: 300 samples at 1 Hz = the seed's 300 s block). CSV: the times as
+given, and ``duration_s = t_last − t_first + (t_last − t_prev)`` (the last sample holds for one
+more interval, so a regular 1 Hz log gives the same block length as the rpm format). The block
+length converts a life in blocks into hours.
+
+Bad input (empty file, non-numeric value, NaN/inf, negative rpm or load factor, speed above
+``RPM_CEILING``, non-increasing time, missing header) raises ``InputError`` naming the file, the
+line and the allowed range; the CLI prints it as one line and exits with code 2.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from shaftfe.errors import InputError
+
+RPM_CEILING = 20_000.0          # sane upper bound for any engine speed in a log (rpm)
+DEFAULT_RPM_REF = 7000.0        # reference speed of the seed's static load case (seed 000 §8.3)
+SEED_SAMPLE_RATE_HZ = 1.0       # seed 000 appendix 5: one sample per second
+FORMATS = ("normalised", "rpm", "csv")
+_AUTO_NORMALISED_MAX = 50.0
+_HEADER_RE = re.compile(r"^#\s*([A-Za-z_][A-Za-z0-9_]*)\s*[=:]\s*(\S.*?)\s*$")
+
+
+@dataclass(frozen=True, eq=False)
+class LoadHistory:
+    """An engine-speed history and its load factor (rpm / rpm_ref)². Arrays are read-only.
+
+    ``source`` is the file it was read from (or a description), ``format`` one of FORMATS (or
+    "array" for histories built in code)."""
+
+    time_s: np.ndarray
+    rpm: np.ndarray
+    load_factor: np.ndarray
+    rpm_ref: float
+    duration_s: float
+    source: str
+    format: str
+
+    def __post_init__(self) -> None:
+        for name in ("time_s", "rpm", "load_factor"):
+            arr = np.array(getattr(self, name), dtype=float)
+            arr.flags.writeable = False
+            object.__setattr__(self, name, arr)
+
+    @property
+    def n_samples(self) -> int:
+        return int(self.rpm.size)
+
+    def repeated(self, times: int) -> LoadHistory:
+        """The block played ``times`` times in a row (a longer block of the same riding)."""
+        if int(times) != times or times < 1:
+            raise InputError(self.source, "repeat", "an integer >= 1", got=times)
+        k = int(times)
+        t0 = self.time_s[0]
+        offs = np.repeat(np.arange(k) * self.duration_s, self.n_samples)
+        return LoadHistory(np.tile(self.time_s - t0, k) + offs + t0, np.tile(self.rpm, k),
+                           np.tile(self.load_factor, k), self.rpm_ref, k * self.duration_s,
+                           self.source, self.format)
+
+    def with_reference(self, rpm_ref: float) -> LoadHistory:
+        """The same speeds with the load factor taken relative to another reference speed — the
+        speed at which the static solution was computed (e.g. a static case at 10 000 rpm and
+        the seed's rpm.dat normalised to 7000 rpm: load factor × (7000/10 000)²)."""
+        _check_ref(rpm_ref, self.source, "rpm_ref")
+        return LoadHistory(self.time_s, self.rpm, (self.rpm / rpm_ref) ** 2, float(rpm_ref),
+                           self.duration_s, self.source, self.format)
+
+    def scaled(self, factor: float) -> LoadHistory:
+        """Every speed multiplied by ``factor`` (load factor × factor²), same times."""
+        if not (math.isfinite(factor) and factor > 0):
+            raise InputError(self.source, "scale", "a finite number > 0", got=factor)
+        rpm = self.rpm * factor
+        return LoadHistory(self.time_s, rpm, (rpm / self.rpm_ref) ** 2, self.rpm_ref,
+                           self.duration_s, self.source, self.format)
+
+
+def from_rpm(rpm, *, sample_rate_hz: float = SEED_SAMPLE_RATE_HZ,
+             rpm_ref: float = DEFAULT_RPM_REF, source: str = "array") -> LoadHistory:
+    """A history from an rpm array sampled at ``sample_rate_hz`` (same checks as the files)."""
+    rpm = np.asarray(rpm, dtype=float).ravel()
+    _check_rate(sample_rate_hz, source, "sample_rate_hz")
+    _check_ref(rpm_ref, source, "rpm_ref")
+    if rpm.size == 0:
+        raise InputError(source, "rpm", "at least one sample", reason="is empty")
+    bad = ~(np.isfinite(rpm) & (rpm >= 0) & (rpm <= RPM_CEILING))
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise InputError(source, f"rpm[{i}]", f"finite, in [0, {RPM_CEILING:g}] rpm",
+                         got=float(rpm[i]))
+    n = rpm.size
+    return LoadHistory(np.arange(n) / sample_rate_hz, rpm, (rpm / rpm_ref) ** 2, float(rpm_ref),
+                       n / sample_rate_hz, source, "array")
+
+
+def read_history(path: str | Path, *, fmt: str | None = None, rpm_ref: float | None = None,
+                 sample_rate_hz: float | None = None) -> LoadHistory:
+    """Read an rpm history file (see the module docstring for the formats and checks).
+
+    ``rpm_ref``: normalised files — the speed the values are normalised by (must match the
+    header if it has one); rpm/csv files — the reference speed of the load factor (default
+    ``DEFAULT_RPM_REF``). To evaluate against a static solution computed at another speed, use
+    ``history.with_reference(static_rpm)``."""
+    path = Path(path)
+    src = str(path)
+    if fmt is not None and fmt not in FORMATS:
+        raise InputError(src, "format", " | ".join(FORMATS), got=fmt)
+    if rpm_ref is not None:
+        _check_ref(rpm_ref, "command line", "rpm_ref")
+    if sample_rate_hz is not None:
+        _check_rate(sample_rate_hz, "command line", "sample_rate_hz")
+    try:
+        text = path.read_text(encoding="utf-8-sig")   # tolerate a BOM from spreadsheet exports
+    except FileNotFoundError:
+        raise InputError(src, "file", "an existing, readable file", reason="does not exist")\
+            from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(src, "file", "a readable UTF-8 text file",
+                         reason=f"cannot be read ({exc.__class__.__name__})") from None
+
+    header, rows = _split(text)
+    if fmt is None:
+        fmt = _detect(path, header, rows, src)
+    if "format" in header and header["format"][1] != fmt:
+        line, value = header["format"]
+        raise InputError(src, f"line {line}: format", f"{fmt} (the format being read)",
+                         got=value, reason="contradicts the format being read")
+    if fmt == "csv":
+        return _read_csv(src, header, rows, rpm_ref)
+    return _read_sampled(src, fmt, header, rows, rpm_ref, sample_rate_hz)
+
+
+# --- internals -------------------------------------------------------------------------------
+
+def _split(text: str) -> tuple[dict[str, tuple[int, str]], list[tuple[int, str]]]:
+    """Header keys (before the first data line) and (line number, text) data rows."""
+    header: dict[str, tuple[int, str]] = {}
+    rows: list[tuple[int, str]] = []
+    for k, raw in enumerate(text.splitlines(), start=1):
+        line = raw.strip()
+        if not line:
+            continue
+        if line.startswith("#"):
+            m = _HEADER_RE.match(line)
+            if m and not rows:
+                header[m.group(1).lower()] = (k, m.group(2))
+            continue
+        rows.append((k, line))
+    return header, rows
+
+
+def _detect(path: Path, header, rows, src: str) -> str:
+    if path.suffix.lower() == ".csv":
+        return "csv"
+    if "format" in header:
+        line, value = header["format"]
+        if value not in FORMATS:
+            raise InputError(src, f"line {line}: format", " | ".join(FORMATS), got=value)
+        return value
+    if not rows:
+        raise InputError(src, "data", "at least one data line", reason="is empty")
+    if rows[0][1].lower().replace(" ", "").startswith("time_s,"):
+        return "csv"
+    vals = []
+    for line, s in rows:
+        try:
+            vals.append(float(s))
+        except ValueError:
+            raise InputError(src, f"line {line}", "one number per line", got=s,
+                             reason="is not a number") from None
+    finite = [v for v in vals if math.isfinite(v)]
+    return "normalised" if finite and max(finite) <= _AUTO_NORMALISED_MAX else "rpm"
+
+
+def _header_float(src: str, header, key: str) -> float | None:
+    if key not in header:
+        return None
+    line, value = header[key]
+    try:
+        return float(value)
+    except ValueError:
+        raise InputError(src, f"line {line}: {key}", "a number", got=value) from None
+
+
+def _check_ref(v: float, src: str, field: str) -> None:
+    if not (math.isfinite(v) and 0 < v <= RPM_CEILING):
+        raise InputError(src, field, f"in (0, {RPM_CEILING:g}] rpm", got=v)
+
+
+def _check_rate(v: float, src: str, field: str) -> None:
+    if not (math.isfinite(v) and v > 0):
+        raise InputError(src, field, "a finite number > 0 (Hz)", got=v)
+
+
+def _number(src: str, line: int, s: str, what: str, allowed: str) -> float:
+    try:
+        v = float(s)
+    except ValueError:
+        raise InputError(src, f"line {line}: {what}", allowed, got=s,
+                         reason="is not a number") from None
+    if not math.isfinite(v):
+        raise InputError(src, f"line {line}: {what}", allowed, got=s)
+    return v
+
+
+def _read_sampled(src, fmt, header, rows, rpm_ref, sample_rate_hz) -> LoadHistory:
+    if not rows:
+        raise InputError(src, "data", "at least one data line", reason="is empty")
+    rate = sample_rate_hz
+    h_rate = _header_float(src, header, "sample_rate_hz")
+    if h_rate is not None:
+        _check_rate(h_rate, src, f"line {header['sample_rate_hz'][0]}: sample_rate_hz")
+        if rate is not None and not math.isclose(rate, h_rate, rel_tol=1e-12):
+            raise InputError(src, f"line {header['sample_rate_hz'][0]}: sample_rate_hz",
+                             f"{rate:g} (the value given on the command line)", got=h_rate,
+                             reason="contradicts the option")
+        rate = h_rate
+    if rate is None:
+        if fmt == "rpm":
+            raise InputError(src, "sample_rate_hz", "a header '# sample_rate_hz = ...' or the "
+                             "--sample-rate option", reason="is missing")
+        rate = SEED_SAMPLE_RATE_HZ
+
+    if fmt == "normalised":
+        ref = rpm_ref
+        h_ref = _header_float(src, header, "reference_rpm")
+        if h_ref is not None:
+            _check_ref(h_ref, src, f"line {header['reference_rpm'][0]}: reference_rpm")
+            if ref is not None and not math.isclose(ref, h_ref, rel_tol=1e-12):
+                raise InputError(src, f"line {header['reference_rpm'][0]}: reference_rpm",
+                                 f"{ref:g} (the value given on the command line)", got=h_ref,
+                                 reason="contradicts the option")
+            ref = h_ref
+        if ref is None:
+            raise InputError(src, "reference_rpm", "a header '# reference_rpm = ...' or the "
+                             "--rpm-ref option", reason="is missing")
+        cap = (RPM_CEILING / ref) ** 2
+        allowed = f"a finite number in [0, {cap:.6g}] (= ({RPM_CEILING:g}/{ref:g})²)"
+        lf = np.empty(len(rows))
+        for i, (line, s) in enumerate(rows):
+            v = _number(src, line, s, "load factor", allowed)
+            if not 0 <= v <= cap:
+                raise InputError(src, f"line {line}: load factor", allowed, got=v)
+            lf[i] = v
+        rpm = ref * np.sqrt(lf)
+    else:
+        ref = DEFAULT_RPM_REF if rpm_ref is None else float(rpm_ref)
+        allowed = f"a finite number in [0, {RPM_CEILING:g}] rpm"
+        rpm = np.empty(len(rows))
+        for i, (line, s) in enumerate(rows):
+            v = _number(src, line, s, "rpm", allowed)
+            if not 0 <= v <= RPM_CEILING:
+                raise InputError(src, f"line {line}: rpm", allowed, got=v)
+            rpm[i] = v
+        lf = (rpm / ref) ** 2
+    n = len(rows)
+    return LoadHistory(np.arange(n) / rate, rpm, lf, float(ref), n / rate, src, fmt)
+
+
+def _read_csv(src, header, rows, rpm_ref) -> LoadHistory:
+    if not rows:
+        raise InputError(src, "data", "a header 'time_s,rpm' and at least two rows",
+                         reason="is empty")
+    line0, first = rows[0]
+    if [c.strip().lower() for c in first.split(",")] != ["time_s", "rpm"]:
+        raise InputError(src, f"line {line0}: header", "'time_s,rpm'", got=first)
+    data = rows[1:]
+    if len(data) < 2:
+        raise InputError(src, "data", "at least two rows 'time_s,rpm'",
+                         got=len(data), reason="has too few rows")
+    ref = DEFAULT_RPM_REF if rpm_ref is None else float(rpm_ref)
+    t = np.empty(len(data))
+    rpm = np.empty(len(data))
+    allowed_rpm = f"a finite number in [0, {RPM_CEILING:g}] rpm"
+    for i, (line, s) in enumerate(data):
+        cols = s.split(",")
+        if len(cols) != 2:
+            raise InputError(src, f"line {line}", "two columns 'time_s,rpm'", got=s)
+        t[i] = _number(src, line, cols[0].strip(), "time_s", "a finite number (s)")
+        v = _number(src, line, cols[1].strip(), "rpm", allowed_rpm)
+        if not 0 <= v <= RPM_CEILING:
+            raise InputError(src, f"line {line}: rpm", allowed_rpm, got=v)
+        rpm[i] = v
+        if i and not t[i] > t[i - 1]:
+            raise InputError(src, f"line {line}: time_s",
+                             f"> {t[i - 1]:g} (strictly increasing)", got=float(t[i]))
+    duration = float(t[-1] - t[0] + (t[-1] - t[-2]))
+    return LoadHistory(t, rpm, (rpm / ref) ** 2, ref, duration, src, "csv")
