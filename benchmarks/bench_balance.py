@@ -6,10 +6,9 @@ Error: largest |min max|F| − seed| over the 10 rows, and whether the X2 of eac
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 
+from benchmarks._timing import best_of
 from shaftfe.balance.engines import engine_from_dict
 from shaftfe.balance.sweep import sweep
 
@@ -27,14 +26,6 @@ def _engine():
         "rod_pos_mass_kg": 0.114447, "tilt_deg": 0.0, "rpm": 6000.0}, "parameters A")
 
 
-def _best_time(fn, repeat: int = 5) -> tuple[float, object]:
-    best, out = float("inf"), None
-    for _ in range(repeat):
-        t = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t)
-    return best, out
-
 
 def main() -> None:
     e = _engine()
@@ -44,7 +35,7 @@ def main() -> None:
           f"{'X2 match':>9} {'RMS err [N]':>12}")
     for sampling, n in (("seed_inclusive", 360), ("period", 360), ("period", 3600),
                         ("period", 36000)):
-        t, r = _best_time(lambda s=sampling, k=n: sweep(e, X, X2, sampling=s, n=k))
+        t, r = best_of(lambda s=sampling, k=n: sweep(e, X, X2, sampling=s, n=k))
         m = r.minima()
         err = np.max(np.abs(m["max_f"][0] - SEED_MAXF))
         match = int(np.sum(np.round(100 * m["max_f"][1]) == SEED_MAXF_X2))

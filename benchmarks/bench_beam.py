@@ -8,17 +8,9 @@ for several element lengths; plus the real variant x2_57 if its file and loader 
 from __future__ import annotations
 
 import math
-import time
 from pathlib import Path
 
-
-def _best(fn, repeat: int = 20) -> float:
-    best = math.inf
-    for _ in range(repeat):
-        t = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t)
-    return best
+from benchmarks._timing import best_time
 
 
 def main() -> None:
@@ -44,7 +36,7 @@ def main() -> None:
         m, r = run()
         i = min(range(m.n_nodes), key=lambda k: abs(m.x[k] - L / 2))
         err = abs(r.uy[i] / ref - 1)
-        t = _best(run, 5 if h < 0.5 else 20)
+        t = best_time(run, 5 if h < 0.5 else 20)
         print(f"{'uniform SS, h = ' + format(h, 'g') + ' mm':<28}{m.n_nodes:>7}{t * 1e3:>10.3f}"
               f"{err:>12.2e}")
 
@@ -66,7 +58,7 @@ def main() -> None:
             m = beam.build_model(bal, max_element_mm=h)
             return m, beam.solve(m, [10_000.0, 7000.0])
         m, _ = run1()
-        t = _best(run1)
+        t = best_time(run1)
         print(f"{'balancer-like, h = ' + format(h, 'g') + ' mm':<28}{m.n_nodes:>7}"
               f"{t * 1e3:>10.3f}{'-':>12}")
 
@@ -83,7 +75,7 @@ def main() -> None:
                 m = beam.build_model(var, rigid_supports=rigid)
                 return m, beam.solve(m, [10_000.0, 7000.0])
             m, _ = run2()
-            t = _best(run2)
+            t = best_time(run2)
             label = f"x2_57 {'rigid' if rigid else 'springs'}, 2 rpm"
             print(f"{label:<28}{m.n_nodes:>7}{t * 1e3:>10.3f}{'-':>12}")
     else:

@@ -17,18 +17,12 @@ from pathlib import Path
 
 import numpy as np
 
+from benchmarks._timing import best_time
+
 N_NODES = 60_000
 SUBSET = 400
 ROOT = Path(__file__).resolve().parents[1]
 
-
-def _best(fn, repeat: int = 5) -> float:
-    best = math.inf
-    for _ in range(repeat):
-        t = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t)
-    return best
 
 
 def _reference_damage(s_eq: float, ranges, means, counts, mat) -> float:
@@ -64,9 +58,9 @@ def main() -> None:
     sig = rng.normal(size=(N_NODES, 6))
     sig *= (rng.uniform(0.0, 260.0, N_NODES) / equivalent_stress(sig))[:, None]
 
-    t_count = _best(lambda: count_cycles(h.load_factor), 20)
+    t_count = best_time(lambda: count_cycles(h.load_factor), 20)
     cyc = count_cycles(h.load_factor)
-    t_eq = _best(lambda: equivalent_stress(sig))
+    t_eq = best_time(lambda: equivalent_stress(sig))
     s_eq = equivalent_stress(sig)
 
     def damage_and_life():
@@ -75,10 +69,10 @@ def main() -> None:
             blocks = np.where(d > 0, 1.0 / np.where(d > 0, d, 1.0), np.inf)
         return d, blocks, blocks * h.duration_s / 3600.0
 
-    t_dmg = _best(damage_and_life)
+    t_dmg = best_time(damage_and_life)
     d, _, _ = damage_and_life()
-    t_sf_sim = _best(lambda: safety_factor(s_eq, cyc, mat, 1e7, "soderberg"))
-    t_sf_bis = _best(lambda: safety_factor(s_eq, cyc, mat, 1e7, "soderberg",
+    t_sf_sim = best_time(lambda: safety_factor(s_eq, cyc, mat, 1e7, "soderberg"))
+    t_sf_bis = best_time(lambda: safety_factor(s_eq, cyc, mat, 1e7, "soderberg",
                                            method="bisection"), 1)
     n_sim, _ = safety_factor(s_eq, cyc, mat, 1e7, "soderberg")
     n_bis, _ = safety_factor(s_eq, cyc, mat, 1e7, "soderberg", method="bisection")

@@ -40,6 +40,18 @@ def parse_range(text: str, option: str, *, lo: float | None = None,
     return start, stop, step
 
 
+def parse_rpm_list(text: str, option: str = "--rpm") -> list[float]:
+    """Parse a comma-separated list of speeds in rpm (``7000,10000``); each finite and >= 0."""
+    allowed = "comma-separated speeds in rpm, each >= 0"
+    try:
+        vals = [float(t) for t in text.split(",") if t.strip()]
+    except ValueError:
+        raise InputError("command line", option, allowed, got=text) from None
+    if not vals or any(not (0 <= v < float("inf")) for v in vals):
+        raise InputError("command line", option, allowed, got=text)
+    return vals
+
+
 def write_atomic(path: str | os.PathLike, data: str | bytes) -> Path:
     """Write a file so that a failure never leaves a half-written output behind."""
     path = Path(path)

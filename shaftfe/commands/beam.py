@@ -37,21 +37,11 @@ def register(sub) -> None:
     p.set_defaults(handler=run)
 
 
-def _parse_rpms(text: str) -> list[float]:
-    allowed = "comma-separated speeds in rpm, each >= 0"
-    try:
-        vals = [float(t) for t in text.split(",") if t.strip()]
-    except ValueError:
-        raise InputError("--rpm", "--rpm", allowed, got=text) from None
-    if not vals or any(not (v >= 0 and v < float("inf")) for v in vals):
-        raise InputError("--rpm", "--rpm", allowed, got=text)
-    return vals
-
 
 def run(args) -> int:
-    from shaftfe.commands._common import print_json, print_table, write_atomic
+    from shaftfe.commands._common import parse_rpm_list, print_json, print_table, write_atomic
 
-    rpms = _parse_rpms(args.rpm)
+    rpms = parse_rpm_list(args.rpm)
     if not (args.max_element > 0):
         raise InputError("--max-element", "--max-element", "> 0", got=args.max_element)
     plot_fmt = None

@@ -5,8 +5,6 @@ Stdlib only at module level; ``shaftfe.variant`` is imported inside the handlers
 
 from __future__ import annotations
 
-from shaftfe.errors import InputError
-
 
 def register(sub) -> None:
     p = sub.add_parser("variant", help="list, show or check balancer-shaft variant files",
@@ -33,16 +31,6 @@ def register(sub) -> None:
     pc.set_defaults(handler=run_check)
     p.set_defaults(handler=lambda args: p.print_help() or 0)
 
-
-def _parse_rpms(text: str) -> list[float]:
-    allowed = "comma-separated speeds in rpm, each >= 0"
-    try:
-        vals = [float(t) for t in text.split(",") if t.strip()]
-    except ValueError:
-        raise InputError("--rpm", "--rpm", allowed, got=text) from None
-    if not vals or any(not (0 <= v < float("inf")) for v in vals):
-        raise InputError("--rpm", "--rpm", allowed, got=text)
-    return vals
 
 
 def run_list(args) -> int:
@@ -133,10 +121,10 @@ def _report(v, rpms: list[float]) -> dict:
 
 
 def run_show(args) -> int:
-    from shaftfe.commands._common import print_json, print_table
+    from shaftfe.commands._common import parse_rpm_list, print_json, print_table
     from shaftfe.variant import load_variant
 
-    rpms = _parse_rpms(args.rpm)
+    rpms = parse_rpm_list(args.rpm)
     v = load_variant(args.variant)
     rep = _report(v, rpms)
     if args.json:
