@@ -1,0 +1,338 @@
+"""Gmsh solid + mesh → scikit-fem: groups, node order, quality, cache, CLI (issue 3)."""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+
+import numpy as np
+import pytest
+
+from shaftfe.errors import InputError
+from shaftfe.variant import (
+    Attachment,
+    Bearing,
+    HexSocket,
+    Keyway,
+    Material,
+    Segment,
+    Variant,
+)
+
+STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
+K = ((35_030.0, 8_756.0), (8_756.0, 35_030.0))
+
+
+def make_variant(*, name="syn", fillet_b=1.0, fillet_c=1.0, keyway=True, hex_socket=True,
+                 cw_angle=30.0, hub_angle=0.0, bearing=(60.0, 8.0), cw_seat=(25.0, 45.0),
+                 hub_seat=(75.0, 85.0), keyway_x=35.0) -> Variant:
+    """A four-step test shaft: Ø15 (sharp step up) Ø17 (fillet, keyway) Ø22 (fillet, step
+    down) Ø17 (hex socket in the right end); bearing on Ø22, counterweight 'cw' on the keyed
+    Ø17 at ``cw_angle``, 'hub' and 'washer' sharing one plain seat on the last Ø17."""
+    kw = (Keyway(5.0, 3.0, 14.0, keyway_x, 0.0),) if keyway else ()
+    segs = (
+        Segment("a", 0.0, 20.0, 15.0, 0.0, kind="thread"),
+        Segment("b", 20.0, 30.0, 17.0, fillet_b, keyways=kw),
+        Segment("c", 50.0, 20.0, 22.0, fillet_c),
+        Segment("d", 70.0, 30.0, 17.0, 0.0),
+    )
+    brg = (Bearing("mid", "ZKL 3203", bearing[0], bearing[1], 14_400.0, 10_000.0, K),)
+    att = (
+        Attachment("cw", cw_seat[0], cw_seat[1], 0.24, 20.23, 35.0, angle_deg=cw_angle),
+        Attachment("hub", hub_seat[0], hub_seat[1], 0.15, 1.36, 80.0, angle_deg=hub_angle),
+        Attachment("washer", hub_seat[0], hub_seat[1], 0.01, 0.5, 80.0, angle_deg=hub_angle),
+    )
+    hx = HexSocket("right", 8.0, 10.0) if hex_socket else None
+    return Variant(name, "synthetic test shaft", segs, brg, att, STEEL, 0.0, hex_socket=hx)
+
+
+@pytest.fixture(scope="module")
+def cache(tmp_path_factory):
+    return tmp_path_factory.mktemp("meshcache")
+
+
+@pytest.fixture(scope="module")
+def coarse(cache):
+    from shaftfe.mesh import build_mesh
+    return build_mesh(make_variant(), "coarse", cache_dir=cache)
+
+
+def _integrate_one(mesh, facets=None) -> float:
+    from skfem import Basis, ElementTetP1, ElementTetP2, FacetBasis, Functional
+    elem = ElementTetP2() if mesh.t.shape[0] == 4 and mesh.doflocs.shape[1] > mesh.p.shape[1] \
+        else ElementTetP1()
+    one = Functional(lambda w: 1.0 + 0.0 * w.x[0])
+    if facets is None:
+        return float(one.assemble(Basis(mesh, elem)))
+    return float(one.assemble(FacetBasis(mesh, elem, facets=facets)))
+
+
+def test_groups_exist_and_match_the_solid(coarse):
+    """Every named face group of the solid exists, is non-empty, and 'shaft' holds all tets."""
+    from shaftfe.mesh import expected_areas
+    m = coarse.mesh
+    assert set(m.boundaries) == set(expected_areas(make_variant()))
+    assert set(coarse.groups) == set(m.boundaries) | {"shaft"}
+    for g, f in m.boundaries.items():
+        assert len(f) > 0, g
+        assert np.all(m.f2t[1, f] == -1), f"{g}: interior facets"
+    assert np.array_equal(np.sort(m.subdomains["shaft"]), np.arange(m.t.shape[1]))
+
+
+def test_group_areas_coarse(coarse):
+    """Area of each face group (P2 facet quadrature) vs the exact area from
+    ``expected_areas``: cylinder 2πRL minus the keyway opening ∫∫ dx ds/√(1−s²/R²), fillet
+    ring π²ρ(r+ρ) − 2πρ² (Pappus), annulus π(R²−r²), keyway walls, hex πR² − (√3/2)s² ...;
+    within 0.5 %."""
+    from shaftfe.mesh import expected_areas
+    exp = expected_areas(make_variant())
+    for g, f in coarse.mesh.boundaries.items():
+        a = _integrate_one(coarse.mesh, f)
+        assert a == pytest.approx(exp[g], rel=5e-3), g
+
+
+def test_seat_halves_are_exact_halves(coarse):
+    """A seat without a keyway splits into two halves of exactly πRL each (R = 8.5,
+    L = 10 → 267.04 mm²); the pressed/free difference is below 0.1 % of a half."""
+    m = coarse.mesh
+    half = math.pi * 8.5 * 10.0
+    p = _integrate_one(m, m.boundaries["load:hub:pressed"])
+    f = _integrate_one(m, m.boundaries["load:hub:free"])
+    assert p == pytest.approx(half, rel=5e-3)
+    assert f == pytest.approx(half, rel=5e-3)
+    assert abs(p - f) < 1e-3 * half
+
+
+def test_attachments_on_one_seat_share_faces(coarse):
+    """'hub' and 'washer' have the same seat interval and angle → the same facets."""
+    b = coarse.mesh.boundaries
+    for side in ("pressed", "free"):
+        assert np.array_equal(b[f"load:hub:{side}"], b[f"load:washer:{side}"])
+
+
+@pytest.mark.parametrize("name,angle", [("cw", 30.0), ("hub", 0.0)])
+def test_pressed_half_lies_on_minus_e_side(coarse, name, angle):
+    """Every pressed facet's corners satisfy (y, z)·e ≤ 0 for the force direction
+    e = (cos α, sin α); every free facet's corners satisfy (y, z)·e ≥ 0 (1e-9 mm)."""
+    m = coarse.mesh
+    e = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
+    for side, sign in (("pressed", -1.0), ("free", 1.0)):
+        pts = m.p[1:, m.facets[:, m.boundaries[f"load:{name}:{side}"]].ravel()]
+        assert np.all(sign * (e @ pts) >= -1e-9), side
+
+
+def test_tet10_midside_nodes(coarse):
+    """Mid-side node order (FINDINGS pitfall 1). Reference: an edge node sits at its chord's
+    midpoint unless Gmsh moved it: the HighOrder optimiser moves some interior ones (up to
+    17 % of the edge length ℓ measured at coarse) and boundary ones follow the curved surface
+    (≤ 20 % of ℓ measured). Checks: (1) in every tet each of the six edge nodes is nearer to
+    its own edge's midpoint than to any other edge midpoint of that tet (a swapped pair would
+    sit at another edge's midpoint); (2) every node is within 0.25 ℓ of its midpoint; (3) at
+    least half of the interior edges are straight (midpoint to 1e-8 mm; coordinates are
+    rounded to 1e-9 mm)."""
+    m = coarse.mesh
+    p, x = m.p, m.doflocs
+    pairs = [(0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3)]
+    mids = np.stack([0.5 * (p[:, m.t[i]] + p[:, m.t[j]]) for i, j in pairs])  # 6 × 3 × nel
+    nodes = x[:, m.dofs.element_dofs[4:]].transpose(1, 0, 2)                  # 6 × 3 × nel
+    dist = np.linalg.norm(nodes[:, None] - mids[None, :], axis=2)            # 6 × 6 × nel
+    assert np.all(np.argmin(dist, axis=1) == np.arange(6)[:, None])
+    edofs = m.dofs.edge_dofs[0]
+    a, b = m.edges
+    dev = np.linalg.norm(x[:, edofs] - 0.5 * (p[:, a] + p[:, b]), axis=0)
+    ell = np.linalg.norm(p[:, a] - p[:, b], axis=0)
+    on_bnd = np.zeros(m.edges.shape[1], dtype=bool)
+    on_bnd[m.boundary_edges()] = True
+    assert np.all(dev <= 0.25 * ell)
+    assert np.mean(dev[~on_bnd] < 1e-8) >= 0.5
+    # and the element → edge-dof table follows scikit-fem's edge order (0,1),(1,2),(0,2),...
+    t2e = m.t2e
+    for k, (i, j) in enumerate([(0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3)]):
+        e = t2e[k]
+        assert np.array_equal(np.sort(m.edges[:, e], axis=0), np.sort(m.t[[i, j]], axis=0))
+
+
+def test_quality_and_positive_jacobians(coarse):
+    """Min Gmsh minSICN > 0.2 (our threshold), and det J of the curved P2 map is positive at
+    every 4th-order quadrature point of every tet (no inverted elements)."""
+    from skfem.quadrature import get_quadrature
+    from skfem.refdom import RefTet
+    assert coarse.min_quality > 0.2
+    X, _ = get_quadrature(RefTet, 4)
+    det = coarse.mesh._mapping().detDF(X)
+    assert det.shape[0] == coarse.n_elements
+    assert np.all(det > 0)
+
+
+@pytest.mark.parametrize("kwargs,field", [
+    ({"fillet_b": 3.0}, "segments[1].fillet_mm"),           # step 17→22 is 2.5 mm high
+    ({"keyway_x": 47.0}, "keyways[0].x_center_mm"),         # slot runs into the fillet
+    ({"bearing": (69.0, 8.0)}, "bearings[0].seat"),         # straddles the Ø22/Ø17 step
+    ({"cw_seat": (30.0, 40.0)}, "attachments[0].seat_x"),   # cuts through the keyway
+])
+def test_bad_variant_fails_before_gmsh(monkeypatch, kwargs, field):
+    """A bad variant raises InputError naming the field, with gmsh made unimportable."""
+    from shaftfe.mesh import build_mesh
+    monkeypatch.setitem(sys.modules, "gmsh", None)
+    with pytest.raises(InputError) as exc:
+        build_mesh(make_variant(**kwargs), "coarse", use_cache=False)
+    assert field in str(exc.value)
+    assert "\n" not in str(exc.value)
+
+
+def test_bad_level_and_order():
+    """Unknown level / order → InputError listing the allowed values."""
+    from shaftfe.mesh import build_mesh
+    with pytest.raises(InputError, match="coarse"):
+        build_mesh(make_variant(), "medium")
+    with pytest.raises(InputError, match=r"1 \| 2"):
+        build_mesh(make_variant(), "coarse", order=3)
+
+
+def test_cache_hit_returns_identical_mesh(coarse, cache):
+    """A second call loads the npz (from_cache) and returns the same arrays and groups."""
+    from shaftfe.mesh import build_mesh
+    again = build_mesh(make_variant(), "coarse", cache_dir=cache)
+    assert not coarse.from_cache and again.from_cache
+    assert again.key == coarse.key
+    assert np.array_equal(again.mesh.doflocs, coarse.mesh.doflocs)
+    assert np.array_equal(again.mesh.t, coarse.mesh.t)
+    assert again.groups == coarse.groups
+    for g in coarse.mesh.boundaries:
+        assert np.array_equal(again.mesh.boundaries[g], coarse.mesh.boundaries[g])
+    assert again.min_quality == coarse.min_quality
+
+
+def test_key_depends_on_geometry_not_on_name():
+    """The cache key changes with the seat angle and the level, not with the variant name."""
+    from shaftfe.mesh import mesh_key
+    from shaftfe.solid import prepare
+    k = mesh_key(prepare(make_variant()), "coarse", 2, "4.15")
+    assert k == mesh_key(prepare(make_variant(name="other")), "coarse", 2, "4.15")
+    assert k != mesh_key(prepare(make_variant(cw_angle=31.0)), "coarse", 2, "4.15")
+    assert k != mesh_key(prepare(make_variant()), "default", 2, "4.15")
+    assert k != mesh_key(prepare(make_variant()), "coarse", 1, "4.15")
+    assert k != mesh_key(prepare(make_variant()), "coarse", 2, "4.14")
+
+
+def test_corrupt_cache_is_rebuilt(tmp_path):
+    """A truncated / garbage cache file is rebuilt (from_cache False) and replaced."""
+    from shaftfe.mesh import build_mesh, cache_path, mesh_key
+    from shaftfe.solid import prepare
+    v = make_variant(keyway=False, hex_socket=False)
+    first = build_mesh(v, "coarse", order=1, cache_dir=tmp_path)
+    path = cache_path(first.key, tmp_path)
+    assert path.exists()
+    assert first.key == mesh_key(prepare(v), "coarse", 1, _gmsh_version())
+    for junk in (b"not a zip file", path.read_bytes()[:200]):
+        path.write_bytes(junk)
+        again = build_mesh(v, "coarse", order=1, cache_dir=tmp_path)
+        assert not again.from_cache
+        assert np.array_equal(again.mesh.t, first.mesh.t)
+    assert build_mesh(v, "coarse", order=1, cache_dir=tmp_path).from_cache
+
+
+def _gmsh_version():
+    from shaftfe.mesh import _gmsh_version
+    return _gmsh_version()
+
+
+def test_cache_dir_from_environment(monkeypatch, tmp_path):
+    """Without cache_dir the cache goes to $SHAFTFE_CACHE_DIR."""
+    from shaftfe.mesh import cache_path
+    monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(tmp_path))
+    assert cache_path("ab" * 32).parent == tmp_path
+
+
+def test_meshing_is_deterministic():
+    """Two cold builds of the same input give the same mesh bit for bit (1 thread)."""
+    from shaftfe.mesh import build_mesh
+    v = make_variant(hex_socket=False)
+    a = build_mesh(v, "coarse", use_cache=False)
+    b = build_mesh(v, "coarse", use_cache=False)
+    assert a.mesh.doflocs.tobytes() == b.mesh.doflocs.tobytes()
+    assert a.mesh.t.tobytes() == b.mesh.t.tobytes()
+    for g in a.mesh.boundaries:
+        assert np.array_equal(a.mesh.boundaries[g], b.mesh.boundaries[g])
+
+
+def test_order_one_volume(tmp_path):
+    """P1 tets (MeshTet1): the quadrature volume equals Σ|det[p1−p0, p2−p0, p3−p0]|/6 of the
+    tets (1e-12), and lies below the exact volume by the chord deficit, which is at most that
+    of a regular 7-gon, 1 − 7 sin(2π/7)/(2π) = 12.9 % (coarse: h = D/2 → ≥ 7 chords around)."""
+    from skfem import MeshTet1
+
+    from shaftfe.mesh import analytic_volume, build_mesh
+    v = make_variant(hex_socket=False)
+    sm = build_mesh(v, "coarse", order=1, cache_dir=tmp_path)
+    m = sm.mesh
+    assert isinstance(m, MeshTet1) and sm.order == 1
+    vol = _integrate_one(m)
+    p = m.p[:, m.t]
+    det = np.linalg.det(np.stack([p[:, 1] - p[:, 0], p[:, 2] - p[:, 0], p[:, 3] - p[:, 0]],
+                                 axis=-1).transpose(1, 0, 2))
+    assert vol == pytest.approx(np.abs(det).sum() / 6.0, rel=1e-12)
+    deficit = 1.0 - vol / analytic_volume(v)
+    assert 0.0 < deficit < 1.0 - 7.0 * math.sin(2 * math.pi / 7) / (2 * math.pi)
+
+
+def test_cli_mesh_json_and_vtu(monkeypatch, tmp_path, capsys):
+    """`shaftfe mesh --json --out x.vtu` prints the summary and writes a VTU whose tetra10
+    count equals the element count and whose triangles carry the group ids."""
+    import meshio
+
+    import shaftfe.variant
+    from shaftfe.cli import main
+    monkeypatch.setattr(shaftfe.variant, "load_variant", lambda name: make_variant(name=name),
+                        raising=False)
+    out = tmp_path / "syn.vtu"
+    rc = main(["mesh", "--variant", "syn", "--level", "coarse", "--cache-dir",
+               str(tmp_path / "c"), "--out", str(out), "--json"])
+    assert rc == 0
+    s = json.loads(capsys.readouterr().out)
+    assert s["from_cache"] is False and s["nodes"] > 0 and s["min_quality_minSICN"] > 0.2
+    m = meshio.read(out)
+    assert m.cells_dict["tetra10"].shape[0] == s["elements"]
+    ids = np.concatenate(m.cell_data["group"])
+    assert set(np.unique(ids)) == set(range(len(s["groups"])))   # 0 = volume, 1.. = faces
+    rc = main(["mesh", "--variant", "syn", "--level", "coarse", "--cache-dir",
+               str(tmp_path / "c"), "--out", str(tmp_path / "syn.msh")])
+    assert rc == 0
+    assert "from cache" in capsys.readouterr().out
+    assert meshio.read(tmp_path / "syn.msh").cells_dict["tetra10"].shape[0] == s["elements"]
+
+
+def test_cli_bad_out_suffix_exit_2(monkeypatch, capsys):
+    """A wrong --out suffix is one error line and exit code 2 (before any meshing)."""
+    import shaftfe.variant
+    from shaftfe.cli import main
+    monkeypatch.setattr(shaftfe.variant, "load_variant", lambda name: make_variant(name=name),
+                        raising=False)
+    assert main(["mesh", "--variant", "syn", "--out", "x.stl"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and ".vtu" in err
+
+
+def test_exact_formulas_against_quadrature():
+    """The closed forms in shaftfe.solid vs independent 2D quadrature: the fillet ring volume
+    ∫∫ 2πr dA over the spandrel, its area ∫ 2πr ds over the arc, and the keyway volume
+    ∫∫ (√(R²−s²) − (R−t)) over the stadium (scipy dblquad)."""
+    from scipy.integrate import dblquad, quad
+
+    from shaftfe.solid import Fillet, Slot, fillet_area, fillet_volume, slot_volume
+    f = Fillet("b", 50.0, 8.5, 11.0, 1.5, -1)
+    rho, r0 = f.rho, f.r_small
+    # spandrel: u ∈ [0, ρ] from the shoulder, v ∈ [0, ρ − √(ρ² − (ρ−u)²)] above the cylinder
+    vol, _ = dblquad(lambda v, u: 2 * math.pi * (r0 + v), 0, rho, 0,
+                     lambda u: rho - math.sqrt(rho**2 - (rho - u) ** 2))
+    assert fillet_volume(f) == pytest.approx(vol, rel=1e-9)
+    area, _ = quad(lambda p: 2 * math.pi * (r0 + rho - rho * math.cos(p)) * rho, 0, math.pi / 2)
+    assert fillet_area(f) == pytest.approx(area, rel=1e-12)
+    k = Slot("b", 0, 8.5, 5.0, 3.0, 14.0, 35.0, 0.0)
+    a = 2.5
+    kv, _ = dblquad(lambda s, x: math.sqrt(8.5**2 - s * s) - 5.5, -7.0, 7.0,
+                    lambda x: -math.sqrt(max(a * a - max(abs(x) - 4.5, 0) ** 2, 0)),
+                    lambda x: math.sqrt(max(a * a - max(abs(x) - 4.5, 0) ** 2, 0)),
+                    epsabs=1e-11)
+    assert slot_volume(k) == pytest.approx(kv, rel=1e-8)

@@ -1,0 +1,123 @@
+"""Validation of the meshed solid against exact geometry (issue 3).
+
+References: the exact volume (cylinders πr²L + fillet spandrel rings by Pappus − keyways by
+∫∫ of the cut height over the stadium − hex socket (√3/2)s²d) and the exact face areas from
+``shaftfe.solid``; a mesh that reproduces them places every named face where it belongs.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from shaftfe.variant import (
+    Attachment,
+    Bearing,
+    HexSocket,
+    Keyway,
+    Material,
+    Segment,
+    Variant,
+)
+
+STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
+K = ((35_030.0, 8_756.0), (8_756.0, 35_030.0))
+
+
+def small_shaft(*, keyway_angle=0.0, load_angle=30.0, hex_end="right",
+                full_fillet=False) -> Variant:
+    """Ø15 | Ø17 (1 mm fillet, 5×3×14 keyway) | Ø22 (fillet, bearing) | Ø17 (seat)."""
+    rho_c = 2.5 if full_fillet else 1.0      # 2.5 = the whole 22 → 17 step
+    segs = (
+        Segment("a", 0.0, 20.0, 15.0, 0.0),
+        Segment("b", 20.0, 30.0, 17.0, 1.0,
+                keyways=(Keyway(5.0, 3.0, 14.0, 35.0, keyway_angle),)),
+        Segment("c", 50.0, 20.0, 22.0, rho_c),
+        Segment("d", 70.0, 30.0, 17.0, 0.0),
+    )
+    brg = (Bearing("mid", "ZKL 3203", 60.0, 8.0, 14_400.0, 10_000.0, K),)
+    att = (Attachment("cw", 25.0, 45.0, 0.24, 20.23, 35.0, angle_deg=load_angle),
+           Attachment("hub", 75.0, 85.0, 0.15, 1.36, 80.0, angle_deg=200.0))
+    return Variant("small", "validation shaft", segs, brg, att, STEEL, 0.0,
+                   hex_socket=HexSocket(hex_end, 8.0, 10.0))
+
+
+def _measure(sm):
+    from skfem import Basis, ElementTetP2, FacetBasis, Functional
+    one = Functional(lambda w: 1.0 + 0.0 * w.x[0])
+    vol = float(one.assemble(Basis(sm.mesh, ElementTetP2())))
+    areas = {g: float(one.assemble(FacetBasis(sm.mesh, ElementTetP2(), facets=f)))
+             for g, f in sm.mesh.boundaries.items()}
+    return vol, areas
+
+
+def _check(sm, variant, vol_tol=2e-3, area_tol=5e-3):
+    from shaftfe.mesh import analytic_volume, expected_areas
+    vol, areas = _measure(sm)
+    exp = expected_areas(variant)
+    assert set(areas) == set(exp)
+    assert vol == pytest.approx(analytic_volume(variant), rel=vol_tol)
+    for g, a in areas.items():
+        assert a == pytest.approx(exp[g], rel=area_tol), g
+
+
+def test_default_level_volume_and_areas(tmp_path):
+    """Default level, small shaft: volume within 0.2 % of the exact volume, every face group
+    within 0.5 % of its exact area, minSICN > 0.2."""
+    from shaftfe.mesh import build_mesh
+    v = small_shaft()
+    sm = build_mesh(v, "default", cache_dir=tmp_path)
+    assert sm.min_quality > 0.2
+    _check(sm, v)
+
+
+def test_keyway_straddling_the_load_plane(tmp_path):
+    """Keyway at 90° to a 0° load: the split plane y = 0 cuts the slot in two; each seat half
+    loses exactly half of the opening (exact: ∫ R dψ over the window, round ends by
+    quadrature). Coarse level, same tolerances."""
+    from shaftfe.mesh import build_mesh, expected_areas
+    v = small_shaft(keyway_angle=90.0, load_angle=0.0)
+    exp = expected_areas(v)
+    assert exp["load:cw:pressed"] == pytest.approx(exp["load:cw:free"], rel=1e-12)
+    _check(build_mesh(v, "coarse", cache_dir=tmp_path), v)
+
+
+def test_hex_left_and_full_height_fillet(tmp_path):
+    """Hex socket in the left end, and a fillet as high as its step (ρ = 2.5 mm): no flat
+    shoulder annulus remains (no 'shoulder:c' group); volume and areas as above."""
+    from shaftfe.mesh import build_mesh
+    v = small_shaft(hex_end="left", full_fillet=True)
+    sm = build_mesh(v, "coarse", cache_dir=tmp_path)
+    assert "shoulder:c" not in sm.groups and "fillet:c" in sm.groups
+    _check(sm, v)
+
+
+def test_load_angle_200_pressed_side(tmp_path):
+    """'hub' force at 200°: the pressed half's facet centroids all satisfy (y, z)·e < 0."""
+    from shaftfe.mesh import build_mesh
+    sm = build_mesh(small_shaft(), "coarse", cache_dir=tmp_path)
+    m = sm.mesh
+    e = np.array([math.cos(math.radians(200.0)), math.sin(math.radians(200.0))])
+    c = m.p[1:, m.facets[:, m.boundaries["load:hub:pressed"]]].mean(axis=1)
+    assert np.all(e @ c < 0)
+
+
+def _real_variant():
+    try:
+        from shaftfe.variant import load_variant
+        return load_variant("x2_57")
+    except Exception as exc:       # the loader / file may not exist yet
+        pytest.skip(f"x2_57 not loadable: {exc}")
+
+
+@pytest.mark.slow
+def test_x2_57_coarse(tmp_path):
+    """The real variant x2_57 at coarse: volume within 0.2 %, areas within 0.5 %,
+    minSICN > 0.2, all groups present."""
+    from shaftfe.mesh import build_mesh
+    v = _real_variant()
+    sm = build_mesh(v, "coarse", cache_dir=tmp_path)
+    assert sm.min_quality > 0.2
+    _check(sm, v)
