@@ -20,6 +20,7 @@ COMMAND_MODULES = (
     "shaftfe.commands.balance",
     "shaftfe.commands.variant",
     "shaftfe.commands.beam",
+    "shaftfe.commands.campbell",
     "shaftfe.commands.mesh",
     "shaftfe.commands.demo",
 )
