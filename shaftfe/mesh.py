@@ -34,11 +34,11 @@ import hashlib
 import json
 import math
 import os
-import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
+from shaftfe.atomic import atomic_path
 from shaftfe.errors import InputError, SolverError
 from shaftfe.solid import Solid, analytic_volume, expected_areas, prepare
 
@@ -215,15 +215,8 @@ def _save(path: Path, data: dict) -> None:
         arrays[f"s{i}"] = data["subdomains"][n]
     meta = dict(data["meta"], boundaries=names, subdomains=subs)
     arrays["meta"] = np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            np.savez_compressed(fh, **arrays)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    with atomic_path(path, suffix=".tmp") as tmp, open(tmp, "wb") as fh:
+        np.savez_compressed(fh, **arrays)
 
 
 def _load(path: Path, key: str) -> dict | None:
@@ -497,17 +490,10 @@ def write_mesh(sm: ShaftMesh, path) -> Path:
         data.append(np.concatenate(ids))
     out = meshio.Mesh(m.doflocs.T if sm.order == 2 else m.p.T, cells,
                       cell_data={"group": data})
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}.", suffix=path.suffix)
-    os.close(fd)
-    try:
+    with atomic_path(path) as tmp:
         if path.suffix == ".msh":
             out.cell_data = {"gmsh:physical": data, "gmsh:geometrical": data}
             meshio.write(tmp, out, file_format="gmsh22", binary=False)
         else:
             meshio.write(tmp, out, file_format="vtu")
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
     return path

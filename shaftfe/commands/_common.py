@@ -5,10 +5,11 @@ from __future__ import annotations
 import json
 import os
 import sys
-import tempfile
-from pathlib import Path
 
+from shaftfe.atomic import write_atomic
 from shaftfe.errors import InputError
+
+__all__ = ["parse_range", "parse_rpm_list", "print_json", "print_table", "write_atomic"]
 
 
 def parse_range(text: str, option: str, *, lo: float | None = None,
@@ -52,23 +53,6 @@ def parse_rpm_list(text: str, option: str = "--rpm") -> list[float]:
     return vals
 
 
-def write_atomic(path: str | os.PathLike, data: str | bytes) -> Path:
-    """Write a file so that a failure never leaves a half-written output behind."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    mode = "wb" if isinstance(data, bytes) else "w"
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, mode) as fh:
-            fh.write(data)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp creates 0600; give the usual file mode
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
 
 
 def print_json(obj: object) -> None:
