@@ -22,6 +22,7 @@ COMMAND_MODULES = (
     "shaftfe.commands.beam",
     "shaftfe.commands.campbell",
     "shaftfe.commands.mesh",
+    "shaftfe.commands.static",
     "shaftfe.commands.view",
     "shaftfe.commands.demo",
 )

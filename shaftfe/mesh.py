@@ -448,6 +448,23 @@ def _extract(gmsh, faces: dict[str, list[int]], order: int) -> dict:
 # output
 
 
+def triangle6_connectivity(m, facets):
+    """(n, 6) triangle6 node ids of the given facets of a P2 skfem mesh: the three corners, then
+    the mid-side nodes of edges 01, 12, 20 (VTK / meshio order)."""
+    import numpy as np
+
+    nv = m.p.shape[1]
+    a, b, c = m.facets[:, facets].astype(np.int64)
+    ekey = m.edges[0].astype(np.int64) * nv + m.edges[1]
+    order = np.argsort(ekey)
+    ks = ekey[order]
+    edofs = m.dofs.edge_dofs[0]
+
+    def mid(i, j):
+        return edofs[order[np.searchsorted(ks, np.minimum(i, j) * nv + np.maximum(i, j))]]
+    return np.vstack([a, b, c, mid(a, b), mid(b, c), mid(c, a)]).T
+
+
 def write_mesh(sm: ShaftMesh, path) -> Path:
     """Write the mesh as .vtu (VTK) or .msh (Gmsh 2.2): volume cells (group id 0) plus each
     face group's triangles with cell data ``group`` = 1-based index into ``sm.groups``."""
@@ -460,15 +477,6 @@ def write_mesh(sm: ShaftMesh, path) -> Path:
     if sm.order == 2:
         vol = ("tetra10", m.dofs.element_dofs.T.astype(np.int64))
         tri_cells = "triangle6"
-        nv = m.p.shape[1]
-        ekey = m.edges[0].astype(np.int64) * nv + m.edges[1]
-        eorder = np.argsort(ekey)
-        ekey_sorted = ekey[eorder]
-        edofs = m.dofs.edge_dofs[0]
-
-        def mid(a, b):
-            k = np.minimum(a, b).astype(np.int64) * nv + np.maximum(a, b)
-            return edofs[eorder[np.searchsorted(ekey_sorted, k)]]
     else:
         vol = ("tetra", m.t.T.astype(np.int64))
         tri_cells = "triangle"
@@ -477,11 +485,10 @@ def write_mesh(sm: ShaftMesh, path) -> Path:
         if g not in m.boundaries:
             continue
         f = np.asarray(m.boundaries[g])
-        a, b, c = m.facets[:, f]
         if sm.order == 2:
-            tris.append(np.vstack([a, b, c, mid(a, b), mid(b, c), mid(c, a)]).T)
+            tris.append(triangle6_connectivity(m, f))
         else:
-            tris.append(np.vstack([a, b, c]).T)
+            tris.append(m.facets[:, f].T)
         ids.append(np.full(f.size, i + 1, dtype=np.int32))
     cells = [vol]
     data = [np.zeros(vol[1].shape[0], dtype=np.int32)]

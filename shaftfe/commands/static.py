@@ -1,0 +1,162 @@
+"""`shaftfe static`: 3D static stress and deflection on spring-supported bearings.
+
+Stdlib only at module level; numpy / scikit-fem / gmsh / meshio / matplotlib inside the handler.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+from shaftfe.errors import InputError
+
+
+def register(sub) -> None:
+    p = sub.add_parser(
+        "static", help="3D FE static check: stresses, deflections, bearing reactions, L10h",
+        description="3D P2 finite-element static analysis of a balancer-shaft variant in the "
+        "co-rotating frame: centrifugal loads m e ω² on the pressed half of each seat, bearings "
+        "as RBE3 remote points on 2×2 radial springs (or rigid). One solve serves every rpm "
+        "(loads ∝ rpm²). Writes result.vtu, summary.json and deflection.png to --out.")
+    p.add_argument("--variant", required=True, help="variant name (geometry/<name>.toml) or path")
+    p.add_argument("--rpm", default="10000",
+                   help="speed(s) in rpm, comma-separated (default 10000), e.g. 7000,10000")
+    p.add_argument("--level", default="default", help="mesh level: coarse | default | fine")
+    p.add_argument("--order", type=int, default=2, help="element order 1 | 2 (default 2)")
+    p.add_argument("--rigid-supports", action="store_true",
+                   help="Inventor-style rigid supports (remote-point radial translations = 0)")
+    p.add_argument("--load-distribution", default="uniform",
+                   help="pressure on the pressed half seat: uniform | cosine (default uniform)")
+    p.add_argument("--body-force", action="store_true",
+                   help="add the shaft's own centrifugal body force (off by default)")
+    p.add_argument("--seed-load-case", action="store_true",
+                   help="load only the parts the seed loaded (gear, counterweights 1 and 2)")
+    p.add_argument("--solver", default="auto",
+                   help="auto | superlu | pardiso | amg (default auto: pardiso if installed)")
+    p.add_argument("--exclude-mm", type=float, default=0.0, metavar="MM",
+                   help="also exclude nodes within MM of a coupling/load patch edge from the "
+                   "filtered peaks (default 0: one element layer only)")
+    p.add_argument("--estimate-error", action="store_true",
+                   help="solve a second mesh level and give a Richardson-type error estimate")
+    p.add_argument("--no-beam", action="store_true", help="skip the beam model side by side")
+    p.add_argument("--json", action="store_true", help="print the summary JSON instead of tables")
+    p.add_argument("--out", default=None,
+                   help="output directory (default reports/<variant>/static)")
+    p.set_defaults(handler=run)
+
+
+def _versions() -> dict:
+    import importlib.metadata as md
+    out = {}
+    for pkg in ("shaftfe", "numpy", "scipy", "scikit-fem", "gmsh", "meshio", "pypardiso"):
+        try:
+            out[pkg] = md.version(pkg)
+        except md.PackageNotFoundError:
+            out[pkg] = None
+    return out
+
+
+def run(args) -> int:
+    from pathlib import Path
+
+    from shaftfe.commands._common import parse_rpm_list, print_json, print_table, write_atomic
+
+    rpms = parse_rpm_list(args.rpm)
+    if args.order not in (1, 2):
+        raise InputError("--order", "--order", "1 | 2", got=args.order)
+    if args.level not in ("coarse", "default", "fine"):
+        raise InputError("--level", "--level", "coarse | default | fine", got=args.level)
+    if args.load_distribution not in ("uniform", "cosine"):
+        raise InputError("--load-distribution", "--load-distribution", "uniform | cosine",
+                         got=args.load_distribution)
+    if not (args.exclude_mm >= 0 and math.isfinite(args.exclude_mm)):
+        raise InputError("--exclude-mm", "--exclude-mm", ">= 0", got=args.exclude_mm)
+    if args.solver not in ("auto", "superlu", "pardiso", "amg"):
+        raise InputError("--solver", "--solver", "auto | superlu | pardiso | amg",
+                         got=args.solver)
+
+    from shaftfe import export
+    from shaftfe.static import StaticOptions, solve_static
+    from shaftfe.variant import load_variant
+
+    variant = load_variant(args.variant)
+    opts = StaticOptions(level=args.level, order=args.order, rigid_supports=args.rigid_supports,
+                         load_distribution=args.load_distribution, body_force=args.body_force,
+                         seed_load_case=args.seed_load_case, solver=args.solver,
+                         exclude_mm=args.exclude_mm)
+    res = solve_static(variant, rpms, opts, beam=not args.no_beam,
+                       estimate_error=args.estimate_error)
+    out = Path(args.out) if args.out else Path("reports") / variant.name / "static"
+    rpm_vtu = rpms[0]
+    vtu, regions = export.write_vtu(res, out / "result.vtu", rpm_vtu)
+    export.plot_png(res, out / "deflection.png", rpm_vtu)
+    summary = {
+        "inputs": {"variant": args.variant, "rpm": rpms, "options": vars_of(opts),
+                   "source_files": list(getattr(variant, "source_files", ()))},
+        "versions": _versions(),
+        "vtu": {"file": vtu.name, "rpm": rpm_vtu, "regions": regions,
+                "stress_components": ["xx", "yy", "zz", "xy", "yz", "xz"],
+                "note": "fields at vtu.rpm; scale by (rpm / vtu.rpm)^2 for another speed"},
+        **res.to_dict(),
+    }
+    text = json.dumps(summary, indent=2, allow_nan=False)
+    write_atomic(out / "summary.json", text + "\n")
+    if args.json:
+        print_json(summary)
+        return 0
+    d = res.diagnostics
+    print(f"variant {res.variant}: P{opts.order} {opts.level}, {res.n_dofs} dofs, "
+          f"{'rigid supports' if opts.rigid_supports else 'bearing springs'}, solver "
+          f"{d['solver']}, {d['total_seconds']:.1f} s")
+    for c in res.cases:
+        print()
+        rows = []
+        beam_b = {b["name"]: b for b in (c.beam or {}).get("bearings", [])}
+        for b in c.bearings:
+            bb = beam_b.get(b.name, {})
+            rows.append([b.name, b.x_mm, b.F_radial_N, bb.get("F_N", "-"),
+                         _fmt_life(b.L10h), _fmt_life(bb.get("L10h"))])
+        print_table(["bearing", "x mm", "|F| N (FE)", "|F| N (beam)", "L10h h (FE)",
+                     "L10h h (beam)"], rows, title=f"{c.rpm:g} rpm: bearing reactions")
+        print(f"equilibrium residual {c.equilibrium_residual:.1e}")
+        beam_st = (c.beam or {}).get("stations", {})
+        rows = [[s.name, s.x_mm, s.u_mm * 1e3, _beam_station(beam_st, s.name)]
+                for s in c.stations]
+        rows.append(["max (nodal |u_yz|)", c.max_deflection_xyz_mm[0], c.max_deflection_mm * 1e3,
+                     (c.beam or {}).get("max_deflection_mm", float("nan")) * 1e3
+                     if (c.beam or {}).get("max_deflection_mm") is not None else "-"])
+        print_table(["station", "x mm", "deflection µm (FE)", "µm (beam)"], rows)
+        rows = [[p.region, p.von_mises_MPa, p.xyz_mm[0], p.von_mises_unfiltered_MPa]
+                for p in c.peaks if not p.region.startswith("end:")]
+        rows.append(["whole shaft", c.peak_von_mises_MPa, c.peak_von_mises_xyz_mm[0],
+                     c.peak_von_mises_unfiltered_MPa])
+        print_table(["region", "von Mises MPa", "x mm", "unfiltered MPa"], rows)
+    if res.error_estimate:
+        ee = res.error_estimate
+        print(f"\nerror estimate (levels {ee['levels'][0]} vs {ee['levels'][1]}, "
+              f"Richardson-type):")
+        for c in ee["cases"]:
+            for key, unit in (("peak_von_mises", "MPa"), ("max_deflection", "mm")):
+                e = c[key]
+                if e:
+                    print(f"  {c['rpm']:g} rpm {key}: {e['fine']:.4g} {unit} ± "
+                          f"{e['error_fine']:.2g} (extrapolated {e['extrapolated']:.4g})")
+    print(f"\nwrote {out / 'result.vtu'}, {out / 'summary.json'}, {out / 'deflection.png'}")
+    return 0
+
+
+def vars_of(opts) -> dict:
+    from dataclasses import asdict
+    return asdict(opts)
+
+
+def _fmt_life(v) -> object:
+    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+        return "inf"
+    return float(v)
+
+
+def _beam_station(st: dict, name: str) -> object:
+    key = name.split(":", 1)[1] if ":" in name else name
+    v = st.get(key, st.get(name))
+    return v * 1e3 if isinstance(v, float) else "-"

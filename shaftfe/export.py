@@ -1,0 +1,103 @@
+"""Result files of the static analysis: VTU (meshio), summary JSON, deflection/bending plot.
+
+``result.vtu`` (open with ParaView or PyVista):
+
+* points: the mesh nodes (P2: corners and mid-side nodes), mm;
+* cells: ``tetra10`` (P2) or ``tetra`` (P1) for the shaft volume, then ``triangle6`` /
+  ``triangle`` for every named face group;
+* point data ``displacement`` (n, 3) mm, ``von_mises`` MPa, ``max_principal`` MPa and
+  ``stress`` (n, 6) MPa with the components in the order xx, yy, zz, xy, yz, xz
+  (``recovery.STRESS_COMPONENTS``), all at the rpm given (fields scale with (rpm/ref)²);
+* cell data ``region``: 0 for the volume, k ≥ 1 for the face group ``regions[k − 1]`` as listed
+  in ``summary.json`` (``vtu.regions``).
+
+Files are written to a temporary name and renamed (never half-written).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+
+def write_vtu(result, path, rpm: float) -> tuple[Path, list[str]]:
+    """Write the fields of ``result`` (a ``StaticResult``) scaled to ``rpm``. Returns the path
+    and the region names (cell data ``region`` = index + 1)."""
+    import meshio
+
+    from shaftfe import fem, recovery
+    from shaftfe.atomic import atomic_path
+    from shaftfe.mesh import triangle6_connectivity
+    m = result.mesh.mesh
+    s = (rpm / result.ref_rpm) ** 2
+    quad = fem.is_quadratic(m)
+    vol = ("tetra10" if quad else "tetra", fem.element_nodes(m).T.astype(np.int64))
+    cells = [vol]
+    region = [np.zeros(vol[1].shape[0], dtype=np.int32)]
+    names = sorted(m.boundaries)
+    tri = []
+    for i, g in enumerate(names):
+        f = np.asarray(m.boundaries[g])
+        if quad:
+            tri.append(triangle6_connectivity(m, f))
+        else:
+            tri.append(m.facets[:, f].T.astype(np.int64))
+        region.append(np.full(f.size, i + 1, dtype=np.int32))
+    if tri:
+        cells.append(("triangle6" if quad else "triangle", np.concatenate(tri)))
+        region = [region[0], np.concatenate(region[1:])]
+    stress = result.stress_ref * s
+    out = meshio.Mesh(
+        np.ascontiguousarray(m.doflocs.T), cells,
+        point_data={"displacement": result.u_ref.reshape(-1, 3) * s,
+                    "von_mises": result.von_mises_ref * s,
+                    "max_principal": recovery.principal(stress)[0],
+                    "stress": np.ascontiguousarray(stress.T)},
+        cell_data={"region": region})
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        meshio.write(tmp, out, file_format="vtu")
+    return path, names
+
+
+def plot_png(result, path, rpm: float) -> Path:
+    """Deflection line (FE axis and beam) and the surface von Mises envelope along x."""
+    import io
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from shaftfe.atomic import write_atomic
+    s = (rpm / result.ref_rpm) ** 2
+    case = result.case(rpm)
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
+    u = result.axis_u_ref * s
+    a1.plot(result.axis_x, np.hypot(u[:, 1], u[:, 2]) * 1e3, label="3D FE, axis |u_yz|")
+    if case.beam and "x_line_mm" in case.beam:
+        a1.plot(case.beam["x_line_mm"], np.asarray(case.beam["u_line_mm"]) * 1e3, "--",
+                label="beam model")
+    for st in case.stations:
+        a1.plot([st.x_mm], [st.u_mm * 1e3], "o", ms=4)
+        a1.annotate(st.name, (st.x_mm, st.u_mm * 1e3), fontsize=7, rotation=30)
+    a1.set_ylabel("deflection, µm")
+    a1.legend(fontsize=8)
+    a1.grid(alpha=0.3)
+    x = result.mesh.mesh.doflocs[0]
+    vm = result.von_mises_ref * s
+    bins = np.linspace(x.min(), x.max(), 121)
+    idx = np.clip(np.digitize(x, bins) - 1, 0, bins.size - 2)
+    env = np.zeros(bins.size - 1)
+    np.maximum.at(env, idx, vm)
+    a2.step(0.5 * (bins[1:] + bins[:-1]), env, where="mid", label="3D FE, max von Mises")
+    a2.set_xlabel("x, mm")
+    a2.set_ylabel("von Mises, MPa")
+    a2.grid(alpha=0.3)
+    a2.legend(fontsize=8)
+    fig.suptitle(f"{result.variant} at {rpm:g} rpm")
+    fig.tight_layout()
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=110)
+    plt.close(fig)
+    return write_atomic(path, buf.getvalue())

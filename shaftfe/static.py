@@ -1,0 +1,610 @@
+"""3D static stress and deflection of the balancer shaft on spring-supported bearings.
+
+API
+---
+``build_model(variant, options, shaft_mesh=None, cache_dir=None) -> StaticModel``
+``solve_static(variant, rpm, options=StaticOptions(), ...) -> StaticResult`` (frozen)
+
+Model (issue 4)
+---------------
+* Linear elasticity on the P2 (or P1) tet mesh of ``shaftfe.mesh``; E, ν of the variant's
+  shaft material; mm, N, MPa.
+* Bearings: ``shaftfe.supports`` (RBE3 remote point at the seat centre, 2×2 radial spring,
+  axial and twist held, tilt free unless given; ``rigid_supports`` → remote radial translations
+  held).
+* Loads in the co-rotating frame: each attachment's m e ω² (``Attachment.force_N``) along its
+  eccentricity (0° = +y, 90° = +z) as a pressure on ``load:<name>:pressed`` (uniform or cosine),
+  net force exactly m e ω²; optionally the shaft's own centrifugal body force ρ ω² (0, y, z).
+  Every load is ∝ ω², so ONE solve at ``REF_RPM`` serves every speed: results × (rpm/REF_RPM)².
+
+Solve (Woodbury, no dense clique in the sparse matrix)
+------------------------------------------------------
+B = K + k_p Σ e_i e_iᵀ with six algebraic pin springs on dofs that remove the rigid modes
+(k_p = mean diag K) is SPD and factorised once. The supports and the cancelling pins form a
+low-rank term U C Uᵀ: columns of U = pin unit vectors, spring rows, hard rows; C⁻¹ =
+blockdiag(−I/k_p, C_spring⁻¹, 0 for hard rows: the exact infinite-penalty limit). Then
+λ = S⁻¹ Uᵀ B⁻¹ f with the capacitance S = C⁻¹ + Uᵀ B⁻¹ U (small, dense) and u = B⁻¹ (f − U λ).
+The columns of U are scaled so that diag(Uᵀ B⁻¹ U) = 1 (a Jacobi scaling of S); cond(S) is
+reported. The pins cancel exactly: no node is pinned in the physics. λ holds the support
+forces: spring blocks λ = C R u, hard rows the Lagrange multipliers.
+
+Checks: the supports are tested on the rigid modes BEFORE factorising (``SolverError`` naming the
+free motion), and every solve's relative residual ‖K u + Σ Rᵀ λ − f‖ / ‖f‖ (with the spring
+λ recomputed from u and the hard rows' violation) must be ≤ ``RESIDUAL_TOL``.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict, dataclass, field, replace
+
+import numpy as np
+
+from shaftfe import fem, recovery, supports
+from shaftfe.errors import InputError, SolverError
+
+REF_RPM = 10_000.0
+RESIDUAL_TOL = 1e-8
+DISTRIBUTIONS = ("uniform", "cosine")
+
+
+@dataclass(frozen=True)
+class StaticOptions:
+    level: str = "default"
+    order: int = 2
+    rigid_supports: bool = False
+    load_distribution: str = "uniform"     # "uniform" | "cosine"
+    body_force: bool = False               # the shaft's own centrifugal load
+    seed_load_case: bool = False           # only the parts the seed loaded (gear, CW1, CW2)
+    solver: str = "auto"                   # see shaftfe.solvers
+    hold_twist: str = "all"                # θ_x held at "all" bearings, the "axial" one, "none"
+    exclude_mm: float = 0.0                # extra band around patch edges for filtered peaks
+
+
+@dataclass(frozen=True, eq=False)
+class StaticModel:
+    variant: object
+    shaft_mesh: object
+    options: StaticOptions
+    K: object                             # scipy CSR stiffness
+    couplings: tuple
+    blocks: tuple
+    loads: dict                           # attachment name -> load vector at REF_RPM
+    load_force: dict                      # attachment name -> (Fx, Fy, Fz) at REF_RPM
+    f: np.ndarray                         # total load vector at REF_RPM
+    assembly_seconds: float
+
+
+@dataclass(frozen=True)
+class BearingReaction:
+    """Force the support exerts ON the shaft at the remote point (bearing load = −this)."""
+    name: str
+    x_mm: float
+    Fx_N: float
+    Fy_N: float
+    Fz_N: float
+    F_radial_N: float
+    uy_mm: float                 # remote-point radial translation
+    uz_mm: float
+    L10h: float | None           # ISO 281 basic, hours (None: unloaded or rpm 0)
+    C_N: float
+    life_exponent: float
+
+
+@dataclass(frozen=True)
+class Station:
+    name: str
+    x_mm: float
+    uy_mm: float
+    uz_mm: float
+    u_mm: float
+
+
+@dataclass(frozen=True)
+class StaticCase:
+    rpm: float
+    scale: float                               # (rpm / REF_RPM)²
+    bearings: tuple[BearingReaction, ...]
+    stations: tuple[Station, ...]
+    max_deflection_mm: float                   # max nodal |(u_y, u_z)|
+    max_deflection_xyz_mm: tuple[float, float, float]
+    max_axis_deflection_mm: float              # max over the axis line
+    peaks: tuple                               # recovery.RegionPeak per region
+    peak_von_mises_MPa: float                  # filtered, whole shaft
+    peak_von_mises_xyz_mm: tuple[float, float, float]
+    peak_von_mises_unfiltered_MPa: float
+    peak_von_mises_unfiltered_xyz_mm: tuple[float, float, float]
+    load_sum_N: tuple[float, float, float]
+    reaction_sum_N: tuple[float, float, float]
+    equilibrium_residual: float                # |Σ reactions + Σ loads| / |Σ loads|
+    beam: dict | None = None                   # shaftfe.beam numbers side by side
+
+
+@dataclass(frozen=True, eq=False)
+class StaticResult:
+    variant: str
+    variant_hash: str
+    options: StaticOptions
+    ref_rpm: float
+    n_nodes: int
+    n_elements: int
+    n_dofs: int
+    mesh_key: str
+    u_ref: np.ndarray = field(repr=False)          # (ndof,) at REF_RPM
+    stress_ref: np.ndarray = field(repr=False)     # (6, n_nodes) at REF_RPM, xx yy zz xy yz xz
+    von_mises_ref: np.ndarray = field(repr=False)
+    axis_x: np.ndarray = field(repr=False)         # deflection line (FE, on the axis)
+    axis_u_ref: np.ndarray = field(repr=False)     # (n, 3) at REF_RPM
+    cases: tuple[StaticCase, ...] = ()
+    diagnostics: dict = field(default_factory=dict)
+    error_estimate: dict | None = None
+    notes: tuple[str, ...] = ()
+    mesh: object = field(default=None, repr=False)
+
+    def case(self, rpm: float) -> StaticCase:
+        return next(c for c in self.cases if math.isclose(c.rpm, rpm))
+
+    def to_dict(self) -> dict:
+        def clean(o):
+            if isinstance(o, float):
+                return o if math.isfinite(o) else None
+            if isinstance(o, dict):
+                return {k: clean(v) for k, v in o.items()}
+            if isinstance(o, list | tuple):
+                return [clean(v) for v in o]
+            return o
+        return clean({
+            "variant": self.variant, "variant_hash": self.variant_hash,
+            "options": asdict(self.options), "ref_rpm": self.ref_rpm,
+            "mesh": {"key": self.mesh_key, "nodes": self.n_nodes, "elements": self.n_elements,
+                     "dofs": self.n_dofs},
+            "cases": [asdict(c) for c in self.cases],
+            "diagnostics": self.diagnostics, "error_estimate": self.error_estimate,
+            "notes": list(self.notes),
+        })
+
+
+# --------------------------------------------------------------------------- model
+
+def _direction(angle_deg: float) -> np.ndarray:
+    a = math.radians(angle_deg)
+    return np.array([0.0, math.cos(a), math.sin(a)])
+
+
+def _check_options(o: StaticOptions) -> None:
+    if o.load_distribution not in DISTRIBUTIONS:
+        raise InputError("--load-distribution", "load_distribution", " | ".join(DISTRIBUTIONS),
+                         got=o.load_distribution)
+    if not (math.isfinite(o.exclude_mm) and o.exclude_mm >= 0):
+        raise InputError("--exclude-mm", "exclude_mm", ">= 0", got=o.exclude_mm)
+    if o.hold_twist not in ("all", "axial", "none"):
+        raise InputError("options", "hold_twist", "all | axial | none", got=o.hold_twist)
+    from shaftfe.solvers import METHODS
+    if o.solver not in METHODS:
+        raise InputError("--solver", "solver", " | ".join(METHODS), got=o.solver)
+
+
+def _check_bearing(b) -> None:
+    K = np.asarray(b.K_N_per_mm, dtype=float)
+    if K.shape != (2, 2) or not np.all(np.isfinite(K)) or not np.allclose(K, K.T, rtol=1e-12) \
+            or np.linalg.eigvalsh(0.5 * (K + K.T)).min() <= 0:
+        raise InputError(f"bearing {b.name!r}", "K_N_per_mm",
+                         "a symmetric positive-definite 2×2 matrix", got=K.tolist())
+    if not (b.tilt_stiffness_Nmm_per_rad >= 0 and math.isfinite(b.tilt_stiffness_Nmm_per_rad)):
+        raise InputError(f"bearing {b.name!r}", "tilt_stiffness_Nmm_per_rad", ">= 0",
+                         got=b.tilt_stiffness_Nmm_per_rad)
+
+
+def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh=None,
+                cache_dir=None) -> StaticModel:
+    """Mesh (or take ``shaft_mesh``), assemble K, couple the bearings, build the loads."""
+    _check_options(options)
+    if options.seed_load_case:
+        variant = variant.with_seed_load_case()
+    for b in variant.bearings:
+        _check_bearing(b)
+    if shaft_mesh is None:
+        from shaftfe.mesh import build_mesh
+        shaft_mesh = build_mesh(variant, options.level, options.order, cache_dir=cache_dir)
+    m = shaft_mesh.mesh
+    mat = variant.material
+    t0 = time.perf_counter()
+    K = fem.elasticity_stiffness(m, mat.E_MPa, mat.nu)
+    couplings = []
+    for b in variant.bearings:
+        hold = options.hold_twist == "all" or (options.hold_twist == "axial" and b.axial)
+        couplings.append(supports.couple_bearing(m, b, rigid=options.rigid_supports,
+                                                 hold_twist=hold))
+    blocks = tuple(blk for c in couplings for blk in supports.blocks(c))
+    loads, forces = {}, {}
+    for a in variant.attachments:
+        F = a.force_N(REF_RPM)
+        if F == 0:
+            continue
+        e = _direction(a.angle_deg)
+        loads[a.name] = fem.surface_load(m, m.boundaries[f"load:{a.name}:pressed"], F, e,
+                                         options.load_distribution)
+        forces[a.name] = tuple(float(c) for c in F * e)
+    if options.body_force:
+        w2 = (REF_RPM * 2 * math.pi / 60) ** 2
+        fb = fem.body_force_load(m, mat.density_t_mm3, w2)
+        loads["shaft_body"] = fb
+        forces["shaft_body"] = tuple(float(c) for c in fb.reshape(-1, 3).sum(axis=0))
+    f = np.zeros(K.shape[0])
+    for v in loads.values():
+        f += v
+    return StaticModel(variant, shaft_mesh, options, K, tuple(couplings), blocks, loads,
+                       forces, f, time.perf_counter() - t0)
+
+
+# --------------------------------------------------------------------------- solve
+
+def _pin_dofs(mesh) -> list[int]:
+    """Six dofs that make K + k_p Σ e eᵀ nonsingular: all three translations of a node near
+    the left end of the axis, u_y and u_z of one near the right end, and the tangential
+    component of the node farthest from the axis."""
+    x = mesh.doflocs
+    r2 = x[1] ** 2 + x[2] ** 2
+    a = int(np.argmin((x[0] - x[0].min()) ** 2 + r2))
+    b = int(np.argmin((x[0] - x[0].max()) ** 2 + r2))
+    c = int(np.argmax(r2))
+    tang = 2 if abs(x[1, c]) >= abs(x[2, c]) else 1
+    return [3 * a, 3 * a + 1, 3 * a + 2, 3 * b + 1, 3 * b + 2, 3 * c + tang]
+
+
+def _modes(mesh):
+    x = mesh.doflocs
+    center = (0.5 * (x[0].min() + x[0].max()), 0.0, 0.0)
+    R = fem.rigid_body_modes(mesh, center)
+    R[:, 3:] /= max(0.5 * (x[0].max() - x[0].min()), 1e-9)
+    return R
+
+
+@dataclass(frozen=True, eq=False)
+class UnitSolution:
+    u: np.ndarray
+    lam: list          # per block: support force parameters (C R u or multipliers)
+    relres: float
+    hard_violation: float
+    cond_S: float
+    diagnostics: dict
+
+
+def solve_model(model: StaticModel, rhs: np.ndarray | None = None) -> UnitSolution:
+    """Solve the supported system for ``rhs`` (default: the model's load at REF_RPM)."""
+    from shaftfe import solvers
+    m = model.shaft_mesh.mesh
+    K = model.K
+    free = supports.unrestrained_modes(list(model.blocks), _modes(m))
+    if free:
+        raise SolverError("the supports leave the shaft free to move: " + "; ".join(free))
+    n = K.shape[0]
+    pins = _pin_dofs(m)
+    kp = float(K.diagonal().mean())
+    P = np.zeros((n, 6))
+    P[pins, range(6)] = 1.0
+    if np.linalg.matrix_rank(P.T @ _modes(m), tol=1e-9) < 6:       # pragma: no cover
+        raise SolverError("internal: the pin dofs do not remove the rigid modes")
+    import scipy.sparse as sp
+    B = (K + sp.csr_matrix((np.full(6, kp), (pins, pins)), shape=(n, n))).tocsr()
+    t0 = time.perf_counter()
+    fac = solvers.factorize(B, model.options.solver, rigid_modes=_modes(m))
+    t_fac = time.perf_counter() - t0
+    cols = [P] + [blk.R.T for blk in model.blocks]
+    U = np.hstack(cols)
+    Cinv = [np.eye(6) * (-1.0 / kp)]
+    for blk in model.blocks:
+        Cinv.append(np.zeros((blk.R.shape[0],) * 2) if blk.C is None else np.linalg.inv(blk.C))
+    from scipy.linalg import block_diag
+    Cinv = block_diag(*Cinv)
+    f = model.f if rhs is None else rhs
+    t1 = time.perf_counter()
+    Z = fac.solve(np.column_stack([U, f]))
+    Z, y = Z[:, :-1], Z[:, -1]
+    t_sol = time.perf_counter() - t1
+    UtZ = U.T @ Z
+    D = 1.0 / np.sqrt(np.abs(np.diag(UtZ)))
+    S = D[:, None] * (Cinv + UtZ) * D[None, :]
+    cond = float(np.linalg.cond(S))
+    if not np.isfinite(cond) or cond > 1e13:
+        raise SolverError(f"the support system is singular (cond(S) = {cond:.3g}): "
+                          "a support is missing or redundant")
+    lam = D * np.linalg.solve(S, D * (U.T @ y))
+    u = y - Z @ lam
+    # residual of the real (unpinned) system
+    r = K @ u - f
+    lam_blocks, hard_v = [], 0.0
+    k = 6
+    for blk in model.blocks:
+        mk = blk.R.shape[0]
+        if blk.C is None:
+            lb = lam[k:k + mk]
+            hard_v = max(hard_v, float(np.abs(blk.R @ u).max()))
+        else:
+            lb = blk.C @ (blk.R @ u)
+        r += blk.R.T @ lb
+        lam_blocks.append(lb)
+        k += mk
+    fn = float(np.linalg.norm(f))
+    relres = float(np.linalg.norm(r) / fn) if fn > 0 else 0.0
+    umax = float(np.abs(u).max()) if u.size else 0.0
+    hard_rel = hard_v / umax if umax > 0 else 0.0
+    if relres > RESIDUAL_TOL or hard_rel > RESIDUAL_TOL:
+        raise SolverError(f"the linear solve did not converge (relative residual {relres:.2e}, "
+                          f"hard-constraint violation {hard_rel:.2e}; limit {RESIDUAL_TOL:g})")
+    diag = {"solver": fac.name, "solver_note": getattr(fac, "note", ""),
+            "factor_seconds": t_fac, "solve_seconds": t_sol, "n_low_rank": int(U.shape[1]),
+            "cond_S": cond, "relative_residual": relres, "hard_violation_rel": hard_rel,
+            "pin_stiffness": kp}
+    return UnitSolution(u, lam_blocks, relres, hard_rel, cond, diag)
+
+
+# --------------------------------------------------------------------------- post-processing
+
+def probe(mesh, u: np.ndarray, pts: np.ndarray, tree=None) -> tuple[np.ndarray, np.ndarray]:
+    """Displacement (n, 3) at points (3, n) and a mask of the points found in the mesh.
+
+    Each point is located by barycentric coordinates in the straight-sided tet of the element's
+    corners (candidates: the 16 nearest element centroids) and the P2 (or P1) field is evaluated
+    with the barycentric shape functions. Exact for straight elements; the axis stations this is
+    used for lie in interior elements, which the mesher leaves straight. Points not found get
+    NaN."""
+    p, t = mesh.p, mesh.t
+    pts = np.asarray(pts, dtype=float)
+    tree = tree if tree is not None else _centroid_tree(mesh)
+    k = min(16, t.shape[1])
+    cand = tree.query(pts.T, k)[1].reshape(pts.shape[1], k)         # (n, k)
+    v = p[:, t[:, cand]]                                               # (3, 4, n, k)
+    T = v[:, 1:] - v[:, :1]                                            # (3, 3, n, k)
+    rhs = pts[:, None, :, None] - v[:, 0:1]                            # (3, 1, n, k)
+    lam123 = np.linalg.solve(np.moveaxis(T, (0, 1), (-2, -1)),
+                             np.moveaxis(rhs, (0, 1), (-2, -1)))[..., 0]   # (n, k, 3)
+    lam = np.concatenate([1 - lam123.sum(-1, keepdims=True), lam123], -1)  # (n, k, 4)
+    worst = lam.min(-1)
+    best = np.argmax(worst, axis=1)
+    found = worst[np.arange(pts.shape[1]), best] >= -1e-9
+    el = cand[np.arange(pts.shape[1]), best]
+    L = lam[np.arange(pts.shape[1]), best]                              # (n, 4)
+    ref = np.asarray(fem.scalar_element(mesh).doflocs, dtype=float)   # (nloc, 3)
+    refv = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    N = [L[:, i] * (2 * L[:, i] - 1) if ref.shape[0] == 10 else L[:, i] for i in range(4)]
+    for r in ref[4:]:
+        i = next(a for a in range(4) for b in range(4) if a < b
+                 and np.allclose(0.5 * (refv[a] + refv[b]), r))
+        j = next(b for b in range(4) if b > i and np.allclose(0.5 * (refv[i] + refv[b]), r))
+        N.append(4 * L[:, i] * L[:, j])
+    N = np.array(N)                                                    # (nloc, n)
+    U = u.reshape(-1, 3)[fem.element_nodes(mesh)[:, el]]                       # (nloc, n, 3)
+    out = np.einsum("an,anc->nc", N, U)
+    out[~found] = np.nan
+    return out, found
+
+
+def _centroid_tree(mesh):
+    from scipy.spatial import cKDTree
+    return cKDTree(mesh.p[:, mesh.t].mean(axis=1).T)
+
+
+def axis_deflection(variant, mesh, u: np.ndarray, xs) -> np.ndarray:
+    """Displacement (n, 3) of the shaft axis at stations xs: the FE field at (x, 0, 0), or,
+    where the axis is not material (hex socket), the mean over 8 points on a ring at 0.8 × the
+    local radius (the same for a beam-like field)."""
+    xs = np.asarray(xs, dtype=float)
+    tree = _centroid_tree(mesh)
+    out, ok = probe(mesh, u, np.array([xs, 0 * xs, 0 * xs]), tree)
+    for k in np.nonzero(~ok)[0]:
+        x = xs[k]
+        r = 0.8 * 0.5 * variant.segment_at(x).diameter_mm
+        a = np.linspace(0, 2 * np.pi, 8, endpoint=False)
+        val, ok2 = probe(mesh, u, np.array([np.full(8, x), r * np.cos(a), r * np.sin(a)]), tree)
+        out[k] = val[ok2].mean(axis=0) if ok2.any() else np.nan
+    return out
+
+
+def l10h(C: float, P: float, rpm: float, p: float) -> float | None:
+    """ISO 281 basic rating life, hours: (C/P)^p 10⁶ / (60 n)."""
+    if P <= 0 or rpm <= 0:
+        return None
+    return (C / P) ** p * 1e6 / (60.0 * rpm)
+
+
+def _regions(mesh) -> dict[str, np.ndarray]:
+    """Stress regions: each fillet, keyway, shoulder and seat (a split load seat counted once),
+    the hex socket and the end faces."""
+    groups: dict[str, list] = {}
+    for g, f in mesh.boundaries.items():
+        if g.startswith("load:"):
+            name = "seat:" + g.split(":")[1]
+        elif g.startswith("bearing:"):
+            name = "seat:" + g
+        else:
+            name = g
+        groups.setdefault(name, []).append(np.asarray(f))
+    return {k: np.concatenate(v) for k, v in groups.items()}
+
+
+def _patches(mesh) -> list[np.ndarray]:
+    return [np.asarray(f) for g, f in mesh.boundaries.items()
+            if g.startswith("bearing:") or g.endswith(":pressed")]
+
+
+def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), *,
+                 shaft_mesh=None, cache_dir=None, beam: bool = True,
+                 estimate_error: bool = False) -> StaticResult:
+    """Solve once at REF_RPM and report every rpm in ``rpm`` (a number or a sequence)."""
+    t_all = time.perf_counter()
+    rpms = [float(rpm)] if isinstance(rpm, int | float) else [float(r) for r in rpm]
+    if not rpms or any(not (math.isfinite(r) and r >= 0) for r in rpms):
+        raise InputError("--rpm", "rpm", "numbers >= 0", got=rpm)
+    t0 = time.perf_counter()
+    model = build_model(variant, options, shaft_mesh=shaft_mesh, cache_dir=cache_dir)
+    v = model.variant
+    sm = model.shaft_mesh
+    m = sm.mesh
+    t_model = time.perf_counter() - t0
+    sol = solve_model(model)
+    t1 = time.perf_counter()
+    mat = v.material
+    u = sol.u
+    stress = recovery.nodal_stress(m, u, mat.E_MPa, mat.nu)
+    vm = recovery.von_mises(stress)
+    s1 = recovery.principal(stress)[0]
+    xyz = m.doflocs
+    excl = recovery.excluded_nodes(m, _patches(m), options.exclude_mm)
+    regions = {k: fem.face_nodes(m, f) for k, f in _regions(m).items()}
+    all_nodes = np.arange(xyz.shape[1])
+    t_rec = time.perf_counter() - t1
+
+    # stations and the deflection line
+    x0, x1 = float(xyz[0].min()), float(xyz[0].max())
+    stations = [(f"seat:{a.name}", a.seat_center_mm) for a in v.attachments
+                if a.name in model.loads]
+    stations += [(f"bearing:{c.name}", c.x_mm) for c in model.couplings]
+    if v.clearance_station_x_mm is not None:
+        stations.append(("clearance", float(v.clearance_station_x_mm)))
+    st_u = axis_deflection(v, m, u, [s[1] for s in stations])
+    ax_x = np.linspace(x0 + 1e-6, x1 - 1e-6, 121)
+    ax_u = axis_deflection(v, m, u, ax_x)
+    radial = np.hypot(u[1::3], u[2::3])
+    imax = int(np.argmax(radial))
+
+    # reactions (at REF_RPM) from the support forces
+    reac = {}
+    k = 0
+    for blk in model.blocks:
+        lb = sol.lam[k]
+        k += 1
+        r = reac.setdefault(blk.bearing, np.zeros(6))
+        for lab, val in zip(blk.labels, lb, strict=True):
+            r[supports._DOF[lab]] -= val
+    load_sum = model.f.reshape(-1, 3).sum(axis=0)
+    reac_sum = sum((r[:3] for r in reac.values()), np.zeros(3))
+    # scale: |Σ loads|, or Σ |nodal loads| when the loads are self-equilibrated (body force)
+    scale = max(float(np.linalg.norm(load_sum)),
+                1e-6 * float(np.abs(model.f.reshape(-1, 3)).sum()))
+    eq_res = float(np.linalg.norm(reac_sum + load_sum) / scale) if scale > 0 else 0.0
+
+    beam_res = {}
+    if beam:
+        try:
+            from shaftfe import beam as beam_mod
+            bopts = {"rigid_supports": options.rigid_supports, "spread_loads": True}
+            for br in beam_mod.analyse(v, rpms, **bopts):
+                beam_res[br.rpm] = br
+        except Exception as exc:
+            beam_res = {"error": f"{type(exc).__name__}: {exc}"}
+
+    cases = []
+    for r in rpms:
+        s = (r / REF_RPM) ** 2
+        bearings = []
+        for c in model.couplings:
+            rv = reac.get(c.name, np.zeros(6)) * s
+            q = c.G @ u * s
+            F = float(math.hypot(rv[1], rv[2]))
+            b = v.bearing(c.name)
+            bearings.append(BearingReaction(c.name, c.x_mm, float(rv[0]), float(rv[1]),
+                                            float(rv[2]), F, float(q[1]), float(q[2]),
+                                            l10h(b.C_N, F, r, b.life_exponent), b.C_N,
+                                            b.life_exponent))
+        sts = tuple(Station(nm, float(x), float(uu[1] * s), float(uu[2] * s),
+                            float(math.hypot(uu[1], uu[2]) * s))
+                    for (nm, x), uu in zip(stations, st_u, strict=True))
+        peaks = tuple(recovery.peak(vm, s1, xyz, nodes, excl, name, s)
+                      for name, nodes in sorted(regions.items()))
+        g = recovery.peak(vm, s1, xyz, all_nodes, excl, "shaft", s)
+        bm = None
+        if "error" in beam_res:
+            bm = {"error": beam_res["error"]}
+        elif r in beam_res:
+            bm = _beam_summary(beam_res[r])
+        cases.append(StaticCase(
+            rpm=r, scale=s, bearings=tuple(bearings), stations=sts,
+            max_deflection_mm=float(radial[imax] * s),
+            max_deflection_xyz_mm=tuple(float(c) for c in xyz[:, imax]),
+            max_axis_deflection_mm=float(np.hypot(ax_u[:, 1], ax_u[:, 2]).max() * s),
+            peaks=peaks, peak_von_mises_MPa=g.von_mises_MPa, peak_von_mises_xyz_mm=g.xyz_mm,
+            peak_von_mises_unfiltered_MPa=g.von_mises_unfiltered_MPa,
+            peak_von_mises_unfiltered_xyz_mm=g.xyz_unfiltered_mm,
+            load_sum_N=tuple(float(c) for c in load_sum * s),
+            reaction_sum_N=tuple(float(c) for c in reac_sum * s),
+            equilibrium_residual=eq_res, beam=bm))
+
+    diag = dict(sol.diagnostics)
+    diag.update(mesh_seconds=sm.build_seconds, mesh_from_cache=sm.from_cache,
+                assembly_seconds=model.assembly_seconds, model_seconds=t_model,
+                recovery_seconds=t_rec, min_quality=sm.min_quality,
+                n_excluded_nodes=int(excl.size))
+    notes = []
+    for nm, F in model.load_force.items():
+        if nm == "shaft_body":
+            continue
+        fv = model.loads[nm].reshape(-1, 3).sum(axis=0)
+        e = np.asarray(F) / np.linalg.norm(F)
+        diag.setdefault("load_cross_force_rel", {})[nm] = float(
+            np.linalg.norm(fv - (fv @ e) * e) / np.linalg.norm(F))
+    res = StaticResult(
+        variant=v.name, variant_hash=v.content_hash, options=options, ref_rpm=REF_RPM,
+        n_nodes=sm.n_nodes, n_elements=sm.n_elements, n_dofs=3 * sm.n_nodes, mesh_key=sm.key,
+        u_ref=u, stress_ref=stress, von_mises_ref=vm, axis_x=ax_x, axis_u_ref=ax_u,
+        cases=tuple(cases), diagnostics=diag, notes=tuple(notes), mesh=sm)
+    if estimate_error:
+        res = replace(res, error_estimate=_estimate_error(res, variant, options, cache_dir))
+    res.diagnostics["total_seconds"] = time.perf_counter() - t_all
+    return res
+
+
+def _beam_summary(br) -> dict:
+    return {"bearings": [{"name": b.name, "F_N": b.F_N, "Fy_N": b.Fy_N, "Fz_N": b.Fz_N,
+                          "L10h": b.L10h if math.isfinite(b.L10h) else None}
+                         for b in br.bearings],
+            "stations": {k: s.u_mm for k, s in br.stations.items()},
+            "max_deflection_mm": br.max_deflection_mm,
+            "max_sigma_vm_nominal_MPa": br.max_sigma_vm_MPa,
+            "max_sigma_vm_with_kt_MPa": br.max_peak_MPa
+            if math.isfinite(br.max_peak_MPa) else None,
+            "x_line_mm": br.x.tolist(), "u_line_mm": br.u.tolist()}
+
+
+def _estimate_error(res: StaticResult, variant, options: StaticOptions, cache_dir) -> dict:
+    """Richardson-type estimate from a second mesh level.
+
+    Second level: "fine" (or "default" when the first is "fine"). With q_h (finer) and q_H,
+    the estimated error of q_h is |q_h − q_H| / (r^p − 1) and the extrapolated value
+    q_h + (q_h − q_H)/(r^p − 1). Ratios r: element size on the fillets (k_fillet of the levels)
+    for stress peaks; (N_fine/N_coarse)^(1/3) from the element counts for deflections. Orders
+    assumed: p = 2 for recovered P2 stresses (p = 1 for P1), p = 3 for P2 displacements (2 for
+    P1). An estimate, not a bound: on a graded mesh the asymptotic range is not guaranteed."""
+    from shaftfe.mesh import LEVELS
+    other = "default" if options.level == "fine" else "fine"
+    res2 = solve_static(variant, [c.rpm for c in res.cases], replace(options, level=other),
+                        cache_dir=cache_dir, beam=False)
+    fine_r, coarse_r = (res, res2) if other != "fine" else (res2, res)
+    p_s, p_u = (2, 3) if options.order == 2 else (1, 2)
+    r_s = LEVELS[coarse_r.options.level]["k_fillet"] / LEVELS[fine_r.options.level]["k_fillet"]
+    r_u = (fine_r.n_elements / coarse_r.n_elements) ** (1 / 3)
+
+    def est(qf, qc, r, p):
+        if not (math.isfinite(qf) and math.isfinite(qc)) or r <= 1:
+            return None
+        d = (qf - qc) / (r ** p - 1)
+        return {"fine": qf, "coarse": qc, "extrapolated": qf + d, "error_fine": abs(d),
+                "rel_error_fine": abs(d) / abs(qf) if qf else None}
+    out = {"levels": [fine_r.options.level, coarse_r.options.level],
+           "dofs": [fine_r.n_dofs, coarse_r.n_dofs], "ratio_stress": r_s, "ratio_deflection": r_u,
+           "order_stress": p_s, "order_deflection": p_u, "cases": []}
+    for cf, cc in zip(fine_r.cases, coarse_r.cases, strict=True):
+        pk_c = {p.region: p for p in cc.peaks}
+        peaks = {p.region: est(p.von_mises_MPa, pk_c[p.region].von_mises_MPa, r_s, p_s)
+                 for p in cf.peaks if p.region in pk_c
+                 and (p.region.startswith("fillet:") or p.region.startswith("keyway:"))}
+        st_c = {s.name: s for s in cc.stations}
+        out["cases"].append({
+            "rpm": cf.rpm,
+            "peak_von_mises": est(cf.peak_von_mises_MPa, cc.peak_von_mises_MPa, r_s, p_s),
+            "region_peaks": peaks,
+            "max_deflection": est(cf.max_deflection_mm, cc.max_deflection_mm, r_u, p_u),
+            "stations": {s.name: est(s.u_mm, st_c[s.name].u_mm, r_u, p_u)
+                         for s in cf.stations if s.name in st_c}})
+    return out

@@ -1,0 +1,364 @@
+"""3D static analysis (issue 4): assembly, loads, supports, recovery kernels, scaling, CLI.
+
+Fast checks on coarse meshes; the accuracy checks against beam theory and Kt fits live in
+tests/validation/test_static_*.py.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+
+import numpy as np
+import pytest
+
+from shaftfe.errors import InputError, SolverError
+from shaftfe.variant import Attachment, Bearing, Material, Segment, Variant
+
+STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
+K_ISO = ((35_030.0, 0.0), (0.0, 35_030.0))
+
+
+def cylinder(angle=0.0, K_left=K_ISO, K_right=K_ISO, axial=True, mass=0.24) -> Variant:
+    """Ø20 × 120 mm cylinder, bearings on [5, 15] and [105, 115], one part on [55, 65]."""
+    segs = (Segment("s", 0.0, 120.0, 20.0, 0.0),)
+    brg = (Bearing("L", "x", 10.0, 10.0, 14_400.0, 10_000.0, K_left, axial=axial),
+           Bearing("R", "x", 110.0, 10.0, 14_400.0, 10_000.0, K_right))
+    att = (Attachment("w", 55.0, 65.0, mass, 20.0, 60.0, angle_deg=angle),)
+    return Variant("cyl", "test cylinder", segs, brg, att, STEEL, 0.0)
+
+
+def statics_bearing_loads(v, cache, level="default", **opts) -> np.ndarray:
+    """Bearing loads (2, 2) [(Fy, Fz) at L, at R] = −reactions, from the applied nodal load
+    vector by force and moment equilibrium of a beam on two supports without moment restraint
+    (tilt free): the exact statics of the discretised load, independent of the solve."""
+    from shaftfe import static
+    model = static.build_model(v, static.StaticOptions(level=level, **opts), cache_dir=cache)
+    f = model.f.reshape(-1, 3)
+    x, y, z = model.shaft_mesh.mesh.doflocs
+    xl, xr = (b.x_center_mm for b in v.bearings)
+    # moments about the left bearing centre (z- and −y-components), carried by the right one
+    load_r = np.array([(x - xl) @ f[:, 1] - y @ f[:, 0],
+                       (x - xl) @ f[:, 2] - z @ f[:, 0]]) / (xr - xl)
+    return np.array([f[:, 1:].sum(axis=0) - load_r, load_r])
+
+
+@pytest.fixture(scope="module")
+def cache(tmp_path_factory):
+    return tmp_path_factory.mktemp("static-cache")
+
+
+@pytest.fixture(scope="module")
+def base(cache):
+    from shaftfe.static import StaticOptions, solve_static
+    return solve_static(cylinder(), [5000.0, 10000.0], StaticOptions(level="default"),
+                        cache_dir=cache, beam=False)
+
+
+# --------------------------------------------------------------------------- assembly
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_vectorised_stiffness_equals_scikit_fem(cache, order):
+    """The einsum assembly equals scikit-fem's linear_elasticity form (same weak form) to
+    round-off, and annihilates the six rigid-body modes (K R = 0, exact for any mesh)."""
+    from shaftfe import fem
+    from shaftfe.mesh import build_mesh
+    m = build_mesh(cylinder(), "coarse", order=order, cache_dir=cache).mesh
+    K = fem.elasticity_stiffness(m, STEEL.E_MPa, STEEL.nu)
+    K2 = fem.elasticity_stiffness_skfem(m, STEEL.E_MPa, STEEL.nu)
+    assert abs(K - K2).max() <= 1e-12 * abs(K2).max()
+    R = fem.rigid_body_modes(m, (60.0, 1.0, -2.0))
+    assert np.abs(K @ R).max() <= 1e-10 * abs(K).max()
+
+
+def test_rbe3_rows_reproduce_rigid_motions_and_area_means(cache):
+    """RBE3 rows: a rigid motion of the seat is returned exactly (definition of the
+    least-squares fit), and for a full cylindrical seat the translation row is the area mean
+    (1/A)∫u_y dA: for u_y = x² over x ∈ [5, 15] that is (15³ − 5³)/30 (exact integral). The
+    tolerance 1e-3 covers the P2 facets' approximation of the cylinder (area error ~1e-4),
+    which makes the area weights slightly non-uniform."""
+    from shaftfe import fem
+    from shaftfe.mesh import build_mesh
+    m = build_mesh(cylinder(), "default", cache_dir=cache).mesh
+    G = fem.rigid_rows(m, m.boundaries["bearing:L"], (10.0, 0.0, 0.0))
+    np.testing.assert_allclose(G @ fem.rigid_body_modes(m, (10.0, 0.0, 0.0)), np.eye(6),
+                               atol=1e-10)
+    u = np.zeros(3 * m.doflocs.shape[1])
+    u[1::3] = m.doflocs[0] ** 2             # u_y = x²: mean over x ∈ [5, 15] is 108.33…
+    assert (G @ u)[1] == pytest.approx((15**3 - 5**3) / 3 / 10, rel=1e-3)
+
+
+@pytest.mark.parametrize("dist", ["uniform", "cosine"])
+def test_surface_load_net_force_and_zero_torque(cache, dist):
+    """Pressure on the pressed half seat: net force exactly F along e, nothing across it and no
+    torque about the axis (statics of the half-cylinder: ∫ −p n dA ∥ e by symmetry)."""
+    from shaftfe import fem
+    from shaftfe.mesh import build_mesh
+    v = cylinder(angle=37.0)
+    m = build_mesh(v, "default", cache_dir=cache).mesh
+    e = np.array([0.0, math.cos(math.radians(37.0)), math.sin(math.radians(37.0))])
+    f = fem.surface_load(m, m.boundaries["load:w:pressed"], 1234.5, e, dist).reshape(-1, 3)
+    np.testing.assert_allclose(f.sum(axis=0), 1234.5 * e, atol=1e-9)
+    x = m.doflocs
+    assert abs((x[1] * f[:, 2] - x[2] * f[:, 1]).sum()) < 1e-8
+    # the load sits on the half facing −e (the part's bore bears there)
+    loaded = np.abs(f).sum(axis=1) > 1e-9 * np.abs(f).max()
+    assert (x[1:, loaded].T @ e[1:] <= 1e-9).all()
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_recovery_patch_test(cache, order):
+    """Patch test (Zienkiewicz & Taylor, The FEM vol. 1, §9): a linear displacement field —
+    here uniaxial strain ε plus a shear γ — is reproduced exactly by isoparametric P1/P2
+    elements, so the recovered nodal stress must be the exact constant σ_xx = E ε (lateral
+    contraction −ν ε free), τ_xy = G γ, everywhere, surface nodes included. (A quadratic field
+    such as pure bending is NOT exact on curved P2 tets: the validation tests cover it.)"""
+    from shaftfe import recovery
+    from shaftfe.mesh import build_mesh
+    m = build_mesh(cylinder(), "coarse", order=order, cache_dir=cache).mesh
+    x, y, z = m.doflocs
+    eps, gam, nu, E = 1e-3, 4e-4, STEEL.nu, STEEL.E_MPa
+    u = np.column_stack([eps * x + gam * y, -nu * eps * y, -nu * eps * z]).ravel()
+    s = recovery.nodal_stress(m, u, E, nu)
+    G = E / (2 * (1 + nu))
+    np.testing.assert_allclose(s[0], E * eps, rtol=1e-10)
+    np.testing.assert_allclose(s[3], G * gam, rtol=1e-10)
+    assert np.abs(s[[1, 2, 4, 5]]).max() < 1e-9
+    vm = math.sqrt((E * eps) ** 2 + 3 * (G * gam) ** 2)
+    np.testing.assert_allclose(recovery.von_mises(s), vm, rtol=1e-10)
+
+
+def test_von_mises_and_principal_kernels():
+    """von Mises of uniaxial σ is |σ|, of pure shear τ is √3 τ; principal stresses are the
+    eigenvalues (hand-computed: [[2,1,0],[1,2,0],[0,0,5]] → 5, 3, 1)."""
+    from shaftfe.recovery import principal, von_mises
+    s = np.array([[7.0, 0.0, 0.0], [0, 0, 0], [0, 0, 0], [0, 4.0, 0], [0, 0, 0], [0, 0, 0]])
+    np.testing.assert_allclose(von_mises(s), [7.0, math.sqrt(3) * 4.0, 0.0], atol=1e-12)
+    p = principal(np.array([[2.0], [2.0], [5.0], [1.0], [0.0], [0.0]]))
+    np.testing.assert_allclose(p[:, 0], [5.0, 3.0, 1.0], atol=1e-12)
+
+
+# --------------------------------------------------------------------------- solve
+
+def test_every_solve_in_equilibrium(base):
+    """Global statics: Σ reactions + Σ loads = 0 (rel. 1e-8) and the full system's relative
+    residual ≤ 1e-8, with the load equal to m e ω² (Attachment.force_N) at each rpm."""
+    for c in base.cases:
+        assert c.equilibrium_residual <= 1e-8
+        F = cylinder().attachments[0].force_N(c.rpm)
+        np.testing.assert_allclose(c.load_sum_N, [0.0, F, 0.0], atol=1e-8 * F)
+    assert base.diagnostics["relative_residual"] <= 1e-8
+    assert base.diagnostics["cond_S"] < 1e8
+
+
+def test_doubling_rpm_multiplies_stresses_by_four(base):
+    """Centrifugal loads are m e ω²: 2× rpm → 4× load → 4× every stress, deflection and
+    reaction (linearity)."""
+    lo, hi = base.case(5000.0), base.case(10000.0)
+    assert hi.peak_von_mises_MPa == pytest.approx(4 * lo.peak_von_mises_MPa, rel=1e-12)
+    assert hi.max_deflection_mm == pytest.approx(4 * lo.max_deflection_mm, rel=1e-12)
+    for a, b in zip(lo.bearings, hi.bearings, strict=True):
+        assert b.F_radial_N == pytest.approx(4 * a.F_radial_N, rel=1e-12)
+        assert b.L10h == pytest.approx(a.L10h / 128, rel=1e-12)   # (1/4)³ and n × 2
+
+
+def test_reactions_statics_and_l10h(base, cache):
+    """Reactions equal the statics of the applied load (two supports, tilt free), ≈ F/2 each
+    for the symmetric case; L10h = (C/P)³ 10⁶ / (60 n) (ISO 281 basic rating life)."""
+    c = base.case(10000.0)
+    P = statics_bearing_loads(cylinder(), cache)
+    F = cylinder().attachments[0].force_N(10000.0)
+    for b, p in zip(c.bearings, P, strict=True):
+        np.testing.assert_allclose([-b.Fy_N, -b.Fz_N], p, rtol=1e-9, atol=1e-9 * F)
+        assert b.F_radial_N == pytest.approx(F / 2, rel=1e-3)       # load centroid ≈ x = 60
+        assert b.L10h == pytest.approx((14_400.0 / b.F_radial_N) ** 3 * 1e6 / 600_000.0,
+                                       rel=1e-12)
+
+
+def test_rotating_the_load_rotates_the_response(cache):
+    """Isotropic springs: turning the eccentricity by 37° turns the reactions (statics of the
+    load, to 1e-9) and the deflection vector at the seat (axisymmetric structure; the two
+    meshes differ — each is split on its own load plane — so magnitude to 0.5 %, angle 0.3°)."""
+    from shaftfe.static import StaticOptions, solve_static
+    v = cylinder(angle=37.0)
+    r0 = solve_static(cylinder(), [10000.0], StaticOptions(level="fine"), cache_dir=cache,
+                      beam=False)
+    r = solve_static(v, [10000.0], StaticOptions(level="fine"), cache_dir=cache, beam=False)
+    a, b = r0.case(10000.0), r.case(10000.0)
+    P = statics_bearing_loads(v, cache, level="fine")
+    for b1, p in zip(b.bearings, P, strict=True):
+        np.testing.assert_allclose([-b1.Fy_N, -b1.Fz_N], p, rtol=1e-9)
+        assert math.degrees(math.atan2(p[1], p[0])) == pytest.approx(37.0, abs=1e-2)
+    s0, s1 = a.stations[0], b.stations[0]
+    assert s1.u_mm == pytest.approx(s0.u_mm, rel=5e-3)
+    assert math.degrees(math.atan2(s1.uz_mm, s1.uy_mm)) == pytest.approx(37.0, abs=0.3)
+    assert b.peak_von_mises_MPa == pytest.approx(a.peak_von_mises_MPa, rel=0.05)
+
+
+def test_coupled_spring_gives_closed_form_remote_displacement(cache):
+    """K12 ≠ 0: the remote point (measured from the displacement field through the RBE3 rows)
+    moves by K_b⁻¹ P, P the bearing load from statics — including the component across the
+    load that K12 creates."""
+    from shaftfe.static import StaticOptions, solve_static
+    Kc = ((35_030.0, 8_756.0), (8_756.0, 35_030.0))
+    v = cylinder(K_left=Kc, K_right=Kc)
+    r = solve_static(v, [10000.0], StaticOptions(level="default"), cache_dir=cache, beam=False)
+    P = statics_bearing_loads(v, cache)
+    for b, p in zip(r.cases[0].bearings, P, strict=True):
+        q = np.linalg.solve(np.array(Kc), p)
+        np.testing.assert_allclose([b.uy_mm, b.uz_mm], q, rtol=1e-8)
+        assert b.uz_mm < -0.2 * b.uy_mm < 0
+
+
+def test_rigid_supports_hold_remote_points(cache):
+    """--rigid-supports: the remote points do not move; the reactions are the statics."""
+    from shaftfe.static import StaticOptions, solve_static
+    r = solve_static(cylinder(), [10000.0], StaticOptions(level="default", rigid_supports=True),
+                     cache_dir=cache, beam=False)
+    P = statics_bearing_loads(cylinder(), cache, rigid_supports=True)
+    for b, p in zip(r.cases[0].bearings, P, strict=True):
+        assert abs(b.uy_mm) < 1e-12 and abs(b.uz_mm) < 1e-12
+        np.testing.assert_allclose([-b.Fy_N, -b.Fz_N], p, rtol=1e-9, atol=1e-6)
+
+
+@pytest.mark.parametrize("what,expect", [
+    ("axial", "axial translation"),
+    ("twist", "rotation about the shaft axis"),
+    ("one_bearing", "tilt"),
+])
+def test_missing_support_is_named(cache, what, expect):
+    """A support set that leaves a rigid motion free raises SolverError naming it, before any
+    solver can return garbage (FINDINGS pitfall 8)."""
+    from shaftfe.static import StaticOptions, solve_static
+    v, opts = cylinder(), StaticOptions(level="default")
+    if what == "axial":
+        v = cylinder(axial=False)
+    elif what == "twist":
+        opts = StaticOptions(level="default", hold_twist="none")
+    elif what == "one_bearing":
+        v = dataclasses.replace(v, bearings=v.bearings[:1])
+    with pytest.raises(SolverError, match=expect):
+        solve_static(v, 10000.0, opts, cache_dir=cache, beam=False)
+
+
+def test_single_bearing_with_tilt_spring(cache):
+    """One bearing with a tilt stiffness k_t carries the part as a cantilever: by statics the
+    remote point takes the force F (u_y = F/k) and the moment F·(x_load − x_b) about z
+    (θ_z = F (x_load − x_b) / k_t, the load acting at its seat centroid)."""
+    from shaftfe import static
+    k_t = 5e7
+    v = cylinder()
+    v = dataclasses.replace(v, bearings=(dataclasses.replace(
+        v.bearings[0], tilt_stiffness_Nmm_per_rad=k_t),))
+    model = static.build_model(v, static.StaticOptions(level="default"), cache_dir=cache)
+    sol = static.solve_model(model)
+    f = model.f.reshape(-1, 3)
+    x, y = model.shaft_mesh.mesh.doflocs[:2]
+    F = f[:, 1].sum()
+    Mz = (x - 10.0) @ f[:, 1] - y @ f[:, 0]                # moment about the bearing centre
+    q = model.couplings[0].G @ sol.u
+    assert q[1] == pytest.approx(F / 35_030.0, rel=1e-8)
+    assert q[5] == pytest.approx(Mz / k_t, rel=1e-8)
+    assert Mz == pytest.approx(F * 50.0, rel=1e-3)
+
+
+def test_exclusion_band(cache):
+    """--exclude-mm: the filtered peaks skip every node within the band of a patch edge (and
+    still the element layer); the unfiltered peak is unchanged."""
+    from scipy.spatial import cKDTree
+
+    from shaftfe import recovery
+    from shaftfe.mesh import build_mesh
+    m = build_mesh(cylinder(), "default", cache_dir=cache).mesh
+    patches = [np.asarray(f) for g, f in m.boundaries.items()
+               if g.startswith("bearing:") or g.endswith(":pressed")]
+    layer = recovery.excluded_nodes(m, patches)
+    band = recovery.excluded_nodes(m, patches, 12.0)
+    assert np.isin(layer, band).all() and band.size > layer.size
+    edge = np.unique(np.concatenate([recovery.patch_edge_nodes(m, p) for p in patches]))
+    d, _ = cKDTree(m.doflocs[:, edge].T).query(m.doflocs.T)
+    assert np.isin(np.nonzero(d < 12.0)[0], band).all()
+    assert (d[np.setdiff1d(band, layer)] < 12.0).all()
+
+
+def test_bad_spring_matrix_is_input_error(cache):
+    """A non-positive-definite 2×2 bearing stiffness is rejected as input."""
+    from shaftfe.static import StaticOptions, solve_static
+    bad = ((1000.0, 2000.0), (2000.0, 1000.0))
+    with pytest.raises(InputError, match="K_N_per_mm"):
+        solve_static(cylinder(K_left=bad), 10000.0, StaticOptions(level="default"),
+                     cache_dir=cache, beam=False)
+
+
+def test_error_estimate_from_two_levels(cache):
+    """--estimate-error: a second level is solved and the Richardson-type numbers are
+    consistent: extrapolated = fine + (fine − coarse)/(r^p − 1), error = |that difference|."""
+    from shaftfe.static import StaticOptions, solve_static
+    r = solve_static(cylinder(), [10000.0], StaticOptions(level="default"), cache_dir=cache,
+                     beam=False, estimate_error=True)
+    ee = r.error_estimate
+    assert ee["levels"] == ["fine", "default"]
+    d = ee["cases"][0]["max_deflection"]
+    k = ee["ratio_deflection"] ** ee["order_deflection"] - 1
+    assert d["extrapolated"] == pytest.approx(d["fine"] + (d["fine"] - d["coarse"]) / k)
+    assert d["error_fine"] == pytest.approx(abs(d["fine"] - d["coarse"]) / k)
+    assert d["coarse"] == pytest.approx(r.cases[0].max_deflection_mm, rel=1e-12)
+    assert d["rel_error_fine"] < 0.01
+
+
+def test_body_force_resultant(cache):
+    """The shaft's own centrifugal force ρ ω² (0, y, z): its net force is ρ ω² times the first
+    moment of the meshed volume (∫ y dV, ∫ z dV — zero for the exact cylinder, O(h³) for the
+    curved P2 mesh), computed here by an independent scikit-fem Functional; the run stays in
+    equilibrium and the body force adds stress."""
+    from skfem import Basis, ElementTetP2, Functional
+
+    from shaftfe.static import StaticOptions, solve_static
+    a = solve_static(cylinder(), [10000.0], StaticOptions(level="default"), cache_dir=cache,
+                     beam=False)
+    b = solve_static(cylinder(), [10000.0], StaticOptions(level="default", body_force=True),
+                     cache_dir=cache, beam=False)
+    m = b.mesh.mesh
+    basis = Basis(m, ElementTetP2(), intorder=4)
+    qy = Functional(lambda w: w.x[1]).assemble(basis)
+    qz = Functional(lambda w: w.x[2]).assemble(basis)
+    w2 = (10000.0 * 2 * math.pi / 60) ** 2
+    F = cylinder().attachments[0].force_N(10000.0)
+    expect = [0.0, F + STEEL.density_t_mm3 * w2 * qy, STEEL.density_t_mm3 * w2 * qz]
+    np.testing.assert_allclose(b.cases[0].load_sum_N, expect, rtol=1e-9, atol=1e-9 * F)
+    assert b.cases[0].equilibrium_residual <= 1e-8
+    assert np.abs(b.stress_ref - a.stress_ref).max() > 0.1
+
+
+# --------------------------------------------------------------------------- CLI
+
+def test_cli_writes_vtu_summary_plot(tmp_path, cache, monkeypatch, capsys):
+    """`shaftfe static` writes result.vtu (documented fields), summary.json and the plot;
+    bad input exits 2 with one line and writes nothing."""
+    import meshio
+
+    import shaftfe.variant
+    from shaftfe.cli import main
+    monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(cache))
+    monkeypatch.setattr(shaftfe.variant, "load_variant", lambda name: cylinder())
+    out = tmp_path / "o"
+    rc = main(["static", "--variant", "cyl", "--rpm", "7000,10000", "--level", "default",
+               "--out", str(out)])
+    assert rc == 0
+    assert "bearing" in capsys.readouterr().out
+    m = meshio.read(out / "result.vtu")
+    assert m.point_data["stress"].shape == (m.points.shape[0], 6)
+    assert m.point_data["displacement"].shape == (m.points.shape[0], 3)
+    assert "von_mises" in m.point_data and "region" in m.cell_data
+    s = json.loads((out / "summary.json").read_text())
+    assert [c["rpm"] for c in s["cases"]] == [7000.0, 10000.0]
+    assert s["vtu"]["stress_components"] == ["xx", "yy", "zz", "xy", "yz", "xz"]
+    assert s["cases"][1]["equilibrium_residual"] <= 1e-8
+    assert (out / "deflection.png").stat().st_size > 1000
+    bad = tmp_path / "bad"
+    assert main(["static", "--variant", "cyl", "--rpm", "-3", "--out", str(bad)]) == 2
+    assert "error" in capsys.readouterr().err
+    assert not bad.exists()
+    assert main(["static", "--variant", "cyl", "--level", "huge", "--out", str(bad)]) == 2
+    assert not bad.exists()

@@ -1,0 +1,45 @@
+"""Variant x2_57 at 10 000 rpm on rigid supports vs the seed's Inventor shaft-module results.
+
+Reference: seed 000 §8.2.2 (SPEC §2): radial reactions 2689 N (gear side) and 5921 N (other
+side) at 10 000 rpm with the seed's load case (gear, counterweights 1 and 2). The geometry is
+reconstructed (geometry/RECONSTRUCTION.md), so the reactions are asserted within 3 %.
+
+Measured (coarse level, this test): 2678.1 N / 5969.5 N (−0.4 % / +0.8 %); the beam model
+with the same loads gives the same reactions (statics).
+
+For the report (not asserted: the seed gives them from a beam model with an unknown Kt): at the
+default level (94k dofs) the FE gives 0.068 mm under the gear (seed 0.063 mm; beam 0.067 mm) and
+0.112 mm at the clearance station (seed 0.1 mm); filtered peak von Mises 259.6 MPa on the
+free-side bearing seat next to the collar fillet (seed 263 MPa). The unfiltered peak (442 MPa)
+sits on the edge of the bearing coupling where it meets the fillet, a point singular by
+construction; the fillets that touch a bearing seat are not mesh-converged (collar fillet 246 MPa
+default, 474 MPa fine with the element-layer rule, 336 MPa fine with a 0.5 mm band).
+"""
+
+from __future__ import annotations
+
+import pytest
+
+RPM = 10_000.0
+
+
+@pytest.fixture(scope="module")
+def result(tmp_path_factory):
+    from shaftfe.errors import ShaftfeError
+    from shaftfe.static import StaticOptions, solve_static
+    from shaftfe.variant import load_variant
+    try:
+        v = load_variant("x2_57")
+    except (ShaftfeError, FileNotFoundError) as exc:           # geometry not there yet
+        pytest.skip(f"x2_57 does not load: {exc}")
+    return solve_static(v, [RPM], StaticOptions(level="coarse", rigid_supports=True,
+                                                seed_load_case=True),
+                        cache_dir=tmp_path_factory.mktemp("vx"), beam=False)
+
+
+def test_reactions_match_seed(result):
+    """Radial reactions within 3 % of 2689 N / 5921 N (seed 000 §8.2.2)."""
+    got = {b.name: b.F_radial_N for b in result.case(RPM).bearings}
+    assert got["gear_side"] == pytest.approx(2689.0, rel=0.03)
+    assert got["free_side"] == pytest.approx(5921.0, rel=0.03)
+    assert result.case(RPM).equilibrium_residual <= 1e-8
