@@ -23,6 +23,7 @@ COMMAND_MODULES = (
     "shaftfe.commands.campbell",
     "shaftfe.commands.mesh",
     "shaftfe.commands.static",
+    "shaftfe.commands.fatigue",
     "shaftfe.commands.view",
     "shaftfe.commands.demo",
 )

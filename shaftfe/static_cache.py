@@ -1,0 +1,305 @@
+"""Disk cache of the static reference solution that the fatigue study post-processes.
+
+The fatigue evaluation needs only the nodal stresses at the static reference speed, the node
+coordinates, the named face regions, the singular-point exclusion and (for ``fatigue.vtu``) the
+cells. ``load_or_solve(variant, options, cache_dir)`` returns them as a ``StaticReference``,
+from ``<dir>/static-<key[:24]>.npz`` when the model is unchanged, otherwise by one
+``shaftfe.static.solve_static`` at its ``REF_RPM`` (the file is then written).
+
+Key (sha256 of a canonical JSON): ``STATIC_CACHE_FORMAT``; the variant's content hash
+(``Variant.content_hash``: geometry, bearings, attachments, materials); the static options
+(``StaticOptions`` without ``solver``: every solver meets the same residual limit, 1e-8, so the
+choice does not change the stresses beyond that); the mesh key of ``shaftfe.mesh`` (geometry
+plan, level, order, Gmsh version and options, mesh ``CACHE_FORMAT``); the static reference
+speed; and a fingerprint (sha256) of the source of the modules that compute the stresses
+(``static``, ``recovery``, ``fem``, ``supports``), so a change of the solver code is never
+served a stale result. Bump ``STATIC_CACHE_FORMAT`` when the stored arrays change meaning.
+
+Stored arrays: ``stress_ref`` (6, n) MPa in the order xx yy zz xy yz xz, ``von_mises_ref`` (n,),
+``xyz`` (3, n) mm, ``excluded`` (node ids of the singular-point rule of
+``recovery.excluded_nodes`` on the bearing and pressed-load patches with the options'
+``exclude_mm`` band, the same rule as ``shaftfe static``), one node-id array per stress region
+(the static command's regions: each face group, the two halves of a load seat merged into
+``seat:<part>``, bearing seats as ``seat:bearing:<side>``), the volume cells and the face-group
+triangles for the VTU.
+
+Directory: ``cache_dir``, else ``$SHAFTFE_CACHE_DIR``, else ``~/.cache/shaftfe`` (as the mesh
+cache). Writes are atomic (a temporary file renamed into place); an unreadable, truncated or
+foreign file is recomputed and overwritten, never a crash; a read-only cache directory only
+costs the write.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import importlib.util
+import json
+import math
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from shaftfe.atomic import atomic_path
+
+STATIC_CACHE_FORMAT = 1
+FINGERPRINT_MODULES = ("shaftfe.static", "shaftfe.recovery", "shaftfe.fem", "shaftfe.supports")
+_KEY_SKIP_OPTIONS = ("solver",)
+
+
+@dataclass(frozen=True, eq=False)
+class StaticReference:
+    """The static solution at ``ref_rpm`` reduced to what fatigue needs (arrays read-only)."""
+
+    variant: str
+    variant_hash: str
+    options: dict
+    ref_rpm: float
+    mesh_key: str
+    key: str
+    stress_ref: np.ndarray = field(repr=False)       # (6, n) MPa, xx yy zz xy yz xz
+    von_mises_ref: np.ndarray = field(repr=False)    # (n,) MPa
+    xyz: np.ndarray = field(repr=False)              # (3, n) mm
+    excluded: np.ndarray = field(repr=False)         # node ids (singular-point rule)
+    regions: dict = field(repr=False)                # region name -> node ids
+    cells: np.ndarray = field(repr=False)            # (ne, 10 | 4) volume connectivity
+    face_cells: np.ndarray = field(repr=False)       # (nf, 6 | 3) triangles of the groups
+    face_group: np.ndarray = field(repr=False)       # (nf,) index into ``face_groups``
+    face_groups: tuple[str, ...]
+    n_elements: int
+    solve_seconds: float                             # wall time of the original solve
+    from_cache: bool
+    seconds: float                                   # wall time of this call
+    notes: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        for name in ("stress_ref", "von_mises_ref", "xyz", "excluded", "cells", "face_cells",
+                     "face_group"):
+            a = np.asarray(getattr(self, name))
+            if a.flags.writeable:
+                a = a.copy()
+                a.flags.writeable = False
+            object.__setattr__(self, name, a)
+
+    @property
+    def n_nodes(self) -> int:
+        return int(self.xyz.shape[1])
+
+    @property
+    def quadratic(self) -> bool:
+        return self.cells.shape[1] == 10
+
+
+# --------------------------------------------------------------------------- key
+
+def cache_dir_of(cache_dir=None) -> Path:
+    if cache_dir is not None:
+        return Path(cache_dir)
+    env = os.environ.get("SHAFTFE_CACHE_DIR")
+    return Path(env) if env else Path.home() / ".cache" / "shaftfe"
+
+
+def code_fingerprint() -> str:
+    """sha256 over the source files of ``FINGERPRINT_MODULES`` (found without importing)."""
+    h = hashlib.sha256()
+    for name in FINGERPRINT_MODULES:
+        spec = importlib.util.find_spec(name)
+        origin = spec.origin if spec is not None else None
+        h.update(name.encode())
+        if origin and Path(origin).is_file():
+            h.update(Path(origin).read_bytes())
+    return h.hexdigest()
+
+
+def predicted_mesh_key(variant, options) -> str:
+    """The key ``shaftfe.mesh.build_mesh`` gives the mesh the static solve will use (the seed
+    load case meshes the variant reduced to the seed's parts, as ``static.build_model``)."""
+    from shaftfe import mesh as mesh_mod
+    from shaftfe.solid import prepare
+    v = variant.with_seed_load_case() if options.seed_load_case else variant
+    return mesh_mod.mesh_key(prepare(v), options.level, options.order, mesh_mod._gmsh_version())
+
+
+def static_key(variant, options, mesh_key: str, ref_rpm: float) -> str:
+    opts = {k: v for k, v in dataclasses.asdict(options).items() if k not in _KEY_SKIP_OPTIONS}
+    payload = {"format": STATIC_CACHE_FORMAT, "variant_hash": variant_hash(variant),
+               "options": opts, "mesh_key": mesh_key, "ref_rpm": float(ref_rpm),
+               "code": code_fingerprint()}
+    text = json.dumps(payload, sort_keys=True, separators=(",", ":"), default=repr)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def variant_hash(variant) -> str:
+    """The variant's content hash (computed if a variant built in code has none)."""
+    if getattr(variant, "content_hash", ""):
+        return variant.content_hash
+    from shaftfe.variant import content_hash
+    return content_hash(variant)
+
+
+def cache_path(key: str, cache_dir=None) -> Path:
+    return cache_dir_of(cache_dir) / f"static-{key[:24]}.npz"
+
+
+# --------------------------------------------------------------------------- regions
+
+def stress_regions(mesh) -> dict[str, np.ndarray]:
+    """Region name -> node ids, the grouping of ``shaftfe static``'s region peaks: every face
+    group, both halves of a load seat merged into ``seat:<part>``, a bearing seat as
+    ``seat:bearing:<side>``."""
+    from shaftfe import fem
+    groups: dict[str, list] = {}
+    for g, f in mesh.boundaries.items():
+        if g.startswith("load:"):
+            name = "seat:" + g.split(":")[1]
+        elif g.startswith("bearing:"):
+            name = "seat:" + g
+        else:
+            name = g
+        groups.setdefault(name, []).append(np.asarray(f))
+    return {k: fem.face_nodes(mesh, np.concatenate(v)).astype(np.int64)
+            for k, v in sorted(groups.items())}
+
+
+def singular_patches(mesh) -> list[np.ndarray]:
+    """The patches whose edges are singular by construction: bearing seats (RBE3 coupling) and
+    the pressed half of every load seat (pressure edge) — the static command's choice."""
+    return [np.asarray(f) for g, f in mesh.boundaries.items()
+            if g.startswith("bearing:") or g.endswith(":pressed")]
+
+
+def facet_cells(mesh) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
+    """Triangles (triangle6 for P2: corners, then the mid-side nodes of edges 01, 12, 20) of
+    every named face group, the group index of each, and the group names (sorted)."""
+    from shaftfe import fem
+    names = tuple(sorted(mesh.boundaries))
+    if not names:
+        return np.zeros((0, 6 if fem.is_quadratic(mesh) else 3), np.int64), \
+            np.zeros(0, np.int32), names
+    facets = np.concatenate([np.asarray(mesh.boundaries[g]) for g in names])
+    gid = np.concatenate([np.full(np.asarray(mesh.boundaries[g]).size, i, np.int32)
+                          for i, g in enumerate(names)])
+    a, b, c = mesh.facets[:, facets].astype(np.int64)
+    if not fem.is_quadratic(mesh):
+        return np.stack([a, b, c], 1), gid, names
+    nv = int(mesh.p.shape[1])
+    ekey = np.minimum(mesh.edges[0], mesh.edges[1]).astype(np.int64) * nv \
+        + np.maximum(mesh.edges[0], mesh.edges[1])
+    order = np.argsort(ekey)
+    ks = ekey[order]
+    edofs = np.asarray(mesh.dofs.edge_dofs[0])
+
+    def mid(i, j):
+        k = np.minimum(i, j) * nv + np.maximum(i, j)
+        pos = order[np.searchsorted(ks, k)]
+        return edofs[pos].astype(np.int64)
+    return np.stack([a, b, c, mid(a, b), mid(b, c), mid(c, a)], 1), gid, names
+
+
+# --------------------------------------------------------------------------- load / solve
+
+def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = True,
+                  solve_kwargs: dict | None = None) -> StaticReference:
+    """The static reference solution of ``variant`` with ``options`` (``StaticOptions``), read
+    from the cache when the key matches, else solved (and stored). ``cache_dir`` is used for the
+    mesh cache too."""
+    from shaftfe import static
+    t0 = time.perf_counter()
+    options = options if options is not None else static.StaticOptions()
+    mkey = predicted_mesh_key(variant, options)
+    key = static_key(variant, options, mkey, static.REF_RPM)
+    path = cache_path(key, cache_dir)
+    if use_cache and path.exists():
+        ref = _load(path, key, variant.name, t0)
+        if ref is not None:
+            return ref
+    res = static.solve_static(variant, static.REF_RPM, options, cache_dir=cache_dir, beam=False,
+                              **(solve_kwargs or {}))
+    ref = from_result(res, key, time.perf_counter() - t0)
+    notes = []
+    if res.mesh_key != mkey:        # the prediction missed: do not store under a wrong key
+        notes.append("static cache: the mesh key could not be predicted; result not cached")
+    elif use_cache:
+        try:
+            _save(path, ref)
+        except OSError as exc:
+            notes.append(f"static cache: not written ({exc.__class__.__name__})")
+    return dataclasses.replace(ref, seconds=time.perf_counter() - t0, notes=tuple(notes))
+
+
+def from_result(res, key: str = "", seconds: float = 0.0) -> StaticReference:
+    """A ``StaticReference`` from a ``shaftfe.static.StaticResult`` (not cached)."""
+    from shaftfe import fem, recovery
+    m = res.mesh.mesh
+    band = float(getattr(res.options, "exclude_mm", 0.0))
+    excl = (recovery.excluded_nodes(m, singular_patches(m), band) if band > 0
+            else recovery.excluded_nodes(m, singular_patches(m))).astype(np.int64)
+    fc, gid, names = facet_cells(m)
+    return StaticReference(
+        variant=res.variant, variant_hash=res.variant_hash,
+        options=dataclasses.asdict(res.options), ref_rpm=float(res.ref_rpm),
+        mesh_key=res.mesh_key, key=key, stress_ref=np.asarray(res.stress_ref, dtype=float),
+        von_mises_ref=np.asarray(res.von_mises_ref, dtype=float),
+        xyz=np.asarray(m.doflocs, dtype=float), excluded=excl, regions=stress_regions(m),
+        cells=fem.element_nodes(m).T.astype(np.int64), face_cells=fc, face_group=gid,
+        face_groups=names, n_elements=int(res.n_elements),
+        solve_seconds=float(res.diagnostics.get("total_seconds", seconds)), from_cache=False,
+        seconds=seconds)
+
+
+def _save(path: Path, ref: StaticReference) -> None:
+    names = sorted(ref.regions)
+    meta = {"format": STATIC_CACHE_FORMAT, "key": ref.key, "variant": ref.variant,
+            "variant_hash": ref.variant_hash, "options": ref.options, "ref_rpm": ref.ref_rpm,
+            "mesh_key": ref.mesh_key, "regions": names, "face_groups": list(ref.face_groups),
+            "n_elements": ref.n_elements, "solve_seconds": ref.solve_seconds}
+    arrays = {"stress_ref": ref.stress_ref, "von_mises_ref": ref.von_mises_ref, "xyz": ref.xyz,
+              "excluded": ref.excluded, "cells": ref.cells, "face_cells": ref.face_cells,
+              "face_group": ref.face_group,
+              "meta": np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8)}
+    for i, n in enumerate(names):
+        arrays[f"r{i}"] = ref.regions[n]
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with atomic_path(path, suffix=".tmp") as tmp, open(tmp, "wb") as fh:
+        np.savez(fh, **arrays)
+
+
+def _load(path: Path, key: str, name: str, t0: float) -> StaticReference | None:
+    """Read a cache file; None (→ recompute) if it is unreadable, truncated, foreign or
+    inconsistent."""
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            meta = json.loads(z["meta"].tobytes().decode())
+            if meta.get("key") != key or meta.get("format") != STATIC_CACHE_FORMAT:
+                return None
+            arr = {k: np.array(z[k]) for k in ("stress_ref", "von_mises_ref", "xyz",
+                                                "excluded", "cells", "face_cells",
+                                                "face_group")}
+            regions = {n: np.array(z[f"r{i}"]) for i, n in enumerate(meta["regions"])}
+        n = arr["xyz"].shape[1] if arr["xyz"].ndim == 2 else -1
+        ok = (arr["xyz"].shape == (3, n) and n > 0 and arr["stress_ref"].shape == (6, n)
+              and arr["von_mises_ref"].shape == (n,)
+              and all(np.all(np.isfinite(arr[k])) for k in ("stress_ref", "von_mises_ref",
+                                                              "xyz"))
+              and arr["cells"].ndim == 2 and arr["cells"].shape[1] in (4, 10)
+              and arr["face_cells"].ndim == 2
+              and arr["face_group"].shape == (arr["face_cells"].shape[0],)
+              and len(meta["face_groups"]) > int(arr["face_group"].max(initial=-1)))
+        for a in [arr["excluded"], arr["cells"], arr["face_cells"], *regions.values()]:
+            ok = ok and a.dtype.kind in "iu" and (a.size == 0 or (a.min() >= 0 and a.max() < n))
+        if not ok:
+            return None
+        ref = StaticReference(
+            variant=name, variant_hash=str(meta["variant_hash"]), options=dict(meta["options"]),
+            ref_rpm=float(meta["ref_rpm"]), mesh_key=str(meta["mesh_key"]), key=key,
+            regions=regions, face_groups=tuple(meta["face_groups"]),
+            n_elements=int(meta["n_elements"]), solve_seconds=float(meta["solve_seconds"]),
+            from_cache=True, seconds=time.perf_counter() - t0, **arr)
+        if not math.isfinite(ref.ref_rpm) or ref.ref_rpm <= 0:
+            return None
+        return ref
+    except Exception:          # any damage means: recompute
+        return None

@@ -1,0 +1,221 @@
+"""`shaftfe fatigue` end to end (issue 5) and the static-solution disk cache.
+
+The x2_57 runs use a coarse static solution shared with tests/validation/test_fatigue_field.py
+through a session-wide cache directory; the cache's own checks use a small cylinder.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from shaftfe.cli import main
+from shaftfe.variant import Attachment, Bearing, Material, Segment, Variant
+
+ROOT = Path(__file__).resolve().parents[1]
+RPM_DAT = ROOT / "loadspectra" / "rpm.dat"
+
+
+@pytest.fixture(scope="module")
+def cache(tmp_path_factory):
+    d = tmp_path_factory.getbasetemp() / "shaftfe-fatigue-cache"
+    d.mkdir(exist_ok=True)
+    return d
+
+
+def run(capsys, *argv):
+    try:
+        rc = main(["fatigue", *map(str, argv)])
+    except SystemExit as exc:          # argparse usage errors
+        rc = exc.code
+    out = capsys.readouterr()
+    return rc, out.out, out.err
+
+
+@pytest.fixture(scope="module")
+def seed_run(cache, tmp_path_factory):
+    """The seed's settings (defaults) on the coarse mesh, run twice: the second run must take
+    the static solution from the cache."""
+    out = tmp_path_factory.mktemp("fatigue-seed")
+    import contextlib
+    import io
+    texts = []
+    for _ in range(2):
+        buf = io.StringIO()
+        with contextlib.redirect_stdout(buf):
+            rc = main(["fatigue", str(RPM_DAT), "--level", "coarse", "--cache-dir", str(cache),
+                       "--out", str(out)])
+        assert rc == 0
+        texts.append(buf.getvalue())
+    return out, texts
+
+
+def test_seed_run_outputs_and_cache(seed_run):
+    """Reference: the interface of issue 5 and docs/FIELDS.md (point data life_blocks,
+    damage_per_block, safety_factor, von_mises_ref; cell data region with names in the sidecar
+    summary.json). life_km = life_hours × 70 and life_hours = blocks × 300 s / 3600 (seed
+    §8.3: 25 000 blocks → 2083 h → 145 810 km) are checked on the printed summary."""
+    import meshio
+    out, (first, second) = seed_run
+    assert "static: solved in" in first or "static: from cache" in first
+    assert "static: from cache" in second
+    s = json.loads((out / "summary.json").read_text())
+    assert s["static"]["notes"] == []                      # the mesh key was predicted: cached
+    res = s["result"]
+    assert res["life_hours"] == pytest.approx(res["life_blocks"] * 300 / 3600, rel=1e-12)
+    assert res["life_km"] == pytest.approx(res["life_hours"] * 70, rel=1e-12)
+    assert s["inputs"]["seed_load_case"] is True and s["inputs"]["mean_stress"] == "soderberg"
+    assert s["history"]["static_ref_rpm"] == 10_000.0 and s["history"]["rpm_ref_of_file"] == 7000
+    assert s["history"]["load_factor_max"] == pytest.approx((7500 / 10_000) ** 2, rel=1e-9)
+    for line in ("life:", "safety factor at 1e+07 blocks:", "hot spot:", "unfiltered minimum:",
+                 "cycles per block:"):
+        assert line in second
+    m = meshio.read(out / "fatigue.vtu")
+    n = s["static"]["n_nodes"]
+    for f in ("life_blocks", "damage_per_block", "safety_factor", "von_mises_ref"):
+        assert m.point_data[f].shape == (n,)
+    life = m.point_data["life_blocks"]
+    d = m.point_data["damage_per_block"]
+    assert np.all(np.isinf(life[d == 0])) and np.allclose(life[d > 0] * d[d > 0], 1.0)
+    i = s["hot_spot"]["node"]
+    assert m.point_data["safety_factor"][i] == pytest.approx(res["safety_factor"], rel=1e-12)
+    assert s["vtu"]["regions"] and max(np.concatenate(
+        [c for c in m.cell_data["region"]])) == len(s["vtu"]["regions"])
+    for p in s["plots"].values():
+        assert (out / p).stat().st_size > 1000
+
+
+def test_block_twice_halves_blocks_keeps_hours(seed_run, cache, tmp_path, capsys):
+    """Reference: Miner's rule on a periodic history — the rainflow cycles of the block played
+    twice are exactly twice those of one block (repeated closure), so the damage per (twice as
+    long) block doubles: the life in blocks halves and the life in hours is unchanged."""
+    out1 = seed_run[0]
+    one = json.loads((out1 / "summary.json").read_text())
+    lines = RPM_DAT.read_text().splitlines()
+    data = [ln for ln in lines if ln.strip() and not ln.startswith("#")]
+    head = [ln for ln in lines if ln.startswith("#")]
+    f = tmp_path / "twice.dat"
+    f.write_text("\n".join(head + data + data) + "\n")
+    rc, text, _ = run(capsys, f, "--level", "coarse", "--cache-dir", cache, "--out",
+                      tmp_path / "o2", "--json")
+    assert rc == 0
+    two = json.loads(text)
+    assert two["static"]["from_cache"] is True
+    assert two["history"]["duration_s"] == 600.0
+    assert two["cycles"]["per_block"] == 2 * one["cycles"]["per_block"]
+    assert two["result"]["life_blocks"] == pytest.approx(one["result"]["life_blocks"] / 2,
+                                                         rel=1e-12)
+    assert two["result"]["life_hours"] == pytest.approx(one["result"]["life_hours"], rel=1e-12)
+    assert two["hot_spot"]["node"] == one["hot_spot"]["node"]
+
+
+def test_constant_rpm_gives_infinite_life(seed_run, cache, tmp_path, capsys):
+    """Reference: a constant speed has no load reversal: rainflow counts no cycle, Miner's
+    damage is 0 and the life infinite; the safety factor is the cap (15), not a division by
+    zero."""
+    f = tmp_path / "const.dat"
+    f.write_text("# format = rpm\n# sample_rate_hz = 1\n" + "6000\n" * 300)
+    out = tmp_path / "o"
+    rc, text, err = run(capsys, f, "--level", "coarse", "--cache-dir", cache, "--out", out)
+    assert rc == 0, err
+    assert "life: infinite" in text and "Traceback" not in err
+    assert "cycles per block: 0" in text
+    s = json.loads((out / "summary.json").read_text())
+    assert s["result"]["life_blocks"] is None and s["result"]["infinite_life"] is True
+    assert s["result"]["safety_factor"] == 15.0 and s["result"]["safety_status"] == "capped"
+
+
+@pytest.mark.parametrize("extra, where", [
+    (["--mean-stress", "morrow"], "--mean-stress"),
+    (["--design-life", "0"], "--design-life"),
+    (["--design-life=-1e7"], "--design-life"),
+    (["--design-life", "abc"], "--design-life"),
+    (["--design-life", "nan"], "--design-life"),
+    (["--kf", "1.5"], "--kf"),
+    (["--equivalent", "tresca"], "--equivalent"),
+    (["--exclude-mm", "-1"], "--exclude-mm"),
+    (["--material", "unobtainium"], "unobtainium"),
+    (["--variant", "nope_99"], "nope_99"),
+])
+def test_bad_options_exit_2_one_line(tmp_path, capsys, extra, where):
+    """Reference: the CLI contract — bad input is one line on stderr, exit code 2, no
+    traceback and no output written."""
+    out = tmp_path / "o"
+    rc, text, err = run(capsys, RPM_DAT, "--level", "coarse", "--out", out, *extra)
+    assert rc == 2 and text == ""
+    assert err.count("\n") == 1 and err.startswith("shaftfe") and "error:" in err
+    assert where in err and "Traceback" not in err
+    assert not out.exists()
+
+
+def test_missing_spectrum_exit_2(tmp_path, capsys):
+    """Reference: the CLI contract (as above) for a spectrum file that does not exist."""
+    out = tmp_path / "o"
+    rc, _text, err = run(capsys, tmp_path / "nope.dat", "--out", out)
+    assert rc == 2 and err.count("\n") == 1 and "does not exist" in err
+    assert not out.exists()
+
+
+# --------------------------------------------------------------------------- static cache
+
+STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
+K_ISO = ((35_030.0, 0.0), (0.0, 35_030.0))
+
+
+def cylinder() -> Variant:
+    """Ø20 × 120 mm cylinder, bearings on [5, 15] and [105, 115], one part on [55, 65]."""
+    segs = (Segment("s", 0.0, 120.0, 20.0, 0.0),)
+    brg = (Bearing("L", "x", 10.0, 10.0, 14_400.0, 10_000.0, K_ISO, axial=True),
+           Bearing("R", "x", 110.0, 10.0, 14_400.0, 10_000.0, K_ISO))
+    att = (Attachment("w", 55.0, 65.0, 0.24, 20.0, 60.0, angle_deg=0.0),)
+    return Variant("cyl", "test cylinder", segs, brg, att, STEEL, 0.0)
+
+
+def test_static_cache_roundtrip_corruption_and_key(tmp_path):
+    """Reference: the solve itself (``shaftfe.static.solve_static``): a cache hit returns the
+    same arrays bit for bit; its singular-point exclusion and regions equal the static
+    analysis's (``diagnostics['n_excluded_nodes']``, the node and excluded counts of every
+    region peak); the static case at half the speed is the cached field × 1/4; a corrupt or
+    truncated file is recomputed; a changed option changes the key."""
+    from shaftfe.static import StaticOptions, solve_static
+    from shaftfe.static_cache import cache_path, from_result, load_or_solve
+    v = cylinder()
+    o = StaticOptions(level="coarse")
+    a = load_or_solve(v, o, tmp_path)
+    assert not a.from_cache and a.notes == ()
+    b = load_or_solve(v, o, tmp_path)
+    assert b.from_cache and b.key == a.key
+    for k in ("stress_ref", "von_mises_ref", "xyz", "excluded", "cells", "face_cells"):
+        assert np.array_equal(getattr(a, k), getattr(b, k)), k
+    assert {k: v.tolist() for k, v in a.regions.items()} == \
+        {k: v.tolist() for k, v in b.regions.items()}
+
+    res = solve_static(v, [10_000.0, 5000.0], o, cache_dir=tmp_path, beam=False)
+    r = from_result(res)
+    # loads ∝ rpm²: the static API's case at 5000 rpm is the cached field at 10 000 × 1/4
+    assert res.case(5000.0).peak_von_mises_unfiltered_MPa == pytest.approx(
+        0.25 * a.von_mises_ref.max(), rel=1e-12)
+    assert r.excluded.size == res.diagnostics["n_excluded_nodes"]
+    for p in res.cases[0].peaks:
+        nodes = r.regions[p.region]
+        assert nodes.size == p.n_nodes
+        assert np.setdiff1d(nodes, r.excluded).size == p.n_nodes - p.n_excluded
+    np.testing.assert_array_equal(r.stress_ref, a.stress_ref)
+
+    path = cache_path(a.key, tmp_path)
+    good = path.read_bytes()
+    for bad in (b"not a zip file", good[: len(good) // 2]):
+        path.write_bytes(bad)
+        c = load_or_solve(v, o, tmp_path)
+        assert not c.from_cache
+        np.testing.assert_array_equal(c.stress_ref, a.stress_ref)
+        assert load_or_solve(v, o, tmp_path).from_cache        # rewritten, readable again
+    o2 = StaticOptions(level="coarse", load_distribution="cosine")
+    d = load_or_solve(v, o2, tmp_path)
+    assert d.key != a.key and not d.from_cache
+    assert not math.isclose(float(d.von_mises_ref.max()), float(a.von_mises_ref.max()),
+                            rel_tol=1e-6)
