@@ -28,6 +28,7 @@ from pathlib import Path
 FIELDS: dict[str, tuple[str, str, str]] = {
     "displacement": ("mm", "max", "nodal displacement, 3 components x, y, z"),
     "von_mises": ("MPa", "max", "von Mises equivalent stress at the nodes"),
+    "von_mises_ref": ("MPa", "max", "von Mises stress at the static reference speed"),
     "max_principal": ("MPa", "max", "largest principal stress at the nodes"),
     "stress": ("MPa", "max", "stress tensor, 6 components xx, yy, zz, xy, yz, xz"),
     "safety_factor": ("-", "min", "fatigue safety factor at the design life"),
