@@ -45,7 +45,7 @@ from shaftfe.solid import Solid, analytic_volume, expected_areas, prepare
 __all__ = ["LEVELS", "ShaftMesh", "analytic_volume", "build_mesh", "cache_path",
            "expected_areas", "mesh_key", "robust_mapping", "write_mesh"]
 
-CACHE_FORMAT = 1
+CACHE_FORMAT = 2     # 2: bearing groups = the ring's contact band (chamfers off)
 
 Q_LINEAR = 0.3        # below this minSICN the linear mesh gets a Netgen optimisation pass
 

@@ -24,16 +24,16 @@ circles and lines where a pressure or the RBE3 seat coupling starts or ends: a t
 Rule: a node is excluded from the filtered peaks if it belongs to an element that has a node ON
 such a patch edge (one element layer either side). The unfiltered peak is always reported too.
 
-Limit of the rule (measured on x2_57): where a bearing seat ends at the tangent line of a
-shoulder fillet, the coupling edge and the fillet peak coincide. The filtered peak of such a
-fillet then grows with refinement (collar fillet 246 → 474 MPa, default → fine level) because
-one element layer shrinks with the mesh: it is not a converged number, and a region with
-``n_excluded > 0`` should be read with that in mind. Fillets and keyways away from patch edges
-converge (within 2-6 % between the default and fine levels). The modelling fix is a seat face
-that stops short of the fillet (the bearing ring's chamfer), which belongs to the geometry;
-meanwhile ``StaticOptions.exclude_mm`` (CLI ``--exclude-mm``) adds a band of fixed width around
-every patch edge, which makes the filtered peak mesh-independent at the price of hiding
-whatever lies in the band.
+Limit of the rule: a patch edge that coincides with a fillet's tangent line puts the fillet's
+peak inside the excluded element layer, and the filtered peak then grows with refinement as the
+layer shrinks (measured on x2_57 before the bearings had chamfers: collar fillet 246 → 474 MPa,
+default → fine). The geometry now prevents it: a bearing's coupling face is the ring's contact
+band (``Bearing.chamfer_mm`` off each end, ``shaftfe.solid`` rejects a band that reaches into a
+fillet), so on x2_57 the two fillets next to the bearings lose no node to the rule and converge
+monotonically (collar 462.7 / 469.4 / 498.9 MPa at coarse / default / fine, springs, 10 000 rpm;
+reports/benchmarks/static.md). ``StaticOptions.exclude_mm`` (CLI ``--exclude-mm``) still adds a
+band of fixed width around every patch edge for a filtered peak that is mesh-independent where a
+patch edge does sit next to a stress raiser.
 """
 
 from __future__ import annotations

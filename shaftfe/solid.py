@@ -12,8 +12,11 @@ lines of every attachment's load plane on its seat cylinder (an OCC fragment wit
 segments), so the pressed / free halves are exact faces and no cut runs through the interior.
 
 Conventions: x = shaft axis (mm); angles in the y–z plane, 0° = +y, 90° = +z. A keyway's
-``angle_deg`` is the direction of its open side. The seat of an attachment or bearing is the
-cylindrical part of one segment inside [start, end] (fillet arcs excluded).
+``angle_deg`` is the direction of its open side. The seat of an attachment is the cylindrical
+part of one segment inside [start, end] (fillet arcs excluded). The seat of a bearing is the
+inner ring's contact band [x_start + c, x_end − c], c = ``Bearing.chamfer_mm`` (the chamfered
+ring corners do not bear); with c > 0 the band must lie on straight seat (InputError if it reaches
+into a fillet), so the coupling edge never sits in a fillet.
 """
 
 from __future__ import annotations
@@ -257,7 +260,7 @@ def prepare(variant) -> Solid:
 
     seats: list[Seat] = []
 
-    def seat(field: str, name: str, a, b, angle: float | None) -> None:
+    def seat(field: str, name: str, a, b, angle: float | None, inset: float = 0.0) -> None:
         a = _num(src, f"{field}.start", a, allowed="a finite number")
         b = _num(src, f"{field}.end", b, allowed="a finite number")
         if b - a <= TOL:
@@ -266,6 +269,18 @@ def prepare(variant) -> Solid:
         if k is None:
             raise InputError(src, field, "an interval inside one segment", got=(a, b))
         p = parts[k]
+        if inset > 0:
+            # a chamfered ring bears on [a + c, b − c] only; that band must stay on the
+            # straight seat: a shaft fillet no larger than the ring chamfer (ISO 582: the
+            # shaft fillet radius r_as max = the ring's r_s min), so the contact edge never
+            # falls inside a fillet
+            a, b = a + inset, b - inset
+            if a < p.x0 - TOL or b > p.x1 + TOL:
+                raise InputError(src, field, f"a contact band [{a:g}, {b:g}] (ring minus its "
+                                 f"chamfer {inset:g} mm) on the straight part [{p.x0:g}, "
+                                 f"{p.x1:g}] of segment {p.segment!r}", got=(a, b),
+                                 reason="reaches into a shoulder fillet: the fillet must not "
+                                 "exceed the ring chamfer")
         a2, b2 = max(a, p.x0), min(b, p.x1)
         if b2 - a2 <= TOL:
             raise InputError(src, field, f"overlapping the cylindrical part [{p.x0:g}, "
@@ -285,7 +300,12 @@ def prepare(variant) -> Solid:
         seen.add(b.name)
         w = _num(src, f"bearings[{i}].width_mm", b.width_mm, positive=True, allowed="> 0")
         xc = _num(src, f"bearings[{i}].x_center_mm", b.x_center_mm, allowed="a finite number")
-        seat(f"bearings[{i}].seat", f"bearing:{b.name}", xc - 0.5 * w, xc + 0.5 * w, None)
+        c = _num(src, f"bearings[{i}].chamfer_mm", getattr(b, "chamfer_mm", 0.0), lo=0.0,
+                 allowed=">= 0")
+        if c >= 0.25 * w:
+            raise InputError(src, f"bearings[{i}].chamfer_mm", f"< width / 4 ({0.25 * w:g})",
+                             got=c)
+        seat(f"bearings[{i}].seat", f"bearing:{b.name}", xc - 0.5 * w, xc + 0.5 * w, None, c)
     seen = set()
     for i, at in enumerate(variant.attachments):
         if not at.name or at.name in seen:

@@ -567,20 +567,25 @@ def _beam_summary(br) -> dict:
             "x_line_mm": br.x.tolist(), "u_line_mm": br.u.tolist()}
 
 
-def _estimate_error(res: StaticResult, variant, options: StaticOptions, cache_dir) -> dict:
+def _estimate_error(res: StaticResult, variant, options: StaticOptions, cache_dir,
+                    other_level: str | None = None) -> dict:
     """Richardson-type estimate from a second mesh level.
 
-    Second level: "fine" (or "default" when the first is "fine"). With q_h (finer) and q_H,
+    Second level: ``other_level`` if given, else "fine" (or "default" when the first is
+    "fine"); the finer of the two is the one with the smaller fillet size k_fillet. With q_h
+    (finer) and q_H,
     the estimated error of q_h is |q_h − q_H| / (r^p − 1) and the extrapolated value
     q_h + (q_h − q_H)/(r^p − 1). Ratios r: element size on the fillets (k_fillet of the levels)
     for stress peaks; (N_fine/N_coarse)^(1/3) from the element counts for deflections. Orders
     assumed: p = 2 for recovered P2 stresses (p = 1 for P1), p = 3 for P2 displacements (2 for
     P1). An estimate, not a bound: on a graded mesh the asymptotic range is not guaranteed."""
     from shaftfe.mesh import LEVELS
-    other = "default" if options.level == "fine" else "fine"
+    other = other_level or ("default" if options.level == "fine" else "fine")
     res2 = solve_static(variant, [c.rpm for c in res.cases], replace(options, level=other),
                         cache_dir=cache_dir, beam=False)
-    fine_r, coarse_r = (res, res2) if other != "fine" else (res2, res)
+    finer_first = LEVELS[options.level]["k_fillet"] < LEVELS[other]["k_fillet"] or (
+        LEVELS[options.level]["k_fillet"] == LEVELS[other]["k_fillet"] and other != "fine")
+    fine_r, coarse_r = (res, res2) if finer_first else (res2, res)
     p_s, p_u = (2, 3) if options.order == 2 else (1, 2)
     r_s = LEVELS[coarse_r.options.level]["k_fillet"] / LEVELS[fine_r.options.level]["k_fillet"]
     r_u = (fine_r.n_elements / coarse_r.n_elements) ** (1 / 3)

@@ -103,6 +103,8 @@ class Bearing:
     life_exponent: float = 3.0                # ISO 281: 3 for ball bearings
     bore_mm: float = 0.0
     outer_diameter_mm: float = 0.0
+    chamfer_mm: float = 0.0   # axial length of the inner ring's bore chamfer (0 = sharp)
+    r_s_min_mm: float = 0.0   # ISO 15 smallest corner chamfer r_s min (0 = not given)
 
     @property
     def x_start_mm(self) -> float:
@@ -111,6 +113,16 @@ class Bearing:
     @property
     def x_end_mm(self) -> float:
         return self.x_center_mm + 0.5 * self.width_mm
+
+    @property
+    def contact_x_start_mm(self) -> float:
+        """Start of the band where the inner ring's bore touches the seat: the ring's face plus
+        its corner chamfer (the chamfered corner does not bear on the shaft)."""
+        return self.x_start_mm + self.chamfer_mm
+
+    @property
+    def contact_x_end_mm(self) -> float:
+        return self.x_end_mm - self.chamfer_mm
 
 
 @dataclass(frozen=True)
@@ -640,8 +652,8 @@ def _bearings(shaft: dict, types: dict, segs: tuple[Segment, ...], ctx: _Ctx, sr
         tf = f"bearing_types.{typ}"
         bt = _table(types[typ], tsrc, tf)
         _check_keys(bt, {"designation", "bore_mm", "outer_diameter_mm", "width_mm", "C_N",
-                         "C0_N", "K_N_per_mm", "life_exponent", "tilt_stiffness_Nmm_per_rad"},
-                    tsrc, tf)
+                         "C0_N", "K_N_per_mm", "life_exponent", "tilt_stiffness_Nmm_per_rad",
+                         "chamfer_mm", "r_s_min_mm"}, tsrc, tf)
         _provenance(bt, tsrc, tf, tf, ctx)
         K = bt.get("K_N_per_mm")
         ok = (isinstance(K, list) and len(K) == 2
@@ -661,6 +673,13 @@ def _bearings(shaft: dict, types: dict, segs: tuple[Segment, ...], ctx: _Ctx, sr
         _need(width > 0, tsrc, f"{tf}.width_mm", "> 0", width)
         _need(C > 0, tsrc, f"{tf}.C_N", "> 0", C)
         _need(C0 > 0, tsrc, f"{tf}.C0_N", "> 0", C0)
+        chamfer = _num(bt, "chamfer_mm", tsrc, tf, default=0.0) or 0.0
+        _need(0.0 <= chamfer < 0.25 * width, tsrc, f"{tf}.chamfer_mm",
+              f">= 0 and < width / 4 ({0.25 * width:g})", chamfer)
+        r_s_min = _num(bt, "r_s_min_mm", tsrc, tf, default=0.0) or 0.0
+        _need(0.0 <= r_s_min <= chamfer or (r_s_min >= 0 and chamfer == 0), tsrc,
+              f"{tf}.chamfer_mm", f">= r_s_min_mm ({r_s_min:g}): an actual chamfer is at "
+              "least the ISO 15 minimum (or 0 = no chamfer modelled)", chamfer)
         xc = _num(t, "x_center_mm", src, fld)
         lo, hi = xc - 0.5 * width, xc + 0.5 * width
         _need(x0 - 1e-9 <= lo and hi <= x1 + 1e-9, src, f"{fld}.x_center_mm",
@@ -679,7 +698,8 @@ def _bearings(shaft: dict, types: dict, segs: tuple[Segment, ...], ctx: _Ctx, sr
                                             default=0.0) or 0.0,
             life_exponent=_num(bt, "life_exponent", tsrc, tf, default=3.0) or 3.0,
             bore_mm=bore, outer_diameter_mm=_num(bt, "outer_diameter_mm", tsrc, tf,
-                                                 default=0.0) or 0.0))
+                                                 default=0.0) or 0.0, chamfer_mm=chamfer,
+            r_s_min_mm=r_s_min))
     _need(sum(b.axial for b in out) == 1, src, "bearings[*].axial",
           "exactly one bearing with axial = true", sum(b.axial for b in out))
     names = [b.name for b in out]

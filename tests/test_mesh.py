@@ -165,6 +165,26 @@ def test_quality_and_positive_jacobians(coarse):
     assert np.all(det > 0)
 
 
+def test_chamfered_ring_contact_band_must_clear_the_fillet():
+    """A ring's contact band (ring minus its chamfer at each end) must lie on straight seat:
+    a ring abutting the 1 mm fillet at x = 70 with a 0.5 mm chamfer would bear on the fillet
+    (InputError naming the bearing); with a 1.5 mm chamfer the coupling face is the band
+    [x_face + 1.5, x_end − 1.5] and its exact area is 2π R (w − 2 c)."""
+    import dataclasses
+    import math
+
+    from shaftfe.solid import expected_areas, prepare
+    v = make_variant(bearing=(74.0, 8.0))           # ring [70, 78] on Ø17 against the step
+    v = dataclasses.replace(v, bearings=(dataclasses.replace(v.bearings[0], chamfer_mm=0.5),))
+    with pytest.raises(InputError) as exc:
+        prepare(v)
+    assert "bearings[0].seat" in str(exc.value) and "fillet" in str(exc.value)
+    v = dataclasses.replace(v, bearings=(dataclasses.replace(v.bearings[0], chamfer_mm=1.5),))
+    st = next(s for s in prepare(v).seats if s.name == "bearing:mid")
+    assert (st.x0, st.x1) == pytest.approx((71.5, 76.5))
+    assert expected_areas(v)["bearing:mid"] == pytest.approx(2 * math.pi * 8.5 * 5.0)
+
+
 @pytest.mark.parametrize("kwargs,field", [
     ({"fillet_b": 3.0}, "segments[1].fillet_mm"),           # step 17→22 is 2.5 mm high
     ({"keyway_x": 47.0}, "keyways[0].x_center_mm"),         # slot runs into the fillet

@@ -12,7 +12,8 @@ percent, in places more than 20 %, BELOW converged FE for shoulder fillets (Tipt
 Machine Design, Jan 2009; FINDINGS pitfall 5). The test therefore asserts the band
 [0.975 × min fit, 1.25 × max fit] and records the measured ratio.
 
-Measured (max principal stress, left fillet; benchmarks/bench_static.py): P2 coarse / default /
+Measured (max principal stress, left fillet; the first version of benchmarks/bench_static.py,
+before it moved to x2_57): P2 coarse / default /
 fine = 25k / 30k / 168k dofs: Kt_FE = 2.090 / 2.101 / 2.168 (custom levels with k_fillet 0.7 and
 0.5 gave 2.207 and 2.120: not monotonic, ±2-3 %); the right fillet 2.17-2.18. Against Roark
 1.943 and Peterson 1.953 the FE lies 8-14 % above the fits, as pitfall 5 warned (2.13-2.35

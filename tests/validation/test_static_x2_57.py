@@ -7,13 +7,15 @@ reconstructed (geometry/RECONSTRUCTION.md), so the reactions are asserted within
 Measured (coarse level, this test): 2678.1 N / 5969.5 N (−0.4 % / +0.8 %); the beam model
 with the same loads gives the same reactions (statics).
 
-For the report (not asserted: the seed gives them from a beam model with an unknown Kt): at the
-default level (94k dofs) the FE gives 0.068 mm under the gear (seed 0.063 mm; beam 0.067 mm) and
-0.112 mm at the clearance station (seed 0.1 mm); filtered peak von Mises 259.6 MPa on the
-free-side bearing seat next to the collar fillet (seed 263 MPa). The unfiltered peak (442 MPa)
-sits on the edge of the bearing coupling where it meets the fillet, a point singular by
-construction; the fillets that touch a bearing seat are not mesh-converged (collar fillet 246 MPa
-default, 474 MPa fine with the element-layer rule, 336 MPa fine with a 0.5 mm band).
+For the report (not asserted: the seed gives them from a beam model with an unknown Kt), seed
+load case, rigid supports, default level (91k dofs), bearings coupled on their contact bands
+(ring minus the 2 mm ISO 582 chamfer at each end): 0.069 mm under the gear (seed 0.063 mm),
+0.114 mm at the clearance station (seed 0.1 mm); peak von Mises 449.8 MPa on the collar fillet
+(x = 64.9), the same filtered and unfiltered, bearing-seat-gear fillet 408.5 MPa. The nominal
+bending stress there is 32 M/(π d³) = 224 MPa (M = 107.9 N·m), so Kt_FE ≈ 2.0; the seed's
+263 MPa cannot include a shoulder Kt of that size. Before the chamfer the coupling edge sat on
+the fillet's tangent line and the excluded element layer hid the fillet (259.6 MPa filtered,
+not converged: 246 → 474 MPa default → fine).
 """
 
 from __future__ import annotations

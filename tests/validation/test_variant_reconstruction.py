@@ -283,3 +283,26 @@ def test_deflection_under_gear_and_at_the_clearance_station(v57):
     assert abs(np.interp(gear_x, x, w)) == pytest.approx(0.063, rel=0.03)
     assert abs(np.interp(v57.clearance_station_x_mm, x, w)) == pytest.approx(0.1, rel=0.03)
     assert v57.clearance_mm == 1.4
+
+
+def test_bearing_coupling_face_is_the_ring_contact_band(v57):
+    """ISO 15: the 3203 (17 × 40) has r_s min = 0.6 mm; ISO 582:1995: its chamfer is at most
+    2.0 mm axially, and the shaft fillet at the abutment at most r_s min (both shoulder fillets
+    are 0.6). The coupling face is the 17.5 mm ring minus 2.0 mm at each end: [31.5, 45.0] and
+    [66.5, 80.0], exact area 2π · 8.5 · 13.5 = 721.00 mm², and 1.4 mm of straight seat lies
+    between each coupling edge and the fillet next to it."""
+    from shaftfe.solid import expected_areas, prepare
+    for b in v57.bearings:
+        assert (b.r_s_min_mm, b.chamfer_mm) == (0.6, 2.0)
+        assert v57.provenance.source["bearing_types.zkl_3203.chamfer_mm"] == "standard"
+    seats = {s.name: s for s in prepare(v57).seats}
+    assert (seats["bearing:gear_side"].x0, seats["bearing:gear_side"].x1) == \
+        pytest.approx((31.5, 45.0))
+    assert (seats["bearing:free_side"].x0, seats["bearing:free_side"].x1) == \
+        pytest.approx((66.5, 80.0))
+    fil = {f.segment: f for f in prepare(v57).fillets}
+    assert 45.0 < fil["bearing_seat_gear"].x_shoulder - fil["bearing_seat_gear"].rho - 1.39
+    assert 66.5 > fil["collar"].x_shoulder + fil["collar"].rho + 1.39
+    areas = expected_areas(v57)
+    for g in ("bearing:gear_side", "bearing:free_side"):
+        assert areas[g] == pytest.approx(2 * math.pi * 8.5 * 13.5, rel=1e-12)
