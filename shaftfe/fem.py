@@ -150,7 +150,7 @@ def facet_basis(mesh, facets, intorder: int | None = None, scalar: bool = False)
     e = scalar_element(mesh)
     fb = FacetBasis(mesh, e if scalar else ElementVector(e), mapping=robust_mapping(mesh),
                     facets=np.asarray(facets), intorder=intorder)
-    if not np.all(np.isfinite(fb.basis[0][0].value)):
+    if not np.all(np.isfinite(np.asarray(fb.basis[0][0]))):
         raise ArithmeticError("inverse isoparametric mapping failed on a boundary facet")
     return fb
 
