@@ -409,7 +409,7 @@ def l10h(C: float, P: float, rpm: float, p: float) -> float | None:
     return (C / P) ** p * 1e6 / (60.0 * rpm)
 
 
-def _regions(mesh) -> dict[str, np.ndarray]:
+def region_facets(mesh) -> dict[str, np.ndarray]:
     """Stress regions: each fillet, keyway, shoulder and seat (a split load seat counted once),
     the hex socket and the end faces."""
     groups: dict[str, list] = {}
@@ -422,6 +422,13 @@ def _regions(mesh) -> dict[str, np.ndarray]:
             name = g
         groups.setdefault(name, []).append(np.asarray(f))
     return {k: np.concatenate(v) for k, v in groups.items()}
+
+
+def region_nodes(mesh) -> dict[str, np.ndarray]:
+    """Region name -> node ids (of ``region_facets``), sorted by name: the regions whose peaks
+    ``shaftfe static`` reports and ``shaftfe fatigue`` uses for its hot spots."""
+    return {k: fem.face_nodes(mesh, f).astype(np.int64)
+            for k, f in sorted(region_facets(mesh).items())}
 
 
 def _patches(mesh) -> list[np.ndarray]:
@@ -452,7 +459,7 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
     s1 = recovery.principal(stress)[0]
     xyz = m.doflocs
     excl = recovery.excluded_nodes(m, _patches(m), options.exclude_mm)
-    regions = {k: fem.face_nodes(m, f) for k, f in _regions(m).items()}
+    regions = region_nodes(m)
     all_nodes = np.arange(xyz.shape[1])
     t_rec = time.perf_counter() - t1
 

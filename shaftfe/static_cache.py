@@ -144,26 +144,6 @@ def cache_path(key: str, cache_dir=None) -> Path:
     return cache_dir_of(cache_dir) / f"static-{key[:24]}.npz"
 
 
-# --------------------------------------------------------------------------- regions
-
-def stress_regions(mesh) -> dict[str, np.ndarray]:
-    """Region name -> node ids, the grouping of ``shaftfe static``'s region peaks: every face
-    group, both halves of a load seat merged into ``seat:<part>``, a bearing seat as
-    ``seat:bearing:<side>``."""
-    from shaftfe import fem
-    groups: dict[str, list] = {}
-    for g, f in mesh.boundaries.items():
-        if g.startswith("load:"):
-            name = "seat:" + g.split(":")[1]
-        elif g.startswith("bearing:"):
-            name = "seat:" + g
-        else:
-            name = g
-        groups.setdefault(name, []).append(np.asarray(f))
-    return {k: fem.face_nodes(mesh, np.concatenate(v)).astype(np.int64)
-            for k, v in sorted(groups.items())}
-
-
 def singular_patches(mesh) -> list[np.ndarray]:
     """The patches whose edges are singular by construction: bearing seats (RBE3 coupling) and
     the pressed half of every load seat (pressure edge) — the static command's choice."""
@@ -232,7 +212,7 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
 
 def from_result(res, key: str = "", seconds: float = 0.0) -> StaticReference:
     """A ``StaticReference`` from a ``shaftfe.static.StaticResult`` (not cached)."""
-    from shaftfe import fem, recovery
+    from shaftfe import fem, recovery, static
     m = res.mesh.mesh
     band = float(getattr(res.options, "exclude_mm", 0.0))
     excl = (recovery.excluded_nodes(m, singular_patches(m), band) if band > 0
@@ -243,7 +223,7 @@ def from_result(res, key: str = "", seconds: float = 0.0) -> StaticReference:
         options=dataclasses.asdict(res.options), ref_rpm=float(res.ref_rpm),
         mesh_key=res.mesh_key, key=key, stress_ref=np.asarray(res.stress_ref, dtype=float),
         von_mises_ref=np.asarray(res.von_mises_ref, dtype=float),
-        xyz=np.asarray(m.doflocs, dtype=float), excluded=excl, regions=stress_regions(m),
+        xyz=np.asarray(m.doflocs, dtype=float), excluded=excl, regions=static.region_nodes(m),
         cells=fem.element_nodes(m).T.astype(np.int64), face_cells=fc, face_group=gid,
         face_groups=names, n_elements=int(res.n_elements),
         solve_seconds=float(res.diagnostics.get("total_seconds", seconds)), from_cache=False,

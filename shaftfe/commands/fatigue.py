@@ -122,17 +122,6 @@ def _num(v: float):
     return float(v) if math.isfinite(v) else None
 
 
-def _versions() -> dict:
-    import importlib.metadata as md
-    out = {}
-    for pkg in ("shaftfe", "numpy", "scipy", "scikit-fem", "gmsh", "meshio", "rainflow",
-                "matplotlib"):
-        try:
-            out[pkg] = md.version(pkg)
-        except md.PackageNotFoundError:
-            out[pkg] = None
-    return out
-
 
 def run(args) -> int:
     import time
@@ -148,7 +137,7 @@ def run(args) -> int:
 
     from shaftfe import fatigue_plots, static_cache
     from shaftfe.atomic import atomic_path
-    from shaftfe.commands._common import print_json, print_table, write_atomic
+    from shaftfe.commands._common import package_versions, print_json, print_table, write_atomic
     from shaftfe.fatigue import kernels
     from shaftfe.fatigue.counting import rainflow_matrix
     from shaftfe.fatigue.field import evaluate, write_vtu
@@ -199,7 +188,7 @@ def run(args) -> int:
                    "speed_kmh": args.speed_kmh, "kf": args.kf, "level": args.level,
                    "seed_load_case": args.seed_load_case, "exclude_mm": args.exclude_mm,
                    "supports": "bearing springs (2x2 radial stiffness)"},
-        "versions": _versions(),
+        "versions": package_versions("rainflow", "matplotlib"),
         "history": {"source": history.source, "format": history.format,
                     "samples": history.n_samples, "duration_s": history.duration_s,
                     "rpm_min": float(history.rpm.min()), "rpm_max": float(history.rpm.max()),

@@ -45,21 +45,17 @@ def register(sub) -> None:
     p.set_defaults(handler=run)
 
 
-def _versions() -> dict:
-    import importlib.metadata as md
-    out = {}
-    for pkg in ("shaftfe", "numpy", "scipy", "scikit-fem", "gmsh", "meshio", "pypardiso"):
-        try:
-            out[pkg] = md.version(pkg)
-        except md.PackageNotFoundError:
-            out[pkg] = None
-    return out
-
 
 def run(args) -> int:
     from pathlib import Path
 
-    from shaftfe.commands._common import parse_rpm_list, print_json, print_table, write_atomic
+    from shaftfe.commands._common import (
+        package_versions,
+        parse_rpm_list,
+        print_json,
+        print_table,
+        write_atomic,
+    )
 
     rpms = parse_rpm_list(args.rpm)
     if args.order not in (1, 2):
@@ -93,7 +89,7 @@ def run(args) -> int:
     summary = {
         "inputs": {"variant": args.variant, "rpm": rpms, "options": vars_of(opts),
                    "source_files": list(getattr(variant, "source_files", ()))},
-        "versions": _versions(),
+        "versions": package_versions("pypardiso"),
         "vtu": {"file": vtu.name, "rpm": rpm_vtu, "regions": regions,
                 "stress_components": ["xx", "yy", "zz", "xy", "yz", "xz"],
                 "note": "fields at vtu.rpm; scale by (rpm / vtu.rpm)^2 for another speed"},
