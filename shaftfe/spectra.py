@@ -237,18 +237,23 @@ def _number(src: str, line: int, s: str, what: str, allowed: str) -> float:
     return v
 
 
+def _header_or_option(src: str, header, key: str, option: float | None, check) -> float | None:
+    """The header's ``key`` (checked by ``check``) or the option's value; both given must agree."""
+    value = _header_float(src, header, key)
+    if value is None:
+        return option
+    field = f"line {header[key][0]}: {key}"
+    check(value, src, field)
+    if option is not None and not math.isclose(option, value, rel_tol=1e-12):
+        raise InputError(src, field, f"{option:g} (the value given on the command line)",
+                         got=value, reason="contradicts the option")
+    return value
+
+
 def _read_sampled(src, fmt, header, rows, rpm_ref, sample_rate_hz) -> LoadHistory:
     if not rows:
         raise InputError(src, "data", "at least one data line", reason="is empty")
-    rate = sample_rate_hz
-    h_rate = _header_float(src, header, "sample_rate_hz")
-    if h_rate is not None:
-        _check_rate(h_rate, src, f"line {header['sample_rate_hz'][0]}: sample_rate_hz")
-        if rate is not None and not math.isclose(rate, h_rate, rel_tol=1e-12):
-            raise InputError(src, f"line {header['sample_rate_hz'][0]}: sample_rate_hz",
-                             f"{rate:g} (the value given on the command line)", got=h_rate,
-                             reason="contradicts the option")
-        rate = h_rate
+    rate = _header_or_option(src, header, "sample_rate_hz", sample_rate_hz, _check_rate)
     if rate is None:
         if fmt == "rpm":
             raise InputError(src, "sample_rate_hz", "a header '# sample_rate_hz = ...' or the "
@@ -256,15 +261,7 @@ def _read_sampled(src, fmt, header, rows, rpm_ref, sample_rate_hz) -> LoadHistor
         rate = SEED_SAMPLE_RATE_HZ
 
     if fmt == "normalised":
-        ref = rpm_ref
-        h_ref = _header_float(src, header, "reference_rpm")
-        if h_ref is not None:
-            _check_ref(h_ref, src, f"line {header['reference_rpm'][0]}: reference_rpm")
-            if ref is not None and not math.isclose(ref, h_ref, rel_tol=1e-12):
-                raise InputError(src, f"line {header['reference_rpm'][0]}: reference_rpm",
-                                 f"{ref:g} (the value given on the command line)", got=h_ref,
-                                 reason="contradicts the option")
-            ref = h_ref
+        ref = _header_or_option(src, header, "reference_rpm", rpm_ref, _check_ref)
         if ref is None:
             raise InputError(src, "reference_rpm", "a header '# reference_rpm = ...' or the "
                              "--rpm-ref option", reason="is missing")
