@@ -198,16 +198,29 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
             return ref
     res = static.solve_static(variant, static.REF_RPM, options, cache_dir=cache_dir, beam=False,
                               **(solve_kwargs or {}))
-    ref = from_result(res, key, time.perf_counter() - t0)
-    notes = []
+    if use_cache:
+        ref = store(variant, options, res, cache_dir)
+    else:
+        ref = from_result(res, key)
+    return dataclasses.replace(ref, seconds=time.perf_counter() - t0)
+
+
+def store(variant, options, res, cache_dir=None) -> StaticReference:
+    """Put a ``StaticResult`` solved elsewhere (``shaftfe static``) into the cache, so that a
+    later ``shaftfe fatigue`` on the same model reuses it instead of solving again."""
+    from shaftfe import static
+    mkey = predicted_mesh_key(variant, options)
+    key = static_key(variant, options, mkey, static.REF_RPM)
+    ref = from_result(res, key)
+    notes: list[str] = []
     if res.mesh_key != mkey:        # the prediction missed: do not store under a wrong key
         notes.append("static cache: the mesh key could not be predicted; result not cached")
-    elif use_cache:
+    else:
         try:
-            _save(path, ref)
+            _save(cache_path(key, cache_dir), ref)
         except OSError as exc:
             notes.append(f"static cache: not written ({exc.__class__.__name__})")
-    return dataclasses.replace(ref, seconds=time.perf_counter() - t0, notes=tuple(notes))
+    return dataclasses.replace(ref, notes=tuple(notes))
 
 
 def from_result(res, key: str = "", seconds: float = 0.0) -> StaticReference:

@@ -4,9 +4,13 @@ Runs, on the bundled VM 450 data and the balancer-shaft variant x2_57:
 1. the balancing study at the engine's speed (seed 000 §5.4, §8.2.2): forces for the chosen X,
    X2 and the mode-2 sweep over X2 for crank C (X = 31.1 %);
 2. the beam check of x2_57 at 10 000 rpm (rigid supports, as Inventor) and 7000 rpm (springs):
-   reactions, deflections, nominal and notch stresses, bearing lives (seed 000 §8.2.2).
-Each stage prints a short table; figures and JSON go to ``--out``. It grows into the full
-assessment report (issue 7) as the 3D stages land.
+   reactions, deflections, nominal and notch stresses, bearing lives (seed 000 §8.2.2);
+3. the 3D static solution at 10 000 and 7000 rpm on the bearing springs (seed load case), one
+   solve, stored in the static cache;
+4. the fatigue life on loadspectra/rpm.dat, reusing that static solution (seed 000 §8.3);
+5. the Campbell diagram 0-8000 rpm of the beam model (seed 000 §8.4).
+Stages 3-5 are the `shaftfe static`, `fatigue` and `campbell` commands with their outputs in
+``--out``/static, /fatigue, /campbell. It grows into the assessment report (issue 7).
 """
 
 from __future__ import annotations
@@ -17,6 +21,8 @@ import time
 def register(sub) -> None:
     p = sub.add_parser("demo", help="run the main job on the bundled defaults")
     p.add_argument("--out", default="reports/demo", help="output folder (default reports/demo)")
+    p.add_argument("--level", default="default", choices=("coarse", "default", "fine"),
+                   help="mesh level of the 3D stages (default: default)")
     p.set_defaults(handler=run)
 
 
@@ -30,10 +36,8 @@ def run(args) -> int:
     summary: dict[str, object] = {}
     t0 = time.perf_counter()
     summary["balancing"] = _balancing(out, print_table)
-    for stage in (_beam,):
-        res = stage(out, print_table)
-        if res is not None:
-            summary[stage.__name__.lstrip("_")] = res
+    summary["beam"] = _beam(out, print_table)
+    summary["fe"] = _fe_stages(out, args.level)
     write_atomic(out / "summary.json", json.dumps(summary, indent=2) + "\n")
     print(f"\nshaftfe demo: done in {time.perf_counter() - t0:.2f} s; results in {out}/")
     return 0
@@ -101,3 +105,27 @@ def _beam(out, print_table) -> dict:
     print_table(["quantity", "seed", "shaftfe"], rows)
     write_atomic(out / "beam_x2_57.png", plot_results(rigid))
     return {"rows": [{"quantity": q, "seed": a, "shaftfe": b} for q, a, b in rows]}
+
+
+def _fe_stages(out, level: str) -> dict:
+    """3D static, fatigue and Campbell through their commands; returns their exit codes."""
+    from pathlib import Path
+
+    from shaftfe.cli import main
+    from shaftfe.errors import SolverError
+
+    spectrum = Path(__file__).resolve().parents[2] / "loadspectra" / "rpm.dat"
+    stages = {
+        "static": ["static", "--variant", "x2_57", "--rpm", "10000,7000", "--seed-load-case",
+                   "--level", level, "--out", str(out / "static")],
+        "fatigue": ["fatigue", str(spectrum), "--variant", "x2_57", "--level", level,
+                    "--out", str(out / "fatigue")],
+        "campbell": ["campbell", "0:8000", "--variant", "x2_57", "--out", str(out / "campbell")],
+    }
+    codes = {}
+    for name, argv in stages.items():
+        print(f"\n== shaftfe {' '.join(argv)}")
+        codes[name] = main(argv)
+        if codes[name] != 0:
+            raise SolverError(f"demo stage '{name}' failed (exit code {codes[name]})")
+    return codes

@@ -71,7 +71,7 @@ def run(args) -> int:
         raise InputError("--solver", "--solver", "auto | superlu | pardiso | amg",
                          got=args.solver)
 
-    from shaftfe import export
+    from shaftfe import export, static_cache
     from shaftfe.static import StaticOptions, solve_static
     from shaftfe.variant import load_variant
 
@@ -82,6 +82,7 @@ def run(args) -> int:
                          exclude_mm=args.exclude_mm)
     res = solve_static(variant, rpms, opts, beam=not args.no_beam,
                        estimate_error=args.estimate_error)
+    static_cache.store(variant, opts, res)     # `shaftfe fatigue` on this model reuses it
     out = Path(args.out) if args.out else Path("reports") / variant.name / "static"
     rpm_vtu = rpms[0]
     vtu, regions = export.write_vtu(res, out / "result.vtu", rpm_vtu)
