@@ -15,8 +15,6 @@ kernels; the largest relative difference in damage and in safety factor is print
 
 from __future__ import annotations
 
-import bisect
-import math
 import tempfile
 import time
 from pathlib import Path
@@ -24,51 +22,11 @@ from pathlib import Path
 import numpy as np
 
 from benchmarks._timing import best_of
+from shaftfe.fatigue import reference
 
 ROOT = Path(__file__).resolve().parents[1]
 SUBSET = 200
 TARGET_S = 0.3
-
-
-def _vm(s) -> float:
-    xx, yy, zz, xy, yz, xz = (float(c) for c in s)
-    return math.sqrt(0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2)
-                     + 3.0 * (xy * xy + yz * yz + xz * xz))
-
-
-def _damage(s_eq: float, cyc, mat) -> float:
-    xs = [math.log10(s) for s in mat.sn.alternating_MPa][::-1]     # log S ascending
-    ys = [math.log10(n) for n in mat.sn.cycles][::-1]
-    d = 0.0
-    for r, m, c in zip(cyc.range, cyc.mean, cyc.count, strict=True):
-        sa, sm = abs(s_eq) * r / 2.0, s_eq * m
-        denom = 1.0 - max(sm, 0.0) / mat.yield_MPa
-        if sa == 0:
-            continue
-        if denom <= 0:
-            return math.inf
-        sar = sa / denom
-        if sar < mat.sn.alternating_MPa[-1]:
-            continue
-        x = math.log10(sar)
-        k = min(max(bisect.bisect_right(xs, x), 1), len(xs) - 1)
-        y = ys[k - 1] + (ys[k] - ys[k - 1]) * (x - xs[k - 1]) / (xs[k] - xs[k - 1])
-        d += c / 10.0 ** y
-    return d
-
-
-def _safety(s_eq: float, cyc, mat, life: float = 1e7, n_max: float = 15.0) -> float:
-    if life * _damage(n_max * s_eq, cyc, mat) <= 1.0:
-        return n_max
-    lo, hi = n_max * 1e-6, n_max
-    while True:
-        mid = math.sqrt(lo * hi)
-        if not lo < mid < hi:
-            return hi
-        if life * _damage(mid * s_eq, cyc, mat) > 1.0:
-            hi = mid
-        else:
-            lo = mid
 
 
 def main() -> None:
@@ -105,11 +63,11 @@ def main() -> None:
     t = time.perf_counter()
     dd, ds = 0.0, 0.0
     for i in nodes:
-        s = _vm(ref.stress_ref[:, i])
-        d = _damage(s, cyc, mat)
+        s = reference.von_mises(ref.stress_ref[:, i])
+        d = reference.node_damage(s, cyc, mat)
         if d > 0 or r.damage_per_block[i] > 0:
             dd = max(dd, abs(r.damage_per_block[i] - d) / d)
-        n = _safety(s, cyc, mat)
+        n = reference.node_safety(s, cyc, mat, 1e7)
         ds = max(ds, abs(r.safety_factor[i] - n) / n)
     t_loop = time.perf_counter() - t
     print(f"per-node Python loop on {nodes.size} nodes ({damaged.size} nodes have damage): "

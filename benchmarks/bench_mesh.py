@@ -15,29 +15,8 @@ import time
 
 
 def _synthetic():
-    from shaftfe.variant import (
-        Attachment,
-        Bearing,
-        HexSocket,
-        Keyway,
-        Material,
-        Segment,
-        Variant,
-    )
-    k = ((35_030.0, 8_756.0), (8_756.0, 35_030.0))
-    segs = (
-        Segment("a", 0.0, 20.0, 15.0, 0.0),
-        Segment("b", 20.0, 30.0, 17.0, 1.0, keyways=(Keyway(5.0, 3.0, 14.0, 35.0, 0.0),)),
-        Segment("c", 50.0, 20.0, 22.0, 1.0),
-        Segment("d", 70.0, 30.0, 17.0, 0.0),
-    )
-    return Variant(
-        "synthetic", "benchmark shaft", segs,
-        (Bearing("mid", "ZKL 3203", 60.0, 8.0, 14_400.0, 10_000.0, k),),
-        (Attachment("cw", 25.0, 45.0, 0.24, 20.23, 35.0, angle_deg=30.0),
-         Attachment("hub", 75.0, 85.0, 0.15, 1.36, 80.0)),
-        Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0), 0.0,
-        hex_socket=HexSocket("right", 8.0, 10.0))
+    from shaftfe.examples import four_step_shaft
+    return four_step_shaft(name="synthetic", description="benchmark shaft")
 
 
 def _variants():

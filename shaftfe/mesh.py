@@ -43,7 +43,7 @@ from shaftfe.errors import InputError, SolverError
 from shaftfe.solid import Solid, analytic_volume, expected_areas, prepare
 
 __all__ = ["LEVELS", "ShaftMesh", "analytic_volume", "build_mesh", "cache_path",
-           "expected_areas", "mesh_key", "robust_mapping", "write_mesh"]
+           "expected_areas", "mesh_key", "write_mesh"]
 
 CACHE_FORMAT = 2     # 2: bearing groups = the ring's contact band (chamfers off)
 
@@ -158,38 +158,12 @@ def _skfem_mesh(data: dict):
     m = cls(data["doflocs"], data["t"], _boundaries=data["boundaries"],
             _subdomains=data["subdomains"])
     if cls is MeshTet2:
+        # every FacetBasis on this mesh then inverts curved tets robustly (see fem.robust_mapping)
+        from shaftfe.fem import robust_mapping
         m._cached_mapping = robust_mapping(m)
     return m
 
 
-_ROBUST = None
-
-
-def robust_mapping(mesh):
-    """scikit-fem's isoparametric mapping with a safer inverse for curved P2 tets.
-
-    ``MappingIsoparametric.invF`` (used by every ``FacetBasis``) starts Newton at
-    X = (0.5, 0.5, 0.5), outside the reference tet, and clips to the unit cube; on some valid
-    curved tets that fails ("Newton iteration didn't converge"). This subclass starts at the
-    centroid (0.25, 0.25, 0.25) without clipping. ``build_mesh`` installs it on the meshes it
-    returns (``mesh._cached_mapping``); a copy made with ``dataclasses.replace`` /
-    ``with_boundaries`` needs ``m._cached_mapping = robust_mapping(m)`` again."""
-    global _ROBUST
-    import numpy as np
-    from skfem.mapping import MappingIsoparametric
-    if _ROBUST is None:
-        class RobustIsoparametric(MappingIsoparametric):
-            def invF(self, x, tind=None, newton_max_iters=50, newton_tol=1e-12):
-                X = np.zeros(x.shape) + 0.25
-                for _ in range(newton_max_iters):
-                    dX = np.einsum("ijkl,jkl->ikl", self.invDF(X, tind), x - self.F(X, tind))
-                    X = X + dX
-                    if (np.linalg.norm(dX, 1, (0, 2)) < newton_tol).all():
-                        return X
-                return super().invF(x, tind, newton_max_iters, newton_tol)
-
-        _ROBUST = RobustIsoparametric
-    return _ROBUST(mesh, mesh.elem(), mesh.bndelem)
 
 
 def _finish(data: dict, name: str, level: str, order: int, key: str, t0: float,

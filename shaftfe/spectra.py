@@ -237,6 +237,18 @@ def _number(src: str, line: int, s: str, what: str, allowed: str) -> float:
     return v
 
 
+def _bounded_values(src: str, rows, what: str, hi: float, allowed: str) -> np.ndarray:
+    """The numbers of ``rows`` ((line, text) pairs), each in [0, hi]; else an error naming the
+    line."""
+    out = np.empty(len(rows))
+    for i, (line, text) in enumerate(rows):
+        v = _number(src, line, text, what, allowed)
+        if not 0 <= v <= hi:
+            raise InputError(src, f"line {line}: {what}", allowed, got=v)
+        out[i] = v
+    return out
+
+
 def _header_or_option(src: str, header, key: str, option: float | None, check) -> float | None:
     """The header's ``key`` (checked by ``check``) or the option's value; both given must agree."""
     value = _header_float(src, header, key)
@@ -267,22 +279,12 @@ def _read_sampled(src, fmt, header, rows, rpm_ref, sample_rate_hz) -> LoadHistor
                              "--rpm-ref option", reason="is missing")
         cap = (RPM_CEILING / ref) ** 2
         allowed = f"a finite number in [0, {cap:.6g}] (= ({RPM_CEILING:g}/{ref:g})²)"
-        lf = np.empty(len(rows))
-        for i, (line, s) in enumerate(rows):
-            v = _number(src, line, s, "load factor", allowed)
-            if not 0 <= v <= cap:
-                raise InputError(src, f"line {line}: load factor", allowed, got=v)
-            lf[i] = v
+        lf = _bounded_values(src, rows, "load factor", cap, allowed)
         rpm = ref * np.sqrt(lf)
     else:
         ref = DEFAULT_RPM_REF if rpm_ref is None else float(rpm_ref)
         allowed = f"a finite number in [0, {RPM_CEILING:g}] rpm"
-        rpm = np.empty(len(rows))
-        for i, (line, s) in enumerate(rows):
-            v = _number(src, line, s, "rpm", allowed)
-            if not 0 <= v <= RPM_CEILING:
-                raise InputError(src, f"line {line}: rpm", allowed, got=v)
-            rpm[i] = v
+        rpm = _bounded_values(src, rows, "rpm", RPM_CEILING, allowed)
         lf = (rpm / ref) ** 2
     n = len(rows)
     return LoadHistory(np.arange(n) / rate, rpm, lf, float(ref), n / rate, src, fmt)

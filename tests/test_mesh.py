@@ -10,41 +10,16 @@ import numpy as np
 import pytest
 
 from shaftfe.errors import InputError
-from shaftfe.variant import (
-    Attachment,
-    Bearing,
-    HexSocket,
-    Keyway,
-    Material,
-    Segment,
-    Variant,
-)
-
-STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
-K = ((35_030.0, 8_756.0), (8_756.0, 35_030.0))
+from shaftfe.examples import four_step_shaft
+from shaftfe.variant import Variant
 
 
-def make_variant(*, name="syn", fillet_b=1.0, fillet_c=1.0, keyway=True, hex_socket=True,
-                 cw_angle=30.0, hub_angle=0.0, bearing=(60.0, 8.0), cw_seat=(25.0, 45.0),
-                 hub_seat=(75.0, 85.0), keyway_x=35.0) -> Variant:
-    """A four-step test shaft: Ø15 (sharp step up) Ø17 (fillet, keyway) Ø22 (fillet, step
-    down) Ø17 (hex socket in the right end); bearing on Ø22, counterweight 'cw' on the keyed
-    Ø17 at ``cw_angle``, 'hub' and 'washer' sharing one plain seat on the last Ø17."""
-    kw = (Keyway(5.0, 3.0, 14.0, keyway_x, 0.0),) if keyway else ()
-    segs = (
-        Segment("a", 0.0, 20.0, 15.0, 0.0, kind="thread"),
-        Segment("b", 20.0, 30.0, 17.0, fillet_b, keyways=kw),
-        Segment("c", 50.0, 20.0, 22.0, fillet_c),
-        Segment("d", 70.0, 30.0, 17.0, 0.0),
-    )
-    brg = (Bearing("mid", "ZKL 3203", bearing[0], bearing[1], 14_400.0, 10_000.0, K),)
-    att = (
-        Attachment("cw", cw_seat[0], cw_seat[1], 0.24, 20.23, 35.0, angle_deg=cw_angle),
-        Attachment("hub", hub_seat[0], hub_seat[1], 0.15, 1.36, 80.0, angle_deg=hub_angle),
-        Attachment("washer", hub_seat[0], hub_seat[1], 0.01, 0.5, 80.0, angle_deg=hub_angle),
-    )
-    hx = HexSocket("right", 8.0, 10.0) if hex_socket else None
-    return Variant(name, "synthetic test shaft", segs, brg, att, STEEL, 0.0, hex_socket=hx)
+def make_variant(**kwargs) -> Variant:
+    """The four-step test shaft (``shaftfe.examples``) with a thread end and a washer sharing
+    the hub's seat: Ø15 (sharp step up) Ø17 (fillet, keyway) Ø22 (fillet, step down) Ø17."""
+    kwargs = {"name": "syn", "description": "synthetic test shaft", "washer": True,
+              "thread_end": True, **kwargs}
+    return four_step_shaft(**kwargs)
 
 
 @pytest.fixture(scope="module")

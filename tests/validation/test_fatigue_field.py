@@ -8,12 +8,13 @@ the same directory, so whichever module runs second reads it from the cache).
 
 from __future__ import annotations
 
-import bisect
 import math
 from pathlib import Path
 
 import numpy as np
 import pytest
+
+from shaftfe.fatigue import reference
 
 ROOT = Path(__file__).resolve().parents[2]
 RPM_DAT = ROOT / "loadspectra" / "rpm.dat"
@@ -47,65 +48,6 @@ def field(ref, history, material):
     return evaluate(ref, history, material)
 
 
-# --------------------------------------------------------------------------- independent path
-
-def _vm(s) -> float:
-    xx, yy, zz, xy, yz, xz = (float(c) for c in s)
-    return math.sqrt(0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2)
-                     + 3.0 * (xy * xy + yz * yz + xz * xz))
-
-
-def _log_life(sa: float, material) -> float:
-    """log10 N(S_a) by hand: log-log interpolation of the card, first segment extended upwards,
-    no damage below the last point (cutoff)."""
-    ls = [math.log10(v) for v in material.sn.alternating_MPa]     # descending
-    ln = [math.log10(v) for v in material.sn.cycles]              # ascending
-    x = math.log10(sa)
-    if x < ls[-1]:
-        return math.inf
-    if x >= ls[0]:
-        k = 0
-    else:
-        neg = [-v for v in ls]                                    # ascending
-        k = bisect.bisect_right(neg, -x) - 1
-        k = min(k, len(ls) - 2)
-    t = (x - ls[k]) / (ls[k + 1] - ls[k])
-    return ln[k] + t * (ln[k + 1] - ln[k])
-
-
-def _node_damage(sigma: float, cycles, material) -> float:
-    """Miner damage per block of ONE node, a plain loop over the cycles: amplitude σ Δλ/2, mean
-    σ λ_m, Soderberg σ_a / (1 − σ_m / R_e), 1 / N from ``_log_life``."""
-    d = 0.0
-    for r, m, c in zip(cycles.range, cycles.mean, cycles.count, strict=True):
-        sa, sm = sigma * r / 2.0, sigma * m
-        denom = 1.0 - max(sm, 0.0) / material.yield_MPa
-        if sa == 0.0:
-            continue
-        if denom <= 0.0:
-            return math.inf
-        ll = _log_life(sa / denom, material)
-        if math.isfinite(ll):
-            d += c * 10.0 ** (-ll)
-    return d
-
-
-def _node_safety(sigma: float, cycles, material, life: float, n_max: float = 15.0) -> float:
-    """n with life · D(n σ) = 1 by a scalar bisection in log n until lo and hi are adjacent
-    floats (D is monotone in n)."""
-    if life * _node_damage(n_max * sigma, cycles, material) <= 1.0:
-        return n_max
-    lo, hi = n_max * 1e-6, n_max
-    while True:
-        mid = math.sqrt(lo * hi)
-        if not lo < mid < hi:
-            return hi
-        if life * _node_damage(mid * sigma, cycles, material) > 1.0:
-            hi = mid
-        else:
-            lo = mid
-
-
 def test_field_equals_per_node_loop_on_a_subset(ref, history, material, field):
     """Reference: an independent per-node loop (von Mises, Soderberg, the S-N table
     interpolated by hand, Miner, scalar bisection of the safety factor) at 120 nodes, 60 of them
@@ -124,14 +66,14 @@ def test_field_equals_per_node_loop_on_a_subset(ref, history, material, field):
     nodes = np.concatenate([rng.choice(damaged, 60, replace=False),
                             rng.choice(ref.n_nodes, 60, replace=False)])
     for i in nodes:
-        s = _vm(ref.stress_ref[:, i])
+        s = reference.von_mises(ref.stress_ref[:, i])
         assert math.isclose(r.sigma_eq_MPa[i], s, rel_tol=1e-12, abs_tol=1e-12)
-        d = _node_damage(s, cyc, material)
+        d = reference.node_damage(s, cyc, material)
         assert math.isclose(r.damage_per_block[i], d, rel_tol=1e-12, abs_tol=0.0), i
         blocks = 1.0 / d if d > 0 else math.inf
         assert r.life_blocks[i] == pytest.approx(blocks, rel=1e-12)
         assert r.life_hours[i] == pytest.approx(blocks * history.duration_s / 3600, rel=1e-12)
-        n = _node_safety(s, cyc, material, 1e7)
+        n = reference.node_safety(s, cyc, material, 1e7)
         assert math.isclose(r.safety_factor[i], n, rel_tol=1e-12), (i, r.safety_factor[i], n)
 
 

@@ -12,36 +12,16 @@ import math
 import numpy as np
 import pytest
 
-from shaftfe.variant import (
-    Attachment,
-    Bearing,
-    HexSocket,
-    Keyway,
-    Material,
-    Segment,
-    Variant,
-)
-
-STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
-K = ((35_030.0, 8_756.0), (8_756.0, 35_030.0))
+from shaftfe.examples import four_step_shaft
+from shaftfe.variant import Variant
 
 
 def small_shaft(*, keyway_angle=0.0, load_angle=30.0, hex_end="right",
                 full_fillet=False) -> Variant:
     """Ø15 | Ø17 (1 mm fillet, 5×3×14 keyway) | Ø22 (fillet, bearing) | Ø17 (seat)."""
-    rho_c = 2.5 if full_fillet else 1.0      # 2.5 = the whole 22 → 17 step
-    segs = (
-        Segment("a", 0.0, 20.0, 15.0, 0.0),
-        Segment("b", 20.0, 30.0, 17.0, 1.0,
-                keyways=(Keyway(5.0, 3.0, 14.0, 35.0, keyway_angle),)),
-        Segment("c", 50.0, 20.0, 22.0, rho_c),
-        Segment("d", 70.0, 30.0, 17.0, 0.0),
-    )
-    brg = (Bearing("mid", "ZKL 3203", 60.0, 8.0, 14_400.0, 10_000.0, K),)
-    att = (Attachment("cw", 25.0, 45.0, 0.24, 20.23, 35.0, angle_deg=load_angle),
-           Attachment("hub", 75.0, 85.0, 0.15, 1.36, 80.0, angle_deg=200.0))
-    return Variant("small", "validation shaft", segs, brg, att, STEEL, 0.0,
-                   hex_socket=HexSocket(hex_end, 8.0, 10.0))
+    return four_step_shaft(name="small", description="validation shaft",
+                           keyway_angle=keyway_angle, cw_angle=load_angle, hub_angle=200.0,
+                           hex_end=hex_end, fillet_c=2.5 if full_fillet else 1.0)  # 2.5: whole step
 
 
 def _measure(sm):

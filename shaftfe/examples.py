@@ -1,0 +1,43 @@
+"""Small synthetic shafts for tests, benchmarks and notebooks (not the seed's balancer shaft).
+
+``four_step_shaft``: Ø15 | Ø17 (fillet, 5×3×14 keyway) | Ø22 (fillet, bearing) | Ø17 (seat,
+hex socket in the right end), 100 mm long, steel; a counterweight 'cw' on the keyed Ø17 and a
+'hub' on the last Ø17. It has every feature the mesher names (fillets, shoulders, keyway, hex
+socket, split load seats, a bearing seat) at a size that meshes in seconds.
+"""
+
+from __future__ import annotations
+
+from shaftfe.variant import Attachment, Bearing, HexSocket, Keyway, Material, Segment, Variant
+
+STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
+K_SEED = ((35_030.0, 8_756.0), (8_756.0, 35_030.0))     # seed 000 §8.3 bearing stiffness, N/mm
+
+
+def four_step_shaft(*, name: str = "four_step", description: str = "synthetic four-step shaft",
+                    fillet_b: float = 1.0, fillet_c: float = 1.0, keyway: bool = True,
+                    keyway_x: float = 35.0, keyway_angle: float = 0.0, hex_socket: bool = True,
+                    hex_end: str = "right", cw_angle: float = 30.0, hub_angle: float = 0.0,
+                    washer: bool = False, thread_end: bool = False,
+                    bearing: tuple[float, float] = (60.0, 8.0),
+                    cw_seat: tuple[float, float] = (25.0, 45.0),
+                    hub_seat: tuple[float, float] = (75.0, 85.0)) -> Variant:
+    """The four-step test shaft; ``washer`` adds a part sharing the hub's seat, ``thread_end``
+    marks the Ø15 end as a thread (informational)."""
+    kw = (Keyway(5.0, 3.0, 14.0, keyway_x, keyway_angle),) if keyway else ()
+    segs = (
+        Segment("a", 0.0, 20.0, 15.0, 0.0, kind="thread" if thread_end else "plain"),
+        Segment("b", 20.0, 30.0, 17.0, fillet_b, keyways=kw),
+        Segment("c", 50.0, 20.0, 22.0, fillet_c),
+        Segment("d", 70.0, 30.0, 17.0, 0.0),
+    )
+    brg = (Bearing("mid", "ZKL 3203", bearing[0], bearing[1], 14_400.0, 10_000.0, K_SEED),)
+    att = [
+        Attachment("cw", cw_seat[0], cw_seat[1], 0.24, 20.23, 35.0, angle_deg=cw_angle),
+        Attachment("hub", hub_seat[0], hub_seat[1], 0.15, 1.36, 80.0, angle_deg=hub_angle),
+    ]
+    if washer:
+        att.append(Attachment("washer", hub_seat[0], hub_seat[1], 0.01, 0.5, 80.0,
+                              angle_deg=hub_angle))
+    hx = HexSocket(hex_end, 8.0, 10.0) if hex_socket else None
+    return Variant(name, description, segs, brg, tuple(att), STEEL, 0.0, hex_socket=hx)
