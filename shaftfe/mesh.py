@@ -10,9 +10,12 @@ a Distance (to the fillet's two boundary circles) + Threshold field growing from
 h = k_fillet × ρ within 0.8 ρ of them to the global size with slope ``grad``; keyway edges and
 sharp concave shoulder circles get k_sharp × the smallest fillet radius of the shaft (or
 0.1 × the smallest diameter if there is none), at most k_fillet × a keyway's end radius w/2.
-Gmsh runs single-threaded (Delaunay 3D, Frontal-Delaunay 2D) so the same input gives the same
-mesh bit for bit (node coordinates are rounded to 1e-9 mm: Gmsh's high-order optimiser is
-reproducible only to ~1e-15 mm). Quality repair (see ``_improve``): 10 Laplace smoothing
+Gmsh runs single-threaded (Delaunay 3D, Frontal-Delaunay 2D); node coordinates are rounded to
+1e-9 mm. Two builds in ONE process give the same mesh bit for bit, but separate processes do
+NOT: the topology is identical, yet Gmsh's HighOrder optimiser places ~40 % of the curved P2
+nodes differently (up to 0.03 mm on the 100 mm test shaft, measured). The disk cache hides this
+for repeated runs; making a cold build reproducible is open (issue 8).
+Quality repair (see ``_improve``): 10 Laplace smoothing
 passes, a Netgen pass if a linear tet has minSICN < 0.3, then P2 elevation with Gmsh's
 HighOrder optimiser (untangles curved tets near small fillets, FINDINGS pitfall 4).
 
@@ -375,8 +378,8 @@ def _extract(gmsh, faces: dict[str, list[int]], order: int) -> dict:
     remap = np.full(tags.size, -1, dtype=np.int64)
     remap[used] = np.arange(used.size)
     t = remap[t]
-    # Gmsh's HighOrder optimiser moves a few nodes by ~1e-15 mm from run to run (the same
-    # input, one thread); rounding to 1e-9 mm makes the result reproducible bit for bit.
+    # rounding to 1e-9 mm removes Gmsh's ~1e-15 mm noise within a process; across processes the
+    # HighOrder optimiser still differs (module docstring)
     pts = np.ascontiguousarray(np.round(pts[:, used], 9))
     cls = MeshTet2 if order == 2 else MeshTet1
     m = cls(pts, np.ascontiguousarray(t, dtype=np.int32))

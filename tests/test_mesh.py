@@ -101,8 +101,8 @@ def test_tet10_midside_nodes(coarse):
     """Mid-side node order (FINDINGS pitfall 1). Reference: an edge node sits at its chord's
     midpoint unless Gmsh moved it: the HighOrder optimiser moves some interior ones (up to
     17 % of the edge length ℓ measured at coarse) and boundary ones follow the curved surface
-    (≤ 20 % of ℓ measured). Checks: (1) in every tet each of the six edge nodes is nearer to
-    its own edge's midpoint than to any other edge midpoint of that tet (a swapped pair would
+    (≤ 20 % of ℓ measured). Checks: (1) in every tet, each edge node that sits exactly at an edge
+    midpoint of that tet (1e-8 mm) sits at its OWN edge's midpoint (a swapped pair would
     sit at another edge's midpoint); (2) every node is within 0.25 ℓ of its midpoint; (3) at
     least half of the interior edges are straight (midpoint to 1e-8 mm; coordinates are
     rounded to 1e-9 mm)."""
@@ -112,7 +112,12 @@ def test_tet10_midside_nodes(coarse):
     mids = np.stack([0.5 * (p[:, m.t[i]] + p[:, m.t[j]]) for i, j in pairs])  # 6 × 3 × nel
     nodes = x[:, m.dofs.element_dofs[4:]].transpose(1, 0, 2)                  # 6 × 3 × nel
     dist = np.linalg.norm(nodes[:, None] - mids[None, :], axis=2)            # 6 × 6 × nel
-    assert np.all(np.argmin(dist, axis=1) == np.arange(6)[:, None])
+    # exact, not "nearest": a node the optimiser moved may come nearer another edge's midpoint
+    # on a flat tet (seen run to run), but no straight-edge node may sit at another midpoint
+    at_a_mid = dist.min(axis=1) < 1e-8                                       # 6 × nel
+    assert np.all(at_a_mid.mean(axis=1) > 0.25)     # every local edge slot is well tested
+    assert np.all(np.argmin(dist, axis=1)[at_a_mid] == np.broadcast_to(
+        np.arange(6)[:, None], at_a_mid.shape)[at_a_mid])
     edofs = m.dofs.edge_dofs[0]
     a, b = m.edges
     dev = np.linalg.norm(x[:, edofs] - 0.5 * (p[:, a] + p[:, b]), axis=0)
@@ -241,7 +246,8 @@ def test_cache_dir_from_environment(monkeypatch, tmp_path):
 
 
 def test_meshing_is_deterministic():
-    """Two cold builds of the same input give the same mesh bit for bit (1 thread)."""
+    """Two cold builds of the same input IN ONE PROCESS give the same mesh bit for bit (1
+    thread). Across processes the HighOrder optimiser differs (shaftfe.mesh docstring)."""
     from shaftfe.mesh import build_mesh
     v = make_variant(hex_socket=False)
     a = build_mesh(v, "coarse", use_cache=False)
