@@ -6,18 +6,31 @@
 ``mesh.subdomains["shaft"]``. Downstream code reaches faces only through these names.
 
 Mesh size (ours): a global size k_global × D per segment (Box fields) and, around every fillet,
-a Distance (to the fillet's two boundary circles) + Threshold field growing from
-h = k_fillet × ρ within 0.8 ρ of them to the global size with slope ``grad``; keyway edges and
-sharp concave shoulder circles get k_sharp × the smallest fillet radius of the shaft (or
-0.1 × the smallest diameter if there is none), at most k_fillet × a keyway's end radius w/2.
+a Distance (to the fillet's two boundary circles) + Threshold field growing from h_ring within
+0.8 ρ of them to the global size with slope ``grad``; keyway edges and sharp concave shoulder
+circles get k_sharp × the smallest fillet radius of the shaft (or 0.1 × the smallest diameter
+if there is none), at most k_ring × a keyway's end radius w/2.
+
+Stress relevance (levels with ``k_ring``; the peak fillet stress is a function of the element
+size AT the hot spot, the far field barely matters):
+
+* end fillets — outboard of every bearing and loaded seat (``end_fillet``: no bending moment
+  there) — get h = k_fillet_end ρ;
+* the other ("span") fillets get h_ring = k_ring ρ around the whole ring, plus a hot-spot
+  field (``_hot_field``): h = k_fillet ρ within d_hot ρ of the fillet's torus surface, growing
+  with slope ``grad_hot``, restricted to two sectors of half-angle ``sector_deg`` about the
+  line along which the loaded attachments push (``hot_axis``: the bending stress peaks there
+  and varies as cos θ around the ring; the whole ring when the loads act in different planes).
+
+Levels without ``k_ring`` (custom test levels) keep the single fillet size k_fillet ρ.
+
 Gmsh runs single-threaded (Delaunay 3D, Frontal-Delaunay 2D); node coordinates are rounded to
-1e-9 mm. Two builds in ONE process give the same mesh bit for bit, but separate processes do
-NOT: the topology is identical, yet Gmsh's HighOrder optimiser places ~40 % of the curved P2
-nodes differently (up to 0.03 mm on the 100 mm test shaft, measured). The disk cache hides this
-for repeated runs; making a cold build reproducible is open (issue 8).
-Quality repair (see ``_improve``): 10 Laplace smoothing
-passes, a Netgen pass if a linear tet has minSICN < 0.3, then P2 elevation with Gmsh's
-HighOrder optimiser (untangles curved tets near small fillets, FINDINGS pitfall 4).
+1e-9 mm. Builds are bit-identical across processes (tested): the P2 repair is our own
+deterministic ``_untangle``, not Gmsh's HighOrder optimiser, whose result depended on pointer
+order (~40 % of the curved P2 nodes moved from one process to the next; identical with
+address-space randomisation off). Quality repair (see ``_improve``): 10 Laplace smoothing
+passes, a Netgen pass if a linear tet has minSICN < 0.3, then P2 elevation and ``_untangle``
+(curved tets at minSICN ≤ Q_CURVED are pulled towards straight edges, FINDINGS pitfall 4).
 
 Quality measure: Gmsh's minSICN (signed inverse condition number, 1 = regular, ≤ 0 =
 inverted) of the final (curved, for P2) elements, minimum over the mesh.
@@ -48,8 +61,13 @@ from shaftfe.solid import Solid, analytic_volume, expected_areas, prepare
 __all__ = ["LEVELS", "ShaftMesh", "analytic_volume", "build_mesh", "cache_path",
            "expected_areas", "mesh_key", "write_mesh"]
 
-CACHE_FORMAT = 2     # 2: bearing groups = the ring's contact band (chamfers off)
+CACHE_FORMAT = 3     # 2: bearing groups = the ring's contact band (chamfers off)
+#                      3: deterministic P2 repair (_untangle) instead of Gmsh's HighOrder
+#                         optimiser; hot-spot size fields; end-fillet sizes
 
+TOL_X = 1e-6          # mm
+HOT_SPREAD_DEG = 10.0  # loads within this of one line → hot sectors around that line
+Q_CURVED = 0.02      # curved P2 tets at or below this minSICN are repaired (_untangle)
 Q_LINEAR = 0.3        # below this minSICN the linear mesh gets a Netgen optimisation pass
 
 # Gmsh options (part of the cache key).
@@ -59,13 +77,25 @@ GMSH_OPTIONS: dict[str, float] = {
     "Mesh.Optimize": 1, "Mesh.OptimizeThreshold": 0.5, "Mesh.Smoothing": 10,
 }
 
-# Mesh levels (ours). k_global × D: global size on a segment of diameter D; k_fillet × ρ: size
-# on a fillet of radius ρ; k_sharp × ρ_min: size at keyway edges and sharp concave shoulders;
-# grad: growth of the size per mm of distance from a fillet / sharp edge.
+# Mesh levels (ours). k_global × D: global size on a segment of diameter D; k_sharp × ρ_min:
+# size at keyway edges and sharp concave shoulders; grad: growth of the size per mm of distance
+# from a fillet / sharp edge. Fillets (module docstring, "Stress relevance"): k_fillet × ρ in
+# the hot sectors (half-angle sector_deg, plateau d_hot × ρ deep, growth grad_hot), k_ring × ρ
+# on the rest of a span fillet's ring, k_fillet_end × ρ on end fillets. Chosen from the
+# run-time/error study in reports/benchmarks/static.md; ``fine`` has the hot-spot settings of
+# the reference family there (k_fillet 0.3 / 0.2 / 0.133, everything else fixed) at
+# k_fillet 0.2, and a finer far field (so that it also refines a shaft without fillets).
+# Keep k_ring and k_fillet_end ≤ 0.9: coarser fillet rings leave curved tets near minSICN 0
+# (repaired only to Q_CURVED), and one of them gave a spurious 699 MPa peak on the x2_57
+# bearing-seat-gear ring (true ~420 MPa there) with k_ring 1.2; end fillets at 1.5 ρ missed
+# the fillet's area by 0.7 % (tests/validation/test_mesh_geometry.py allows 0.5 %).
 LEVELS: dict[str, dict[str, float]] = {
-    "coarse": {"k_global": 0.70, "k_fillet": 0.9, "k_sharp": 5.0, "grad": 1.3},
-    "default": {"k_global": 0.60, "k_fillet": 0.9, "k_sharp": 4.0, "grad": 1.0},
-    "fine": {"k_global": 0.35, "k_fillet": 0.45, "k_sharp": 2.0, "grad": 0.5},
+    "coarse": {"k_global": 0.70, "k_fillet": 0.45, "k_ring": 0.9, "k_fillet_end": 0.9,
+               "k_sharp": 5.0, "grad": 1.3, "grad_hot": 1.0, "d_hot": 0.25, "sector_deg": 10.0},
+    "default": {"k_global": 0.60, "k_fillet": 0.3, "k_ring": 0.9, "k_fillet_end": 0.9,
+                "k_sharp": 4.0, "grad": 1.0, "grad_hot": 0.5, "d_hot": 0.4, "sector_deg": 10.0},
+    "fine": {"k_global": 0.35, "k_fillet": 0.2, "k_ring": 0.9, "k_fillet_end": 0.9,
+             "k_sharp": 2.0, "grad": 1.0, "grad_hot": 0.5, "d_hot": 0.4, "sector_deg": 20.0},
 }
 
 
@@ -102,7 +132,7 @@ def mesh_key(sol: Solid, level: str, order: int, gmsh_version: str) -> str:
     plan.pop("name")
     payload = {"solid": plan, "level": level, "settings": LEVELS[level], "order": order,
                "gmsh": gmsh_version, "options": GMSH_OPTIONS, "q_linear": Q_LINEAR,
-               "format": CACHE_FORMAT}
+               "q_curved": Q_CURVED, "format": CACHE_FORMAT}
     text = json.dumps(payload, sort_keys=True, default=repr)
     return hashlib.sha256(text.encode()).hexdigest()
 
@@ -237,6 +267,7 @@ def _generate(sol: Solid, level: str, order: int) -> dict:
     if own:
         gmsh.initialize(readConfigFiles=False, interruptible=False)
     model = f"shaftfe-{os.getpid()}-{time.monotonic_ns()}"
+    phases: dict[str, float] = {}
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.option.setNumber("General.Verbosity", 1)
@@ -255,9 +286,14 @@ def _generate(sol: Solid, level: str, order: int) -> dict:
         vols = [t for _, t in gmsh.model.getEntities(3)]
         tag = gmsh.model.addPhysicalGroup(3, vols)
         gmsh.model.setPhysicalName(3, tag, "shaft")
+        phases["geometry"] = time.perf_counter() - t0
+        t1 = time.perf_counter()
         gmsh.model.mesh.generate(3)
-        _improve(gmsh, order)
+        phases["tetra"] = time.perf_counter() - t1
+        _improve(gmsh, order, phases)
+        t1 = time.perf_counter()
         data = _extract(gmsh, cls["faces"], order)
+        phases["extract"] = time.perf_counter() - t1
     except Exception as exc:
         if type(exc) is not Exception:        # gmsh raises plain Exception; others are bugs
             raise
@@ -271,7 +307,7 @@ def _generate(sol: Solid, level: str, order: int) -> dict:
         if own:
             gmsh.finalize()
     data["meta"].update(level=level, order=order, format=CACHE_FORMAT,
-                        mesh_seconds=time.perf_counter() - t0)
+                        mesh_seconds=time.perf_counter() - t0, phases=phases)
     return data
 
 
@@ -282,14 +318,124 @@ def _min_sicn(gmsh, etype: int) -> float:
     return float(min(gmsh.model.mesh.getElementQualities(tags, "minSICN")))
 
 
-def _improve(gmsh, order: int) -> None:
+def _improve(gmsh, order: int, phases: dict | None = None) -> None:
     """Quality repair: a Netgen pass if the linear mesh has a poor tet; then elevation to P2
     and Gmsh's HighOrder optimiser (untangles curved tets, FINDINGS pitfall 4)."""
+    phases = {} if phases is None else phases
+    t = time.perf_counter()
     if _min_sicn(gmsh, 4) < Q_LINEAR:
         gmsh.model.mesh.optimize("Netgen")
+    phases["netgen"] = time.perf_counter() - t
     if order == 2:
+        t = time.perf_counter()
         gmsh.model.mesh.setOrder(2)
-        gmsh.model.mesh.optimize("HighOrder")
+        phases["order2"] = time.perf_counter() - t
+        t = time.perf_counter()
+        phases["curved_nodes_moved"] = float(_untangle(gmsh))
+        phases["untangle"] = time.perf_counter() - t
+
+
+def _untangle(gmsh) -> int:
+    """Raise every curved P2 tet to minSICN > ``Q_CURVED`` deterministically: the curved
+    mid-side nodes of each poor tet are moved half-way towards their straight edge midpoints,
+    pass after pass (the last pass puts them on the chord), re-checking the whole mesh after
+    each pass. Returns the number of nodes moved.
+
+    Why not Gmsh's HighOrder optimiser: it places curved nodes differently in every process
+    (measured: ~40 % of the mid-side nodes; identical when address-space randomisation is off,
+    so its result depends on pointer order), and it is slow on meshes with many poor tets. Its
+    elastic variant is deterministic but took 6-20 s. Elevation to P2 leaves interior edges
+    straight; only edges on curved faces are curved, and only where an element is large
+    against the surface's radius of curvature (fillets meshed coarser than ~0.9 ρ) does that
+    make a tet poor: pulling those few nodes towards the chord trades a local geometric error
+    below ρ (1 − cos(h/2ρ)) for a valid, well-conditioned element."""
+    import numpy as np
+    etags, enodes = gmsh.model.mesh.getElementsByType(11)
+    etags = list(etags)
+    en = np.asarray(enodes, dtype=np.int64).reshape(-1, 10)
+    q = np.asarray(gmsh.model.mesh.getElementQualities(etags, "minSICN"))
+    if q.min() > Q_CURVED:
+        return 0
+    # Gmsh tet10 edges of mid-side nodes 4..9
+    edges = ((0, 1), (1, 2), (2, 0), (3, 0), (3, 2), (3, 1))
+    moved: set[int] = set()
+    for frac in (0.5, 0.5, 0.5, 0.5, 1.0):
+        bad = np.nonzero(q <= Q_CURVED)[0]
+        if bad.size == 0:
+            break
+        todo: dict[int, tuple[int, int]] = {}
+        for e in bad:
+            for k, (a, b) in enumerate(edges):
+                todo.setdefault(int(en[e, 4 + k]), (int(en[e, a]), int(en[e, b])))
+        for n, (a, b) in sorted(todo.items()):
+            x = gmsh.model.mesh.getNode(n)[0]
+            xa = gmsh.model.mesh.getNode(a)[0]
+            xb = gmsh.model.mesh.getNode(b)[0]
+            mid = [0.5 * (xa[i] + xb[i]) for i in range(3)]
+            if max(abs(mid[i] - x[i]) for i in range(3)) < 1e-12:
+                continue                                   # already straight
+            gmsh.model.mesh.setNode(n, [x[i] + frac * (mid[i] - x[i]) for i in range(3)], [])
+            moved.add(n)
+        q = np.asarray(gmsh.model.mesh.getElementQualities(etags, "minSICN"))
+    return len(moved)
+
+
+def end_fillet(sol: Solid, fl) -> bool:
+    """True for a fillet outboard of every bearing seat and every loaded attachment seat (an
+    attachment with m e ≠ 0): between it and the shaft end there is neither a load nor a
+    support, so the beam bending moment and shear force there are zero and only the local seat
+    pressure reaches it (x2_57: the thread-end fillets carry 28-48 MPa against 430-500 MPa in
+    the fillets inside the bearing span)."""
+    seats = [st for st in sol.seats if st.loaded]
+    if not seats:
+        return False
+    lo = min(st.x0 for st in seats)
+    hi = max(st.x1 for st in seats)
+    xa, xb = (fl.x_shoulder - fl.rho, fl.x_shoulder) if fl.side < 0 else \
+        (fl.x_shoulder, fl.x_shoulder + fl.rho)
+    return xb <= lo + TOL_X or xa >= hi - TOL_X
+
+
+def hot_axis(sol: Solid) -> float | None:
+    """Angle (rad, 0 = +y) of the line along which the loaded attachments push, when they all
+    push along one line (within ``HOT_SPREAD_DEG``, either sense): the bending stress in a
+    fillet then peaks on that line's two sides and varies as cos θ around it. None otherwise
+    (no loaded seat, or loads in different planes: the whole ring is hot)."""
+    angles = [st.angle for st in sol.seats if st.loaded and st.angle is not None]
+    if not angles:
+        return None
+    c = sum(math.cos(2 * a) for a in angles)
+    s = sum(math.sin(2 * a) for a in angles)
+    if math.hypot(c, s) < 1e-12:
+        return None
+    a0 = 0.5 * math.atan2(s, c)
+    spread = max(abs(math.remainder(a - a0, math.pi)) for a in angles)
+    return a0 if spread <= math.radians(HOT_SPREAD_DEG) else None
+
+
+def _hot_field(f, fl, cfg: dict, axis: float | None, h_max: float) -> int:
+    """MathEval size field of a hot fillet: h = k_fillet ρ + grad_hot · d, where d is the
+    distance to the fillet's torus surface less a plateau of ``d_hot`` ρ, combined (root of the
+    sum of squares) with the arc length outside the hot sector of half-angle ``sector_deg``
+    about ``axis`` (both senses). Exact and cheap: no sampled distance."""
+    xc = fl.x_shoulder + (fl.rho if fl.side > 0 else -fl.rho)
+    rc = fl.r_small + fl.rho
+    h0 = cfg["k_fillet"] * fl.rho
+    g = cfg.get("grad_hot", cfg["grad"])
+    d0 = cfg.get("d_hot", 0.5) * fl.rho
+    r = "sqrt(y*y + z*z)"
+    dt = f"max(0, sqrt((x - ({xc!r}))^2 + ({r} - {rc!r})^2) - {fl.rho!r} - {d0!r})"
+    sector = cfg.get("sector_deg", 90.0)
+    if axis is None or sector >= 90.0:
+        d = dt
+    else:
+        ey, ez = math.cos(axis), math.sin(axis)
+        sn = f"abs(y * ({ez!r}) - z * ({ey!r})) / ({r} + 1e-12)"
+        dc = f"{r} * max(0, {sn} - {math.sin(math.radians(sector))!r})"
+        d = f"sqrt(({dt})^2 + ({dc})^2)"
+    m = f.add("MathEval")
+    f.setString(m, "F", f"min({h_max!r}, {h0!r} + {g!r} * {d})")
+    return m
 
 
 def _size_fields(gmsh, sol: Solid, level: str, cls: dict) -> None:
@@ -324,9 +470,18 @@ def _size_fields(gmsh, sol: Solid, level: str, cls: dict) -> None:
         f.setNumber(th, "DistMax", d_min + max(h_glob - h_loc, 0.0) / cfg["grad"])
         return th
 
+    local = "k_ring" in cfg             # levels with a local hot-spot field (see LEVELS)
+    axis = hot_axis(sol) if local else None
     for seg, surfs in tag_of.items():
         fl = fillets[seg]
-        h_loc = cfg["k_fillet"] * fl.rho
+        end = end_fillet(sol, fl)
+        if end:
+            h_loc = cfg.get("k_fillet_end", cfg["k_fillet"]) * fl.rho
+        elif local:
+            h_loc = cfg["k_ring"] * fl.rho
+            fields.append(_hot_field(f, fl, cfg, axis, h_max))
+        else:
+            h_loc = cfg["k_fillet"] * fl.rho
         # distance to the fillet's two boundary circles (1D sampling: cheap to evaluate; on
         # the fillet itself the distance stays below ρ·0.77, inside DistMin + one size step)
         curves = sorted({abs(c) for _, c in gmsh.model.getBoundary(
@@ -338,8 +493,8 @@ def _size_fields(gmsh, sol: Solid, level: str, cls: dict) -> None:
     if cls["sharp_curves"]:
         # keyway edges / sharp shoulders; no larger than the fillet size on the slot's round
         # ends (radius w/2) so that curved P2 faces there stay valid
-        h_loc = min([cfg["k_sharp"] * rho_ref]
-                    + [cfg["k_fillet"] * 0.5 * k.width for k in sol.slots])
+        k_slot = cfg["k_ring"] if local else cfg["k_fillet"]
+        h_loc = min([cfg["k_sharp"] * rho_ref] + [k_slot * 0.5 * k.width for k in sol.slots])
         d = f.add("Distance")
         f.setNumbers(d, "CurvesList", cls["sharp_curves"])
         f.setNumber(d, "Sampling", max(20, (math.ceil(2 * math.pi * sol.r_max / h_loc))))

@@ -88,6 +88,7 @@ class Seat:
     x0: float
     x1: float
     angle: float | None
+    loaded: bool = True     # False: a part without centrifugal force (m e = 0, a nut on a thread)
 
 
 @dataclass(frozen=True)
@@ -260,7 +261,8 @@ def prepare(variant) -> Solid:
 
     seats: list[Seat] = []
 
-    def seat(field: str, name: str, a, b, angle: float | None, inset: float = 0.0) -> None:
+    def seat(field: str, name: str, a, b, angle: float | None, inset: float = 0.0,
+             loaded: bool = True) -> None:
         a = _num(src, f"{field}.start", a, allowed="a finite number")
         b = _num(src, f"{field}.end", b, allowed="a finite number")
         if b - a <= TOL:
@@ -291,7 +293,7 @@ def prepare(variant) -> Solid:
             if sl.segment == p.segment and not (inside or apart):
                 raise InputError(src, field, f"inside or clear of keyway "
                                  f"{sl.segment}:{sl.index} [{sl.x0:g}, {sl.x1:g}]", got=(a, b))
-        seats.append(Seat(name, p, a2, b2, angle))
+        seats.append(Seat(name, p, a2, b2, angle, loaded))
 
     seen: set[str] = set()
     for i, b in enumerate(variant.bearings):
@@ -312,8 +314,12 @@ def prepare(variant) -> Solid:
             raise InputError(src, f"attachments[{i}].name", "unique, non-empty", got=at.name)
         seen.add(at.name)
         ang = _num(src, f"attachments[{i}].angle_deg", at.angle_deg, allowed="a finite number")
+        try:
+            me = abs(float(at.mass_kg) * float(at.eccentricity_mm))
+        except (TypeError, ValueError):
+            me = 1.0
         seat(f"attachments[{i}].seat_x", f"load:{at.name}", at.seat_x_start_mm,
-             at.seat_x_end_mm, math.radians(ang))
+             at.seat_x_end_mm, math.radians(ang), loaded=not me == 0.0)
 
     hx = None
     if variant.hex_socket is not None:

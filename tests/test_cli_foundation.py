@@ -2,6 +2,7 @@
 
 import subprocess
 import sys
+from pathlib import Path
 
 
 def test_help_does_not_import_fe_stack():
@@ -25,22 +26,52 @@ def test_unknown_command_is_one_line_exit_2():
     assert len(out.stderr.strip().splitlines()) == 1
 
 
+#: one invocation of every `balance` and `variant` subcommand (no --plot: a plot may import
+#: matplotlib, that is the point of asking for it)
+LIGHT_COMMANDS = (
+    ["balance", "forces", "--engine", "vm450"],
+    ["balance", "sweep", "--engine", "vm450", "--x", "31:33:1", "--x2", "0:100:5"],
+    ["balance", "ratios", "--engine", "fe570"],
+    ["balance", "twin", "--engine", "vm450", "--delta", "90"],
+    ["balance", "inline", "--engine", "vm450", "--pins", "0,120,240", "--spacing-mm", "80"],
+    ["variant", "list"],
+    ["variant", "show", "x2_57"],
+    ["variant", "check", "geometry/x2_57.toml"],
+)
+
+
+def _subcommands(group: str) -> set[str]:
+    import argparse
+
+    from shaftfe.cli import build_parser
+    top = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    sub = next(a for a in top.choices[group]._actions
+               if isinstance(a, argparse._SubParsersAction))
+    return set(sub.choices)
+
+
+def test_light_commands_cover_every_balance_and_variant_subcommand():
+    """The import check below runs every subcommand of `balance` and `variant` (a new one must
+    be added to LIGHT_COMMANDS)."""
+    for group in ("balance", "variant"):
+        assert {c[1] for c in LIGHT_COMMANDS if c[0] == group} == _subcommands(group)
+
+
 def test_balancing_commands_do_not_import_fe_stack():
-    """Issue 8 / design card: `shaftfe balance ...` computes only what it reports and never
-    imports the FE stack (gmsh, scikit-fem, meshio, pyvista/vtk, scipy.sparse solvers)."""
+    """Issue 8 / design card: `shaftfe balance ...` and `shaftfe variant ...` compute only what
+    they report and never import the FE stack (gmsh, scikit-fem, meshio, pyvista/vtk,
+    scipy.sparse solvers) nor matplotlib."""
     code = (
         "import sys, contextlib, io\nfrom shaftfe.cli import main\n"
+        f"cmds = {[list(c) for c in LIGHT_COMMANDS]!r}\n"
         "with contextlib.redirect_stdout(io.StringIO()):\n"
-        "    for argv in (['balance', 'forces', '--engine', 'vm450'],\n"
-        "                 ['balance', 'sweep', '--engine', 'vm450', '--x', '31:33:1',"
-        " '--x2', '0:100:5'],\n"
-        "                 ['balance', 'ratios', '--engine', 'fe570'],\n"
-        "                 ['balance', 'twin', '--engine', 'vm450', '--delta', '90']):\n"
+        "    for argv in cmds:\n"
         "        assert main(argv) == 0, argv\n"
-        "heavy = [m for m in ('gmsh', 'skfem', 'meshio', 'pyvista', 'vtk', 'scipy.sparse') "
-        "if m in sys.modules]\n"
+        "heavy = [m for m in ('gmsh', 'skfem', 'meshio', 'pyvista', 'vtk', 'scipy.sparse', "
+        "'matplotlib') if m in sys.modules]\n"
         "print('HEAVY', heavy)\n"
     )
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         cwd=str(Path(__file__).resolve().parents[1]))
     assert out.returncode == 0, out.stderr
     assert "HEAVY []" in out.stdout, out.stdout

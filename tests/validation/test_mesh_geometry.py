@@ -45,11 +45,12 @@ def _check(sm, variant, vol_tol=2e-3, area_tol=5e-3):
 
 def test_default_level_volume_and_areas(tmp_path):
     """Default level, small shaft: volume within 0.2 % of the exact volume, every face group
-    within 0.5 % of its exact area, minSICN > 0.2."""
-    from shaftfe.mesh import build_mesh
+    within 0.5 % of its exact area, minSICN > Q_CURVED (the P2 repair threshold, see
+    tests/test_mesh.py::test_quality_and_positive_jacobians)."""
+    from shaftfe.mesh import Q_CURVED, build_mesh
     v = small_shaft()
     sm = build_mesh(v, "default", cache_dir=tmp_path)
-    assert sm.min_quality > 0.2
+    assert sm.min_quality > Q_CURVED
     _check(sm, v)
 
 
@@ -95,9 +96,9 @@ def _real_variant():
 @pytest.mark.slow
 def test_x2_57_coarse(tmp_path):
     """The real variant x2_57 at coarse: volume within 0.2 %, areas within 0.5 %,
-    minSICN > 0.2, all groups present."""
-    from shaftfe.mesh import build_mesh
+    minSICN > Q_CURVED (the P2 repair threshold), all groups present."""
+    from shaftfe.mesh import Q_CURVED, build_mesh
     v = _real_variant()
     sm = build_mesh(v, "coarse", cache_dir=tmp_path)
-    assert sm.min_quality > 0.2
+    assert sm.min_quality > Q_CURVED
     _check(sm, v)
