@@ -137,6 +137,7 @@ class Reduced:
 
 def project(basis: ModalBasis, G=None, C=None, m: int | None = None) -> Reduced:
     Phi = basis.Phi if m is None else basis.Phi[:, :m]
+    Phi = np.ascontiguousarray(Phi)        # a column slice would make matmul skip BLAS
     om = basis.omega if m is None else basis.omega[:m]
     k = Phi.shape[1]
     Gr = np.zeros((k, k)) if G is None else Phi.T @ (G @ Phi)
@@ -208,25 +209,34 @@ def damper_residuals(K, C) -> np.ndarray | None:
 
 
 def choose_basis(K, M, G, C, n_modes: int, Omega_max: float, *, tol: float = 1e-6,
-                 sigma: float = 0.0, opinv=None, m0: int | None = None):
+                 sigma: float = 0.0, opinv=None, m0: int | None = None, basis_fn=None,
+                 residuals=None):
     """Basis size whose requested damped frequencies at Ω_max change < ``tol`` (relative)
     when the basis grows by ×1.5. With damping, the damped dofs' static residual vectors
     K⁻¹ C_j are added to the modes (Rayleigh-Ritz). Returns (Reduced for the chosen size,
-    measured change, number of rigid-body eigenvalues dropped)."""
+    measured change, number of rigid-body eigenvalues dropped).
+
+    Large models (``shaftfe.rotor_solid``): ``basis_fn(m)`` returns the ``m`` lowest
+    mass-normalised modes (a cached shift-invert solver) instead of ``modal_basis``, and
+    ``residuals`` the damping residual vectors instead of ``damper_residuals``; K may then
+    be a LinearOperator (only K @ X is used)."""
     n = K.shape[0]
     m = min(n, m0 if m0 else max(2 * n_modes, n_modes + 6))
-    R = damper_residuals(K, C)
+    R = damper_residuals(K, C) if residuals is None else residuals
     nr_extra = 0 if R is None else R.shape[1]
     while True:
         m_big = min(n, max(m + 4, math.ceil(1.5 * m)))
-        basis = modal_basis(K, M, m_big, sigma=sigma, opinv=opinv)
+        basis = (modal_basis(K, M, m_big, sigma=sigma, opinv=opinv) if basis_fn is None
+                 else basis_fn(m_big))
         if R is not None and m_big + nr_extra < n:
             big = ritz(K, M, np.hstack([basis.Phi, R]))
             small = ritz(K, M, np.hstack([basis.Phi[:, :m], R]))
             red_big, red = project(big, G, C), project(small, G, C)
         else:
             red_big = project(basis, G, C)
-            red = project(basis, G, C, m=m)
+            red = Reduced(ModalBasis(np.ascontiguousarray(basis.Phi[:, :m]),  # a sub-block
+                                     basis.omega[:m]),
+                          red_big.G[:m, :m], red_big.C[:m, :m])
         s1, _, nr = reduced_eig(red, Omega_max)
         s2, _, _ = reduced_eig(red_big, Omega_max)
         k = min(n_modes, s1.size, s2.size)
@@ -298,16 +308,21 @@ class Labelling:
     """How to label the modes of a model: dof groups (name → indices into the free dofs; the
     group named "lateral" gets forward/backward), the lateral (y, z) dof pairs for the whirl
     ratio (translations), and optional alternative pairs with the z sign (e.g. tilts
-    (θ_z, −θ_y)) used when the first pairs carry no motion; weights = diag(M)."""
+    (θ_z, −θ_y)) used when the first pairs carry no motion; weights = diag(M). With
+    ``transform`` (a matrix F, e.g. the beam-like section motions of a 3D solid), the labels
+    are computed on F v instead of v, and groups, pairs and weights refer to F's rows."""
     groups: Mapping[str, np.ndarray]
     pair_y: np.ndarray
     pair_z: np.ndarray
     weights: np.ndarray | None = None
     whirl_tol: float = 0.05
+    transform: object | None = None     # (n_feat, n_dof) map applied to the vectors first
 
 
 def label_modes(vecs: np.ndarray, lab: Labelling):
     """(family per column, whirl label per column, whirl ratio per column)."""
+    if lab.transform is not None:
+        vecs = lab.transform @ vecs
     w = np.ones(vecs.shape[0]) if lab.weights is None else lab.weights
     e = (np.abs(vecs) ** 2) * w[:, None]
     tot = e.sum(axis=0)
@@ -407,7 +422,8 @@ class CampbellResult:
 
 def sweep(K, M, G, rpms: Sequence[float], n_modes: int, lab: Labelling, *, C=None,
           orders: Sequence[float] = (1.0,), tol: float = 1e-6, sigma: float = 0.0, opinv=None,
-          keep_vectors: bool = False, n_extra: int = 6) -> CampbellResult:
+          keep_vectors: bool = False, n_extra: int = 6, basis_fn=None,
+          residuals=None) -> CampbellResult:
     """Campbell sweep of M q̈ + (C + Ω G) q̇ + K q = 0 over ``rpms`` (the n lowest modes)."""
     rpm = np.asarray(rpms, dtype=float)
     if rpm.ndim != 1 or rpm.size == 0 or not np.all(np.isfinite(rpm)) or np.any(rpm < 0):
@@ -424,8 +440,15 @@ def sweep(K, M, G, rpms: Sequence[float], n_modes: int, lab: Labelling, *, C=Non
     n_cand = min(n_modes + n_extra, n_dof // 2)
     red, change, n_rigid = choose_basis(K, M, G, C, n_modes, float(Om.max()), tol=tol,
                                         sigma=sigma, opinv=opinv,
-                                        m0=max(2 * n_modes, n_cand + 2, n_modes + 6))
+                                        m0=max(2 * n_modes, n_cand + 2, n_modes + 6),
+                                        basis_fn=basis_fn, residuals=residuals)
     Phi = red.basis.Phi
+    if lab.transform is not None:          # label on F Φ q: map the basis once, not per speed
+        from dataclasses import replace
+
+        Phi_lab, lab = lab.transform @ Phi, replace(lab, transform=None)
+    else:
+        Phi_lab = Phi
     ns = rpm.size
     nb = n_modes
     freq = np.empty((ns, nb))
@@ -448,8 +471,7 @@ def sweep(K, M, G, rpms: Sequence[float], n_modes: int, lab: Labelling, *, C=Non
             pick, m_ = assign(prev_q, prev_f, Q, f)
             mac_min[i] = float(m_.min())
         s, Q = s[pick], Q[:, pick]
-        X = Phi @ Q
-        fam, wl, r = label_modes(X, lab)
+        fam, wl, r = label_modes(Phi_lab @ Q, lab)
         if w == 0.0:
             # no spin, no whirl sense: a degenerate pair may come out as any (even circular)
             # combination, so lateral modes at rest are "undetermined" with ratio 0
@@ -463,7 +485,7 @@ def sweep(K, M, G, rpms: Sequence[float], n_modes: int, lab: Labelling, *, C=Non
         whirl.append(tuple(wl))
         family.append(tuple(fam))
         if keep_vectors:
-            vecs_keep[i] = X
+            vecs_keep[i] = Phi @ Q
         prev_q, prev_f = Q, freq[i]
     branch = []
     for j in range(nb):
@@ -542,8 +564,9 @@ def full_qep(K, M, G, Omega: float, n_modes: int, *, C=None, sigma: float = 0.0)
             return np.concatenate([x1, y1 + sigma * x1])
 
         k = min(2 * n - 2, 2 * n_modes + 8)
-        mu = eigs(LinearOperator((2 * n, 2 * n), matvec=op, dtype=float), k=k,
-                  which="LM", return_eigenvectors=False)
+        v0 = np.random.default_rng(0).standard_normal(2 * n)   # reproducible (ARPACK's
+        mu = eigs(LinearOperator((2 * n, 2 * n), matvec=op, dtype=float), k=k,  # own is random)
+                  which="LM", return_eigenvectors=False, v0=v0)
         s = sigma + 1.0 / mu
     om_scale = float(np.max(np.abs(s))) if s.size else 1.0
     keep = (np.abs(s) > 1e-9 * om_scale) & (s.imag > 1e-9 * np.abs(s))

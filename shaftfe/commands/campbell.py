@@ -1,12 +1,16 @@
 """`shaftfe campbell` and `shaftfe modal`: natural frequencies with gyroscopic effects.
 
-Stdlib only at module level; numpy/scipy (shaftfe.rotor, shaftfe.campbell) and matplotlib
-inside the handlers. The model is chosen by ``--model``: today only ``beam`` (Timoshenko beam
-+ rigid disks); a 3D ``solid`` builder plugs into ``_MODEL_BUILDERS`` with the same contract:
-``builder(args)`` returns an object like ``shaftfe.rotor.RotorModel`` — M, K, G, C (dense or
-sparse, free dofs), ``labelling`` (``shaftfe.campbell.Labelling``), ``notes``, ``n_dof`` and
-optionally ``K_support`` (bearing springs, for the energy shares), ``beam``/``disks`` (only
-for the description line) — and then remove the "solid" refusal in ``_check_common``.
+Stdlib only at module level; numpy/scipy (shaftfe.rotor, shaftfe.rotor_solid,
+shaftfe.campbell) and matplotlib inside the handlers. The model is chosen by ``--model``:
+``beam`` (Timoshenko beam + rigid disks, milliseconds) or ``solid`` (3D P2 tets of the static
+model's mesh at ``--level``, attachments as rigid bodies tied to their seats by ``--coupling``;
+``shaftfe.rotor_solid``). A builder in ``_MODEL_BUILDERS`` returns an object like
+``shaftfe.rotor.RotorModel`` — M, K, G, C (dense, sparse or LinearOperator, free dofs),
+``labelling`` (``shaftfe.campbell.Labelling``), ``notes``, ``n_dof`` and optionally
+``K_support`` (bearing springs, for the energy shares), ``beam``/``disks`` (only for the
+description line); ``_ANALYSES`` gives its sweep and full-size check. The solid model's
+results are shown next to the beam model's (same variant and options), and with ``--out``
+its mode shapes at rest are written as ``modes.vtu`` (docs/FIELDS.md, "Mode shapes").
 """
 
 from __future__ import annotations
@@ -25,7 +29,12 @@ def _common_options(p) -> None:
     p.add_argument("--modes", type=int, default=12, help="number of modes (default 12)")
     p.add_argument("--model", choices=("beam", "solid"), default="beam",
                    help="rotor model: beam (Timoshenko beam + rigid disks; default) or solid "
-                   "(3D FE, not available yet)")
+                   "(3D P2 tets + rigid attachments; shown next to the beam result)")
+    p.add_argument("--level", choices=("coarse", "default", "fine"), default="coarse",
+                   help="solid model: mesh level (default coarse)")
+    p.add_argument("--coupling", choices=("rigid", "distributing"), default="rigid",
+                   help="solid model: tie of the attachments to their seats, rigid (RBE2-like, "
+                   "bonded hub; default) or distributing (RBE3-like, no seat stiffening)")
     p.add_argument("--max-element", type=float, default=5.0, metavar="MM",
                    help="beam model: maximum element length in mm (default 5)")
     p.add_argument("--rigid-supports", action="store_true",
@@ -101,9 +110,6 @@ def parse_orders(text: str) -> list[float]:
 
 
 def _check_common(args) -> None:
-    if args.model == "solid":
-        raise InputError("command line", "--model", "beam (the 3D solid rotor model is not "
-                         "available yet)", got="solid")
     if not (1 <= args.modes <= _MAX_MODES):
         raise InputError("command line", "--modes", f"1..{_MAX_MODES}", got=args.modes)
     if not (math.isfinite(args.max_element) and args.max_element > 0):
@@ -125,7 +131,39 @@ def _beam_rotor(args):
         bearing_damping=args.bearing_damping if args.bearing_damping > 0 else None)
 
 
-_MODEL_BUILDERS = {"beam": _beam_rotor}
+def _solid_rotor(args):
+    from shaftfe import rotor_solid
+    from shaftfe.variant import load_variant
+
+    variant = load_variant(args.variant)
+    opts = rotor_solid.SolidOptions(level=args.level, coupling=args.coupling,
+                                    rigid_supports=args.rigid_supports,
+                                    bearing_damping=args.bearing_damping)
+    return rotor_solid.build_solid_rotor(variant, opts)
+
+
+_MODEL_BUILDERS = {"beam": _beam_rotor, "solid": _solid_rotor}
+
+
+def _beam_analyses():
+    from shaftfe import rotor
+
+    def run(model, rpms, n, orders, keep_vectors):
+        return rotor.campbell(model, rpms, n, orders=orders, keep_vectors=keep_vectors), None
+    return run, rotor.verify, rotor.support_energy_share
+
+
+def _solid_analyses():
+    from shaftfe import rotor_solid
+
+    def run(model, rpms, n, orders, keep_vectors):
+        prov = rotor_solid.BasisProvider(model)
+        return rotor_solid.campbell(model, rpms, n, orders=orders, keep_vectors=keep_vectors,
+                                    provider=prov), prov
+    return run, rotor_solid.verify, rotor_solid.support_energy_share
+
+
+_ANALYSES = {"beam": _beam_analyses, "solid": _solid_analyses}
 
 
 def _describe(args, model) -> str:
@@ -135,6 +173,11 @@ def _describe(args, model) -> str:
     beam = getattr(model, "beam", None)
     nodes = f"{beam.n_nodes} nodes, " if beam is not None else ""
     disks = getattr(model, "disks", ())
+    if args.model == "solid":
+        sm = model.shaft_mesh
+        return (f"variant {args.variant}: solid model (P{sm.order} tets, level {sm.level}, "
+                f"{sm.n_nodes} nodes, {model.n_dof} dofs, {len(disks)} rigid attachment "
+                f"bodies, {args.coupling} coupling), {sup}{damp}")
     return (f"variant {args.variant}: {args.model} model ({nodes}{model.n_dof} dofs, "
             f"{len(disks)} rigid disks), {sup}{damp}")
 
@@ -142,26 +185,87 @@ def _describe(args, model) -> str:
 # --------------------------------------------------------------------------- handlers
 
 def _solve(args, rpms, orders, keep_vectors=False):
-    from shaftfe import rotor
-
     model = _MODEL_BUILDERS[args.model](args)
     n_max = model.n_dof // 2
     if args.modes > n_max:
         raise InputError("command line", "--modes", f"1..{n_max} for this model", got=args.modes)
-    res = rotor.campbell(model, rpms, args.modes, orders=orders, keep_vectors=keep_vectors)
-    ver = rotor.verify(model, res) if args.verify else None
-    return model, res, ver
+    run, verify, _ = _ANALYSES[args.model]()
+    res, prov = run(model, rpms, args.modes, orders, keep_vectors)
+    ver = verify(model, res) if args.verify else None
+    beam_res = None
+    if args.model == "solid":
+        from shaftfe import rotor
+
+        beam_res = rotor.campbell(_beam_rotor(args), rpms, args.modes, orders=orders)
+    return model, res, ver, beam_res, prov
 
 
-def _payload(args, model, res, ver) -> dict:
+def _payload(args, model, res, ver, beam_res=None) -> dict:
     d = {"variant": args.variant, "model": args.model, "n_dof": model.n_dof,
          "supports": "rigid" if args.rigid_supports else "springs",
          "bearing_damping_Ns_per_mm": args.bearing_damping, "result": res.to_dict()}
+    if args.model == "solid":
+        sm = model.shaft_mesh
+        d["solid"] = {"level": sm.level, "order": sm.order, "nodes": sm.n_nodes,
+                      "elements": sm.n_elements, "coupling": args.coupling,
+                      "attachment_bodies": [b.name for b in model.bodies]}
+    if beam_res is not None:
+        d["beam"] = beam_res.to_dict()
+        d["side_by_side"] = _side_by_side(res, beam_res)
     if ver is not None:
         d["verify"] = {"rpm": ver.rpm, "freq_reduced_hz": list(ver.freq_reduced_hz),
                        "freq_full_hz": list(ver.freq_full_hz),
                        "max_rel_diff": ver.max_rel_diff, "n_missed": ver.n_missed}
     return d
+
+
+def _side_by_side(res, beam_res) -> list[dict]:
+    """Per 3D mode, at the first and the last speed: the beam mode of the same family
+    (lateral / torsional / axial) and the same rank within it (None if the beam's first
+    modes hold no such mode), with frequencies and whirl labels."""
+    out = []
+    for i in sorted({0, len(res.rpm) - 1}):
+        fam_b = list(beam_res.family[i])
+        for j in range(res.freq_hz.shape[1]):
+            fam = res.family[i][j]
+            rank = list(res.family[i][:j]).count(fam)
+            hits = [k for k, f in enumerate(fam_b) if f == fam]
+            k = hits[rank] if rank < len(hits) else None
+            fs = float(res.freq_hz[i, j])
+            fb = float(beam_res.freq_hz[i, k]) if k is not None else None
+            out.append({"rpm": float(res.rpm[i]), "mode": j + 1, "family": fam,
+                        "solid_hz": fs, "solid_whirl": res.whirl[i][j],
+                        "beam_mode": None if k is None else k + 1, "beam_hz": fb,
+                        "beam_whirl": None if k is None else beam_res.whirl[i][k],
+                        "solid_over_beam": None if fb is None else fs / fb})
+    return out
+
+
+def _print_side_by_side(res, beam_res) -> None:
+    from shaftfe.commands._common import print_table
+
+    rows = []
+    for r in _side_by_side(res, beam_res):
+        beam = "—" if r["beam_hz"] is None else (
+            f"{r['beam_hz']:.1f} {_SHORT[r['beam_whirl']]} (mode {r['beam_mode']})")
+        diff = "—" if r["solid_over_beam"] is None else f"{100 * (r['solid_over_beam'] - 1):+.1f}"
+        rows.append([r["mode"], f"{r['rpm']:g}", r["family"],
+                     f"{r['solid_hz']:.1f} {_SHORT[r['solid_whirl']]}", beam, diff])
+    print_table(["mode", "rpm", "family", "3D solid Hz", "beam Hz", "3D vs beam %"], rows,
+                title="3D solid model next to the beam model (same variant and bearings; each "
+                "3D mode against the beam mode of the same family and rank; torsion is held at "
+                "both bearings in 3D, at one node in the beam)")
+
+
+def _write_modes(args, model, prov, out) -> str | None:
+    """Mode shapes at rest of the solid model as ``modes.vtu`` (None for the beam model)."""
+    if args.model != "solid":
+        return None
+    from shaftfe import rotor_solid
+
+    rest = rotor_solid.modal(model, 0.0, args.modes, keep_vectors=True, provider=prov)
+    rotor_solid.write_modes_vtu(model, rest, out / "modes.vtu")
+    return "modes.vtu"
 
 
 def _print_tables(args, model, res, ver) -> None:
@@ -194,7 +298,8 @@ def run_campbell(args) -> int:
     rpms = speeds_from_range(args.range, args.step)
     orders = parse_orders(args.orders)
     _check_common(args)
-    model, res, ver = _solve(args, rpms, orders)
+    model, res, ver, beam_res, prov = _solve(args, rpms, orders)
+    vtu = None
     if args.out:
         import json
         from pathlib import Path
@@ -203,18 +308,22 @@ def run_campbell(args) -> int:
 
         title = f"{args.variant}: Campbell diagram ({args.model} model)"
         png = plot_campbell(res, title=title)
-        js = json.dumps(_payload(args, model, res, ver), indent=2)
+        js = json.dumps(_payload(args, model, res, ver, beam_res), indent=2)
         csv = res.to_csv()
         out = Path(args.out)
         for name, data in (("campbell.png", png), ("campbell.csv", csv),
                            ("campbell.json", js + "\n")):
             write_atomic(out / name, data)
+        vtu = _write_modes(args, model, prov, out)
     if args.json:
-        print_json(_payload(args, model, res, ver))
+        print_json(_payload(args, model, res, ver, beam_res))
     else:
         _print_tables(args, model, res, ver)
+        if beam_res is not None:
+            _print_side_by_side(res, beam_res)
         if args.out:
-            print(f"wrote {args.out}/campbell.png, campbell.csv, campbell.json")
+            print(f"wrote {args.out}/campbell.png, campbell.csv, campbell.json"
+                  + (f", {vtu}" if vtu else ""))
     return 0
 
 
@@ -224,12 +333,12 @@ def run_modal(args) -> int:
     if not (math.isfinite(args.rpm) and args.rpm >= 0):
         raise InputError("command line", "--rpm", ">= 0", got=args.rpm)
     _check_common(args)
-    from shaftfe.rotor import support_energy_share
-
-    model, res, ver = _solve(args, [args.rpm], [1.0], keep_vectors=True)
+    model, res, ver, beam_res, _ = _solve(args, [args.rpm], [1.0], keep_vectors=True)
+    support_energy_share = _ANALYSES[args.model]()[2]
     share = support_energy_share(model, res.vectors[0])
-    payload = _payload(args, model, res, ver)
+    payload = _payload(args, model, res, ver, beam_res)
     payload["bearing_energy_share"] = share.tolist()
+    files = "modal.csv, modal.json"
     if args.out:
         import json
         from pathlib import Path
@@ -237,6 +346,11 @@ def run_modal(args) -> int:
         out = Path(args.out)
         write_atomic(out / "modal.csv", res.to_csv())
         write_atomic(out / "modal.json", json.dumps(payload, indent=2) + "\n")
+        if args.model == "solid":
+            from shaftfe import rotor_solid
+
+            rotor_solid.write_modes_vtu(model, res, out / "modes.vtu")
+            files += ", modes.vtu"
     if args.json:
         print_json(payload)
         return 0
@@ -255,6 +369,8 @@ def run_modal(args) -> int:
               f"{ver.max_rel_diff:.2e}, modes missed: {ver.n_missed}")
     for note in res.notes:
         print(f"note: {note}")
+    if beam_res is not None:
+        _print_side_by_side(res, beam_res)
     if args.out:
-        print(f"wrote {args.out}/modal.csv, modal.json")
+        print(f"wrote {args.out}/{files}")
     return 0

@@ -1,0 +1,746 @@
+"""Rotor dynamics of the 3D solid shaft (P2 tets): mass, gyroscopics, rigid attachments,
+bearings, and the Campbell sweep in a reduced modal basis (kernels in ``shaftfe.campbell``).
+
+Equation of motion (stationary frame, spin Ω about +x):
+
+    M q̈ + (C + Ω G) q̇ + K q = 0,      with hard rows H q = 0 (held motions).
+
+Matrices
+--------
+* K: linear elasticity of the shaft (``fem.elasticity_stiffness``, E, ν of the variant's shaft
+  material). Spin softening and stress stiffening: OFF (as in the seed's study; not modelled).
+* M: consistent mass ∫ ρ Nᵀ N dV of the P2 solid (quadrature of order 4: exact for straight
+  tets), ρ of the shaft material.
+* G: gyroscopic (Coriolis) matrix of the solid in the stationary frame, for an axisymmetric
+  rotor. Derivation: describe the displacement u(x, t) (inertial components) at the spatial
+  point x that the material occupies at rest; material flows through x with the velocity
+  Ω w(x), w = e_x × x = (0, −z, y). A particle's position is x + u(x, t), its velocity
+  ṗ = Ω w + ∂u/∂t + Ω ∂u/∂θ with ∂u/∂θ = (∇u) w = −z ∂u/∂y + y ∂u/∂z. The kinetic energy
+  ½ ∫ ρ |ṗ|² dV has the cross term Ω ∫ ρ u̇ · ∂u/∂θ dV = Ω q̇ᵀ A q with
+  A = ∫ ρ Nᵀ (∂N/∂θ) dV; Lagrange's equations turn it into Ω (A − Aᵀ) q̇, so
+
+      G = A − Aᵀ = kron(S − Sᵀ, I₃),   S_ab = ∫ ρ φ_a (−z ∂_y φ_b + y ∂_z φ_b) dV
+
+  (each Cartesian component couples with itself; for an axisymmetric body S is already
+  skew, ∫ φ_a ∂_θ φ_b = −∫ φ_b ∂_θ φ_a, so G = 2A = 2 ∫ ρ Nᵀ ∂_θ N dV). The Ω² terms of the
+  same expansion (½ Ω² ∫ ρ |∂u/∂θ|²) are of the order of the neglected centrifugal
+  geometric terms and are dropped with them. Check: projected on the rigid tilts of a body,
+  G gives G[θ_y, θ_z] = ∫ ρ (y² + z²) dV = I_p, the rigid-disk gyroscopic term of
+  ``shaftfe.rotor`` (tested). Not valid for a non-axisymmetric body (keyways, the hex socket:
+  small, their mass is < 1 % of the shaft).
+* Bearings: ``shaftfe.supports`` exactly as in the static model (RBE3 remote point at the seat
+  centre, 2×2 radial spring, θ_x held at every bearing ("all") and u_x at the axial one as
+  hard rows, tilt free); optional isotropic damping c on the remote point's (u_y, u_z).
+* Attachments (gear, counterweights, nuts, …): every part is a rigid body with its mass,
+  centroid offset and inertia (``rotor.disks_from_variant``: axisymmetrised Ip + m e²,
+  Id + m e²/2; polar inertia → gyroscopic block G[θ_y, θ_z] = Ip). Parts on the same seat form
+  one body at the seat centre. Tie to the seat faces (``load:<part>:pressed|free``):
+
+  - ``coupling="rigid"`` (default; RBE2-like, kinematic): every node of the seat faces follows
+    the body, u_i = u_m + θ_m × (x_i − x_m) (master-slave elimination, q = [free nodes,
+    6 dofs per body]). It stiffens the seat like a bonded hub: a press-fitted and keyed hub
+    (gear hub, counterweight hub, nuts clamped on the thread) is much stiffer than the Ø17
+    shaft under it (hub ring Ø24/Ø17: 3× the shaft's EI), and the seed's Ansys model bonded
+    the parts' solids to the shaft.
+  - ``coupling="distributing"`` (RBE3-like): the body follows the area-weighted least-squares
+    rigid motion of the seat; adds no stiffness (a loose or very soft hub). Mass and
+    gyroscopic blocks Rᵀ M_b R on the seat dofs (sparse, one clique per seat).
+
+Solution
+--------
+The bearing springs and the hard rows are never assembled into the sparse matrix (dense
+cliques); they enter every solve as a low-rank Woodbury term (as in ``shaftfe.static``):
+B = K + σ Ω G + σ² M (sparse, SPD at Ω = 0) is factorised ONCE per shift σ, and
+(B + U C Uᵀ)⁻¹ with hard rows (C⁻¹ = 0, the exact infinite-stiffness limit) costs one small
+dense capacitance solve per right-hand side. Shift σ = −2π f_s (real, f_s = ``shift_hz``): at
+Ω = 0 the matrix is K + (2π f_s)² M, positive definite even for a free-free model.
+
+1. Basis (once): the lowest undamped modes by shift-invert Lanczos (``eigsh``, OPinv = the
+   Woodbury operator with hard rows, so the modes satisfy H q = 0), mass-normalised; cached
+   and reused when the basis grows.
+2. Per speed: ``shaftfe.campbell.sweep`` (projected quadratic eigenproblem, MAC tracking,
+   whirl labels, critical speeds), basis size chosen by the convergence test there.
+3. ``verify``: the full-size quadratic eigenproblem at the top speed (shift-invert Arnoldi on
+   the companion linearisation, one nonsymmetric factorisation of K + σ(C + ΩG) + σ² M with
+   the same low-rank terms).
+
+Labels: each mode is mapped to beam-like section motions (least-squares rigid motion of x
+slices, with diag(M) weights, plus the attachment bodies): u_x → axial, θ_x → torsional,
+(u_y, u_z, θ_y, θ_z) → lateral; the whirl ratio uses the sections' (u_y, u_z) and
+(θ_z, −θ_y) pairs (``campbell.Labelling.transform``).
+
+Units: mm, N, t, s. Heavy imports (scikit-fem) inside functions.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+from types import MappingProxyType
+
+import numpy as np
+
+from shaftfe.campbell import TWO_PI, CampbellResult, Labelling, ModalBasis, sweep
+from shaftfe.errors import InputError, SolverError
+
+COUPLINGS = ("rigid", "distributing")
+
+
+@dataclass(frozen=True)
+class SolidOptions:
+    level: str = "coarse"
+    order: int = 2
+    coupling: str = "rigid"               # attachments: "rigid" (RBE2) | "distributing" (RBE3)
+    rigid_supports: bool = False
+    bearing_damping: float = 0.0          # N·s/mm, isotropic, on every bearing
+    hold_twist: str = "all"               # θ_x held at "all" bearings | "axial" | "none"
+    solver: str = "auto"                  # shaftfe.solvers for the symmetric factorisation
+    shift_hz: float = 50.0                # σ = −2π shift_hz
+
+
+# --------------------------------------------------------------------------- matrices
+
+def mass_and_gyro(mesh, density: float):
+    """Scalar consistent mass Ms = ∫ ρ φ_a φ_b and S = ∫ ρ φ_a ∂_θ φ_b (N × N sparse CSR,
+    N = nodes), by order-4 quadrature (exact on straight P2 tets)."""
+    import scipy.sparse as sp
+    from skfem.quadrature import get_quadrature
+
+    from shaftfe import fem
+
+    order = 4 if fem.is_quadratic(mesh) else 2
+    e = fem.scalar_element(mesh)
+    X, _ = get_quadrature(mesh.refdom, order)
+    phi = np.array([e.lbasis(X, a)[0] for a in range(e.doflocs.shape[0])])   # (nloc, nq)
+    dN, wdx = fem.physical_gradients(mesh, order)                              # (ne,nq,nloc,3)
+    en = fem.element_nodes(mesh)                                               # (nloc, ne)
+    xq = np.einsum("iae,aq->eqi", mesh.doflocs[:, en], phi)                    # (ne, nq, 3)
+    pw = phi.T[None, :, :] * (density * wdx)[:, :, None]                       # (ne, nq, nloc)
+    Me = np.einsum("eqa,bq->eab", pw, phi)
+    dth = -xq[:, :, 2:3] * dN[..., 1] + xq[:, :, 1:2] * dN[..., 2]             # (ne, nq, nloc)
+    Se = np.einsum("eqa,eqb->eab", pw, dth)
+    ed = en.T
+    nl = ed.shape[1]
+    rows = np.repeat(ed, nl, axis=1).ravel()
+    cols = np.tile(ed, (1, nl)).ravel()
+    n = mesh.doflocs.shape[1]
+    Ms = sp.csr_matrix((Me.ravel(), (rows, cols)), shape=(n, n))
+    S = sp.csr_matrix((Se.ravel(), (rows, cols)), shape=(n, n))
+    return Ms, S
+
+
+def vector_matrix(Ss):
+    """kron(Ss, I₃): the scalar matrix acting on each interleaved component."""
+    import scipy.sparse as sp
+    return sp.kron(Ss, sp.identity(3), format="csr")
+
+
+def _rigid_T(points: np.ndarray, center: np.ndarray) -> np.ndarray:
+    """(3 n, 6) rigid motions (u, θ) about ``center`` sampled at points (3, n), interleaved."""
+    r = points - center[:, None]
+    n = points.shape[1]
+    T = np.zeros((n, 3, 6))
+    T[:, 0, 0] = T[:, 1, 1] = T[:, 2, 2] = 1.0
+    T[:, 1, 3], T[:, 2, 3] = -r[2], r[1]          # rotation about x
+    T[:, 0, 4], T[:, 2, 4] = r[2], -r[0]          # about y
+    T[:, 0, 5], T[:, 1, 5] = -r[1], r[0]          # about z
+    return T.reshape(3 * n, 6)
+
+
+@dataclass(frozen=True, eq=False)
+class Body:
+    """A rigid attachment body: the parts on one seat, reference point at the seat centre."""
+    name: str                     # "gear+screws_cw1+…"
+    x_mm: float
+    facets: np.ndarray
+    M6: np.ndarray                # 6×6 mass at the reference point (u, θ)
+    G6: np.ndarray                # 6×6 gyroscopic per unit spin
+    mass_t: float
+
+
+def attachment_bodies(variant, mesh) -> list[Body]:
+    from shaftfe import rotor
+
+    disks = {d.name: d for d in rotor.disks_from_variant(variant)}
+    groups: dict[tuple[float, float], list] = {}
+    for a in variant.attachments:
+        groups.setdefault((a.seat_x_start_mm, a.seat_x_end_mm), []).append(a)
+    out = []
+    for (x0, x1), parts in groups.items():
+        fac = []
+        for a in parts:
+            for side in ("pressed", "free"):
+                g = f"load:{a.name}:{side}"
+                if g not in mesh.boundaries:
+                    raise InputError(f"variant {variant.name}", f"attachment {a.name!r}",
+                                     "a part whose seat is a named face group of the mesh",
+                                     got=g, reason="has no face group")
+                fac.append(np.asarray(mesh.boundaries[g]))
+        M6, G6 = np.zeros((6, 6)), np.zeros((6, 6))
+        for a in parts:
+            m6, g6 = rotor.disk_matrices(disks[a.name])
+            M6 += m6
+            G6 += g6
+        out.append(Body("+".join(a.name for a in parts), 0.5 * (x0 + x1),
+                        np.unique(np.concatenate(fac)), M6, G6,
+                        float(sum(disks[a.name].mass_t for a in parts))))
+    return out
+
+
+# --------------------------------------------------------------------------- model
+
+@dataclass(frozen=True, eq=False)
+class LowRank:
+    """One support term on rows R (r × n_dof) of q: a spring C (r × r; None = hard rows
+    R q = 0) and an optional damping Cd (r × r)."""
+    bearing: str
+    labels: tuple
+    R: np.ndarray
+    C: np.ndarray | None
+    Cd: np.ndarray | None = None
+
+
+@dataclass(frozen=True, eq=False)
+class BodyTerm:
+    """A rigid body on a distributing coupling: its motion is R q (6 × n_dof rows), its mass
+    and gyroscopic matrices enter as Rᵀ M6 R and Rᵀ G6 R (never assembled: a dense clique of
+    the seat dofs)."""
+    name: str
+    R: np.ndarray
+    M6: np.ndarray
+    G6: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class SolidRotor:
+    """Matrices on q (mesh dofs, or free mesh dofs + 6 per rigid body) and the support terms.
+
+    ``K``, ``C``, ``K_support`` (and ``M``, ``G`` with a distributing coupling) are
+    LinearOperators (sparse part + low-rank terms); ``K_sparse``, ``M_sparse``, ``G_sparse``
+    are SciPy sparse. ``T`` maps q to the mesh dofs (None: identity). Hard rows are in
+    ``terms`` with ``C is None``."""
+    name: str
+    variant: object
+    shaft_mesh: object
+    options: SolidOptions
+    K_sparse: object
+    M_sparse: object
+    G_sparse: object
+    terms: tuple
+    T: object | None
+    bodies: tuple
+    labelling: Labelling
+    body_terms: tuple = ()
+    notes: tuple = field(default_factory=tuple)
+    assembly_seconds: float = 0.0
+    beam: object = None           # (for the CLI description line) no beam model here
+
+    @property
+    def n_dof(self) -> int:
+        return self.K_sparse.shape[0]
+
+    @property
+    def disks(self) -> tuple:
+        return self.bodies
+
+    def _op(self, which: str):
+        from scipy.sparse.linalg import LinearOperator
+
+        n = self.n_dof
+        base = {"K": self.K_sparse, "M": self.M_sparse, "G": self.G_sparse}.get(which)
+        if which in ("M", "G"):
+            terms = [(b.R, b.M6 if which == "M" else b.G6) for b in self.body_terms]
+        else:
+            terms = [(t.R, t.C if which in ("K", "Ks") else t.Cd) for t in self.terms]
+        terms = [(R, C) for R, C in terms if C is not None]
+
+        def mv(x):
+            x = np.asarray(x)
+            y = base @ x if base is not None else np.zeros(x.shape, dtype=np.result_type(
+                x, float))
+            for R, C in terms:
+                y = y + R.T @ (C @ (R @ x))
+            return y
+        return LinearOperator((n, n), matvec=mv, matmat=mv, rmatvec=mv, dtype=float)
+
+    @property
+    def K(self):
+        return self._op("K")
+
+    @property
+    def M(self):
+        return self._op("M") if self.body_terms else self.M_sparse
+
+    @property
+    def G(self):
+        return self._op("G") if self.body_terms else self.G_sparse
+
+    @property
+    def K_support(self):
+        return self._op("Ks")
+
+    @property
+    def C(self):
+        return self._op("C") if any(t.Cd is not None for t in self.terms) else None
+
+    def mesh_vector(self, q: np.ndarray) -> np.ndarray:
+        return q if self.T is None else self.T @ q
+
+    def hard_rows(self) -> np.ndarray:
+        H = [t.R for t in self.terms if t.C is None]
+        return np.vstack(H) if H else np.zeros((0, self.n_dof))
+
+
+def _check_options(o: SolidOptions) -> None:
+    if o.coupling not in COUPLINGS:
+        raise InputError("--coupling", "coupling", " | ".join(COUPLINGS), got=o.coupling)
+    if o.hold_twist not in ("all", "axial", "none"):
+        raise InputError("options", "hold_twist", "all | axial | none", got=o.hold_twist)
+    if not (math.isfinite(o.bearing_damping) and o.bearing_damping >= 0):
+        raise InputError("--bearing-damping", "bearing damping", ">= 0 N s/mm",
+                         got=o.bearing_damping)
+    if not (math.isfinite(o.shift_hz) and o.shift_hz > 0):
+        raise InputError("options", "shift_hz", "> 0 Hz", got=o.shift_hz)
+    from shaftfe.solvers import METHODS
+    if o.solver not in METHODS:
+        raise InputError("--solver", "solver", " | ".join(METHODS), got=o.solver)
+
+
+def build_solid_rotor(variant, options: SolidOptions = SolidOptions(), *, shaft_mesh=None,
+                      support_faces: dict | None = None, supported: bool = True,
+                      attachments: bool = True, cache_dir=None) -> SolidRotor:
+    """Assemble the solid rotor of ``variant`` (mesh built at ``options.level`` unless given).
+
+    ``support_faces``: bearing name → face group (default ``bearing:<name>``; e.g. an end face
+    for a validation model). ``supported=False``: no bearings (free-free validation models).
+    ``attachments=False``: the bare shaft."""
+    import scipy.sparse as sp
+
+    from shaftfe import fem, supports
+
+    _check_options(options)
+    if shaft_mesh is None:
+        from shaftfe.mesh import build_mesh
+        shaft_mesh = build_mesh(variant, options.level, options.order, cache_dir=cache_dir)
+    m = shaft_mesh.mesh
+    mat = variant.material
+    t0 = time.perf_counter()
+    K = fem.elasticity_stiffness(m, mat.E_MPa, mat.nu)
+    Ms, Ss = mass_and_gyro(m, mat.density_t_mm3)
+    M = vector_matrix(Ms)
+    G = vector_matrix(Ss - Ss.T)
+    N3 = K.shape[0]
+    bodies = attachment_bodies(variant, m) if attachments else []
+    notes = ["spin softening and stress stiffening: off"]
+    T = None
+    body_rows = []          # (6, n_q) rows giving each body's motion, for the labels
+    body_terms = []         # distributing coupling: low-rank mass/gyroscopic terms
+    if bodies and options.coupling == "rigid":
+        slave_of = np.full(N3 // 3, -1)
+        for k, b in enumerate(bodies):
+            nodes = fem.face_nodes(m, b.facets)
+            if np.any(slave_of[nodes] >= 0):
+                raise InputError(f"variant {variant.name}", "attachment seats",
+                                 "seats that share no mesh node", got=b.name)
+            slave_of[nodes] = k
+        keep = np.flatnonzero(slave_of < 0)
+        keep_dofs = (3 * keep[:, None] + np.arange(3)).ravel()
+        n_q = keep_dofs.size + 6 * len(bodies)
+        rows, cols, vals = [keep_dofs], [np.arange(keep_dofs.size)], [np.ones(keep_dofs.size)]
+        for k, b in enumerate(bodies):
+            nodes = np.flatnonzero(slave_of == k)
+            Tn = _rigid_T(m.doflocs[:, nodes], np.array([b.x_mm, 0.0, 0.0]))   # (3n, 6)
+            d = (3 * nodes[:, None] + np.arange(3)).ravel()
+            c0 = keep_dofs.size + 6 * k
+            rows.append(np.repeat(d, 6))
+            cols.append(np.tile(c0 + np.arange(6), d.size))
+            vals.append(Tn.ravel())
+        T = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                          shape=(N3, n_q))
+        Tt = T.T.tocsr()
+        K = (Tt @ K @ T).tocsr()
+        M = (Tt @ M @ T).tolil()
+        G = (Tt @ G @ T).tolil()
+        for k, b in enumerate(bodies):
+            idx = keep_dofs.size + 6 * k + np.arange(6)
+            M[np.ix_(idx, idx)] = M[np.ix_(idx, idx)].toarray() + b.M6
+            G[np.ix_(idx, idx)] = G[np.ix_(idx, idx)].toarray() + b.G6
+            Rb = np.zeros((6, n_q))
+            Rb[:, idx] = np.eye(6)
+            body_rows.append(Rb)
+        M, G = M.tocsr(), G.tocsr()
+        notes.append(f"attachments: {len(bodies)} rigid bodies tied rigidly (RBE2-like) to "
+                     "their seat faces (stiffen the seats like bonded hubs)")
+    elif bodies:
+        for b in bodies:
+            R6 = fem.rigid_rows(m, b.facets, (b.x_mm, 0.0, 0.0))
+            R6[np.abs(R6) < 1e-14 * np.abs(R6).max()] = 0.0
+            body_terms.append(BodyTerm(b.name, R6, b.M6, b.G6))
+            body_rows.append(R6)
+        notes.append(f"attachments: {len(bodies)} rigid bodies on distributing (RBE3-like) "
+                     "couplings to their seat faces (no seat stiffening)")
+    terms = []
+    if supported:
+        if not variant.bearings:
+            raise InputError(f"variant {variant.name}", "bearings", "at least one bearing",
+                             got=0)
+        for brg in variant.bearings:
+            hold = options.hold_twist == "all" or (options.hold_twist == "axial" and brg.axial)
+            grp = (support_faces or {}).get(brg.name)
+            c = supports.couple_bearing(m, brg, rigid=options.rigid_supports, hold_twist=hold,
+                                        group=grp)
+            for blk in supports.blocks(c):
+                R = blk.R if T is None else np.asarray((T.T @ blk.R.T).T)
+                Cd = None
+                if blk.C is not None and blk.labels == ("u_y", "u_z") \
+                        and options.bearing_damping > 0:
+                    Cd = options.bearing_damping * np.eye(2)
+                terms.append(LowRank(blk.bearing, blk.labels, R,
+                                     None if blk.C is None else np.asarray(blk.C, float), Cd))
+        if options.bearing_damping > 0:
+            notes.append("bearing damping on: frequencies are damped natural frequencies")
+        notes.append(f"bearings: RBE3 remote points, θ_x held at {options.hold_twist} "
+                     "bearing(s), u_x at the axial one (as in the static 3D model)")
+    K = K.tocsr()
+    lab = _labelling(m, Ms, T, body_rows, bodies, M)
+    return SolidRotor(variant.name, variant, shaft_mesh, options, K, M, G, tuple(terms), T,
+                      tuple(bodies), lab, tuple(body_terms), tuple(notes),
+                      time.perf_counter() - t0)
+
+
+def _labelling(mesh, Ms, T, body_rows, bodies, M) -> Labelling:
+    """Section motions of x slices (least-squares rigid fit, diag(M) weights) + bodies."""
+    import scipy.sparse as sp
+
+    x = mesh.doflocs
+    w = np.asarray(Ms.diagonal())
+    x0, x1 = float(x[0].min()), float(x[0].max())
+    n_sl = int(min(40, max(8, round((x1 - x0) / 5.0))))
+    edges = np.linspace(x0, x1, n_sl + 1)
+    sl = np.clip(np.searchsorted(edges, x[0], side="right") - 1, 0, n_sl - 1)
+    wts = []
+
+    def add_feature_rows(F, mass, J):
+        """F (6, ·) rows (u_x, u_y, u_z, θ_x, θ_y, θ_z) → features u_x, u_y, u_z, ρ_p θ_x,
+        ρ_t θ_z, −ρ_t θ_y; weights = mass."""
+        rp = math.sqrt(max(J[3, 3], 0.0) / mass) if mass > 0 else 1.0
+        rt = math.sqrt(max(0.5 * (J[4, 4] + J[5, 5]), 0.0) / mass) if mass > 0 else 1.0
+        feats = [F[0], F[1], F[2], rp * F[3], rt * F[5], -rt * F[4]]
+        out = []
+        for f in feats:
+            out.append(f)
+            wts.append(mass)
+        return out
+
+    blocks = []
+    for s in range(n_sl):
+        nodes = np.flatnonzero(sl == s)
+        if nodes.size < 4:
+            continue
+        xc = np.array([0.5 * (edges[s] + edges[s + 1]), 0.0, 0.0])
+        Phi = _rigid_T(x[:, nodes], xc)                       # (3n, 6)
+        W = np.repeat(w[nodes], 3)
+        J = Phi.T @ (W[:, None] * Phi)
+        try:
+            P = np.linalg.solve(J, Phi.T * W[None, :])        # (6, 3n)
+        except np.linalg.LinAlgError:
+            continue
+        d = (3 * nodes[:, None] + np.arange(3)).ravel()
+        F = sp.csr_matrix((P.ravel(), (np.repeat(np.arange(6), d.size), np.tile(d, 6))),
+                          shape=(6, x.shape[1] * 3))
+        if T is not None:
+            F = F @ T
+        blocks.extend(add_feature_rows([F[i] for i in range(6)], float(W.sum() / 3), J))
+    for Rb, b in zip(body_rows, bodies, strict=True):
+        Rb = sp.csr_matrix(Rb)
+        blocks.extend(add_feature_rows([Rb[i] for i in range(6)], b.mass_t, b.M6))
+    Tr = sp.vstack(blocks).tocsr()
+    nf = Tr.shape[0]
+    kind = np.tile(np.arange(6), nf // 6)
+    groups = MappingProxyType({"axial": np.flatnonzero(kind == 0),
+                               "torsional": np.flatnonzero(kind == 3),
+                               "lateral": np.flatnonzero(np.isin(kind, (1, 2, 4, 5)))})
+    py = np.concatenate([np.flatnonzero(kind == 1), np.flatnonzero(kind == 4)])
+    pz = np.concatenate([np.flatnonzero(kind == 2), np.flatnonzero(kind == 5)])
+    return Labelling(groups=groups, pair_y=py, pair_z=pz, weights=np.array(wts),
+                     transform=Tr)
+
+
+# --------------------------------------------------------------------------- solves
+
+class ShiftedSolver:
+    """Solves (K_tot + σ D + σ² M) x = b with the hard rows H x = 0 (D = C + Ω G), by one
+    sparse factorisation of B = K + σ Ω G + σ² M (+ σ C of nothing: damping is low rank)
+    and a Woodbury correction with the support terms."""
+
+    def __init__(self, rotor: SolidRotor, sigma: float, Omega: float = 0.0,
+                 method: str | None = None):
+        from shaftfe import solvers
+
+        t0 = time.perf_counter()
+        B = (rotor.K_sparse + (sigma * sigma) * rotor.M_sparse).tocsr()
+        method = rotor.options.solver if method is None else method
+        if Omega != 0.0 and sigma != 0.0:
+            B = (B + (sigma * Omega) * rotor.G_sparse).tocsr()
+            self._fac = _unsym_factor(B, method)
+        else:
+            self._fac = solvers.factorize(B, _auto_method(method, B.shape[0]))
+        self.name = self._fac.name
+        self.factor_seconds = time.perf_counter() - t0
+        U, Cinv = [], []
+        if sigma != 0.0:
+            for b in rotor.body_terms:          # σ² M_b + σ Ω G_b on the body's rows
+                U.append(b.R.T)
+                Cinv.append(np.linalg.inv(sigma * sigma * b.M6 + sigma * Omega * b.G6))
+        for t in rotor.terms:
+            U.append(t.R.T)
+            r = t.R.shape[0]
+            if t.C is None:
+                Cinv.append(np.zeros((r, r)))
+            else:
+                Ct = t.C + (sigma * t.Cd if t.Cd is not None else 0.0)
+                Cinv.append(np.linalg.inv(Ct))
+        self.n = B.shape[0]
+        self.n_solves = 0
+        if U:
+            from scipy.linalg import block_diag, lu_factor
+
+            self.U = np.hstack(U)
+            self.Z = self._fac.solve(self.U)                        # B⁻¹ U
+            S = block_diag(*Cinv) + self.U.T @ self.Z
+            D = 1.0 / np.sqrt(np.abs(np.diag(S)))
+            self._D = D
+            Sd = D[:, None] * S * D[None, :]
+            self.cond_S = float(np.linalg.cond(Sd))
+            if not np.isfinite(self.cond_S) or self.cond_S > 1e13:
+                raise SolverError(f"the support system is singular (cond(S) = "
+                                  f"{self.cond_S:.3g}): a support is missing or redundant")
+            self._S = lu_factor(Sd)
+        else:
+            self.U = None
+            self.cond_S = 1.0
+        self.seconds = time.perf_counter() - t0
+
+    def solve(self, b):
+        from scipy.linalg import lu_solve
+
+        b = np.asarray(b)
+        if np.iscomplexobj(b):
+            return self.solve(b.real) + 1j * self.solve(b.imag)
+        self.n_solves += 1 if b.ndim == 1 else b.shape[1]
+        y = self._fac.solve(b)
+        if self.U is None:
+            return y
+        lam = self._D[:, None] * lu_solve(self._S, self._D[:, None] * (
+            self.U.T @ y.reshape(self.n, -1)))
+        return (y.reshape(self.n, -1) - self.Z @ lam).reshape(y.shape)
+
+
+class _SuperLUUnsym:
+    name = "superlu"
+
+    def __init__(self, A):
+        import scipy.sparse as sp
+        from scipy.sparse.linalg import splu
+        self._lu = splu(sp.csc_matrix(A))
+
+    def solve(self, b):
+        return self._lu.solve(np.asarray(b, dtype=float))
+
+
+class _PardisoUnsym:
+    name = "pardiso"
+
+    def __init__(self, A):
+        import pypardiso
+        import scipy.sparse as sp
+        self._s = pypardiso.PyPardisoSolver(mtype=11)
+        self._A = sp.csr_matrix(A)
+        self._A.sort_indices()
+        self._s.factorize(self._A)
+
+    def solve(self, b):
+        b = np.asarray(b, dtype=float)
+        return np.asarray(self._s.solve(self._A, np.ascontiguousarray(b))).reshape(b.shape)
+
+
+def _auto_method(method: str, n: int) -> str:
+    """``auto`` for the symmetric factorisation: SuperLU. The basis needs ~3 m single-vector
+    solves after one factorisation, and PARDISO's per-solve cost dominates (measured on x2_57
+    coarse, 70k dofs: PARDISO 3.3 s factorisation + 0.17 s per solve on an idle machine,
+    7.1 s + 1.4 s per solve at load 10; SuperLU 8-15 s + 0.05-0.3 s;
+    reports/benchmarks/rotor_solid.md). The nonsymmetric factorisation of ``verify`` uses
+    PARDISO when installed (159 s vs 274 s at load 10)."""
+    return "superlu" if method == "auto" else method
+
+
+def _unsym_factor(A, method: str):
+    """PARDISO (real nonsymmetric) if installed and asked for or ``auto`` on a model of
+    ≥ 30k dofs (its setup costs ~1 s), else SuperLU."""
+    from shaftfe.solvers import available
+    big = A.shape[0] >= 30_000
+    if (method == "pardiso" or (method == "auto" and big)) and available()["pardiso"]:
+        return _PardisoUnsym(A)
+    return _SuperLUUnsym(A)
+
+
+class BasisProvider:
+    """Lowest undamped modes by shift-invert Lanczos, one factorisation, cached: asking for
+    m ≤ the modes already computed slices them."""
+
+    def __init__(self, rotor: SolidRotor, solver: ShiftedSolver | None = None,
+                 sigma: float | None = None):
+        self.rotor = rotor
+        self.sigma = -TWO_PI * rotor.options.shift_hz if sigma is None else sigma
+        self.solver = solver or ShiftedSolver(rotor, self.sigma)
+        self._basis: ModalBasis | None = None
+        self.eig_seconds = 0.0
+
+    def __call__(self, m: int) -> ModalBasis:
+        if self._basis is not None and self._basis.omega.size >= m:
+            return ModalBasis(np.ascontiguousarray(self._basis.Phi[:, :m]),
+                              self._basis.omega[:m])
+        from scipy.sparse.linalg import LinearOperator, eigsh
+
+        t0 = time.perf_counter()
+        r = self.rotor
+        n = r.n_dof
+        op = LinearOperator((n, n), matvec=self.solver.solve, dtype=float)
+        lam_s = -self.sigma**2
+        w2, Phi = eigsh(r.K, k=m, M=r.M, sigma=lam_s, which="LM", OPinv=op, tol=1e-12)
+        order = np.argsort(w2)
+        w2, Phi = w2[order], Phi[:, order]
+        mm = np.einsum("ij,ij->j", Phi, np.asarray(r.M @ Phi))
+        Phi = Phi / np.sqrt(mm)
+        self._basis = ModalBasis(Phi=Phi, omega=np.sqrt(np.clip(w2, 0.0, None)))
+        self.eig_seconds += time.perf_counter() - t0
+        return self._basis
+
+    def residuals(self) -> np.ndarray | None:
+        """(K + σ² M)⁻¹ Rᵀ of the damped rows (static-like residual vectors for damping)."""
+        R = [t.R for t in self.rotor.terms if t.Cd is not None]
+        if not R:
+            return None
+        return self.solver.solve(np.vstack(R).T)
+
+
+# --------------------------------------------------------------------------- analyses
+
+def campbell(rotor: SolidRotor, rpms: Sequence[float], n_modes: int = 12, *,
+             orders: Sequence[float] = (1.0,), tol: float = 1e-6, keep_vectors: bool = False,
+             provider: BasisProvider | None = None) -> CampbellResult:
+    """Campbell sweep of the solid rotor (reduced basis, MAC tracking, labels, criticals)."""
+    prov = provider or BasisProvider(rotor)
+    res = sweep(rotor.K, rotor.M, rotor.G, rpms, n_modes, rotor.labelling, C=rotor.C,
+                orders=orders, tol=tol, keep_vectors=keep_vectors, basis_fn=prov,
+                residuals=prov.residuals())
+    return replace(res, notes=res.notes + rotor.notes)
+
+
+def modal(rotor: SolidRotor, rpm: float = 0.0, n_modes: int = 12, *,
+          keep_vectors: bool = False, provider: BasisProvider | None = None) -> CampbellResult:
+    return campbell(rotor, [rpm], n_modes, keep_vectors=keep_vectors, provider=provider)
+
+
+def full_qep(rotor: SolidRotor, Omega: float, n_modes: int, *, sigma: float | None = None,
+             method: str | None = None):
+    """The ``n_modes`` lowest oscillatory eigenvalues (Im s > 0) of the full-size quadratic
+    eigenproblem with the hard rows, by shift-invert Arnoldi on the companion pencil
+    A − s B, A = [[0, I], [−K, −D]], B = [[I, 0], [0, M]] at the real shift σ: the operator
+    (A − σB)⁻¹ B needs one factorisation of K + σ D + σ² M (``ShiftedSolver``)."""
+    from scipy.sparse.linalg import LinearOperator, eigs
+
+    sigma = -TWO_PI * rotor.options.shift_hz if sigma is None else sigma
+    sol = ShiftedSolver(rotor, sigma, Omega, method)
+    n = rotor.n_dof
+    M, G = rotor.M, rotor.G
+    Cop = rotor.C
+
+    def D(y):
+        out = Omega * (G @ y)
+        return out + Cop @ y if Cop is not None else out
+
+    def op(y):
+        y1, y2 = y[:n], y[n:]
+        x1 = -sol.solve(M @ y2 + D(y1) + sigma * (M @ y1))
+        return np.concatenate([x1, y1 + sigma * x1])
+
+    k = min(2 * n - 2, 2 * n_modes + 8)
+    v0 = np.random.default_rng(0).standard_normal(2 * n)       # reproducible start vector
+    mu = eigs(LinearOperator((2 * n, 2 * n), matvec=op, dtype=float), k=k, which="LM",
+              return_eigenvectors=False, tol=1e-12, v0=v0)
+    s = sigma + 1.0 / mu
+    scale = float(np.max(np.abs(s))) if s.size else 1.0
+    keep = (np.abs(s) > 1e-6 * scale) & (s.imag > 1e-9 * np.abs(s))
+    s = s[keep]
+    return s[np.argsort(s.imag)][:n_modes]
+
+
+def verify(rotor: SolidRotor, res: CampbellResult, rpm: float | None = None):
+    """Full-size quadratic eigenproblem at ``rpm`` (default the top speed of ``res``) against
+    the reduced sweep (the same matching as ``shaftfe.rotor.verify``)."""
+    from shaftfe.rotor import Verification
+
+    i = int(np.argmax(res.rpm)) if rpm is None else int(np.flatnonzero(
+        np.isclose(res.rpm, rpm))[0])
+    n = res.freq_hz.shape[1]
+    s = full_qep(rotor, float(res.rpm[i]) * TWO_PI / 60.0, n + 6)
+    f_all = s.imag / TWO_PI
+    f_red = np.sort(res.freq_hz[i])
+    f_full = f_all[np.argmin(np.abs(f_all[None, :] - f_red[:, None]), axis=1)]
+    diff = float(np.max(np.abs(f_red - f_full) / f_full))
+    below = f_all[f_all <= f_red.max() * (1 + 1e-6)]
+    matched = np.min(np.abs(below[:, None] - f_red[None, :]) / below[:, None], axis=1) < 1e-3
+    return Verification(float(res.rpm[i]), tuple(f_red.tolist()), tuple(f_full.tolist()), diff,
+                        int(np.count_nonzero(~matched)))
+
+
+def support_energy_share(rotor: SolidRotor, vecs: np.ndarray) -> np.ndarray:
+    num = np.einsum("ij,ij->j", vecs.conj(), rotor.K_support @ vecs).real
+    den = np.einsum("ij,ij->j", vecs.conj(), rotor.K @ vecs).real
+    return num / den
+
+
+# --------------------------------------------------------------------------- output
+
+def mode_field_name(k: int, f_hz: float) -> str:
+    """docs/FIELDS.md: ``mode_<k>_<freq>Hz`` (k from 1, two decimals)."""
+    return f"mode_{k}_{f_hz:.2f}Hz"
+
+
+def write_modes_vtu(rotor: SolidRotor, res: CampbellResult, path, speed_index: int = 0):
+    """Mode shapes of ``res`` (kept vectors) at ``speed_index`` as VTU point fields
+    ``mode_<k>_<f>Hz`` (docs/FIELDS.md: the real part after the phase rotation that makes the
+    largest component real, normalised to a largest nodal displacement of 1); field data
+    ``frequencies_hz`` and ``rpm``. Cells: the volume's tetra10 (P2) or tetra (P1). Written
+    with PyVista/VTK (meshio's VTU writer drops field data)."""
+    import pyvista as pv
+
+    from shaftfe import fem
+    from shaftfe.atomic import atomic_path
+
+    if res.vectors is None:
+        raise ValueError("write_modes_vtu needs a result with keep_vectors=True")
+    m = rotor.shaft_mesh.mesh
+    conn = fem.element_nodes(m).T.astype(np.int64)
+    ctype = pv.CellType.QUADRATIC_TETRA if fem.is_quadratic(m) else pv.CellType.TETRA
+    cells = np.hstack([np.full((conn.shape[0], 1), conn.shape[1]), conn]).ravel()
+    grid = pv.UnstructuredGrid(cells, np.full(conn.shape[0], ctype, dtype=np.uint8),
+                               np.ascontiguousarray(m.doflocs.T))
+    X = res.vectors[speed_index]
+    for j in range(X.shape[1]):
+        u = rotor.mesh_vector(X[:, j])
+        k = int(np.argmax(np.abs(u)))
+        u = (u * np.exp(-1j * np.angle(u[k]))).real.reshape(-1, 3)
+        u = u / max(float(np.linalg.norm(u, axis=1).max()), 1e-300)
+        grid.point_data[mode_field_name(j + 1, float(res.freq_hz[speed_index, j]))] = u
+    grid.field_data["frequencies_hz"] = np.asarray(res.freq_hz[speed_index], dtype=float)
+    grid.field_data["rpm"] = np.array([float(res.rpm[speed_index])])
+    from pathlib import Path
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with atomic_path(path) as tmp:
+        grid.save(str(tmp))
+    return path
