@@ -13,7 +13,8 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 demo: $(STAMP)
-	$(BIN)/shaftfe demo
+	$(BIN)/shaftfe demo --out reports/x2_57
+	@echo "open the report: file://$(CURDIR)/reports/x2_57/index.html"
 
 test: $(STAMP)
 	$(BIN)/ruff check shaftfe tests benchmarks

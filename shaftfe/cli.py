@@ -25,6 +25,7 @@ COMMAND_MODULES = (
     "shaftfe.commands.static",
     "shaftfe.commands.fatigue",
     "shaftfe.commands.view",
+    "shaftfe.commands.report",
     "shaftfe.commands.demo",
 )
 

@@ -9,7 +9,10 @@
   ``stress`` (n, 6) MPa with the components in the order xx, yy, zz, xy, yz, xz
   (``recovery.STRESS_COMPONENTS``), all at the rpm given (fields scale with (rpm/ref)²);
 * cell data ``region``: 0 for the volume, k ≥ 1 for the face group ``regions[k − 1]`` as listed
-  in ``summary.json`` (``vtu.regions``).
+  in ``summary.json`` (``vtu.regions``);
+* optionally further point fields on the same nodes (``extra_point_data``): the assessment report
+  adds the fatigue fields ``safety_factor``, ``life_blocks`` and ``damage_per_block`` of the same
+  static solution, so one file holds the whole run (docs/FIELDS.md).
 
 Files are written to a temporary name and renamed (never half-written).
 """
@@ -21,16 +24,12 @@ from pathlib import Path
 import numpy as np
 
 
-def write_vtu(result, path, rpm: float) -> tuple[Path, list[str]]:
-    """Write the fields of ``result`` (a ``StaticResult``) scaled to ``rpm``. Returns the path
-    and the region names (cell data ``region`` = index + 1)."""
-    import meshio
-
-    from shaftfe import fem, recovery
-    from shaftfe.atomic import atomic_path
+def mesh_cells(m) -> tuple[list, list, list[str]]:
+    """meshio cells of a scikit-fem mesh: the volume (tetra10 / tetra), then the triangles of
+    every named face group; the cell data ``region`` (0 volume, k = names[k − 1]) and the
+    names."""
+    from shaftfe import fem
     from shaftfe.mesh import triangle6_connectivity
-    m = result.mesh.mesh
-    s = (rpm / result.ref_rpm) ** 2
     quad = fem.is_quadratic(m)
     vol = ("tetra10" if quad else "tetra", fem.element_nodes(m).T.astype(np.int64))
     cells = [vol]
@@ -47,18 +46,50 @@ def write_vtu(result, path, rpm: float) -> tuple[Path, list[str]]:
     if tri:
         cells.append(("triangle6" if quad else "triangle", np.concatenate(tri)))
         region = [region[0], np.concatenate(region[1:])]
-    stress = result.stress_ref * s
-    out = meshio.Mesh(
-        np.ascontiguousarray(m.doflocs.T), cells,
-        point_data={"displacement": result.u_ref.reshape(-1, 3) * s,
-                    "von_mises": result.von_mises_ref * s,
-                    "max_principal": recovery.principal(stress)[0],
-                    "stress": np.ascontiguousarray(stress.T)},
-        cell_data={"region": region})
+    return cells, region, names
+
+
+def write_fields_vtu(m, path, point_data: dict) -> tuple[Path, list[str]]:
+    """The mesh ``m`` (scikit-fem) with the given point fields (one row per node; float32 kept,
+    anything else as float64) and the cell data ``region``; written atomically. Returns the path
+    and the region names."""
+    import meshio
+
+    from shaftfe.atomic import atomic_path
+    cells, region, names = mesh_cells(m)
+    n = m.doflocs.shape[1]
+    data = {}
+    for name, arr in point_data.items():
+        a = np.asarray(arr)
+        a = a if a.dtype == np.float32 else a.astype(float)     # float32 stays (mode shapes)
+        if a.shape[:1] != (n,):
+            raise ValueError(f"point field {name!r}: shape {a.shape}, needs ({n}, ...)")
+        data[name] = a
+    out = meshio.Mesh(np.ascontiguousarray(m.doflocs.T), cells, point_data=data,
+                      cell_data={"region": region})
     path = Path(path)
     with atomic_path(path) as tmp:
         meshio.write(tmp, out, file_format="vtu")
     return path, names
+
+
+def write_vtu(result, path, rpm: float, *,
+              extra_point_data: dict | None = None) -> tuple[Path, list[str]]:
+    """Write the fields of ``result`` (a ``StaticResult``) scaled to ``rpm``, plus
+    ``extra_point_data`` (name -> one value per node, or (n, k)), written unscaled. Returns the
+    path and the region names (cell data ``region`` = index + 1)."""
+    from shaftfe import recovery
+    m = result.mesh.mesh
+    s = (rpm / result.ref_rpm) ** 2
+    stress = result.stress_ref * s
+    point_data = {"displacement": result.u_ref.reshape(-1, 3) * s,
+                  "von_mises": result.von_mises_ref * s,
+                  "max_principal": recovery.principal(stress)[0],
+                  "stress": np.ascontiguousarray(stress.T)}
+    for name in extra_point_data or {}:
+        if name in point_data:
+            raise ValueError(f"extra point field {name!r} would replace a static field")
+    return write_fields_vtu(m, path, {**point_data, **(extra_point_data or {})})
 
 
 def plot_png(result, path, rpm: float) -> Path:
@@ -78,10 +109,14 @@ def plot_png(result, path, rpm: float) -> Path:
     if case.beam and "x_line_mm" in case.beam:
         a1.plot(case.beam["x_line_mm"], np.asarray(case.beam["u_line_mm"]) * 1e3, "--",
                 label="beam model")
+    merged: dict[float, list] = {}                 # one label per position (gear + CW1)
     for st in case.stations:
-        a1.plot([st.x_mm], [st.u_mm * 1e3], "o", ms=4)
-        a1.annotate(st.name, (st.x_mm, st.u_mm * 1e3), fontsize=7, rotation=30)
-    a1.set_ylabel("deflection, µm")
+        merged.setdefault(round(st.x_mm, 6), [st.u_mm, []])[1].append(st.name)
+    for x, (u_mm, names) in merged.items():
+        a1.plot([x], [u_mm * 1e3], "o", ms=4)
+        a1.annotate(" + ".join(names), (x, u_mm * 1e3), fontsize=7, rotation=30,
+                    xytext=(3, 3), textcoords="offset points")
+    a1.set_ylabel("deflection [µm]")
     a1.legend(fontsize=8)
     a1.grid(alpha=0.3)
     x = result.mesh.mesh.doflocs[0]
@@ -90,9 +125,10 @@ def plot_png(result, path, rpm: float) -> Path:
     idx = np.clip(np.digitize(x, bins) - 1, 0, bins.size - 2)
     env = np.zeros(bins.size - 1)
     np.maximum.at(env, idx, vm)
-    a2.step(0.5 * (bins[1:] + bins[:-1]), env, where="mid", label="3D FE, max von Mises")
-    a2.set_xlabel("x, mm")
-    a2.set_ylabel("von Mises, MPa")
+    a2.step(0.5 * (bins[1:] + bins[:-1]), env, where="mid",
+            label="3D FE, max von Mises per slice")
+    a2.set_xlabel("x along the shaft [mm]")
+    a2.set_ylabel("von Mises [MPa]")
     a2.grid(alpha=0.3)
     a2.legend(fontsize=8)
     fig.suptitle(f"{result.variant} at {rpm:g} rpm")

@@ -23,11 +23,17 @@ def _plt():
 
 
 def _save(fig, path) -> Path:
+    """Write the figure atomically (never a half-written PNG) and close it."""
+    from shaftfe.atomic import atomic_path
+
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
-    fig.clf()
-    _plt().close(fig)
+    try:
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, dpi=120, bbox_inches="tight",
+                        format=path.suffix.lstrip(".") or None)
+    finally:
+        fig.clf()
+        _plt().close(fig)
     return path
 
 
@@ -61,7 +67,7 @@ def plot_sn_curve(material: FatigueMaterial, path, kf: float = 1.0) -> Path:
                   label="endurance (no damage below)")
     if kf != 1.0:
         ax.loglog(n, kf * s, "-", color="tab:red", label=f"× kf = {kf:g}")
-    ax.set_xlabel("cycles to failure N")
+    ax.set_xlabel("cycles to failure N [-]")
     ax.set_ylabel("alternating stress [MPa] (mean 0)")
     ax.set_title(material.name)
     ax.grid(which="both", alpha=0.3)
@@ -76,8 +82,9 @@ def plot_cycle_matrix(matrix: CycleMatrix, path, title: str = "") -> Path:
     v = np.ma.masked_equal(matrix.values, 0.0)
     mesh = ax.pcolormesh(matrix.mean_edges, matrix.range_edges, v, cmap="viridis",
                          shading="flat")
-    fig.colorbar(mesh, ax=ax, label=("cycles per block" if matrix.quantity == "count"
-                                     else "damage per block"))
+    count = matrix.quantity == "count"
+    fig.colorbar(mesh, ax=ax, label=("cycles per block" if count else "damage per block [-]"),
+                 format=None if count else "%.2g")
     unit = f" [{matrix.units}]" if matrix.units else ""
     ax.set_xlabel("mean" + unit)
     ax.set_ylabel("range" + unit)
@@ -108,6 +115,7 @@ def plot_haigh(sigma_eq_node: float, cycles: Cycles, material: FatigueMaterial, 
     ax.plot(mm, f(mm), "r-", label=f"{theory} line (S_e = {se:.1f} MPa)")
     ax.set_xlabel("mean stress σ_m [MPa]")
     ax.set_ylabel("amplitude σ_a [MPa]")
+    ax.set_title(f"Haigh diagram, {material.name}")
     ax.set_xlim(min(0.0, float(sm.min(initial=0.0))) * 1.05, material.ultimate_MPa * 1.05)
     ax.set_ylim(0, max(se, float(sa.max(initial=0.0))) * 1.15)
     ax.grid(alpha=0.3)

@@ -82,9 +82,27 @@ def physical_gradients(mesh, intorder: int | None = None):
     xe = mesh.doflocs[:, element_nodes(mesh)]                       # (3, nloc, ne)
     J = np.einsum("iae,ajq->eqij", xe, dref)                       # (ne, nq, 3, 3)
     det = np.linalg.det(J)
+    if not det.size or not (det.min() > 0):
+        _refuse_bad_elements(mesh, det)
     Jinv = np.linalg.inv(J)
     dN = np.einsum("eqji,ajq->eqai", Jinv, dref)                   # J⁻ᵀ ∇_ξ φ_a
-    return dN, np.abs(det) * W[None, :]
+    return dN, det * W[None, :]
+
+
+def _refuse_bad_elements(mesh, det: np.ndarray) -> None:
+    """One-line ``SolverError`` naming the worst element with det J ≤ 0 (or not finite) at a
+    quadrature point: a tangled or inverted element would otherwise be integrated with |det J|
+    and give a plausible-looking but wrong result."""
+    from shaftfe.errors import SolverError
+    if not det.size:
+        raise SolverError("the mesh has no elements")
+    worst = np.where(np.isfinite(det), det, -np.inf).min(axis=1)
+    bad = np.nonzero(~(worst > 0))[0]
+    e = int(bad[np.argmin(worst[bad])])
+    c = mesh.p[:, mesh.t[:, e]].mean(axis=1)
+    raise SolverError(f"element {e} (centroid {c[0]:.3f}, {c[1]:.3f}, {c[2]:.3f} mm) is tangled "
+                      f"or inverted: det J = {worst[e]:.3g} <= 0 at a quadrature point "
+                      f"({bad.size} such element(s)); remesh or fix the mesh")
 
 
 def elasticity_stiffness(mesh, E: float, nu: float) -> sp.csr_matrix:
@@ -233,17 +251,29 @@ def rigid_body_modes(mesh, center=(0.0, 0.0, 0.0)) -> np.ndarray:
     return out
 
 
-def surface_load(mesh, facets, force, direction, distribution: str = "uniform") -> np.ndarray:
+def surface_load(mesh, facets, force, direction, distribution: str = "uniform",
+                 cache: dict | None = None) -> np.ndarray:
     """Load vector of a pressure on a face whose net force is exactly ``force`` along
     ``direction`` (a unit vector in the y–z plane).
 
     The pressure acts along the inward normal −n: p = p0 (uniform) or p = p0 max(0, −n·e)
     (cosine distribution about the direction e). p0 is found from the discrete net force, so
     Σ f · e = force to round-off whatever the mesh; the small force across e and torque about
-    the axis that the discretised surface leaves are then removed exactly (see below)."""
+    the axis that the discretised surface leaves are then removed exactly (see below).
+
+    ``cache``: a dict shared by the calls of ONE model build (same mesh); the facet basis, the
+    correction vectors and (uniform) the unscaled pressure vector are reused for a facet set
+    seen before (several parts on one seat): the same numbers, bit for bit."""
     from skfem import LinearForm
     e = np.asarray(direction, dtype=float)
-    fb = facet_basis(mesh, facets)
+    facets = np.asarray(facets)
+    key = (facets.dtype.str, facets.tobytes())
+    hit = cache.get(key) if cache is not None else None
+    if hit is None:
+        hit = {"fb": facet_basis(mesh, facets)}
+        if cache is not None:
+            cache[key] = hit
+    fb = hit["fb"]
     if distribution == "uniform":
         def press(n):
             return 1.0 + 0.0 * n[0]
@@ -258,7 +288,10 @@ def surface_load(mesh, facets, force, direction, distribution: str = "uniform") 
         p = press(w.n)
         return -p * np.einsum("i...,i...->...", w.n, v)
 
-    f = pressure.assemble(fb)
+    pkey = "uniform" if distribution == "uniform" else (distribution, e.tobytes())
+    if pkey not in hit:
+        hit[pkey] = pressure.assemble(fb)
+    f = hit[pkey].copy()
     net = f.reshape(-1, 3).sum(axis=0) @ e
     if not net > 0:
         raise ValueError("the loaded face gives no force along the load direction")
@@ -289,7 +322,9 @@ def surface_load(mesh, facets, force, direction, distribution: str = "uniform") 
         g3 = g.reshape(-1, 3)
         return np.array([g3[:, 0].sum(), g3[:, 1].sum(), g3[:, 2].sum(),
                          (x[1] * g3[:, 2] - x[2] * g3[:, 1]).sum()])
-    corr = [t.assemble(fb) for t in (traction_x, traction_y, traction_z, twist)]
+    if "corr" not in hit:
+        hit["corr"] = [t.assemble(fb) for t in (traction_x, traction_y, traction_z, twist)]
+    corr = hit["corr"]
     M = np.column_stack([resultant(g) for g in corr])
     target = np.array([0.0, force * e[1], force * e[2], 0.0])
     coef = np.linalg.solve(M, target - resultant(f))

@@ -21,9 +21,16 @@ residual of every solve after.
 
 from __future__ import annotations
 
+import os
 import time
 
 import numpy as np
+
+# MKL's conditional numerical reproducibility (PARDISO): without it a solve may differ in the
+# last bits from one process to the next (measured: the refinement solve of
+# ``static.solve_model``), which breaks bit-identical summaries (tests/test_determinism.py).
+# Set before pypardiso loads MKL; a value the user set wins.
+os.environ.setdefault("MKL_CBWR", "AUTO,STRICT")
 import scipy.sparse as sp
 
 METHODS = ("auto", "superlu", "pardiso", "amg")

@@ -23,6 +23,10 @@ Stored arrays: ``stress_ref`` (6, n) MPa in the order xx yy zz xy yz xz, ``von_m
 ``seat:<part>``, bearing seats as ``seat:bearing:<side>``), the volume cells and the face-group
 triangles for the VTU.
 
+The metadata also keep the static solve's relative residual (``StaticReference.
+relative_residual``, None for files written before it), which ``shaftfe fatigue`` summaries
+report.
+
 Directory: ``cache_dir``, else ``$SHAFTFE_CACHE_DIR``, else ``~/.cache/shaftfe`` (as the mesh
 cache). Writes are atomic (a temporary file renamed into place); an unreadable, truncated or
 foreign file is recomputed and overwritten, never a crash; a read-only cache directory only
@@ -74,6 +78,7 @@ class StaticReference:
     from_cache: bool
     seconds: float                                   # wall time of this call
     notes: tuple[str, ...] = ()
+    relative_residual: float | None = None           # of the static solve (≤ 1e-8 checked)
 
     def __post_init__(self) -> None:
         for name in ("stress_ref", "von_mises_ref", "xyz", "excluded", "cells", "face_cells",
@@ -239,8 +244,13 @@ def from_result(res, key: str = "", seconds: float = 0.0) -> StaticReference:
         xyz=np.asarray(m.doflocs, dtype=float), excluded=excl, regions=static.region_nodes(m),
         cells=fem.element_nodes(m).T.astype(np.int64), face_cells=fc, face_group=gid,
         face_groups=names, n_elements=int(res.n_elements),
-        solve_seconds=float(res.diagnostics.get("total_seconds", seconds)), from_cache=False,
-        seconds=seconds)
+        solve_seconds=float(getattr(res, "run", {}).get("total_seconds", seconds)),
+        from_cache=False, seconds=seconds, relative_residual=_float_or_none(
+            res.diagnostics.get("relative_residual")))
+
+
+def _float_or_none(v) -> float | None:
+    return float(v) if isinstance(v, int | float) and math.isfinite(v) else None
 
 
 def _save(path: Path, ref: StaticReference) -> None:
@@ -248,7 +258,8 @@ def _save(path: Path, ref: StaticReference) -> None:
     meta = {"format": STATIC_CACHE_FORMAT, "key": ref.key, "variant": ref.variant,
             "variant_hash": ref.variant_hash, "options": ref.options, "ref_rpm": ref.ref_rpm,
             "mesh_key": ref.mesh_key, "regions": names, "face_groups": list(ref.face_groups),
-            "n_elements": ref.n_elements, "solve_seconds": ref.solve_seconds}
+            "n_elements": ref.n_elements, "solve_seconds": ref.solve_seconds,
+            "relative_residual": ref.relative_residual}
     arrays = {"stress_ref": ref.stress_ref, "von_mises_ref": ref.von_mises_ref, "xyz": ref.xyz,
               "excluded": ref.excluded, "cells": ref.cells, "face_cells": ref.face_cells,
               "face_group": ref.face_group,
@@ -290,7 +301,8 @@ def _load(path: Path, key: str, name: str, t0: float) -> StaticReference | None:
             ref_rpm=float(meta["ref_rpm"]), mesh_key=str(meta["mesh_key"]), key=key,
             regions=regions, face_groups=tuple(meta["face_groups"]),
             n_elements=int(meta["n_elements"]), solve_seconds=float(meta["solve_seconds"]),
-            from_cache=True, seconds=time.perf_counter() - t0, **arr)
+            from_cache=True, seconds=time.perf_counter() - t0,
+            relative_residual=_float_or_none(meta.get("relative_residual")), **arr)
         if not math.isfinite(ref.ref_rpm) or ref.ref_rpm <= 0:
             return None
         return ref

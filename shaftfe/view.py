@@ -284,15 +284,22 @@ def values(grid, choice: FieldChoice):
     return arr[:, _component_index(choice.component)]
 
 
-def hot_spot(grid, choice: FieldChoice, vals=None) -> HotSpot | None:
+def hot_spot(grid, choice: FieldChoice, vals=None, exclude=None) -> HotSpot | None:
     """Max of the field (min for safety factor and life; max |value| for a signed component)
-    over all finite values; coordinates of the node (point field) or cell centre."""
+    over all finite values; coordinates of the node (point field) or cell centre. ``exclude``:
+    ids (points or cells) left out of the search, e.g. the singular points of the analysis;
+    ignored if it would leave nothing."""
     import numpy as np
 
     if choice.rule == "none":
         return None
     v = values(grid, choice) if vals is None else vals
     finite = np.isfinite(v)
+    if exclude is not None and np.size(exclude):
+        keep = finite.copy()
+        keep[np.asarray(exclude, dtype=np.int64)] = False
+        if keep.any():
+            finite = keep
     if not finite.any():
         return None
     if choice.rule == "min":
@@ -479,9 +486,13 @@ def parse_warp(text: str | float | None) -> float | str:
 def render(path, field: str | None = None, component: str | None = None,
            warp: float | str = 0.0, edges: bool = False, screenshot=None,
            window_size: tuple[int, int] = (1600, 900), camera: str = "iso",
-           off_screen: bool | None = None) -> ViewResult:
+           off_screen: bool | None = None, hot_exclude=None,
+           zoom: float | None = None) -> ViewResult:
     """Load ``path``, render ``field`` and either save ``screenshot`` (written atomically) or
-    open an interactive window. Input errors are raised before anything is drawn."""
+    open an interactive window. Input errors are raised before anything is drawn.
+    ``hot_exclude``: point/cell ids the hot spot is not searched in (drawn all the same).
+    ``zoom``: camera zoom after fitting the model (default 1.35; the yz end view fits the
+    cross-section instead)."""
     import numpy as np
 
     from shaftfe.errors import InputError
@@ -505,7 +516,7 @@ def render(path, field: str | None = None, component: str | None = None,
         raise InputError(str(path), choice.name, "at least one finite value",
                          reason="has no finite values")
     vmin, vmax = float(vals[finite].min()), float(vals[finite].max())
-    hot = hot_spot(grid, choice, vals)
+    hot = hot_spot(grid, choice, vals, exclude=hot_exclude)
 
     warp_note = None
     disp = grid.point_data["displacement"] if "displacement" in grid.point_data.keys() else None
@@ -537,7 +548,7 @@ def render(path, field: str | None = None, component: str | None = None,
     edge_lines = element_edges(bnd, level) if edges else None
     names = group_names(grid, path) if choice.rule == "none" else {}
     plotter = _plot(path, surf, edge_lines, choice, vmin, vmax, hot, factor,
-                    shape_field, grid, window_size, camera, off_screen, names)
+                    shape_field, grid, window_size, camera, off_screen, names, zoom)
     try:
         if shot is not None:
             _screenshot(plotter, shot)
@@ -555,7 +566,7 @@ def render(path, field: str | None = None, component: str | None = None,
 
 
 def _plot(path, surf, edge_src, choice, vmin, vmax, hot, factor, shape_field, grid,
-          window_size, camera, off_screen, names):
+          window_size, camera, off_screen, names, zoom=None):
     import numpy as np
     import pyvista as pv
 
@@ -608,7 +619,7 @@ def _plot(path, surf, edge_src, choice, vmin, vmax, hot, factor, shape_field, gr
         across = max(b[1, 1] - b[1, 0], b[2, 1] - b[2, 0], 1e-9)
         p.camera.zoom(float(np.clip(0.5 * surf.length / across, 0.9, 8.0)))
     else:
-        p.camera.zoom(1.35)
+        p.camera.zoom(1.35 if zoom is None else float(zoom))
     if hot is not None:
         xyz = np.array(hot.xyz)
         if factor and choice.association == "point":
@@ -621,6 +632,12 @@ def _plot(path, surf, edge_src, choice, vmin, vmax, hot, factor, shape_field, gr
         b = np.asarray(surf.bounds, float).reshape(3, 2)
         lift = 0.75 * max(b[1, 1] - b[1, 0], b[2, 1] - b[2, 0], 0.1 * surf.length)
         anchor = xyz + lift * np.asarray(p.camera.up, float)
+        if camera == "iso":
+            # the label grows to the right of its anchor: near the right end of the shaft,
+            # move the anchor left along the axis so that the text stays in the picture
+            t = (xyz[0] - b[0, 0]) / max(b[0, 1] - b[0, 0], 1e-9)
+            if t > 0.7:
+                anchor = anchor - np.array([0.28 * (b[0, 1] - b[0, 0]), 0.0, 0.0])
         p.add_mesh(pv.Sphere(radius=0.015 * surf.length, center=xyz), color="magenta")
         p.add_mesh(pv.Line(xyz, anchor), color="black", line_width=2)
         p.add_point_labels(anchor.reshape(1, 3), [text], font_size=18, show_points=False,

@@ -152,6 +152,46 @@ def test_every_solve_in_equilibrium(base):
     assert base.diagnostics["cond_S"] < 1e8
 
 
+def test_run_time_entries_are_kept_out_of_the_diagnostics(base):
+    """Wall-clock seconds and the mesh-cache flag measure the run, not the result: they sit in
+    ``StaticResult.run`` (summary.json "run"), never in ``diagnostics`` (issue 8)."""
+    run_keys = {"factor_seconds", "solve_seconds", "mesh_seconds", "mesh_from_cache",
+                "assembly_seconds", "model_seconds", "recovery_seconds", "total_seconds"}
+    assert run_keys <= set(base.run)
+    assert not run_keys & set(base.diagnostics)
+    d = base.to_dict()
+    assert d["run"] == base.run and not run_keys & set(d["diagnostics"])
+
+
+def test_static_cache_keeps_the_relative_residual(base, cache):
+    """The static reference that ``shaftfe fatigue`` reuses carries the solve's relative
+    residual, through the disk cache too (reference: the solve's own diagnostics)."""
+    from shaftfe import static_cache
+    from shaftfe.static import StaticOptions
+    opts = StaticOptions(level="default")
+    ref = static_cache.store(cylinder(), opts, base, cache)
+    assert ref.relative_residual == base.diagnostics["relative_residual"] <= 1e-8
+    hit = static_cache.load_or_solve(cylinder(), opts, cache)
+    assert hit.from_cache and hit.relative_residual == ref.relative_residual
+
+
+def test_surface_load_cache_is_bit_identical(cache):
+    """Parts sharing a seat share its facet basis within one model build: the cached load
+    vectors equal the uncached ones bit for bit (uniform and cosine, two directions)."""
+    from shaftfe import fem
+    from shaftfe.mesh import build_mesh
+    m = build_mesh(cylinder(), "default", cache_dir=cache).mesh
+    facets = m.boundaries["load:w:pressed"]
+    shared: dict = {}
+    for dist in ("uniform", "cosine"):
+        for ang, F in ((0.0, 100.0), (20.0, 3.5)):
+            e = np.array([0.0, math.cos(math.radians(ang)), math.sin(math.radians(ang))])
+            ref = fem.surface_load(m, facets, F, e, dist)
+            got = fem.surface_load(m, facets, F, e, dist, cache=shared)
+            assert np.array_equal(ref, got), (dist, ang)
+    assert len(shared) == 1
+
+
 def test_doubling_rpm_multiplies_stresses_by_four(base):
     """Centrifugal loads are m e ω²: 2× rpm → 4× load → 4× every stress, deflection and
     reaction (linearity)."""

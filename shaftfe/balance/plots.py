@@ -64,7 +64,7 @@ def plot_forces(result, path: str | Path) -> Path:
     ax2 = fig.add_subplot(1, 3, 2, projection="polar")
     th = np.arctan2(result.Fy, result.Fx)
     ax2.plot(np.append(th, th[:1]), np.append(result.F, result.F[:1]))
-    ax2.set_title("|F| vs force direction (engine frame)", fontsize=9)
+    ax2.set_title("|F| [N] against the force direction (engine frame)", fontsize=9)
     ax3 = fig.add_subplot(1, 3, 3)
     ax3.plot(result.Fx, result.Fy)
     ax3.plot([0], [0], "k+")

@@ -177,6 +177,7 @@ def run(args) -> int:
     static_info = {
         "from_cache": ref.from_cache, "seconds": ref.seconds,
         "solve_seconds": ref.solve_seconds, "ref_rpm": ref.ref_rpm, "cache_key": ref.key,
+        "relative_residual": ref.relative_residual,
         "mesh_key": ref.mesh_key, "variant_hash": ref.variant_hash, "options": ref.options,
         "n_nodes": ref.n_nodes, "n_elements": ref.n_elements, "n_excluded_nodes": ff.n_excluded,
         "notes": list(ref.notes)}

@@ -104,7 +104,7 @@ def run(args) -> int:
     d = res.diagnostics
     print(f"variant {res.variant}: P{opts.order} {opts.level}, {res.n_dofs} dofs, "
           f"{'rigid supports' if opts.rigid_supports else 'bearing springs'}, solver "
-          f"{d['solver']}, {d['total_seconds']:.1f} s")
+          f"{d['solver']}, {res.run['total_seconds']:.1f} s")
     for c in res.cases:
         print()
         rows = []

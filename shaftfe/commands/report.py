@@ -1,0 +1,106 @@
+"""`shaftfe report`: the whole assessment of a variant as one HTML page (issue 7).
+
+Stdlib only at module level; the FE stack is imported by ``shaftfe.report.assemble`` inside the
+handler, so ``shaftfe report --help`` stays instant.
+"""
+
+from __future__ import annotations
+
+
+def register(sub) -> None:
+    p = sub.add_parser(
+        "report", help="run the whole assessment once and write an HTML report",
+        description="Balancing at the engine's speed, the 3D static solution at the design "
+        "speeds (one solve, scaled by rpm²), fatigue on the rpm history (reusing that solve, "
+        "rainflow counted once) and the Campbell diagram from 0 to the engine's maximum speed, "
+        "on one mesh and one model. Writes <out>/index.html (self-contained: images embedded; "
+        "also in <out>/figures/), <out>/summary.json and <out>/<variant>.vtu. A progress "
+        "display of the stages goes to stderr on a terminal (not with --json).")
+    p.add_argument("--variant", default="x2_57", help="variant name or path (default x2_57)")
+    p.add_argument("--spectrum", default=None,
+                   help="rpm history (default: the bundled loadspectra/rpm.dat)")
+    p.add_argument("--engine", default="vm450", help="engine file (default vm450)")
+    p.add_argument("--level", default="default", help="mesh level: coarse | default | fine")
+    p.add_argument("--rotor-model", default="beam",
+                   help="rotor model of the Campbell diagram: beam (default) | solid")
+    p.add_argument("--campbell-step", type=float, default=500.0, metavar="RPM",
+                   help="speed step of the Campbell sweep in rpm (default 500)")
+    p.add_argument("--estimate-error", action="store_true",
+                   help="solve a second mesh level (coarse for default, default for coarse "
+                   "and fine) for a Richardson estimate of the stress and deflection errors "
+                   "(default: the measured error of the level from reports/benchmarks)")
+    p.add_argument("--no-pictures", action="store_true",
+                   help="skip the PyVista 3D pictures")
+    p.add_argument("--cache-dir", default=None,
+                   help="mesh and static cache directory (default $SHAFTFE_CACHE_DIR or "
+                   "~/.cache/shaftfe)")
+    p.add_argument("--json", action="store_true",
+                   help="print summary.json to stdout instead of the text summary (no "
+                   "progress display)")
+    p.add_argument("--out", default=None, help="output directory (default reports/<variant>)")
+    p.set_defaults(handler=run)
+
+
+def options_from_args(args):
+    from shaftfe.report.assemble import DEFAULT_SPECTRUM, ReportOptions
+
+    return ReportOptions(
+        variant=args.variant, spectrum=args.spectrum or str(DEFAULT_SPECTRUM),
+        engine=args.engine, level=args.level, rotor_model=args.rotor_model,
+        campbell_step_rpm=args.campbell_step, estimate_error=args.estimate_error,
+        cache_dir=args.cache_dir, pictures=not args.no_pictures)
+
+
+def run(args) -> int:
+    return make_report(options_from_args(args), args.out, json_out=args.json)
+
+
+def make_report(options, out=None, *, json_out: bool = False, progress=None) -> int:
+    """Run, write and tell where the report is (the handler of ``report`` and ``demo``)."""
+    import json
+    import sys
+    from pathlib import Path
+
+    from shaftfe import report as report_pkg
+    from shaftfe.commands._common import print_json
+    from shaftfe.progress import Progress
+    from shaftfe.report import assemble
+
+    assemble.check_options(options)
+    variant_name = Path(options.variant).stem
+    out = Path(out) if out else Path("reports") / variant_name
+    prog = progress or Progress(assemble.stages(options), enabled=False if json_out else None)
+    rep = assemble.run_report(options, out, prog)
+    page = report_pkg.write(rep, out)
+    if json_out:
+        print_json(json.loads((out / "summary.json").read_text()))
+        return 0
+    prog.done(f"shaftfe report: {page}")
+    _print_summary(rep, page)
+    sys.stdout.flush()
+    return 0
+
+
+def _print_summary(rep, page) -> None:
+    from shaftfe.commands._common import print_table
+    from shaftfe.report.html import num, pct
+
+    st, fat = rep.static, rep.fatigue
+    hs = fat["hot_spot"]
+    c0 = st["cases"][0]
+    print(f"{rep.inputs['variant']}: {rep.inputs['description']}")
+    print(f"static P{st['order']} {st['level']} ({num(st['n_dofs'])} dofs): peak von Mises "
+          f"{num(c0['peak_von_mises_MPa'], 4)} MPa at {num(c0['rpm'])} rpm ({c0['peak_region']})")
+    print(f"fatigue: life {num(hs['life_blocks'], 4)} blocks = {num(hs['life_hours'], 4)} h = "
+          f"{num(hs['life_km'], 4)} km; safety factor {num(hs['safety_factor'], 3)} at "
+          f"{num(fat['settings']['design_life_blocks'])} blocks; hot spot {hs['region']}")
+    print(f"Campbell: {rep.campbell['statement']}")
+    print()
+    print_table(["quantity", "unit", "seed", "shaftfe", "diff"],
+                [[c.quantity, c.unit, num(c.seed, 5), num(c.ours, 5), pct(c.diff_percent)]
+                 for c in rep.comparisons if c.group in ("static", "fatigue")],
+                title="seed figures next to ours (all of them in the report)")
+    print()
+    print("run time: " + ", ".join(f"{n} {t:.1f} s" for n, t in rep.timings)
+          + f"; total {sum(t for _, t in rep.timings):.1f} s")
+    print(f"\nreport: {page}")
