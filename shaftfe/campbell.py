@@ -103,10 +103,18 @@ def modal_basis(K, M, m: int, *, sigma: float = 0.0, opinv=None) -> ModalBasis:
     if not _is_sparse(K) and not _is_sparse(M) and n <= _DENSE_LIMIT:
         from scipy.linalg import LinAlgError, eigh
 
+        Kd, Md = np.asarray(K), np.asarray(M)
         try:
-            w2, Phi = eigh(np.asarray(K), np.asarray(M), subset_by_index=[0, m - 1])
-        except LinAlgError as exc:
-            raise SolverError(f"modal basis: mass matrix not positive definite ({exc})") from None
+            # A supported rotor has K positive definite: solve the inverted pencil M φ = μ K φ
+            # (ω² = 1/μ), whose absolute error eps·μ_max is relative to the LOWEST modes. The
+            # direct pencil's error is eps·ω_max², which a 1e12 N/mm bearing makes ~1e18.
+            w2, Phi = _inverted_pencil(Kd, Md, m)
+        except LinAlgError:
+            try:                                   # free-free: K singular, use (K, M)
+                w2, Phi = eigh(Kd, Md, subset_by_index=[0, m - 1])
+            except LinAlgError as exc:
+                raise SolverError("modal basis: mass matrix not positive definite "
+                                  f"({exc})") from None
     else:
         import scipy.sparse as sp
         from scipy.sparse.linalg import eigsh
@@ -121,6 +129,19 @@ def modal_basis(K, M, m: int, *, sigma: float = 0.0, opinv=None) -> ModalBasis:
     Phi = Phi / np.sqrt(mm)
     omega = np.sqrt(np.clip(w2, 0.0, None))
     return ModalBasis(Phi=Phi, omega=omega)
+
+
+def _inverted_pencil(K: np.ndarray, M: np.ndarray, m: int):
+    """The m lowest (ω², φ) of K φ = ω² M φ from M φ = μ K φ; raises LinAlgError when K is not
+    positive definite (Cholesky of K fails, or a μ ≤ 0 would mean ω² ≤ 0)."""
+    from scipy.linalg import LinAlgError, cho_factor, eigh
+
+    cho_factor(K, check_finite=True)               # LinAlgError unless K is positive definite
+    n = K.shape[0]
+    mu, Phi = eigh(M, K, subset_by_index=[n - m, n - 1])
+    if not np.all(mu > 0):
+        raise LinAlgError("K not positive definite")
+    return 1.0 / mu[::-1], Phi[:, ::-1]
 
 
 @dataclass(frozen=True, eq=False)

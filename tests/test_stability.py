@@ -563,7 +563,7 @@ def test_rotor_soft_springs_give_the_rigid_body_bounce():
 
 def test_rotor_stiffness_sweep_approaches_the_rigid_limit_as_one_over_k():
     """f1(k) → f1(rigid) from below with error ∝ 1/k (slope −1 ± 0.02 over 1e4 … 1e7 N/mm;
-    above, the dense eigensolver's round-off takes over: see the xfail below)."""
+    above, the trend reaches the 1e-9 level of the discretised rigid limit)."""
     f_rig = _f1(0.0, True)
     ks = 10.0 ** np.arange(4, 8)
     err = np.array([(f_rig - _f1(k)) / f_rig for k in ks])
@@ -572,11 +572,8 @@ def test_rotor_stiffness_sweep_approaches_the_rigid_limit_as_one_over_k():
     assert slope == pytest.approx(-1.0, abs=0.02)
 
 
-@pytest.mark.xfail(strict=True, reason="defect (campbell.modal_basis, not editable here): the "
-                   "dense eigh(K, M) has an absolute eigenvalue error ~ eps·ω_max², and a "
-                   "1e12 N/mm spring makes ω_max² ~ 1e18, so f1 is off by 8e-6 relative "
-                   "(126.91924 vs 126.92028 Hz); fix proposed: solve the inverted pencil "
-                   "eigh(M, K) (ω² = 1/μ) for a positive-definite K: gap 2.5e-11")
 def test_rotor_very_stiff_springs_reach_the_rigid_limit():
-    """k = 1e12 N/mm: f1 within 1e-6 of the rigid-support value (the 1/k trend predicts 1e-9)."""
+    """k = 1e12 N/mm: f1 within 1e-6 of the rigid-support value (the 1/k trend predicts 1e-9).
+    Was a defect: eigh(K, M) has an absolute eigenvalue error ~ eps·ω_max² ~ 1e18 here, which
+    put f1 8e-6 off; modal_basis now solves the inverted pencil (M, K) for a supported rotor."""
     assert _f1(1e12) == pytest.approx(_f1(0.0, True), rel=1e-6)
