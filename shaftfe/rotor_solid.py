@@ -105,7 +105,6 @@ class SolidOptions:
 def mass_and_gyro(mesh, density: float):
     """Scalar consistent mass Ms = ∫ ρ φ_a φ_b and S = ∫ ρ φ_a ∂_θ φ_b (N × N sparse CSR,
     N = nodes), by order-4 quadrature (exact on straight P2 tets)."""
-    import scipy.sparse as sp
     from skfem.quadrature import get_quadrature
 
     from shaftfe import fem
@@ -121,14 +120,7 @@ def mass_and_gyro(mesh, density: float):
     Me = np.einsum("eqa,bq->eab", pw, phi)
     dth = -xq[:, :, 2:3] * dN[..., 1] + xq[:, :, 1:2] * dN[..., 2]             # (ne, nq, nloc)
     Se = np.einsum("eqa,eqb->eab", pw, dth)
-    ed = en.T
-    nl = ed.shape[1]
-    rows = np.repeat(ed, nl, axis=1).ravel()
-    cols = np.tile(ed, (1, nl)).ravel()
-    n = mesh.doflocs.shape[1]
-    Ms = sp.csr_matrix((Me.ravel(), (rows, cols)), shape=(n, n))
-    S = sp.csr_matrix((Se.ravel(), (rows, cols)), shape=(n, n))
-    return Ms, S
+    return fem.assemble_blocks(mesh, Me, 1), fem.assemble_blocks(mesh, Se, 1)
 
 
 def vector_matrix(Ss):
