@@ -25,6 +25,9 @@ Method
    2m × 2m state-space eigenproblem (dense ``eig``). Eigenvalues s = −ζ|s| ± i ω_d; the damped
    natural frequency is ω_d = Im s > 0 (for C = 0 the undamped whirl frequency). Eigenvalues
    with |s| below ``1e-4 × ω_max`` of the basis are rigid-body modes and are dropped (counted).
+   Optional speed-squared stiffness ``Kg`` (symmetric, e.g. the geometric stiffness of the
+   centrifugal prestress, K_σ(Ω) = Ω² K_g): projected once, K_g,r = Φᵀ K_g Φ, and the reduced
+   stiffness at speed Ω is diag ω² + Ω² K_g,r (without ``Kg`` the code path is unchanged).
 3. Tracking: branches start from the n lowest modes at the first speed; at each next speed
    the candidates (n + 6 lowest) are assigned to the branches by maximising the modal
    assurance criterion MAC = |aᴴb|² / (aᴴa · bᴴb) of the reduced (modal-coordinate, hence
@@ -146,24 +149,30 @@ def _inverted_pencil(K: np.ndarray, M: np.ndarray, m: int):
 
 @dataclass(frozen=True, eq=False)
 class Reduced:
-    """Projected matrices in the basis: K_r = diag ω², M_r = I, G_r, C_r (m × m)."""
+    """Projected matrices in the basis: K_r = diag ω², M_r = I, G_r, C_r (m × m); ``Kg`` the
+    projected speed-squared stiffness Φᵀ K_g Φ (None: none), K_r(Ω) = diag ω² + Ω² Kg."""
     basis: ModalBasis
     G: np.ndarray
     C: np.ndarray
+    Kg: np.ndarray | None = None
 
     @property
     def m(self) -> int:
         return self.basis.omega.size
 
 
-def project(basis: ModalBasis, G=None, C=None, m: int | None = None) -> Reduced:
+def project(basis: ModalBasis, G=None, C=None, m: int | None = None, Kg=None) -> Reduced:
     Phi = basis.Phi if m is None else basis.Phi[:, :m]
     Phi = np.ascontiguousarray(Phi)        # a column slice would make matmul skip BLAS
     om = basis.omega if m is None else basis.omega[:m]
     k = Phi.shape[1]
     Gr = np.zeros((k, k)) if G is None else Phi.T @ (G @ Phi)
     Cr = np.zeros((k, k)) if C is None else Phi.T @ (C @ Phi)
-    return Reduced(ModalBasis(Phi, om), 0.5 * (Gr - Gr.T), 0.5 * (Cr + Cr.T))
+    Kgr = None
+    if Kg is not None:
+        Kgr = Phi.T @ (Kg @ Phi)
+        Kgr = 0.5 * (Kgr + Kgr.T)
+    return Reduced(ModalBasis(Phi, om), 0.5 * (Gr - Gr.T), 0.5 * (Cr + Cr.T), Kgr)
 
 
 def reduced_eig(red: Reduced, Omega: float, rigid_tol: float = 1e-4):
@@ -176,6 +185,8 @@ def reduced_eig(red: Reduced, Omega: float, rigid_tol: float = 1e-4):
     A = np.zeros((2 * m, 2 * m))
     A[:m, m:] = np.eye(m)
     A[m:, :m] = -np.diag(w2)
+    if red.Kg is not None:
+        A[m:, :m] -= (Omega * Omega) * red.Kg
     A[m:, m:] = -(red.C + Omega * red.G)
     s, V = eig(A)
     return _select(s, V[:m], rigid_tol * max(float(red.basis.omega.max()), 1.0))
@@ -231,11 +242,12 @@ def damper_residuals(K, C) -> np.ndarray | None:
 
 def choose_basis(K, M, G, C, n_modes: int, Omega_max: float, *, tol: float = 1e-6,
                  sigma: float = 0.0, opinv=None, m0: int | None = None, basis_fn=None,
-                 residuals=None):
+                 residuals=None, Kg=None):
     """Basis size whose requested damped frequencies at Ω_max change < ``tol`` (relative)
-    when the basis grows by ×1.5. With damping, the damped dofs' static residual vectors
-    K⁻¹ C_j are added to the modes (Rayleigh-Ritz). Returns (Reduced for the chosen size,
-    measured change, number of rigid-body eigenvalues dropped).
+    when the basis grows by ×1.5 (with the speed-squared stiffness Ω_max² ``Kg``, if any).
+    With damping, the damped dofs' static residual vectors K⁻¹ C_j are added to the modes
+    (Rayleigh-Ritz). Returns (Reduced for the chosen size, measured change, number of
+    rigid-body eigenvalues dropped).
 
     Large models (``shaftfe.rotor_solid``): ``basis_fn(m)`` returns the ``m`` lowest
     mass-normalised modes (a cached shift-invert solver) instead of ``modal_basis``, and
@@ -252,12 +264,13 @@ def choose_basis(K, M, G, C, n_modes: int, Omega_max: float, *, tol: float = 1e-
         if R is not None and m_big + nr_extra < n:
             big = ritz(K, M, np.hstack([basis.Phi, R]))
             small = ritz(K, M, np.hstack([basis.Phi[:, :m], R]))
-            red_big, red = project(big, G, C), project(small, G, C)
+            red_big, red = project(big, G, C, Kg=Kg), project(small, G, C, Kg=Kg)
         else:
-            red_big = project(basis, G, C)
+            red_big = project(basis, G, C, Kg=Kg)
             red = Reduced(ModalBasis(np.ascontiguousarray(basis.Phi[:, :m]),  # a sub-block
                                      basis.omega[:m]),
-                          red_big.G[:m, :m], red_big.C[:m, :m])
+                          red_big.G[:m, :m], red_big.C[:m, :m],
+                          None if red_big.Kg is None else red_big.Kg[:m, :m])
         s1, _, nr = reduced_eig(red, Omega_max)
         s2, _, _ = reduced_eig(red_big, Omega_max)
         k = min(n_modes, s1.size, s2.size)
@@ -444,8 +457,10 @@ class CampbellResult:
 def sweep(K, M, G, rpms: Sequence[float], n_modes: int, lab: Labelling, *, C=None,
           orders: Sequence[float] = (1.0,), tol: float = 1e-6, sigma: float = 0.0, opinv=None,
           keep_vectors: bool = False, n_extra: int = 6, basis_fn=None,
-          residuals=None) -> CampbellResult:
-    """Campbell sweep of M q̈ + (C + Ω G) q̇ + K q = 0 over ``rpms`` (the n lowest modes)."""
+          residuals=None, Kg=None) -> CampbellResult:
+    """Campbell sweep of M q̈ + (C + Ω G) q̇ + (K + Ω² Kg) q = 0 over ``rpms`` (the n lowest
+    modes; ``Kg`` optional, e.g. the geometric stiffness of the centrifugal prestress per unit
+    Ω²)."""
     rpm = np.asarray(rpms, dtype=float)
     if rpm.ndim != 1 or rpm.size == 0 or not np.all(np.isfinite(rpm)) or np.any(rpm < 0):
         raise InputError("campbell", "speeds", "one or more finite speeds >= 0 rpm",
@@ -462,7 +477,7 @@ def sweep(K, M, G, rpms: Sequence[float], n_modes: int, lab: Labelling, *, C=Non
     red, change, n_rigid = choose_basis(K, M, G, C, n_modes, float(Om.max()), tol=tol,
                                         sigma=sigma, opinv=opinv,
                                         m0=max(2 * n_modes, n_cand + 2, n_modes + 6),
-                                        basis_fn=basis_fn, residuals=residuals)
+                                        basis_fn=basis_fn, residuals=residuals, Kg=Kg)
     Phi = red.basis.Phi
     if lab.transform is not None:          # label on F Φ q: map the basis once, not per speed
         from dataclasses import replace

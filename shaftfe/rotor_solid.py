@@ -8,7 +8,9 @@ Equation of motion (stationary frame, spin Ω about +x):
 Matrices
 --------
 * K: linear elasticity of the shaft (``fem.elasticity_stiffness``, E, ν of the variant's shaft
-  material). Spin softening and stress stiffening: OFF (as in the seed's study; not modelled).
+  material). Stress stiffening: an option, OFF by default like the seed's study (section
+  "Centrifugal prestress" below). Spin softening: not applicable in the stationary frame
+  (a rotating-frame term; below).
 * M: consistent mass ∫ ρ Nᵀ N dV of the P2 solid (quadrature of order 4: exact for straight
   tets), ρ of the shaft material.
 * G: gyroscopic (Coriolis) matrix of the solid in the stationary frame, for an axisymmetric
@@ -23,11 +25,11 @@ Matrices
 
   (each Cartesian component couples with itself; for an axisymmetric body S is already
   skew, ∫ φ_a ∂_θ φ_b = −∫ φ_b ∂_θ φ_a, so G = 2A = 2 ∫ ρ Nᵀ ∂_θ N dV). The Ω² terms of the
-  same expansion (½ Ω² ∫ ρ |∂u/∂θ|²) are of the order of the neglected centrifugal
-  geometric terms and are dropped with them. Check: projected on the rigid tilts of a body,
-  G gives G[θ_y, θ_z] = ∫ ρ (y² + z²) dV = I_p, the rigid-disk gyroscopic term of
-  ``shaftfe.rotor`` (tested). Not valid for a non-axisymmetric body (keyways, the hex socket:
-  small, their mass is < 1 % of the shaft).
+  same expansion (½ Ω² ∫ ρ |∂u/∂θ|²) are of the order of the centrifugal geometric terms and
+  are dropped with them, or kept with them (option ``stress_stiffening``, below). Check:
+  projected on the rigid tilts of a body, G gives G[θ_y, θ_z] = ∫ ρ (y² + z²) dV = I_p, the
+  rigid-disk gyroscopic term of ``shaftfe.rotor`` (tested). Not valid for a non-axisymmetric
+  body (keyways, the hex socket: small, their mass is < 1 % of the shaft).
 * Bearings: ``shaftfe.supports`` exactly as in the static model (RBE3 remote point at the seat
   centre, 2×2 radial spring, θ_x held at every bearing ("all") and u_x at the axial one as
   hard rows, tilt free); optional isotropic damping c on the remote point's (u_y, u_z).
@@ -45,6 +47,55 @@ Matrices
   - ``coupling="distributing"`` (RBE3-like): the body follows the area-weighted least-squares
     rigid motion of the seat; adds no stiffness (a loose or very soft hub). Mass and
     gyroscopic blocks Rᵀ M_b R on the seat dofs (sparse, one clique per seat).
+
+Centrifugal prestress (option ``stress_stiffening``, default off)
+----------------------------------------------------------------
+Equation with the option: M q̈ + (C + Ω G) q̇ + (K + Ω² K_g) q = 0, K_g = K_σ,1 − A_θ:
+
+* K_σ,1: geometric (initial-stress) stiffness of the shaft body's centrifugal prestress σ⁰
+  at Ω = 1 rad/s, the second variation of ½ ∫ σ⁰_ij ∂_i u_k ∂_j u_k dV (the nonlinear part
+  of the Green strain under σ⁰); the same scalar matrix on each component:
+
+      K_σ = kron(S_σ, I₃),   (S_σ)_ab = ∫ σ⁰_ij ∂_i φ_a ∂_j φ_b dV      (``geometric_stiffness``)
+
+  σ⁰ = λ tr ε I + 2 μ ε from the displacement gradient at the quadrature points
+  (``quadrature_stress``; order 3, exact on straight P2 tets: σ⁰ and ∂φ are linear) of the
+  static solution of the SUPPORTED rotor under the shaft's own body force ρ Ω² (0, y, z)
+  (``fem.body_force_load``). σ⁰ ∝ Ω²: solved once at Ω_ref = 1 rad/s, K_σ(Ω) = Ω² K_σ,1.
+* A_θ = kron(∫ ρ ∂_θ φ_a ∂_θ φ_b dV, I₃) (``convective_matrix``): the Ω² term
+  ½ Ω² ∫ ρ |∂u/∂θ|² of the kinetic energy above (L = T − V: a stiffness −Ω² A_θ). It
+  belongs to the same order as K_σ and must come with it: on a rigid tilt θ_y both give
+  Ω² I_p/2 θ_y² (K_σ by the virial identity ∫ σ⁰ dV = ∫ x ⊗ ρ Ω² x_⊥ dV = Ω² diag(0, I_p/2,
+  I_p/2) of a traction-free body; A_θ since ∂u/∂θ = y θ_y e_x), so they cancel and a
+  spinning rigid body keeps the classical gyroscopic equations without Ω² stiffness; for the
+  bending of a slender shaft they cancel to leading order too (the section integral of σ⁰_yy
+  is ρ Ω² I, that of ρ |∂u/∂θ|² is ρ I v'², v the deflection). K_σ alone would stiffen a
+  spinning rigid rotor's tilt by Ω² I_p/2 (tested in tests/validation/test_stress_stiffening).
+
+Only the shaft body's prestress: the attachments are rigid bodies (no strain); their
+eccentric centroids' centrifugal loads rotate with the shaft, a co-rotating unbalance, not
+an axisymmetric prestress, and are left out. K_g is projected ONCE on the basis and added as
+Ω² Φᵀ K_g Φ to the reduced stiffness at every speed (``campbell.sweep(Kg=…)``); ``full_qep``
+adds Ω² K_g to K (the ``--verify`` path). The basis stays the modes at rest (the growth test
+at the top speed includes Ω² K_g). Static solve without a second factorisation: iterative
+refinement on the basis's factorisation, u ← u + (K_tot + σ² M)⁻¹ (f − K_tot u) with the
+Woodbury support terms (hard rows kept); the error contracts by σ²/(ω₁² + σ²) per step
+(≈ 0.01 on x2_57); the rigid-body part of a free model's load only adds strain-free motion.
+
+Verified (tests/validation/test_stress_stiffening.py): prescribed σ_xx = T/A on the pinned
+cylinder, f(T)/f(0) of bending modes 1-2 within 0.06 % of the pinned Timoshenko beam under
+axial load (+21 % tension, −27 % compression); the centrifugal stresses of a free spinning
+long cylinder within 1.8 % of the peak of Timoshenko & Goodier's solution (rms 0.6 %); the
+virial identity on the rigid tilts (K_σ = A_θ = Ω² I_p/2 within 0.1 %, K_g < 1e-3 I_p);
+reduced vs full with K_g < 1e-5. x2_57 coarse at 8000 rpm: von Mises of the prestress
+≤ 0.51 MPa, the 12 frequencies change ≤ 3.1e-5 (K_σ alone: ≤ 6.5e-5): off by default.
+
+Spin softening: NOT applicable in the stationary frame. It is the term −Ω² M_⊥ (M_⊥ the mass
+of the displacements normal to the spin axis) of the ROTATING-frame equations
+M ẍ + 2 Ω G_c ẋ + (K + K_σ − Ω² M_⊥) x = 0; in the stationary-frame formulation used here
+(axisymmetric rotor) the rotating frame's Coriolis and spin-softening terms become Ω G and
+−Ω² A_θ (above), and adding −Ω² M_⊥ as well would be wrong. (Ansys likewise applies spin
+softening only with a rotating reference frame, not with stationary-frame Coriolis.)
 
 Solution
 --------
@@ -98,6 +149,7 @@ class SolidOptions:
     hold_twist: str = "all"               # θ_x held at "all" bearings | "axial" | "none"
     solver: str = "auto"                  # shaftfe.solvers for the symmetric factorisation
     shift_hz: float = 50.0                # σ = −2π shift_hz
+    stress_stiffening: bool = False       # centrifugal prestress Ω² K_g (module docstring)
 
 
 # --------------------------------------------------------------------------- matrices
@@ -325,7 +377,7 @@ def build_solid_rotor(variant, options: SolidOptions = SolidOptions(), *, shaft_
     G = vector_matrix(Ss - Ss.T)
     N3 = K.shape[0]
     bodies = attachment_bodies(variant, m) if attachments else []
-    notes = ["spin softening and stress stiffening: off"]
+    notes = ["spin softening: not applicable in the stationary frame (rotating-frame term)"]
     T = None
     body_rows = []          # (6, n_q) rows giving each body's motion, for the labels
     body_terms = []         # distributing coupling: low-rank mass/gyroscopic terms
@@ -465,14 +517,17 @@ def _labelling(mesh, Ms, T, body_rows, bodies, M) -> Labelling:
 class ShiftedSolver:
     """Solves (K_tot + σ D + σ² M) x = b with the hard rows H x = 0 (D = C + Ω G), by one
     sparse factorisation of B = K + σ Ω G + σ² M (+ σ C of nothing: damping is low rank)
-    and a Woodbury correction with the support terms."""
+    and a Woodbury correction with the support terms. ``K_extra``: a sparse stiffness added
+    to K (the prestress Ω² K_g of ``full_qep``)."""
 
     def __init__(self, rotor: SolidRotor, sigma: float, Omega: float = 0.0,
-                 method: str | None = None):
+                 method: str | None = None, K_extra=None):
         from shaftfe import solvers
 
         t0 = time.perf_counter()
         B = (rotor.K_sparse + (sigma * sigma) * rotor.M_sparse).tocsr()
+        if K_extra is not None:
+            B = (B + K_extra).tocsr()
         method = rotor.options.solver if method is None else method
         if Omega != 0.0 and sigma != 0.0:
             B = (B + (sigma * Omega) * rotor.G_sparse).tocsr()
@@ -588,7 +643,20 @@ class BasisProvider:
         self.sigma = -TWO_PI * rotor.options.shift_hz if sigma is None else sigma
         self.solver = solver or ShiftedSolver(rotor, self.sigma)
         self._basis: ModalBasis | None = None
+        self._prestress: Prestress | None = None
         self.eig_seconds = 0.0
+
+    def prestress(self) -> Prestress:
+        """The centrifugal prestress on this provider's factorisation (computed once)."""
+        if self._prestress is None:
+            self._prestress = centrifugal_prestress(self.rotor, self.solver)
+        return self._prestress
+
+    def Kg(self, rotor: SolidRotor | None = None):
+        """The speed-squared stiffness K_g if ``rotor``'s (default: this provider's rotor's)
+        ``stress_stiffening`` asks for it, else None."""
+        on = (rotor or self.rotor).options.stress_stiffening
+        return self.prestress().Kg if on else None
 
     def __call__(self, m: int) -> ModalBasis:
         if self._basis is not None and self._basis.omega.size >= m:
@@ -618,17 +686,154 @@ class BasisProvider:
         return self.solver.solve(np.vstack(R).T)
 
 
+# --------------------------------------------------------------------------- prestress
+
+def geometric_order(mesh) -> int:
+    """Quadrature order of the geometric stiffness: σ⁰ ∂φ_a ∂φ_b is cubic on a straight P2
+    tet (each factor linear), constant on P1."""
+    from shaftfe import fem
+    return 3 if fem.is_quadratic(mesh) else 1
+
+
+def quadrature_stress(mesh, u: np.ndarray, E: float, nu: float,
+                      intorder: int | None = None) -> np.ndarray:
+    """σ = λ tr ε I + 2 μ ε at the quadrature points (ne, nq, 3, 3) of the displacement u
+    (mesh dofs, interleaved), ε = sym ∇u, ∂_j u_i = Σ_a u_ai ∂_j φ_a."""
+    from shaftfe import fem
+
+    intorder = geometric_order(mesh) if intorder is None else intorder
+    dN, _ = fem.physical_gradients(mesh, intorder)                 # (ne, nq, nloc, 3)
+    ue = np.asarray(u, float).reshape(-1, 3)[fem.element_nodes(mesh).T]   # (ne, nloc, 3)
+    grad = np.einsum("eai,eqaj->eqij", ue, dN)                     # ∂_j u_i
+    eps = 0.5 * (grad + grad.transpose(0, 1, 3, 2))
+    lam, mu = fem.lame(E, nu)
+    tr = np.trace(eps, axis1=2, axis2=3)
+    return 2.0 * mu * eps + (lam * tr)[:, :, None, None] * np.eye(3)
+
+
+def geometric_stiffness(mesh, stress: np.ndarray, intorder: int | None = None):
+    """Scalar geometric (initial-stress) stiffness (S_σ)_ab = ∫ σ⁰_ij ∂_i φ_a ∂_j φ_b dV
+    (N × N sparse CSR) of a prestress given at the quadrature points of order ``intorder``
+    (default ``geometric_order``): shape (ne, nq, 3, 3), or anything that broadcasts to it
+    (a constant 3 × 3 tensor). The vector matrix is ``vector_matrix(S_σ)``."""
+    from shaftfe import fem
+
+    intorder = geometric_order(mesh) if intorder is None else intorder
+    dN, wdx = fem.physical_gradients(mesh, intorder)                 # (ne, nq, nloc, 3)
+    S = np.broadcast_to(np.asarray(stress, float), (*dN.shape[:2], 3, 3))
+    sdN = np.einsum("eqij,eqbj->eqbi", S * wdx[:, :, None, None], dN)    # w σ⁰ ∂φ_b
+    Ke = np.einsum("eqai,eqbi->eab", dN, sdN)
+    return fem.assemble_blocks(mesh, Ke, 1)
+
+
+def convective_matrix(mesh, density: float):
+    """Scalar A_θ = ∫ ρ ∂_θ φ_a ∂_θ φ_b dV, ∂_θ = −z ∂_y + y ∂_z (order 4: exact on straight
+    P2 tets), the companion of the prestress in the stationary frame (module docstring)."""
+    from skfem.quadrature import get_quadrature
+
+    from shaftfe import fem
+
+    order = 4 if fem.is_quadratic(mesh) else 2
+    e = fem.scalar_element(mesh)
+    X, _ = get_quadrature(mesh.refdom, order)
+    phi = np.array([e.lbasis(X, a)[0] for a in range(e.doflocs.shape[0])])   # (nloc, nq)
+    dN, wdx = fem.physical_gradients(mesh, order)
+    xq = np.einsum("iae,aq->eqi", mesh.doflocs[:, fem.element_nodes(mesh)], phi)
+    dth = -xq[:, :, 2:3] * dN[..., 1] + xq[:, :, 1:2] * dN[..., 2]             # (ne, nq, nloc)
+    Ae = np.einsum("eqa,eqb->eab", dth * (density * wdx)[:, :, None], dth)
+    return fem.assemble_blocks(mesh, Ae, 1)
+
+
+@dataclass(frozen=True, eq=False)
+class Prestress:
+    """Centrifugal prestress of the shaft body per unit Ω² (Ω_ref = 1 rad/s): displacement
+    ``u`` (mesh dofs), stress at the quadrature points (ne, nq, 3, 3) of ``intorder``, and
+    ``Kg`` = K_σ,1 − A_θ on q (sparse), so that the stiffness at Ω is K + Ω² Kg."""
+    u: np.ndarray
+    stress: np.ndarray
+    intorder: int
+    Kg: object
+    iterations: int
+    seconds: float
+
+    def max_von_mises(self, Omega: float) -> float:
+        """Largest von Mises stress [MPa] at the quadrature points at spin Ω [rad/s]."""
+        s = self.stress
+        dev = s - (np.trace(s, axis1=2, axis2=3) / 3.0)[:, :, None, None] * np.eye(3)
+        return float(Omega**2 * np.sqrt(1.5 * np.einsum("eqij,eqij->eq", dev, dev)).max())
+
+
+def centrifugal_displacement(rotor: SolidRotor, solver: ShiftedSolver, *, tol: float = 1e-8,
+                             max_iter: int = 60) -> tuple[np.ndarray, int]:
+    """Static displacement q of the supported rotor under the shaft's body force at
+    Ω = 1 rad/s, by iterative refinement on ``solver`` = (K_tot + σ² M)⁻¹ (hard rows kept):
+    q ← q + Δq, Δq = solver(f − K_tot q), until the energy norm of the change of the step,
+    ‖Δq_k − Δq_(k−1)‖_K, is < ``tol`` ‖q‖_K. (The elastic part of Δq falls by σ²/(ω² + σ²)
+    per step; on a free model the load's rigid-body part, the mesh's tiny net force, adds
+    the same strain-free motion every step and drops out of the difference.)"""
+    from shaftfe import fem
+
+    m = rotor.shaft_mesh.mesh
+    f = fem.body_force_load(m, rotor.variant.material.density_t_mm3, 1.0)
+    if rotor.T is not None:
+        f = rotor.T.T @ f
+    K = rotor.K
+    q = np.zeros_like(f)
+    r, dq_old = f, 0.0
+    for it in range(1, max_iter + 1):
+        dq = solver.solve(r)
+        q = q + dq
+        Kq = K @ q
+        r = f - Kq
+        d = dq - dq_old
+        dq_old = dq
+        if abs(float(d @ (K @ d))) <= tol**2 * abs(float(q @ Kq)):
+            return q, it
+    raise SolverError(f"centrifugal prestress: the refinement did not converge in {max_iter} "
+                      f"steps (shift {rotor.options.shift_hz:g} Hz too high for the lowest "
+                      "mode?)")
+
+
+def centrifugal_prestress(rotor: SolidRotor, solver: ShiftedSolver | None = None) -> Prestress:
+    """Prestress of the shaft body per unit Ω² and its stiffness Kg = K_σ,1 − A_θ on q (module
+    docstring); ``solver``: the basis's factorisation (a new one at the rotor's shift if
+    None)."""
+    t0 = time.perf_counter()
+    if solver is None:
+        solver = ShiftedSolver(rotor, -TWO_PI * rotor.options.shift_hz)
+    q, it = centrifugal_displacement(rotor, solver)
+    m = rotor.shaft_mesh.mesh
+    mat = rotor.variant.material
+    u = rotor.mesh_vector(q)
+    order = geometric_order(m)
+    stress = quadrature_stress(m, u, mat.E_MPa, mat.nu, order)
+    Kg = vector_matrix(geometric_stiffness(m, stress, order)
+                       - convective_matrix(m, mat.density_t_mm3))
+    if rotor.T is not None:
+        Kg = (rotor.T.T @ Kg @ rotor.T).tocsr()
+    return Prestress(u, stress, order, Kg, it, time.perf_counter() - t0)
+
+
 # --------------------------------------------------------------------------- analyses
 
 def campbell(rotor: SolidRotor, rpms: Sequence[float], n_modes: int = 12, *,
              orders: Sequence[float] = (1.0,), tol: float = 1e-6, keep_vectors: bool = False,
              provider: BasisProvider | None = None) -> CampbellResult:
-    """Campbell sweep of the solid rotor (reduced basis, MAC tracking, labels, criticals)."""
+    """Campbell sweep of the solid rotor (reduced basis, MAC tracking, labels, criticals);
+    with ``options.stress_stiffening`` the reduced stiffness at Ω is diag ω² + Ω² Φᵀ K_g Φ
+    (K_g from ``provider.prestress()``, on the basis's factorisation)."""
     prov = provider or BasisProvider(rotor)
+    Kg = prov.Kg(rotor)
     res = sweep(rotor.K, rotor.M, rotor.G, rpms, n_modes, rotor.labelling, C=rotor.C,
                 orders=orders, tol=tol, keep_vectors=keep_vectors, basis_fn=prov,
-                residuals=prov.residuals())
-    return replace(res, notes=res.notes + rotor.notes)
+                residuals=prov.residuals(), Kg=Kg)
+    ss = "stress stiffening: off"
+    if Kg is not None:
+        ps, top = prov.prestress(), float(np.max(rpms))
+        ss = (f"stress stiffening: on (centrifugal prestress of the shaft body, von Mises ≤ "
+              f"{ps.max_von_mises(top * TWO_PI / 60.0):.3g} MPa at {top:g} rpm; "
+              f"{ps.iterations} refinement steps)")
+    return replace(res, notes=res.notes + rotor.notes + (ss,))
 
 
 def modal(rotor: SolidRotor, rpm: float = 0.0, n_modes: int = 12, *,
@@ -637,15 +842,20 @@ def modal(rotor: SolidRotor, rpm: float = 0.0, n_modes: int = 12, *,
 
 
 def full_qep(rotor: SolidRotor, Omega: float, n_modes: int, *, sigma: float | None = None,
-             method: str | None = None):
+             method: str | None = None, Kg=None):
     """The ``n_modes`` lowest oscillatory eigenvalues (Im s > 0) of the full-size quadratic
     eigenproblem with the hard rows, by shift-invert Arnoldi on the companion pencil
     A − s B, A = [[0, I], [−K, −D]], B = [[I, 0], [0, M]] at the real shift σ: the operator
-    (A − σB)⁻¹ B needs one factorisation of K + σ D + σ² M (``ShiftedSolver``)."""
+    (A − σB)⁻¹ B needs one factorisation of K + σ D + σ² M (``ShiftedSolver``). With
+    ``stress_stiffening`` K is K + Ω² K_g (``Kg``: the basis's, else computed here, one more
+    symmetric factorisation)."""
     from scipy.sparse.linalg import LinearOperator, eigs
 
     sigma = -TWO_PI * rotor.options.shift_hz if sigma is None else sigma
-    sol = ShiftedSolver(rotor, sigma, Omega, method)
+    if rotor.options.stress_stiffening and Kg is None:
+        Kg = centrifugal_prestress(rotor).Kg
+    K_extra = None if Kg is None or Omega == 0.0 else (Omega * Omega) * Kg
+    sol = ShiftedSolver(rotor, sigma, Omega, method, K_extra)
     n = rotor.n_dof
     M, G = rotor.M, rotor.G
     Cop = rotor.C
@@ -670,15 +880,18 @@ def full_qep(rotor: SolidRotor, Omega: float, n_modes: int, *, sigma: float | No
     return s[np.argsort(s.imag)][:n_modes]
 
 
-def verify(rotor: SolidRotor, res: CampbellResult, rpm: float | None = None):
+def verify(rotor: SolidRotor, res: CampbellResult, rpm: float | None = None,
+           provider: BasisProvider | None = None):
     """Full-size quadratic eigenproblem at ``rpm`` (default the top speed of ``res``) against
-    the reduced sweep (the same matching as ``shaftfe.rotor.verify``)."""
+    the reduced sweep (the same matching as ``shaftfe.rotor.verify``); ``provider``: reuse
+    its prestress (``stress_stiffening``)."""
     from shaftfe.rotor import Verification
 
     i = int(np.argmax(res.rpm)) if rpm is None else int(np.flatnonzero(
         np.isclose(res.rpm, rpm))[0])
     n = res.freq_hz.shape[1]
-    s = full_qep(rotor, float(res.rpm[i]) * TWO_PI / 60.0, n + 6)
+    Kg = provider.Kg(rotor) if provider is not None else None
+    s = full_qep(rotor, float(res.rpm[i]) * TWO_PI / 60.0, n + 6, Kg=Kg)
     f_all = s.imag / TWO_PI
     f_red = np.sort(res.freq_hz[i])
     f_full = f_all[np.argmin(np.abs(f_all[None, :] - f_red[:, None]), axis=1)]

@@ -11,6 +11,9 @@ model's mesh at ``--level``, attachments as rigid bodies tied to their seats by 
 description line); ``_ANALYSES`` gives its sweep and full-size check. The solid model's
 results are shown next to the beam model's (same variant and options), and with ``--out``
 its mode shapes at rest are written as ``modes.vtu`` (docs/FIELDS.md, "Mode shapes").
+``--stress-stiffening`` (solid model only, off by default) adds the centrifugal prestress of the
+shaft body (``shaftfe.rotor_solid``, "Centrifugal prestress"); ``--spin-softening`` is refused
+(a rotating-frame term, not applicable in the stationary-frame formulation used here).
 """
 
 from __future__ import annotations
@@ -42,6 +45,12 @@ def _common_options(p) -> None:
     p.add_argument("--bearing-damping", type=float, default=0.0, metavar="NS_PER_MM",
                    help="isotropic damping of every bearing in N·s/mm (default 0: undamped); "
                    "frequencies are then damped ones")
+    p.add_argument("--stress-stiffening", action="store_true",
+                   help="solid model: include the geometric stiffness of the shaft's "
+                   "centrifugal prestress (default off, like the seed's study)")
+    p.add_argument("--spin-softening", action="store_true",
+                   help="refused: spin softening is a rotating-frame term, not applicable in "
+                   "the stationary frame used here")
     p.add_argument("--verify", action="store_true",
                    help="also solve the full-size quadratic eigenproblem at the highest speed "
                    "and report the largest relative difference")
@@ -117,6 +126,14 @@ def _check_common(args) -> None:
     if not (math.isfinite(args.bearing_damping) and args.bearing_damping >= 0):
         raise InputError("command line", "--bearing-damping", ">= 0 N s/mm",
                          got=args.bearing_damping)
+    if args.spin_softening:
+        raise InputError("command line", "--spin-softening", "omit it (its stationary-frame "
+                         "counterpart −Ω² A_θ comes with --stress-stiffening)",
+                         reason="is not applicable in the stationary frame (rotating-frame "
+                         "term)")
+    if args.stress_stiffening and args.model != "solid":
+        raise InputError("command line", "--stress-stiffening", "with --model solid",
+                         got=args.model, reason="is modelled only in the solid model")
 
 
 # --------------------------------------------------------------------------- models
@@ -138,7 +155,8 @@ def _solid_rotor(args):
     variant = load_variant(args.variant)
     opts = rotor_solid.SolidOptions(level=args.level, coupling=args.coupling,
                                     rigid_supports=args.rigid_supports,
-                                    bearing_damping=args.bearing_damping)
+                                    bearing_damping=args.bearing_damping,
+                                    stress_stiffening=args.stress_stiffening)
     return rotor_solid.build_solid_rotor(variant, opts)
 
 
@@ -150,7 +168,10 @@ def _beam_analyses():
 
     def run(model, rpms, n, orders, keep_vectors):
         return rotor.campbell(model, rpms, n, orders=orders, keep_vectors=keep_vectors), None
-    return run, rotor.verify, rotor.support_energy_share
+
+    def verify(model, res, prov=None):
+        return rotor.verify(model, res)
+    return run, verify, rotor.support_energy_share
 
 
 def _solid_analyses():
@@ -160,7 +181,9 @@ def _solid_analyses():
         prov = rotor_solid.BasisProvider(model)
         return rotor_solid.campbell(model, rpms, n, orders=orders, keep_vectors=keep_vectors,
                                     provider=prov), prov
-    return run, rotor_solid.verify, rotor_solid.support_energy_share
+    def verify(model, res, prov=None):
+        return rotor_solid.verify(model, res, provider=prov)
+    return run, verify, rotor_solid.support_energy_share
 
 
 _ANALYSES = {"beam": _beam_analyses, "solid": _solid_analyses}
@@ -170,6 +193,8 @@ def _describe(args, model) -> str:
     sup = "rigid supports" if args.rigid_supports else "bearing springs"
     damp = (f", bearing damping {args.bearing_damping:g} N·s/mm" if args.bearing_damping > 0
             else ", undamped")
+    if args.stress_stiffening:
+        damp += ", stress stiffening on"
     beam = getattr(model, "beam", None)
     nodes = f"{beam.n_nodes} nodes, " if beam is not None else ""
     disks = getattr(model, "disks", ())
@@ -191,7 +216,7 @@ def _solve(args, rpms, orders, keep_vectors=False):
         raise InputError("command line", "--modes", f"1..{n_max} for this model", got=args.modes)
     run, verify, _ = _ANALYSES[args.model]()
     res, prov = run(model, rpms, args.modes, orders, keep_vectors)
-    ver = verify(model, res) if args.verify else None
+    ver = verify(model, res, prov) if args.verify else None
     beam_res = None
     if args.model == "solid":
         from shaftfe import rotor
@@ -203,7 +228,8 @@ def _solve(args, rpms, orders, keep_vectors=False):
 def _payload(args, model, res, ver, beam_res=None) -> dict:
     d = {"variant": args.variant, "model": args.model, "n_dof": model.n_dof,
          "supports": "rigid" if args.rigid_supports else "springs",
-         "bearing_damping_Ns_per_mm": args.bearing_damping, "result": res.to_dict()}
+         "bearing_damping_Ns_per_mm": args.bearing_damping,
+         "stress_stiffening": bool(args.stress_stiffening), "result": res.to_dict()}
     if args.model == "solid":
         sm = model.shaft_mesh
         d["solid"] = {"level": sm.level, "order": sm.order, "nodes": sm.n_nodes,

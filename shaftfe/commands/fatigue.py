@@ -90,12 +90,7 @@ def _check(args) -> None:
                          got=args.equivalent)
     if args.level not in LEVELS:
         raise InputError("command line", "--level", " | ".join(LEVELS), got=args.level)
-    if not (math.isfinite(args.design_life) and args.design_life > 0):
-        raise InputError("command line", "--design-life", "a finite number > 0 (blocks)",
-                         got=args.design_life)
-    if not (math.isfinite(args.speed_kmh) and args.speed_kmh > 0):
-        raise InputError("command line", "--speed-kmh", "a finite number > 0 (km/h)",
-                         got=args.speed_kmh)
+    check_life_settings(args.design_life, args.speed_kmh)
     if not (math.isfinite(args.kf) and 0 < args.kf <= 1):
         raise InputError("command line", "--kf", "a number in (0, 1]", got=args.kf)
     if not (math.isfinite(args.exclude_mm) and args.exclude_mm >= 0):
@@ -294,3 +289,14 @@ def _big(v: float) -> str:
 
 def _life(v: float) -> str:
     return "inf" if not math.isfinite(v) else f"{v:.4g}"
+
+
+def check_life_settings(design_life: float, speed_kmh: float) -> None:
+    """The design life (blocks) and the speed that turns hours into km: finite and > 0
+    (shared by ``shaftfe fatigue`` and ``shaftfe report``)."""
+    if not (math.isfinite(design_life) and design_life > 0):
+        raise InputError("command line", "--design-life", "a finite number > 0 (blocks)",
+                         got=design_life)
+    if not (math.isfinite(speed_kmh) and speed_kmh > 0):
+        raise InputError("command line", "--speed-kmh", "a finite number > 0 (km/h)",
+                         got=speed_kmh)

@@ -185,13 +185,8 @@ def check_options(o: ReportOptions) -> None:
         raise InputError("command line", "--campbell-step", "> 0 rpm", got=o.campbell_step_rpm)
     if not (1 <= o.modes <= 50):
         raise InputError("command line", "--modes", "1..50", got=o.modes)
-    if not (math.isfinite(o.design_life_blocks) and o.design_life_blocks > 0):
-        raise InputError("command line", "--design-life", "a finite number > 0 (blocks)",
-                         got=o.design_life_blocks)
-    if not (math.isfinite(o.speed_kmh) and o.speed_kmh > 0):
-        raise InputError("command line", "--speed-kmh", "a finite number > 0 (km/h)",
-                         got=o.speed_kmh)
-    from shaftfe.commands.fatigue import MEAN_STRESS
+    from shaftfe.commands.fatigue import MEAN_STRESS, check_life_settings
+    check_life_settings(o.design_life_blocks, o.speed_kmh)
     if o.mean_stress not in MEAN_STRESS:
         raise InputError("command line", "--mean-stress", " | ".join(MEAN_STRESS),
                          got=o.mean_stress)
