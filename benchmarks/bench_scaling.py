@@ -120,7 +120,7 @@ _, t, m = rss.stage(supports_and_loads)
 res["supports+loads"] = (t, m, rss.cpu)
 model = build_model(v, StaticOptions(level="scaling"), shaft_mesh=sm)
 sol, t, m = rss.stage(lambda: solve_model(model))
-d = {**sol.diagnostics, **sol.run}
+d = {{**sol.diagnostics, **sol.run}}
 res["factorisation"] = (d["factor_seconds"], m, rss.cpu * d["factor_seconds"] / t)
 res["solves"] = (t - d["factor_seconds"], m, rss.cpu * (1 - d["factor_seconds"] / t))
 res["solver"] = d["solver"]
@@ -163,7 +163,7 @@ from shaftfe.static import StaticOptions, solve_static
 from shaftfe.variant import load_variant
 r = solve_static(load_variant("x2_57"), [10000.0], StaticOptions(level="default"),
                  cache_dir={cache!r}, beam=False)
-d = {**r.diagnostics, **r.run}
+d = {{**r.diagnostics, **r.run}}
 d["dofs"] = r.n_dofs
 print("RESULT " + json.dumps({{k: v for k, v in d.items() if isinstance(v, (int, float, str))}}))
 """
