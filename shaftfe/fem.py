@@ -159,7 +159,10 @@ def node_pattern(mesh):
     A.sort_indices()
     keys = np.repeat(np.arange(nn, dtype=np.int64) * nn, np.diff(A.indptr)) + A.indices
     pairs = (np.repeat(ed.astype(np.int64), nl, axis=1) * nn + np.tile(ed, (1, nl))).ravel()
-    pattern = (np.searchsorted(keys, pairs), A.indptr.astype(np.int64),
+    where = np.searchsorted(keys, pairs)
+    if keys.size < 2**31:
+        where = where.astype(np.int32)                              # −14 MB at 170k dofs
+    pattern = (where, A.indptr.astype(np.int64),
                A.indices.astype(np.int32))
     for key in [k for k, (ref, _) in _PATTERNS.items() if ref() is None]:
         del _PATTERNS[key]

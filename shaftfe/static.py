@@ -298,10 +298,9 @@ def solve_model(model: StaticModel, rhs: np.ndarray | None = None) -> UnitSoluti
     P[pins, range(6)] = 1.0
     if np.linalg.matrix_rank(P.T @ _modes(m), tol=1e-9) < 6:       # pragma: no cover
         raise SolverError("internal: the pin dofs do not remove the rigid modes")
-    import scipy.sparse as sp
-    B = (K + sp.csr_matrix((np.full(6, kp), (pins, pins)), shape=(n, n))).tocsr()
     t0 = time.perf_counter()
-    fac = solvers.factorize(B, model.options.solver, rigid_modes=_modes(m))
+    fac = solvers.factorize(K, model.options.solver, rigid_modes=_modes(m),
+                            diag_add=(pins, np.full(6, kp)))          # B = K + kp Σ e eᵀ
     t_fac = time.perf_counter() - t0
     cols = [P] + [blk.R.T for blk in model.blocks]
     U = np.ascontiguousarray(np.hstack(cols))       # canonical layout: bit-reproducible BLAS
