@@ -313,25 +313,35 @@ class Verification:
     n_missed: int = 0         # full-size frequencies below the highest tracked one, unmatched
 
 
-def verify(rotor: RotorModel, res: CampbellResult, rpm: float | None = None) -> Verification:
-    """Full-size quadratic eigenproblem at ``rpm`` (default the highest speed of ``res``)
-    against the reduced sweep's sorted frequencies at that speed."""
+def speed_index(res: CampbellResult, rpm: float | None = None) -> int:
+    """Index of ``rpm`` among the sweep's speeds (default: the highest speed)."""
     if rpm is None:
-        i = int(np.argmax(res.rpm))
-    else:
-        hits = np.flatnonzero(np.isclose(res.rpm, rpm))
-        if hits.size == 0:
-            raise InputError("verify", "rpm", "one of the sweep's speeds", got=rpm)
-        i = int(hits[0])
-    n = res.freq_hz.shape[1]
-    s = full_qep(rotor.K, rotor.M, rotor.G, float(rpm_to_rad_s(res.rpm[i])), n + 6, C=rotor.C)
-    f_all = s.imag / TWO_PI
+        return int(np.argmax(res.rpm))
+    hits = np.flatnonzero(np.isclose(res.rpm, rpm))
+    if hits.size == 0:
+        raise InputError("verify", "rpm", "one of the sweep's speeds", got=rpm)
+    return int(hits[0])
+
+
+def compare_with_full(res: CampbellResult, i: int, freq_full_hz: np.ndarray) -> Verification:
+    """The reduced sweep's frequencies at speed index ``i`` against the full-size ones: each
+    tracked frequency against the nearest full-size one (the tracked branches are the n lowest
+    at the first speed, not necessarily the n lowest at this one); full-size frequencies below
+    the highest tracked one that match none are counted as missed."""
+    f_all = np.asarray(freq_full_hz, dtype=float)
     f_red = np.sort(res.freq_hz[i])
-    # each tracked frequency against the nearest full-size one (the tracked branches are the
-    # n lowest at the first speed, not necessarily the n lowest at this one)
     f_full = f_all[np.argmin(np.abs(f_all[None, :] - f_red[:, None]), axis=1)]
     diff = float(np.max(np.abs(f_red - f_full) / f_full))
     below = f_all[f_all <= f_red.max() * (1 + 1e-6)]
     matched = np.min(np.abs(below[:, None] - f_red[None, :]) / below[:, None], axis=1) < 1e-3
     return Verification(float(res.rpm[i]), tuple(f_red.tolist()), tuple(f_full.tolist()), diff,
                         int(np.count_nonzero(~matched)))
+
+
+def verify(rotor: RotorModel, res: CampbellResult, rpm: float | None = None) -> Verification:
+    """Full-size quadratic eigenproblem at ``rpm`` (default the highest speed of ``res``)
+    against the reduced sweep's sorted frequencies at that speed."""
+    i = speed_index(res, rpm)
+    n = res.freq_hz.shape[1]
+    s = full_qep(rotor.K, rotor.M, rotor.G, float(rpm_to_rad_s(res.rpm[i])), n + 6, C=rotor.C)
+    return compare_with_full(res, i, s.imag / TWO_PI)

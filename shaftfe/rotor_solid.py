@@ -885,21 +885,13 @@ def verify(rotor: SolidRotor, res: CampbellResult, rpm: float | None = None,
     """Full-size quadratic eigenproblem at ``rpm`` (default the top speed of ``res``) against
     the reduced sweep (the same matching as ``shaftfe.rotor.verify``); ``provider``: reuse
     its prestress (``stress_stiffening``)."""
-    from shaftfe.rotor import Verification
+    from shaftfe.rotor import compare_with_full, speed_index
 
-    i = int(np.argmax(res.rpm)) if rpm is None else int(np.flatnonzero(
-        np.isclose(res.rpm, rpm))[0])
+    i = speed_index(res, rpm)
     n = res.freq_hz.shape[1]
     Kg = provider.Kg(rotor) if provider is not None else None
     s = full_qep(rotor, float(res.rpm[i]) * TWO_PI / 60.0, n + 6, Kg=Kg)
-    f_all = s.imag / TWO_PI
-    f_red = np.sort(res.freq_hz[i])
-    f_full = f_all[np.argmin(np.abs(f_all[None, :] - f_red[:, None]), axis=1)]
-    diff = float(np.max(np.abs(f_red - f_full) / f_full))
-    below = f_all[f_all <= f_red.max() * (1 + 1e-6)]
-    matched = np.min(np.abs(below[:, None] - f_red[None, :]) / below[:, None], axis=1) < 1e-3
-    return Verification(float(res.rpm[i]), tuple(f_red.tolist()), tuple(f_full.tolist()), diff,
-                        int(np.count_nonzero(~matched)))
+    return compare_with_full(res, i, s.imag / TWO_PI)
 
 
 def support_energy_share(rotor: SolidRotor, vecs: np.ndarray) -> np.ndarray:
