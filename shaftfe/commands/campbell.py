@@ -132,8 +132,10 @@ def _check_common(args) -> None:
                          reason="is not applicable in the stationary frame (rotating-frame "
                          "term)")
     if args.stress_stiffening and args.model != "solid":
-        raise InputError("command line", "--stress-stiffening", "with --model solid",
-                         got=args.model, reason="is modelled only in the solid model")
+        raise InputError("command line", f"--stress-stiffening with --model {args.model}",
+                         "--stress-stiffening with --model solid",
+                         reason="is not available (the prestress is modelled only in the 3D "
+                         "solid rotor)")
 
 
 # --------------------------------------------------------------------------- models
