@@ -212,12 +212,8 @@ def our_modal(model, n_modes: int = N_MODES) -> dict:
     M = mass_matrix(m, model.variant.material.density_t_mm3)
     t["mass"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    sup = abaqus.build_supports(model)
-    nd = model.K.shape[0]
-    T, _ = abaqus.elimination(nd, sup)
-    nr = T.shape[0] - nd
-    Kf = sp.block_diag([model.K, sp.csr_matrix((nr, nr))], format="csr") \
-        + abaqus.spring_matrix(nd, sup)
+    T, Kf = abaqus.deck_system(model)
+    nr = T.shape[0] - model.K.shape[0]
     Mf = sp.block_diag([M, sp.csr_matrix((nr, nr))], format="csr")
     Tt = T.T.tocsr()
     Kr = (Tt @ Kf @ T).tocsr()
@@ -336,7 +332,7 @@ def ccx_style_nodal(mesh, u, E, nu) -> np.ndarray:
     over the elements at each node."""
     from skfem import ElementTetP2
 
-    from shaftfe import fem
+    from shaftfe import fem, recovery
     a, b = _gauss_ab()
     p = gauss_stress(mesh, u, E, nu)                                  # (6, 4, ne)
     corner = (p - a * p.sum(axis=1, keepdims=True)) / (b - a)
@@ -347,13 +343,7 @@ def ccx_style_nodal(mesh, u, E, nu) -> np.ndarray:
                     if np.allclose(r, 0.5 * (ref[i] + ref[j])))
         vals.append(0.5 * (corner[:, i] + corner[:, j]))
     s = np.stack(vals, axis=1)                                         # (6, 10, ne)
-    nodes = fem.element_nodes(mesh)
-    n = mesh.doflocs.shape[1]
-    cnt = np.bincount(nodes.ravel(), minlength=n).astype(float)
-    out = np.empty((6, n))
-    for c in range(6):
-        out[c] = np.bincount(nodes.ravel(), weights=s[c].ravel(), minlength=n)
-    return out / np.maximum(cnt, 1.0)
+    return recovery.average_to_nodes(mesh, s, fem.element_nodes(mesh))
 
 
 # --------------------------------------------------------------------------- comparison

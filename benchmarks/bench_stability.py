@@ -243,18 +243,27 @@ def speeds(lines):
     lines.append("")
 
 
+def _stepped(rho: float, *, step_mm: float, bearings_mm: tuple[float, float],
+             seat_mm: float):
+    """Ø17 / Ø22 / Ø17 stepped shaft (40 mm, ``step_mm``, 40 mm), both steps with fillet ``rho``
+    on the Ø22 side, bearings (seed stiffness) at ``bearings_mm``, a 0.2 kg part centred on the
+    Ø22 step."""
+    from shaftfe.variant import Attachment, Bearing, Segment, Variant
+    K = ((K_SEED, 0.0), (0.0, K_SEED))
+    segs = (Segment("a", 0.0, 40.0, 17.0, rho), Segment("b", 40.0, step_mm, 22.0, rho),
+            Segment("c", 40.0 + step_mm, 40.0, 17.0, 0.0))
+    brg = (Bearing("L", "x", bearings_mm[0], seat_mm, 1e4, 1e4, K, axial=True),
+           Bearing("R", "x", bearings_mm[1], seat_mm, 1e4, 1e4, K))
+    c = 40.0 + step_mm / 2
+    att = (Attachment("w", c - 5.0, c + 5.0, 0.2, 22.0, c),)
+    return Variant("st", "stepped", segs, brg, att, _steel(), 0.0)
+
+
 def fillets(lines):
     from shaftfe import mesh
-    from shaftfe.variant import Attachment, Bearing, Segment, Variant
 
     def stepped(rho):
-        K = ((K_SEED, 0.0), (0.0, K_SEED))
-        segs = (Segment("a", 0.0, 40.0, 17.0, rho), Segment("b", 40.0, 20.0, 22.0, rho),
-                Segment("c", 60.0, 40.0, 17.0, 0.0))
-        brg = (Bearing("L", "x", 20.0, 8.0, 1e4, 1e4, K, axial=True),
-               Bearing("R", "x", 80.0, 8.0, 1e4, 1e4, K))
-        att = (Attachment("w", 45.0, 55.0, 0.2, 22.0, 50.0),)
-        return Variant("st", "stepped", segs, brg, att, _steel(), 0.0)
+        return _stepped(rho, step_mm=20.0, bearings_mm=(20.0, 80.0), seat_mm=8.0)
     rows = []
     radii = [2.5, 1.0, 0.5, 0.25, 0.1] + ([0.05] if FULL else [])
     for rho in radii:
@@ -402,14 +411,8 @@ def beam_sweeps(lines):
               "beam path enforces the scale-invariant backward error instead.", ""]
     rows = []
     for rho in (0.05, 0.1, 0.25, 0.5, 1.0, 2.0, 2.5):
-        from shaftfe.variant import Attachment, Bearing, Segment, Variant
-        K = ((K_SEED, 0), (0, K_SEED))
-        segs = (Segment("a", 0.0, 40.0, 17.0, rho), Segment("b", 40.0, 30.0, 22.0, rho),
-                Segment("c", 70.0, 40.0, 17.0, 0.0))
-        brg = (Bearing("L", "x", 15.0, 10.0, 1e4, 1e4, K, axial=True),
-               Bearing("R", "x", 95.0, 10.0, 1e4, 1e4, K))
-        att = (Attachment("w", 50.0, 60.0, 0.2, 22.0, 55.0),)
-        r = beam.analyse(Variant("st", "stepped", segs, brg, att, _steel(), 0.0), RPM)[0]
+        v = _stepped(rho, step_mm=30.0, bearings_mm=(15.0, 95.0), seat_mm=10.0)
+        r = beam.analyse(v, RPM)[0]
         rows.append([fmt(rho, "g")] + [f"{n.kt:.4f} ({'in' if n.kt_in_range else 'OUT of'} "
                                        "fit range)" for n in r.notches]
                     + [f"{r.max_peak_MPa:.2f}"])

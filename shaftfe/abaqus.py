@@ -326,6 +326,21 @@ class DeckInfo:
     seconds: float
 
 
+def deck_system(model):
+    """The deck's support system as ccx assembles it: ``(T, K_full)`` with K_full the shaft's
+    K extended by the reference-node dofs plus the SPRINGAs (``spring_matrix``) and T the
+    elimination of the equations and holds (``elimination``); the supported stiffness is
+    Tᵀ K_full T, and u_full = T u_free."""
+    import scipy.sparse as sp
+    sup = build_supports(model)
+    nd = model.K.shape[0]
+    T, _ = elimination(nd, sup)
+    nr = T.shape[0] - nd
+    Kf = sp.block_diag([model.K, sp.csr_matrix((nr, nr))], format="csr") \
+        + spring_matrix(nd, sup)
+    return T, Kf
+
+
 def _lines(items, per_line: int) -> list[str]:
     out = []
     for i in range(0, len(items), per_line):

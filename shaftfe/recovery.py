@@ -102,6 +102,12 @@ def element_node_stress(mesh, u: np.ndarray, E: float, nu: float):
 def nodal_stress(mesh, u: np.ndarray, E: float, nu: float) -> np.ndarray:
     """Averaged nodal stress (6, n_nodes), see the module docstring."""
     s, nodes = element_node_stress(mesh, u, E, nu)
+    return average_to_nodes(mesh, s, nodes)
+
+
+def average_to_nodes(mesh, s: np.ndarray, nodes: np.ndarray) -> np.ndarray:
+    """Plain average over the elements sharing each node of per-element nodal values
+    ``s`` (6, nloc, ne) at ``nodes`` (nloc, ne): (6, n_nodes)."""
     n = mesh.doflocs.shape[1]
     cnt = np.bincount(nodes.ravel(), minlength=n).astype(float)
     out = np.empty((6, n))
