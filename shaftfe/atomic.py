@@ -1,8 +1,11 @@
-"""Atomic file output: a result file is either complete or absent, never half-written."""
+"""Atomic file output: a result file is either complete or absent, never half-written; a run's
+set of files is complete or absent (``staged_dir``); output paths are checked before any work
+(``check_output_file``, ``staged_dir``)."""
 
 from __future__ import annotations
 
 import os
+import shutil
 import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -43,3 +46,112 @@ def write_atomic(path: str | os.PathLike, data: str | bytes) -> Path:
         else:
             tmp.write_text(data, encoding="utf-8")
     return Path(path)
+
+
+# --------------------------------------------------------------------------- output checks
+
+def _nearest_existing(path: Path) -> tuple[Path, list[Path]]:
+    """The nearest existing ancestor of ``path`` and the missing directories below it."""
+    missing: list[Path] = []
+    anc = path
+    while not anc.exists() and anc != anc.parent:
+        missing.append(anc)
+        anc = anc.parent
+    return anc, missing[::-1]
+
+
+def _probe_writable(directory: Path, option: str, target: Path) -> None:
+    """Create and remove a file in ``directory``: the one test that holds for root, read-only
+    file systems and /proc alike."""
+    try:
+        fd, tmp = tempfile.mkstemp(dir=directory, prefix=".shaftfe-probe.")
+        os.close(fd)
+        os.unlink(tmp)
+    except OSError as exc:
+        raise _not_writable(option, target, exc) from None
+
+
+def _not_writable(option: str, target: Path, exc: OSError | str):
+    from shaftfe.errors import InputError
+    why = exc if isinstance(exc, str) else (exc.strerror or exc.__class__.__name__)
+    return InputError(option, "path", "a location where shaftfe may create files",
+                      got=str(target), reason=f"cannot be written ({why})")
+
+
+def check_output_file(path: str | os.PathLike | None, option: str) -> Path | None:
+    """Refuse, before any work is done, an output FILE that cannot be written: a directory at
+    the path, a parent that is a file, a parent that cannot be created or written. Creates
+    nothing (a probe file is made and removed in the nearest existing directory)."""
+    if path is None or path == "":
+        return None
+    p = Path(path)
+    if p.is_dir():
+        raise _not_writable(option, p, "it is a directory; give a file name")
+    anc, _ = _nearest_existing(p.parent)
+    if not anc.is_dir():
+        raise _not_writable(option, p, f"{anc} is a file, not a directory")
+    _probe_writable(anc, option, p)
+    return p
+
+
+@contextmanager
+def staged_dir(out: str | os.PathLike, option: str = "--out") -> Iterator[Path]:
+    """All the files of one run, or none: yields a hidden staging directory beside ``out``
+    (created now, so an unwritable ``out`` fails before any work), into which the run writes
+    everything; on success its files are moved into ``out`` (created if missing), on any error
+    or Ctrl-C the staging directory is removed and ``out`` is left as it was.
+
+    Before moving anything the commit checks that no output would land on a directory; the moves
+    themselves are renames within one file system."""
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise _not_writable(option, out, "it is a file; give a directory")
+    anc, missing = _nearest_existing(out.parent)
+    if not anc.is_dir():
+        raise _not_writable(option, out, f"{anc} is a file, not a directory")
+    created: list[Path] = []
+    try:
+        for d in missing:
+            d.mkdir()
+            created.append(d)
+        stage = Path(tempfile.mkdtemp(dir=out.parent, prefix=f".{out.name}.staging-"))
+    except OSError as exc:
+        _remove_dirs(created)
+        raise _not_writable(option, out, exc) from None
+    try:
+        yield stage
+        _commit(stage, out, option)
+    except BaseException:
+        shutil.rmtree(stage, ignore_errors=True)
+        _remove_dirs(created)
+        raise
+
+
+def _remove_dirs(created: list[Path]) -> None:
+    for d in reversed(created):
+        try:
+            d.rmdir()
+        except OSError:
+            pass
+
+
+def _commit(stage: Path, out: Path, option: str) -> None:
+    umask = os.umask(0)
+    os.umask(umask)
+    if not out.exists():
+        os.chmod(stage, 0o777 & ~umask)
+        os.replace(stage, out)
+        return
+    files = sorted(p.relative_to(stage) for p in stage.rglob("*") if not p.is_dir())
+    for rel in files:
+        if (out / rel).is_dir():
+            raise _not_writable(option, out / rel, "a directory stands where this output file "
+                                "goes")
+        for parent in rel.parents:
+            if parent != Path(".") and (out / parent).exists() and not (out / parent).is_dir():
+                raise _not_writable(option, out / parent, "a file stands where an output "
+                                    "directory goes")
+    for rel in files:
+        (out / rel).parent.mkdir(parents=True, exist_ok=True)
+        os.replace(stage / rel, out / rel)
+    shutil.rmtree(stage, ignore_errors=True)

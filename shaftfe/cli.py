@@ -30,10 +30,21 @@ COMMAND_MODULES = (
 )
 
 
+_ARGV: list[str] = []        # the words being parsed, for the hint in _Parser.error
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse that reports usage errors as one line with exit code 2 (no usage dump)."""
 
     def error(self, message: str) -> None:  # type: ignore[override]
+        k = next((i for i, a in enumerate(_ARGV) if len(a) > 1 and a[0] == "-"
+                  and (a[1].isdigit() or a[1] == ".")), None)
+        if k is not None and ("expected one argument" in message or "required" in message
+                              or "unrecognized arguments" in message):
+            neg = _ARGV[k]
+            opt = _ARGV[k - 1] if k and _ARGV[k - 1].startswith("--") else None
+            how = f"write {opt}={neg}" if opt else f"put -- before it: -- {neg}"
+            message += f" ({neg!r} starts with '-' and reads as an option: {how})"
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
@@ -52,6 +63,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
+    _ARGV[:] = sys.argv[1:] if argv is None else list(argv)
     args = parser.parse_args(argv)
     if not getattr(args, "handler", None):
         parser.print_help()
@@ -62,7 +74,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"shaftfe: error: {exc}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
-        print("shaftfe: interrupted", file=sys.stderr)
+        print("shaftfe: interrupted (no output written)", file=sys.stderr)
         return 130
     except BrokenPipeError:
         # output piped into `head` and closed early: end quietly, as other CLI tools do
@@ -70,6 +82,12 @@ def main(argv: list[str] | None = None) -> int:
 
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
+    except OSError as exc:
+        # a file the run could not read or write after the checks up front (disk full, a path
+        # changed meanwhile): one line naming it, as for any other bad input
+        where = exc.filename if exc.filename is not None else "file system"
+        print(f"shaftfe: error: {where}: {exc.strerror or exc}", file=sys.stderr)
+        return 2
 
 
 if __name__ == "__main__":  # pragma: no cover

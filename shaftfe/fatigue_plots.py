@@ -92,6 +92,9 @@ def plot_cycle_matrix(matrix: CycleMatrix, path, title: str = "") -> Path:
     return _save(fig, path)
 
 
+HAIGH_MAX_POINTS = 20_000
+
+
 def plot_haigh(sigma_eq_node: float, cycles: Cycles, material: FatigueMaterial, path,
                theory: str = "soderberg", kf: float = 1.0) -> Path:
     """Haigh diagram of one node: its cycles (σ_m, σ_a), marker area ∝ count, and the chosen
@@ -102,8 +105,15 @@ def plot_haigh(sigma_eq_node: float, cycles: Cycles, material: FatigueMaterial, 
     sm = s * cycles.mean
     se = kf * material.sn.endurance_MPa
     fig, ax = plt.subplots(figsize=(6, 4.5))
-    ax.scatter(sm, sa, s=20 + 30 * cycles.count / max(cycles.count.max(initial=1.0), 1.0),
-               alpha=0.7, label=f"cycles at σ_eq,ref = {s:.1f} MPa")
+    label = f"cycles at σ_eq,ref = {s:.1f} MPa"
+    if sa.size > HAIGH_MAX_POINTS:      # a long log: the largest amplitudes, which do the damage
+        keep = np.argpartition(sa, sa.size - HAIGH_MAX_POINTS)[-HAIGH_MAX_POINTS:]
+        label += f" (the {HAIGH_MAX_POINTS} largest of {sa.size} classes)"
+        sa_p, sm_p, cnt = sa[keep], sm[keep], cycles.count[keep]
+    else:
+        sa_p, sm_p, cnt = sa, sm, cycles.count
+    ax.scatter(sm_p, sa_p, s=20 + 30 * cnt / max(cnt.max(initial=1.0), 1.0), alpha=0.7,
+               label=label)
     m = np.linspace(0.0, material.ultimate_MPa, 200)
     lines = {"soderberg": (material.yield_MPa, lambda x: se * (1 - x / material.yield_MPa)),
              "goodman": (material.ultimate_MPa, lambda x: se * (1 - x / material.ultimate_MPa)),

@@ -212,7 +212,7 @@ def _finish(data: dict, name: str, level: str, order: int, key: str, t0: float,
 
 
 def _save(path: Path, data: dict) -> None:
-    import numpy as np
+    from shaftfe import cachefile
     arrays = {"doflocs": data["doflocs"], "t": data["t"]}
     names = list(data["boundaries"])
     subs = list(data["subdomains"])
@@ -220,28 +220,31 @@ def _save(path: Path, data: dict) -> None:
         arrays[f"b{i}"] = data["boundaries"][n]
     for i, n in enumerate(subs):
         arrays[f"s{i}"] = data["subdomains"][n]
-    meta = dict(data["meta"], boundaries=names, subdomains=subs)
-    arrays["meta"] = np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8)
-    with atomic_path(path, suffix=".tmp") as tmp, open(tmp, "wb") as fh:
-        np.savez_compressed(fh, **arrays)
+    cachefile.save(path, arrays, dict(data["meta"], boundaries=names, subdomains=subs),
+                   compressed=True)
 
 
 def _load(path: Path, key: str) -> dict | None:
-    """Read a cache file; None (→ rebuild) if it is unreadable, truncated or not ours."""
+    """Read a cache file; None (→ rebuild) if it is unreadable, truncated, damaged (checksum)
+    or not ours."""
     import numpy as np
+
+    from shaftfe import cachefile
+    got = cachefile.load(path, key, "mesh")
+    if got is None:
+        return None
+    z, meta = got
     try:
-        with np.load(path, allow_pickle=False) as z:
-            meta = json.loads(z["meta"].tobytes().decode())
-            if meta.get("key") != key or meta.get("format") != CACHE_FORMAT:
-                return None
-            data = {
-                "doflocs": np.ascontiguousarray(z["doflocs"], dtype=np.float64),
-                "t": np.ascontiguousarray(z["t"], dtype=np.int32),
-                "boundaries": {n: z[f"b{i}"] for i, n in enumerate(meta["boundaries"])},
-                "subdomains": {n: z[f"s{i}"] for i, n in enumerate(meta["subdomains"])},
-                "meta": meta,
-            }
-    except Exception:           # any damage means: rebuild
+        if meta.get("format") != CACHE_FORMAT:
+            return None
+        data = {
+            "doflocs": np.ascontiguousarray(z["doflocs"], dtype=np.float64),
+            "t": np.ascontiguousarray(z["t"], dtype=np.int32),
+            "boundaries": {n: z[f"b{i}"] for i, n in enumerate(meta["boundaries"])},
+            "subdomains": {n: z[f"s{i}"] for i, n in enumerate(meta["subdomains"])},
+            "meta": meta,
+        }
+    except (KeyError, TypeError, ValueError):
         return None
     d, t = data["doflocs"], data["t"]
     if d.ndim != 2 or d.shape[0] != 3 or t.ndim != 2 or t.shape[0] != 4 or t.size == 0 \
@@ -597,6 +600,9 @@ def triangle6_connectivity(m, facets):
     return np.vstack([a, b, c, mid(a, b), mid(b, c), mid(c, a)]).T
 
 
+GROUP_NAMES_FIELD = "group_names_utf8"     # field data of mesh.vtu: the group names, UTF-8
+
+
 def write_mesh(sm: ShaftMesh, path) -> Path:
     """Write the mesh as .vtu (VTK) or .msh (Gmsh 2.2): volume cells (group id 0) plus each
     face group's triangles with cell data ``group`` = 1-based index into ``sm.groups``."""
@@ -634,5 +640,12 @@ def write_mesh(sm: ShaftMesh, path) -> Path:
             out.cell_data = {"gmsh:physical": data, "gmsh:geometrical": data}
             meshio.write(tmp, out, file_format="gmsh22", binary=False)
         else:
-            meshio.write(tmp, out, file_format="vtu")
+            # VTK's own writer, for the group names as field data (meshio's writer drops field
+            # data, and its reader refuses VTK string arrays): UTF-8 bytes, one name a line, so
+            # `shaftfe view mesh.vtu` names the groups and meshio still reads the file
+            import pyvista as pv
+            grid = pv.from_meshio(out)
+            grid.field_data[GROUP_NAMES_FIELD] = np.frombuffer(
+                "\n".join(sm.groups).encode("utf-8"), dtype=np.uint8)
+            grid.save(str(tmp))
     return path

@@ -58,6 +58,16 @@ RESIDUAL_TOL = 1e-8
 DISTRIBUTIONS = ("uniform", "cosine")
 
 
+LOAD_CASES = {False: "all parts", True: "seed load case (gear + counterweight 1 = F1, "
+                                       "counterweight 2 = Fv2)"}
+
+
+def load_case_label(seed_load_case: bool) -> str:
+    """The load case in words, for every table header and summary.json: every part of the
+    variant (the default of every command), or the seed's F1 + Fv2 only."""
+    return LOAD_CASES[bool(seed_load_case)]
+
+
 @dataclass(frozen=True)
 class StaticOptions:
     level: str = "default"
@@ -66,6 +76,10 @@ class StaticOptions:
     load_distribution: str = "uniform"     # "uniform" | "cosine"
     body_force: bool = False               # the shaft's own centrifugal load
     seed_load_case: bool = False           # only the parts the seed loaded (gear, CW1, CW2)
+
+    @property
+    def load_case(self) -> str:
+        return load_case_label(self.seed_load_case)
     solver: str = "auto"                   # see shaftfe.solvers
     hold_twist: str = "all"                # θ_x held at "all" bearings, the "axial" one, "none"
     exclude_mm: float = 0.0                # extra band around patch edges for filtered peaks
@@ -166,7 +180,8 @@ class StaticResult:
             return o
         return clean({
             "variant": self.variant, "variant_hash": self.variant_hash,
-            "options": asdict(self.options), "ref_rpm": self.ref_rpm,
+            "options": asdict(self.options), "load_case": self.options.load_case,
+            "ref_rpm": self.ref_rpm,
             "mesh": {"key": self.mesh_key, "nodes": self.n_nodes, "elements": self.n_elements,
                      "dofs": self.n_dofs},
             "cases": [asdict(c) for c in self.cases],
@@ -283,6 +298,17 @@ class UnitSolution:
     run: dict = field(default_factory=dict)  # factor_seconds, solve_seconds
 
 
+def _springs(model: StaticModel) -> str:
+    """The bearings' springs by name, softest and stiffest, for a solver failure message."""
+    k = {b.bearing: float(np.linalg.eigvalsh(b.C).min()) for b in model.blocks
+         if b.C is not None and b.labels == ("u_y", "u_z")}
+    if not k:
+        return "every support is rigid"
+    soft, stiff = min(k, key=k.get), max(k, key=k.get)
+    return (f"softest spring: bearing {soft!r} ({k[soft]:.3g} N/mm), stiffest: bearing "
+            f"{stiff!r} ({k[stiff]:.3g} N/mm)")
+
+
 def solve_model(model: StaticModel, rhs: np.ndarray | None = None) -> UnitSolution:
     """Solve the supported system for ``rhs`` (default: the model's load at REF_RPM)."""
     from shaftfe import solvers
@@ -323,7 +349,7 @@ def solve_model(model: StaticModel, rhs: np.ndarray | None = None) -> UnitSoluti
     cond = float(np.linalg.cond(S))
     if not np.isfinite(cond) or cond > 1e13:
         raise SolverError(f"the support system is numerically singular (cond(S) = {cond:.3g}, "
-                          "limit 1e13): check the bearing stiffnesses")
+                          f"limit 1e13): check the bearing stiffnesses; {_springs(model)}")
     from scipy.linalg import lu_factor, lu_solve
     S_lu = lu_factor(S)
 
@@ -370,7 +396,8 @@ def solve_model(model: StaticModel, rhs: np.ndarray | None = None) -> UnitSoluti
         k += mk
     if relres > RESIDUAL_TOL or hard_rel > RESIDUAL_TOL:
         raise SolverError(f"the linear solve did not converge (relative residual {relres:.2e}, "
-                          f"support-row violation {hard_rel:.2e}; limit {RESIDUAL_TOL:g})")
+                          f"support-row violation {hard_rel:.2e}; limit {RESIDUAL_TOL:g}): "
+                          f"check the bearing stiffnesses; {_springs(model)}")
     diag = {"solver": fac.name, "solver_note": getattr(fac, "note", ""),
             "n_low_rank": int(U.shape[1]),
             "cond_S": cond, "relative_residual": relres, "hard_violation_rel": hard_rel,

@@ -47,8 +47,6 @@ from pathlib import Path
 
 import numpy as np
 
-from shaftfe.atomic import atomic_path
-
 STATIC_CACHE_FORMAT = 1
 FINGERPRINT_MODULES = ("shaftfe.static", "shaftfe.recovery", "shaftfe.fem", "shaftfe.supports")
 _KEY_SKIP_OPTIONS = ("solver",)
@@ -254,6 +252,7 @@ def _float_or_none(v) -> float | None:
 
 
 def _save(path: Path, ref: StaticReference) -> None:
+    from shaftfe import cachefile
     names = sorted(ref.regions)
     meta = {"format": STATIC_CACHE_FORMAT, "key": ref.key, "variant": ref.variant,
             "variant_hash": ref.variant_hash, "options": ref.options, "ref_rpm": ref.ref_rpm,
@@ -262,27 +261,26 @@ def _save(path: Path, ref: StaticReference) -> None:
             "relative_residual": ref.relative_residual}
     arrays = {"stress_ref": ref.stress_ref, "von_mises_ref": ref.von_mises_ref, "xyz": ref.xyz,
               "excluded": ref.excluded, "cells": ref.cells, "face_cells": ref.face_cells,
-              "face_group": ref.face_group,
-              "meta": np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8)}
+              "face_group": ref.face_group}
     for i, n in enumerate(names):
         arrays[f"r{i}"] = ref.regions[n]
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with atomic_path(path, suffix=".tmp") as tmp, open(tmp, "wb") as fh:
-        np.savez(fh, **arrays)
+    cachefile.save(path, arrays, meta)
 
 
 def _load(path: Path, key: str, name: str, t0: float) -> StaticReference | None:
     """Read a cache file; None (→ recompute) if it is unreadable, truncated, foreign or
     inconsistent."""
+    from shaftfe import cachefile
+    got = cachefile.load(path, key, "static")
+    if got is None:
+        return None
+    z, meta = got
     try:
-        with np.load(path, allow_pickle=False) as z:
-            meta = json.loads(z["meta"].tobytes().decode())
-            if meta.get("key") != key or meta.get("format") != STATIC_CACHE_FORMAT:
-                return None
-            arr = {k: np.array(z[k]) for k in ("stress_ref", "von_mises_ref", "xyz",
-                                                "excluded", "cells", "face_cells",
-                                                "face_group")}
-            regions = {n: np.array(z[f"r{i}"]) for i, n in enumerate(meta["regions"])}
+        if meta.get("format") != STATIC_CACHE_FORMAT:
+            return None
+        arr = {k: z[k] for k in ("stress_ref", "von_mises_ref", "xyz", "excluded", "cells",
+                                 "face_cells", "face_group")}
+        regions = {n: z[f"r{i}"] for i, n in enumerate(meta["regions"])}
         n = arr["xyz"].shape[1] if arr["xyz"].ndim == 2 else -1
         ok = (arr["xyz"].shape == (3, n) and n > 0 and arr["stress_ref"].shape == (6, n)
               and arr["von_mises_ref"].shape == (n,)
@@ -306,5 +304,5 @@ def _load(path: Path, key: str, name: str, t0: float) -> StaticReference | None:
         if not math.isfinite(ref.ref_rpm) or ref.ref_rpm <= 0:
             return None
         return ref
-    except Exception:          # any damage means: recompute
+    except (KeyError, TypeError, ValueError):      # meta of another shape: recompute
         return None

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
+import itertools
 import json
 import math
 import tomllib
@@ -401,8 +402,13 @@ def _resolve(name_or_path: str | Path) -> Path:
 
 def _read_toml(path: Path, shown: str) -> dict:
     try:
-        with path.open("rb") as fh:
-            return tomllib.load(fh)
+        raw = path.read_bytes()
+        text = raw.decode("utf-8-sig")       # a BOM from a Windows editor is tolerated
+        return tomllib.loads(text)
+    except UnicodeDecodeError as exc:
+        raise InputError(shown, "file", "a UTF-8 text file (TOML)",
+                         reason=f"is not UTF-8 text (byte 0x{raw[exc.start]:02x} at offset "
+                         f"{exc.start}: a binary file, or saved as Latin-1/CP1250?)") from None
     except tomllib.TOMLDecodeError as exc:
         raise InputError(shown, "file", "valid TOML", reason=f"is not valid TOML ({exc})") \
             from None
@@ -506,6 +512,36 @@ def _need(ok: bool, src: str, fld: str, allowed: str, got: Any) -> None:
         raise InputError(src, fld, allowed, got=got)
 
 
+# Plausibility bounds for a balancer shaft of a motorcycle engine (mm, kg, N, MPa). They are far
+# wider than any real design and exist to catch a value typed in the wrong unit, which passes a
+# type check and then gives nonsense (a Ø 0.022 "mm" collar meshed for 10 minutes at 3.8 GB).
+PLAUSIBLE = {              # kind: (low, high, unit, the unit a value below `low` was typed in)
+    "diameter_mm": (2.0, 300.0, "mm", "metres"),
+    "length_mm": (0.2, 2000.0, "mm", "metres"),
+    "mass_kg": (1e-5, 20.0, "kg", "tonnes"),
+    "eccentricity_mm": (0.0, 300.0, "mm", "metres"),
+    "E_MPa": (1e4, 1e6, "MPa", "GPa"),
+    "strength_MPa": (10.0, 5000.0, "MPa", "GPa"),
+    "C_N": (100.0, 1e7, "N", "kN"),
+    "K_N_per_mm": (10.0, 1e9, "N/mm", "kN/mm"),
+}
+_ABOVE_HINT = {"mass_kg": "grams", "eccentricity_mm": "µm", "diameter_mm": "µm",
+               "length_mm": "µm", "E_MPa": "Pa", "strength_MPa": "Pa", "K_N_per_mm": "N/m"}
+
+
+def _plausible(v: float, kind: str, src: str, fld: str) -> None:
+    """``v`` within ``PLAUSIBLE[kind]``; else an error with a hint at the likely unit."""
+    lo, hi, unit, below = PLAUSIBLE[kind]
+    if lo <= v <= hi:
+        return
+    hint = ""
+    if 0 < v < lo:
+        hint = f" (typed in {below}?)"
+    elif v > hi and kind in _ABOVE_HINT:
+        hint = f" (typed in {_ABOVE_HINT[kind]}?)"
+    raise InputError(src, fld, f"a plausible value in [{lo:g}, {hi:g}] {unit}{hint}", got=v)
+
+
 def _provenance(t: dict, src: str, fld: str, path: str, ctx: _Ctx) -> None:
     """Every numeric key of table ``t`` must be in exactly one of the lists seed / reconstructed
     / derived / standard; record them under ``path``."""
@@ -550,10 +586,10 @@ def _material(name: str, t: dict, src: str, ctx: _Ctx) -> Material:
     rho = _num(t, "density_t_mm3", src, fld)
     fy = _num(t, "yield_MPa", src, fld)
     fu = _num(t, "ultimate_MPa", src, fld)
-    _need(E > 0, src, f"{fld}.E_MPa", "> 0", E)
+    _plausible(E, "E_MPa", src, f"{fld}.E_MPa")
     _need(0.0 < nu < 0.5, src, f"{fld}.nu", "0 < nu < 0.5", nu)
     _need(0 < rho < 1e-7, src, f"{fld}.density_t_mm3", "0 < value < 1e-7 t/mm³", rho)
-    _need(fy > 0, src, f"{fld}.yield_MPa", "> 0", fy)
+    _plausible(fy, "strength_MPa", src, f"{fld}.yield_MPa")
     _need(fu >= fy, src, f"{fld}.ultimate_MPa", f">= yield_MPa ({fy})", fu)
     return Material(name=name, E_MPa=E, nu=nu, density_t_mm3=rho, yield_MPa=fy,
                     ultimate_MPa=fu, description=str(t.get("description", "")))
@@ -580,8 +616,8 @@ def _segments(shaft: dict, src: str, ctx: _Ctx, stock: float | None) -> tuple[Se
         dia = _num(t, "diameter_mm", src, fld)
         fil = _num(t, "fillet_mm", src, fld, default=0.0)
         kind = _str(t, "kind", src, fld, default="plain")
-        _need(length > 0, src, f"{fld}.length_mm", "> 0", length)
-        _need(dia > 0, src, f"{fld}.diameter_mm", "> 0", dia)
+        _plausible(length, "length_mm", src, f"{fld}.length_mm")
+        _plausible(dia, "diameter_mm", src, f"{fld}.diameter_mm")
         if stock is not None:
             _need(dia <= stock + 1e-9, src, f"{fld}.diameter_mm",
                   f"<= stock diameter {stock:g} mm", dia)
@@ -589,6 +625,8 @@ def _segments(shaft: dict, src: str, ctx: _Ctx, stock: float | None) -> tuple[Se
         _need(kind in ("plain", "seat", "thread"), src, f"{fld}.kind",
               "plain | seat | thread", kind)
         kws: list[Keyway] = []
+        _need(isinstance(t.get("keyways", []), list), src, f"{fld}.keyways",
+              "a list of [[...keyways]] tables", t.get("keyways"))
         for j, k in enumerate(t.get("keyways", [])):
             kf = f"{fld}.keyways[{j}]"
             k = _table(k, src, kf)
@@ -662,17 +700,31 @@ def _bearings(shaft: dict, types: dict, segs: tuple[Segment, ...], ctx: _Ctx, sr
         _need(ok, tsrc, f"{tf}.K_N_per_mm", "[[K11, K12], [K21, K22]] in N/mm", K)
         (k11, k12), (k21, k22) = ((float(K[0][0]), float(K[0][1])),
                                   (float(K[1][0]), float(K[1][1])))
+        _need(all(math.isfinite(k) for k in (k11, k12, k21, k22)), tsrc, f"{tf}.K_N_per_mm",
+              "finite stiffnesses in N/mm (a rigid support: --rigid-supports)", K)
         _need(abs(k12 - k21) <= 1e-9 * max(abs(k11), abs(k22), 1.0), tsrc,
               f"{tf}.K_N_per_mm", "symmetric (K12 = K21)", K)
         _need(k11 > 0 and k22 > 0 and k11 * k22 - k12 * k21 > 0, tsrc, f"{tf}.K_N_per_mm",
               "positive definite (K11 > 0, K22 > 0, K11 K22 - K12² > 0)", K)
+        # the smaller eigenvalue: a spring softer than the bound leaves the shaft floating on
+        # a support the solver cannot tell from none (1e-9 N/mm: residual 5.6 instead of 1e-8)
+        k_min = 0.5 * (k11 + k22) - math.hypot(0.5 * (k11 - k22), k12)
+        k_max = 0.5 * (k11 + k22) + math.hypot(0.5 * (k11 - k22), k12)
+        for kk in (k_min, k_max):
+            _plausible(kk, "K_N_per_mm", tsrc, f"{tf}.K_N_per_mm (eigenvalue)")
         width = _num(bt, "width_mm", tsrc, tf)
         bore = _num(bt, "bore_mm", tsrc, tf)
         C = _num(bt, "C_N", tsrc, tf)
         C0 = _num(bt, "C0_N", tsrc, tf)
-        _need(width > 0, tsrc, f"{tf}.width_mm", "> 0", width)
-        _need(C > 0, tsrc, f"{tf}.C_N", "> 0", C)
-        _need(C0 > 0, tsrc, f"{tf}.C0_N", "> 0", C0)
+        _plausible(width, "length_mm", tsrc, f"{tf}.width_mm")
+        _plausible(bore, "diameter_mm", tsrc, f"{tf}.bore_mm")
+        _plausible(C, "C_N", tsrc, f"{tf}.C_N")
+        _plausible(C0, "C_N", tsrc, f"{tf}.C0_N")
+        tilt = _num(bt, "tilt_stiffness_Nmm_per_rad", tsrc, tf, default=0.0)
+        _need(tilt >= 0, tsrc, f"{tf}.tilt_stiffness_Nmm_per_rad", ">= 0 N·mm/rad", tilt)
+        p_life = _num(bt, "life_exponent", tsrc, tf, default=3.0)
+        _need(1.0 <= p_life <= 10.0, tsrc, f"{tf}.life_exponent",
+              "in [1, 10] (ISO 281: 3 for ball, 10/3 for roller bearings)", p_life)
         chamfer = _num(bt, "chamfer_mm", tsrc, tf, default=0.0) or 0.0
         _need(0.0 <= chamfer < 0.25 * width, tsrc, f"{tf}.chamfer_mm",
               f">= 0 and < width / 4 ({0.25 * width:g})", chamfer)
@@ -694,9 +746,7 @@ def _bearings(shaft: dict, types: dict, segs: tuple[Segment, ...], ctx: _Ctx, sr
         out.append(Bearing(
             name=name, designation=_str(bt, "designation", tsrc, tf), x_center_mm=xc,
             width_mm=width, C_N=C, C0_N=C0, K_N_per_mm=((k11, k12), (k21, k22)), axial=axial,
-            tilt_stiffness_Nmm_per_rad=_num(bt, "tilt_stiffness_Nmm_per_rad", tsrc, tf,
-                                            default=0.0) or 0.0,
-            life_exponent=_num(bt, "life_exponent", tsrc, tf, default=3.0) or 3.0,
+            tilt_stiffness_Nmm_per_rad=tilt, life_exponent=p_life,
             bore_mm=bore, outer_diameter_mm=_num(bt, "outer_diameter_mm", tsrc, tf,
                                                  default=0.0) or 0.0, chamfer_mm=chamfer,
             r_s_min_mm=r_s_min))
@@ -704,7 +754,37 @@ def _bearings(shaft: dict, types: dict, segs: tuple[Segment, ...], ctx: _Ctx, sr
           "exactly one bearing with axial = true", sum(b.axial for b in out))
     names = [b.name for b in out]
     _need(len(set(names)) == len(names), src, "bearings[*].name", "unique names", names)
-    return tuple(sorted(out, key=lambda b: b.x_center_mm))
+    out.sort(key=lambda b: b.x_center_mm)
+    for a, b in itertools.pairwise(out):        # two rings cannot share a seat
+        _need(a.x_center_mm + 0.5 * a.width_mm <= b.x_center_mm - 0.5 * b.width_mm + 1e-9, src,
+              f"bearing {b.name!r} x_center_mm",
+              f"clear of bearing {a.name!r} (its ring ends at "
+              f"{a.x_center_mm + 0.5 * a.width_mm:g} mm)", b.x_center_mm)
+    _abutment_fillets(out, segs, src)
+    return tuple(out)
+
+
+def _abutment_fillets(bearings: list[Bearing], segs: tuple[Segment, ...], src: str) -> None:
+    """The bearing's own abutment rule (ISO 582): the shaft fillet at the shoulder a ring
+    abuts may not exceed the ring's corner r_s min (r_as max = r_s min), or the ring rides on
+    the fillet instead of seating against the shoulder."""
+    for b in bearings:
+        if b.r_s_min_mm <= 0:
+            continue
+        lo, hi = b.x_center_mm - 0.5 * b.width_mm, b.x_center_mm + 0.5 * b.width_mm
+        for i in range(len(segs) - 1):
+            a, c = segs[i], segs[i + 1]
+            x = a.x_end_mm
+            if a.fillet_mm <= 0 or abs(a.diameter_mm - c.diameter_mm) < 1e-9:
+                continue
+            small, big = (a, c) if a.diameter_mm < c.diameter_mm else (c, a)
+            at_ring = abs(x - lo) <= a.fillet_mm + 1e-6 or abs(x - hi) <= a.fillet_mm + 1e-6
+            if at_ring and abs(small.diameter_mm - b.bore_mm) < 1e-6 \
+                    and big.diameter_mm > b.bore_mm:
+                _need(a.fillet_mm <= b.r_s_min_mm + 1e-12, src, f"segments[{i}].fillet_mm",
+                      f"<= {b.r_s_min_mm:g} mm, the corner radius r_s min of bearing "
+                      f"{b.name!r} ({b.designation}) that abuts this shoulder (ISO 582)",
+                      a.fillet_mm)
 
 
 _ATT_KEYS = {"name", "part", "seat", "seat_x_mm", "mass_kg", "eccentricity_mm", "angle_deg",
@@ -742,8 +822,17 @@ def _attachment(t: dict, src: str, fld: str, segs: tuple[Segment, ...], mats: di
                          reason="is missing")
     m = _num(t, "mass_kg", src, fld)
     e = _num(t, "eccentricity_mm", src, fld)
-    _need(m > 0, src, f"{fld}.mass_kg", "> 0", m)
-    _need(e >= 0, src, f"{fld}.eccentricity_mm", ">= 0", e)
+    _plausible(m, "mass_kg", src, f"{fld}.mass_kg")
+    _plausible(e, "eccentricity_mm", src, f"{fld}.eccentricity_mm")
+    xc = _num(t, "x_centroid_mm", src, fld)
+    x0, x1 = segs[0].x_start_mm, segs[-1].x_end_mm
+    _need(x0 - 100.0 <= xc <= x1 + 100.0, src, f"{fld}.x_centroid_mm",
+          f"within 100 mm of the shaft [{x0:g}, {x1:g}] (a part beside its seat)", xc)
+    if shape is not None:
+        for k, val in shape.items():
+            if k not in _PROV_KEYS and k != "kind" and not (
+                    _is_num(val) and math.isfinite(float(val)) and float(val) >= 0):
+                raise InputError(src, f"{fld}.shape.{k}", "a finite number >= 0", got=val)
     jp = _num(t, "polar_inertia_kg_mm2", src, fld, default=0.0) or 0.0
     jd = _num(t, "diametral_inertia_kg_mm2", src, fld, default=0.0) or 0.0
     _need(jp >= 0, src, f"{fld}.polar_inertia_kg_mm2", ">= 0", jp)
@@ -755,7 +844,7 @@ def _attachment(t: dict, src: str, fld: str, segs: tuple[Segment, ...], mats: di
     _need(isinstance(slc, bool), src, f"{fld}.seed_load_case", "true | false", slc)
     return Attachment(
         name=name, seat_x_start_mm=lo, seat_x_end_mm=hi, mass_kg=m, eccentricity_mm=e,
-        x_centroid_mm=_num(t, "x_centroid_mm", src, fld),
+        x_centroid_mm=xc,
         angle_deg=_num(t, "angle_deg", src, fld, default=0.0) or 0.0,
         polar_inertia_kg_mm2=jp, diametral_inertia_kg_mm2=jd, material=mat,
         seed_load_case=slc, seat_segment=seat_name)
@@ -904,7 +993,33 @@ def load_variant(name_or_path: str | Path) -> Variant:
         balance_target=target,
         clearance_mm=_num(shaft, "clearance_to_crankshaft_mm", ssrc, "shaft", required=False),
         stock_diameter_mm=stock)
+    from shaftfe.solid import prepare
+    prepare(v)       # the solid's own rules (slots, hex socket, contact bands): every command
+    if target is not None:
+        _check_balance(v, target, ctx.file_of("balance", top))
     return dataclasses.replace(v, content_hash=content_hash(v))
+
+
+# The variant's [balance] table states the whole balancer's mass and balance ratio; its parts
+# must agree. The seed's own tables disagree with themselves by up to 1.4 points of X2 (x2_31:
+# 31 % stated, 32.4 % from its m and γ2) and 0.13 % of mass (x2_57), so the bounds are 2.5
+# points and 2 %: a unit mistake (an eccentricity in metres, a mass in grams) is far outside.
+BALANCE_X2_TOL_POINTS = 2.5
+BALANCE_MASS_RTOL = 0.02
+
+
+def _check_balance(v: Variant, t: BalanceTarget, src: str) -> None:
+    mp = mass_properties(v)
+    _need(abs(mp.mass_kg - t.mass_kg) <= BALANCE_MASS_RTOL * t.mass_kg, src, "balance.mass_kg",
+          f"the mass of the parts and shaft, {mp.mass_kg:.4f} kg (within "
+          f"{100 * BALANCE_MASS_RTOL:g} %): a part's mass or the stated value is wrong",
+          t.mass_kg)
+    if t.m_pos_kg > 0 and t.crank_radius_mm > 0:
+        x2 = 100.0 * mp.mass_kg * mp.gamma2_mm / (t.m_pos_kg * t.crank_radius_mm)
+        _need(abs(x2 - t.X2_percent) <= BALANCE_X2_TOL_POINTS, src, "balance.X2_percent",
+              f"the parts' X2 = Σ m e / (m_pos R) = {x2:.1f} % (within "
+              f"{BALANCE_X2_TOL_POINTS:g} points): a mass or eccentricity is wrong, e.g. "
+              "typed in grams or metres", t.X2_percent)
 
 
 def rigid_support_reactions(v: Variant, rpm: float, seed_case: bool = True

@@ -37,6 +37,7 @@ FIELDS: dict[str, tuple[str, str, str]] = {
     "region": ("id", "none", "face group id: 0 volume, k = regions[k - 1]"),
     "group": ("id", "none", "mesh face group id: 0 volume, k = groups[k - 1]"),
 }
+SF_CLIP = 3.0                  # safety factor colour scale: 1.0 marked, clipped above this
 MODE_PREFIX = "mode_"          # mode shapes: mode_<k>_<freq>Hz, 3 components, unitless
 DEFAULT_ORDER = ("von_mises", "safety_factor", "displacement", "group", "region")
 CAMERAS = ("iso", "xy", "xz", "yz")
@@ -150,6 +151,9 @@ def load(path) -> object:
 
     p = Path(path)
     allowed = "an existing VTK XML unstructured grid file (.vtu)"
+    if p.is_dir():
+        raise InputError(str(path), "file", allowed + "; give a file inside it",
+                         reason="is a directory")
     if not p.is_file():
         raise InputError(str(path), "file", allowed, reason="does not exist")
     try:
@@ -317,12 +321,17 @@ def hot_spot(grid, choice: FieldChoice, vals=None, exclude=None) -> HotSpot | No
 
 def group_names(grid, path) -> dict[int, str]:
     """Id -> name of the face groups: field data ``region_names`` / ``group_names`` (entry
-    k - 1 names id k) or, for ``result.vtu``, the sidecar ``summary.json`` (``vtu.regions``)."""
+    k - 1 names id k), ``group_names_utf8`` (``shaftfe mesh``: UTF-8 bytes, one name a line)
+    or, for ``result.vtu``, the sidecar ``summary.json`` (``vtu.regions``)."""
     out: dict[int, str] = {}
     for key in ("region_names", "group_names"):
         if key in grid.field_data.keys():
             out = {k + 1: str(s) for k, s in enumerate(grid.field_data[key])}
             return out
+    if "group_names_utf8" in grid.field_data.keys():          # shaftfe mesh --out x.vtu
+        import numpy as np
+        raw = bytes(np.asarray(grid.field_data["group_names_utf8"], dtype=np.uint8))
+        return {k + 1: s for k, s in enumerate(raw.decode("utf-8").split("\n"))}
     side = Path(path).with_name("summary.json")
     try:
         vtu = json.loads(side.read_text())["vtu"]
@@ -539,6 +548,9 @@ def render(path, field: str | None = None, component: str | None = None,
 
     if shot is None and off_screen:
         shot = Path(path).with_name(f"{Path(path).stem}_{choice.name}.png")
+    if shot is not None:
+        from shaftfe.atomic import check_output_file
+        check_output_file(shot, "--screenshot")
 
     bnd = boundary(grid, choice, np.where(finite, vals, np.nan))
     if factor:
@@ -582,18 +594,29 @@ def _plot(path, surf, edge_src, choice, vmin, vmax, hot, factor, shape_field, gr
     if choice.rule == "none":
         ids = np.unique(np.asarray(surf.cell_data["_view"] if "_view" in surf.cell_data.keys()
                                    else surf.point_data["_view"]))
-        kw["cmap"] = "tab20"
+        kw["cmap"] = "tab20" if ids.size <= 20 else "nipy_spectral"   # a colour per id
         kw["categories"] = True
         kw["n_colors"] = max(int(ids.size), 2)
-        if names and ids.size <= 20:
+        if names and ids.size <= 40:
             kw["annotations"] = {float(i): names.get(int(i), "(no group)" if i == 0 else str(i))
                                  for i in ids}
-            sbar.update(n_labels=0, vertical=True, position_x=0.80, position_y=0.15,
-                        width=0.06, height=0.7, title=title)
+            sbar.update(n_labels=0, vertical=True, position_x=0.80, position_y=0.05,
+                        width=0.06, height=0.9, title=title,
+                        label_font_size=18 if ids.size <= 20 else 11)
+        else:                                             # ids without names: whole numbers
+            sbar.update(fmt="%.0f", n_labels=int(min(ids.size, 10)))
     elif choice.rule == "max_abs":                        # signed: diverging, centred on 0
         kw["cmap"] = "coolwarm"
         a = max(abs(vmin), abs(vmax))
         vmin, vmax = -a, a
+    elif choice.name == "safety_factor":
+        # an engineer reads a safety factor around 1: red below 1, green above, clipped at
+        # SF_CLIP (a linear 0.47-15 scale painted everything from 0.5 to 4 the same red)
+        kw["cmap"] = "RdYlGn"
+        kw["above_color"] = "darkgreen"
+        kw["annotations"] = {1.0: "1.0"}
+        vmin, vmax = min(vmin, 0.9), SF_CLIP
+        sbar.update(title=title.replace("\n", "") + f" (clipped at {SF_CLIP:g})\n")
     else:
         kw["cmap"] = "jet" if choice.rule != "min" else "jet_r"
         if choice.name == "life_blocks" and vmin > 0 and vmax / vmin > 100:

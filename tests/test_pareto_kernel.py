@@ -45,6 +45,7 @@ def test_richardson_exact_for_pure_power_error():
     # q(h) = q* + c h^p: two levels with ratio r recover q* exactly
     q_star, c, p, h = 100.0, 7.0, 2.0, 0.4
     q_c, q_f = q_star + c * h ** p, q_star + c * (h / 2) ** p
+    # exact arithmetic (round-off only: (r^p q_f − q_c)/(r^p − 1), a few eps on O(100) values)
     assert richardson(q_f, q_c, 2.0, p) == pytest.approx(q_star, rel=1e-14)
     with pytest.raises(ValueError):
         richardson(1.0, 2.0, 1.0, 2.0)

@@ -14,7 +14,8 @@ def test_fatigue_reuses_the_static_solution_of_shaftfe_static(tmp_path):
                         env=env)
     assert st.returncode == 0, st.stderr
     fa = subprocess.run([sys.executable, "-m", "shaftfe", "fatigue", "loadspectra/rpm.dat",
-                         *common, "--out", str(tmp_path / "fatigue")], capture_output=True,
-                        text=True, env=env, cwd=os.path.dirname(os.path.dirname(__file__)))
+                         *common, "--seed-load-case", "--out", str(tmp_path / "fatigue")],
+                        capture_output=True, text=True, env=env,
+                        cwd=os.path.dirname(os.path.dirname(__file__)))
     assert fa.returncode == 0, fa.stderr
     assert "static: from cache" in fa.stdout, fa.stdout

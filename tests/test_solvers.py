@@ -37,7 +37,7 @@ def test_upper_triangle_with_empty_rows_and_a_missing_diagonal():
 @pytest.mark.parametrize("method", [m for m, ok in solvers.available().items()
                                     if ok and m != "amg"])
 def test_factorize_with_diag_add_solves_the_shifted_system(method):
-    """x from factorize(A, diag_add) against a dense solve of A + diag (1e-10)."""
+    """x from factorize(A, diag_add) against a dense solve of A + diag (1e-12)."""
     A = _spd()
     idx, val = np.array([0, 5, 11]), np.array([10.0, 20.0, 30.0])
     b = np.random.default_rng(1).standard_normal((A.shape[0], 3))
@@ -45,4 +45,7 @@ def test_factorize_with_diag_add_solves_the_shifted_system(method):
     d = np.zeros(A.shape[0])
     d[idx] = val
     ref = np.linalg.solve(A.toarray() + np.diag(d), b)
-    np.testing.assert_allclose(x, ref, rtol=1e-10, atol=1e-10 * np.abs(ref).max())
+    # cond₂(A + diag) = 71: both solves are within a few eps·cond ≈ 1e-14 of max |x|
+    # (measured 1.4e-15 SuperLU / 1.2e-15 PARDISO, elementwise ≤ 4e-12 on small entries);
+    # 1e-12 leaves ≥ 70× (was 1e-10)
+    np.testing.assert_allclose(x, ref, rtol=1e-12, atol=1e-12 * np.abs(ref).max())

@@ -36,6 +36,7 @@ def test_rpm_dat_has_the_seed_described_pieces():
     assert np.all(rpm[85:95] == 3100)
     assert np.all(rpm[96:146] == 4600)
     assert rpm.min() >= 1200 and rpm.max() <= 9500
+    # exact arithmetic: rpm = 7000 √lf and back, ≤ 4 correctly rounded IEEE operations
     assert h.load_factor == pytest.approx((h.rpm / 7000.0) ** 2, rel=1e-15)
 
 
@@ -54,7 +55,7 @@ def test_seed_format_without_header_needs_reference(tmp_path):
     with pytest.raises(InputError, match="reference_rpm"):
         read_history(p)
     h = read_history(p, rpm_ref=7000.0)
-    assert h.rpm == pytest.approx([3500.0, 7000.0, 3500.0], rel=1e-15)
+    assert h.rpm == pytest.approx([3500.0, 7000.0, 3500.0], rel=1e-15)   # exact: √0.25 = 0.5
     assert h.duration_s == 3.0 and h.time_s.tolist() == [0.0, 1.0, 2.0]
 
 
@@ -83,6 +84,7 @@ def test_csv_irregular(tmp_path):
                "1.7,3900\n")
     h = read_history(p)
     assert h.format == "csv" and h.time_s.tolist() == [0.0, 0.3, 1.2, 1.7]
+    # exact arithmetic (one or two correctly rounded operations each)
     assert h.duration_s == pytest.approx(2.2, rel=1e-15)
     assert h.load_factor[2] == pytest.approx((4000 / 7000) ** 2, rel=1e-15)
 
@@ -104,6 +106,7 @@ def test_with_reference_rescales_the_load_factor():
     h = read_history(RPM_DAT)
     g = h.with_reference(10_000.0)
     assert g.rpm_ref == 10_000.0 and np.array_equal(g.rpm, h.rpm)
+    # exact arithmetic: 0.49 = (7000/10 000)² is itself rounded, plus ≤ 4 roundings
     assert g.load_factor == pytest.approx(0.49 * h.load_factor, rel=1e-14)
     with pytest.raises(InputError, match="rpm_ref"):
         h.with_reference(0.0)

@@ -67,8 +67,11 @@ def test_vectorised_stiffness_equals_scikit_fem(cache, order):
     m = build_mesh(cylinder(), "coarse", order=order, cache_dir=cache).mesh
     K = fem.elasticity_stiffness(m, STEEL.E_MPa, STEEL.nu)
     K2 = fem.elasticity_stiffness_skfem(m, STEEL.E_MPa, STEEL.nu)
+    # exact arithmetic (round-off only; measured 5.5e-16)
     assert abs(K - K2).max() <= 1e-12 * abs(K2).max()
     R = fem.rigid_body_modes(m, (60.0, 1.0, -2.0))
+    # exact arithmetic: a row of K R sums ~80 terms |K| × |R| ≤ 60 mm: ≤ 80·60·eps ≈ 1e-12
+    # of max|K| (measured 3.3e-14); 1e-10 = 100× that
     assert np.abs(K @ R).max() <= 1e-10 * abs(K).max()
 
 
@@ -82,10 +85,12 @@ def test_rbe3_rows_reproduce_rigid_motions_and_area_means(cache):
     from shaftfe.mesh import build_mesh
     m = build_mesh(cylinder(), "default", cache_dir=cache).mesh
     G = fem.rigid_rows(m, m.boundaries["bearing:L"], (10.0, 0.0, 0.0))
+    # exact arithmetic (a least-squares fit reproduces what it fits; measured 1e-15)
     np.testing.assert_allclose(G @ fem.rigid_body_modes(m, (10.0, 0.0, 0.0)), np.eye(6),
                                atol=1e-10)
     u = np.zeros(3 * m.doflocs.shape[1])
     u[1::3] = m.doflocs[0] ** 2             # u_y = x²: mean over x ∈ [5, 15] is 108.33…
+    # mesh: P2 facet area weights (docstring; measured 4e-6)
     assert (G @ u)[1] == pytest.approx((15**3 - 5**3) / 3 / 10, rel=1e-3)
 
 
@@ -99,11 +104,17 @@ def test_surface_load_net_force_and_zero_torque(cache, dist):
     m = build_mesh(v, "default", cache_dir=cache).mesh
     e = np.array([0.0, math.cos(math.radians(37.0)), math.sin(math.radians(37.0))])
     f = fem.surface_load(m, m.boundaries["load:w:pressed"], 1234.5, e, dist).reshape(-1, 3)
+    # exact arithmetic (normalised to F; measured 1.1e-13 N = 1e-16 F)
     np.testing.assert_allclose(f.sum(axis=0), 1234.5 * e, atol=1e-9)
     x = m.doflocs
+    # exact arithmetic: every nodal force ∥ e; torque round-off ~ eps·F·R = 3e-12 N·mm
+    # (measured 1.6e-13); 1e-8 N·mm = 1e-12 of F·R
     assert abs((x[1] * f[:, 2] - x[2] * f[:, 1]).sum()) < 1e-8
-    # the load sits on the half facing −e (the part's bore bears there)
+    # the load sits on the half facing −e (the part's bore bears there); "loaded": above the
+    # round-off of a zero entry (1e-9 of the largest)
     loaded = np.abs(f).sum(axis=1) > 1e-9 * np.abs(f).max()
+    # exact split: nodes on the plane are off it by the 1e-9 mm coordinate rounding only
+    # (measured 6.7e-10 mm)
     assert (x[1:, loaded].T @ e[1:] <= 1e-9).all()
 
 
@@ -122,11 +133,13 @@ def test_recovery_patch_test(cache, order):
     u = np.column_stack([eps * x + gam * y, -nu * eps * y, -nu * eps * z]).ravel()
     s = recovery.nodal_stress(m, u, E, nu)
     G = E / (2 * (1 + nu))
+    # exact for linear fields (patch test): round-off of the gradients on curved P2 tets,
+    # measured ≤ 5.9e-14 relative and 3.2e-12 MPa (σ = 210 MPa) in the zero components
     np.testing.assert_allclose(s[0], E * eps, rtol=1e-10)
     np.testing.assert_allclose(s[3], G * gam, rtol=1e-10)
     assert np.abs(s[[1, 2, 4, 5]]).max() < 1e-9
     vm = math.sqrt((E * eps) ** 2 + 3 * (G * gam) ** 2)
-    np.testing.assert_allclose(recovery.von_mises(s), vm, rtol=1e-10)
+    np.testing.assert_allclose(recovery.von_mises(s), vm, rtol=1e-10)     # same reason
 
 
 def test_von_mises_and_principal_kernels():
@@ -134,9 +147,10 @@ def test_von_mises_and_principal_kernels():
     eigenvalues (hand-computed: [[2,1,0],[1,2,0],[0,0,5]] → 5, 3, 1)."""
     from shaftfe.recovery import principal, von_mises
     s = np.array([[7.0, 0.0, 0.0], [0, 0, 0], [0, 0, 0], [0, 4.0, 0], [0, 0, 0], [0, 0, 0]])
+    # exact arithmetic (round-off only, O(1) values)
     np.testing.assert_allclose(von_mises(s), [7.0, math.sqrt(3) * 4.0, 0.0], atol=1e-12)
     p = principal(np.array([[2.0], [2.0], [5.0], [1.0], [0.0], [0.0]]))
-    np.testing.assert_allclose(p[:, 0], [5.0, 3.0, 1.0], atol=1e-12)
+    np.testing.assert_allclose(p[:, 0], [5.0, 3.0, 1.0], atol=1e-12)     # exact arithmetic
 
 
 # --------------------------------------------------------------------------- solve
@@ -145,10 +159,13 @@ def test_every_solve_in_equilibrium(base):
     """Global statics: Σ reactions + Σ loads = 0 (rel. 1e-8) and the full system's relative
     residual ≤ 1e-8, with the load equal to m e ω² (Attachment.force_N) at each rpm."""
     for c in base.cases:
-        assert c.equilibrium_residual <= 1e-8
+        assert c.equilibrium_residual <= 1e-8      # solver contract (static.RESIDUAL_TOL)
         F = cylinder().attachments[0].force_N(c.rpm)
+        # exact arithmetic (loads normalised to m e ω²; measured 1.7e-16 F)
         np.testing.assert_allclose(c.load_sum_N, [0.0, F, 0.0], atol=1e-8 * F)
-    assert base.diagnostics["relative_residual"] <= 1e-8
+    assert base.diagnostics["relative_residual"] <= 1e-8     # solver contract (RESIDUAL_TOL)
+    # the Jacobi-scaled capacitance is well conditioned (measured 109): 1e8 flags a scaling
+    # regression long before the solver's own refusal at 1e13 (eps·cond 2e-8 vs 2e-3)
     assert base.diagnostics["cond_S"] < 1e8
 
 
@@ -170,7 +187,7 @@ def test_static_cache_keeps_the_relative_residual(base, cache):
     from shaftfe.static import StaticOptions
     opts = StaticOptions(level="default")
     ref = static_cache.store(cylinder(), opts, base, cache)
-    assert ref.relative_residual == base.diagnostics["relative_residual"] <= 1e-8
+    assert ref.relative_residual == base.diagnostics["relative_residual"] <= 1e-8   # contract
     hit = static_cache.load_or_solve(cylinder(), opts, cache)
     assert hit.from_cache and hit.relative_residual == ref.relative_residual
 
@@ -196,11 +213,12 @@ def test_doubling_rpm_multiplies_stresses_by_four(base):
     """Centrifugal loads are m e ω²: 2× rpm → 4× load → 4× every stress, deflection and
     reaction (linearity)."""
     lo, hi = base.case(5000.0), base.case(10000.0)
+    # exact arithmetic (round-off only): one solve scaled by (rpm/REF_RPM)²
     assert hi.peak_von_mises_MPa == pytest.approx(4 * lo.peak_von_mises_MPa, rel=1e-12)
     assert hi.max_deflection_mm == pytest.approx(4 * lo.max_deflection_mm, rel=1e-12)
     for a, b in zip(lo.bearings, hi.bearings, strict=True):
-        assert b.F_radial_N == pytest.approx(4 * a.F_radial_N, rel=1e-12)
-        assert b.L10h == pytest.approx(a.L10h / 128, rel=1e-12)   # (1/4)³ and n × 2
+        assert b.F_radial_N == pytest.approx(4 * a.F_radial_N, rel=1e-12)     # exact, as above
+        assert b.L10h == pytest.approx(a.L10h / 128, rel=1e-12)   # exact: (1/4)³ and n × 2
 
 
 def test_reactions_statics_and_l10h(base, cache):
@@ -210,8 +228,12 @@ def test_reactions_statics_and_l10h(base, cache):
     P = statics_bearing_loads(cylinder(), cache)
     F = cylinder().attachments[0].force_N(10000.0)
     for b, p in zip(c.bearings, P, strict=True):
+        # statics exact: round-off only (measured 4.8e-14 F; PARDISO/SuperLU alike)
         np.testing.assert_allclose([-b.Fy_N, -b.Fz_N], p, rtol=1e-9, atol=1e-9 * F)
-        assert b.F_radial_N == pytest.approx(F / 2, rel=1e-3)       # load centroid ≈ x = 60
+        # load centroid ≈ x = 60: exact for a seat mesh symmetric about 60, else off by the
+        # P2 facet weights' error (~1e-4, as the RBE3 test); measured 1e-13
+        assert b.F_radial_N == pytest.approx(F / 2, rel=1e-3)
+        # exact arithmetic (the same formula)
         assert b.L10h == pytest.approx((14_400.0 / b.F_radial_N) ** 3 * 1e6 / 600_000.0,
                                        rel=1e-12)
 
@@ -228,11 +250,18 @@ def test_rotating_the_load_rotates_the_response(cache):
     a, b = r0.case(10000.0), r.case(10000.0)
     P = statics_bearing_loads(v, cache, level="fine")
     for b1, p in zip(b.bearings, P, strict=True):
+        # statics exact: round-off only (measured 1.9e-13)
         np.testing.assert_allclose([-b1.Fy_N, -b1.Fz_N], p, rtol=1e-9)
-        assert math.degrees(math.atan2(p[1], p[0])) == pytest.approx(37.0, abs=1e-2)
+        # exact arithmetic: every nodal force is ∥ e, so the statics reaction is too
+        # (measured 7e-15°); was abs 1e-2
+        assert math.degrees(math.atan2(p[1], p[0])) == pytest.approx(37.0, abs=1e-10)
     s0, s1 = a.stations[0], b.stations[0]
+    # mesh: two different fine meshes, each within the fine level's deflection error (0.22 %,
+    # the two-level estimate of test_error_estimate_from_two_levels): |Δu| ≤ 0.45 %, and a
+    # 0.45 % transverse error turns the vector by ≤ 0.26°; measured 1e-4 and 6e-5°
     assert s1.u_mm == pytest.approx(s0.u_mm, rel=5e-3)
     assert math.degrees(math.atan2(s1.uz_mm, s1.uy_mm)) == pytest.approx(37.0, abs=0.3)
+    # mesh: a nodal peak converges more slowly than the deflection (measured 0.86 %)
     assert b.peak_von_mises_MPa == pytest.approx(a.peak_von_mises_MPa, rel=0.05)
 
 
@@ -247,8 +276,10 @@ def test_coupled_spring_gives_closed_form_remote_displacement(cache):
     P = statics_bearing_loads(v, cache)
     for b, p in zip(r.cases[0].bearings, P, strict=True):
         q = np.linalg.solve(np.array(Kc), p)
+        # spring law exact (λ = C R u is an equation of the solve): round-off only, measured
+        # 3.3e-13; cond(Kc) = 1.7 adds nothing
         np.testing.assert_allclose([b.uy_mm, b.uz_mm], q, rtol=1e-8)
-        assert b.uz_mm < -0.2 * b.uy_mm < 0
+        assert b.uz_mm < -0.2 * b.uy_mm < 0     # K12 moves it across: K⁻¹ gives −0.25 uy
 
 
 def test_rigid_supports_hold_remote_points(cache):
@@ -258,7 +289,11 @@ def test_rigid_supports_hold_remote_points(cache):
                      cache_dir=cache, beam=False)
     P = statics_bearing_loads(cylinder(), cache, rigid_supports=True)
     for b, p in zip(r.cases[0].bearings, P, strict=True):
+        # hard rows R u = 0 (exact Lagrange multipliers): round-off only, ~eps × max|u| =
+        # 0.07 mm → 1.6e-17 mm (measured 1e-17); 1e-12 mm = 1.4e-11 of max|u|
         assert abs(b.uy_mm) < 1e-12 and abs(b.uz_mm) < 1e-12
+        # statics exact: round-off only (measured 2.5e-10 N absolute on a ~3 kN reaction
+        # whose Fz part is ~0: hence atol)
         np.testing.assert_allclose([-b.Fy_N, -b.Fz_N], p, rtol=1e-9, atol=1e-6)
 
 
@@ -298,8 +333,10 @@ def test_single_bearing_with_tilt_spring(cache):
     F = f[:, 1].sum()
     Mz = (x - 10.0) @ f[:, 1] - y @ f[:, 0]                # moment about the bearing centre
     q = model.couplings[0].G @ sol.u
+    # spring law exact: round-off only (measured 1.1e-14 and 2.9e-14)
     assert q[1] == pytest.approx(F / 35_030.0, rel=1e-8)
     assert q[5] == pytest.approx(Mz / k_t, rel=1e-8)
+    # load centroid ≈ x = 60 (as in test_reactions_statics_and_l10h; measured exact)
     assert Mz == pytest.approx(F * 50.0, rel=1e-3)
 
 
@@ -341,9 +378,11 @@ def test_error_estimate_from_two_levels(cache):
     assert ee["levels"] == ["fine", "default"]
     d = ee["cases"][0]["max_deflection"]
     k = ee["ratio_deflection"] ** ee["order_deflection"] - 1
+    # exact arithmetic (the same formulas; measured equal): approx's default rel 1e-6
     assert d["extrapolated"] == pytest.approx(d["fine"] + (d["fine"] - d["coarse"]) / k)
     assert d["error_fine"] == pytest.approx(abs(d["fine"] - d["coarse"]) / k)
-    assert d["coarse"] == pytest.approx(r.cases[0].max_deflection_mm, rel=1e-12)
+    assert d["coarse"] == pytest.approx(r.cases[0].max_deflection_mm, rel=1e-12)   # exact
+    # mesh: the fine level's estimated deflection error (measured 0.22 %) is below 1 %
     assert d["rel_error_fine"] < 0.01
 
 
@@ -366,8 +405,12 @@ def test_body_force_resultant(cache):
     w2 = (10000.0 * 2 * math.pi / 60) ** 2
     F = cylinder().attachments[0].force_N(10000.0)
     expect = [0.0, F + STEEL.density_t_mm3 * w2 * qy, STEEL.density_t_mm3 * w2 * qz]
+    # quadrature: the body-force load and this Functional integrate the same P2 geometry
+    # (degree-5 integrand; intorder 4 vs 6 move ρω²∫y dV by 3e-12 relative): measured
+    # 1e-15 F; 1e-9 covers the quadrature order with 300× margin
     np.testing.assert_allclose(b.cases[0].load_sum_N, expect, rtol=1e-9, atol=1e-9 * F)
-    assert b.cases[0].equilibrium_residual <= 1e-8
+    assert b.cases[0].equilibrium_residual <= 1e-8    # solver contract (RESIDUAL_TOL)
+    # must differ: body-force stress scale ρ ω² R² ≈ 0.9 MPa (measured max change 1.7 MPa)
     assert np.abs(b.stress_ref - a.stress_ref).max() > 0.1
 
 
@@ -394,7 +437,7 @@ def test_cli_writes_vtu_summary_plot(tmp_path, cache, monkeypatch, capsys):
     s = json.loads((out / "summary.json").read_text())
     assert [c["rpm"] for c in s["cases"]] == [7000.0, 10000.0]
     assert s["vtu"]["stress_components"] == ["xx", "yy", "zz", "xy", "yz", "xz"]
-    assert s["cases"][1]["equilibrium_residual"] <= 1e-8
+    assert s["cases"][1]["equilibrium_residual"] <= 1e-8    # solver contract (RESIDUAL_TOL)
     assert (out / "deflection.png").stat().st_size > 1000
     bad = tmp_path / "bad"
     assert main(["static", "--variant", "cyl", "--rpm", "-3", "--out", str(bad)]) == 2

@@ -51,6 +51,7 @@ def _write_result(path: Path, fields=("von_mises", "displacement", "stress", "sa
         bnd = view.boundary(tmp, view.FieldChoice("x", "point", 1, None, "x", "-", "max"),
                             np.zeros(len(pts)))
         conn = bnd.cells_dict[pv.CellType.QUADRATIC_TRIANGLE]
+        # exact: grid coordinates (x = 0 stored exactly); isclose's default atol 1e-8
         on_end = np.all(np.isclose(pts[conn[:, :3], 0], 0.0), axis=1)
         region_faces = conn[on_end]
         cells[pv.CellType.QUADRATIC_TRIANGLE] = region_faces
@@ -133,7 +134,7 @@ def test_screenshot_headless_like_ci(result, tmp_path):
     assert shot.stat().st_size > 10_000
     img = _image(shot)
     assert img.shape == (450, 800, 3)
-    assert img.std() > 0.05
+    assert img.std() > 0.05       # not a blank image (a pixel statistic, not a numerical result)
     assert len(np.unique((img * 255).astype(np.uint8).reshape(-1, 3), axis=0)) > 200
     assert [p.name for p in shot.parent.iterdir()] == ["vm.png"]     # no temporary left
 
@@ -148,6 +149,7 @@ def test_hot_spot_marker_and_colours_visible(result, tmp_path, headless):
     magenta = (r > 0.6) & (b > 0.6) & (g < 0.35)          # the hot-spot sphere, not in jet
     assert magenta.sum() > 20
     red = (r > 0.6) & (g < 0.3) & (b < 0.3)               # jet's hot end on the bar
+    # colour classes of rendered pixels (jet's cold end), not a numerical result
     blue = (b > 0.5) & (r < 0.2) & (g < 0.3)
     assert red.sum() > 50 and blue.sum() > 50
 
@@ -159,7 +161,7 @@ def test_default_headless_without_screenshot_writes_next_to_file(tmp_path, headl
                  "--camera", "xy", "--edges"]) == 0
     out = capsys.readouterr().out.strip()
     shot = tmp_path / "only_disp_displacement.png"
-    assert shot.is_file() and _image(shot).std() > 0.02
+    assert shot.is_file() and _image(shot).std() > 0.02     # not blank (pixel statistic)
     assert "displacement magnitude [mm]" in out and "warp x" in out and str(shot) in out
 
 
@@ -185,6 +187,7 @@ def test_hot_spot_is_argmax_of_von_mises(result):
     hot = view.hot_spot(g, ch)
     i = int(np.argmax(data["von_mises"]))
     assert hot.rule == "max" and hot.index == i
+    # exact: float64 written and read back (measured identical); approx/allclose defaults
     assert hot.value == pytest.approx(data["von_mises"][i])
     np.testing.assert_allclose(hot.xyz, data["points"][i])
 
@@ -198,14 +201,16 @@ def test_hot_spot_min_for_safety_factor_and_abs_for_components(result):
     assert ch.component == "xx" and ch.label == "stress xx"
     sxx = data["stress"][:, 0]
     hot = view.hot_spot(g, ch)
+    # exact (float64 round trip): approx's default rel 1e-6
     assert hot.rule == "max_abs" and abs(hot.value) == pytest.approx(np.abs(sxx).max())
     yz = view.choose_field(g, "stress", "4")
     assert yz.label == "stress yz"
     mag = view.choose_field(g, "displacement", None)
     assert mag.component == "magnitude"
+    # exact arithmetic (float64 round trip, one norm): assert_allclose's default rtol 1e-7
     np.testing.assert_allclose(view.values(g, mag), np.linalg.norm(data["displacement"], axis=1))
     uy = view.choose_field(g, "displacement", "y")
-    np.testing.assert_allclose(view.values(g, uy), data["displacement"][:, 1])
+    np.testing.assert_allclose(view.values(g, uy), data["displacement"][:, 1])   # same
 
 
 def test_non_finite_values_are_skipped_by_the_hot_spot(tmp_path):
@@ -229,7 +234,7 @@ def test_region_of_face_cells_is_mapped_onto_the_boundary(result):
     bnd = view.boundary(g, ch, view.values(g, ch))
     v = np.asarray(bnd.cell_data["_view"])
     conn = bnd.cells_dict[pv.CellType.QUADRATIC_TRIANGLE]
-    on_end = np.all(np.isclose(bnd.points[conn[:, :3], 0], 0.0), axis=1)
+    on_end = np.all(np.isclose(bnd.points[conn[:, :3], 0], 0.0), axis=1)   # exact, as above
     assert on_end.sum() == len(data["region_faces"]) > 0
     assert np.all(v[on_end] == 3) and np.all(v[~on_end] == 0)
     # the boundary of the bar: 2 × (10·2 + 10·2 + 2·2) squares, 2 triangles each

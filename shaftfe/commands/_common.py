@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import os
 import sys
 
@@ -42,17 +43,18 @@ def parse_range(text: str, option: str, *, lo: float | None = None,
 
 
 def parse_rpm_list(text: str, option: str = "--rpm") -> list[float]:
-    """Parse a comma-separated list of speeds in rpm (``7000,10000``); each finite and >= 0."""
-    allowed = "comma-separated speeds in rpm, each >= 0"
+    """Parse a comma-separated list of speeds in rpm (``7000,10000``); each finite, in
+    [0, limits.RPM_CEILING]; an empty item (``10000,,7000``) is an error."""
+    from shaftfe.limits import RPM_CEILING
+    allowed = f"comma-separated speeds in rpm, each in [0, {RPM_CEILING:g}]"
+    items = [t.strip() for t in text.split(",")]
     try:
-        vals = [float(t) for t in text.split(",") if t.strip()]
+        vals = [float(t) for t in items]
     except ValueError:
         raise InputError("command line", option, allowed, got=text) from None
-    if not vals or any(not (0 <= v < float("inf")) for v in vals):
+    if not vals or any(not (0 <= v <= RPM_CEILING) for v in vals):
         raise InputError("command line", option, allowed, got=text)
     return vals
-
-
 
 
 def package_versions(*packages: str) -> dict[str, str | None]:
@@ -82,7 +84,12 @@ def print_json(obj: object) -> None:
 
 def print_table(headers: list[str], rows: list[list[object]], title: str | None = None) -> None:
     """Plain fixed-width table for terminals."""
-    cells = [[str(h) for h in headers]] + [[_fmt(c) for c in r] for r in rows]
+    # a round-off residue (6.9e-13) beside numbers of order 1e3 reads as 0 in its column
+    big = [max((abs(r[i]) for r in rows if isinstance(r[i], float) and math.isfinite(r[i])),
+               default=0.0) for i in range(len(headers))]
+    cells = [[str(h) for h in headers]] + [
+        [_fmt(0.0 if isinstance(c, float) and c != 0 and abs(c) < 1e-9 * big[i] else c)
+         for i, c in enumerate(r)] for r in rows]
     widths = [max(len(r[i]) for r in cells) for i in range(len(headers))]
     if title:
         print(title)

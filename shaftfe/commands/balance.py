@@ -91,7 +91,9 @@ def _load(args):
 
     from shaftfe.balance.engines import load_engine
 
-    _finite(args.rpm, "--rpm", "> 0", lambda v: v > 0)
+    if args.rpm is not None:
+        from shaftfe.limits import check_rpm
+        check_rpm(args.rpm, "--rpm", positive=True)
     _finite(args.tilt_deg, "--tilt-deg", "in [-180, 180]", lambda v: -180 <= v <= 180)
     eng = load_engine(args.engine)
     for m_opt, r_opt, m_field, r_field in (
@@ -147,6 +149,8 @@ def _engine_info(eng) -> dict:
 def _check_out(path: str | None, option: str, exts: tuple[str, ...]) -> None:
     if path is not None and not any(path.lower().endswith("." + e) for e in exts):
         raise InputError(option, "file extension", ", ".join("." + e for e in exts), got=path)
+    from shaftfe.atomic import check_output_file
+    check_output_file(path, option)
 
 
 # ----------------------------------------------------------------------------- handlers
@@ -163,16 +167,16 @@ def _forces(args) -> int:
     res = forces(eng, X, X2, args.rpm, tilt_deg=args.tilt_deg, start_deg=args.start_deg,
                  sampling=args.sampling, n=args.samples)
     m = res.metrics
+    if args.plot:                   # the plot first: it is the step that can still fail
+        from shaftfe.balance.plots import plot_forces
+
+        plot_forces(res, args.plot)
     if args.csv:
         import numpy as np
 
         _csv(args.csv, ["alpha_deg", "Fx_N", "Fy_N", "F_N", "Fx_crank_N", "Fy_crank_N"],
              np.column_stack([res.alpha_deg, res.Fx, res.Fy, res.F, res.Fx_crank,
                               res.Fy_crank]))
-    if args.plot:
-        from shaftfe.balance.plots import plot_forces
-
-        plot_forces(res, args.plot)
     if args.json:
         print_json({
             "engine": _engine_info(eng), "X_percent": 100 * res.X, "X2_percent": 100 * res.X2,
@@ -232,6 +236,10 @@ def _sweep(args) -> int:
     mins = res.minima()
     names = {"max_abs_fx": "max|Fx|", "max_abs_fy": "max|Fy|", "rms_f": "RMS|F|",
              "max_f": "max|F|"}
+    if args.plot:                   # the plot first: it is the step that can still fail
+        from shaftfe.balance.plots import plot_sweep
+
+        plot_sweep(res, args.plot)
     if args.csv:
         if mode == 1:
             _csv(args.csv, ["X2_percent", *[f"{k}_N" for k in METRICS]],
@@ -243,10 +251,6 @@ def _sweep(args) -> int:
             _csv(args.csv, ["X_percent", *[h for k in METRICS
                                            for h in (f"min_{k}_N", f"X2_at_min_{k}_percent")]],
                  np.column_stack(cols))
-    if args.plot:
-        from shaftfe.balance.plots import plot_sweep
-
-        plot_sweep(res, args.plot)
     if args.json:
         print_json({
             "engine": _engine_info(eng), "mode": mode, "rpm": res.rpm, "tilt_deg": res.tilt_deg,
@@ -286,6 +290,9 @@ def _ratios(args) -> int:
     r = ratios(eng)
     if args.json:
         d = {k: getattr(r, k) for k in r.__dataclass_fields__}
+        for k in ("X", "X2", "P", "Pv"):            # percent, as the table and every command
+            v = d.pop(k)
+            d[f"{k}_percent"] = None if v is None else 100.0 * v
         d["source"] = eng.source
         print_json(d)
         return 0

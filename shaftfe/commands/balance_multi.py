@@ -112,6 +112,8 @@ def _setup(args):
     orders = _parse_orders(args.orders, args.samples)
     if args.plot is not None and not str(args.plot).lower().endswith(_PLOT_SUFFIXES):
         raise InputError("--plot", "plot", "a path ending in .png, .pdf or .svg", got=args.plot)
+    from shaftfe.atomic import check_output_file
+    check_output_file(args.plot, "--plot")
     overrides = (args.radius_mm, args.rod_mm, args.m_pos_kg)
     for opt, v in zip(("--radius-mm", "--rod-mm", "--m-pos-kg"), overrides, strict=True):
         if v is not None and not (math.isfinite(v) and v > 0):
@@ -164,7 +166,10 @@ def _run_inline(args) -> int:
 
     mech, omega, rpm, label, orders = _setup(args)
     pins = parse_floats(args.pins, "--pins")
-    spacing = [s / 1000.0 for s in parse_floats(args.spacing_mm, "--spacing-mm")]
+    spacing_mm = parse_floats(args.spacing_mm, "--spacing-mm")
+    if any(v < 0 for v in spacing_mm):               # checked here, so the error speaks in mm
+        raise InputError("command line", "--spacing-mm", "gaps >= 0 mm", got=args.spacing_mm)
+    spacing = [s / 1000.0 for s in spacing_mm]
     X = None if args.x is None else [v / 100.0 for v in parse_floats(args.x, "--x")]
     if X is not None and len(X) == 1:
         X = X[0]

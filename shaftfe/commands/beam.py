@@ -42,14 +42,16 @@ def run(args) -> int:
     from shaftfe.commands._common import parse_rpm_list, print_json, print_table, write_atomic
 
     rpms = parse_rpm_list(args.rpm)
-    if not (args.max_element > 0):
-        raise InputError("--max-element", "--max-element", "> 0", got=args.max_element)
+    from shaftfe.limits import check_max_element
+    check_max_element(args.max_element)
     plot_fmt = None
     if args.plot:
         plot_fmt = args.plot.rsplit(".", 1)[-1].lower() if "." in args.plot else ""
         if plot_fmt not in ("png", "pdf", "svg"):
             raise InputError("--plot", "--plot", "a path ending in .png, .pdf or .svg",
                              got=args.plot)
+        from shaftfe.atomic import check_output_file
+        check_output_file(args.plot, "--plot")
 
     from shaftfe import beam
     from shaftfe.variant import load_variant

@@ -88,8 +88,9 @@ def register(sub) -> None:
 
 def speeds_from_range(text: str, step: float) -> list[float]:
     from shaftfe.commands._common import parse_range
+    from shaftfe.limits import RPM_CEILING
 
-    a, b, st = parse_range(text, "RANGE", lo=0.0)
+    a, b, st = parse_range(text, "RANGE", lo=0.0, hi=RPM_CEILING)
     if not (math.isfinite(a) and math.isfinite(b)):
         raise InputError("command line", "RANGE", "finite speeds", got=text)
     st = step if st is None else st
@@ -97,7 +98,11 @@ def speeds_from_range(text: str, step: float) -> list[float]:
         raise InputError("command line", "--step", "> 0 rpm", got=st)
     if b == a:
         return [a]
-    n = math.floor((b - a) / st + 1e-9)
+    count = (b - a) / st
+    if not count + 2 <= _MAX_SPEEDS:               # also an overflow to inf (a step of 1e-308)
+        raise InputError("command line", "RANGE/--step", f"at most {_MAX_SPEEDS} speeds",
+                         got=f"{text} step {st:g}")
+    n = math.floor(count + 1e-9)
     if n + 2 > _MAX_SPEEDS:
         raise InputError("command line", "RANGE/--step", f"at most {_MAX_SPEEDS} speeds",
                          got=f"{text} step {st:g}")
@@ -121,8 +126,8 @@ def parse_orders(text: str) -> list[float]:
 def _check_common(args) -> None:
     if not (1 <= args.modes <= _MAX_MODES):
         raise InputError("command line", "--modes", f"1..{_MAX_MODES}", got=args.modes)
-    if not (math.isfinite(args.max_element) and args.max_element > 0):
-        raise InputError("command line", "--max-element", "> 0 mm", got=args.max_element)
+    from shaftfe.limits import check_max_element
+    check_max_element(args.max_element)
     if not (math.isfinite(args.bearing_damping) and args.bearing_damping >= 0):
         raise InputError("command line", "--bearing-damping", ">= 0 N s/mm",
                          got=args.bearing_damping)
@@ -320,29 +325,36 @@ def _print_tables(args, model, res, ver) -> None:
         print(f"note: {note}")
 
 
+def _staged(out):
+    """``atomic.staged_dir`` for an optional ``--out`` (yields None without one)."""
+    from contextlib import nullcontext
+
+    from shaftfe.atomic import staged_dir
+    return staged_dir(out) if out else nullcontext(None)
+
+
 def run_campbell(args) -> int:
     from shaftfe.commands._common import print_json, write_atomic
 
     rpms = speeds_from_range(args.range, args.step)
     orders = parse_orders(args.orders)
     _check_common(args)
-    model, res, ver, beam_res, prov = _solve(args, rpms, orders)
     vtu = None
-    if args.out:
-        import json
-        from pathlib import Path
+    with _staged(args.out) as out:                   # every file or none
+        model, res, ver, beam_res, prov = _solve(args, rpms, orders)
+        if out is not None:
+            import json
 
-        from shaftfe.campbell import plot_campbell
+            from shaftfe.campbell import plot_campbell
 
-        title = f"{args.variant}: Campbell diagram ({args.model} model)"
-        png = plot_campbell(res, title=title)
-        js = json.dumps(_payload(args, model, res, ver, beam_res), indent=2)
-        csv = res.to_csv()
-        out = Path(args.out)
-        for name, data in (("campbell.png", png), ("campbell.csv", csv),
-                           ("campbell.json", js + "\n")):
-            write_atomic(out / name, data)
-        vtu = _write_modes(args, model, prov, out)
+            title = f"{args.variant}: Campbell diagram ({args.model} model)"
+            png = plot_campbell(res, title=title)
+            js = json.dumps(_payload(args, model, res, ver, beam_res), indent=2)
+            csv = res.to_csv()
+            for name, data in (("campbell.png", png), ("campbell.csv", csv),
+                               ("campbell.json", js + "\n")):
+                write_atomic(out / name, data)
+            vtu = _write_modes(args, model, prov, out)
     if args.json:
         print_json(_payload(args, model, res, ver, beam_res))
     else:
@@ -357,28 +369,26 @@ def run_campbell(args) -> int:
 
 def run_modal(args) -> int:
     from shaftfe.commands._common import print_json, print_table, write_atomic
-
-    if not (math.isfinite(args.rpm) and args.rpm >= 0):
-        raise InputError("command line", "--rpm", ">= 0", got=args.rpm)
+    from shaftfe.limits import check_rpm
+    check_rpm(args.rpm, "--rpm")
     _check_common(args)
-    model, res, ver, beam_res, _ = _solve(args, [args.rpm], [1.0], keep_vectors=True)
-    support_energy_share = _ANALYSES[args.model]()[2]
-    share = support_energy_share(model, res.vectors[0])
-    payload = _payload(args, model, res, ver, beam_res)
-    payload["bearing_energy_share"] = share.tolist()
     files = "modal.csv, modal.json"
-    if args.out:
-        import json
-        from pathlib import Path
+    with _staged(args.out) as out:                   # every file or none
+        model, res, ver, beam_res, _ = _solve(args, [args.rpm], [1.0], keep_vectors=True)
+        support_energy_share = _ANALYSES[args.model]()[2]
+        share = support_energy_share(model, res.vectors[0])
+        payload = _payload(args, model, res, ver, beam_res)
+        payload["bearing_energy_share"] = share.tolist()
+        if out is not None:
+            import json
 
-        out = Path(args.out)
-        write_atomic(out / "modal.csv", res.to_csv())
-        write_atomic(out / "modal.json", json.dumps(payload, indent=2) + "\n")
-        if args.model == "solid":
-            from shaftfe import rotor_solid
+            write_atomic(out / "modal.csv", res.to_csv())
+            write_atomic(out / "modal.json", json.dumps(payload, indent=2) + "\n")
+            if args.model == "solid":
+                from shaftfe import rotor_solid
 
-            rotor_solid.write_modes_vtu(model, res, out / "modes.vtu")
-            files += ", modes.vtu"
+                rotor_solid.write_modes_vtu(model, res, out / "modes.vtu")
+                files += ", modes.vtu"
     if args.json:
         print_json(payload)
         return 0

@@ -35,6 +35,8 @@ def run(args) -> int:
     out = Path(args.out) if args.out else None
     if out is not None and out.suffix not in (".vtu", ".msh"):
         raise InputError("--out", "out", "a path ending in .vtu or .msh", got=args.out)
+    from shaftfe.atomic import check_output_file
+    check_output_file(out, "--out")
     from shaftfe.variant import load_variant
 
     variant = load_variant(args.variant)

@@ -29,6 +29,9 @@ def register(sub) -> None:
                    help="solve a second mesh level (coarse for default, default for coarse "
                    "and fine) for a Richardson estimate of the stress and deflection errors "
                    "(default: the measured error of the level from reports/benchmarks)")
+    p.add_argument("--seed-load-case", action="store_true",
+                   help="load only the seed's forces F1 (gear + counterweight 1) and Fv2 "
+                   "(counterweight 2), as the seed did (default: every part, as every command)")
     p.add_argument("--no-pictures", action="store_true",
                    help="skip the PyVista 3D pictures")
     p.add_argument("--cache-dir", default=None,
@@ -48,7 +51,8 @@ def options_from_args(args):
         variant=args.variant, spectrum=args.spectrum or str(DEFAULT_SPECTRUM),
         engine=args.engine, level=args.level, rotor_model=args.rotor_model,
         campbell_step_rpm=args.campbell_step, estimate_error=args.estimate_error,
-        cache_dir=args.cache_dir, pictures=not args.no_pictures)
+        cache_dir=args.cache_dir, pictures=not args.no_pictures,
+        seed_load_case=args.seed_load_case)
 
 
 def run(args) -> int:
@@ -62,6 +66,7 @@ def make_report(options, out=None, *, json_out: bool = False, progress=None) -> 
     from pathlib import Path
 
     from shaftfe import report as report_pkg
+    from shaftfe.atomic import staged_dir
     from shaftfe.commands._common import print_json
     from shaftfe.progress import Progress
     from shaftfe.report import assemble
@@ -70,8 +75,10 @@ def make_report(options, out=None, *, json_out: bool = False, progress=None) -> 
     variant_name = Path(options.variant).stem
     out = Path(out) if out else Path("reports") / variant_name
     prog = progress or Progress(assemble.stages(options), enabled=False if json_out else None)
-    rep = assemble.run_report(options, out, prog)
-    page = report_pkg.write(rep, out)
+    with staged_dir(out) as stage:              # every file of the report or none
+        rep = assemble.run_report(options, stage, prog)
+        report_pkg.write(rep, stage)
+    page = out / "index.html"
     if json_out:
         print_json(json.loads((out / "summary.json").read_text()))
         return 0
@@ -79,6 +86,12 @@ def make_report(options, out=None, *, json_out: bool = False, progress=None) -> 
     _print_summary(rep, page)
     sys.stdout.flush()
     return 0
+
+
+def _short(text: str, width: int = 48) -> str:
+    """The model column of the text summary: two rows of one quantity (3D FE and beam) are
+    told apart by it."""
+    return text if len(text) <= width else text[:width - 1] + "…"
 
 
 def _print_summary(rep, page) -> None:
@@ -96,8 +109,9 @@ def _print_summary(rep, page) -> None:
           f"{num(fat['settings']['design_life_blocks'])} blocks; hot spot {hs['region']}")
     print(f"Campbell: {rep.campbell['statement']}")
     print()
-    print_table(["quantity", "unit", "seed", "shaftfe", "diff"],
-                [[c.quantity, c.unit, num(c.seed, 5), num(c.ours, 5), pct(c.diff_percent)]
+    print_table(["quantity", "unit", "seed", "shaftfe", "diff", "shaftfe model"],
+                [[c.quantity, c.unit, num(c.seed, 5), num(c.ours, 5), pct(c.diff_percent),
+                  _short(c.model)]
                  for c in rep.comparisons if c.group in ("static", "fatigue")],
                 title="seed figures next to ours (all of them in the report)")
     print()

@@ -49,13 +49,8 @@ def register(sub) -> None:
 def run(args) -> int:
     from pathlib import Path
 
-    from shaftfe.commands._common import (
-        package_versions,
-        parse_rpm_list,
-        print_json,
-        print_table,
-        write_atomic,
-    )
+    from shaftfe.atomic import staged_dir
+    from shaftfe.commands._common import parse_rpm_list, print_json
 
     rpms = parse_rpm_list(args.rpm)
     if args.order not in (1, 2):
@@ -65,13 +60,12 @@ def run(args) -> int:
     if args.load_distribution not in ("uniform", "cosine"):
         raise InputError("--load-distribution", "--load-distribution", "uniform | cosine",
                          got=args.load_distribution)
-    if not (args.exclude_mm >= 0 and math.isfinite(args.exclude_mm)):
-        raise InputError("--exclude-mm", "--exclude-mm", ">= 0", got=args.exclude_mm)
+    check_exclude_mm(args.exclude_mm)
     if args.solver not in ("auto", "superlu", "pardiso", "amg"):
         raise InputError("--solver", "--solver", "auto | superlu | pardiso | amg",
                          got=args.solver)
 
-    from shaftfe import export, static_cache
+    from shaftfe import static_cache
     from shaftfe.static import StaticOptions, solve_static
     from shaftfe.variant import load_variant
 
@@ -80,13 +74,29 @@ def run(args) -> int:
                          load_distribution=args.load_distribution, body_force=args.body_force,
                          seed_load_case=args.seed_load_case, solver=args.solver,
                          exclude_mm=args.exclude_mm)
-    res = solve_static(variant, rpms, opts, beam=not args.no_beam,
-                       estimate_error=args.estimate_error)
-    static_cache.store(variant, opts, res)     # `shaftfe fatigue` on this model reuses it
     out = Path(args.out) if args.out else Path("reports") / variant.name / "static"
+    from shaftfe.progress import Progress
+    prog = Progress(["mesh + solve", "outputs"], enabled=False if args.json else None)
+    with staged_dir(out) as stage:             # all three files or none
+        with prog.stage("mesh + solve"):
+            res = solve_static(variant, rpms, opts, beam=not args.no_beam,
+                               estimate_error=args.estimate_error)
+            static_cache.store(variant, opts, res)  # `shaftfe fatigue` on this model reuses it
+        with prog.stage("outputs"):
+            summary = _write_outputs(args, variant, opts, res, rpms, stage)
+    if args.json:
+        print_json(summary)
+        return 0
+    _print_tables(res, opts, out)
+    return 0
+
+
+def _write_outputs(args, variant, opts, res, rpms, stage) -> dict:
+    from shaftfe import export
+    from shaftfe.commands._common import package_versions, write_atomic
     rpm_vtu = rpms[0]
-    vtu, regions = export.write_vtu(res, out / "result.vtu", rpm_vtu)
-    export.plot_png(res, out / "deflection.png", rpm_vtu)
+    vtu, regions = export.write_vtu(res, stage / "result.vtu", rpm_vtu)
+    export.plot_png(res, stage / "deflection.png", rpm_vtu)
     summary = {
         "inputs": {"variant": args.variant, "rpm": rpms, "options": vars_of(opts),
                    "source_files": list(getattr(variant, "source_files", ()))},
@@ -97,14 +107,17 @@ def run(args) -> int:
         **res.to_dict(),
     }
     text = json.dumps(summary, indent=2, allow_nan=False)
-    write_atomic(out / "summary.json", text + "\n")
-    if args.json:
-        print_json(summary)
-        return 0
+    write_atomic(stage / "summary.json", text + "\n")
+    return summary
+
+
+def _print_tables(res, opts, out) -> None:
+    from shaftfe.commands._common import print_table
     d = res.diagnostics
     print(f"variant {res.variant}: P{opts.order} {opts.level}, {res.n_dofs} dofs, "
           f"{'rigid supports' if opts.rigid_supports else 'bearing springs'}, solver "
           f"{d['solver']}, {res.run['total_seconds']:.1f} s")
+    print(f"load case: {opts.load_case}")
     for c in res.cases:
         print()
         rows = []
@@ -114,11 +127,11 @@ def run(args) -> int:
             rows.append([b.name, b.x_mm, b.F_radial_N, bb.get("F_N", "-"),
                          _fmt_life(b.L10h), _fmt_life(bb.get("L10h"))])
         print_table(["bearing", "x mm", "|F| N (FE)", "|F| N (beam)", "L10h h (FE)",
-                     "L10h h (beam)"], rows, title=f"{c.rpm:g} rpm: bearing reactions")
+                     "L10h h (beam)"], rows,
+                    title=f"{c.rpm:g} rpm, {opts.load_case}: bearing reactions")
         print(f"equilibrium residual {c.equilibrium_residual:.1e}")
         beam_st = (c.beam or {}).get("stations", {})
-        rows = [[s.name, s.x_mm, s.u_mm * 1e3, _beam_station(beam_st, s.name)]
-                for s in c.stations]
+        rows = _station_rows(c.stations, beam_st)
         rows.append(["max (nodal |u_yz|)", c.max_deflection_xyz_mm[0], c.max_deflection_mm * 1e3,
                      (c.beam or {}).get("max_deflection_mm", float("nan")) * 1e3
                      if (c.beam or {}).get("max_deflection_mm") is not None else "-"])
@@ -139,7 +152,29 @@ def run(args) -> int:
                     print(f"  {c['rpm']:g} rpm {key}: {e['fine']:.4g} {unit} ± "
                           f"{e['error_fine']:.2g} (extrapolated {e['extrapolated']:.4g})")
     print(f"\nwrote {out / 'result.vtu'}, {out / 'summary.json'}, {out / 'deflection.png'}")
-    return 0
+
+
+EXCLUDE_MM_MAX = 5.0     # a band around patch edges; wider would exclude whole short segments
+
+
+def check_exclude_mm(v: float) -> None:
+    """``--exclude-mm`` of static and fatigue: a finite band in [0, EXCLUDE_MM_MAX] mm."""
+    if not (math.isfinite(v) and 0 <= v <= EXCLUDE_MM_MAX):
+        raise InputError("command line", "--exclude-mm",
+                         f"a band in [0, {EXCLUDE_MM_MAX:g}] mm", got=v)
+
+
+def _station_rows(stations, beam_st: dict) -> list[list]:
+    """One row per position: stations at the same x (the gear and counterweight 1 share a
+    seat) are one row with both names."""
+    rows: dict[float, list] = {}
+    for s in stations:
+        key = round(s.x_mm, 6)
+        if key in rows:
+            rows[key][0] += f" + {s.name}"
+        else:
+            rows[key] = [s.name, s.x_mm, s.u_mm * 1e3, _beam_station(beam_st, s.name)]
+    return list(rows.values())
 
 
 def vars_of(opts) -> dict:

@@ -82,8 +82,10 @@ def assess(sigma_ref, history, material: FatigueMaterial, *, equivalent: str = "
            theory: str = "soderberg", kf: float = 1.0,
            design_life_blocks: float = DEFAULT_DESIGN_LIFE_BLOCKS,
            speed_kmh: float = DEFAULT_SPEED_KMH, n_max: float = kernels.SAFETY_FACTOR_MAX,
-           closure: str = "repeated", safety: bool = True) -> FatigueResult:
-    """Evaluate every node at once (see the module docstring)."""
+           closure: str = "repeated", safety: bool = True, exact_at=None) -> FatigueResult:
+    """Evaluate every node at once (see the module docstring). ``exact_at``: nodes whose
+    damage is evaluated on every cycle class even where a very long history makes the rest of
+    the field go to binned classes (``kernels.node_damage``): the hot-spot candidates."""
     if not (math.isfinite(speed_kmh) and speed_kmh > 0):
         raise InputError("fatigue options", "average speed", "a finite number > 0 (km/h)",
                          got=speed_kmh)
@@ -100,11 +102,17 @@ def assess(sigma_ref, history, material: FatigueMaterial, *, equivalent: str = "
         raise InputError("stress field", "sigma_ref", "finite values", reason="has NaN/inf")
     cyc = count_cycles(history.load_factor, closure)
     notes = []
-    d = kernels.node_damage(s_eq, cyc, material, theory, kf)
+    info: dict = {}
+    d = kernels.node_damage(s_eq, cyc, material, theory, kf, exact_at=exact_at, info=info)
     if cyc.n == 0:
         notes.append("the history has no load cycles (constant speed): no fatigue damage, "
                      "infinite life everywhere")
-    elif np.any(d == 0):
+    if info:
+        notes.append(f"long history: {info['binned_nodes']} of {d.size} nodes were evaluated on "
+                     f"the {info['exact_classes']} most damaging of {info['classes']} cycle "
+                     f"classes plus {info['binned_classes']} binned range × mean classes for "
+                     "the rest; the hot-spot candidates on every class")
+    if cyc.n and np.any(d == 0):
         notes.append(f"{int(np.sum(d == 0))} node(s) without damage (all cycles below the "
                      "endurance limit or no stress): infinite life")
     with np.errstate(divide="ignore"):

@@ -1,9 +1,11 @@
 """Rainflow counting of the load-factor history (detection) and its recording into arrays and
 range × mean matrices.
 
-Detection is the ``rainflow`` package (ASTM E1049-85 §5.4.4, three-point rule; half cycles
-kept). The history is counted ONCE, in load-factor units; stresses follow per node by scaling
-(``kernels``). Two closures of the residue:
+Detection is ``three_point`` (ASTM E1049-85 §5.4.4, three-point rule; half cycles kept) on the
+history's reversals, found by NumPy first (``reversals``): a 5-million-sample log is counted in
+about two seconds. It gives the same cycles in the same order as the ``rainflow`` package, which
+the validation tests use as the independent peer. The history is counted ONCE, in load-factor
+units; stresses follow per node by scaling (``kernels``). Two closures of the residue:
 
 ``"repeated"`` (default) — the block is one period of a repeating history, as the Ansys Fatigue
     Tool treats a load-history block that is applied over and over. The block is rotated to
@@ -73,8 +75,6 @@ class Cycles:
 
 def extract(series, closure: str = "repeated") -> np.ndarray:
     """Raw rainflow cycles (range, mean, count) as an (n, 3) array, not merged (detection)."""
-    import rainflow
-
     if closure not in CLOSURES:
         raise InputError("fatigue options", "closure", " | ".join(CLOSURES), got=closure)
     y = np.asarray(series, dtype=float).ravel()
@@ -85,17 +85,71 @@ def extract(series, closure: str = "repeated") -> np.ndarray:
     if closure == "repeated":
         i = int(np.argmax(y))
         y = np.concatenate((y[i:], y[:i], y[i:i + 1]))
-    rows = [(r, m, c) for r, m, c, _, _ in rainflow.extract_cycles(y.tolist()) if r > 0]
-    return np.array(rows, dtype=float).reshape(-1, 3)
+    lo, hi, count = three_point(reversals(y))
+    rng = np.abs(hi - lo)
+    keep = rng > 0
+    return np.column_stack((rng[keep], 0.5 * (lo + hi)[keep], count[keep]))
+
+
+def three_point(rev: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """ASTM E1049-85 §5.4.4 rainflow on the reversals ``rev`` (detection only): the two
+    reversal values of each counted range and its count (1 full cycle, 0.5 half cycle, the
+    residue as half cycles), in the order counted. A range Y (the older of the two newest) is
+    counted once the newest range X is at least as large; Y holding the start point is a half
+    cycle. The same cycles, in the same order, as ``rainflow.extract_cycles``
+    (tests/validation/test_fatigue_counting.py checks it), in a loop over plain floats."""
+    stack: list[float] = []
+    push, a_out, b_out, c_out = stack.append, [], [], []
+    start = 0                                   # stack[start] is the oldest point still held
+    for x in rev.tolist():
+        push(x)
+        while len(stack) - start >= 3:
+            x1, x2, x3 = stack[-3], stack[-2], stack[-1]
+            if abs(x3 - x2) < abs(x2 - x1):
+                break
+            if len(stack) - start == 3:         # Y contains the start: half cycle
+                a_out.append(stack[start])
+                b_out.append(stack[start + 1])
+                c_out.append(0.5)
+                start += 1
+            else:                               # full cycle; drop its two points
+                a_out.append(x1)
+                b_out.append(x2)
+                c_out.append(1.0)
+                del stack[-3:-1]
+    for i in range(start, len(stack) - 1):      # residue: half cycles
+        a_out.append(stack[i])
+        b_out.append(stack[i + 1])
+        c_out.append(0.5)
+    return np.array(a_out, dtype=float), np.array(b_out, dtype=float), np.array(c_out, float)
+
+
+def reversals(series) -> np.ndarray:
+    """The turning points of a history, in NumPy (rainflow counts only these): the first and the
+    last sample and every sample where the direction changes, plateaus (equal neighbours) kept
+    once. The same values as ``rainflow.reversals`` yields, at C speed: a 5-million-sample log
+    shrinks to its reversals before the Python-level counting loop sees it."""
+    y = np.asarray(series, dtype=float).ravel()
+    if y.size < 3:              # as rainflow.reversals: one sample or two give one point or none
+        return y[:1] if y.size == 2 else y[:0]
+    first_last = y[[0, -1]]
+    y = y[np.concatenate(([True], y[1:] != y[:-1]))]
+    if y.size < 3:
+        return first_last
+    d = np.diff(y)
+    turn = np.flatnonzero(d[1:] * d[:-1] < 0) + 1
+    return y[np.concatenate(([0], turn, [y.size - 1]))]
 
 
 def merge(raw: np.ndarray, closure: str) -> Cycles:
     """Record raw (range, mean, count) rows as ``Cycles`` with equal (range, mean) merged."""
     if raw.shape[0] == 0:
         return Cycles(np.zeros(0), np.zeros(0), np.zeros(0), closure)
-    keys, inv = np.unique(raw[:, :2], axis=0, return_inverse=True)
-    counts = np.bincount(inv.ravel(), weights=raw[:, 2], minlength=keys.shape[0])
-    return Cycles(keys[:, 0], keys[:, 1], counts, closure)
+    # complex numbers sort by (real, imag): one sort of (range, mean) pairs, the order of
+    # np.unique(axis=0) at a fraction of its cost on a million cycles
+    keys, inv = np.unique(raw[:, 0] + 1j * raw[:, 1], return_inverse=True)
+    counts = np.bincount(inv.ravel(), weights=raw[:, 2], minlength=keys.size)
+    return Cycles(keys.real, keys.imag, counts, closure)
 
 
 def count_cycles(series, closure: str = "repeated") -> Cycles:

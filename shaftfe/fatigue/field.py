@@ -38,7 +38,7 @@ from shaftfe.fatigue.assess import (
     FatigueResult,
     assess,
 )
-from shaftfe.fatigue.kernels import von_mises
+from shaftfe.fatigue.kernels import equivalent_stress, von_mises
 from shaftfe.fatigue.sn import FatigueMaterial
 
 _REGION_PRIORITY = ("fillet:", "keyway:", "shoulder:", "seat:")
@@ -138,6 +138,23 @@ def _spot(res: FatigueResult, i: int, region: str, regions: tuple, xyz: np.ndarr
         excluded=bool(excl[i]))
 
 
+def candidates(s_eq: np.ndarray, excluded: np.ndarray, regions: dict) -> np.ndarray:
+    """The nodes that can be a hot spot: in the whole field (filtered and not) and in each
+    region, the largest positive and the most negative σ_eq. Damage grows with |σ_eq| for a
+    given sign (every node sees the same cycles scaled), so the worst node of any node set is
+    one of its two extremes; ``kernels.node_damage`` keeps these exact on a long history."""
+    keep = np.flatnonzero(~excluded)
+    sets = [np.arange(s_eq.size), keep]
+    sets += [np.asarray(nodes, dtype=np.int64)[~excluded[np.asarray(nodes, dtype=np.int64)]]
+             for nodes in regions.values()]
+    out = []
+    for nodes in sets:
+        if nodes.size:
+            v = s_eq[nodes]
+            out += [nodes[int(np.argmax(v))], nodes[int(np.argmin(v))]]
+    return np.unique(np.asarray(out, dtype=np.int64))
+
+
 def evaluate_arrays(stress_ref, history, material: FatigueMaterial, *, ref_rpm: float,
                     xyz, regions: dict | None = None, excluded=None,
                     equivalent: str = "von_mises", theory: str = "soderberg", kf: float = 1.0,
@@ -151,13 +168,14 @@ def evaluate_arrays(stress_ref, history, material: FatigueMaterial, *, ref_rpm: 
     n = s.shape[1]
     h = history if math.isclose(history.rpm_ref, ref_rpm, rel_tol=1e-15) \
         else history.with_reference(ref_rpm)
-    res = assess(s.T, h, material, equivalent=equivalent, theory=theory, kf=kf,
-                 design_life_blocks=design_life_blocks, speed_kmh=speed_kmh)
-    vm = res.sigma_eq_MPa if equivalent == "von_mises" else von_mises(s.T)
     excl = np.zeros(n, dtype=bool)
     if excluded is not None:
         excl[np.asarray(excluded, dtype=np.int64)] = True
     regions = dict(sorted((regions or {}).items()))
+    cand = candidates(equivalent_stress(s.T, equivalent), excl, regions)
+    res = assess(s.T, h, material, equivalent=equivalent, theory=theory, kf=kf,
+                 design_life_blocks=design_life_blocks, speed_kmh=speed_kmh, exact_at=cand)
+    vm = res.sigma_eq_MPa if equivalent == "von_mises" else von_mises(s.T)
     member = {}
     for name, nodes in regions.items():
         mk = np.zeros(n, dtype=bool)
@@ -186,6 +204,19 @@ def evaluate(ref, history, material: FatigueMaterial, **settings) -> FatigueFiel
     """``evaluate_arrays`` on a ``shaftfe.static_cache.StaticReference``."""
     return evaluate_arrays(ref.stress_ref, history, material, ref_rpm=ref.ref_rpm, xyz=ref.xyz,
                            regions=ref.regions, excluded=ref.excluded, **settings)
+
+
+def hot_spot_with_factor(ref, ff: FatigueField, history, material: FatigueMaterial,
+                         factor: float, **settings) -> dict:
+    """The hot spot's life and safety factor with its stress × ``factor`` (one node: cheap):
+    what the life becomes if the peak stress is corrected by a level's measured error."""
+    i = ff.hot_spot.node
+    s = np.asarray(ref.stress_ref)[:, [i]] * factor
+    f2 = evaluate_arrays(s, history, material, ref_rpm=ref.ref_rpm,
+                         xyz=np.asarray(ref.xyz)[:, [i]], **settings)
+    h = f2.hot_spot
+    return {"factor": factor, "life_blocks": h.life_blocks, "life_hours": h.life_hours,
+            "life_km": h.life_km, "safety_factor": h.safety_factor}
 
 
 def write_vtu(ref, ff: FatigueField, path) -> object:

@@ -69,6 +69,9 @@ SAFETY_FACTOR_MAX = 15.0
 SOLVED, CAPPED, FLOORED = 0, 1, 2          # safety-factor status codes
 _FLOOR_RATIO = 1e-6                        # lower bracket = n_max · 1e-6
 _CHUNK_ELEMENTS = 1 << 20                  # nodes × cycle classes evaluated per chunk
+FIELD_BUDGET = 2.0e8      # node × class evaluations of a field before its rest is binned (≈ 5 s)
+BIN_MAX = 400             # binned classes: at most BIN_MAX × BIN_MAX range × mean cells
+BAND = 0.99               # binned field: nodes in bands of |σ_eq| from x down to BAND · x
 
 
 # --- equivalent stress -------------------------------------------------------------------
@@ -185,15 +188,149 @@ def _damage(s: np.ndarray, cyc: Cycles, material: FatigueMaterial, theory: str,
 
 
 def node_damage(sigma_eq, cycles: Cycles, material: FatigueMaterial,
-                theory: str = "soderberg", kf: float = 1.0) -> np.ndarray:
+                theory: str = "soderberg", kf: float = 1.0, *, exact_at=None,
+                budget: float = FIELD_BUDGET, info: dict | None = None) -> np.ndarray:
     """Miner damage per block at every node; ``sigma_eq`` = σ_eq at the reference speed (MPa),
-    any shape; returns the same shape. A history without cycles gives 0 (infinite life)."""
+    any shape; returns the same shape. A history without cycles gives 0 (infinite life).
+
+    A long log has millions of cycle classes, and nodes × classes is then too much to evaluate
+    as it stands. Two steps keep it in seconds:
+
+    1. Exact pruning (cutoff S-N curves): σ_ar of a class grows with |σ_eq|, so a class below
+       the endurance limit at some node does no damage at any node of the same sign with a
+       smaller |σ_eq|. The nodes are taken in order of decreasing |σ_eq|, the classes that do
+       no damage at the chunk's largest stress are dropped (``active_cycles``), and once none
+       is left the remaining nodes have no damage. Same result as every class at every node.
+    2. Binned classes, only when the work left would pass ``budget`` node-class evaluations
+       (a history whose every cycle is large: white noise over the whole speed range): the
+       nodes ``exact_at`` (the hot-spot candidates, flat indices) are still evaluated on every
+       class, the rest of the field on ``binned_cycles``: a range × mean grid of at most
+       ``budget / nodes`` classes, each at the count-weighted centroid of its cycles. ``info``
+       (a dict, if given) receives what was binned; tests/validation measure the error.
+    """
     _check_theory(theory)
     _check_kf(kf)
     s = np.asarray(sigma_eq, dtype=float)
     if cycles.n == 0:
         return np.zeros(s.shape)
-    return _damage(s.ravel(), cycles, material, theory, kf).reshape(s.shape)
+    flat = s.ravel()
+    exact = np.zeros(flat.size, dtype=bool)
+    if exact_at is not None:
+        exact[np.asarray(exact_at, dtype=np.int64)] = True
+    out = np.zeros(flat.size)
+    work = 0.0
+    for sign in (1.0, -1.0):
+        sel = np.flatnonzero(flat * sign > 0)
+        sel = sel[np.argsort(-np.abs(flat[sel]), kind="stable")]
+        cyc, a, pruned_at = cycles, 0, math.inf
+        while a < sel.size:
+            x = abs(float(flat[sel[a]]))
+            if x < 0.95 * pruned_at:        # prune again once |σ_eq| fell by 5 %
+                cyc, pruned_at = active_cycles(cyc, sign * x, material, theory, kf), x
+            if cyc.n == 0:
+                break                       # no class does damage here nor at smaller |σ_eq|
+            rest = sel[a:]
+            if work + rest.size * cyc.n > budget:
+                work += _binned_rest(flat, rest, exact, cyc, budget, material, theory, kf,
+                                     out, info)
+                break
+            idx = sel[a:a + max(1, _CHUNK_ELEMENTS // cyc.n)]
+            out[idx] = _damage(flat[idx], cyc, material, theory, kf)
+            work += idx.size * cyc.n
+            a += idx.size
+    return out.reshape(s.shape)
+
+
+def _binned_rest(flat, rest, exact, cyc, budget, material, theory, kf, out, info) -> float:
+    """Step 2 of ``node_damage`` for the nodes ``rest`` (|σ_eq| descending): exact at the
+    ``exact`` ones; for the others, in bands of |σ_eq| 1 % wide (``BAND``), the classes doing
+    no damage in the band are dropped, those that cross the endurance limit inside the band
+    and the most damaging ones are summed exactly, and the rest (well above the limit, where
+    the damage is a smooth power of σ_ar) on binned classes. Returns the node-class
+    evaluations done."""
+    ex, others = rest[exact[rest]], rest[~exact[rest]]
+    work = 0.0
+    if ex.size:
+        out[ex] = _damage(flat[ex], cyc, material, theory, kf)
+        work += ex.size * cyc.n
+    per_node = max(128, int(budget // max(others.size, 1)))
+    lim = material.sn.endurance_MPa * kf if _prunable(material) else 0.0
+    n_exact = n_binned = 0
+    a = 0
+    while a < others.size:
+        x_hi = float(flat[others[a]])
+        b = a + int(np.searchsorted(-np.abs(flat[others[a:]]), -BAND * abs(x_hi), "right"))
+        band = others[a:max(b, a + 1)]
+        x_lo = float(flat[band[-1]])
+        s_hi, s_lo = (mean_stress_correction(abs(x) * cyc.range / 2.0, x * cyc.mean, theory,
+                                             yield_MPa=material.yield_MPa,
+                                             ultimate_MPa=material.ultimate_MPa)
+                      for x in (x_hi, x_lo))
+        active = s_hi >= lim
+        sure = active & (s_lo >= lim * (1.0 + 1e-12)) & np.isfinite(s_hi)
+        top = np.flatnonzero(sure)[np.argsort(-s_hi[sure], kind="stable")[: per_node // 2]]
+        keep = np.flatnonzero(active & ~sure)             # crossing the limit in the band
+        sure[top] = False
+        part = [np.concatenate((keep, top))]
+        sub = [Cycles(cyc.range[part[0]], cyc.mean[part[0]], cyc.count[part[0]], cyc.closure)]
+        rest_idx = np.flatnonzero(sure)
+        if rest_idx.size:
+            sub.append(binned_cycles(Cycles(cyc.range[rest_idx], cyc.mean[rest_idx],
+                                            cyc.count[rest_idx], cyc.closure),
+                                     max(16, per_node - sub[0].n)))
+        out[band] = sum(_damage(flat[band], c, material, theory, kf) for c in sub if c.n)
+        n_exact = max(n_exact, sub[0].n)
+        n_binned = max(n_binned, sub[-1].n if len(sub) > 1 else 0)
+        work += band.size * sum(c.n for c in sub)
+        a += band.size
+    if info is not None and others.size:
+        info.update({"binned_nodes": int(info.get("binned_nodes", 0) + others.size),
+                     "classes": int(cyc.n), "exact_classes": int(n_exact),
+                     "binned_classes": int(n_binned)})
+    return work
+
+
+def binned_cycles(cycles: Cycles, max_classes: int) -> Cycles:
+    """The classes on a uniform range × mean grid of at most ``max_classes`` cells (square,
+    ≤ ``BIN_MAX`` per side), each cell's cycles replaced by one class at their count-weighted
+    centroid with their total count: the damage of a cell's cycles is then met to second order
+    in the cell size (first-order errors cancel about the centroid)."""
+    n = int(min(BIN_MAX, max(2, math.isqrt(max_classes))))
+    r, m, c = cycles.range, cycles.mean, cycles.count
+    if cycles.n <= n * n:
+        return cycles
+    r_hi = float(r.max()) or 1.0
+    m_lo, m_hi = float(m.min()), float(m.max())
+    ir = np.minimum((r / r_hi * n).astype(np.int64), n - 1)
+    im = (np.minimum(((m - m_lo) / (m_hi - m_lo) * n).astype(np.int64), n - 1)
+          if m_hi > m_lo else np.zeros(r.size, dtype=np.int64))
+    cell = ir * n + im
+    w = np.bincount(cell, weights=c, minlength=n * n)
+    keep = w > 0
+    cr = np.bincount(cell, weights=c * r, minlength=n * n)[keep] / w[keep]
+    cm = np.bincount(cell, weights=c * m, minlength=n * n)[keep] / w[keep]
+    return Cycles(cr, cm, w[keep], cycles.closure)
+
+
+def _prunable(material: FatigueMaterial) -> bool:
+    sn = material.sn
+    return sn.beyond_last == "cutoff" and not math.isfinite(sn.infinite_life_cycles)
+
+
+def active_cycles(cycles: Cycles, sigma_eq: float, material: FatigueMaterial, theory: str,
+                  kf: float) -> Cycles:
+    """The classes that do damage at a node of equivalent stress ``sigma_eq`` (MPa, signed):
+    with a cutoff S-N curve, those whose σ_ar / kf reaches the endurance limit (all classes for
+    other curves)."""
+    if not _prunable(material) or cycles.n == 0:
+        return cycles
+    sar = mean_stress_correction(abs(sigma_eq) * cycles.range / 2.0, sigma_eq * cycles.mean,
+                                 theory, yield_MPa=material.yield_MPa,
+                                 ultimate_MPa=material.ultimate_MPa)
+    keep = sar / kf >= material.sn.endurance_MPa
+    if keep.all():
+        return cycles
+    return Cycles(cycles.range[keep], cycles.mean[keep], cycles.count[keep], cycles.closure)
 
 
 def cycle_damage(sigma_eq_node: float, cycles: Cycles, material: FatigueMaterial,
@@ -284,8 +421,10 @@ def _unit_root(sign: float, cycles: Cycles, material: FatigueMaterial, theory: s
     """x > 0 with design_life · D(sign · x) = 1 for a node of unit σ_eq (∞: never fails,
     0: fails at any stress), bracketed and bisected in log x to machine precision."""
 
+    active = cycles
+
     def fails(x: float) -> bool:
-        d = _damage(np.array([sign * x]), cycles, material, theory, kf)[0]
+        d = _damage(np.array([sign * x]), active, material, theory, kf)[0]
         return bool(design_life * d > 1.0)
 
     hi = 1.0
@@ -293,6 +432,8 @@ def _unit_root(sign: float, cycles: Cycles, material: FatigueMaterial, theory: s
         hi *= 2.0
         if hi > 1e300:
             return math.inf
+    # every x tried from here on is <= hi: the classes without damage at hi can go (exact)
+    active = active_cycles(cycles, sign * hi, material, theory, kf)
     lo = hi / 2.0 if hi > 1.0 else 1.0
     while fails(lo):
         lo /= 2.0
@@ -304,6 +445,7 @@ def _unit_root(sign: float, cycles: Cycles, material: FatigueMaterial, theory: s
             break
         if fails(mid):
             hi = mid
+            active = active_cycles(active, sign * hi, material, theory, kf)
         else:
             lo = mid
     return hi

@@ -70,6 +70,7 @@ class ReportOptions:
     speed_kmh: float = 70.0
     cache_dir: str | None = None
     pictures: bool = True                 # PyVista renders (off: no VTK import)
+    seed_load_case: bool = False          # every part (as every command); True: the seed's F1+Fv2
 
 
 @dataclass(frozen=True)
@@ -172,6 +173,9 @@ def rel_path(path) -> str:
 
 # --------------------------------------------------------------------------- validation
 
+CAMPBELL_STEP_MIN_RPM = 10.0     # ≤ 2000 speeds up to the rpm ceiling: seconds, not GiB
+
+
 def check_options(o: ReportOptions) -> None:
     """Cheap checks of everything the user typed (before any computation or output)."""
     if o.level not in LEVELS:
@@ -179,10 +183,17 @@ def check_options(o: ReportOptions) -> None:
     if o.rotor_model not in ROTOR_MODELS:
         raise InputError("command line", "--rotor-model", " | ".join(ROTOR_MODELS),
                          got=o.rotor_model)
-    if not o.design_rpm or any(not (math.isfinite(r) and r > 0) for r in o.design_rpm):
-        raise InputError("command line", "--rpm", "speeds > 0 rpm", got=list(o.design_rpm))
-    if not (math.isfinite(o.campbell_step_rpm) and o.campbell_step_rpm > 0):
-        raise InputError("command line", "--campbell-step", "> 0 rpm", got=o.campbell_step_rpm)
+    from shaftfe.limits import RPM_CEILING, check_rpm
+    if not o.design_rpm:
+        raise InputError("command line", "--rpm", "one or more speeds", got="")
+    for r in o.design_rpm:
+        check_rpm(r, "--rpm", positive=True)
+    if not (math.isfinite(o.campbell_step_rpm)
+            and CAMPBELL_STEP_MIN_RPM <= o.campbell_step_rpm <= RPM_CEILING):
+        raise InputError("command line", "--campbell-step",
+                         f"a step in [{CAMPBELL_STEP_MIN_RPM:g}, {RPM_CEILING:g}] rpm (at most "
+                         f"{RPM_CEILING / CAMPBELL_STEP_MIN_RPM:.0f} speeds)",
+                         got=o.campbell_step_rpm)
     if not (1 <= o.modes <= 50):
         raise InputError("command line", "--modes", "1..50", got=o.modes)
     from shaftfe.commands.fatigue import MEAN_STRESS, check_life_settings
@@ -362,8 +373,7 @@ def _static_summary(res, variant) -> dict:
     d = res.diagnostics
     return {"level": res.options.level, "order": res.options.order,
             "supports": "rigid" if res.options.rigid_supports else "bearing springs (2×2)",
-            "load_case": "seed (gear + counterweight 1 = F1, counterweight 2 = Fv2)"
-            if res.options.seed_load_case else "all parts",
+            "load_case": res.options.load_case,
             "ref_rpm": res.ref_rpm, "n_nodes": res.n_nodes, "n_elements": res.n_elements,
             "n_dofs": res.n_dofs, "mesh_key": res.mesh_key, "variant_hash": res.variant_hash,
             "solver": d.get("solver"), "relative_residual": d.get("relative_residual"),
@@ -412,19 +422,9 @@ def _fatigue(ref, history, material, o: ReportOptions) -> tuple[dict, object]:
 
 def _life_at_scaled_hot_spot(ref, ff, history, material, o: ReportOptions,
                              factor: float) -> dict:
-    """The hot spot's life and safety factor with its stress × ``factor`` (one node: cheap)."""
-    import numpy as np
-
-    from shaftfe.fatigue.field import evaluate_arrays
-
-    i = ff.hot_spot.node
-    s = np.asarray(ref.stress_ref)[:, [i]] * factor
-    f2 = evaluate_arrays(s, history, material, ref_rpm=ref.ref_rpm,
-                         xyz=np.asarray(ref.xyz)[:, [i]], theory=o.mean_stress,
-                         design_life_blocks=o.design_life_blocks, speed_kmh=o.speed_kmh)
-    h = f2.hot_spot
-    return {"factor": factor, "life_blocks": h.life_blocks, "life_hours": h.life_hours,
-            "life_km": h.life_km, "safety_factor": h.safety_factor}
+    from shaftfe.fatigue.field import hot_spot_with_factor
+    return hot_spot_with_factor(ref, ff, history, material, factor, theory=o.mean_stress,
+                                design_life_blocks=o.design_life_blocks, speed_kmh=o.speed_kmh)
 
 
 def _campbell(variant, engine, o: ReportOptions) -> tuple[dict, object, object]:
@@ -699,7 +699,7 @@ def comparisons(bal: dict, beam_check: dict, st: dict, fat: dict, camp: dict, va
     # static
     grp = "static"
     cases = {c["rpm"]: c for c in st["cases"]}
-    fe = f"3D FE P{st['order']} {st['level']}, {st['supports']}, seed load case"
+    fe = f"3D FE P{st['order']} {st['level']}, {st['supports']}, {st['load_case']}"
     names = [b.name for b in variant.bearings]
     for rpm in (10_000.0, 7_000.0):
         c = cases.get(rpm)
@@ -819,7 +819,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     with prog.stage("static (mesh + one solve)"):
         from shaftfe import static_cache
         from shaftfe.static import StaticOptions, solve_static
-        sopts = StaticOptions(level=o.level, seed_load_case=True)
+        sopts = StaticOptions(level=o.level, seed_load_case=o.seed_load_case)
         res = solve_static(variant, list(o.design_rpm), sopts, cache_dir=o.cache_dir)
         ref = static_cache.store(variant, sopts, res, o.cache_dir)   # the fatigue input
     if o.estimate_error:

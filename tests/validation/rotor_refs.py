@@ -47,6 +47,8 @@ def timoshenko_free_free(L, D, n_roots, f_max):
     roots = []
     for a, b, va, vb in zip(grid[:-1], grid[1:], vals[:-1], vals[1:], strict=True):
         if va * vb < 0:
+            # to round-off: brentq's rtol floor is 4 eps ≈ 9e-16; 1e-14 and 1e-12 Hz are far
+            # below the 1e-6…1e-4 tolerances the tests use against these roots
             roots.append(brentq(det, a, b, xtol=1e-12, rtol=1e-14))
     return np.array(roots[:n_roots])
 
@@ -59,6 +61,8 @@ def pinned_whirl(L, D, n, Omega):
     a, b, c = KAPPA * G * A * k**2, E * I * k**2 + KAPPA * G * A, KAPPA * G * A * k
     p = np.polysub(np.polymul([-RHO * A, 0.0, a], [-RHO * I, 2 * RHO * I * Omega, b]), [c**2])
     r = np.roots(p)
+    # real roots: np.roots (companion eigenvalues) leaves spurious imaginary parts ~ eps ×
+    # the root's condition; 1e-8 keeps them and drops genuinely complex pairs (|Im| ~ |r|)
     r = r[np.abs(r.imag) < 1e-8 * np.abs(r)].real
     return min(r[r > 0]) / (2 * math.pi), -max(r[r < 0]) / (2 * math.pi)
 
@@ -77,7 +81,7 @@ def overhung_closed_form(L, D, m, Ip, Id, offset, Omega):
     # (k11 − m ω²)(k22 − Id ω² + Ip Ω ω) − k12² = 0, ω signed
     p = np.polysub(np.polymul([-m, 0.0, k11], [-Id, Ip * Omega, k22]), [k12**2])
     r = np.roots(p)
-    r = r[np.abs(r.imag) < 1e-8 * np.abs(r)].real
+    r = r[np.abs(r.imag) < 1e-8 * np.abs(r)].real       # real roots, as in pinned_whirl
     return min(r[r > 0]) / (2 * math.pi), -max(r[r < 0]) / (2 * math.pi)
 
 

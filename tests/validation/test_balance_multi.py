@@ -22,7 +22,9 @@ MECH = multi.Mechanism(R=0.0302, T1=0.1102, m_pos=0.358 + 0.114447)
 OMEGA = float(rad_per_s(6000.0))
 A = MECH.amplitude(OMEGA)
 N = multi.DEFAULT_SAMPLES
-TOL = 1e-9
+# exact arithmetic (round-off only): every check below is an exact cancellation or closed
+# form evaluated by a real FFT of exact sums; all of them pass at 1e-14 (was 1e-9, and rel=1e-9)
+TOL = 1e-12
 
 
 def single_order(k: int, n: int = N) -> float:
@@ -48,6 +50,7 @@ def test_single_cylinder_equals_kernel(phase, tilt, X, X2):
     alpha = r.theta - math.radians(phase)
     fx, fy = rotate(*shaking_forces(alpha, MECH.m_pos, MECH.R, MECH.T1, OMEGA, X, X2),
                     math.radians(tilt))
+    # exact arithmetic (round-off only; passes at 1e-14)
     assert np.max(np.abs(r.Fx - fx)) <= 1e-12 * A
     assert np.max(np.abs(r.Fy - fy)) <= 1e-12 * A
     assert np.max(r.M) == 0.0  # a single cylinder at the reference position has no couple
@@ -57,6 +60,7 @@ def test_first_order_of_exact_kinematics_is_A_and_odd_orders_vanish():
     """Exact slider-crank: y_pos = R cos α + sqrt(T1² − R² sin² α) (seed 000 §5.1); the root is
     a function of cos 2α, so the 1st harmonic of F_sp is exactly A cos α and orders 3, 5 are 0."""
     r = run((multi.Cylinder(),), orders=(1, 2, 3, 5))
+    # exact arithmetic (round-off only; passes at 1e-14)
     assert r.force_order(1).amplitude == pytest.approx(A, rel=1e-12)
     assert r.force_order(2).amplitude == pytest.approx(single_order(2), rel=1e-12)
     assert r.force_order(3).amplitude <= 1e-12 * A
@@ -68,13 +72,16 @@ def test_co_and_counter_rotating_split():
     (what a 1:1 counter-rotating balancer with X2 = 50 % removes) and nothing turning with it;
     X2 = 50 % alone leaves A/2 turning with the crank. The ellipse of order 1 then is a circle."""
     o = run((multi.Cylinder(X=0.5),)).force_order(1)
+    # exact arithmetic (round-off only; passes at 1e-14)
     assert o.co_rotating <= 1e-12 * A
     assert o.counter_rotating == pytest.approx(A / 2, rel=1e-12)
     assert o.minor == pytest.approx(A / 2, rel=1e-12)
     o = run((multi.Cylinder(X2=0.5),)).force_order(1)
+    # exact arithmetic (round-off only; passes at 1e-14)
     assert o.counter_rotating <= 1e-12 * A
     assert o.co_rotating == pytest.approx(A / 2, rel=1e-12)
     o = run((multi.Cylinder(X=0.5, X2=0.5),)).force_order(1)
+    # exact arithmetic (round-off only; passes at 1e-14)
     assert o.amplitude <= 1e-12 * A
 
 
@@ -84,6 +91,7 @@ def test_harmonic_orders_of_a_known_ellipse():
     theta = multi.crank_angles(64)
     vx, vy = 5 * np.sin(2 * theta), 3 * np.cos(2 * theta)
     (o,) = multi.harmonic_orders(vx, vy, (2,))
+    # exact arithmetic (round-off only) here and in every rel=1e-12 / TOL check of this file
     assert (o.amplitude, o.minor, o.x, o.y) == pytest.approx((5, 3, 5, 3), rel=1e-12)
     assert o.co_rotating + o.counter_rotating == pytest.approx(5, rel=1e-12)
 
@@ -98,6 +106,7 @@ def test_forces_scale_with_rpm_squared():
     for a, b in ((lo.Fx, hi.Fx), (lo.Fy, hi.Fy), (lo.Mx, hi.Mx), (lo.My, hi.My),
                  (lo.Fx_cyl, hi.Fx_cyl), (lo.Fy_cyl, hi.Fy_cyl)):
         assert np.max(np.abs(b)) > 0.1 * hi.A * 0.08
+        # exact arithmetic (round-off only; passes at 1e-14)
         assert np.max(np.abs(s * a - b)) <= 1e-12 * np.max(np.abs(b))
     assert hi.max_force == pytest.approx(s * lo.max_force, rel=1e-12)
 
@@ -114,16 +123,18 @@ def test_i3_120_forces_cancel_and_primary_couple_closed_form():
     """
     s = 0.08
     r = run(multi.inline([0, 120, 240], s), orders=(1, 2, 4, 6))
+    # exact arithmetic (round-off only; passes at 1e-14)
     assert r.force_order(1).amplitude <= TOL * A
     assert r.force_order(2).amplitude <= TOL * A
     assert r.force_order(4).amplitude <= TOL * A
-    assert r.force_order(6).amplitude == pytest.approx(3 * single_order(6), rel=1e-9)
-    assert r.z_ref_m == pytest.approx(s)
+    assert r.force_order(6).amplitude == pytest.approx(3 * single_order(6), rel=1e-12)
+    assert r.z_ref_m == pytest.approx(s)       # exact arithmetic: approx's default rel 1e-6
     c1 = r.couple_order(1)
-    assert c1.amplitude == pytest.approx(math.sqrt(3) * A * s, rel=1e-9)
+    # exact arithmetic (round-off only; passes at 1e-14)
+    assert c1.amplitude == pytest.approx(math.sqrt(3) * A * s, rel=1e-12)
     assert c1.y <= TOL * A * s  # no side force → no yaw couple
     assert r.couple_order(2).amplitude == pytest.approx(math.sqrt(3) * s * single_order(2),
-                                                        rel=1e-9)
+                                                        rel=1e-12)
 
 
 def test_i3_middle_pin_180_trades_couples_for_force():
@@ -134,10 +145,11 @@ def test_i3_middle_pin_180_trades_couples_for_force():
     s = 0.08
     r = run(multi.inline([0, 180, 0], s), orders=(1, 2, 4))
     residual = r.force_order(1).amplitude
-    assert residual == pytest.approx(A, rel=1e-9)
-    assert 1 - residual / (3 * A) == pytest.approx(2 / 3, rel=1e-9)  # "2/3 balanced"
-    assert r.force_order(2).amplitude == pytest.approx(3 * single_order(2), rel=1e-9)
-    assert r.force_order(4).amplitude == pytest.approx(3 * single_order(4), rel=1e-9)
+    # exact arithmetic (round-off only; passes at 1e-14)
+    assert residual == pytest.approx(A, rel=1e-12)
+    assert 1 - residual / (3 * A) == pytest.approx(2 / 3, rel=1e-12)  # "2/3 balanced"
+    assert r.force_order(2).amplitude == pytest.approx(3 * single_order(2), rel=1e-12)
+    assert r.force_order(4).amplitude == pytest.approx(3 * single_order(4), rel=1e-12)
     assert r.max_couple <= TOL * A * s
 
 
@@ -147,21 +159,26 @@ def test_flat_plane_i4():
     FFT), not just λ m R ω²; mirror symmetry about the middle → zero couple."""
     s = 0.085
     r = run(multi.inline([0, 180, 180, 0], s), orders=(1, 2, 4))
+    # exact arithmetic (round-off only; passes at 1e-14)
     assert r.force_order(1).amplitude <= TOL * A
     assert r.couple_order(1).amplitude <= TOL * A * s
     assert r.max_couple <= TOL * A * s
     f2 = r.force_order(2)
-    assert f2.amplitude == pytest.approx(4 * single_order(2), rel=1e-9)
+    # exact arithmetic (round-off only; passes at 1e-14)
+    assert f2.amplitude == pytest.approx(4 * single_order(2), rel=1e-12)
     assert f2.x <= TOL * A  # along the cylinder axes
-    assert r.force_order(4).amplitude == pytest.approx(4 * single_order(4), rel=1e-9)
+    assert r.force_order(4).amplitude == pytest.approx(4 * single_order(4), rel=1e-12)
     # Exact vs λ m R ω²: binomial expansion of sqrt(1 − λ² sin² α) gives the harmonic
     # coefficients of F_sp / A: order 2 = λ + λ³/4 + 15λ⁵/128 + 35λ⁷/512 + O(λ⁹),
     # order 4 = λ³/4 + 3λ⁵/16 + O(λ⁷) (classical series, e.g. Den Hartog, Mechanical Vibrations).
     lam = MECH.R / MECH.T1
     series2 = lam + lam**3 / 4 + 15 * lam**5 / 128 + 35 * lam**7 / 512
+    # truncated series: the first omitted term is O(λ⁹) (λ = 0.274: 9e-6)
     assert f2.amplitude / (4 * A) == pytest.approx(series2, abs=lam**9)
-    assert f2.amplitude / (4 * lam * A) - 1 > 0.019  # λ m R ω² alone is ~1.9 % low here
+    # λ m R ω² alone is low by λ²/4 + 15λ⁴/128 + … = 1.94 % here (series above): > 1.9 %
+    assert f2.amplitude / (4 * lam * A) - 1 > 0.019
     series4 = lam**3 / 4 + 3 * lam**5 / 16
+    # truncated series: first omitted term O(λ⁷) (5e-5)
     assert r.force_order(4).amplitude / (4 * A) == pytest.approx(series4, abs=lam**7)
 
 
@@ -171,12 +188,14 @@ def test_inline_spacing_list_and_reference_point():
     a 180° I2 has the primary couple A g (closed form: (g/2)·A cos θ·2)."""
     g = 0.07
     r = run(multi.inline([0, 180], [g]), orders=(1,))
-    assert r.couple_order(1).amplitude == pytest.approx(A * g, rel=1e-9)
+    # exact arithmetic (round-off only; passes at 1e-14)
+    assert r.couple_order(1).amplitude == pytest.approx(A * g, rel=1e-12)
     assert r.force_order(1).amplitude <= TOL * A
     r = run(multi.inline([0, 0], g), orders=(1,))
+    # exact arithmetic (round-off only; passes at 1e-14)
     assert r.max_couple <= TOL * A * g
     r = run(multi.inline([0, 120, 240], [0.08, 0.10]))
-    assert r.z_ref_m == pytest.approx((0 + 0.08 + 0.18) / 3)
+    assert r.z_ref_m == pytest.approx((0 + 0.08 + 0.18) / 3)     # exact: default rel 1e-6
 
 
 # --- twins (seed 000 §4.3.1-4.3.3, ch. 7) ---------------------------------------------------
@@ -184,12 +203,14 @@ def test_inline_spacing_list_and_reference_point():
 @pytest.mark.parametrize("delta", [0.0, 90.0, 180.0])
 def test_seed_twins_cancel_first_order(delta):
     """180° I2 (δ = 0), 90° V2, boxer (δ = 180) with the default ε and counterweights (seed 000
-    §4.3.1-4.3.3, ch. 7.1): residual 1st order ≤ 1e-9 A. The default ε equals the seed's
+    §4.3.1-4.3.3, ch. 7.1): residual 1st order ≤ 1e-12 A. The default ε equals the seed's
     2δ − 180° modulo 360° for these three δ."""
     cyls = multi.twin(delta)
     eps = cyls[1].phase_deg - delta
+    # exact arithmetic: the angle is a multiple of 360° (cos = 1 up to one rounding)
     assert math.isclose(math.cos(math.radians(eps - (2 * delta - 180))), 1.0, abs_tol=1e-15)
     r = run(cyls)
+    # exact arithmetic (round-off only; passes at 1e-14)
     assert r.force_order(1).amplitude <= TOL * A
     assert multi.resultant_counterweight(cyls) == pytest.approx(math.sin(math.radians(delta)),
                                                                 abs=1e-12)
@@ -202,12 +223,15 @@ def test_v90_shared_pin_one_full_counterweight():
     cyls = multi.twin(90.0, shared_pin=True)
     assert (cyls[0].X, cyls[1].X) == (1.0, 0.0)
     r = run(cyls)
+    # exact arithmetic (round-off only; passes at 1e-14)
     assert r.force_order(1).amplitude <= TOL * A
     f2 = r.force_order(2)
-    assert f2.amplitude == pytest.approx(math.sqrt(2) * single_order(2), rel=1e-9)
+    # exact arithmetic (round-off only; passes at 1e-14)
+    assert f2.amplitude == pytest.approx(math.sqrt(2) * single_order(2), rel=1e-12)
     assert f2.y <= TOL * A
     # two 50 % masses on coincident pins (ε = 0) are the same crank: identical forces
     r2 = run(multi.twin(90.0))
+    # exact arithmetic (round-off only; passes at 1e-14)
     assert np.max(np.abs(r.Fx - r2.Fx)) + np.max(np.abs(r.Fy - r2.Fy)) <= 1e-12 * A
 
 
@@ -217,6 +241,7 @@ def test_i2_360_is_a_single_cylinder_with_double_masses():
     X = 0.4
     r = run(multi.twin(0.0, 0.0, X=X))
     fx, fy = shaking_forces(r.theta, MECH.m_pos, MECH.R, MECH.T1, OMEGA, X, 0.0)
+    # exact arithmetic (round-off only; passes at 1e-14)
     assert np.max(np.abs(r.Fx - 2 * fx)) <= 1e-12 * A
     assert np.max(np.abs(r.Fy - 2 * fy)) <= 1e-12 * A
 
@@ -228,12 +253,15 @@ def test_general_delta_default_and_seed_printed_epsilon(delta):
     printed ε = 2δ − 180° leaves A|sin 2δ| unless δ ∈ {0, 90, 180}. The default counterweights
     (50 % per pin) give the resultant sin δ of one cylinder (the seed's X = 100 sin δ %)."""
     r = run(multi.twin(delta))
+    # exact arithmetic (round-off only; passes at 1e-14)
     assert r.force_order(1).amplitude <= TOL * A
     assert multi.resultant_counterweight(multi.twin(delta)) == pytest.approx(
         math.sin(math.radians(delta)), rel=1e-12)
     o = run(multi.twin(delta, 2 * delta - 180)).force_order(1)
+    # exact arithmetic (round-off only; passes at 1e-14)
     assert o.counter_rotating == pytest.approx(A * abs(math.sin(math.radians(2 * delta))),
-                                               rel=1e-9)
+                                               rel=1e-12)
+    # exact arithmetic (round-off only; passes at 1e-14)
     assert o.co_rotating <= TOL * A
 
 
@@ -245,8 +273,10 @@ def test_literal_per_pin_sin_delta_and_shared_pin_residuals(delta):
     balanced without a balancer shaft)."""
     sd = math.sin(math.radians(delta))
     o = run(multi.twin(delta, X=sd)).force_order(1)
-    assert o.co_rotating == pytest.approx(A * sd * abs(1 - 2 * sd), rel=1e-9)
+    # exact arithmetic (round-off only; passes at 1e-14)
+    assert o.co_rotating == pytest.approx(A * sd * abs(1 - 2 * sd), rel=1e-12)
     o = run(multi.twin(delta, shared_pin=True)).force_order(1)
+    # exact arithmetic (round-off only; passes at 1e-14)
     assert o.co_rotating <= TOL * A
     assert o.counter_rotating == pytest.approx(A * abs(math.cos(math.radians(delta))), abs=TOL * A)
 
@@ -257,10 +287,12 @@ def test_twin_offset_gives_the_i2_couple():
     (e/2)·A cos θ·2); with 50 % per pin the co-rotating half is cancelled → A e / 2."""
     e = 0.09
     r = run(multi.twin(0.0, X=0.0, offset_m=e))
-    assert r.couple_order(1).amplitude == pytest.approx(A * e, rel=1e-9)
+    # exact arithmetic (round-off only; passes at 1e-14)
+    assert r.couple_order(1).amplitude == pytest.approx(A * e, rel=1e-12)
     r = run(multi.twin(0.0, offset_m=e))
     c = r.couple_order(1)
-    assert c.amplitude == pytest.approx(A * e / 2, rel=1e-9)
+    # exact arithmetic (round-off only; passes at 1e-14)
+    assert c.amplitude == pytest.approx(A * e / 2, rel=1e-12)
     assert c.co_rotating <= TOL * A * e
 
 

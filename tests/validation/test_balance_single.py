@@ -57,8 +57,8 @@ def test_vm450_file_holds_parameters_a():
     """geometry/engines/vm450.toml carries the seed 000 §8.1 values (and β = −10°)."""
     e = load_engine("vm450")
     assert (e.crank_radius_mm, e.rod_length_mm) == (30.2, 110.2)
-    assert e.m_pos_kg == pytest.approx(M_POS, abs=1e-12)
-    assert e.m_rot_kg == pytest.approx(M_ROT, abs=1e-12)
+    assert e.m_pos_kg == pytest.approx(M_POS, abs=1e-12)   # exact arithmetic (sums of masses)
+    assert e.m_rot_kg == pytest.approx(M_ROT, abs=1e-12)   # exact arithmetic
     assert e.tilt_deg == -10.0
     assert (e.compensation_mass_kg, e.compensation_radius_mm) == (3.678, 2.739)
     assert (e.balancer_mass_kg, e.balancer_radius_mm) == (0.9473, 8.22)
@@ -68,6 +68,8 @@ def test_mode2_table_seed_sampling_max_f(seed_sweep):
     """Seed 000 §5.4 matrix, columns 6 and 8: min max|F| within 0.2 N at the same X2 (1° grid
     0…360° inclusive, X2 step 1 %)."""
     m = seed_sweep.minima()["max_f"]
+    # seed printed to 0.1 N (±0.05; measured 0.044 with its own sampling); 0.2 N as in the
+    # default-sampling test below, where the seed's 1° grid misses the true peak by ≤ 0.18 N
     np.testing.assert_allclose(m[0], SEED_MAXF, atol=0.2, rtol=0)
     np.testing.assert_array_equal(np.round(100 * m[1], 9), SEED_MAXF_X2)
 
@@ -76,6 +78,7 @@ def test_mode2_table_seed_sampling_rms(seed_sweep):
     """Seed 000 §5.4 matrix, columns 5 and 7: min RMS within 0.1 N, all at X2 = 50 %, with the
     seed's sampling (0…360° inclusive at 1°: TDC counted twice)."""
     m = seed_sweep.minima()["rms_f"]
+    # seed printed to 0.1 N: ±0.05 (measured 0.042); 0.1 = one unit of the printed digit
     np.testing.assert_allclose(m[0], SEED_RMS, atol=0.1, rtol=0)
     np.testing.assert_array_equal(np.round(100 * m[1], 9), 50)
 
@@ -86,7 +89,7 @@ def test_mode2_table_seed_sampling_fx_fy(seed_sweep):
     m = seed_sweep.minima()
     assert np.all(m["max_abs_fx"][0] == 0.0)
     np.testing.assert_array_equal(np.round(100 * m["max_abs_fx"][1], 9), SEED_X)
-    np.testing.assert_allclose(m["max_abs_fy"][0], 1605.1, atol=0.05, rtol=0)
+    np.testing.assert_allclose(m["max_abs_fy"][0], 1605.1, atol=0.05, rtol=0)   # ±½ of 0.1 N
     np.testing.assert_array_equal(np.round(100 * m["max_abs_fy"][1], 9), SEED_FY_X2)
 
 
@@ -96,21 +99,26 @@ def test_mode2_table_default_sampling(exact_sweep):
     max|F| minima stay within 0.2 N of the seed and at the same X2 (largest gap 0.18 N at
     X = 38 %: the seed's 1° grid misses the true peak by that much)."""
     m = exact_sweep.minima()
+    # SPEC figure printed to 0.1 N (±0.05; measured 0.0496, on the rounding edge: one unit)
     assert m["rms_f"][0][0] == pytest.approx(1544.0, abs=0.1)
     np.testing.assert_array_equal(np.round(100 * m["rms_f"][1], 9), 50)
+    # seed's 1° grid misses the true peak by ≤ 0.18 N (docstring) + its 0.05 N printing
     np.testing.assert_allclose(m["max_f"][0], SEED_MAXF, atol=0.2, rtol=0)
     np.testing.assert_array_equal(np.round(100 * m["max_f"][1], 9), SEED_MAXF_X2)
 
 
 def test_exact_rms_is_converged():
     """Period RMS of a smooth periodic integrand with the uniform rule converges spectrally:
-    360 and 36000 samples agree to 1e-10 (closed-form property of the trapezoid rule), while the
+    360 and 36000 samples agree to 1e-12 (closed-form property of the trapezoid rule), while the
     seed's inclusive grid is ≈ 0.26 % high (SPEC.md §1)."""
     e = engine_a()
     r360 = forces(e, 0.31, 0.50, n=360).metrics.rms_f
     r36k = forces(e, 0.31, 0.50, n=36000).metrics.rms_f
     seed = forces(e, 0.31, 0.50, sampling="seed_inclusive").metrics.rms_f
-    assert r360 == pytest.approx(r36k, rel=1e-10)
+    # exact arithmetic: the aliased harmonics (order ≥ 360, amplitude ~ (R/T1)^180) are far
+    # below round-off (measured 1e-16); was 1e-10
+    assert r360 == pytest.approx(r36k, rel=1e-12)
+    # SPEC's "≈ 0.26 %" (2 digits, ±0.005 %; measured 0.258 %): 0.02 % = 4× that
     assert seed / r36k - 1 == pytest.approx(0.0026, abs=0.0002)
 
 
@@ -122,8 +130,9 @@ def test_min_max_fy_closed_form(exact_sweep):
     p = T1_M / R_M
     ref = amplitude() / math.sqrt(p * p - 1.0)
     m = exact_sweep.minima()["max_abs_fy"]
-    np.testing.assert_allclose(m[0], ref, rtol=1e-9)
-    assert ref == pytest.approx(1605.1, abs=0.05)
+    # exact arithmetic: α = 90° is a sample of the 0.1° grid (measured 4e-16); was 1e-9
+    np.testing.assert_allclose(m[0], ref, rtol=1e-12)
+    assert ref == pytest.approx(1605.1, abs=0.05)      # seed printed to 0.1 N: ±0.05
     np.testing.assert_array_equal(np.round(100 * m[1], 9), 100 - SEED_X)
 
 
@@ -131,8 +140,9 @@ def test_x2_31_gives_3731_at_tdc():
     """Seed 000 §8.1.1 (Fig. 53): X = 30.16 %, X2 = 31 % → max|F| = 3731 N at TDC; closed form
     at TDC: A (1 + R/T1 − X − X2)."""
     r = forces(engine_a(), 0.3016, 0.31).metrics
-    assert r.max_f == pytest.approx(3731, abs=0.5)
+    assert r.max_f == pytest.approx(3731, abs=0.5)         # seed prints whole newtons: ±0.5
     assert r.max_f_deg == 0.0
+    # exact arithmetic (closed form at TDC, a sample)
     assert r.max_f == pytest.approx(amplitude() * (1 + R_M / T1_M - 0.3016 - 0.31), rel=1e-12)
 
 
@@ -142,9 +152,11 @@ def test_x2_545_gives_2408_at_tdc():
     0.74 % higher, the same ratio as appendix 1's 5437 N vs 5477.5 N (test below)."""
     r = forces(engine_a(), 0.3016, 0.545).metrics
     ref = amplitude() * (1 + R_M / T1_M - 0.3016 - 0.545)
-    assert r.max_f == pytest.approx(ref, rel=1e-12)
-    assert r.max_f == pytest.approx(2408, abs=0.5)
+    assert r.max_f == pytest.approx(ref, rel=1e-12)        # exact arithmetic (TDC sample)
+    assert r.max_f == pytest.approx(2408, abs=0.5)         # 2407.7 N to whole newtons: ±0.5
     assert r.max_f_deg == 0.0
+    # the seed's plot reading is low by appendix 1's ratio 5477.5/5437 − 1 = 0.745 %; 0.76 %
+    # = that ratio plus ±0.5 N of the 2390 N reading (measured 0.741 %)
     assert 0 < r.max_f / 2390 - 1 < 0.0076
 
 
@@ -155,6 +167,8 @@ def test_balance_ratios_from_masses():
     crank B 3.40 × 4.85 → 75.06 %; balancer 0.947 × 8.22 → 54.5 %; A4 0.765 × 5.74 → 30.74 %;
     crank C 3.580 × 2.85 mm → 31.1 % (exact masses; the seed prints no equation for C)."""
     R = 30.2
+    # printed precision: half a unit of the last digit (0.005 %, 0.05 % for 54.5), except
+    # 30.16, whose printed γ is 2.739 for 2.7397 (docstring): 0.01 % (measured 0.009)
     assert 100 * crank_ratio(3.678, 2.74, 0.191, 0.473, R) == pytest.approx(30.16, abs=0.01)
     assert 100 * crank_ratio(3.40, 4.85, 0.191, 0.473, R) == pytest.approx(75.06, abs=0.005)
     assert 100 * balancer_ratio(0.947, 8.22, 0.473, R) == pytest.approx(54.5, abs=0.05)
@@ -163,6 +177,7 @@ def test_balance_ratios_from_masses():
     # the engine file route gives the same numbers
     e = engine_a(compensation_mass_kg=3.40, compensation_radius_mm=4.85,
                  balancer_mass_kg=0.765, balancer_radius_mm=5.74)
+    # exact arithmetic (round-off only): the same formula by the engine-file route
     assert e.X == pytest.approx(crank_ratio(3.40, 4.85, M_ROT, M_POS, R), rel=1e-14)
     assert e.X2 == pytest.approx(balancer_ratio(0.765, 5.74, M_POS, R), rel=1e-14)
 
@@ -175,7 +190,7 @@ def test_appendix1_balancer_force():
     r = forces(e, rpm=rpm)
     fb = np.hypot(r.Fx_balancer, r.Fy_balancer)
     assert round(float(fb.max())) == 3073
-    np.testing.assert_allclose(fb, 0.947 * 0.00822 * 628.3**2, rtol=1e-12)
+    np.testing.assert_allclose(fb, 0.947 * 0.00822 * 628.3**2, rtol=1e-12)   # exact arithmetic
 
 
 def test_appendix1_crank_mechanism_force():
@@ -187,7 +202,7 @@ def test_appendix1_crank_mechanism_force():
     and X set to 0): the inertia force m_piston R ω² (1 + R/T1) at TDC."""
     full = forces(engine_a(), 0.3016, 0.0)
     ref = amplitude() * (1 + R_M / T1_M - 0.3016)
-    assert full.metrics.max_f == pytest.approx(ref, rel=1e-12)
+    assert full.metrics.max_f == pytest.approx(ref, rel=1e-12)     # exact arithmetic (TDC)
     assert full.metrics.max_f_deg == 0.0
     np.testing.assert_array_equal(full.Fx_crank, full.Fx)   # X2 = 0: crank alone = total
     piston = engine_a(rod_rot_mass_kg=0.0, rod_pos_mass_kg=0.0, bigend_bearing_mass_kg=0.0)
@@ -199,15 +214,18 @@ def test_appendix1_crank_mechanism_force():
 def test_infinite_rod_half_and_half_cancels():
     """Seed 000 §5.3 (Fig. 28): X = X2 = 50 % with an 'infinite' rod cancels the 1st order.
     With T1 = 1e6 R the 2nd order left is λ A cos 2α, λ = R/T1 = 1e-6 (series expansion of the
-    exact a_pos; the λ³ term is 1e-18): after it, < 1e-9 A remains; Fx is zero."""
+    exact a_pos; the λ³ term is 1e-18): after it, < 1e-12 A remains; Fx is zero."""
     lam = 1e-6
     e = engine_a(rod_length_mm=30.2 / lam)
     r = forces(e, 0.5, 0.5, sampling="period", n=720)
     A = r.first_order_amplitude
     a = np.deg2rad(r.alpha_deg)
-    assert np.max(np.abs(r.Fx)) < 1e-12 * A
-    assert np.max(np.abs(r.Fy - lam * A * np.cos(2 * a))) < 1e-9 * A
-    assert r.metrics.max_f < lam * A * (1 + 1e-6)
+    assert np.max(np.abs(r.Fx)) < 1e-12 * A          # exact arithmetic (measured 0)
+    # λ³ term 1e-18 A + round-off of the cancelled first order ~eps A (measured 2.8e-16 A);
+    # was 1e-9
+    assert np.max(np.abs(r.Fy - lam * A * np.cos(2 * a))) < 1e-12 * A
+    # max|F| = λ A (1 + O(λ²)) + round-off ~eps A = 2e-10 λA (measured 1.4e-10 λA); was 1e-6
+    assert r.metrics.max_f < lam * A * (1 + 1e-8)
 
 
 def test_infinite_rod_full_crank_balance_moves_force_to_x():
@@ -217,8 +235,9 @@ def test_infinite_rod_full_crank_balance_moves_force_to_x():
     r = forces(engine_a(rod_length_mm=30.2 / lam), 1.0, 0.0, n=720)
     A = r.first_order_amplitude
     a = np.deg2rad(r.alpha_deg)
-    np.testing.assert_allclose(r.Fx, -A * np.sin(a), rtol=0, atol=1e-12 * A)
-    assert np.max(np.abs(r.Fy - lam * A * np.cos(2 * a))) < 1e-9 * A
+    np.testing.assert_allclose(r.Fx, -A * np.sin(a), rtol=0, atol=1e-12 * A)   # exact (0)
+    # as in the test above: λ³ term + round-off, measured 2.8e-16 A; was 1e-9
+    assert np.max(np.abs(r.Fy - lam * A * np.cos(2 * a))) < 1e-12 * A
 
 
 def test_forces_scale_with_rpm_squared():
@@ -226,6 +245,7 @@ def test_forces_scale_with_rpm_squared():
     e = engine_a()
     a = forces(e, 0.3016, 0.545, rpm=3000.0)
     b = forces(e, 0.3016, 0.545, rpm=9000.0)
+    # exact arithmetic (round-off only: measured 4.5e-12 N on 5.4 kN; atol for zero crossings)
     np.testing.assert_allclose(b.Fx, 9 * a.Fx, rtol=1e-12, atol=1e-9)
     np.testing.assert_allclose(b.Fy, 9 * a.Fy, rtol=1e-12, atol=1e-9)
     assert b.metrics.rms_f == pytest.approx(9 * a.metrics.rms_f, rel=1e-12)
@@ -239,11 +259,13 @@ def test_tilt_rotates_the_vector():
     for beta in (-10.0, 37.0, 90.0):
         rb = forces(e, 0.3016, 0.545, tilt_deg=beta)
         c, s = math.cos(math.radians(beta)), math.sin(math.radians(beta))
+        # exact arithmetic (round-off only, forces ~3 kN: 1e-9 N = 3e-13 relative; measured
+        # 0 and 3e-16 relative)
         np.testing.assert_allclose(rb.Fx, c * r0.Fx - s * r0.Fy, rtol=0, atol=1e-9)
         np.testing.assert_allclose(rb.Fy, s * r0.Fx + c * r0.Fy, rtol=0, atol=1e-9)
         np.testing.assert_allclose(rb.F, r0.F, rtol=1e-13)
     r90 = forces(e, 0.3016, 0.545, tilt_deg=90.0)
-    np.testing.assert_allclose(r90.Fx, -r0.Fy, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(r90.Fx, -r0.Fy, rtol=0, atol=1e-9)      # exact arithmetic
 
 
 def test_start_angle_shifts_samples():
@@ -251,9 +273,10 @@ def test_start_angle_shifts_samples():
     e = engine_a()
     r0 = forces(e, 0.3016, 0.545, n=360)
     r30 = forces(e, 0.3016, 0.545, n=360, start_deg=30.0)
+    # exact arithmetic: the same angles up to the rounding of α0 + k° (measured 2.7e-12 N)
     np.testing.assert_allclose(r30.Fy, np.roll(r0.Fy, -30), rtol=0, atol=1e-9)
     assert r30.metrics.max_f_deg == 0.0      # the TDC peak is still reported at 0°
-    assert r30.metrics.rms_f == pytest.approx(r0.metrics.rms_f, rel=1e-12)
+    assert r30.metrics.rms_f == pytest.approx(r0.metrics.rms_f, rel=1e-12)   # exact arithmetic
 
 
 def test_sweep_equals_single_evaluation():
@@ -265,6 +288,7 @@ def test_sweep_equals_single_evaluation():
         for j, x2 in enumerate((0.31, 0.545)):
             m = forces(e, x, x2, n=720).metrics
             for k in ("max_abs_fx", "max_abs_fy", "rms_f", "max_f"):
+                # exact arithmetic (same kernel, broadcast)
                 assert getattr(sw, k)[i, j] == pytest.approx(getattr(m, k), rel=1e-12)
 
 

@@ -56,6 +56,7 @@ def test_field_equals_per_node_loop_on_a_subset(ref, history, material, field):
     = (rpm / 10 000)² for the seed block normalised to 7000 rpm."""
     from shaftfe.fatigue import count_cycles
     lf = (history.rpm / ref.ref_rpm) ** 2
+    # exact arithmetic (a few correctly rounded operations; measured 0 and 4.4e-16)
     np.testing.assert_allclose(field.history.load_factor, lf, rtol=1e-14)
     np.testing.assert_allclose(lf, history.load_factor * (7000.0 / 10_000.0) ** 2, rtol=1e-12)
     cyc = count_cycles(lf)
@@ -67,13 +68,17 @@ def test_field_equals_per_node_loop_on_a_subset(ref, history, material, field):
                             rng.choice(ref.n_nodes, 60, replace=False)])
     for i in nodes:
         s = reference.von_mises(ref.stress_ref[:, i])
+        # exact arithmetic for all five (the same formulas, vectorised vs per node): measured
+        # ≤ 4e-15 relative over the 120 nodes; the safety factors agree to 2e-16
         assert math.isclose(r.sigma_eq_MPa[i], s, rel_tol=1e-12, abs_tol=1e-12)
         d = reference.node_damage(s, cyc, material)
-        assert math.isclose(r.damage_per_block[i], d, rel_tol=1e-12, abs_tol=0.0), i
+        assert math.isclose(r.damage_per_block[i], d, rel_tol=1e-12, abs_tol=0.0), i  # exact
         blocks = 1.0 / d if d > 0 else math.inf
-        assert r.life_blocks[i] == pytest.approx(blocks, rel=1e-12)
+        assert r.life_blocks[i] == pytest.approx(blocks, rel=1e-12)                   # exact
+        # exact (as above)
         assert r.life_hours[i] == pytest.approx(blocks * history.duration_s / 3600, rel=1e-12)
         n = reference.node_safety(s, cyc, material, 1e7)
+        # exact (as above)
         assert math.isclose(r.safety_factor[i], n, rel_tol=1e-12), (i, r.safety_factor[i], n)
 
 
@@ -92,6 +97,7 @@ def test_min_life_node_is_max_von_mises_node(ref, field):
     r = field.result
     dm = np.flatnonzero(r.damage_per_block > 0)
     o = np.argsort(ref.von_mises_ref[dm], kind="stable")
+    # non-decreasing up to round-off: nodes of (nearly) equal σ_vM may swap by ~eps × max D
     assert np.all(np.diff(r.damage_per_block[dm][o]) >= -1e-15 * r.damage_per_block.max())
 
 
@@ -120,14 +126,17 @@ def test_rpm_scaling_scales_stresses_by_s_squared(ref, history, material, field)
     from shaftfe.fatigue.field import evaluate, evaluate_arrays
     s = 1.1
     fs = evaluate(ref, history.scaled(s), material)
+    # exact arithmetic (round-off only; measured 4.4e-16)
     np.testing.assert_allclose(fs.history.load_factor, s * s * field.history.load_factor,
                                rtol=1e-14)
     fx = evaluate_arrays(ref.stress_ref * s * s, history, material, ref_rpm=ref.ref_rpm,
                          xyz=ref.xyz)
+    # exact arithmetic: σ·s² vs λ·s², a few roundings per cycle, Miner sum (measured 1.1e-14)
     np.testing.assert_allclose(fs.result.damage_per_block, fx.result.damage_per_block,
                                rtol=1e-12, atol=0)
     solved = field.result.safety_status == 0
     assert solved.sum() > 100
+    # exact arithmetic (similarity solution n = x*/σ; measured 6.7e-16)
     np.testing.assert_allclose(fs.result.safety_factor[solved] * s * s,
                                field.result.safety_factor[solved], rtol=1e-12)
     assert fs.hot_spot.life_blocks < field.hot_spot.life_blocks
@@ -148,9 +157,12 @@ def test_seed_run_coarse(field, ref):
           f"= {h.life_hours:.4g} h = {h.life_km:.4g} km; hot spot {h.region} {h.xyz_mm}; "
           f"unfiltered {field.hot_spot_unfiltered.region} {field.hot_spot_unfiltered.xyz_mm} "
           f"SF {field.hot_spot_unfiltered.safety_factor:.3f}; cycles {field.cycles_per_block}")
+    # the seed's location read off its figure on a reconstructed geometry: within 2 mm
+    # (measured x = 64.9 mm)
     assert abs(h.xyz_mm[0] - 64.5) < 2.0
     assert any(r in ("fillet:collar", "seat:bearing:free_side") for r in h.regions)
     assert 0.0 < h.safety_factor < 1.0
-    assert h.life_blocks < 1e7
+    assert h.life_blocks < 1e7        # the design life (a criterion, not a tolerance)
+    # exact arithmetic (a unit conversion)
     assert math.isfinite(h.life_blocks) and h.life_hours == pytest.approx(
         h.life_blocks * 300 / 3600, rel=1e-12)

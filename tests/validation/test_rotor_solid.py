@@ -74,10 +74,13 @@ def test_mass_and_gyroscopic_matrix_rigid_body_identities(cyl_mesh):
     Phi = fem.rigid_body_modes(cyl_mesh.mesh, (0.5 * L, 0.0, 0.0))
     Mr = Phi.T @ (r.M @ Phi)
     Gr = Phi.T @ (r.G @ Phi)
+    # mesh: the P2 boundary approximates the cylinder (docstring 1 %; measured 3.2e-4)
     assert Mr[0, 0] == pytest.approx(RHO * math.pi * D**2 / 4 * L, rel=1e-2)
     assert abs(r.G + r.G.T).max() == 0.0
     Ip = Mr[3, 3]
+    # mesh, as the mass (measured 6.3e-4)
     assert Ip == pytest.approx(RHO * math.pi * D**4 / 32 * L, rel=1e-2)
+    # exact identities on the same mesh: round-off only (measured 1.6e-15 and 2e-19 Ip)
     assert Gr[4, 5] == pytest.approx(Ip, rel=1e-10)
     assert Gr[5, 4] == pytest.approx(-Ip, rel=1e-10)
     assert np.abs(Gr[:3, :3]).max() < 1e-12 * Ip
@@ -93,11 +96,14 @@ def test_free_free_cylinder_against_timoshenko_and_rod_theory(cyl_mesh):
     assert res.n_rigid == 6
     lat = family(res, "lateral")
     ref = timoshenko_free_free(L, D, 3, 1.3 * lat[5])
+    # mesh (fine level): measured ≤ 0.57 % (bending mode 3), 0.09 % axial, 0.06 % torsion;
+    # the module docstring's ≤ 0.6 % at fine, bound 1 %
     assert lat[0:6:2] == pytest.approx(ref, rel=1e-2)
     assert lat[1:6:2] == pytest.approx(ref, rel=1e-2)
     ax = family(res, "axial")[:1]
     to = family(res, "torsional")[:2]
-    assert ax == pytest.approx([rod_speed(E) / (2 * L)], rel=1e-2)
+    assert ax == pytest.approx([rod_speed(E) / (2 * L)], rel=1e-2)          # mesh, as above
+    # mesh, as above
     assert to == pytest.approx(np.array([1, 2]) * rod_speed(G_SHEAR) / (2 * L), rel=1e-2)
 
 
@@ -115,6 +121,7 @@ def test_cylinder_on_stiff_supports_pinned_and_held_rods(cyl_mesh):
     assert res.n_rigid == 0
     lat = family(res, "lateral")
     ref = [pinned_whirl(L, D, n, 0.0)[0] for n in (1, 2)]
+    # mesh (fine level): measured ≤ 0.24 % bending, 0.04 % torsion, 0.02 % axial; bound 1 %
     assert lat[0:4:2] == pytest.approx(ref, rel=1e-2)
     assert lat[1:4:2] == pytest.approx(ref, rel=1e-2)
     assert family(res, "torsional")[0] == pytest.approx(rod_speed(G_SHEAR) / (2 * L), rel=1e-2)
@@ -134,9 +141,9 @@ def test_pairs_isotropic_and_split_with_anisotropic_bearings(cyl_mesh, K, split)
     lat = family(res, "lateral")
     rel = np.abs(lat[1:4:2] / lat[0:4:2] - 1)
     if split:
-        assert rel[0] > 5e-2
+        assert rel[0] > 5e-2        # physics: ≈ √2 − 1 for the bearing mode (measured 18 %)
     else:
-        assert np.max(rel) < 1e-3
+        assert np.max(rel) < 1e-3   # mesh anisotropy of the pairs (measured 7.5e-6)
 
 
 # ----------------------------------------------------------------------------- spinning
@@ -183,6 +190,7 @@ def test_friswell_5_9_9_overhung_disk_forward_backward(f599):
     _, _, res = f599
     for i, rpm in ((0, 0.0), (-1, 4000.0)):
         lat = np.sort(family(res, "lateral", i)[:6]) * 2 * math.pi
+        # 3D coarse mesh vs the 1D reference model (ROSS): measured ≤ 0.83 %; bound 2 %
         assert lat == pytest.approx(np.array(ROSS_599[rpm]), rel=2e-2)
     top = [(f * 2 * math.pi, w) for f, w, fam in zip(res.freq_hz[-1], res.whirl[-1],
                                                      res.family[-1], strict=True)
@@ -203,9 +211,12 @@ def test_reduced_basis_against_full_size_problem(f599):
     r, _, res = f599
     s = rotor_solid.full_qep(r, 0.0, 10)
     full = np.sort(s.imag) / (2 * math.pi)
+    # at Ω = 0 the basis holds the exact modes: round-off of the two solvers (shift-invert
+    # ARPACK on a 3D pencil vs the reduced one), measured 3.1e-11
     assert np.max(np.abs(np.sort(res.freq_hz[0]) / full - 1)) < 1e-6
     ver = rotor_solid.verify(r, res)
     assert ver.rpm == 4000.0
+    # truncated basis: measured 5.3e-7 (its basis ×1.5 change 4.9e-7); 1e-4 leaves 190×
     assert ver.max_rel_diff < 1e-4 and ver.n_missed == 0
 
 
@@ -225,15 +236,20 @@ def test_mode_shapes_vtu_follow_the_field_convention(cyl_mesh, tmp_path):
     m = meshio.read(path)
     names = [rotor_solid.mode_field_name(j + 1, f) for j, f in enumerate(res.freq_hz[0])]
     assert set(names) <= set(m.point_data)
+    # written and read back (float64: exact); allclose's default rtol 1e-5
     assert np.allclose(m.field_data["frequencies_hz"], res.freq_hz[0])
     for n in names:
+        # shapes stored as float32 (eps 6e-8): approx's default rel 1e-6
         assert np.linalg.norm(m.point_data[n], axis=1).max() == pytest.approx(1.0)
     j = [k for k, fam in enumerate(res.family[0]) if fam == "lateral"][2]   # 2nd bending
     u = m.point_data[names[j]]
     x = m.points[:, 0]
     lat = np.hypot(u[:, 1], u[:, 2]) * np.sign(u[:, 1] + u[:, 2])
     near = np.abs(x - L / 2) < 0.02 * L            # |sin 2πx/L| < 0.13 there
+    # |sin 2πx/L| > 0.95 there (geometric bands, not tolerances)
     far = (np.abs(x - L / 4) < 0.05 * L) | (np.abs(x - 3 * L / 4) < 0.05 * L)
+    # |sin 2πx/L| < 0.13 near mid-span vs > 0.95 at the quarter points: 0.25 allows for the
+    # cross-section's own variation of the shape
     assert np.abs(lat[near]).max() < 0.25 * np.abs(lat[far]).max()
     left, right = x < 0.4 * L, x > 0.6 * L
     assert np.sign(np.median(lat[left])) == -np.sign(np.median(lat[right]))
@@ -250,5 +266,7 @@ def test_bearing_damping_damped_frequencies_against_full_size_problem(cyl_mesh):
                                       shaft_mesh=cyl_mesh, support_faces=ENDS)
     res = rotor_solid.campbell(r, [0.0, 30_000.0], 6)
     ver = rotor_solid.verify(r, res)
+    # basis with the dampers' residual vectors vs the damped full problem: measured 3.6e-6
     assert ver.max_rel_diff < 1e-4 and ver.n_missed == 0
+    # ζ ≥ 0 up to round-off (passive damping); the bearing modes are damped (measured 0.16)
     assert np.all(res.zeta > -1e-12) and np.max(res.zeta[:, :2]) > 1e-3

@@ -82,19 +82,23 @@ def result(tmp_path_factory):
 
 def test_deflection_and_reactions_match_timoshenko(result):
     """Deflection under the load (axis, x = 50) within 1 % of Timoshenko + spring compliance;
-    reactions within 1 % of statics (they agree to ~1e-5); equilibrium residual ≤ 1e-8."""
+    reactions within 1e-4 of statics (they agree to ~1e-5); equilibrium residual ≤ 1e-8."""
     c = result.case(RPM)
     F = shaft().attachments[0].force_N(RPM)
     w_ref, _, (R_L, R_R) = timoshenko(F, np.array([50.0]))
     st = next(s for s in c.stations if s.name == "seat:w")
+    # mesh (k_global 0.15 D) + 3D vs beam theory under a 10 mm patch: measured −0.65 %
     assert st.uy_mm == pytest.approx(w_ref[0], rel=0.01)
     got = {b.name: -b.Fy_N for b in c.bearings}
-    assert got["L"] == pytest.approx(R_L, rel=0.01)
-    assert got["R"] == pytest.approx(R_R, rel=0.01)
+    # statics: exact up to the load centroid of the meshed patch (P2 facet weights, ~1e-5 per
+    # the docstring; measured 1.3e-12 on this mesh): 1e-4 (was 1 %)
+    assert got["L"] == pytest.approx(R_L, rel=1e-4)
+    assert got["R"] == pytest.approx(R_R, rel=1e-4)
     for b, k, R in zip(c.bearings, (K_L, K_R), (R_L, R_R), strict=True):
-        assert b.uy_mm == pytest.approx(R / k, rel=0.01)
-    assert c.equilibrium_residual <= 1e-8
-    assert result.diagnostics["relative_residual"] <= 1e-8
+        # spring law exact (λ = C R u is an equation): as the reactions (was 1 %)
+        assert b.uy_mm == pytest.approx(R / k, rel=1e-4)
+    assert c.equilibrium_residual <= 1e-8                    # solver contract (RESIDUAL_TOL)
+    assert result.diagnostics["relative_residual"] <= 1e-8   # solver contract (RESIDUAL_TOL)
 
 
 def test_far_field_bending_stress_matches_navier(result):
@@ -108,4 +112,5 @@ def test_far_field_bending_stress_matches_navier(result):
     F = shaft().attachments[0].force_N(RPM)
     _, M, _ = timoshenko(F, x[sel])
     ref = -M * y[sel] / (math.pi * D**4 / 64)
+    # mesh: the module's level is chosen for far-field stress within 1 % (measured 0.59 %)
     np.testing.assert_allclose(result.stress_ref[0, sel], ref, rtol=0.01)

@@ -83,6 +83,7 @@ def test_coupling_face_is_the_contact_band(runs):
     one = Functional(lambda w: 1.0 + 0.0 * w.x[0])
     for g in ("bearing:L", "bearing:R"):
         a = float(one.assemble(FacetBasis(m, ElementTetP2(), facets=m.boundaries[g])))
+        # mesh: P2 facets on a curved band (0.5 %, as tests/test_mesh.py's group areas)
         assert a == pytest.approx(2 * math.pi * 4.0 * (12.0 - 2 * 2.9), rel=5e-3), g
     for r in ("fillet:a", "fillet:b"):
         assert _peak(fine, r).n_excluded == 0, r
@@ -101,13 +102,15 @@ def test_refinement_stays_within_the_error_estimate(runs):
     q_c = 0.5 * (e[0]["coarse"] + e[1]["coarse"])
     q_m = 0.5 * (e[0]["fine"] + e[1]["fine"])
     q_f = 0.5 * sum(_peak(fine, r).von_mises_MPa for r in ("fillet:a", "fillet:b"))
+    # exact: the same solution reported twice (approx's default rel 1e-6)
     assert q_m == pytest.approx(0.5 * sum(_peak(mid, r).von_mises_MPa
                                           for r in ("fillet:a", "fillet:b")))
     assert est["levels"] == ["conv1", "conv0"]
     err = abs(q_m - q_c) / (est["ratio_stress"] ** est["order_stress"] - 1.0)
     msg = (f"mirror-mean fillet peak: conv0 {q_c:.2f}, conv1 {q_m:.2f}, conv2 {q_f:.2f} MPa; "
            f"estimated error of conv1 {err:.3f} MPa, move {abs(q_f - q_m):.3f}")
-    assert abs(q_f - q_m) <= err, msg
+    assert abs(q_f - q_m) <= err, msg     # the derived bound: Richardson estimate of conv1
     assert (q_f - q_m) * (q_m - q_c) > 0, msg
     a, b = (_peak(fine, r).von_mises_MPa for r in ("fillet:a", "fillet:b"))
+    # mesh asymmetry of an unstructured mesh: ~1-2 % (measured 1.4 %), bound 2.5 % (docstring)
     assert abs(a - b) <= 0.025 * q_f, (a, b)

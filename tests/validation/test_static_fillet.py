@@ -74,12 +74,15 @@ def test_fillet_peak_within_kt_fit_band(result, group):
     from shaftfe.scf import kt_shoulder
     fits = [kt_shoulder(22.0, 17.0, 1.0, f).kt for f in ("roark", "peterson")]
     kt = _kt_fe(result, group)
+    # fits' own spread 2.5 % below; up to +20 % and more for converged FE above (Tipton et al.;
+    # module docstring; measured +8 … +14 %)
     assert 0.975 * min(fits) <= kt <= 1.25 * max(fits), (kt, fits)
 
 
 def test_mirror_fillets_agree(result):
     """The two fillets are mirror images in the same bending field: equal Kt up to the mesh
     (measured 2.8 % apart with the old default level, 0.4 % with the hot-spot default)."""
+    # mesh: measured 0.4 % apart at the hot-spot default level (2.8 % with the old one)
     assert _kt_fe(result, "fillet:a") == pytest.approx(_kt_fe(result, "fillet:b"), rel=0.05)
 
 
@@ -91,5 +94,5 @@ def test_fillet_is_the_reported_region_peak(result):
     for p in c.peaks:
         if p.region in ("fillet:a", "fillet:b"):
             xs = 40.0 if p.region == "fillet:a" else 80.0
-            assert abs(p.xyz_mm[0] - xs) <= 1.0
+            assert abs(p.xyz_mm[0] - xs) <= 1.0      # geometric: the 1 mm fillet radius
             assert p.von_mises_MPa == p.von_mises_unfiltered_MPa

@@ -58,9 +58,10 @@ def test_thread_ends_at_iso_minor_diameter(v57):
     KM 2 = M15×1. ISO 68-1 basic profile: external-thread minor diameter
     d3 = d − 1.226869 P (H = 0.866025 P, d3 = d − 2·(17/24) H)."""
     h_factor = 2.0 * 17.0 / 24.0 * math.sqrt(3.0) / 2.0
-    assert h_factor == pytest.approx(1.226869, abs=1e-6)
+    assert h_factor == pytest.approx(1.226869, abs=1e-6)     # ISO's 7 digits: ±5e-7
     left, right = v57.segments[0], v57.segments[-1]
     assert (left.kind, right.kind) == ("thread", "thread")
+    # the file gives d3 to 0.001 mm (9.080, 13.773): ±5e-4 (measured 1.5e-4)
     assert left.diameter_mm == pytest.approx(10.0 - h_factor * 0.75, abs=5e-4)
     assert right.diameter_mm == pytest.approx(15.0 - h_factor * 1.0, abs=5e-4)
 
@@ -81,12 +82,14 @@ def test_bearing_3203_width_and_c_from_the_seed_life(v57):
     for b in v57.bearings:
         assert b.designation == "ZKL 3203"
         assert (b.bore_mm, b.outer_diameter_mm, b.width_mm) == (17.0, 40.0, 17.5)
+        # the file rounds C to 1 N (14 418 N: ±3.5e-5; measured 1.4e-5)
         assert b.C_N == pytest.approx(c_derived, rel=1e-4)
+        # seed's 283.4 h to 4 digits (±1.8e-4) plus 3 × C's rounding (L ∝ C³): measured 4.3e-5
         assert (b.C_N / 2931.0) ** b.life_exponent * 1e6 / (60 * 7000) == \
             pytest.approx(283.4, rel=1e-3)
         assert b.K_N_per_mm == ((35030.0, 8756.0), (8756.0, 35030.0))   # seed §8.3
         seg = v57.segment_at(b.x_center_mm)
-        assert seg.kind == "seat" and seg.length_mm == pytest.approx(b.width_mm)
+        assert seg.kind == "seat" and seg.length_mm == pytest.approx(b.width_mm)   # exact
 
 
 def test_gear_pitch_diameter_and_centre_distance_are_consistent():
@@ -99,6 +102,7 @@ def test_gear_pitch_diameter_and_centre_distance_are_consistent():
 
     from shaftfe.variant import GEOMETRY_DIR
     parts = tomllib.loads(Path(GEOMETRY_DIR / "common" / "parts.toml").read_text("utf-8"))
+    # exact (a file value): approx's default rel 1e-6
     assert parts["parts"]["gear"]["shape"]["rim_outer_radius_mm"] == pytest.approx(2 * 33 / 2)
     alpha = math.radians(20.0)
     a_w = 66.724
@@ -139,6 +143,7 @@ def test_whole_balancer_mass_gamma2_and_centroid_match_the_seed_table(name):
     reproduce m, γ2 = |Σ m e|/m and x_T within 1 %."""
     mp = load_variant(name).mass_properties()
     m, g2, xt = TABLE[name]
+    # reconstruction vs the seed's table (printed to 3-4 digits): 1 % (measured ≤ 0.14 %)
     assert mp.mass_kg == pytest.approx(m, rel=0.01)
     assert mp.gamma2_mm == pytest.approx(g2, rel=0.01)
     assert mp.x_T_mm == pytest.approx(xt, rel=0.01)
@@ -151,20 +156,25 @@ def test_x2_57_sum_me_two_load_cases(v57):
     properties (with the three M6 screws of counterweight 1, keys and keyways) the latter
     within 1 %."""
     seed_me = 0.152 * 1.36 + 0.24 * 20.23 + 0.125 * 22.59
-    assert seed_me == pytest.approx(7.8857, abs=1e-4)
+    assert seed_me == pytest.approx(7.8857, abs=1e-4)     # printed to 4 decimals (±5e-5)
     s = v57.with_seed_load_case()
     me = sum(a.mass_kg * a.eccentricity_mm for a in s.attachments)
-    assert me == pytest.approx(seed_me, rel=1e-9)
+    # exact arithmetic: the same numbers summed (measured 2.2e-16); was 1e-9
+    assert me == pytest.approx(seed_me, rel=1e-12)
     mp = v57.mass_properties()
+    # reconstruction, 1 % as the table (measured 1e-6)
     assert mp.mass_kg * mp.gamma2_mm == pytest.approx(0.761 * 10.76, rel=0.01)
     screws = v57.attachment("screws_cw1")
     gap = 0.761 * 10.76 - seed_me
+    # the gap (0.30 kg·mm, a difference of two printed figures) modelled as three M6 screws:
+    # 10 % (measured −3.7 %)
     assert screws.mass_kg * screws.eccentricity_mm == pytest.approx(gap, rel=0.1)
 
 
 def test_x2_57_polar_inertia(v57):
     """Seed §8.2.2 ('Pohon vyvažovacího hřídele'): moment of inertia of the x2_57 balancer about
     its axis I_o = 432.229 kg·mm² (fitted through counterweight 2's crescent inner radius)."""
+    # reconstruction, 1 % as the table (fitted: measured 1.8e-4)
     assert v57.mass_properties().polar_inertia_kg_mm2 == pytest.approx(432.229, rel=0.01)
 
 
@@ -177,6 +187,7 @@ def test_shaft_mass_is_what_the_assembly_leaves(v57):
     mp = v57.mass_properties()
     hardware = sum(a.mass_kg for a in v57.attachments
                    if a.name not in ("gear", "counterweight_1", "counterweight_2"))
+    # reconstruction: 1 % of the whole balancer (measured 0.14 %)
     assert mp.shaft_mass_kg == pytest.approx(0.761 - 0.517 - hardware, abs=0.01 * 0.761)
     rho = v57.material.density_t_mm3 * 1e3
     cyl = sum(rho * math.pi / 4 * s.diameter_mm**2 * s.length_mm for s in v57.segments)
@@ -197,13 +208,15 @@ def test_x2_57_attachment_forces(v57, rpm, omega, f_gear, f_cw2, f_cw1, f1):
     """Seed §8.2.2: F = m e ω² of gear, counterweight 2, counterweight 1 and F1 = gear + CW1 at
     10 000 rpm (ω 1047.2) and 7000 rpm (ω 733) within 1 %; F1 is the seat load of the gear
     seat (counterweight 1 is bolted to the gear)."""
-    assert _omega(rpm) == pytest.approx(omega, rel=1e-3)
+    assert _omega(rpm) == pytest.approx(omega, rel=1e-3)    # ω printed to 0.1 rad/s (7e-5)
+    # seed forces printed to 1 N, from its own rounded masses; the reconstruction within 1 %
+    # (measured ≤ 0.14 %)
     assert v57.attachment("gear").force_N(rpm) == pytest.approx(f_gear, rel=0.01)
     assert v57.attachment("counterweight_2").force_N(rpm) == pytest.approx(f_cw2, rel=0.01)
     assert v57.attachment("counterweight_1").force_N(rpm) == pytest.approx(f_cw1, rel=0.01)
     loads = seat_loads(v57, rpm, seed_case=True)
     assert len(loads) == 2
-    assert loads[0][1] == pytest.approx(f1, rel=0.01)
+    assert loads[0][1] == pytest.approx(f1, rel=0.01)       # as above (measured 2.5e-4)
     assert loads[1][1] == pytest.approx(f_cw2, rel=0.01)
 
 
@@ -226,12 +239,14 @@ def test_x2_57_rigid_support_reactions(v57, rpm, r_gear, r_other):
     10 000 rpm; 1308 / 2931 N at 7000 rpm. Two-support statics within 3 %; the gear-side one
     is the smaller."""
     ra, rb = _two_support_reactions(v57, rpm)
+    # reconstructed geometry (docstring 3 %; measured ≤ 0.82 %)
     assert ra == pytest.approx(r_gear, rel=0.03)
     assert rb == pytest.approx(r_other, rel=0.03)
     assert ra < rb
     api = dict(rigid_support_reactions(v57, rpm, seed_case=True))
-    assert api["gear_side"] == pytest.approx(ra, rel=1e-9)
-    assert api["free_side"] == pytest.approx(rb, rel=1e-9)
+    # exact arithmetic: the same statics in the API (measured 4e-16); was 1e-9
+    assert api["gear_side"] == pytest.approx(ra, rel=1e-12)
+    assert api["free_side"] == pytest.approx(rb, rel=1e-12)
 
 
 def _moment_line(v, rpm, x):
@@ -280,6 +295,7 @@ def test_deflection_under_gear_and_at_the_clearance_station(v57):
     reactions it rests on)."""
     x, w = _euler_bernoulli_deflection(v57, 10000)
     gear_x = v57.attachment("gear").seat_center_mm
+    # the reactions' 3 % (docstring); measured 0.98 % and 0.08 %
     assert abs(np.interp(gear_x, x, w)) == pytest.approx(0.063, rel=0.03)
     assert abs(np.interp(v57.clearance_station_x_mm, x, w)) == pytest.approx(0.1, rel=0.03)
     assert v57.clearance_mm == 1.4
@@ -296,13 +312,15 @@ def test_bearing_coupling_face_is_the_ring_contact_band(v57):
         assert (b.r_s_min_mm, b.chamfer_mm) == (0.6, 2.0)
         assert v57.provenance.source["bearing_types.zkl_3203.chamfer_mm"] == "standard"
     seats = {s.name: s for s in prepare(v57).seats}
+    # exact arithmetic (ring ends ∓ chamfer): approx's default rel 1e-6
     assert (seats["bearing:gear_side"].x0, seats["bearing:gear_side"].x1) == \
         pytest.approx((31.5, 45.0))
     assert (seats["bearing:free_side"].x0, seats["bearing:free_side"].x1) == \
-        pytest.approx((66.5, 80.0))
+        pytest.approx((66.5, 80.0))                                          # exact, as above
     fil = {f.segment: f for f in prepare(v57).fillets}
+    # 1.4 mm of straight seat (docstring), less 0.01 mm for the float sum
     assert 45.0 < fil["bearing_seat_gear"].x_shoulder - fil["bearing_seat_gear"].rho - 1.39
     assert 66.5 > fil["collar"].x_shoulder + fil["collar"].rho + 1.39
     areas = expected_areas(v57)
     for g in ("bearing:gear_side", "bearing:free_side"):
-        assert areas[g] == pytest.approx(2 * math.pi * 8.5 * 13.5, rel=1e-12)
+        assert areas[g] == pytest.approx(2 * math.pi * 8.5 * 13.5, rel=1e-12)    # exact

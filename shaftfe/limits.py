@@ -1,0 +1,36 @@
+"""Operating limits every command shares (stdlib only, so the CLI can check before importing).
+
+``RPM_CEILING``: the one ceiling on an engine or balancer-shaft speed, for every command and
+every input file. 20 000 rpm is above the red line of any motorcycle engine (the seed's VM 450
+turns at most 10 000 rpm); a larger number is a typing or unit mistake (rad/s, or rpm²), and at
+1e9 rpm the FE answer would be 10^12 MPa of nonsense.
+
+``BEAM_ELEMENT_MIN_MM``: the shortest beam element a user may ask for with ``--max-element``; a
+150 mm shaft then has at most about 1500 elements (the default is 5 mm), while 1e-6 mm would
+ask for 10^8 elements and tens of GiB.
+"""
+
+from __future__ import annotations
+
+import math
+
+from shaftfe.errors import InputError
+
+RPM_CEILING = 20_000.0
+BEAM_ELEMENT_MIN_MM = 0.1
+
+
+def check_rpm(v: float, option: str, source: str = "command line", *,
+              positive: bool = False) -> float:
+    """A speed in rpm: finite, in [0, RPM_CEILING] (or (0, …] with ``positive``)."""
+    lo = "(0" if positive else "[0"
+    if not (math.isfinite(v) and (v > 0 if positive else v >= 0) and v <= RPM_CEILING):
+        raise InputError(source, option, f"a speed in {lo}, {RPM_CEILING:g}] rpm", got=v)
+    return float(v)
+
+
+def check_max_element(v: float, option: str = "--max-element") -> float:
+    if not (math.isfinite(v) and v >= BEAM_ELEMENT_MIN_MM):
+        raise InputError("command line", option, f">= {BEAM_ELEMENT_MIN_MM:g} mm (a beam "
+                         "element length)", got=v)
+    return float(v)

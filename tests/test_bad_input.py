@@ -1,0 +1,300 @@
+"""The bad-input catalogue: every command, every class of malformed or hostile input that a
+robustness audit found (output locations, undecodable files, unit mistakes, operating values,
+supports, spectra). Each case must give
+
+* exit code 2,
+* exactly one line on stderr, naming the file or option and the field (``expect``),
+* no traceback,
+* and leave the work space as it was: no output file, no staging directory, no --out change.
+
+The commands run in-process through ``shaftfe.cli.main`` (what the ``shaftfe`` script calls),
+in a work space with a copy of the geometry whose files each case edits; nothing is solved.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from shaftfe.cli import main
+from shaftfe.variant import GEOMETRY_DIR
+
+RPM_DAT = str(GEOMETRY_DIR.parent / "loadspectra" / "rpm.dat")
+SHAFT, BEAR, MATS = "common/shaft_c.toml", "common/bearings.toml", "common/materials.toml"
+COLLAR = 'name = "collar"\nkind = "plain"\nlength_mm = 17.5\ndiameter_mm = 22.0'
+BOSS = 'name = "gear_hub_boss"\nkind = "plain"\nlength_mm = 13.5\ndiameter_mm = 17.0'
+SEAT_G = 'name = "bearing_seat_gear"\nkind = "seat"\nlength_mm = 17.5'
+FREE_X = 'name = "free_side"\ntype = "zkl_3203"\nx_center_mm = 73.25'
+CW2 = "mass_kg = 0.24\neccentricity_mm = 20.23"
+K = "K_N_per_mm = [[35030.0, 8756.0], [8756.0, 35030.0]]"
+
+# id -> (file, old text, new text): one edit of the copied x2_57 files
+VARIANT_EDITS = {
+    "diameter_in_metres": (SHAFT, COLLAR, COLLAR.replace("22.0", "0.022")),
+    "boss_diameter_in_metres": (SHAFT, BOSS, BOSS.replace("17.0", "0.017")),
+    "mass_in_grams": ("x2_57.toml", CW2, CW2.replace("0.24", "240.0")),
+    "eccentricity_in_metres": ("x2_57.toml", CW2, CW2.replace("20.23", "0.02023")),
+    "E_in_GPa": (MATS, '58 ± 2 HRC"\nE_MPa = 210000.0', '58 ± 2 HRC"\nE_MPa = 210.0'),
+    "C_in_kN": (BEAR, "C_N = 14418.0", "C_N = 14.418"),
+    "balance_table_contradicts_parts": ("x2_57.toml", "mass_kg = 0.761", "mass_kg = 7.61"),
+    "X2_contradicts_parts": ("x2_57.toml", "X2_percent = 57.0", "X2_percent = 23.0"),
+    "bearings_at_the_same_x": (SHAFT, FREE_X, FREE_X.replace("73.25", "38.25")),
+    "bearing_stiffness_tiny": (BEAR, K, "K_N_per_mm = [[1e-9, 0.0], [0.0, 1e-9]]"),
+    "bearing_stiffness_inf": (BEAR, K, "K_N_per_mm = [[inf, 0.0], [0.0, inf]]"),
+    "bearing_stiffness_not_definite": (BEAR, K, "K_N_per_mm = [[1000.0, 2000.0], "
+                                       "[2000.0, 1000.0]]"),
+    "fillet_above_bearing_corner": (BEAR, "r_s_min_mm = 0.6", "r_s_min_mm = 0.3"),
+    "fillet_into_bearing_seat": (SHAFT, 'diameter_mm = 22.0\nfillet_mm = 0.6',
+                                 'diameter_mm = 22.0\nfillet_mm = 2.4'),
+    "nan_in_shape": ("x2_57.toml", "thickness_mm = 25.0", "thickness_mm = nan"),
+    "hex_socket_through_thread": (SHAFT, 'end = "right"', 'end = "left"'),
+    "keyway_too_deep": (SHAFT, "depth_mm = 3.0\nlength_mm = 8.0\nx_center_mm = 94.5",
+                        "depth_mm = 8.4\nlength_mm = 8.0\nx_center_mm = 94.5"),
+    "sliver_segment": (SHAFT, SEAT_G, SEAT_G.replace("17.5", "0.001")),
+    "negative_tilt_stiffness": (BEAR, "tilt_stiffness_Nmm_per_rad = 0.0",
+                                "tilt_stiffness_Nmm_per_rad = -1e9"),
+    "life_exponent_zero": (BEAR, "life_exponent = 3.0", "life_exponent = 0.0"),
+    "keyways_not_a_list": (SHAFT, '[[shaft.segments.keyways]]\nwidth_mm = 5.0\ndepth_mm = 3.0\n'
+                           'length_mm = 8.0\nx_center_mm = 94.5',
+                           'keyways = true\n[[shaft.segments.keyways_x]]\nwidth_mm = 5.0\n'
+                           'depth_mm = 3.0\nlength_mm = 8.0\nx_center_mm = 94.5'),
+    "centroid_far_off_the_shaft": ("x2_57.toml", "x_centroid_mm = 94.5",
+                                   "x_centroid_mm = 94500.0"),
+    "density_in_kg_per_mm3": (MATS, '58 ± 2 HRC"\nE_MPa = 210000.0\nnu = 0.3\n'
+                              'density_t_mm3 = 7.85e-9', '58 ± 2 HRC"\nE_MPa = 210000.0\n'
+                              'nu = 0.3\ndensity_t_mm3 = 7.85e-6'),
+}
+# id -> what the one stderr line must name (file and field)
+VARIANT_EXPECT = {
+    "diameter_in_metres": ["shaft_c.toml", "segments[4].diameter_mm", "metres"],
+    "boss_diameter_in_metres": ["shaft_c.toml", "segments[2].diameter_mm", "metres"],
+    "mass_in_grams": ["x2_57.toml", "mass_kg", "grams"],
+    "eccentricity_in_metres": ["x2_57.toml", "X2_percent", "23.4 %"],
+    "E_in_GPa": ["materials.toml", "E_MPa", "GPa"],
+    "C_in_kN": ["bearings.toml", "C_N", "kN"],
+    "balance_table_contradicts_parts": ["x2_57.toml", "balance.mass_kg", "0.7620 kg"],
+    "X2_contradicts_parts": ["x2_57.toml", "balance.X2_percent", "57.3 %"],
+    "bearings_at_the_same_x": ["shaft_c.toml", "free_side", "x_center_mm"],
+    "bearing_stiffness_tiny": ["bearings.toml", "K_N_per_mm", "N/mm"],
+    "bearing_stiffness_inf": ["bearings.toml", "K_N_per_mm", "finite"],
+    "bearing_stiffness_not_definite": ["bearings.toml", "K_N_per_mm", "positive definite"],
+    "fillet_above_bearing_corner": ["shaft_c.toml", "fillet_mm", "ISO 582"],
+    "fillet_into_bearing_seat": ["shaft_c.toml", "fillet_mm"],
+    "nan_in_shape": ["x2_57.toml", "shape.thickness_mm"],
+    "hex_socket_through_thread": ["hex_socket"],
+    "keyway_too_deep": ["x2_57.toml", "keyways[0].depth_mm"],
+    "sliver_segment": ["shaft_c.toml", "segments[3].length_mm"],
+    "negative_tilt_stiffness": ["bearings.toml", "tilt_stiffness_Nmm_per_rad"],
+    "life_exponent_zero": ["bearings.toml", "life_exponent"],
+    "keyways_not_a_list": ["shaft_c.toml", "keyways"],
+    "centroid_far_off_the_shaft": ["x2_57.toml", "x_centroid_mm"],
+    "density_in_kg_per_mm3": ["materials.toml", "density_t_mm3"],
+}
+
+# Cases on the command line and on files of the work space (W = the work space):
+# id -> (argv with {W}, {V} = an edited variant, {RPM} = the seed history; expected names)
+CASES: dict[str, tuple[list[str], list[str]]] = {
+    # output locations: checked before any work
+    "forces_plot_under_a_file": (["balance", "forces", "--plot", "{W}/afile/p.png"],
+                                 ["--plot", "afile"]),
+    "forces_plot_is_a_directory": (["balance", "forces", "--plot", "{W}/adir.png"],
+                                   ["--plot", "directory"]),
+    "forces_csv_under_a_file": (["balance", "forces", "--csv", "{W}/afile/f.csv"], ["--csv"]),
+    "sweep_csv_is_a_directory": (["balance", "sweep", "--x", "31:33", "--csv",
+                                  "{W}/adir.csv"], ["--csv", "directory"]),
+    "sweep_plot_unwritable": (["balance", "sweep", "--x", "31:33", "--plot",
+                               "/proc/shaftfe_sweep.png"], ["--plot", "cannot be written"]),
+    "twin_plot_under_a_file": (["balance", "twin", "--delta", "90", "--plot",
+                                "{W}/afile/t.png"], ["--plot"]),
+    "inline_plot_is_a_directory": (["balance", "inline", "--pins", "0,180", "--spacing-mm",
+                                    "80", "--plot", "{W}/adir.png"], ["--plot", "directory"]),
+    "beam_plot_under_a_file": (["beam", "--variant", "x2_57", "--plot", "{W}/afile/b.png"],
+                               ["--plot"]),
+    "beam_plot_is_a_directory": (["beam", "--variant", "x2_57", "--plot", "{W}/adir.png"],
+                                 ["--plot", "directory"]),
+    "mesh_out_under_a_file": (["mesh", "--variant", "x2_57", "--level", "coarse", "--out",
+                               "{W}/afile/m.vtu"], ["--out"]),
+    "mesh_out_is_a_directory": (["mesh", "--variant", "x2_57", "--out", "{W}/adir.vtu"],
+                                ["--out", "directory"]),
+    "static_out_is_a_file": (["static", "--variant", "x2_57", "--out", "{W}/afile"],
+                             ["--out", "is a file"]),
+    "static_out_under_a_file": (["static", "--variant", "x2_57", "--out", "{W}/afile/sub"],
+                                ["--out"]),
+    "static_out_unwritable": (["static", "--variant", "x2_57", "--out", "/proc/shaftfe_st"],
+                              ["--out", "cannot be written"]),
+    "fatigue_out_is_a_file": (["fatigue", "{RPM}", "--out", "{W}/afile"], ["--out"]),
+    "fatigue_out_unwritable": (["fatigue", "{RPM}", "--out", "/proc/shaftfe_fat"], ["--out"]),
+    "campbell_out_is_a_file": (["campbell", "0:8000", "--out", "{W}/afile"], ["--out"]),
+    "modal_out_under_a_file": (["modal", "--out", "{W}/afile/sub"], ["--out"]),
+    "report_out_is_a_file": (["report", "--no-pictures", "--out", "{W}/afile"], ["--out"]),
+    "demo_out_under_a_file": (["demo", "--out", "{W}/afile/sub"], ["--out"]),
+    "view_screenshot_under_a_file": (["view", "{W}/result.vtu", "--screenshot",
+                                      "{W}/afile/v.png"], ["--screenshot"]),
+    "view_screenshot_is_a_directory": (["view", "{W}/result.vtu", "--screenshot",
+                                        "{W}/adir.png"], ["--screenshot", "directory"]),
+    "view_a_directory": (["view", "{W}/adir"], ["adir", "is a directory"]),
+    # undecodable input files name the file
+    "variant_binary": (["variant", "check", "{W}/bin.toml"], ["bin.toml", "UTF-8"]),
+    "variant_latin1": (["variant", "check", "{W}/latin1.toml"], ["latin1.toml", "UTF-8"]),
+    "variant_binary_include": (["variant", "check", "{W}/inc_bin.toml"], ["blob.toml", "UTF-8"]),
+    "beam_binary_variant": (["beam", "--variant", "{W}/bin.toml"], ["bin.toml", "UTF-8"]),
+    "static_latin1_variant": (["static", "--variant", "{W}/latin1.toml", "--out", "{W}/o"],
+                              ["latin1.toml", "UTF-8"]),
+    "spectrum_binary": (["fatigue", "{W}/bin.dat", "--out", "{W}/o"], ["bin.dat"]),
+    "spectrum_latin1": (["fatigue", "{W}/latin1.dat", "--out", "{W}/o"], ["latin1.dat"]),
+    "spectrum_utf16": (["fatigue", "{W}/utf16.dat", "--out", "{W}/o"], ["utf16.dat"]),
+    "spectrum_empty": (["fatigue", "{W}/empty.dat", "--out", "{W}/o"], ["empty.dat"]),
+    "spectrum_is_a_directory": (["fatigue", "{W}/adir", "--out", "{W}/o"], ["adir"]),
+    "view_garbage_vtu": (["view", "{W}/garbage.vtu"], ["garbage.vtu"]),
+    # a variant no command may choke on: refused by the loader of every command
+    "mesh_metre_diameter": (["mesh", "--variant", "{V:diameter_in_metres}", "--level",
+                             "coarse"], ["segments[4].diameter_mm"]),
+    "static_gram_mass": (["static", "--variant", "{V:mass_in_grams}", "--out", "{W}/o"],
+                         ["mass_kg"]),
+    "beam_same_x_bearings": (["beam", "--variant", "{V:bearings_at_the_same_x}"],
+                             ["free_side"]),
+    "static_tiny_stiffness": (["static", "--variant", "{V:bearing_stiffness_tiny}", "--out",
+                               "{W}/o"], ["K_N_per_mm"]),
+    # operating values: one rpm ceiling, no empty items, bounded resources
+    "beam_rpm_1e9": (["beam", "--variant", "x2_57", "--rpm", "1e9"], ["--rpm", "20000"]),
+    "beam_rpm_empty_item": (["beam", "--variant", "x2_57", "--rpm", "10000,,7000"],
+                            ["--rpm"]),
+    "static_rpm_1e9": (["static", "--variant", "x2_57", "--rpm", "1e9", "--out", "{W}/o"],
+                       ["--rpm", "20000"]),
+    "modal_rpm_1e9": (["modal", "--rpm", "1e9"], ["--rpm", "20000"]),
+    "forces_rpm_1e9": (["balance", "forces", "--rpm", "1e9"], ["--rpm", "20000"]),
+    "campbell_range_1e9": (["campbell", "0:1e9"], ["RANGE", "20000"]),
+    "campbell_step_tiny": (["campbell", "0:20000:1e-308"], ["RANGE/--step", "speeds"]),
+    "campbell_max_element_tiny": (["campbell", "0:8000", "--max-element", "1e-6"],
+                                  ["--max-element"]),
+    "beam_max_element_tiny": (["beam", "--variant", "x2_57", "--max-element", "1e-6"],
+                              ["--max-element"]),
+    "report_campbell_step_tiny": (["report", "--campbell-step", "0.01", "--out", "{W}/o"],
+                                  ["--campbell-step"]),
+    "campbell_negative_range": (["campbell", "-50:500"], ["-50:500", "--"]),
+    "sweep_negative_range": (["balance", "sweep", "--x", "-50:500:10"],
+                             ["--x=-50:500:10"]),
+    "inline_negative_spacing": (["balance", "inline", "--pins", "0,180", "--spacing-mm",
+                                 "-80"], ["--spacing-mm", "-80", "mm"]),
+    "static_exclude_huge": (["static", "--variant", "x2_57", "--exclude-mm", "1e9", "--out",
+                             "{W}/o"], ["--exclude-mm"]),
+    "fatigue_exclude_huge": (["fatigue", "{RPM}", "--exclude-mm", "1e9", "--out", "{W}/o"],
+                             ["--exclude-mm"]),
+    "static_level_bogus": (["static", "--variant", "x2_57", "--level", "bogus", "--out",
+                            "{W}/o"], ["--level"]),
+    "fatigue_design_life_negative": (["fatigue", "{RPM}", "--design-life", "-1", "--out",
+                                      "{W}/o"], ["--design-life"]),
+    "campbell_modes_zero": (["campbell", "0:8000", "--modes", "0"], ["--modes"]),
+    "fatigue_kf_zero": (["fatigue", "{RPM}", "--kf", "0", "--out", "{W}/o"], ["--kf"]),
+    # spectra
+    "spectrum_unicode_digits": (["fatigue", "{W}/arabic.dat", "--out", "{W}/o"],
+                                ["arabic.dat", "line 4"]),
+    "spectrum_nan": (["fatigue", "{W}/nan.dat", "--out", "{W}/o"], ["nan.dat", "line 3"]),
+    "spectrum_negative_rpm": (["fatigue", "{W}/neg.dat", "--out", "{W}/o"],
+                              ["neg.dat", "line 4"]),
+    "spectrum_time_not_increasing": (["fatigue", "{W}/time.csv", "--out", "{W}/o"],
+                                     ["time.csv", "time_s"]),
+    "spectrum_rpm_above_ceiling": (["fatigue", "{W}/fast.dat", "--out", "{W}/o"],
+                                   ["fast.dat", "20000"]),
+}
+for _k in VARIANT_EDITS:
+    CASES[f"variant_check_{_k}"] = (["variant", "check", f"{{V:{_k}}}"], VARIANT_EXPECT[_k])
+
+
+def _workspace(root: Path) -> Path:
+    """Files the cases point at (the same for every case; each case also gets its variant)."""
+    w = root / "w"
+    w.mkdir()
+    (w / "afile").write_text("a regular file where a directory is expected\n")
+    for d in ("adir", "adir.png", "adir.csv", "adir.vtu"):
+        (w / d).mkdir()
+    rng = np.random.default_rng(0)
+    blob = bytes([0xD5, 0xFF, 0x00]) + rng.integers(0, 256, 2000, dtype=np.uint8).tobytes()
+    (w / "bin.toml").write_bytes(blob)
+    (w / "bin.dat").write_bytes(blob)
+    (w / "blob.toml").write_bytes(blob)
+    (w / "inc_bin.toml").write_text('name = "x"\ninclude = ["blob.toml"]\n')
+    (w / "latin1.toml").write_bytes('name = "x"\ndescription = "§ Ø 17"\n'.encode("latin-1"))
+    (w / "latin1.dat").write_bytes("# sample_rate_hz = 1 §\n0.5\n".encode("latin-1"))
+    (w / "utf16.dat").write_bytes("0.5\n0.6\n".encode("utf-16"))
+    (w / "empty.dat").write_text("")
+    (w / "garbage.vtu").write_bytes(blob)
+    hdr = "# format = normalised\n# reference_rpm = 7000\n"
+    (w / "arabic.dat").write_text(hdr + "0.5\n\u0660.\u0663\n")
+    (w / "nan.dat").write_text(hdr + "nan\n0.5\n")
+    (w / "neg.dat").write_text("# format = rpm\n# sample_rate_hz = 1\n3000\n-5\n")
+    (w / "time.csv").write_text("time_s,rpm\n0,3000\n1,4000\n1,5000\n")
+    (w / "fast.dat").write_text("# format = rpm\n# sample_rate_hz = 1\n3000\n90000\n")
+    import meshio
+    pts = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    meshio.write(w / "result.vtu", meshio.Mesh(pts, [("tetra", np.array([[0, 1, 2, 3]]))],
+                                               point_data={"von_mises": np.arange(4.0)}))
+    return w
+
+
+@pytest.fixture(scope="module")
+def space(tmp_path_factory):
+    root = tmp_path_factory.mktemp("bad-input")
+    return root, _workspace(root)
+
+
+def _variant(root: Path, key: str) -> str:
+    """The x2_57 files copied with one edit (VARIANT_EDITS[key]); path of the variant."""
+    g = root / f"v_{key}"
+    if not g.exists():
+        shutil.copytree(GEOMETRY_DIR, g, ignore=shutil.ignore_patterns("*.md", "engines"))
+        rel, old, new = VARIANT_EDITS[key]
+        text = (g / rel).read_text(encoding="utf-8")
+        assert text.count(old) == 1, f"{key}: {old!r} must occur once in {rel}"
+        (g / rel).write_text(text.replace(old, new), encoding="utf-8")
+    return str(g / "x2_57.toml")
+
+
+def _snapshot(root: Path) -> dict[str, tuple[int, int]]:
+    out = {}
+    for dirpath, dirnames, filenames in os.walk(root):
+        for n in dirnames + filenames:
+            p = Path(dirpath) / n
+            st = p.lstat()
+            out[str(p.relative_to(root))] = (st.st_size if p.is_file() else -1, st.st_mtime_ns)
+    return out
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys,
+                                                               monkeypatch):
+    root, w = space
+    argv, expect = CASES[case]
+    args = []
+    for a in argv:
+        if a.startswith("{V:"):
+            a = _variant(root, a[3:-1])
+        args.append(a.replace("{W}", str(w)).replace("{RPM}", RPM_DAT))
+    monkeypatch.chdir(w)
+    monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(root / "cache"))
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    before = _snapshot(w)
+    capsys.readouterr()
+    try:
+        rc = main(args)
+    except SystemExit as exc:                       # argparse usage errors
+        rc = exc.code
+    out = capsys.readouterr()
+    lines = out.err.strip().splitlines()
+    assert rc == 2, f"exit {rc}; stderr: {out.err!r}"
+    assert len(lines) == 1, f"expected one line on stderr, got {lines!r}"
+    assert "Traceback" not in out.err
+    for word in expect:
+        assert word in lines[0], f"{word!r} not named in: {lines[0]}"
+    assert _snapshot(w) == before, "the work space (--out) changed"
+
+
+def test_the_catalogue_covers_every_command_and_at_least_60_cases():
+    commands = {CASES[c][0][0] for c in CASES}
+    assert len(CASES) >= 60
+    assert commands >= {"balance", "variant", "beam", "mesh", "static", "fatigue", "campbell",
+                        "modal", "report", "demo", "view"}
