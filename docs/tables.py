@@ -57,11 +57,12 @@ TABLES = {"fatigue-x2_57": fatigue_x2_57}
 
 def render(text: str) -> str:
     for name, make in TABLES.items():
-        pat = re.compile(rf"(<!-- table:{re.escape(name)} -->\n).*?(\n<!-- /table -->)", re.S)
+        pat = re.compile(rf"(<!-- table:{re.escape(name)} -->\n)(?:.*?\n)?(<!-- /table -->)",
+                         re.S)
         if not pat.search(text):
             raise SystemExit(f"README.md: marker <!-- table:{name} --> not found")
         body = make()
-        text = pat.sub(lambda m, b=body: m.group(1) + b + m.group(2), text)
+        text = pat.sub(lambda m, b=body: m.group(1) + b + "\n" + m.group(2), text)
     return text
 
 
