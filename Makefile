@@ -34,7 +34,8 @@ test-latest:
 	$(PYTHON) -m venv .venv-latest
 	.venv-latest/bin/$(PIP) install --quiet --upgrade pip
 	.venv-latest/bin/$(PIP) install --quiet --upgrade --upgrade-strategy eager -e '.[dev]'
-	.venv-latest/bin/$(PIP) freeze --exclude-editable > .venv-latest/versions.txt
+	.venv-latest/bin/$(PIP) freeze --all --exclude-editable \
+	  | grep -v -E '^(setuptools|wheel)==' > .venv-latest/versions.txt
 	@echo "newest allowed versions: .venv-latest/versions.txt"
 	@diff -u $(LOCK) .venv-latest/versions.txt | grep '^[-+][A-Za-z]' || echo "same as the lock"
 	.venv-latest/bin/ruff check shaftfe tests benchmarks

@@ -18,15 +18,11 @@ ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"
 
 
-def _big(v: float) -> str:
-    return f"{v:,.0f}".replace(",", " ") if abs(v) >= 100 else f"{v:.3g}"
-
-
 def fatigue_x2_57() -> str:
     """x2_57, the seed's fatigue settings on loadspectra/rpm.dat, default mesh, both load cases,
     next to the seed's Ansys result (seed 000 §8.3)."""
     from shaftfe import static_cache
-    from shaftfe.commands.fatigue import SEED, read_spectrum
+    from shaftfe.commands.fatigue import SEED, _big, read_spectrum
     from shaftfe.fatigue.field import evaluate
     from shaftfe.fatigue.sn import load_material
     from shaftfe.static import StaticOptions, load_case_label

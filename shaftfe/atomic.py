@@ -96,25 +96,34 @@ def check_output_file(path: str | os.PathLike | None, option: str) -> Path | Non
 
 @contextmanager
 def staged_dir(out: str | os.PathLike, option: str = "--out") -> Iterator[Path]:
-    """All the files of one run, or none: yields a hidden staging directory beside ``out``
-    (created now, so an unwritable ``out`` fails before any work), into which the run writes
-    everything; on success its files are moved into ``out`` (created if missing), on any error
-    or Ctrl-C the staging directory is removed and ``out`` is left as it was.
+    """All the files of one run, or none: yields a hidden staging directory, created now (so an
+    unwritable ``out`` fails before any work), into which the run writes everything. On success
+    the files move into ``out``; on any error or Ctrl-C the staging directory is removed and
+    ``out`` is left as it was.
 
-    Before moving anything the commit checks that no output would land on a directory; the moves
-    themselves are renames within one file system."""
+    Where: inside ``out`` when it exists (that probes the directory the files go to and keeps
+    every rename on its file system, a mount point included), else beside it, and then the
+    whole directory is renamed into place. Moving into an existing ``out`` is one rename per
+    file, after checking that no output lands on a directory: a crash in those microseconds can
+    leave some new files beside old ones, never a half-written file."""
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise _not_writable(option, out, "it is a file; give a directory")
-    anc, missing = _nearest_existing(out.parent)
-    if not anc.is_dir():
-        raise _not_writable(option, out, f"{anc} is a file, not a directory")
     created: list[Path] = []
     try:
-        for d in missing:
-            d.mkdir()
-            created.append(d)
-        stage = Path(tempfile.mkdtemp(dir=out.parent, prefix=f".{out.name}.staging-"))
+        if out.is_dir():
+            stage = Path(tempfile.mkdtemp(dir=out, prefix=".staging-"))
+        else:
+            anc, missing = _nearest_existing(out.parent)
+            if not anc.is_dir():
+                raise _not_writable(option, out, f"{anc} is a file, not a directory")
+            for d in missing:
+                try:
+                    d.mkdir()
+                    created.append(d)
+                except FileExistsError:           # another run made it meanwhile
+                    pass
+            stage = Path(tempfile.mkdtemp(dir=out.parent, prefix=f".{out.name}.staging-"))
     except OSError as exc:
         _remove_dirs(created)
         raise _not_writable(option, out, exc) from None
@@ -138,10 +147,13 @@ def _remove_dirs(created: list[Path]) -> None:
 def _commit(stage: Path, out: Path, option: str) -> None:
     umask = os.umask(0)
     os.umask(umask)
-    if not out.exists():
+    if stage.parent != out:                      # staged beside a new out: one rename
         os.chmod(stage, 0o777 & ~umask)
-        os.replace(stage, out)
-        return
+        try:
+            os.replace(stage, out)
+            return
+        except OSError:                          # another run created out meanwhile: merge
+            pass
     files = sorted(p.relative_to(stage) for p in stage.rglob("*") if not p.is_dir())
     for rel in files:
         if (out / rel).is_dir():

@@ -36,7 +36,6 @@ def save(path: Path, arrays: dict[str, np.ndarray], meta: dict, *,
          compressed: bool = False) -> None:
     meta = dict(meta, sha256=checksum(arrays))
     payload = dict(arrays, meta=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8))
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
     with atomic_path(path, suffix=".tmp") as tmp, open(tmp, "wb") as fh:
         (np.savez_compressed if compressed else np.savez)(fh, **payload)
 

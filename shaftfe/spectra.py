@@ -179,6 +179,9 @@ def _read_fast(src: str, text: str, fmt: str | None, rpm_ref, sample_rate_hz):
     is out of range, a comment between data lines, a bad header) returns None, and the
     line-by-line reader below then reads the file again and names the offending line."""
     import io
+    if not text.isascii() or any(c in text for c in "\f\v\x1c\x1d\x1e") \
+            or text.count("\r") != text.count("\r\n"):
+        return None          # line breaks other than \n / \r\n, or non-ASCII: str.splitlines
     head: list[str] = []
     pos = 0
     while pos < len(text):
@@ -190,7 +193,7 @@ def _read_fast(src: str, text: str, fmt: str | None, rpm_ref, sample_rate_hz):
         head.append(line)
         pos = end + 1
     body = text[pos:]
-    if "#" in body or not body.strip() or not body.isascii():   # loadtxt takes '٣' as 3
+    if "#" in body or not body.strip():
         return None
     header = {}
     for line in head:
@@ -208,15 +211,16 @@ def _read_fast(src: str, text: str, fmt: str | None, rpm_ref, sample_rate_hz):
             if data.shape[1] != 2 or data.shape[0] < 2:
                 return None
         else:
-            data = np.loadtxt(io.StringIO(body), ndmin=1, dtype=float)
-            if data.ndim != 1:
+            data = np.loadtxt(io.StringIO(body), ndmin=2, dtype=float)
+            if data.shape[1] != 1:                     # several numbers on a line
                 return None
+            data = data.ravel()
     except ValueError:
         return None
     if fmt is None:
         fmt = "csv" if is_csv else header["format"][1] if "format" in header else (
             "normalised" if data.max() <= _AUTO_NORMALISED_MAX else "rpm")
-    if not np.all(np.isfinite(data)) or fmt not in FORMATS or (
+    if not np.all(np.isfinite(data)) or fmt not in FORMATS or (fmt == "csv") != is_csv or (
             "format" in header and header["format"][1] != fmt):
         return None
     if is_csv:
@@ -292,10 +296,9 @@ def _header_float(src: str, header, key: str) -> float | None:
     if key not in header:
         return None
     line, value = header[key]
-    try:
-        return float(value)
-    except ValueError:
-        raise InputError(src, f"line {line}: {key}", "a number", got=value) from None
+    if not _ASCII_NUMBER.fullmatch(value):            # float() would take '1_000' and '٣'
+        raise InputError(src, f"line {line}: {key}", "a number", got=value)
+    return float(value)
 
 
 def _check_ref(v: float, src: str, field: str) -> None:

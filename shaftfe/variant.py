@@ -529,6 +529,9 @@ _ABOVE_HINT = {"mass_kg": "grams", "eccentricity_mm": "µm", "diameter_mm": "µm
                "length_mm": "µm", "E_MPa": "Pa", "strength_MPa": "Pa", "K_N_per_mm": "N/m"}
 
 
+FILLET_MIN_MM = 0.05
+
+
 def _plausible(v: float, kind: str, src: str, fld: str) -> None:
     """``v`` within ``PLAUSIBLE[kind]``; else an error with a hint at the likely unit."""
     lo, hi, unit, below = PLAUSIBLE[kind]
@@ -621,7 +624,10 @@ def _segments(shaft: dict, src: str, ctx: _Ctx, stock: float | None) -> tuple[Se
         if stock is not None:
             _need(dia <= stock + 1e-9, src, f"{fld}.diameter_mm",
                   f"<= stock diameter {stock:g} mm", dia)
-        _need(fil >= 0, src, f"{fld}.fillet_mm", ">= 0", fil)
+        # a fillet is meshed at a fraction of its radius: a 1 µm "fillet" (a radius typed in
+        # metres) would ask for millions of elements; below FILLET_MIN_MM it is a sharp corner
+        _need(fil == 0 or fil >= FILLET_MIN_MM, src, f"{fld}.fillet_mm",
+              f"0 (sharp) or >= {FILLET_MIN_MM:g} mm (typed in metres?)", fil)
         _need(kind in ("plain", "seat", "thread"), src, f"{fld}.kind",
               "plain | seat | thread", kind)
         kws: list[Keyway] = []
@@ -754,10 +760,11 @@ def _bearings(shaft: dict, types: dict, segs: tuple[Segment, ...], ctx: _Ctx, sr
           "exactly one bearing with axial = true", sum(b.axial for b in out))
     names = [b.name for b in out]
     _need(len(set(names)) == len(names), src, "bearings[*].name", "unique names", names)
+    index = {b.name: i for i, b in enumerate(out)}          # as written in the file
     out.sort(key=lambda b: b.x_center_mm)
     for a, b in itertools.pairwise(out):        # two rings cannot share a seat
         _need(a.x_center_mm + 0.5 * a.width_mm <= b.x_center_mm - 0.5 * b.width_mm + 1e-9, src,
-              f"bearing {b.name!r} x_center_mm",
+              f"bearings[{index[b.name]}].x_center_mm ({b.name!r})",
               f"clear of bearing {a.name!r} (its ring ends at "
               f"{a.x_center_mm + 0.5 * a.width_mm:g} mm)", b.x_center_mm)
     _abutment_fillets(out, segs, src)

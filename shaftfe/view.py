@@ -331,7 +331,8 @@ def group_names(grid, path) -> dict[int, str]:
     if "group_names_utf8" in grid.field_data.keys():          # shaftfe mesh --out x.vtu
         import numpy as np
         raw = bytes(np.asarray(grid.field_data["group_names_utf8"], dtype=np.uint8))
-        return {k + 1: s for k, s in enumerate(raw.decode("utf-8").split("\n"))}
+        names = raw.decode("utf-8", errors="replace").split("\n")
+        return {k + 1: s for k, s in enumerate(names)}
     side = Path(path).with_name("summary.json")
     try:
         vtu = json.loads(side.read_text())["vtu"]

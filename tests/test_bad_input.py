@@ -64,6 +64,8 @@ VARIANT_EDITS = {
                            'depth_mm = 3.0\nlength_mm = 8.0\nx_center_mm = 94.5'),
     "centroid_far_off_the_shaft": ("x2_57.toml", "x_centroid_mm = 94.5",
                                    "x_centroid_mm = 94500.0"),
+    "fillet_in_metres": (SHAFT, 'diameter_mm = 22.0\nfillet_mm = 0.6',
+                         'diameter_mm = 22.0\nfillet_mm = 0.0006'),
     "density_in_kg_per_mm3": (MATS, '58 ± 2 HRC"\nE_MPa = 210000.0\nnu = 0.3\n'
                               'density_t_mm3 = 7.85e-9', '58 ± 2 HRC"\nE_MPa = 210000.0\n'
                               'nu = 0.3\ndensity_t_mm3 = 7.85e-6'),
@@ -93,6 +95,7 @@ VARIANT_EXPECT = {
     "keyways_not_a_list": ["shaft_c.toml", "keyways"],
     "centroid_far_off_the_shaft": ["x2_57.toml", "x_centroid_mm"],
     "density_in_kg_per_mm3": ["materials.toml", "density_t_mm3"],
+    "fillet_in_metres": ["shaft_c.toml", "segments[4].fillet_mm", "metres"],
 }
 
 # Cases on the command line and on files of the work space (W = the work space):

@@ -132,6 +132,7 @@ def test_staged_outputs_are_all_or_nothing(tmp_path):
         raise RuntimeError("a failing solve")
     assert (out / "old.txt").read_text() == "old" and sorted(os.listdir(out)) == ["old.txt"]
     with staged_dir(out) as stage:
+        assert stage.parent == out      # inside an existing out: its file system, its rights
         (stage / "old.txt").write_text("new")
         (stage / "sub").mkdir()
         (stage / "sub" / "b.txt").write_text("b")

@@ -103,9 +103,6 @@ def speeds_from_range(text: str, step: float) -> list[float]:
         raise InputError("command line", "RANGE/--step", f"at most {_MAX_SPEEDS} speeds",
                          got=f"{text} step {st:g}")
     n = math.floor(count + 1e-9)
-    if n + 2 > _MAX_SPEEDS:
-        raise InputError("command line", "RANGE/--step", f"at most {_MAX_SPEEDS} speeds",
-                         got=f"{text} step {st:g}")
     out = [a + i * st for i in range(n + 1)]
     if b - out[-1] > 1e-9 * max(1.0, b):
         out.append(b)
@@ -340,8 +337,11 @@ def run_campbell(args) -> int:
     orders = parse_orders(args.orders)
     _check_common(args)
     vtu = None
+    from shaftfe.progress import Progress
+    prog = Progress(["model + sweep", "outputs"], enabled=False if args.json else None)
     with _staged(args.out) as out:                   # every file or none
-        model, res, ver, beam_res, prov = _solve(args, rpms, orders)
+        with prog.stage("model + sweep"):
+            model, res, ver, beam_res, prov = _solve(args, rpms, orders)
         if out is not None:
             import json
 

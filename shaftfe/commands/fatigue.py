@@ -260,7 +260,7 @@ def _write_outputs(args, history, material, ref, ff, t_eval, level_error, out):
                    "load_case": load_case_label(args.seed_load_case),
                    "exclude_mm": args.exclude_mm,
                    "supports": "bearing springs (2x2 radial stiffness)"},
-        "versions": package_versions("rainflow", "matplotlib"),
+        "versions": package_versions("matplotlib"),
         "history": {"source": history.source, "format": history.format,
                     "samples": history.n_samples, "duration_s": history.duration_s,
                     "rpm_min": float(history.rpm.min()), "rpm_max": float(history.rpm.max()),

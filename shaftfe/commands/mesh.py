@@ -42,9 +42,11 @@ def run(args) -> int:
     variant = load_variant(args.variant)
 
     from shaftfe.mesh import build_mesh, write_mesh
-
-    sm = build_mesh(variant, level=args.level, order=args.order, cache_dir=args.cache_dir,
-                    use_cache=not args.no_cache)
+    from shaftfe.progress import Progress
+    prog = Progress(["mesh"], enabled=False if args.json else None)
+    with prog.stage("mesh"):
+        sm = build_mesh(variant, level=args.level, order=args.order, cache_dir=args.cache_dir,
+                        use_cache=not args.no_cache)
     if out is not None:
         write_mesh(sm, out)
     summary = {

@@ -57,6 +57,8 @@ class FatigueResult:
     equivalent: str
     kf: float
     notes: tuple[str, ...]
+    exact_nodes: np.ndarray | None = None   # None: every node exact; else only these (long
+                                            # history, the rest of the field on binned classes)
 
     @property
     def infinite_life(self) -> np.ndarray:
@@ -82,15 +84,19 @@ def assess(sigma_ref, history, material: FatigueMaterial, *, equivalent: str = "
            theory: str = "soderberg", kf: float = 1.0,
            design_life_blocks: float = DEFAULT_DESIGN_LIFE_BLOCKS,
            speed_kmh: float = DEFAULT_SPEED_KMH, n_max: float = kernels.SAFETY_FACTOR_MAX,
-           closure: str = "repeated", safety: bool = True, exact_at=None) -> FatigueResult:
+           closure: str = "repeated", safety: bool = True, exact_at=None,
+           sigma_eq=None) -> FatigueResult:
     """Evaluate every node at once (see the module docstring). ``exact_at``: nodes whose
     damage is evaluated on every cycle class even where a very long history makes the rest of
-    the field go to binned classes (``kernels.node_damage``): the hot-spot candidates."""
+    the field go to binned classes (``kernels.node_damage``): the hot-spot candidates.
+    ``sigma_eq``: the equivalent stress of ``sigma_ref`` if the caller has it already."""
     if not (math.isfinite(speed_kmh) and speed_kmh > 0):
         raise InputError("fatigue options", "average speed", "a finite number > 0 (km/h)",
                          got=speed_kmh)
     s = np.asarray(sigma_ref, dtype=float)
-    if s.ndim >= 1 and s.shape[-1] == 6 and s.ndim == 2:
+    if sigma_eq is not None and s.ndim == 2 and s.shape[-1] == 6:
+        s_eq = np.asarray(sigma_eq, dtype=float)
+    elif s.ndim >= 1 and s.shape[-1] == 6 and s.ndim == 2:
         s_eq = kernels.equivalent_stress(s, equivalent)
     elif s.ndim == 1:
         s_eq = s.copy()
@@ -127,6 +133,10 @@ def assess(sigma_ref, history, material: FatigueMaterial, *, equivalent: str = "
     else:
         n = np.full(s_eq.shape, np.nan)
         status = np.full(s_eq.shape, -1, dtype=np.int8)
+    exact_nodes = None
+    if info:
+        exact_nodes = np.asarray(exact_at if exact_at is not None else [], dtype=np.int64)
     return FatigueResult(s_eq, d, blocks, hours, life_km(hours, speed_kmh), n, status, cyc,
                          float(history.duration_s), float(design_life_blocks), float(speed_kmh),
-                         material.name, theory, equivalent, float(kf), tuple(notes))
+                         material.name, theory, equivalent, float(kf), tuple(notes),
+                         exact_nodes)

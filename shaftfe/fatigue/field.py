@@ -172,18 +172,25 @@ def evaluate_arrays(stress_ref, history, material: FatigueMaterial, *, ref_rpm: 
     if excluded is not None:
         excl[np.asarray(excluded, dtype=np.int64)] = True
     regions = dict(sorted((regions or {}).items()))
-    cand = candidates(equivalent_stress(s.T, equivalent), excl, regions)
+    s_eq = equivalent_stress(s.T, equivalent)
+    cand = candidates(s_eq, excl, regions)
     res = assess(s.T, h, material, equivalent=equivalent, theory=theory, kf=kf,
-                 design_life_blocks=design_life_blocks, speed_kmh=speed_kmh, exact_at=cand)
+                 design_life_blocks=design_life_blocks, speed_kmh=speed_kmh, exact_at=cand,
+                 sigma_eq=s_eq)
     vm = res.sigma_eq_MPa if equivalent == "von_mises" else von_mises(s.T)
     member = {}
     for name, nodes in regions.items():
         mk = np.zeros(n, dtype=bool)
         mk[np.asarray(nodes, dtype=np.int64)] = True
         member[name] = mk
+    def exact(nodes: np.ndarray) -> np.ndarray:
+        """On a long history only the candidates are exact; the worst node of any set is one
+        of them (see ``candidates``), so the search keeps to them."""
+        return nodes if res.exact_nodes is None else np.intersect1d(nodes, res.exact_nodes)
+
     keep = np.flatnonzero(~excl)
-    i_f = worst_node(res, keep)
-    i_u = worst_node(res)
+    i_f = worst_node(res, exact(keep))
+    i_u = worst_node(res, exact(np.arange(n)))
     if i_f < 0:                                    # everything excluded: fall back, say so
         i_f = i_u
     lab_f, lab_u = _label(i_f, regions, member), _label(i_u, regions, member)
@@ -192,7 +199,7 @@ def evaluate_arrays(stress_ref, history, material: FatigueMaterial, *, ref_rpm: 
     per_region = []
     for name, nodes in regions.items():
         nodes = np.asarray(nodes, dtype=np.int64)
-        i = worst_node(res, nodes[~excl[nodes]])
+        i = worst_node(res, exact(nodes[~excl[nodes]]))
         per_region.append(None if i < 0 else
                           _spot(res, i, name, _label(i, regions, member), xyz, vm, excl))
     return FatigueField(res, h, float(ref_rpm), float(history.rpm_ref), spot_f, spot_u,

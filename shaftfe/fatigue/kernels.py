@@ -196,17 +196,17 @@ def node_damage(sigma_eq, cycles: Cycles, material: FatigueMaterial,
     A long log has millions of cycle classes, and nodes × classes is then too much to evaluate
     as it stands. Two steps keep it in seconds:
 
-    1. Exact pruning (cutoff S-N curves): σ_ar of a class grows with |σ_eq|, so a class below
-       the endurance limit at some node does no damage at any node of the same sign with a
-       smaller |σ_eq|. The nodes are taken in order of decreasing |σ_eq|, the classes that do
-       no damage at the chunk's largest stress are dropped (``active_cycles``), and once none
-       is left the remaining nodes have no damage. Same result as every class at every node.
-    2. Binned classes, only when the work left would pass ``budget`` node-class evaluations
-       (a history whose every cycle is large: white noise over the whole speed range): the
-       nodes ``exact_at`` (the hot-spot candidates, flat indices) are still evaluated on every
-       class, the rest of the field on ``binned_cycles``: a range × mean grid of at most
-       ``budget / nodes`` classes, each at the count-weighted centroid of its cycles. ``info``
-       (a dict, if given) receives what was binned; tests/validation measure the error.
+    1. Exact pruning (cutoff S-N curves without "infinite life" damage): σ_ar of a class grows
+       with |σ_eq|, so a class below the endurance limit at some node does no damage at any
+       node of the same sign with a smaller |σ_eq|. The nodes are taken in order of decreasing
+       |σ_eq|, the classes that do no damage at the chunk's largest stress are dropped
+       (``active_cycles``), and once none is left the remaining nodes have no damage. Same
+       result as every class at every node.
+    2. Banded and binned classes, only when the work left would pass ``budget`` node-class
+       evaluations (a history whose every cycle is large: white noise over the whole speed
+       range): the nodes ``exact_at`` (the hot-spot candidates, flat indices) are still
+       evaluated on every class, the rest of the field as ``_binned_rest`` says. ``info`` (a
+       dict, if given) receives what was binned; tests/validation measure the error.
     """
     _check_theory(theory)
     _check_kf(kf)
@@ -218,7 +218,10 @@ def node_damage(sigma_eq, cycles: Cycles, material: FatigueMaterial,
     if exact_at is not None:
         exact[np.asarray(exact_at, dtype=np.int64)] = True
     out = np.zeros(flat.size)
-    work = 0.0
+    zero = np.flatnonzero(flat == 0)
+    if zero.size and not _prunable(material):     # a finite "infinite life": damage even at 0
+        out[zero] = _damage(flat[zero], cycles, material, theory, kf)
+    work = float(zero.size * cycles.n)
     for sign in (1.0, -1.0):
         sel = np.flatnonzero(flat * sign > 0)
         sel = sel[np.argsort(-np.abs(flat[sel]), kind="stable")]
@@ -242,52 +245,69 @@ def node_damage(sigma_eq, cycles: Cycles, material: FatigueMaterial,
 
 
 def _binned_rest(flat, rest, exact, cyc, budget, material, theory, kf, out, info) -> float:
-    """Step 2 of ``node_damage`` for the nodes ``rest`` (|σ_eq| descending): exact at the
-    ``exact`` ones; for the others, in bands of |σ_eq| 1 % wide (``BAND``), the classes doing
-    no damage in the band are dropped, those that cross the endurance limit inside the band
-    and the most damaging ones are summed exactly, and the rest (well above the limit, where
-    the damage is a smooth power of σ_ar) on binned classes. Returns the node-class
-    evaluations done."""
+    """Step 2 of ``node_damage`` for the nodes ``rest`` (one sign, |σ_eq| descending): exact at
+    the ``exact`` ones. The others go in bands of |σ_eq| (from x down to ``BAND`` · x); in a
+    band, the classes doing no damage anywhere in it are dropped for good (they do none lower
+    down either), the classes whose σ_ar crosses the S-N curve's last point inside the band
+    (where the damage jumps) and the most damaging ones are summed exactly, and the rest, above
+    that point across the whole band where the damage is a smooth power of σ_ar, on binned
+    classes (``binned_cycles``). Returns the node-class evaluations done."""
     ex, others = rest[exact[rest]], rest[~exact[rest]]
     work = 0.0
     if ex.size:
         out[ex] = _damage(flat[ex], cyc, material, theory, kf)
         work += ex.size * cyc.n
-    per_node = max(128, int(budget // max(others.size, 1)))
-    lim = material.sn.endurance_MPa * kf if _prunable(material) else 0.0
+    if others.size == 0:
+        return work
+    per_node = max(128, int(budget // others.size))
+    n_classes = cyc.n
+    x_abs = np.abs(flat[others])
+    sign = 1.0 if flat[others[0]] > 0 else -1.0
+    cutoff = material.sn.beyond_last == "cutoff"
     n_exact = n_binned = 0
     a = 0
-    while a < others.size:
-        x_hi = float(flat[others[a]])
-        b = a + int(np.searchsorted(-np.abs(flat[others[a:]]), -BAND * abs(x_hi), "right"))
-        band = others[a:max(b, a + 1)]
-        x_lo = float(flat[band[-1]])
-        s_hi, s_lo = (mean_stress_correction(abs(x) * cyc.range / 2.0, x * cyc.mean, theory,
-                                             yield_MPa=material.yield_MPa,
-                                             ultimate_MPa=material.ultimate_MPa)
-                      for x in (x_hi, x_lo))
-        active = s_hi >= lim
-        sure = active & (s_lo >= lim * (1.0 + 1e-12)) & np.isfinite(s_hi)
-        top = np.flatnonzero(sure)[np.argsort(-s_hi[sure], kind="stable")[: per_node // 2]]
-        keep = np.flatnonzero(active & ~sure)             # crossing the limit in the band
-        sure[top] = False
-        part = [np.concatenate((keep, top))]
-        sub = [Cycles(cyc.range[part[0]], cyc.mean[part[0]], cyc.count[part[0]], cyc.closure)]
-        rest_idx = np.flatnonzero(sure)
-        if rest_idx.size:
-            sub.append(binned_cycles(Cycles(cyc.range[rest_idx], cyc.mean[rest_idx],
-                                            cyc.count[rest_idx], cyc.closure),
+    while a < others.size and cyc.n:
+        b = max(a + 1, a + int(np.searchsorted(-x_abs[a:], -BAND * x_abs[a], "right")))
+        band = others[a:b]
+        above_hi = _above_last_point(cyc, sign * x_abs[a], material, theory, kf)
+        if _prunable(material) and not above_hi.all():      # nothing below the band needs them
+            cyc = Cycles(cyc.range[above_hi], cyc.mean[above_hi], cyc.count[above_hi],
+                         cyc.closure)
+            above_hi = above_hi[above_hi]
+        if cyc.n == 0:
+            break
+        smooth = _above_last_point(cyc, sign * x_abs[b - 1], material, theory, kf,
+                                   strict=True) if cutoff else np.ones(cyc.n, dtype=bool)
+        smooth &= above_hi
+        exact_idx = np.flatnonzero(~smooth)                 # crossing the last point (or none)
+        cand = np.flatnonzero(smooth)
+        k = min(per_node // 2, cand.size)
+        if k:
+            sar = mean_stress_correction(x_abs[a] * cyc.range[cand] / 2.0,
+                                         sign * x_abs[a] * cyc.mean[cand], theory,
+                                         yield_MPa=material.yield_MPa,
+                                         ultimate_MPa=material.ultimate_MPa)
+            top = cand[np.argpartition(-sar, k - 1)[:k]]
+            exact_idx = np.concatenate((exact_idx, top))
+            smooth[top] = False
+        sub = [_subset(cyc, exact_idx)]
+        if smooth.any():
+            sub.append(binned_cycles(_subset(cyc, np.flatnonzero(smooth)),
                                      max(16, per_node - sub[0].n)))
         out[band] = sum(_damage(flat[band], c, material, theory, kf) for c in sub if c.n)
         n_exact = max(n_exact, sub[0].n)
-        n_binned = max(n_binned, sub[-1].n if len(sub) > 1 else 0)
+        n_binned = max(n_binned, sub[1].n if len(sub) > 1 else 0)
         work += band.size * sum(c.n for c in sub)
-        a += band.size
-    if info is not None and others.size:
+        a = b
+    if info is not None:
         info.update({"binned_nodes": int(info.get("binned_nodes", 0) + others.size),
-                     "classes": int(cyc.n), "exact_classes": int(n_exact),
+                     "classes": int(n_classes), "exact_classes": int(n_exact),
                      "binned_classes": int(n_binned)})
     return work
+
+
+def _subset(cyc: Cycles, idx: np.ndarray) -> Cycles:
+    return Cycles(cyc.range[idx], cyc.mean[idx], cyc.count[idx], cyc.closure)
 
 
 def binned_cycles(cycles: Cycles, max_classes: int) -> Cycles:
@@ -320,17 +340,27 @@ def _prunable(material: FatigueMaterial) -> bool:
 def active_cycles(cycles: Cycles, sigma_eq: float, material: FatigueMaterial, theory: str,
                   kf: float) -> Cycles:
     """The classes that do damage at a node of equivalent stress ``sigma_eq`` (MPa, signed):
-    with a cutoff S-N curve, those whose σ_ar / kf reaches the endurance limit (all classes for
-    other curves)."""
+    with a cutoff S-N curve without "infinite life" damage, those at or above the curve's last
+    point (all classes for other curves)."""
     if not _prunable(material) or cycles.n == 0:
         return cycles
+    keep = _above_last_point(cycles, sigma_eq, material, theory, kf)
+    return cycles if keep.all() else _subset(cycles, np.flatnonzero(keep))
+
+
+def _above_last_point(cycles: Cycles, sigma_eq: float, material: FatigueMaterial, theory: str,
+                      kf: float, *, strict: bool = False) -> np.ndarray:
+    """Per class: σ_ar at ``sigma_eq`` reaches the S-N curve's last point (strictly above it
+    with ``strict``), by the very expression ``SNCurve.log_inverse_life`` and ``miner_damage``
+    use, so that the classes kept are exactly those the full sum gives damage."""
     sar = mean_stress_correction(abs(sigma_eq) * cycles.range / 2.0, sigma_eq * cycles.mean,
                                  theory, yield_MPa=material.yield_MPa,
                                  ultimate_MPa=material.ultimate_MPa)
-    keep = sar / kf >= material.sn.endurance_MPa
-    if keep.all():
-        return cycles
-    return Cycles(cycles.range[keep], cycles.mean[keep], cycles.count[keep], cycles.closure)
+    sa = sar / kf if kf != 1.0 else sar
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ls = np.log10(sa)
+    t0 = material.sn.log_tables()[0][0]
+    return ls > t0 if strict else ~(ls < t0)
 
 
 def cycle_damage(sigma_eq_node: float, cycles: Cycles, material: FatigueMaterial,

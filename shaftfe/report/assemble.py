@@ -420,13 +420,6 @@ def _fatigue(ref, history, material, o: ReportOptions) -> tuple[dict, object]:
     return out, ff
 
 
-def _life_at_scaled_hot_spot(ref, ff, history, material, o: ReportOptions,
-                             factor: float) -> dict:
-    from shaftfe.fatigue.field import hot_spot_with_factor
-    return hot_spot_with_factor(ref, ff, history, material, factor, theory=o.mean_stress,
-                                design_life_blocks=o.design_life_blocks, speed_kmh=o.speed_kmh)
-
-
 def _campbell(variant, engine, o: ReportOptions) -> tuple[dict, object, object]:
     import numpy as np
 
@@ -835,15 +828,18 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         fat, ff = _fatigue(ref, history, material, o)
         bench = benchmark_errors(o.level) if not o.estimate_error else None
         scaled = None
+        from shaftfe.fatigue.field import hot_spot_with_factor
+        life = {"theory": o.mean_stress, "design_life_blocks": o.design_life_blocks,
+                "speed_kmh": o.speed_kmh}
         if bench is not None and bench_matches(bench, res.n_dofs):
-            scaled = _life_at_scaled_hot_spot(ref, ff, history, material, o,
-                                              1.0 / (1.0 + bench["collar"]["rel_error"]))
+            scaled = hot_spot_with_factor(ref, ff, history, material,
+                                          1.0 / (1.0 + bench["collar"]["rel_error"]), **life)
         elif res.error_estimate:
             e = res.error_estimate["cases"][0]["peak_von_mises"]
             ours = res.cases[0].peak_von_mises_MPa
             if e and ours and e["extrapolated"]:
-                scaled = _life_at_scaled_hot_spot(ref, ff, history, material, o,
-                                                  e["extrapolated"] / ours)
+                scaled = hot_spot_with_factor(ref, ff, history, material,
+                                              e["extrapolated"] / ours, **life)
         fat["life_if_peak_corrected"] = scaled
     with prog.stage("Campbell"):
         camp, cres, rotor_model = _campbell(variant, engine, o)

@@ -129,3 +129,65 @@ def test_binned_field_keeps_the_candidates_exact_and_the_rest_close():
     bound = 18.0 ** 2 * delta ** 2 / 24.0
     rel = np.abs(fast[big] - full[big]) / full[big]
     assert rel.max() <= bound, (rel.max(), bound)
+
+
+FAST_OR_REFUSE = {
+    # valid files: the C-speed reader must give the line reader's history, bit for bit
+    "norm.dat": "# reference_rpm = 7000\n# sample_rate_hz = 2\n0.5\n0.25\n1.0\n",
+    "crlf.dat": "# reference_rpm = 7000\r\n0.5\r\n0.6\r\n",
+    "rpm.dat": "# format = rpm\n# sample_rate_hz = 100\n3000\n3100\n2900.5\n",
+    "auto_rpm.txt": "# sample_rate_hz = 10\n3000\n4000\n",
+    "log.csv": "# a logger\ntime_s,rpm\n0,1000\n0.5,2000\n1.5,1500\n",
+    "blank_lines.dat": "# reference_rpm = 7000\n\n0.5\n\n0.6\n",
+    # files the line reader refuses: the fast one must not read them into something else
+    "csv_header_no_table.dat": "# format = csv\n1000\n2000\n",
+    "two_numbers_a_line.dat": "# reference_rpm = 7000\n0.5 0.7 0.9\n",
+    "form_feed_in_header.dat": "# note\f# sample_rate_hz = 10\n0.5\n0.6\n",
+    "underscore_in_header.dat": "# reference_rpm = 7000\n# sample_rate_hz = 1_0\n0.5\n",
+    "comment_between_data.dat": "# reference_rpm = 7000\n0.5\n# pause\n0.6\n",
+    "unicode_digit.dat": "# reference_rpm = 7000\n0.5\n\u0663\n",
+}
+
+
+@pytest.mark.parametrize("name", sorted(FAST_OR_REFUSE))
+def test_fast_reader_agrees_with_the_line_reader_or_steps_aside(name):
+    from shaftfe.errors import InputError
+    from shaftfe.spectra import _read_fast, _read_lines
+    text = FAST_OR_REFUSE[name]
+    fast = _read_fast(name, text, None, None, None)
+    try:
+        slow = _read_lines(name, text, None, None, None)
+    except InputError:
+        assert fast is None            # refused by the line reader: the fast one stepped aside
+        return
+    if name == "comment_between_data.dat":   # valid, but left to the line reader by design
+        assert fast is None
+        return
+    assert fast is not None, "a plain valid file must take the fast path"
+    for f in ("time_s", "rpm", "load_factor"):
+        np.testing.assert_array_equal(getattr(fast, f), getattr(slow, f))   # same arithmetic
+    assert (fast.format, fast.rpm_ref, fast.duration_s) == (slow.format, slow.rpm_ref,
+                                                            slow.duration_s)
+
+
+@pytest.mark.parametrize("budget", [kernels.FIELD_BUDGET, 2.0e5])
+def test_finite_infinite_life_damage_is_kept_everywhere(budget):
+    """The Ansys-style card (cutoff with "Infinite Life" = 1e9 cycles: a class below the curve
+    still does 1e-9 per cycle) cannot be pruned: a node with σ_eq = 0 has damage Σn / 1e9, and
+    the banded path must sum the classes on both sides of that step exactly (binning across
+    the step gave 27 %). Reference: the full sum."""
+    rng = np.random.default_rng(17)
+    lf = ((1500 + 8000 * rng.random(5000)) / 10_000) ** 2
+    cyc = count_cycles(lf)
+    mat = load_material("structural_steel", infinite_life_cycles=1e9)
+    sigma = np.concatenate(([0.0], np.sort(rng.random(300) * 400)))
+    full = kernels._damage(sigma, cyc, mat, "soderberg", 1.0)
+    fast = kernels.node_damage(sigma, cyc, mat, "soderberg", 1.0, exact_at=[300],
+                               budget=budget)
+    # exact sum at σ = 0 (the same terms, count / 1e9); elsewhere the binned bound of
+    # test_binned_field_keeps_the_candidates_exact_and_the_rest_close with ≤ 300 binned
+    # classes (18² δ² / 24 with δ = 1/√300), or round-off (C eps) when nothing is binned
+    assert fast[0] == pytest.approx(full[0], rel=cyc.n * np.finfo(float).eps) and fast[0] > 0
+    ok = np.isfinite(full)
+    bound = 18.0 ** 2 / 300 / 24.0 if budget < 1e6 else cyc.n * np.finfo(float).eps
+    assert np.max(np.abs(fast[ok] - full[ok]) / full[ok]) <= bound
