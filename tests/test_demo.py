@@ -21,6 +21,7 @@ def test_demo_runs_the_report_of_the_default_variant(monkeypatch, tmp_path):
     assert main(["demo", "--out", str(tmp_path), "--level", "coarse"]) == 0
     (options, out, kw), = calls
     assert options.variant == "x2_57" and options.level == "coarse"
+    assert options.seed_load_case is True          # the seed study: compared like with like
     assert Path(options.spectrum) == DEFAULT_SPECTRUM and DEFAULT_SPECTRUM.is_file()
     assert options.design_rpm == (10_000.0, 7_000.0)      # seed §8.2.2 static check, §8.3 ref
     assert Path(out) == tmp_path and kw == {"json_out": False}

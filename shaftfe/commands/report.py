@@ -102,6 +102,7 @@ def _print_summary(rep, page) -> None:
     hs = fat["hot_spot"]
     c0 = st["cases"][0]
     print(f"{rep.inputs['variant']}: {rep.inputs['description']}")
+    print(f"load case: {st['load_case']}")
     print(f"static P{st['order']} {st['level']} ({num(st['n_dofs'])} dofs): peak von Mises "
           f"{num(c0['peak_von_mises_MPa'], 4)} MPa at {num(c0['rpm'])} rpm ({c0['peak_region']})")
     print(f"fatigue: life {num(hs['life_blocks'], 4)} blocks = {num(hs['life_hours'], 4)} h = "

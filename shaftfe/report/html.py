@@ -337,6 +337,13 @@ def _comparison(r) -> str:
     s = ('<h2 id="seed">Seed figures next to ours</h2><p class="note">Seed figures from '
          "<code>shaftfe/report/seed.py</code> (and the variant file's seed-tagged balance "
          "table); ours from this run. Difference = ours / seed − 1.</p>")
+    if not r.static.get("load_case", "").startswith("seed"):
+        s += ('<p class="note"><b>Load case:</b> this run loads every part of the variant '
+              "(the default of every command), while the seed's static and fatigue figures "
+              "load only F1 (gear + counterweight 1) and Fv2 (counterweight 2): the screws, "
+              "keys, nuts and washers it left out shift the reactions and stresses. Run "
+              "<code>shaftfe report --seed-load-case</code> (what <code>shaftfe demo</code> "
+              "does) to compare like with like.</p>")
     rows, classes = [], []
     group = model = None
     for c in r.comparisons:
