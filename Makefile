@@ -12,7 +12,7 @@ STAMP  := $(VENV)/.installed
 LOCK   := requirements-lock.txt
 PIP    := python -m pip --disable-pip-version-check
 
-.PHONY: demo test test-latest lock bench lint clean tables
+.PHONY: demo test test-latest lock bench lint clean tables identical
 
 $(STAMP): pyproject.toml $(LOCK)
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -68,3 +68,8 @@ clean:
 # The result tables README.md quotes, recomputed through the API (docs/tables.py).
 tables: $(STAMP)
 	$(BIN)/python docs/tables.py
+
+# Record the summaries that a no-behaviour-change refactoring must leave byte-identical
+# (benchmarks/identical_results.py): make identical DIR=/tmp/after, then compare two records.
+identical: $(STAMP)
+	$(BIN)/python -m benchmarks.identical_results record $(or $(DIR),reports/identical)

@@ -669,7 +669,8 @@ class BasisProvider:
         n = r.n_dof
         op = LinearOperator((n, n), matvec=self.solver.solve, dtype=float)
         lam_s = -self.sigma**2
-        w2, Phi = eigsh(r.K, k=m, M=r.M, sigma=lam_s, which="LM", OPinv=op, tol=1e-12)
+        v0 = np.random.default_rng(0).standard_normal(n)   # reproducible (ARPACK's is random)
+        w2, Phi = eigsh(r.K, k=m, M=r.M, sigma=lam_s, which="LM", OPinv=op, tol=1e-12, v0=v0)
         order = np.argsort(w2)
         w2, Phi = w2[order], Phi[:, order]
         mm = np.einsum("ij,ij->j", Phi, np.asarray(r.M @ Phi))
