@@ -25,11 +25,12 @@ def fatigue_x2_57() -> str:
     from shaftfe.commands.fatigue import SEED, _big, read_spectrum
     from shaftfe.fatigue.field import evaluate
     from shaftfe.fatigue.sn import load_material
+    from shaftfe.report.assemble import DEFAULT_SPECTRUM
     from shaftfe.static import StaticOptions, load_case_label
     from shaftfe.variant import load_variant
 
     v = load_variant("x2_57")
-    history = read_spectrum(str(ROOT / "loadspectra" / "rpm.dat"), None, None)
+    history = read_spectrum(str(DEFAULT_SPECTRUM), None, None)
     material = load_material("structural_steel")
     rows = [f"| seed (Ansys) | {SEED['hot_spot']} | {SEED['safety_factor_at_1e7']} | "
             f"{_big(SEED['life_blocks'])} blocks, {_big(SEED['life_hours'])} h, "

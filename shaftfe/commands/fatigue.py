@@ -123,10 +123,9 @@ def seed_applies(args, variant_name: str) -> bool:
     bytes) and the seed's settings (``SEED_SETTINGS``)."""
     from pathlib import Path
 
-    from shaftfe.variant import GEOMETRY_DIR
-    seed_file = GEOMETRY_DIR.parent / "loadspectra" / "rpm.dat"
+    from shaftfe.report.assemble import DEFAULT_SPECTRUM
     try:
-        same_file = Path(args.spectrum).read_bytes() == seed_file.read_bytes()
+        same_file = Path(args.spectrum).read_bytes() == DEFAULT_SPECTRUM.read_bytes()
     except OSError:
         same_file = False
     return (variant_name == "x2_57" and same_file
@@ -193,18 +192,15 @@ def level_correction(args, ref, ff, history, material) -> dict | None:
     """The level's measured peak-stress error (reports/benchmarks/static.json, the same rule as
     the report) and the hot spot's life with the stress corrected by it; None where the
     benchmark does not cover this level's mesh."""
-    from shaftfe.fatigue.field import hot_spot_with_factor
-    from shaftfe.report.assemble import bench_matches, benchmark_errors
-    bench = benchmark_errors(args.level)
-    if bench is None or not bench_matches(bench, 3 * ref.n_nodes):
+    from shaftfe.report.assemble import benchmark_errors, level_corrected_life
+    got = level_corrected_life(ref, ff, history, material, benchmark_errors(args.level),
+                               3 * ref.n_nodes,
+                               equivalent=args.equivalent, theory=args.mean_stress, kf=args.kf,
+                               design_life_blocks=args.design_life, speed_kmh=args.speed_kmh)
+    if got is None:
         return None
-    err = float(bench["collar"]["rel_error"])
-    corr = hot_spot_with_factor(ref, ff, history, material, 1.0 / (1.0 + err),
-                                equivalent=args.equivalent, theory=args.mean_stress,
-                                kf=args.kf, design_life_blocks=args.design_life,
-                                speed_kmh=args.speed_kmh)
-    return {"level": args.level, "stress_rel_error": err, "source": bench["source"],
-            **{k: _num(v) for k, v in corr.items()}}
+    meta, corr = got
+    return {**meta, **{k: _num(v) for k, v in corr.items()}}
 
 
 def _pct(new: float | None, old: float) -> str:

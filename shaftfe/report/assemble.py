@@ -534,6 +534,20 @@ def benchmark_errors(level: str, order: int = 2, path: Path = BENCHMARK_JSON) ->
     return out
 
 
+def level_corrected_life(ref, ff, history, material, bench: dict | None, n_dofs: int,
+                         **settings) -> tuple[dict, dict] | None:
+    """The level's measured peak-stress error (``bench`` from ``benchmark_errors``: the collar
+    fillet) and the hot spot's life and safety factor with its stress corrected by it
+    (``fatigue.field.hot_spot_with_factor``); None where the benchmark does not cover this
+    level's mesh. Shared by the report and ``shaftfe fatigue``."""
+    from shaftfe.fatigue.field import hot_spot_with_factor
+    if bench is None or not bench_matches(bench, n_dofs):
+        return None
+    err = float(bench["collar"]["rel_error"])
+    return ({"level": bench["level"], "stress_rel_error": err, "source": bench["source"]},
+            hot_spot_with_factor(ref, ff, history, material, 1.0 / (1.0 + err), **settings))
+
+
 def bench_matches(bench: dict | None, n_dofs: int, tol: float = 0.10) -> bool:
     """The benchmark was run on this level's current mesh: its dof count (all-parts load case,
     whose seats are split a little differently) within ``tol`` of this run's."""
@@ -826,15 +840,13 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     st = _static_summary(res, variant)
     with prog.stage("fatigue"):
         fat, ff = _fatigue(ref, history, material, o)
-        bench = benchmark_errors(o.level) if not o.estimate_error else None
-        scaled = None
         from shaftfe.fatigue.field import hot_spot_with_factor
         life = {"theory": o.mean_stress, "design_life_blocks": o.design_life_blocks,
                 "speed_kmh": o.speed_kmh}
-        if bench is not None and bench_matches(bench, res.n_dofs):
-            scaled = hot_spot_with_factor(ref, ff, history, material,
-                                          1.0 / (1.0 + bench["collar"]["rel_error"]), **life)
-        elif res.error_estimate:
+        bench = benchmark_errors(o.level) if not o.estimate_error else None
+        corrected = level_corrected_life(ref, ff, history, material, bench, res.n_dofs, **life)
+        scaled = corrected[1] if corrected else None
+        if scaled is None and res.error_estimate:
             e = res.error_estimate["cases"][0]["peak_von_mises"]
             ours = res.cases[0].peak_von_mises_MPa
             if e and ours and e["extrapolated"]:
