@@ -14,8 +14,8 @@ from benchmarks._timing import best_time
 
 
 def main() -> None:
-    from shaftfe import beam
-    from shaftfe.variant import Bearing, Material, Segment, Variant
+    from shaftfe.beam import model as beam
+    from shaftfe.model.variant import Bearing, Material, Segment, Variant
 
     E, nu, L, d, P = 210_000.0, 0.3, 200.0, 20.0, 1000.0
     G = E / (2 * (1 + nu))
@@ -41,7 +41,7 @@ def main() -> None:
               f"{err:>12.2e}")
 
     # a balancer-like stepped shaft (3 steps, coupled springs, 3 attachments), 2 speeds
-    from shaftfe.variant import Attachment
+    from shaftfe.model.variant import Attachment
     Kc = ((35_030.0, 8756.0), (8756.0, 35_030.0))
     bal = Variant("balancer_like", "benchmark",
                   (Segment("a", 0.0, 25.0, 17.0, 1.0), Segment("b", 25.0, 50.0, 22.0, 1.0),
@@ -65,7 +65,7 @@ def main() -> None:
     root = Path(__file__).resolve().parents[1]
     if (root / "geometry" / "x2_57.toml").exists():
         try:
-            from shaftfe.variant import load_variant
+            from shaftfe.model.variant import load_variant
             var = load_variant("x2_57")
         except Exception as exc:   # the loader may not exist yet
             print(f"x2_57: not run ({type(exc).__name__}: {exc})")

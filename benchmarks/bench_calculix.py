@@ -2,13 +2,13 @@
 
 What is compared
 ----------------
-The SAME discrete model goes to both codes: ``shaftfe.abaqus.write_deck`` exports the mesh
+The SAME discrete model goes to both codes: ``shaftfe.io.abaqus.write_deck`` exports the mesh
 (P2 tets → C3D10), the nodal load vector we assemble (``*CLOAD``), the RBE3 support rows as
 ``*EQUATION`` s and the 2×2 bearing springs as SPRINGA pairs. Differences therefore come from
 the solvers and the stress recovery only.
 
 * Static, 10 000 rpm (= ``static.REF_RPM``), spring supports and ``rigid_supports``: ours =
-  ``shaftfe.static.solve_static``; ccx = a ``*STATIC`` step. Compared: max |u| and max radial
+  ``shaftfe.static.solve.solve_static``; ccx = a ``*STATIC`` step. Compared: max |u| and max radial
   deflection over the nodes, the deflection at the stations (our probe applied to both nodal
   fields), the remote-point displacement, the bearing reactions (ccx: the summed internal
   nodal forces of the seat nodes, and for springs also the ground-node RF), von Mises at the
@@ -19,7 +19,7 @@ the solvers and the stress recovery only.
   mass (P2, the 4-point rule that ccx uses for C3D10; the exact order-4 rule moves the 12
   frequencies by at most 7e-4, measured on the coarse mesh) and the stiffness with the support
   equations eliminated the way ccx eliminates its MPCs (``abaqus.elimination``), factorised
-  (``shaftfe.solvers``, PARDISO if installed) and passed to ARPACK (``eigsh``, shift-invert at
+  (``shaftfe.fe.solvers``, PARDISO if installed) and passed to ARPACK (``eigsh``, shift-invert at
   σ = 0); ccx = a ``*FREQUENCY`` step (SPOOLES + ARPACK).
 * Wall time, CPU time (user + sys) and peak RSS of each code as a whole process, measured with
   ``/usr/bin/time -v``, OMP_NUM_THREADS = 2 for both; our in-process stages as well. Our
@@ -151,8 +151,8 @@ def load_mesh(path: Path):
     """``save_mesh``'s file → a ``ShaftMesh`` with the identical P2 mesh."""
     from skfem import MeshTet2
 
-    from shaftfe import fem
-    from shaftfe.mesh import ShaftMesh
+    from shaftfe.fe import assembly as fem
+    from shaftfe.solid.mesh import ShaftMesh
     t0 = time.perf_counter()
     with np.load(path) as z:
         meta = json.loads(z["meta"].tobytes().decode())
@@ -160,7 +160,7 @@ def load_mesh(path: Path):
         bnd = {n: z[f"b{i}"] for i, n in enumerate(meta["names"])}
     m = MeshTet2(doflocs, t, _boundaries=bnd,
                  _subdomains={"shaft": np.arange(t.shape[1], dtype=np.int32)})
-    m._cached_mapping = fem.robust_mapping(m)          # as shaftfe.mesh does for its cache
+    m._cached_mapping = fem.robust_mapping(m)          # as shaftfe.solid.mesh does for its cache
     return ShaftMesh(mesh=m, variant_name=meta["variant"], level=meta["level"], order=2,
                      key=meta["key"], n_nodes=int(m.doflocs.shape[1]),
                      n_elements=int(t.shape[1]), min_quality=float(meta["min_quality"]),
@@ -185,7 +185,7 @@ def mass_matrix(mesh, density: float, intorder: int = MASS_INTORDER):
     import scipy.sparse as sp
     from skfem.quadrature import get_quadrature
 
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
     e = fem.scalar_element(mesh)
     X, _ = get_quadrature(mesh.refdom, intorder)
     phi = np.array([e.lbasis(X, a)[0] for a in range(e.doflocs.shape[0])])   # (nloc, nq)
@@ -205,7 +205,8 @@ def our_modal(model, n_modes: int = N_MODES) -> dict:
     import scipy.sparse as sp
     from scipy.sparse.linalg import LinearOperator, eigsh
 
-    from shaftfe import abaqus, solvers
+    from shaftfe.fe import solvers
+    from shaftfe.io import abaqus
     t = {}
     m = model.shaft_mesh.mesh
     t0 = time.perf_counter()
@@ -235,8 +236,8 @@ def our_modal(model, n_modes: int = N_MODES) -> dict:
 def _child(kind: str, level: str, rigid: bool, cache: str, out: str) -> None:
     """Our run in its own process (timed from outside): ``static`` or ``modal``."""
     t_start = time.perf_counter()
-    from shaftfe.static import REF_RPM, StaticOptions, build_model, solve_static
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
+    from shaftfe.static.solve import REF_RPM, StaticOptions, build_model, solve_static
     t_imp = time.perf_counter() - t_start
     v = load_variant(VARIANT)
     opts = StaticOptions(level=level, rigid_supports=rigid)
@@ -271,7 +272,7 @@ def _child(kind: str, level: str, rigid: bool, cache: str, out: str) -> None:
                          **mod["stages"]}
         res.update(freq_hz=mod["freq_hz"], solver=mod["solver"], n_free=mod["n_free"])
     if kind == "modal_solid":
-        from shaftfe import rotor_solid as rs
+        from shaftfe.rotordynamics import solid_rotor as rs
         sm = load_mesh(Path(cache))
         res["mesh_digest"] = mesh_digest(sm.mesh)
         t1 = time.perf_counter()
@@ -312,7 +313,8 @@ def gauss_stress(mesh, u, E, nu) -> np.ndarray:
     (barycentric b there, a at the other three)."""
     from skfem import Basis
 
-    from shaftfe import fem, recovery
+    from shaftfe.fe import assembly as fem
+    from shaftfe.fe import recovery
     a, b = _gauss_ab()
     corners = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
     X = (a + (b - a) * corners).T                                      # (3, 4)
@@ -332,7 +334,8 @@ def ccx_style_nodal(mesh, u, E, nu) -> np.ndarray:
     over the elements at each node."""
     from skfem import ElementTetP2
 
-    from shaftfe import fem, recovery
+    from shaftfe.fe import assembly as fem
+    from shaftfe.fe import recovery
     a, b = _gauss_ab()
     p = gauss_stress(mesh, u, E, nu)                                  # (6, 4, ne)
     corner = (p - a * p.sum(axis=1, keepdims=True)) / (b - a)
@@ -368,8 +371,11 @@ def _patches(mesh) -> list:
 
 
 def compare_static(level: str, rigid: bool, ccx: str, work: Path, mesh_file: Path) -> dict:
-    from shaftfe import abaqus, fem, frd, recovery, static
-    from shaftfe.variant import load_variant
+    from shaftfe.fe import assembly as fem
+    from shaftfe.fe import recovery
+    from shaftfe.io import abaqus, frd
+    from shaftfe.model.variant import load_variant
+    from shaftfe.static import solve as static
     v = load_variant(VARIANT)
     sm = load_mesh(mesh_file)
     m = sm.mesh
@@ -505,8 +511,9 @@ def compare_static(level: str, rigid: bool, ccx: str, work: Path, mesh_file: Pat
 
 
 def compare_modal(level: str, ccx: str, work: Path, mesh_file: Path) -> dict:
-    from shaftfe import abaqus, frd, static
-    from shaftfe.variant import load_variant
+    from shaftfe.io import abaqus, frd
+    from shaftfe.model.variant import load_variant
+    from shaftfe.static import solve as static
     v = load_variant(VARIANT)
     sm = load_mesh(mesh_file)
     ours = run_ours("modal", level, False, mesh_file, work)
@@ -524,7 +531,7 @@ def compare_modal(level: str, ccx: str, work: Path, mesh_file: Path) -> dict:
             for k, (a, b) in enumerate(zip(fo, fc, strict=True))]
     solid = None
     try:
-        import shaftfe.rotor_solid  # noqa: F401
+        import shaftfe.rotordynamics.solid_rotor  # noqa: F401
         have_solid = True
     except ImportError:
         have_solid = False
@@ -589,7 +596,7 @@ def write_report(res: dict) -> None:
          f"Generated by `python -m benchmarks bench_calculix` on {res['date']} "
          f"(ccx: {res['ccx_version']}; shaftfe linear solver: {res['our_solver']}). Variant "
          f"{VARIANT}, 10 000 rpm. Both codes get the SAME mesh, nodal load vector and support "
-         "rows, exported with `shaftfe.abaqus` (C3D10, `*CLOAD`, `*EQUATION`, SPRINGA), so "
+         "rows, exported with `shaftfe.io.abaqus` (C3D10, `*CLOAD`, `*EQUATION`, SPRINGA), so "
          "the comparison isolates the solver and the stress recovery (what exactly is "
          "compared: docstring of `benchmarks/bench_calculix.py`). Difference = (ccx − ours) / "
          "|ours|. ccx writes 6 significant digits to the .frd and 7 to the .dat: agreement "
@@ -651,7 +658,7 @@ def write_report(res: dict) -> None:
         L += [f"## {lv['level']}: first {N_MODES} natural frequencies at rest (shaft alone, "
               "spring supports)", "",
               "ours = K/M shift-invert with ccx's 4-point C3D10 mass rule (isolates the "
-              "eigensolver); rotor_solid = `shaftfe.rotor_solid.modal` at 0 rpm, bare shaft "
+              "eigensolver); rotor_solid = `shaftfe.rotordynamics.solid_rotor.modal` at 0 rpm, bare shaft "
               "(`attachments=False`), exact order-4 mass.", ""]
         if srows:
             L += ["| mode | ours [Hz] | ccx [Hz] | difference | rotor_solid [Hz] | vs ccx |",
@@ -715,7 +722,7 @@ def findings(res: dict) -> list[str]:
         worst = max(pk, key=lambda r: abs(r["rel_diff"]))
         out.append(
             "- Nodal stresses differ, by recovery alone: shaftfe evaluates each element's own "
-            "P2 stress field at its 10 nodes and averages (shaftfe/recovery.py); ccx "
+            "P2 stress field at its 10 nodes and averages (shaftfe/fe/recovery.py); ccx "
             "extrapolates the 4 Gauss-point values linearly to the corners, gives each "
             "mid-side node the mean of its two corners, and averages. On a straight-sided "
             "tet the P2 stress is linear and both give the same values; on a curved "
@@ -797,9 +804,9 @@ def main(levels=LEVELS) -> dict | None:
     print(note)
     if ccx is None:
         return None
-    from shaftfe.mesh import build_mesh
-    from shaftfe.solvers import available
-    from shaftfe.variant import load_variant
+    from shaftfe.fe.solvers import available
+    from shaftfe.model.variant import load_variant
+    from shaftfe.solid.mesh import build_mesh
     res = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
            "ccx_version": ccx_version(ccx), "threads": THREADS, "levels": [],
            "our_solver": "pardiso" if available()["pardiso"] else "superlu",

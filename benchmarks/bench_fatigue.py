@@ -49,8 +49,8 @@ def _reference_damage(s_eq: float, ranges, means, counts, mat) -> float:
 
 def main() -> None:
     from shaftfe.fatigue import count_cycles, equivalent_stress, load_material, safety_factor
+    from shaftfe.fatigue.history import read_history
     from shaftfe.fatigue.kernels import node_damage
-    from shaftfe.spectra import read_history
 
     h = read_history(ROOT / "loadspectra" / "rpm.dat")
     mat = load_material("structural_steel")

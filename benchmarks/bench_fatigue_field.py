@@ -1,6 +1,6 @@
 """Fatigue post-processing of the full default-level static field of x2_57 (issue 5).
 
-Given the static reference solution (``shaftfe.static_cache.load_or_solve``: default mesh level,
+Given the static reference solution (``shaftfe.static.cache.load_or_solve``: default mesh level,
 seed load case, bearing springs; solved once if the cache is empty — not timed), time (best of
 5) ``shaftfe.fatigue.field.evaluate`` on every node with the seed's settings and the rebuilt
 rpm.dat: re-referencing the history to the static speed, rainflow counting, von Mises,
@@ -32,10 +32,10 @@ TARGET_S = 0.3
 def main() -> None:
     from shaftfe.fatigue import count_cycles, load_material
     from shaftfe.fatigue.field import evaluate, write_vtu
-    from shaftfe.spectra import read_history
-    from shaftfe.static import StaticOptions
-    from shaftfe.static_cache import load_or_solve
-    from shaftfe.variant import load_variant
+    from shaftfe.fatigue.history import read_history
+    from shaftfe.model.variant import load_variant
+    from shaftfe.static.cache import load_or_solve
+    from shaftfe.static.solve import StaticOptions
 
     t = time.perf_counter()
     ref = load_or_solve(load_variant("x2_57"), StaticOptions(level="default",

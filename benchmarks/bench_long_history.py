@@ -73,13 +73,13 @@ def check_prefix(kind: str) -> float:
     """Largest relative difference of the damage over every 10th node of the field, 100 000-
     sample prefix: the field evaluation (pruned, banded where the budget says so) against the
     full sum over every class at those nodes (``kernels._damage``)."""
-    from shaftfe import static_cache
     from shaftfe.fatigue import kernels
     from shaftfe.fatigue.field import evaluate
+    from shaftfe.fatigue.history import from_rpm
     from shaftfe.fatigue.sn import load_material
-    from shaftfe.spectra import from_rpm
-    from shaftfe.static import StaticOptions
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
+    from shaftfe.static import cache as static_cache
+    from shaftfe.static.solve import StaticOptions
     ref = static_cache.load_or_solve(load_variant("x2_57"), StaticOptions())
     h = from_rpm(history(kind, 100_000), sample_rate_hz=100.0)
     mat = load_material("structural_steel")
@@ -126,7 +126,7 @@ def main() -> None:
     lines += ["", "Check, 100 000-sample prefix: damage of the field evaluation at every 10th "
               "node against the full sum over every class, largest relative difference: "
               + ", ".join(f"{k} {v:.1e}" for k, v in checks.items()) + ".", ""]
-    from shaftfe.atomic import write_atomic
+    from shaftfe.util.atomic import write_atomic
     write_atomic(OUT, "\n".join(lines))
     print(f"wrote {OUT}")
 

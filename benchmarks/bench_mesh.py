@@ -4,7 +4,7 @@ Run: ``python -m benchmarks bench_mesh`` (or ``python benchmarks/bench_mesh.py``
 Meshes the real variant x2_57 when ``load_variant`` can load it, and always a small synthetic
 shaft (Ø15/17/22/17, 1 mm fillets, one keyway, a hex socket). The cache goes to a temporary
 directory, so "cold" is a real Gmsh build and "cached" a load of the npz just written.
-Volume error = meshed P2 volume / exact volume (shaftfe.solid.analytic_volume) − 1.
+Volume error = meshed P2 volume / exact volume (shaftfe.solid.plan.analytic_volume) − 1.
 """
 
 from __future__ import annotations
@@ -15,14 +15,14 @@ import time
 
 
 def _synthetic():
-    from shaftfe.examples import four_step_shaft
+    from shaftfe.model.examples import four_step_shaft
     return four_step_shaft(name="synthetic", description="benchmark shaft")
 
 
 def _variants():
     out = []
     try:
-        from shaftfe.variant import load_variant
+        from shaftfe.model.variant import load_variant
         out.append(load_variant("x2_57"))
     except Exception as exc:       # loader or file not there yet
         print(f"(x2_57 skipped: {exc})")
@@ -38,7 +38,7 @@ def _volume(mesh) -> float:
 
 def main(levels=("coarse", "default", "fine")) -> list[dict]:
     from shaftfe.commands._common import print_table
-    from shaftfe.mesh import analytic_volume, build_mesh
+    from shaftfe.solid.mesh import analytic_volume, build_mesh
     rows, records = [], []
     with tempfile.TemporaryDirectory(prefix="shaftfe-bench-") as cache:
         for v in _variants():

@@ -12,12 +12,12 @@ Quantities (variant x2_57, bearing springs):
 * ``frequencies`` first 12 natural frequencies at rest and at ``TOP_RPM``; error = the largest
                   relative error of the 24.
 
-Configurations: every mesh level of ``shaftfe.mesh.LEVELS`` × P1/P2 × every linear solver that
-``shaftfe.solvers.available()`` reports (SuperLU is not run above ``SUPERLU_MAX_DOFS``, as in
-bench_static), the beam model (``shaftfe.beam``: stresses = Kt × nominal at the shoulder,
-``shaftfe.scf``) at several element sizes, and for the frequencies the beam rotor
-(``shaftfe.rotor``) at several element sizes and basis tolerances of the reduced-basis
-eigensolver (plus ``shaftfe.rotor_solid`` when it exists: see ``_solid_freq_plan``).
+Configurations: every mesh level of ``shaftfe.solid.mesh.LEVELS`` × P1/P2 × every linear solver that
+``shaftfe.fe.solvers.available()`` reports (SuperLU is not run above ``SUPERLU_MAX_DOFS``, as in
+bench_static), the beam model (``shaftfe.beam.model``: stresses = Kt × nominal at the shoulder,
+``shaftfe.beam.scf``) at several element sizes, and for the frequencies the beam rotor
+(``shaftfe.rotordynamics.beam_rotor``) at several element sizes and basis tolerances of the reduced-basis
+eigensolver (plus ``shaftfe.rotordynamics.solid_rotor`` when it exists: see ``_solid_freq_plan``).
 
 Every run is a FRESH subprocess: ``cold`` = an empty mesh cache (Gmsh runs), ``warm`` = the same
 configuration again on the cache the cold run left (no Gmsh). Measured per run: wall time and
@@ -92,7 +92,7 @@ def _child(spec_json: str) -> None:
     out["rss_MB"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     out["source_sha"] = src
     if "level" in spec:
-        from shaftfe.mesh import LEVELS
+        from shaftfe.solid.mesh import LEVELS
         out["level_settings"] = dict(LEVELS.get(spec["level"], {}))
     print("RESULT" + json.dumps(out))
 
@@ -132,8 +132,8 @@ def _fatigue_defaults():
 
 
 def _c_static(spec: dict) -> dict:
-    from shaftfe.static import StaticOptions, solve_static
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
+    from shaftfe.static.solve import StaticOptions, solve_static
     v = load_variant(VARIANT)
     opts = StaticOptions(level=spec["level"], order=spec["order"], solver=spec["solver"])
     with _Clock() as ck:
@@ -156,12 +156,12 @@ def _c_static(spec: dict) -> dict:
 
 
 def _c_fatigue(spec: dict) -> dict:
-    from shaftfe import static_cache
     from shaftfe.commands.fatigue import read_spectrum
     from shaftfe.fatigue.field import evaluate
     from shaftfe.fatigue.sn import load_material
-    from shaftfe.static import StaticOptions
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
+    from shaftfe.static import cache as static_cache
+    from shaftfe.static.solve import StaticOptions
     a = _fatigue_defaults()
     v = load_variant(VARIANT)
     opts = StaticOptions(level=spec["level"], order=spec["order"], solver=spec["solver"],
@@ -185,8 +185,8 @@ def _c_fatigue(spec: dict) -> dict:
 
 
 def _beam_fillets(variant) -> dict:
-    """FE fillet region name -> shoulder x of that fillet (shaftfe.solid's plan)."""
-    from shaftfe.solid import prepare
+    """FE fillet region name -> shoulder x of that fillet (shaftfe.solid.plan's plan)."""
+    from shaftfe.solid.plan import prepare
     return {f"fillet:{f.segment}": f.x_shoulder for f in prepare(variant).fillets}
 
 
@@ -195,8 +195,8 @@ def _notch_at(res, x: float):
 
 
 def _c_beam_static(spec: dict) -> dict:
-    from shaftfe import beam
-    from shaftfe.variant import load_variant
+    from shaftfe.beam import model as beam
+    from shaftfe.model.variant import load_variant
     v = load_variant(VARIANT)
     fx = _beam_fillets(v)
     def run():
@@ -217,11 +217,11 @@ def _c_beam_fatigue(spec: dict) -> dict:
     """Beam + Kt: the largest shoulder peak Kt·σ_nom (seed load case) as a uniaxial stress."""
     import numpy as np
 
-    from shaftfe import beam
+    from shaftfe.beam import model as beam
     from shaftfe.commands.fatigue import read_spectrum
     from shaftfe.fatigue.field import evaluate_arrays
     from shaftfe.fatigue.sn import load_material
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
     a = _fatigue_defaults()
     v = load_variant(VARIANT)
     vv = v.with_seed_load_case() if a.seed_load_case else v
@@ -258,8 +258,8 @@ def _branches(res) -> dict:
 
 
 def _c_freq_beam(spec: dict) -> dict:
-    from shaftfe import rotor
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
+    from shaftfe.rotordynamics import beam_rotor as rotor
     v = load_variant(VARIANT)
     def run():
         rot = rotor.rotor_from_variant(v, max_element_mm=spec["h"])
@@ -272,11 +272,11 @@ def _c_freq_beam(spec: dict) -> dict:
 
 
 def _c_freq_solid(spec: dict) -> dict:
-    """3D solid rotor (``shaftfe.rotor_solid``): P2/P1 mesh of the static model, attachments as
+    """3D solid rotor (``shaftfe.rotordynamics.solid_rotor``): P2/P1 mesh of the static model, attachments as
     rigid bodies (its default coupling), reduced-basis Campbell sweep with basis tolerance
     ``tol`` (the eigensolver setting that decides the basis size)."""
-    from shaftfe import rotor_solid
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
+    from shaftfe.rotordynamics import solid_rotor as rotor_solid
     v = load_variant(VARIANT)
     opts = rotor_solid.SolidOptions(level=spec["level"], order=spec["order"],
                                     solver=spec["solver"])
@@ -339,9 +339,9 @@ def _fingerprints() -> dict:
     Kt and fatigue code, the variant's content and the spectrum; ``fe:<level>`` = that plus the
     static/mesh code (``static_cache.code_fingerprint`` + mesh, solid, static_cache) and the
     level's settings, Gmsh options and mesh cache format."""
-    from shaftfe import static_cache
-    from shaftfe.mesh import CACHE_FORMAT, GMSH_OPTIONS, LEVELS
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
+    from shaftfe.solid.mesh import CACHE_FORMAT, GMSH_OPTIONS, LEVELS
+    from shaftfe.static import cache as static_cache
     b = hashlib.sha256()
     for mod in ("beam", "rotor", "campbell", "scf", "variant", "solid", "spectra"):
         b.update((ROOT / "shaftfe" / f"{mod}.py").read_bytes())
@@ -379,7 +379,7 @@ def _key(spec: dict) -> str:
 
 
 def _solid_freq_plan(args) -> list[dict]:
-    """3D solid modal configurations when ``shaftfe.rotor_solid`` imports: its default
+    """3D solid modal configurations when ``shaftfe.rotordynamics.solid_rotor`` imports: its default
     (``SolidOptions()``: level, order, solver; ``rotor_solid.campbell``'s tolerance) and a looser
     basis tolerance at that level, then the finer levels of ``--solid-levels`` (default: the
     solid default level and ``default``; the ``fine`` level's modal solve is left out by
@@ -387,10 +387,10 @@ def _solid_freq_plan(args) -> list[dict]:
     try:
         import inspect
 
-        from shaftfe import rotor_solid
+        from shaftfe.rotordynamics import solid_rotor as rotor_solid
     except Exception:
         return []
-    from shaftfe.mesh import LEVELS
+    from shaftfe.solid.mesh import LEVELS
     d = rotor_solid.SolidOptions()
     tol = float(inspect.signature(rotor_solid.campbell).parameters["tol"].default)
     levels = args.solid_levels.split(",") if args.solid_levels else [d.level, "default"]
@@ -408,9 +408,9 @@ def _solid_freq_plan(args) -> list[dict]:
 
 def plan(args) -> list[tuple[dict, bool]]:
     """(spec, also run warm) in run order: cheap first, the finest FE levels last."""
-    from shaftfe import solvers
-    from shaftfe.mesh import LEVELS
-    from shaftfe.static import StaticOptions
+    from shaftfe.fe import solvers
+    from shaftfe.solid.mesh import LEVELS
+    from shaftfe.static.solve import StaticOptions
     have = [s for s, ok in solvers.available().items() if ok]
     default_solver = _default_solver()
     if args.quick:
@@ -450,10 +450,10 @@ def plan(args) -> list[tuple[dict, bool]]:
 
 
 def _default_solver() -> str:
-    """What ``StaticOptions().solver`` resolves to here (``shaftfe.solvers.factorize``'s
+    """What ``StaticOptions().solver`` resolves to here (``shaftfe.fe.solvers.factorize``'s
     "auto": PARDISO when it imports, else SuperLU)."""
-    from shaftfe import solvers
-    from shaftfe.static import StaticOptions
+    from shaftfe.fe import solvers
+    from shaftfe.static.solve import StaticOptions
     s = StaticOptions().solver
     if s != "auto":
         return s
@@ -598,7 +598,7 @@ def _merge(runs: list[dict]) -> list[dict]:
 
 
 def _levels_info() -> dict:
-    from shaftfe.mesh import LEVELS
+    from shaftfe.solid.mesh import LEVELS
     return {k: dict(v) for k, v in LEVELS.items()}
 
 
@@ -936,7 +936,7 @@ _SCOPE = {
                  "deflection and reactions together",
     "fatigue": "`shaftfe fatigue` has its own `--level` default (P2, solver auto)",
     "frequencies": "`shaftfe campbell` / `modal` default: `--max-element` and the basis "
-                   "tolerance of `shaftfe.rotor.campbell`",
+                   "tolerance of `shaftfe.rotordynamics.beam_rotor.campbell`",
 }
 
 
@@ -1108,7 +1108,7 @@ def write_report(data: dict) -> dict:
          "Mesh levels (the settings the FE runs report having used): "
          + "; ".join(f"`{k}` " + ", ".join(f"{a}={b:g}" for a, b in v.items())
                      for k, v in lv.items()) + ". "
-         f"Linear solvers offered (shaftfe.solvers.available()): "
+         f"Linear solvers offered (shaftfe.fe.solvers.available()): "
          f"{', '.join(k for k, v in sv.items() if v) or '?'}; not "
          f"installed: {', '.join(k for k, v in sv.items() if not v) or 'none'}. "
          f"Default solver (`auto`) here: {res['default_solver']}. SuperLU is not run above "
@@ -1200,13 +1200,13 @@ def write_report(data: dict) -> dict:
                     + ", ".join(res["mixed_levels"]) + "): runs of those levels used different "
                     "meshes, so their rows are not comparable. Re-run.")
     if not any(r["kind"] == "freq_solid" for r in runs):
-        miss.append("The 3D solid modal path (`shaftfe/rotor_solid.py`) was not available "
+        miss.append("The 3D solid modal path (`shaftfe/rotordynamics/solid_rotor.py`) was not available "
                     "when this ran (absent or without `campbell_from_variant`): the frequency "
                     "front covers the beam rotor only, and its reference is the finest beam, "
                     "which measures the beam's discretisation error, NOT the modelling error "
                     "against a 3D solid.")
     if not data.get("solvers", {}).get("amg", True):
-        miss.append("AMG-CG (`amg`) is offered by shaftfe.solvers but `pyamg` is not "
+        miss.append("AMG-CG (`amg`) is offered by shaftfe.fe.solvers but `pyamg` is not "
                     "installed: not run.")
     if res["refs"]["static_json"] is None:
         miss.append("reports/benchmarks/static_reference.json carried no reference when this ran: "
@@ -1250,8 +1250,8 @@ def main() -> None:
         data = json.loads((OUT / "pareto.json").read_text())
         write_report(data)
         return
-    from shaftfe import solvers
-    from shaftfe.static import StaticOptions
+    from shaftfe.fe import solvers
+    from shaftfe.static.solve import StaticOptions
     data = run_all(args)
     data.update(generated=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"),
                 levels=_levels_info(), solvers=solvers.available(),
@@ -1273,10 +1273,10 @@ def main() -> None:
 
 
 def _campbell_tol_default() -> float:
-    """The basis tolerance ``shaftfe.rotor.campbell`` uses when none is given."""
+    """The basis tolerance ``shaftfe.rotordynamics.beam_rotor.campbell`` uses when none is given."""
     import inspect
 
-    from shaftfe import rotor
+    from shaftfe.rotordynamics import beam_rotor as rotor
     return float(inspect.signature(rotor.campbell).parameters["tol"].default)
 
 

@@ -47,8 +47,9 @@ def main() -> None:
 def _run(title: str) -> None:
     import numpy as np
 
-    from shaftfe import campbell, rotor
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
+    from shaftfe.rotordynamics import beam_rotor as rotor
+    from shaftfe.rotordynamics import kernels as campbell
 
     v = load_variant("x2_57")
     rpms = np.arange(0.0, 8001.0, 1000.0)

@@ -1,7 +1,7 @@
 """Rotor dynamics (3D solid path): time of a 12-mode × 9-speed Campbell sweep of x2_57 after
 the mesh is built, split into its parts, against the error of the frequencies.
 
-Variant x2_57, ``shaftfe.rotor_solid`` (P2 tets, attachments rigidly tied, bearing springs as
+Variant x2_57, ``shaftfe.rotordynamics.solid_rotor`` (P2 tets, attachments rigidly tied, bearing springs as
 low-rank terms), 0-8000 rpm in 1000 rpm steps, 12 modes. Timed separately (wall time, one
 run each: the parts are seconds long):
 
@@ -44,8 +44,8 @@ def _load() -> str:
 def run_case(variant, level: str, solver: str, coupling: str = "rigid", verify: bool = True):
     import numpy as np
 
-    from shaftfe import rotor_solid
-    from shaftfe.mesh import build_mesh
+    from shaftfe.rotordynamics import solid_rotor as rotor_solid
+    from shaftfe.solid.mesh import build_mesh
 
     out = {"level": level, "solver": solver, "coupling": coupling, "load_before": _load()}
     t = time.perf_counter()
@@ -97,9 +97,9 @@ def run_case(variant, level: str, solver: str, coupling: str = "rigid", verify: 
 def main() -> None:
     import numpy as np
 
-    from shaftfe import rotor
-    from shaftfe.solvers import available
-    from shaftfe.variant import load_variant
+    from shaftfe.fe.solvers import available
+    from shaftfe.model.variant import load_variant
+    from shaftfe.rotordynamics import beam_rotor as rotor
 
     v = load_variant("x2_57")
     beam = rotor.campbell(rotor.rotor_from_variant(v), RPMS, N_MODES, orders=(1.0, 2.0))
@@ -127,7 +127,7 @@ def main() -> None:
                                         "max_rel_at_top": float(errt.max())}}
     root = Path(__file__).resolve().parent.parent / "reports" / "benchmarks"
     root.mkdir(parents=True, exist_ok=True)
-    from shaftfe.atomic import write_atomic
+    from shaftfe.util.atomic import write_atomic
     write_atomic(root / "rotor_solid.json", json.dumps(report, indent=2) + "\n")
     write_atomic(root / "rotor_solid.md", _markdown(report))
     print(f"wrote {root / 'rotor_solid.md'}")

@@ -1,6 +1,6 @@
 """Scaling of the 3D pipeline with the number of degrees of freedom (issue 8).
 
-Mesh family: ``shaftfe.examples.four_step_shaft`` (its one bearing made axial and given a
+Mesh family: ``shaftfe.model.examples.four_step_shaft`` (its one bearing made axial and given a
 tilt stiffness 1e8 N·mm/rad so that it supports the shaft alone) meshed with the "coarse"
 level's settings scaled by s (k_global, k_fillet, k_sharp all × s; a benchmark-only ``LEVELS``
 entry, mesh.py is not changed). P2, the default solver ("auto": PARDISO if installed, else SuperLU).
@@ -92,9 +92,13 @@ class RSS:
 
 rss = RSS()
 import dataclasses
-from shaftfe import examples, fem, mesh, recovery, solvers
-from shaftfe.static import StaticOptions, build_model, solve_model
-from shaftfe.campbell import modal_basis
+from shaftfe.model import examples
+from shaftfe.fe import assembly as fem
+from shaftfe.solid import mesh
+from shaftfe.fe import recovery
+from shaftfe.fe import solvers
+from shaftfe.static.solve import StaticOptions, build_model, solve_model
+from shaftfe.rotordynamics.kernels import modal_basis
 base = {base!r}
 mesh.LEVELS["scaling"] = {{k: (v * scale if k != "grad" else v) for k, v in base.items()}}
 v = examples.four_step_shaft()
@@ -108,8 +112,8 @@ res["dofs"] = sm.n_dofs
 mat = v.material
 K, t, m = rss.stage(lambda: fem.elasticity_stiffness(sm.mesh, mat.E_MPa, mat.nu))
 res["assembly"] = (t, m, rss.cpu)
-from shaftfe import supports
-from shaftfe.static import REF_RPM, _direction
+from shaftfe.fe import supports
+from shaftfe.static.solve import REF_RPM, _direction
 
 def supports_and_loads():
     cs = [supports.couple_bearing(sm.mesh, b) for b in v.bearings]
@@ -159,8 +163,8 @@ print("RESULT " + json.dumps(res))
 _CHILD_DEFAULT = r"""
 import json, sys
 sys.path.insert(0, {root!r})
-from shaftfe.static import StaticOptions, solve_static
-from shaftfe.variant import load_variant
+from shaftfe.static.solve import StaticOptions, solve_static
+from shaftfe.model.variant import load_variant
 r = solve_static(load_variant("x2_57"), [10000.0], StaticOptions(level="default"),
                  cache_dir={cache!r}, beam=False)
 d = {{**r.diagnostics, **r.run}}

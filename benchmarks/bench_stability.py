@@ -1,6 +1,6 @@
 """Numerical stability sweep (issue 8): the longer version of tests/test_stability.py.
 
-3D path (``shaftfe.static``) and beam path (``shaftfe.beam``, ``shaftfe.rotor``) under
+3D path (``shaftfe.static.solve``) and beam path (``shaftfe.beam.model``, ``shaftfe.rotordynamics.beam_rotor``) under
 bearing stiffness 0 and 1e0 … 1e12 N/mm, cross-coupling up to |K12| = K11, 0 … 20 000 rpm,
 fillet radii 0.1 mm … the step height (0.05 mm with ``SHAFTFE_BENCH_FULL=1``: 110k P2 nodes,
 minutes), slender and stubby shafts and a badly shaped element forced into the mesh. For each:
@@ -34,14 +34,14 @@ FULL = os.environ.get("SHAFTFE_BENCH_FULL") == "1"
 
 
 def _steel():
-    from shaftfe.examples import STEEL
+    from shaftfe.model.examples import STEEL
     return STEEL
 
 
 def cylinder(k=K_SEED, k12=0.0, *, L=160.0, D=20.0, bearings=None):
     """Uniform cylinder; two bearings (10 mm wide, 10 mm from the ends) or ``bearings`` =
     list of centres; one part 0.2 kg × 22 mm on 45-55 mm (or L/4 ± 5 for long shafts)."""
-    from shaftfe.variant import Attachment, Bearing, Segment, Variant
+    from shaftfe.model.variant import Attachment, Bearing, Segment, Variant
     K = ((k, k12), (k12, k))
     xs = bearings or (10.0, L - 10.0)
     brg = tuple(Bearing(f"B{i}", "x", x, 10.0, 14_400.0, 10_000.0, K, axial=(i == 0))
@@ -54,13 +54,13 @@ def cylinder(k=K_SEED, k12=0.0, *, L=160.0, D=20.0, bearings=None):
 
 
 def mesh_of(variant, level=LEVEL):
-    from shaftfe import mesh
+    from shaftfe.solid import mesh
     mesh.LEVELS[LEVEL] = LEVEL_CFG
     return mesh.build_mesh(variant, level, 2)
 
 
 def solve(variant, sm, rpms=(RPM,), **opts):
-    from shaftfe.static import StaticOptions, solve_static
+    from shaftfe.static.solve import StaticOptions, solve_static
     return solve_static(variant, list(rpms), StaticOptions(level=sm.level, **opts),
                         shaft_mesh=sm, beam=False)
 
@@ -97,8 +97,8 @@ def split_refined_residual(variant, sm):
     """Prototype of the fix proposed for ``static.solve_model`` (NOT package code): keep u as
     rigid part Φ a + elastic part w (K Φ = 0 analytically, never computed), one refinement
     step with the same Woodbury solve; returns (relres before, after, reactions)."""
-    import shaftfe.static as st
-    from shaftfe import fem
+    import shaftfe.static.solve as st
+    from shaftfe.fe import assembly as fem
     model = st.build_model(variant, st.StaticOptions(level=sm.level), shaft_mesh=sm)
     tol = st.RESIDUAL_TOL
     st.RESIDUAL_TOL = 1.0
@@ -248,7 +248,7 @@ def _stepped(rho: float, *, step_mm: float, bearings_mm: tuple[float, float],
     """Ø17 / Ø22 / Ø17 stepped shaft (40 mm, ``step_mm``, 40 mm), both steps with fillet ``rho``
     on the Ø22 side, bearings (seed stiffness) at ``bearings_mm``, a 0.2 kg part centred on the
     Ø22 step."""
-    from shaftfe.variant import Attachment, Bearing, Segment, Variant
+    from shaftfe.model.variant import Attachment, Bearing, Segment, Variant
     K = ((K_SEED, 0.0), (0.0, K_SEED))
     segs = (Segment("a", 0.0, 40.0, 17.0, rho), Segment("b", 40.0, step_mm, 22.0, rho),
             Segment("c", 40.0 + step_mm, 40.0, 17.0, 0.0))
@@ -260,7 +260,7 @@ def _stepped(rho: float, *, step_mm: float, bearings_mm: tuple[float, float],
 
 
 def fillets(lines):
-    from shaftfe import mesh
+    from shaftfe.solid import mesh
 
     def stepped(rho):
         return _stepped(rho, step_mm=20.0, bearings_mm=(20.0, 80.0), seat_mm=8.0)
@@ -282,7 +282,7 @@ def fillets(lines):
                      f"{t_mesh:.1f} / {t_sol:.1f}", fmt(fil, ".5g"),
                      f"{res.diagnostics['relative_residual']:.1e} / "
                      f"{res.diagnostics['cond_S']:.1e}"])
-    from shaftfe.solid import prepare
+    from shaftfe.solid.plan import prepare
     _, err = attempt(lambda: prepare(stepped(2.6)))
     lines += ["## 3D, fillet radius 0.05 mm … step height (Ø17/Ø22, step 2.5 mm), level coarse",
               "", "Peak filtered von Mises on the fillets (10 000 rpm, springs). A sharper "
@@ -295,7 +295,7 @@ def fillets(lines):
 
 
 def slender_stubby(lines):
-    import shaftfe.mesh as M
+    import shaftfe.solid.mesh as M
     rows = []
     D = 10.0
     E, nu = 210_000.0, 0.3
@@ -345,7 +345,7 @@ def bad_elements(lines):
     sys.path.insert(0, str(ROOT / "tests"))
     import test_stability as ts
 
-    from shaftfe import recovery
+    from shaftfe.fe import recovery
     sm = mesh_of(cylinder())
     base = solve(cylinder(), sm)
     rows = [["none", "-", f"{base.cases[0].peak_von_mises_MPa:.2f}",
@@ -379,7 +379,7 @@ def beam_sweeps(lines):
     sys.path.insert(0, str(ROOT / "tests"))
     import test_stability as ts
 
-    from shaftfe import beam
+    from shaftfe.beam import model as beam
     rig = beam.solve(ts.three_bearing(0.0, rigid=True), RPM)[0]
     Rr = np.array([b.Fy_N for b in rig.bearings])
     rows = []

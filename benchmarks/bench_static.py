@@ -6,7 +6,7 @@ bearing-seat-gear fillet (both next to a bearing ring), and the max radial defle
 
 Reference (a separate refinement study, not the levels themselves): the far field is held
 fixed (k_global 0.6, rings and end fillets 0.9 ρ) and ONLY the hot sectors of the two fillets
-inside the bearing span are refined (``shaftfe.mesh`` hot-spot field, sector ±20°, plateau
+inside the bearing span are refined (``shaftfe.solid.mesh`` hot-spot field, sector ±20°, plateau
 0.4 ρ, grading 0.5; ``REF_BASE``) with k_fillet = 0.3, 0.2, 0.133 (ratio r = 1.5). If
 the three values are monotone with a shrinking step: observed order
 p = ln((q2 − q1)/(q3 − q2)) / ln r, q* = q3 + (q3 − q2)/(r^p − 1), uncertainty = the spread
@@ -51,12 +51,12 @@ _CHILD = r"""
 import json, os, resource, sys, time
 sys.path.insert(0, {root!r})
 level, order, solver, cache, extra = {args!r}
-from shaftfe.mesh import LEVELS
+from shaftfe.solid.mesh import LEVELS
 if extra:
     LEVELS[level] = extra
 load0 = os.getloadavg()[0]
-from shaftfe.static import StaticOptions, solve_static
-from shaftfe.variant import load_variant
+from shaftfe.static.solve import StaticOptions, solve_static
+from shaftfe.model.variant import load_variant
 v = load_variant("x2_57")
 t0 = time.perf_counter()
 r = solve_static(v, [{rpm!r}], StaticOptions(level=level, order=order, solver=solver),
@@ -146,7 +146,7 @@ def _show(r: dict) -> None:
 
 
 def main() -> None:
-    from shaftfe import solvers
+    from shaftfe.fe import solvers
     have = [s for s in ("pardiso", "superlu") if solvers.available()[s]]
     print(f"solvers: {', '.join(have)}; AMG-CG not run (see the module docstring)")
     rows: list[dict] = []
@@ -203,7 +203,7 @@ def _one(rows, level, order=2, cached=False):
 
 
 def write(rows: list[dict]) -> None:
-    from shaftfe.mesh import LEVELS
+    from shaftfe.solid.mesh import LEVELS
     series = [_one(rows, f"ref-k{k:g}") for k in REF_K]
     if any(s is None for s in series):
         print("reference series incomplete: no report")
@@ -260,7 +260,7 @@ def write(rows: list[dict]) -> None:
                  f"{r['e_bsg']:+.1%} | {r['defl']:.5f} | {r['e_defl']:+.2%} | "
                  f"{'yes' if i in front else ''} |")
     L += ["", "Pareto = not dominated in (total time, worst of the two fillet-peak errors); the "
-          "reference runs are not candidates.", "", "## Levels (shaftfe.mesh.LEVELS)", ""]
+          "reference runs are not candidates.", "", "## Levels (shaftfe.solid.mesh.LEVELS)", ""]
     for lv, cfg in LEVELS.items():
         L.append(f"- `{lv}`: " + ", ".join(f"{k} {v:g}" for k, v in cfg.items()))
     L += ["", "## Findings", ""]

@@ -4,7 +4,7 @@
     python docs/tables.py --check    # exit 1 if README.md's tables differ from a fresh run
 
 Each table sits between ``<!-- table:NAME -->`` and ``<!-- /table -->`` in README.md. The
-static solutions come from the cache (``shaftfe.static_cache``) when the model is unchanged, so a
+static solutions come from the cache (``shaftfe.static.cache``) when the model is unchanged, so a
 second run takes seconds; a cold run solves x2_57 twice at the default level (≈ 30 s).
 """
 
@@ -21,13 +21,13 @@ README = ROOT / "README.md"
 def fatigue_x2_57() -> str:
     """x2_57, the seed's fatigue settings on loadspectra/rpm.dat, default mesh, both load cases,
     next to the seed's Ansys result (seed 000 §8.3)."""
-    from shaftfe import static_cache
     from shaftfe.commands.fatigue import SEED, _big, read_spectrum
     from shaftfe.fatigue.field import evaluate
     from shaftfe.fatigue.sn import load_material
+    from shaftfe.model.variant import load_variant
     from shaftfe.report.assemble import DEFAULT_SPECTRUM
-    from shaftfe.static import StaticOptions, load_case_label
-    from shaftfe.variant import load_variant
+    from shaftfe.static import cache as static_cache
+    from shaftfe.static.solve import StaticOptions, load_case_label
 
     v = load_variant("x2_57")
     history = read_spectrum(str(DEFAULT_SPECTRUM), None, None)
@@ -73,7 +73,7 @@ def main(argv: list[str]) -> int:
         print("README.md: result tables are current")
         return 0
     if new != old:
-        from shaftfe.atomic import write_atomic
+        from shaftfe.util.atomic import write_atomic
         write_atomic(README, new)
         print("README.md: tables rewritten")
     else:

@@ -1,4 +1,4 @@
-"""CalculiX / Abaqus deck export (``shaftfe.abaqus``) and result readers (``shaftfe.frd``).
+"""CalculiX / Abaqus deck export (``shaftfe.io.abaqus``) and result readers (``shaftfe.io.frd``).
 
 No ccx needed (CI has none): the deck is parsed back and checked against the model it came
 from; the readers are checked on hand-written fixtures (tests/fixtures/ccx). The side-by-side
@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from shaftfe.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
 
 FIX = Path(__file__).parent / "fixtures" / "ccx"
 STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
@@ -55,13 +55,13 @@ def cache(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def model(cache):
-    from shaftfe.static import StaticOptions, build_model
+    from shaftfe.static.solve import StaticOptions, build_model
     return build_model(cylinder(), StaticOptions(level="coarse"), cache_dir=cache)
 
 
 @pytest.fixture(scope="module")
 def deck(model, tmp_path_factory):
-    from shaftfe import abaqus
+    from shaftfe.io import abaqus
     path = tmp_path_factory.mktemp("deck") / "cyl.inp"
     info = abaqus.write_deck(path, model, steps=("static", "frequency"),
                              print_elements=[0, 1])
@@ -153,7 +153,7 @@ def _check_c3d10(x: np.ndarray, conn: np.ndarray, straight: bool) -> None:
 def test_c3d10_order_on_straight_mesh_with_inverted_tets():
     from skfem import MeshTet1, MeshTet2
 
-    from shaftfe import abaqus
+    from shaftfe.io import abaqus
     m1 = MeshTet1().refined(1)
     t = m1.t.copy()
     t[[1, 2], ::2] = t[[2, 1], ::2]                 # every other tet negatively oriented
@@ -174,7 +174,7 @@ def test_c3d10_order_in_the_written_deck(deck, model):
 # --------------------------------------------------------------------------- loads
 
 def test_cload_sum_is_the_resultant_m_e_omega2(deck, model):
-    from shaftfe.static import REF_RPM
+    from shaftfe.static.solve import REF_RPM
     _info, text = deck
     loads = block(keyword_blocks(text), "*CLOAD")
     F = np.zeros(3)
@@ -200,7 +200,7 @@ def test_cload_sum_is_the_resultant_m_e_omega2(deck, model):
 @pytest.mark.parametrize("K", [K_SEED, ((1.0e4, 2.0e4), (2.0e4, 9.0e4)),
                                ((5.0e3, -1.2e3), (-1.2e3, 7.0e3))])
 def test_spring_split_reproduces_k_with_positive_springs(K):
-    from shaftfe import abaqus
+    from shaftfe.io import abaqus
     a, b, d = K[0][0], K[0][1], K[1][1]
     s = abaqus.spring_split(K)
     # closed-form eigenvalues of [[a, b], [b, d]]
@@ -313,12 +313,12 @@ def test_equations_reproduce_the_rbe3_rows(deck, model):
 @pytest.mark.parametrize("case", ["springs", "rigid", "tilt spring"])
 def test_eliminated_system_gives_our_static_solution(model, cache, case):
     """The deck's support system (equations + springs + holds), solved by elimination the way
-    ccx treats MPCs, reproduces shaftfe.static's Woodbury solution (springs; rigid radial
+    ccx treats MPCs, reproduces shaftfe.static.solve's Woodbury solution (springs; rigid radial
     holds; a tilt spring, which puts SPRINGAs on the rotation reference node)."""
     from scipy.sparse.linalg import spsolve
 
-    from shaftfe import abaqus
-    from shaftfe.static import StaticOptions, build_model, solve_model
+    from shaftfe.io import abaqus
+    from shaftfe.static.solve import StaticOptions, build_model, solve_model
     if case == "rigid":
         model = build_model(cylinder(), StaticOptions(level="coarse", rigid_supports=True),
                             shaft_mesh=model.shaft_mesh)
@@ -342,7 +342,7 @@ def test_eliminated_system_gives_our_static_solution(model, cache, case):
 # --------------------------------------------------------------------------- readers
 
 def test_frd_reader_on_fixture():
-    from shaftfe import frd
+    from shaftfe.io import frd
     r = frd.read_frd(FIX / "small.frd")
     assert r.node_ids.tolist() == [1, 2, 3, 12345]
     assert r.coords[2].tolist() == [0.0, -3.0, 0.0]
@@ -361,7 +361,7 @@ def test_frd_reader_on_fixture():
 
 
 def test_dat_reader_on_fixture():
-    from shaftfe import frd
+    from shaftfe.io import frd
     d = frd.read_dat(FIX / "small.dat")
     g = d.table("forces", "NGROUND")
     assert g.columns == ("node", "fx", "fy", "fz")

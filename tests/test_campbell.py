@@ -1,4 +1,4 @@
-"""Kernels of shaftfe.campbell (model-independent) and the `campbell` / `modal` commands."""
+"""Kernels of shaftfe.rotordynamics.kernels (model-independent) and the `campbell` / `modal` commands."""
 
 from __future__ import annotations
 
@@ -13,8 +13,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from shaftfe import campbell
 from shaftfe.cli import main
+from shaftfe.rotordynamics import kernels as campbell
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -195,9 +195,10 @@ def test_command_module_imports_only_stdlib():
 def test_bearing_damping_forms_and_validation():
     """Bearing damping: one value, one 2×2, or one entry per bearing give the same matrix when
     equivalent; a negative or non-symmetric matrix and a wrong count are InputErrors."""
-    from shaftfe import beam, rotor
+    from shaftfe.beam import model as beam
     from shaftfe.errors import InputError
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
+    from shaftfe.rotordynamics import beam_rotor as rotor
 
     m = beam.build_model(load_variant("x2_57"))
     c1 = rotor.build_rotor(m, bearing_damping=0.5).C

@@ -24,7 +24,7 @@ def test_every_command_loads_every_part_by_default(argv):
 
 def test_the_seed_comparison_is_printed_only_where_it_applies(tmp_path):
     from shaftfe.commands.fatigue import SEED_SETTINGS, seed_applies
-    from shaftfe.variant import GEOMETRY_DIR
+    from shaftfe.model.variant import GEOMETRY_DIR
     rpm = GEOMETRY_DIR.parent / "loadspectra" / "rpm.dat"
     ok = argparse.Namespace(spectrum=str(rpm), **SEED_SETTINGS)
     assert seed_applies(ok, "x2_57")
@@ -50,7 +50,7 @@ def test_stress_envelope_has_no_empty_slice():
     deflection.png bug: 0 MPa in the 28-29 mm slice where the VTU held 126.8 MPa)."""
     from skfem import MeshTet
 
-    from shaftfe.export import stress_envelope
+    from shaftfe.io.vtu import stress_envelope
     m = MeshTet.init_tensor(np.linspace(0.0, 100.0, 4), np.linspace(0, 1, 2),
                             np.linspace(0, 1, 2))                    # 33 mm long elements
     vm = 1.0 + m.p[0]                                                # > 0 everywhere
@@ -64,7 +64,7 @@ def test_stress_envelope_has_no_empty_slice():
 def test_campbell_axis_shows_the_excitation_region_and_the_first_pair():
     from types import SimpleNamespace
 
-    from shaftfe.campbell import campbell_top_hz
+    from shaftfe.rotordynamics.kernels import campbell_top_hz
     rpm = np.linspace(0, 9500, 5)
     freq = np.tile([480.0, 600.0, 1100.0, 11_000.0], (5, 1))
     res = SimpleNamespace(freq_hz=freq, rpm=rpm, orders=(1.0, 2.0))
@@ -76,8 +76,8 @@ def test_campbell_axis_shows_the_excitation_region_and_the_first_pair():
 def test_a_solver_failure_names_the_bearings():
     from types import SimpleNamespace
 
-    from shaftfe.static import _springs
-    from shaftfe.supports import SupportBlock
+    from shaftfe.fe.supports import SupportBlock
+    from shaftfe.static.solve import _springs
     blocks = [SupportBlock("gear_side", ("u_y", "u_z"), np.zeros((2, 3)), 1e-9 * np.eye(2)),
               SupportBlock("free_side", ("u_y", "u_z"), np.zeros((2, 3)),
                            np.array([[35030.0, 8756.0], [8756.0, 35030.0]])),

@@ -31,8 +31,8 @@ RUN_TIME = ("factor_seconds", "solve_seconds", "mesh_seconds", "mesh_from_cache"
             "assembly_seconds", "model_seconds", "recovery_seconds", "total_seconds")
 
 _VARIANT = r"""
-from shaftfe.examples import K_SEED, STEEL
-from shaftfe.variant import Attachment, Bearing, Keyway, Segment, Variant
+from shaftfe.model.examples import K_SEED, STEEL
+from shaftfe.model.variant import Attachment, Bearing, Keyway, Segment, Variant
 
 
 def stepped(*_a, **_k):
@@ -49,7 +49,7 @@ def stepped(*_a, **_k):
 
 _CHILD = _VARIANT + r"""
 import sys
-import shaftfe.variant as V
+import shaftfe.model.variant as V
 V.load_variant = stepped
 from shaftfe.cli import main
 sys.exit(main(["static", "--variant", "stepped", "--level", "coarse", "--rpm", "7000,10000",
@@ -93,7 +93,7 @@ def differing_paths(a, b, path=()) -> list[tuple]:
 def warm_runs(tmp_path_factory):
     """The mesh cache is filled here (in this process, the same key as the CLI's), then two
     CLI processes run on it."""
-    from shaftfe.mesh import build_mesh
+    from shaftfe.solid.mesh import build_mesh
     base = tmp_path_factory.mktemp("det_warm")
     cache = base / "cache"
     ns: dict = {}

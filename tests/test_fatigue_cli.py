@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from shaftfe.cli import main
-from shaftfe.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
 
 ROOT = Path(__file__).resolve().parents[1]
 RPM_DAT = ROOT / "loadspectra" / "rpm.dat"
@@ -185,13 +185,13 @@ def cylinder() -> Variant:
 
 
 def test_static_cache_roundtrip_corruption_and_key(tmp_path):
-    """Reference: the solve itself (``shaftfe.static.solve_static``): a cache hit returns the
+    """Reference: the solve itself (``shaftfe.static.solve.solve_static``): a cache hit returns the
     same arrays bit for bit; its singular-point exclusion and regions equal the static
     analysis's (``diagnostics['n_excluded_nodes']``, the node and excluded counts of every
     region peak); the static case at half the speed is the cached field × 1/4; a corrupt or
     truncated file is recomputed; a changed option changes the key."""
-    from shaftfe.static import StaticOptions, solve_static
-    from shaftfe.static_cache import cache_path, from_result, load_or_solve
+    from shaftfe.static.cache import cache_path, from_result, load_or_solve
+    from shaftfe.static.solve import StaticOptions, solve_static
     v = cylinder()
     o = StaticOptions(level="coarse")
     a = load_or_solve(v, o, tmp_path)

@@ -17,9 +17,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from shaftfe import cachefile
-from shaftfe.atomic import staged_dir
-from shaftfe.examples import four_step_shaft
+from shaftfe.model.examples import four_step_shaft
+from shaftfe.util import cachefile
+from shaftfe.util.atomic import staged_dir
 
 
 def _rewrite_member(path: Path, name: str, array: np.ndarray) -> None:
@@ -53,7 +53,7 @@ def test_cache_entry_checksum_detects_changed_content(tmp_path, capsys):
 
 @pytest.mark.parametrize("damage", ["truncate", "garbage", "content"])
 def test_damaged_mesh_cache_is_rebuilt_with_a_notice(tmp_path, damage, capfd):
-    from shaftfe.mesh import build_mesh, cache_path
+    from shaftfe.solid.mesh import build_mesh, cache_path
     v = four_step_shaft(keyway=False, hex_socket=False)
     first = build_mesh(v, "coarse", order=1, cache_dir=tmp_path)
     path = cache_path(first.key, tmp_path)
@@ -76,7 +76,7 @@ def test_damaged_mesh_cache_is_rebuilt_with_a_notice(tmp_path, damage, capfd):
 def test_damaged_static_cache_is_recomputed_with_a_notice(tmp_path, capfd):
     """The static reference store: a valid entry reads back; one whose stresses were changed
     after writing fails its checksum and is recomputed (None → solve)."""
-    from shaftfe.static_cache import StaticReference, _load, _save
+    from shaftfe.static.cache import StaticReference, _load, _save
     n = 20
     ref = StaticReference(
         variant="v", variant_hash="h", options={}, ref_rpm=10_000.0, mesh_key="m", key="K",
@@ -104,8 +104,8 @@ def _shaftfe(*args, cache=None, **kw):
 
 
 def test_two_processes_building_one_mesh_entry_leave_a_valid_entry(tmp_path):
-    from shaftfe.mesh import build_mesh, cache_path
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
+    from shaftfe.solid.mesh import build_mesh, cache_path
     procs = [_shaftfe("mesh", "--variant", "x2_57", "--level", "coarse", "--order", "1",
                       "--cache-dir", str(tmp_path), "--json") for _ in range(2)]
     outs = [p.communicate(timeout=300) for p in procs]

@@ -10,12 +10,12 @@ import numpy as np
 import pytest
 
 from shaftfe.errors import InputError
-from shaftfe.examples import four_step_shaft
-from shaftfe.variant import Variant
+from shaftfe.model.examples import four_step_shaft
+from shaftfe.model.variant import Variant
 
 
 def make_variant(**kwargs) -> Variant:
-    """The four-step test shaft (``shaftfe.examples``) with a thread end and a washer sharing
+    """The four-step test shaft (``shaftfe.model.examples``) with a thread end and a washer sharing
     the hub's seat: Ø15 (sharp step up) Ø17 (fillet, keyway) Ø22 (fillet, step down) Ø17."""
     kwargs = {"name": "syn", "description": "synthetic test shaft", "washer": True,
               "thread_end": True, **kwargs}
@@ -29,7 +29,7 @@ def cache(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def coarse(cache):
-    from shaftfe.mesh import build_mesh
+    from shaftfe.solid.mesh import build_mesh
     return build_mesh(make_variant(), "coarse", cache_dir=cache)
 
 
@@ -45,7 +45,7 @@ def _integrate_one(mesh, facets=None) -> float:
 
 def test_groups_exist_and_match_the_solid(coarse):
     """Every named face group of the solid exists, is non-empty, and 'shaft' holds all tets."""
-    from shaftfe.mesh import expected_areas
+    from shaftfe.solid.mesh import expected_areas
     m = coarse.mesh
     assert set(m.boundaries) == set(expected_areas(make_variant()))
     assert set(coarse.groups) == set(m.boundaries) | {"shaft"}
@@ -60,7 +60,7 @@ def test_group_areas_coarse(coarse):
     ``expected_areas``: cylinder 2πRL minus the keyway opening ∫∫ dx ds/√(1−s²/R²), fillet
     ring π²ρ(r+ρ) − 2πρ² (Pappus), annulus π(R²−r²), keyway walls, hex πR² − (√3/2)s² ...;
     within 0.5 %."""
-    from shaftfe.mesh import expected_areas
+    from shaftfe.solid.mesh import expected_areas
     exp = expected_areas(make_variant())
     for g, f in coarse.mesh.boundaries.items():
         a = _integrate_one(coarse.mesh, f)
@@ -150,7 +150,7 @@ def test_quality_and_positive_jacobians(coarse):
     from skfem.quadrature import get_quadrature
     from skfem.refdom import RefTet
 
-    from shaftfe.mesh import Q_CURVED
+    from shaftfe.solid.mesh import Q_CURVED
     assert coarse.min_quality > Q_CURVED
     X, _ = get_quadrature(RefTet, 4)
     det = coarse.mesh._mapping().detDF(X)
@@ -166,7 +166,7 @@ def test_chamfered_ring_contact_band_must_clear_the_fillet():
     import dataclasses
     import math
 
-    from shaftfe.solid import expected_areas, prepare
+    from shaftfe.solid.plan import expected_areas, prepare
     v = make_variant(bearing=(74.0, 8.0))           # ring [70, 78] on Ø17 against the step
     v = dataclasses.replace(v, bearings=(dataclasses.replace(v.bearings[0], chamfer_mm=0.5),))
     with pytest.raises(InputError) as exc:
@@ -187,7 +187,7 @@ def test_chamfered_ring_contact_band_must_clear_the_fillet():
 ])
 def test_bad_variant_fails_before_gmsh(monkeypatch, kwargs, field):
     """A bad variant raises InputError naming the field, with gmsh made unimportable."""
-    from shaftfe.mesh import build_mesh
+    from shaftfe.solid.mesh import build_mesh
     monkeypatch.setitem(sys.modules, "gmsh", None)
     with pytest.raises(InputError) as exc:
         build_mesh(make_variant(**kwargs), "coarse", use_cache=False)
@@ -197,7 +197,7 @@ def test_bad_variant_fails_before_gmsh(monkeypatch, kwargs, field):
 
 def test_bad_level_and_order():
     """Unknown level / order → InputError listing the allowed values."""
-    from shaftfe.mesh import build_mesh
+    from shaftfe.solid.mesh import build_mesh
     with pytest.raises(InputError, match="coarse"):
         build_mesh(make_variant(), "medium")
     with pytest.raises(InputError, match=r"1 \| 2"):
@@ -206,7 +206,7 @@ def test_bad_level_and_order():
 
 def test_cache_hit_returns_identical_mesh(coarse, cache):
     """A second call loads the npz (from_cache) and returns the same arrays and groups."""
-    from shaftfe.mesh import build_mesh
+    from shaftfe.solid.mesh import build_mesh
     again = build_mesh(make_variant(), "coarse", cache_dir=cache)
     assert not coarse.from_cache and again.from_cache
     assert again.key == coarse.key
@@ -220,8 +220,8 @@ def test_cache_hit_returns_identical_mesh(coarse, cache):
 
 def test_key_depends_on_geometry_not_on_name():
     """The cache key changes with the seat angle and the level, not with the variant name."""
-    from shaftfe.mesh import mesh_key
-    from shaftfe.solid import prepare
+    from shaftfe.solid.mesh import mesh_key
+    from shaftfe.solid.plan import prepare
     k = mesh_key(prepare(make_variant()), "coarse", 2, "4.15")
     assert k == mesh_key(prepare(make_variant(name="other")), "coarse", 2, "4.15")
     assert k != mesh_key(prepare(make_variant(cw_angle=31.0)), "coarse", 2, "4.15")
@@ -232,8 +232,8 @@ def test_key_depends_on_geometry_not_on_name():
 
 def test_corrupt_cache_is_rebuilt(tmp_path):
     """A truncated / garbage cache file is rebuilt (from_cache False) and replaced."""
-    from shaftfe.mesh import build_mesh, cache_path, mesh_key
-    from shaftfe.solid import prepare
+    from shaftfe.solid.mesh import build_mesh, cache_path, mesh_key
+    from shaftfe.solid.plan import prepare
     v = make_variant(keyway=False, hex_socket=False)
     first = build_mesh(v, "coarse", order=1, cache_dir=tmp_path)
     path = cache_path(first.key, tmp_path)
@@ -248,13 +248,13 @@ def test_corrupt_cache_is_rebuilt(tmp_path):
 
 
 def _gmsh_version():
-    from shaftfe.mesh import _gmsh_version
+    from shaftfe.solid.mesh import _gmsh_version
     return _gmsh_version()
 
 
 def test_cache_dir_from_environment(monkeypatch, tmp_path):
     """Without cache_dir the cache goes to $SHAFTFE_CACHE_DIR."""
-    from shaftfe.mesh import cache_path
+    from shaftfe.solid.mesh import cache_path
     monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(tmp_path))
     assert cache_path("ab" * 32).parent == tmp_path
 
@@ -262,7 +262,7 @@ def test_cache_dir_from_environment(monkeypatch, tmp_path):
 def test_meshing_is_deterministic():
     """Two cold builds of the same input IN ONE PROCESS give the same mesh bit for bit (1
     thread); across processes see the next test."""
-    from shaftfe.mesh import build_mesh
+    from shaftfe.solid.mesh import build_mesh
     v = make_variant(hex_socket=False)
     a = build_mesh(v, "coarse", use_cache=False)
     b = build_mesh(v, "coarse", use_cache=False)
@@ -273,8 +273,8 @@ def test_meshing_is_deterministic():
 
 
 _CHILD_BUILD = (
-    "from shaftfe.examples import four_step_shaft\n"
-    "from shaftfe.mesh import build_mesh\n"
+    "from shaftfe.model.examples import four_step_shaft\n"
+    "from shaftfe.solid.mesh import build_mesh\n"
     "v = four_step_shaft(name='syn', description='synthetic test shaft', washer=True, "
     "thread_end=True, hex_socket=False)\n"
     "build_mesh(v, 'coarse')\n")
@@ -284,7 +284,7 @@ def test_cold_builds_are_identical_across_processes(tmp_path):
     """Two cold builds of the same P2 mesh in two separate processes, each with its own empty
     cache ($SHAFTFE_CACHE_DIR), write the same node coordinates, connectivity and face groups
     bit for bit. Reference: the exact equality of the arrays (no tolerance). Before
-    ``shaftfe.mesh._untangle`` replaced Gmsh's HighOrder optimiser this failed: ~40 % of the
+    ``shaftfe.solid.mesh._untangle`` replaced Gmsh's HighOrder optimiser this failed: ~40 % of the
     curved mid-side nodes moved from one process to the next (3477 of 9020 nodes, up to
     0.027 mm, issue 3 note), because the optimiser's result depends on pointer order (it was
     reproducible with address-space randomisation off, ``setarch -R``)."""
@@ -318,7 +318,7 @@ def test_order_one_volume(tmp_path):
     of a regular 7-gon, 1 − 7 sin(2π/7)/(2π) = 12.9 % (coarse: h = D/2 → ≥ 7 chords around)."""
     from skfem import MeshTet1
 
-    from shaftfe.mesh import analytic_volume, build_mesh
+    from shaftfe.solid.mesh import analytic_volume, build_mesh
     v = make_variant(hex_socket=False)
     sm = build_mesh(v, "coarse", order=1, cache_dir=tmp_path)
     m = sm.mesh
@@ -339,16 +339,16 @@ def test_cli_mesh_json_and_vtu(monkeypatch, tmp_path, capsys):
     count equals the element count and whose triangles carry the group ids."""
     import meshio
 
-    import shaftfe.variant
+    import shaftfe.model.variant
     from shaftfe.cli import main
-    monkeypatch.setattr(shaftfe.variant, "load_variant", lambda name: make_variant(name=name),
+    monkeypatch.setattr(shaftfe.model.variant, "load_variant", lambda name: make_variant(name=name),
                         raising=False)
     out = tmp_path / "syn.vtu"
     rc = main(["mesh", "--variant", "syn", "--level", "coarse", "--cache-dir",
                str(tmp_path / "c"), "--out", str(out), "--json"])
     assert rc == 0
     s = json.loads(capsys.readouterr().out)
-    from shaftfe.mesh import Q_CURVED
+    from shaftfe.solid.mesh import Q_CURVED
     assert s["from_cache"] is False and s["nodes"] > 0 and s["min_quality_minSICN"] > Q_CURVED
     m = meshio.read(out)
     assert m.cells_dict["tetra10"].shape[0] == s["elements"]
@@ -363,9 +363,9 @@ def test_cli_mesh_json_and_vtu(monkeypatch, tmp_path, capsys):
 
 def test_cli_bad_out_suffix_exit_2(monkeypatch, capsys):
     """A wrong --out suffix is one error line and exit code 2 (before any meshing)."""
-    import shaftfe.variant
+    import shaftfe.model.variant
     from shaftfe.cli import main
-    monkeypatch.setattr(shaftfe.variant, "load_variant", lambda name: make_variant(name=name),
+    monkeypatch.setattr(shaftfe.model.variant, "load_variant", lambda name: make_variant(name=name),
                         raising=False)
     assert main(["mesh", "--variant", "syn", "--out", "x.stl"]) == 2
     err = capsys.readouterr().err
@@ -373,12 +373,12 @@ def test_cli_bad_out_suffix_exit_2(monkeypatch, capsys):
 
 
 def test_exact_formulas_against_quadrature():
-    """The closed forms in shaftfe.solid vs independent 2D quadrature: the fillet ring volume
+    """The closed forms in shaftfe.solid.plan vs independent 2D quadrature: the fillet ring volume
     ∫∫ 2πr dA over the spandrel, its area ∫ 2πr ds over the arc, and the keyway volume
     ∫∫ (√(R²−s²) − (R−t)) over the stadium (scipy dblquad)."""
     from scipy.integrate import dblquad, quad
 
-    from shaftfe.solid import Fillet, Slot, fillet_area, fillet_volume, slot_volume
+    from shaftfe.solid.plan import Fillet, Slot, fillet_area, fillet_volume, slot_volume
     f = Fillet("b", 50.0, 8.5, 11.0, 1.5, -1)
     rho, r0 = f.rho, f.r_small
     # spandrel: u ∈ [0, ρ] from the shoulder, v ∈ [0, ρ − √(ρ² − (ρ−u)²)] above the cylinder

@@ -219,7 +219,7 @@ class _Tty(io.StringIO):
 
 
 def test_progress_shows_stages_on_a_terminal_only():
-    from shaftfe.progress import Progress
+    from shaftfe.util.progress import Progress
 
     tty = _Tty()
     prog = Progress(["a", "b"], stream=tty)

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from shaftfe import solvers
+from shaftfe.fe import solvers
 
 
 def _spd(n=300, seed=0):

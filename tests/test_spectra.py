@@ -1,4 +1,4 @@
-"""rpm-history readers (shaftfe.spectra) and the rebuilt seed block loadspectra/rpm.dat."""
+"""rpm-history readers (shaftfe.fatigue.history) and the rebuilt seed block loadspectra/rpm.dat."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from shaftfe.errors import InputError
-from shaftfe.spectra import RPM_CEILING, LoadHistory, from_rpm, read_history
+from shaftfe.fatigue.history import RPM_CEILING, LoadHistory, from_rpm, read_history
 
 ROOT = Path(__file__).resolve().parents[1]
 RPM_DAT = ROOT / "loadspectra" / "rpm.dat"

@@ -7,7 +7,7 @@ relative residual (≤ 1e-8) and a condition estimate.
 3D path: a uniform Ø20 × 160 mm steel cylinder on two bearing seats (x = 5-15 and 145-155 mm)
 with one part on x = 45-55 mm, meshed once at a test-only level (k_global = 0.35: 1.8k P2
 nodes). Two bearings make the shaft statically determinate, so the exact references are
-statics and the spring law (below). Beam path: the same shafts in ``shaftfe.beam`` / ``rotor``
+statics and the spring law (below). Beam path: the same shafts in ``shaftfe.beam.model`` / ``rotor``
 plus a three-bearing shaft (statically indeterminate). The longer sweep with tables is
 ``benchmarks/bench_stability.py`` (reports/benchmarks/stability.md).
 """
@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 
 from shaftfe.errors import InputError, SolverError
-from shaftfe.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
 
 STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
 K_SEED = 35_030.0
@@ -53,14 +53,14 @@ def one_line(exc: BaseException) -> str:
 
 @pytest.fixture(scope="module")
 def mesh3d(tmp_path_factory):
-    from shaftfe import mesh
+    from shaftfe.solid import mesh
     with pytest.MonkeyPatch.context() as mp:
         mp.setitem(mesh.LEVELS, LEVEL, LEVEL_CFG)
         return mesh.build_mesh(cylinder(), LEVEL, 2, cache_dir=tmp_path_factory.mktemp("stab"))
 
 
 def solve3d(variant, sm, rpms=(RPM,), **opts):
-    from shaftfe.static import StaticOptions, solve_static
+    from shaftfe.static.solve import StaticOptions, solve_static
     return solve_static(variant, list(rpms), StaticOptions(level=LEVEL, **opts), shaft_mesh=sm,
                         beam=False)
 
@@ -68,7 +68,7 @@ def solve3d(variant, sm, rpms=(RPM,), **opts):
 def statics_reactions(variant, sm):
     """Exact reactions of the two-bearing shaft from the assembled load vector (force and
     moment balance about each remote point; no FE solve involved)."""
-    from shaftfe.static import StaticOptions, build_model
+    from shaftfe.static.solve import StaticOptions, build_model
     model = build_model(variant, StaticOptions(level=LEVEL), shaft_mesh=sm)
     f = model.f.reshape(-1, 3)
     x, y = sm.mesh.doflocs[0], sm.mesh.doflocs[1]
@@ -157,7 +157,7 @@ def three_bearing_cylinder(k: float = K_SEED) -> Variant:
 
 @pytest.fixture(scope="module")
 def mesh3d_three(tmp_path_factory):
-    from shaftfe import mesh
+    from shaftfe.solid import mesh
     with pytest.MonkeyPatch.context() as mp:
         mp.setitem(mesh.LEVELS, LEVEL, LEVEL_CFG)
         return mesh.build_mesh(three_bearing_cylinder(), LEVEL, 2,
@@ -255,7 +255,7 @@ def test_3d_slender_and_stubby_shafts(tmp_path, L_over_D):
     by symmetry). Slender (L/D = 40, 400 mm): mid-span deflection within 0.5 % of Timoshenko
     δ = F s³/(48 E I) + F s/(4 κ G A) (Timoshenko & Gere; the load spread over a 10 mm patch
     and the seat coupling move it by < 0.1 %, measured −0.06 %)."""
-    from shaftfe import mesh
+    from shaftfe.solid import mesh
     D = 10.0
     L = L_over_D * D
     w = min(10.0, 0.1 * L)
@@ -315,7 +315,7 @@ def _element_near(m, x0: float) -> int:
 def _with_doflocs(sm, doflocs):
     from skfem import MeshTet2
 
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
     m = sm.mesh
     nm = MeshTet2(doflocs, m.t, _boundaries=m.boundaries, _subdomains=m.subdomains)
     nm._cached_mapping = fem.robust_mapping(nm)
@@ -326,7 +326,7 @@ def _distort(sm, how: str):
     """A copy of the mesh with one interior element near x = 100 made bad: "tangled" (a
     mid-side node pushed past the opposite corner: det J changes sign inside the element) or
     "inverted" (a corner pushed through the opposite face, its edge mid-nodes moved along)."""
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
     m = sm.mesh
     e = _element_near(m, 100.0)
     nodes = fem.element_nodes(m)[:, e]
@@ -357,7 +357,7 @@ def _edge_of(r) -> tuple[int, int]:
 
 def _min_jacobian(m, e: int) -> float:
     """Smallest det J of element e over a 5×5×5 barycentric grid (independent of fem)."""
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
     el = fem.scalar_element(m)
     g = np.linspace(0, 1, 6)
     pts = np.array([(a, b, c) for a in g for b in g for c in g if a + b + c <= 1]).T
@@ -390,7 +390,7 @@ def test_3d_pristine_element_has_a_positive_jacobian(mesh3d):
 def test_3d_fillet_larger_than_the_step_is_a_one_line_error():
     """Fillet radius limit (the step height, 2.5 mm for Ø17/Ø22): 2.6 mm is refused naming the
     segment field; the largest allowed and 0.05 mm pass the geometry check."""
-    from shaftfe.solid import prepare
+    from shaftfe.solid.plan import prepare
 
     def stepped(rho):
         segs = (Segment("a", 0.0, 40.0, 17.0, rho), Segment("b", 40.0, 30.0, 22.0, rho),
@@ -411,7 +411,7 @@ def test_3d_fillet_larger_than_the_step_is_a_one_line_error():
 def three_bearing(k: float, *, rigid: bool = False):
     """Two equal spans (2 × 200 mm) of a Ø20 shaft on three bearings, point load P at the
     middle of span 1 (statically indeterminate)."""
-    from shaftfe import beam
+    from shaftfe.beam import model as beam
     K = ((k, 0.0), (0.0, k))
     segs = (Segment("s", 0.0, 400.0, 20.0, 0.0),)
     brg = tuple(Bearing(n, "x", x, 1.0, 1e4, 1e4, K, axial=(n == "A"))
@@ -434,7 +434,7 @@ def _roundoff_terms(model, sol, rows):
     dof j changes the functional i by G_ij, G = rows[:, free] K⁻¹ (its influence line), so
     |δQ| ≤ ω |G| (|K||u| + |F|): the componentwise (Skeel) form of eps·cond, much sharper
     than cond₁(K)·eps where the large entries of K⁻¹ do not reach the functional."""
-    from shaftfe import beam
+    from shaftfe.beam import model as beam
     K = beam.assemble_stiffness(model)
     Ks, fixed = beam.support_stiffness(model)
     free = np.setdiff1d(np.arange(K.shape[0]), fixed)
@@ -455,7 +455,7 @@ def reaction_roundoff_bound(model, sol) -> np.ndarray:
     ``_roundoff_terms`` with the rows of K_el at the bearings (the reactions' influence lines),
     plus the rounding of the recovery R = K_el u − F, ≤ n eps (|K_el||u| + |F|) for a sum of
     n terms. Here ≈ 2e8 eps = 4e-8 relative, against cond₁(K)·eps ≈ 2e9 eps = 4e-7."""
-    from shaftfe import beam
+    from shaftfe.beam import model as beam
     K = beam.assemble_stiffness(model)
     h = np.array([beam.NDOF * s.node + beam.UY for s in model.supports])
     solve, rec, free = _roundoff_terms(model, sol, K[h])
@@ -473,7 +473,7 @@ def test_beam_three_bearings_rigid_limit_is_the_textbook_continuous_beam():
     What is left is round-off, bounded by ``reaction_roundoff_bound`` (≈ 4e-8 relative;
     measured 4.7e-10 on OpenBLAS SkylakeX kernels, 1.9e-9 on Haswell/Prescott: the old fixed
     rtol 1e-9 failed there)."""
-    from shaftfe import beam
+    from shaftfe.beam import model as beam
     m = three_bearing(0.0, rigid=True)
     sol = beam.solve_unit(m)
     res = beam.result_at(sol, RPM)
@@ -497,7 +497,7 @@ def test_beam_stiffness_sweep_converges_to_the_rigid_limit_as_one_over_k():
 
     Round-off floor: ``reaction_roundoff_bound`` of the spring solve plus that of the rigid
     reference, ≈ 4e-8 of max |R| (measured 1e-9 … 2e-9 at 1e12 on three OpenBLAS kernels)."""
-    from shaftfe import beam
+    from shaftfe.beam import model as beam
     m_rig = three_bearing(0.0, rigid=True)
     s_rig = beam.solve_unit(m_rig)
     rig = np.array([b.Fy_N for b in beam.result_at(s_rig, RPM).bearings])
@@ -538,7 +538,7 @@ def test_beam_condition_estimate_matches_the_dense_condition_number():
     """Hager's estimate (``onenormest``) against numpy's exact 1-norm condition number of the
     same reduced stiffness, for a soft and a stiff bearing (an estimate is a lower bound,
     usually within a factor 3)."""
-    from shaftfe import beam
+    from shaftfe.beam import model as beam
     for k in (1.0, 1e12):
         m = three_bearing(k)
         sol = beam.solve_unit(m)
@@ -559,7 +559,7 @@ def test_beam_condition_estimate_matches_the_dense_condition_number():
 def test_beam_zero_stiffness_names_the_free_motion():
     """K = 0 at both bearings / at one bearing (tilt then free): SolverError, one line, naming
     the unrestrained motions."""
-    from shaftfe import beam
+    from shaftfe.beam import model as beam
     with pytest.raises(SolverError) as ei:
         beam.analyse(cylinder(0.0), RPM)
     assert "translation in y" in one_line(ei.value)
@@ -581,7 +581,7 @@ def test_beam_slender_and_stubby_match_timoshenko(L_over_D):
     ``_roundoff_terms`` for the mid-span deflection (6e-7 at L/D = 200, cond₁ 3e11; measured
     2.4e-9 on OpenBLAS Prescott kernels, 6e-10 on SkylakeX: the old fixed rel 1e-9 failed on
     Prescott)."""
-    from shaftfe import beam
+    from shaftfe.beam import model as beam
     D = 10.0
     L = L_over_D * D
     segs = (Segment("s", 0.0, L, D, 0.0),)
@@ -611,7 +611,7 @@ def test_beam_slender_and_stubby_match_timoshenko(L_over_D):
 
 def test_beam_speed_0_and_20000_rpm():
     """0 rpm: zero loads, infinite life; 20 000 rpm: 4 × the 10 000 rpm reactions."""
-    from shaftfe import beam
+    from shaftfe.beam import model as beam
     r0, r1, r2 = beam.analyse(cylinder(), [0.0, 10_000.0, 20_000.0])
     assert all(b.F_N == 0.0 and b.L10h == math.inf for b in r0.bearings)
     for b1, b2 in zip(r1.bearings, r2.bearings, strict=True):
@@ -623,7 +623,7 @@ def test_beam_speed_0_and_20000_rpm():
 def test_beam_fillet_sweep_kt_finite_and_decreasing():
     """ρ from 0.05 mm to the step height (2.5 mm, Ø22/Ø17): Kt finite, > 1 and falling with
     r/d (Peterson's charts: a sharper fillet concentrates more), peak stress finite."""
-    from shaftfe import beam
+    from shaftfe.beam import model as beam
     kts = []
     for rho in (0.05, 0.1, 0.25, 0.5, 1.0, 2.0, 2.5):
         segs = (Segment("a", 0.0, 40.0, 17.0, rho), Segment("b", 40.0, 30.0, 22.0, rho),
@@ -642,7 +642,8 @@ def test_beam_fillet_sweep_kt_finite_and_decreasing():
 # --------------------------------------------------------------------------- rotor (beam)
 
 def _bar_rotor(k: float, rigid: bool = False):
-    from shaftfe import beam, rotor
+    from shaftfe.beam import model as beam
+    from shaftfe.rotordynamics import beam_rotor as rotor
     L, D = 400.0, 10.0
     K = ((k, 0.0), (0.0, k))
     segs = (Segment("s", 0.0, L, D, 0.0),)
@@ -663,13 +664,13 @@ def _rayleigh_pinned(n: int, L: float = 400.0, D: float = 10.0) -> float:
 
 
 def _f1(k: float, rigid: bool = False) -> float:
-    from shaftfe import rotor
+    from shaftfe.rotordynamics import beam_rotor as rotor
     return float(rotor.modal(_bar_rotor(k, rigid), 0.0, 4).freq_hz[0, 0])
 
 
 def test_rotor_rigid_limit_is_the_pinned_rayleigh_beam():
     """Rigid supports: f1, f2 within 1e-6 of the closed form (FE discretisation ~1e-8)."""
-    from shaftfe import rotor
+    from shaftfe.rotordynamics import beam_rotor as rotor
     f = rotor.modal(_bar_rotor(0.0, True), 0.0, 4).freq_hz[0]
     # discretisation (cubic Hermite, error ∝ (n h/L)⁴): measured 1.5e-9 (f1), 2.6e-8 (f2) on
     # three OpenBLAS kernels; 1e-6 leaves 40× for the mode-2 error

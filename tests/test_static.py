@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from shaftfe.errors import InputError, SolverError
-from shaftfe.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
 
 STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
 K_ISO = ((35_030.0, 0.0), (0.0, 35_030.0))
@@ -33,7 +33,7 @@ def statics_bearing_loads(v, cache, level="default", **opts) -> np.ndarray:
     """Bearing loads (2, 2) [(Fy, Fz) at L, at R] = −reactions, from the applied nodal load
     vector by force and moment equilibrium of a beam on two supports without moment restraint
     (tilt free): the exact statics of the discretised load, independent of the solve."""
-    from shaftfe import static
+    from shaftfe.static import solve as static
     model = static.build_model(v, static.StaticOptions(level=level, **opts), cache_dir=cache)
     f = model.f.reshape(-1, 3)
     x, y, z = model.shaft_mesh.mesh.doflocs
@@ -51,7 +51,7 @@ def cache(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def base(cache):
-    from shaftfe.static import StaticOptions, solve_static
+    from shaftfe.static.solve import StaticOptions, solve_static
     return solve_static(cylinder(), [5000.0, 10000.0], StaticOptions(level="default"),
                         cache_dir=cache, beam=False)
 
@@ -62,8 +62,8 @@ def base(cache):
 def test_vectorised_stiffness_equals_scikit_fem(cache, order):
     """The einsum assembly equals scikit-fem's linear_elasticity form (same weak form) to
     round-off, and annihilates the six rigid-body modes (K R = 0, exact for any mesh)."""
-    from shaftfe import fem
-    from shaftfe.mesh import build_mesh
+    from shaftfe.fe import assembly as fem
+    from shaftfe.solid.mesh import build_mesh
     m = build_mesh(cylinder(), "coarse", order=order, cache_dir=cache).mesh
     K = fem.elasticity_stiffness(m, STEEL.E_MPa, STEEL.nu)
     K2 = fem.elasticity_stiffness_skfem(m, STEEL.E_MPa, STEEL.nu)
@@ -81,8 +81,8 @@ def test_rbe3_rows_reproduce_rigid_motions_and_area_means(cache):
     (1/A)∫u_y dA: for u_y = x² over x ∈ [5, 15] that is (15³ − 5³)/30 (exact integral). The
     tolerance 1e-3 covers the P2 facets' approximation of the cylinder (area error ~1e-4),
     which makes the area weights slightly non-uniform."""
-    from shaftfe import fem
-    from shaftfe.mesh import build_mesh
+    from shaftfe.fe import assembly as fem
+    from shaftfe.solid.mesh import build_mesh
     m = build_mesh(cylinder(), "default", cache_dir=cache).mesh
     G = fem.rigid_rows(m, m.boundaries["bearing:L"], (10.0, 0.0, 0.0))
     # exact arithmetic (a least-squares fit reproduces what it fits; measured 1e-15)
@@ -98,8 +98,8 @@ def test_rbe3_rows_reproduce_rigid_motions_and_area_means(cache):
 def test_surface_load_net_force_and_zero_torque(cache, dist):
     """Pressure on the pressed half seat: net force exactly F along e, nothing across it and no
     torque about the axis (statics of the half-cylinder: ∫ −p n dA ∥ e by symmetry)."""
-    from shaftfe import fem
-    from shaftfe.mesh import build_mesh
+    from shaftfe.fe import assembly as fem
+    from shaftfe.solid.mesh import build_mesh
     v = cylinder(angle=37.0)
     m = build_mesh(v, "default", cache_dir=cache).mesh
     e = np.array([0.0, math.cos(math.radians(37.0)), math.sin(math.radians(37.0))])
@@ -125,8 +125,8 @@ def test_recovery_patch_test(cache, order):
     elements, so the recovered nodal stress must be the exact constant σ_xx = E ε (lateral
     contraction −ν ε free), τ_xy = G γ, everywhere, surface nodes included. (A quadratic field
     such as pure bending is NOT exact on curved P2 tets: the validation tests cover it.)"""
-    from shaftfe import recovery
-    from shaftfe.mesh import build_mesh
+    from shaftfe.fe import recovery
+    from shaftfe.solid.mesh import build_mesh
     m = build_mesh(cylinder(), "coarse", order=order, cache_dir=cache).mesh
     x, y, z = m.doflocs
     eps, gam, nu, E = 1e-3, 4e-4, STEEL.nu, STEEL.E_MPa
@@ -145,7 +145,7 @@ def test_recovery_patch_test(cache, order):
 def test_von_mises_and_principal_kernels():
     """von Mises of uniaxial σ is |σ|, of pure shear τ is √3 τ; principal stresses are the
     eigenvalues (hand-computed: [[2,1,0],[1,2,0],[0,0,5]] → 5, 3, 1)."""
-    from shaftfe.recovery import principal, von_mises
+    from shaftfe.fe.recovery import principal, von_mises
     s = np.array([[7.0, 0.0, 0.0], [0, 0, 0], [0, 0, 0], [0, 4.0, 0], [0, 0, 0], [0, 0, 0]])
     # exact arithmetic (round-off only, O(1) values)
     np.testing.assert_allclose(von_mises(s), [7.0, math.sqrt(3) * 4.0, 0.0], atol=1e-12)
@@ -183,8 +183,8 @@ def test_run_time_entries_are_kept_out_of_the_diagnostics(base):
 def test_static_cache_keeps_the_relative_residual(base, cache):
     """The static reference that ``shaftfe fatigue`` reuses carries the solve's relative
     residual, through the disk cache too (reference: the solve's own diagnostics)."""
-    from shaftfe import static_cache
-    from shaftfe.static import StaticOptions
+    from shaftfe.static import cache as static_cache
+    from shaftfe.static.solve import StaticOptions
     opts = StaticOptions(level="default")
     ref = static_cache.store(cylinder(), opts, base, cache)
     assert ref.relative_residual == base.diagnostics["relative_residual"] <= 1e-8   # contract
@@ -195,8 +195,8 @@ def test_static_cache_keeps_the_relative_residual(base, cache):
 def test_surface_load_cache_is_bit_identical(cache):
     """Parts sharing a seat share its facet basis within one model build: the cached load
     vectors equal the uncached ones bit for bit (uniform and cosine, two directions)."""
-    from shaftfe import fem
-    from shaftfe.mesh import build_mesh
+    from shaftfe.fe import assembly as fem
+    from shaftfe.solid.mesh import build_mesh
     m = build_mesh(cylinder(), "default", cache_dir=cache).mesh
     facets = m.boundaries["load:w:pressed"]
     shared: dict = {}
@@ -242,7 +242,7 @@ def test_rotating_the_load_rotates_the_response(cache):
     """Isotropic springs: turning the eccentricity by 37° turns the reactions (statics of the
     load, to 1e-9) and the deflection vector at the seat (axisymmetric structure; the two
     meshes differ — each is split on its own load plane — so magnitude to 0.5 %, angle 0.3°)."""
-    from shaftfe.static import StaticOptions, solve_static
+    from shaftfe.static.solve import StaticOptions, solve_static
     v = cylinder(angle=37.0)
     r0 = solve_static(cylinder(), [10000.0], StaticOptions(level="fine"), cache_dir=cache,
                       beam=False)
@@ -269,7 +269,7 @@ def test_coupled_spring_gives_closed_form_remote_displacement(cache):
     """K12 ≠ 0: the remote point (measured from the displacement field through the RBE3 rows)
     moves by K_b⁻¹ P, P the bearing load from statics — including the component across the
     load that K12 creates."""
-    from shaftfe.static import StaticOptions, solve_static
+    from shaftfe.static.solve import StaticOptions, solve_static
     Kc = ((35_030.0, 8_756.0), (8_756.0, 35_030.0))
     v = cylinder(K_left=Kc, K_right=Kc)
     r = solve_static(v, [10000.0], StaticOptions(level="default"), cache_dir=cache, beam=False)
@@ -284,7 +284,7 @@ def test_coupled_spring_gives_closed_form_remote_displacement(cache):
 
 def test_rigid_supports_hold_remote_points(cache):
     """--rigid-supports: the remote points do not move; the reactions are the statics."""
-    from shaftfe.static import StaticOptions, solve_static
+    from shaftfe.static.solve import StaticOptions, solve_static
     r = solve_static(cylinder(), [10000.0], StaticOptions(level="default", rigid_supports=True),
                      cache_dir=cache, beam=False)
     P = statics_bearing_loads(cylinder(), cache, rigid_supports=True)
@@ -305,7 +305,7 @@ def test_rigid_supports_hold_remote_points(cache):
 def test_missing_support_is_named(cache, what, expect):
     """A support set that leaves a rigid motion free raises SolverError naming it, before any
     solver can return garbage (FINDINGS pitfall 8)."""
-    from shaftfe.static import StaticOptions, solve_static
+    from shaftfe.static.solve import StaticOptions, solve_static
     v, opts = cylinder(), StaticOptions(level="default")
     if what == "axial":
         v = cylinder(axial=False)
@@ -321,7 +321,7 @@ def test_single_bearing_with_tilt_spring(cache):
     """One bearing with a tilt stiffness k_t carries the part as a cantilever: by statics the
     remote point takes the force F (u_y = F/k) and the moment F·(x_load − x_b) about z
     (θ_z = F (x_load − x_b) / k_t, the load acting at its seat centroid)."""
-    from shaftfe import static
+    from shaftfe.static import solve as static
     k_t = 5e7
     v = cylinder()
     v = dataclasses.replace(v, bearings=(dataclasses.replace(
@@ -345,8 +345,8 @@ def test_exclusion_band(cache):
     still the element layer); the unfiltered peak is unchanged."""
     from scipy.spatial import cKDTree
 
-    from shaftfe import recovery
-    from shaftfe.mesh import build_mesh
+    from shaftfe.fe import recovery
+    from shaftfe.solid.mesh import build_mesh
     m = build_mesh(cylinder(), "default", cache_dir=cache).mesh
     patches = [np.asarray(f) for g, f in m.boundaries.items()
                if g.startswith("bearing:") or g.endswith(":pressed")]
@@ -361,7 +361,7 @@ def test_exclusion_band(cache):
 
 def test_bad_spring_matrix_is_input_error(cache):
     """A non-positive-definite 2×2 bearing stiffness is rejected as input."""
-    from shaftfe.static import StaticOptions, solve_static
+    from shaftfe.static.solve import StaticOptions, solve_static
     bad = ((1000.0, 2000.0), (2000.0, 1000.0))
     with pytest.raises(InputError, match="K_N_per_mm"):
         solve_static(cylinder(K_left=bad), 10000.0, StaticOptions(level="default"),
@@ -371,7 +371,7 @@ def test_bad_spring_matrix_is_input_error(cache):
 def test_error_estimate_from_two_levels(cache):
     """--estimate-error: a second level is solved and the Richardson-type numbers are
     consistent: extrapolated = fine + (fine − coarse)/(r^p − 1), error = |that difference|."""
-    from shaftfe.static import StaticOptions, solve_static
+    from shaftfe.static.solve import StaticOptions, solve_static
     r = solve_static(cylinder(), [10000.0], StaticOptions(level="default"), cache_dir=cache,
                      beam=False, estimate_error=True)
     ee = r.error_estimate
@@ -393,7 +393,7 @@ def test_body_force_resultant(cache):
     equilibrium and the body force adds stress."""
     from skfem import Basis, ElementTetP2, Functional
 
-    from shaftfe.static import StaticOptions, solve_static
+    from shaftfe.static.solve import StaticOptions, solve_static
     a = solve_static(cylinder(), [10000.0], StaticOptions(level="default"), cache_dir=cache,
                      beam=False)
     b = solve_static(cylinder(), [10000.0], StaticOptions(level="default", body_force=True),
@@ -421,10 +421,10 @@ def test_cli_writes_vtu_summary_plot(tmp_path, cache, monkeypatch, capsys):
     bad input exits 2 with one line and writes nothing."""
     import meshio
 
-    import shaftfe.variant
+    import shaftfe.model.variant
     from shaftfe.cli import main
     monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(cache))
-    monkeypatch.setattr(shaftfe.variant, "load_variant", lambda name: cylinder())
+    monkeypatch.setattr(shaftfe.model.variant, "load_variant", lambda name: cylinder())
     out = tmp_path / "o"
     rc = main(["static", "--variant", "cyl", "--rpm", "7000,10000", "--level", "default",
                "--out", str(out)])

@@ -17,8 +17,8 @@ import pytest
 
 pv = pytest.importorskip("pyvista")
 
-from shaftfe import view  # noqa: E402
 from shaftfe.cli import main  # noqa: E402
+from shaftfe.io import view  # noqa: E402
 
 TET10_EDGES = ((0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3))
 

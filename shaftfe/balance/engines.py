@@ -27,8 +27,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from shaftfe.errors import InputError
-
-ENGINES_DIR = Path(__file__).resolve().parents[2] / "geometry" / "engines"
+from shaftfe.util.paths import ENGINES_DIR
 
 # key → (allowed text, predicate); all numeric keys the loader understands.
 _POS = ("> 0", lambda v: v > 0)

@@ -25,7 +25,7 @@ def _check_path(path: str | Path, option: str = "--plot") -> str:
 
 
 def _save(fig, path: str | Path, fmt: str) -> Path:
-    from shaftfe.atomic import write_atomic
+    from shaftfe.util.atomic import write_atomic
 
     buf = io.BytesIO()
     fig.savefig(buf, format=fmt, dpi=120, bbox_inches="tight")

@@ -7,8 +7,8 @@ import math
 import os
 import sys
 
-from shaftfe.atomic import write_atomic
 from shaftfe.errors import InputError
+from shaftfe.util.atomic import write_atomic
 
 __all__ = ["parse_range", "parse_rpm_list", "print_json", "print_table", "write_atomic"]
 
@@ -45,7 +45,7 @@ def parse_range(text: str, option: str, *, lo: float | None = None,
 def parse_rpm_list(text: str, option: str = "--rpm") -> list[float]:
     """Parse a comma-separated list of speeds in rpm (``7000,10000``); each finite, in
     [0, limits.RPM_CEILING]; an empty item (``10000,,7000``) is an error."""
-    from shaftfe.limits import RPM_CEILING
+    from shaftfe.util.limits import RPM_CEILING
     allowed = f"comma-separated speeds in rpm, each in [0, {RPM_CEILING:g}]"
     items = [t.strip() for t in text.split(",")]
     try:

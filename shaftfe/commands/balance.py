@@ -92,7 +92,7 @@ def _load(args):
     from shaftfe.balance.engines import load_engine
 
     if args.rpm is not None:
-        from shaftfe.limits import check_rpm
+        from shaftfe.util.limits import check_rpm
         check_rpm(args.rpm, "--rpm", positive=True)
     _finite(args.tilt_deg, "--tilt-deg", "in [-180, 180]", lambda v: -180 <= v <= 180)
     eng = load_engine(args.engine)
@@ -149,7 +149,7 @@ def _engine_info(eng) -> dict:
 def _check_out(path: str | None, option: str, exts: tuple[str, ...]) -> None:
     if path is not None and not any(path.lower().endswith("." + e) for e in exts):
         raise InputError(option, "file extension", ", ".join("." + e for e in exts), got=path)
-    from shaftfe.atomic import check_output_file
+    from shaftfe.util.atomic import check_output_file
     check_output_file(path, option)
 
 

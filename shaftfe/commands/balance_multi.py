@@ -112,7 +112,7 @@ def _setup(args):
     orders = _parse_orders(args.orders, args.samples)
     if args.plot is not None and not str(args.plot).lower().endswith(_PLOT_SUFFIXES):
         raise InputError("--plot", "plot", "a path ending in .png, .pdf or .svg", got=args.plot)
-    from shaftfe.atomic import check_output_file
+    from shaftfe.util.atomic import check_output_file
     check_output_file(args.plot, "--plot")
     overrides = (args.radius_mm, args.rod_mm, args.m_pos_kg)
     for opt, v in zip(("--radius-mm", "--rod-mm", "--m-pos-kg"), overrides, strict=True):

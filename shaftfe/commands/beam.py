@@ -1,6 +1,6 @@
 """`shaftfe beam`: stepped Timoshenko beam model of a variant (fast static cross-check).
 
-Stdlib only at module level; numpy/scipy (shaftfe.beam) and matplotlib inside the handler.
+Stdlib only at module level; numpy/scipy (shaftfe.beam.model) and matplotlib inside the handler.
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ def run(args) -> int:
     from shaftfe.commands._common import parse_rpm_list, print_json, print_table, write_atomic
 
     rpms = parse_rpm_list(args.rpm)
-    from shaftfe.limits import check_max_element
+    from shaftfe.util.limits import check_max_element
     check_max_element(args.max_element)
     plot_fmt = None
     if args.plot:
@@ -50,11 +50,11 @@ def run(args) -> int:
         if plot_fmt not in ("png", "pdf", "svg"):
             raise InputError("--plot", "--plot", "a path ending in .png, .pdf or .svg",
                              got=args.plot)
-        from shaftfe.atomic import check_output_file
+        from shaftfe.util.atomic import check_output_file
         check_output_file(args.plot, "--plot")
 
-    from shaftfe import beam
-    from shaftfe.variant import load_variant
+    from shaftfe.beam import model as beam
+    from shaftfe.model.variant import load_variant
 
     variant = load_variant(args.variant)
     if args.seed_load_case:

@@ -1,18 +1,18 @@
 """`shaftfe campbell` and `shaftfe modal`: natural frequencies with gyroscopic effects.
 
-Stdlib only at module level; numpy/scipy (shaftfe.rotor, shaftfe.rotor_solid,
-shaftfe.campbell) and matplotlib inside the handlers. The model is chosen by ``--model``:
+Stdlib only at module level; numpy/scipy (shaftfe.rotordynamics.beam_rotor, shaftfe.rotordynamics.solid_rotor,
+shaftfe.rotordynamics.kernels) and matplotlib inside the handlers. The model is chosen by ``--model``:
 ``beam`` (Timoshenko beam + rigid disks, milliseconds) or ``solid`` (3D P2 tets of the static
 model's mesh at ``--level``, attachments as rigid bodies tied to their seats by ``--coupling``;
-``shaftfe.rotor_solid``). A builder in ``_MODEL_BUILDERS`` returns an object like
-``shaftfe.rotor.RotorModel`` — M, K, G, C (dense, sparse or LinearOperator, free dofs),
-``labelling`` (``shaftfe.campbell.Labelling``), ``notes``, ``n_dof`` and optionally
+``shaftfe.rotordynamics.solid_rotor``). A builder in ``_MODEL_BUILDERS`` returns an object like
+``shaftfe.rotordynamics.beam_rotor.RotorModel`` — M, K, G, C (dense, sparse or LinearOperator, free dofs),
+``labelling`` (``shaftfe.rotordynamics.kernels.Labelling``), ``notes``, ``n_dof`` and optionally
 ``K_support`` (bearing springs, for the energy shares), ``beam``/``disks`` (only for the
 description line); ``_ANALYSES`` gives its sweep and full-size check. The solid model's
 results are shown next to the beam model's (same variant and options), and with ``--out``
 its mode shapes at rest are written as ``modes.vtu`` (docs/FIELDS.md, "Mode shapes").
 ``--stress-stiffening`` (solid model only, off by default) adds the centrifugal prestress of the
-shaft body (``shaftfe.rotor_solid``, "Centrifugal prestress"); ``--spin-softening`` is refused
+shaft body (``shaftfe.rotordynamics.solid_rotor``, "Centrifugal prestress"); ``--spin-softening`` is refused
 (a rotating-frame term, not applicable in the stationary-frame formulation used here).
 """
 
@@ -88,7 +88,7 @@ def register(sub) -> None:
 
 def speeds_from_range(text: str, step: float) -> list[float]:
     from shaftfe.commands._common import parse_range
-    from shaftfe.limits import RPM_CEILING
+    from shaftfe.util.limits import RPM_CEILING
 
     a, b, st = parse_range(text, "RANGE", lo=0.0, hi=RPM_CEILING)
     if not (math.isfinite(a) and math.isfinite(b)):
@@ -123,7 +123,7 @@ def parse_orders(text: str) -> list[float]:
 def _check_common(args) -> None:
     if not (1 <= args.modes <= _MAX_MODES):
         raise InputError("command line", "--modes", f"1..{_MAX_MODES}", got=args.modes)
-    from shaftfe.limits import check_max_element
+    from shaftfe.util.limits import check_max_element
     check_max_element(args.max_element)
     if not (math.isfinite(args.bearing_damping) and args.bearing_damping >= 0):
         raise InputError("command line", "--bearing-damping", ">= 0 N s/mm",
@@ -143,8 +143,8 @@ def _check_common(args) -> None:
 # --------------------------------------------------------------------------- models
 
 def _beam_rotor(args):
-    from shaftfe import rotor
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
+    from shaftfe.rotordynamics import beam_rotor as rotor
 
     variant = load_variant(args.variant)
     return rotor.rotor_from_variant(
@@ -153,8 +153,8 @@ def _beam_rotor(args):
 
 
 def _solid_rotor(args):
-    from shaftfe import rotor_solid
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
+    from shaftfe.rotordynamics import solid_rotor as rotor_solid
 
     variant = load_variant(args.variant)
     opts = rotor_solid.SolidOptions(level=args.level, coupling=args.coupling,
@@ -168,7 +168,7 @@ _MODEL_BUILDERS = {"beam": _beam_rotor, "solid": _solid_rotor}
 
 
 def _beam_analyses():
-    from shaftfe import rotor
+    from shaftfe.rotordynamics import beam_rotor as rotor
 
     def run(model, rpms, n, orders, keep_vectors):
         return rotor.campbell(model, rpms, n, orders=orders, keep_vectors=keep_vectors), None
@@ -179,7 +179,7 @@ def _beam_analyses():
 
 
 def _solid_analyses():
-    from shaftfe import rotor_solid
+    from shaftfe.rotordynamics import solid_rotor as rotor_solid
 
     def run(model, rpms, n, orders, keep_vectors):
         prov = rotor_solid.BasisProvider(model)
@@ -223,7 +223,7 @@ def _solve(args, rpms, orders, keep_vectors=False):
     ver = verify(model, res, prov) if args.verify else None
     beam_res = None
     if args.model == "solid":
-        from shaftfe import rotor
+        from shaftfe.rotordynamics import beam_rotor as rotor
 
         beam_res = rotor.campbell(_beam_rotor(args), rpms, args.modes, orders=orders)
     return model, res, ver, beam_res, prov
@@ -291,7 +291,7 @@ def _write_modes(args, model, prov, out) -> str | None:
     """Mode shapes at rest of the solid model as ``modes.vtu`` (None for the beam model)."""
     if args.model != "solid":
         return None
-    from shaftfe import rotor_solid
+    from shaftfe.rotordynamics import solid_rotor as rotor_solid
 
     rest = rotor_solid.modal(model, 0.0, args.modes, keep_vectors=True, provider=prov)
     rotor_solid.write_modes_vtu(model, rest, out / "modes.vtu")
@@ -326,7 +326,7 @@ def _staged(out):
     """``atomic.staged_dir`` for an optional ``--out`` (yields None without one)."""
     from contextlib import nullcontext
 
-    from shaftfe.atomic import staged_dir
+    from shaftfe.util.atomic import staged_dir
     return staged_dir(out) if out else nullcontext(None)
 
 
@@ -337,7 +337,7 @@ def run_campbell(args) -> int:
     orders = parse_orders(args.orders)
     _check_common(args)
     vtu = None
-    from shaftfe.progress import Progress
+    from shaftfe.util.progress import Progress
     prog = Progress(["model + sweep", "outputs"], enabled=False if args.json else None)
     with _staged(args.out) as out:                   # every file or none
         with prog.stage("model + sweep"):
@@ -345,7 +345,7 @@ def run_campbell(args) -> int:
         if out is not None:
             import json
 
-            from shaftfe.campbell import plot_campbell
+            from shaftfe.rotordynamics.kernels import plot_campbell
 
             title = f"{args.variant}: Campbell diagram ({args.model} model)"
             png = plot_campbell(res, title=title)
@@ -369,7 +369,7 @@ def run_campbell(args) -> int:
 
 def run_modal(args) -> int:
     from shaftfe.commands._common import print_json, print_table, write_atomic
-    from shaftfe.limits import check_rpm
+    from shaftfe.util.limits import check_rpm
     check_rpm(args.rpm, "--rpm")
     _check_common(args)
     files = "modal.csv, modal.json"
@@ -385,7 +385,7 @@ def run_modal(args) -> int:
             write_atomic(out / "modal.csv", res.to_csv())
             write_atomic(out / "modal.json", json.dumps(payload, indent=2) + "\n")
             if args.model == "solid":
-                from shaftfe import rotor_solid
+                from shaftfe.rotordynamics import solid_rotor as rotor_solid
 
                 rotor_solid.write_modes_vtu(model, res, out / "modes.vtu")
                 files += ", modes.vtu"

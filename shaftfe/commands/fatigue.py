@@ -1,7 +1,7 @@
 """`shaftfe fatigue`: fatigue life and safety factor of the shaft under an engine-speed history.
 
 Replaces the seed's Ansys Fatigue Tool study (SPEC §3). The static reference solution (3D FE at
-``shaftfe.static.REF_RPM``) comes from the disk cache of ``shaftfe.static_cache`` when the model
+``shaftfe.static.solve.REF_RPM``) comes from the disk cache of ``shaftfe.static.cache`` when the model
 is unchanged, else it is solved once. The history's load factor is re-referenced to the static
 solution's speed, every node is evaluated at once (``shaftfe.fatigue.field``), and the command
 writes ``fatigue.vtu``, ``summary.json`` and three plots of the hot spot.
@@ -45,7 +45,7 @@ def register(sub) -> None:
         "(singular points at the bearing and load-patch edges excluded; the unfiltered minimum "
         "shown too). Writes fatigue.vtu, summary.json and rainflow / damage / Haigh plots.")
     p.add_argument("spectrum", help="rpm history: normalised rpm²/ref² (seed rpm.dat), rpm, or "
-                   "csv 'time_s,rpm' (see shaftfe.spectra)")
+                   "csv 'time_s,rpm' (see shaftfe.fatigue.history)")
     p.add_argument("--variant", default="x2_57", help="variant name or path (default x2_57)")
     p.add_argument("--ref-rpm", type=float, default=None,
                    help="speed a normalised history is normalised by (default: the file's "
@@ -104,7 +104,7 @@ def _check(args) -> None:
 def read_spectrum(path: str, ref_rpm: float | None, sample_rate: float | None):
     """The history; a normalised file without a reference (header or option) is taken as
     normalised to 7000 rpm, the seed's reference."""
-    from shaftfe.spectra import read_history
+    from shaftfe.fatigue.history import read_history
     try:
         return read_history(path, rpm_ref=ref_rpm, sample_rate_hz=sample_rate)
     except InputError as exc:
@@ -143,8 +143,8 @@ def run(args) -> int:
 
     _check(args)
     from shaftfe.fatigue.sn import load_material
-    from shaftfe.progress import Progress
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
+    from shaftfe.util.progress import Progress
     prog = Progress(["history", "static", "rainflow + life", "outputs"],
                     enabled=False if args.json else None)
     with prog.stage("history"):
@@ -152,11 +152,11 @@ def run(args) -> int:
     material = load_material(args.material)
     variant = load_variant(args.variant)
 
-    from shaftfe import static_cache
-    from shaftfe.atomic import staged_dir
     from shaftfe.commands._common import print_json
     from shaftfe.fatigue.field import evaluate
-    from shaftfe.static import StaticOptions
+    from shaftfe.static import cache as static_cache
+    from shaftfe.static.solve import StaticOptions
+    from shaftfe.util.atomic import staged_dir
 
     extra = {"exclude_mm": args.exclude_mm} if args.exclude_mm > 0 else {}
     opts = StaticOptions(level=args.level, seed_load_case=args.seed_load_case, **extra)
@@ -210,13 +210,13 @@ def _pct(new: float | None, old: float) -> str:
 
 
 def _write_outputs(args, history, material, ref, ff, t_eval, level_error, out):
-    from shaftfe import fatigue_plots
-    from shaftfe.atomic import atomic_path
     from shaftfe.commands._common import package_versions, write_atomic
     from shaftfe.fatigue import kernels
+    from shaftfe.fatigue import plots as fatigue_plots
     from shaftfe.fatigue.counting import rainflow_matrix
     from shaftfe.fatigue.field import write_vtu
-    from shaftfe.static import load_case_label
+    from shaftfe.static.solve import load_case_label
+    from shaftfe.util.atomic import atomic_path
     r = ff.result
     hot, raw = ff.hot_spot, ff.hot_spot_unfiltered
     vtu = out / "fatigue.vtu"
@@ -298,7 +298,7 @@ def _write_outputs(args, history, material, ref, ff, t_eval, level_error, out):
 
 def _print_result(args, variant, history, material, ref, ff, t_eval, out, plots) -> None:
     from shaftfe.commands._common import print_table
-    from shaftfe.static import load_case_label
+    from shaftfe.static.solve import load_case_label
     r = ff.result
     hot, raw = ff.hot_spot, ff.hot_spot_unfiltered
     s_hot = hot.sigma_eq_ref_MPa

@@ -35,14 +35,14 @@ def run(args) -> int:
     out = Path(args.out) if args.out else None
     if out is not None and out.suffix not in (".vtu", ".msh"):
         raise InputError("--out", "out", "a path ending in .vtu or .msh", got=args.out)
-    from shaftfe.atomic import check_output_file
+    from shaftfe.util.atomic import check_output_file
     check_output_file(out, "--out")
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
 
     variant = load_variant(args.variant)
 
-    from shaftfe.mesh import build_mesh, write_mesh
-    from shaftfe.progress import Progress
+    from shaftfe.solid.mesh import build_mesh, write_mesh
+    from shaftfe.util.progress import Progress
     prog = Progress(["mesh"], enabled=False if args.json else None)
     with prog.stage("mesh"):
         sm = build_mesh(variant, level=args.level, order=args.order, cache_dir=args.cache_dir,

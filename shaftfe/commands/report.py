@@ -66,10 +66,10 @@ def make_report(options, out=None, *, json_out: bool = False, progress=None) -> 
     from pathlib import Path
 
     from shaftfe import report as report_pkg
-    from shaftfe.atomic import staged_dir
     from shaftfe.commands._common import print_json
-    from shaftfe.progress import Progress
     from shaftfe.report import assemble
+    from shaftfe.util.atomic import staged_dir
+    from shaftfe.util.progress import Progress
 
     assemble.check_options(options)
     variant_name = Path(options.variant).stem

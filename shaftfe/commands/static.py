@@ -49,8 +49,8 @@ def register(sub) -> None:
 def run(args) -> int:
     from pathlib import Path
 
-    from shaftfe.atomic import staged_dir
     from shaftfe.commands._common import parse_rpm_list, print_json
+    from shaftfe.util.atomic import staged_dir
 
     rpms = parse_rpm_list(args.rpm)
     if args.order not in (1, 2):
@@ -65,9 +65,9 @@ def run(args) -> int:
         raise InputError("--solver", "--solver", "auto | superlu | pardiso | amg",
                          got=args.solver)
 
-    from shaftfe import static_cache
-    from shaftfe.static import StaticOptions, solve_static
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
+    from shaftfe.static import cache as static_cache
+    from shaftfe.static.solve import StaticOptions, solve_static
 
     variant = load_variant(args.variant)
     opts = StaticOptions(level=args.level, order=args.order, rigid_supports=args.rigid_supports,
@@ -75,7 +75,7 @@ def run(args) -> int:
                          seed_load_case=args.seed_load_case, solver=args.solver,
                          exclude_mm=args.exclude_mm)
     out = Path(args.out) if args.out else Path("reports") / variant.name / "static"
-    from shaftfe.progress import Progress
+    from shaftfe.util.progress import Progress
     prog = Progress(["mesh + solve", "outputs"], enabled=False if args.json else None)
     with staged_dir(out) as stage:             # all three files or none
         with prog.stage("mesh + solve"):
@@ -92,8 +92,8 @@ def run(args) -> int:
 
 
 def _write_outputs(args, variant, opts, res, rpms, stage) -> dict:
-    from shaftfe import export
     from shaftfe.commands._common import package_versions, write_atomic
+    from shaftfe.io import vtu as export
     rpm_vtu = rpms[0]
     vtu, regions = export.write_vtu(res, stage / "result.vtu", rpm_vtu)
     export.plot_png(res, stage / "deflection.png", rpm_vtu)

@@ -1,6 +1,6 @@
 """`shaftfe view`: look at a result file (.vtu) — interactive window or off-screen screenshot.
 
-Stdlib only at module level; PyVista/VTK are imported by ``shaftfe.view`` inside the handler.
+Stdlib only at module level; PyVista/VTK are imported by ``shaftfe.io.view`` inside the handler.
 """
 
 from __future__ import annotations
@@ -43,8 +43,8 @@ def register(sub) -> None:
 def run(args) -> int:
     import sys
 
-    from shaftfe import view
     from shaftfe.commands._common import print_json
+    from shaftfe.io import view
 
     size = view.parse_window_size(args.window_size)
     warp = view.parse_warp(args.warp)

@@ -2,8 +2,8 @@
 
 ``assess(sigma_ref, history, material)``: ``sigma_ref`` is the static solution at the history's
 reference speed (per node, (N, 6) components xx, yy, zz, xy, yz, xz in MPa, or an (N,) array of
-equivalent stresses already computed; ``shaftfe.static`` stores (6, N): pass ``stress_ref.T``);
-``history`` a ``shaftfe.spectra.LoadHistory`` whose ``rpm_ref`` is the speed of the static
+equivalent stresses already computed; ``shaftfe.static.solve`` stores (6, N): pass ``stress_ref.T``);
+``history`` a ``shaftfe.fatigue.history.LoadHistory`` whose ``rpm_ref`` is the speed of the static
 solution (``history.with_reference(static_rpm)`` otherwise); its load factor is counted once.
 Life: blocks = 1 / D, hours = blocks · block duration / 3600, km = hours · average speed
 (default 70 km/h, seed 000 §8.3). A history without cycles (constant speed) or a node without

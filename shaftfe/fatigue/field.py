@@ -1,8 +1,8 @@
 """Fatigue of the whole static field: per-node life, damage and safety factor, hot spots.
 
 ``evaluate(ref, history, material, ...)`` takes a static reference solution (a
-``shaftfe.static_cache.StaticReference``: nodal stresses at ``ref.ref_rpm``, coordinates, named
-regions, the excluded singular nodes) and a ``shaftfe.spectra.LoadHistory``. The stress at time t
+``shaftfe.static.cache.StaticReference``: nodal stresses at ``ref.ref_rpm``, coordinates, named
+regions, the excluded singular nodes) and a ``shaftfe.fatigue.history.LoadHistory``. The stress at time t
 is σ_ref · (rpm(t) / ref_rpm)², so the history is first RE-REFERENCED to the static solution's
 speed (``history.with_reference(ref.ref_rpm)``: e.g. the seed's rpm.dat, normalised to
 7000 rpm, against the static solve at 10 000 rpm: load factor × (7000 / 10 000)²). Then
@@ -208,7 +208,7 @@ def evaluate_arrays(stress_ref, history, material: FatigueMaterial, *, ref_rpm: 
 
 
 def evaluate(ref, history, material: FatigueMaterial, **settings) -> FatigueField:
-    """``evaluate_arrays`` on a ``shaftfe.static_cache.StaticReference``."""
+    """``evaluate_arrays`` on a ``shaftfe.static.cache.StaticReference``."""
     return evaluate_arrays(ref.stress_ref, history, material, ref_rpm=ref.ref_rpm, xyz=ref.xyz,
                            regions=ref.regions, excluded=ref.excluded, **settings)
 
@@ -233,7 +233,7 @@ def write_vtu(ref, ff: FatigueField, path) -> object:
     docs/FIELDS.md. Written atomically."""
     import meshio
 
-    from shaftfe.atomic import atomic_path
+    from shaftfe.util.atomic import atomic_path
     quad = ref.cells.shape[1] == 10
     cells = [("tetra10" if quad else "tetra", np.asarray(ref.cells, dtype=np.int64))]
     region = [np.zeros(ref.cells.shape[0], dtype=np.int32)]

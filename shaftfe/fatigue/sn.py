@@ -33,8 +33,8 @@ from pathlib import Path
 import numpy as np
 
 from shaftfe.errors import InputError
+from shaftfe.util.paths import SN_FILE
 
-SN_FILE = Path(__file__).resolve().parents[2] / "geometry" / "common" / "sn_curves.toml"
 BEYOND_LAST = ("cutoff", "extrapolate")
 
 

@@ -18,8 +18,8 @@ def write(report, out) -> Path:
     last, so it never points at a half-finished run). Returns the page's path."""
     import json
 
-    from shaftfe.atomic import write_atomic
     from shaftfe.report import html
+    from shaftfe.util.atomic import write_atomic
 
     out = Path(out)
     d = report.to_dict()

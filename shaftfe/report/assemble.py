@@ -8,7 +8,7 @@
    X2 and the sweep over X2; the seed's mode-2 row X = 31 % (cylinder frame) for the comparison;
 3. beam check (milliseconds): the Inventor-style rigid-support beam (Euler-Bernoulli and
    Timoshenko) for the seed comparison of deflection and nominal stress;
-4. 3D static: ONE ``shaftfe.static.solve_static`` at its reference speed, reported at every
+4. 3D static: ONE ``shaftfe.static.solve.solve_static`` at its reference speed, reported at every
    design speed (loads ∝ ω²), stored in the static cache;
 5. fatigue on the rpm history: that same solution (``static_cache.from_result`` → no second
    solve), rainflow counted once (``shaftfe.fatigue.field.evaluate``);
@@ -29,10 +29,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from shaftfe.errors import InputError
+from shaftfe.util.paths import BENCHMARK_JSON, DEFAULT_SPECTRUM, repo_relative
 
-REPO = Path(__file__).resolve().parents[2]
-DEFAULT_SPECTRUM = REPO / "loadspectra" / "rpm.dat"
-BENCHMARK_JSON = REPO / "reports" / "benchmarks" / "static.json"
 LEVELS = ("coarse", "default", "fine")
 ROTOR_MODELS = ("beam", "solid")
 
@@ -163,14 +161,6 @@ def _clean(o):
     return f if math.isfinite(f) else None
 
 
-def rel_path(path) -> str:
-    """``path`` relative to the repository when it is inside it (for the page), else as is."""
-    try:
-        return str(Path(path).resolve().relative_to(REPO))
-    except (ValueError, OSError):
-        return str(path)
-
-
 # --------------------------------------------------------------------------- validation
 
 CAMPBELL_STEP_MIN_RPM = 10.0     # ≤ 2000 speeds up to the rpm ceiling: seconds, not GiB
@@ -183,7 +173,7 @@ def check_options(o: ReportOptions) -> None:
     if o.rotor_model not in ROTOR_MODELS:
         raise InputError("command line", "--rotor-model", " | ".join(ROTOR_MODELS),
                          got=o.rotor_model)
-    from shaftfe.limits import RPM_CEILING, check_rpm
+    from shaftfe.util.limits import RPM_CEILING, check_rpm
     if not o.design_rpm:
         raise InputError("command line", "--rpm", "one or more speeds", got="")
     for r in o.design_rpm:
@@ -207,9 +197,9 @@ def check_options(o: ReportOptions) -> None:
 
 
 def solid_rotor_available() -> bool:
-    """True when the 3D solid rotor model (``shaftfe.rotor_solid``) is installed."""
+    """True when the 3D solid rotor model (``shaftfe.rotordynamics.solid_rotor``) is installed."""
     import importlib.util
-    return importlib.util.find_spec("shaftfe.rotor_solid") is not None
+    return importlib.util.find_spec("shaftfe.rotordynamics.solid_rotor") is not None
 
 
 # --------------------------------------------------------------------------- stages
@@ -218,7 +208,7 @@ def _inputs(o: ReportOptions) -> tuple:
     from shaftfe.balance.engines import load_engine
     from shaftfe.commands.fatigue import read_spectrum
     from shaftfe.fatigue.sn import load_material
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
 
     variant = load_variant(o.variant)
     engine = load_engine(o.engine)
@@ -289,7 +279,7 @@ def _balancing(engine, variant, seedmod) -> tuple[dict, object, object, object]:
     bal_force = engine.balancer_mass_kg * engine.balancer_radius_mm * 1e-3 * omega ** 2 \
         if engine.balancer_mass_kg and engine.balancer_radius_mm else None
     out = {
-        "engine": engine.name, "engine_file": rel_path(engine.source), "rpm": engine.rpm,
+        "engine": engine.name, "engine_file": repo_relative(engine.source), "rpm": engine.rpm,
         "tilt_deg": engine.tilt_deg, "idle_rpm": engine.idle_rpm, "max_rpm": engine.max_rpm,
         "m_pos_kg": engine.m_pos_kg, "m_rot_kg": engine.m_rot_kg,
         "crank_radius_mm": engine.crank_radius_mm, "rod_length_mm": engine.rod_length_mm,
@@ -310,7 +300,7 @@ def _balancing(engine, variant, seedmod) -> tuple[dict, object, object, object]:
 
 def _beam_check(variant) -> tuple[dict, object]:
     """Inventor-style beam (rigid supports, seed load case) at 10 000 and 7000 rpm."""
-    from shaftfe import beam
+    from shaftfe.beam import model as beam
 
     v = variant.with_seed_load_case()
     rpms = [10_000.0, 7_000.0]
@@ -399,7 +389,7 @@ def _fatigue(ref, history, material, o: ReportOptions) -> tuple[dict, object]:
     lf = ff.history.load_factor
     hot, raw = ff.hot_spot, ff.hot_spot_unfiltered
     out = {
-        "history": {"source": rel_path(history.source), "format": history.format,
+        "history": {"source": repo_relative(history.source), "format": history.format,
                     "samples": history.n_samples, "duration_s": history.duration_s,
                     "rpm_min": float(history.rpm.min()), "rpm_max": float(history.rpm.max()),
                     "rpm_ref_of_file": history.rpm_ref, "static_ref_rpm": ff.ref_rpm,
@@ -423,7 +413,7 @@ def _fatigue(ref, history, material, o: ReportOptions) -> tuple[dict, object]:
 def _campbell(variant, engine, o: ReportOptions) -> tuple[dict, object, object]:
     import numpy as np
 
-    from shaftfe import rotor
+    from shaftfe.rotordynamics import beam_rotor as rotor
 
     top = float(engine.max_rpm)
     n = math.floor(top / o.campbell_step_rpm + 1e-9)
@@ -431,9 +421,9 @@ def _campbell(variant, engine, o: ReportOptions) -> tuple[dict, object, object]:
     if top - rpms[-1] > 1e-9 * top:
         rpms.append(top)
     if o.rotor_model == "solid":
-        # the 3D solid rotor (shaftfe.rotor_solid): its own mesh of the full variant (every
+        # the 3D solid rotor (shaftfe.rotordynamics.solid_rotor): its own mesh of the full variant (every
         # part's seat is a face group), the same level as the static mesh
-        from shaftfe import rotor_solid as kind
+        from shaftfe.rotordynamics import solid_rotor as kind
         model = kind.build_solid_rotor(variant, kind.SolidOptions(level=o.level),
                                        cache_dir=o.cache_dir)
         description = (f"3D solid rotor (P2 tets, level {o.level}, {model.n_dof} dofs), rigid "
@@ -478,7 +468,7 @@ def beam_mode_fields(model, res, xyz, speed_index: int = 0) -> dict:
     ``mode_<k>_<f>Hz`` (docs/FIELDS.md). Empty for a model without a beam."""
     import numpy as np
 
-    from shaftfe.beam import NDOF, RX, RY, RZ, UX, UY, UZ
+    from shaftfe.beam.model import NDOF, RX, RY, RZ, UX, UY, UZ
 
     beam = getattr(model, "beam", None)
     if beam is None or res.vectors is None:
@@ -511,7 +501,7 @@ def benchmark_errors(level: str, order: int = 2, path: Path = BENCHMARK_JSON) ->
     benchmark's own rule). None when the file or the runs are missing."""
     import json
 
-    from shaftfe.mesh import LEVELS as MESH_LEVELS
+    from shaftfe.solid.mesh import LEVELS as MESH_LEVELS
     try:
         rows = json.loads(Path(path).read_text())
     except (OSError, ValueError):
@@ -526,8 +516,7 @@ def benchmark_errors(level: str, order: int = 2, path: Path = BENCHMARK_JSON) ->
     r = MESH_LEVELS["default"]["k_fillet"] / MESH_LEVELS["fine"]["k_fillet"]
     if r <= 1:
         return None
-    out = {"source": str(Path(path).relative_to(REPO)) if Path(path).is_relative_to(REPO)
-           else str(path), "level": level, "order": order, "dofs": me.get("dofs")}
+    out = {"source": repo_relative(path), "level": level, "order": order, "dofs": me.get("dofs")}
     for k, p in (("collar", 2), ("bsg", 2), ("defl", 3)):
         q = f[k] + (f[k] - d[k]) / (r ** p - 1.0)
         out[k] = {"level_value": me[k], "reference": q, "rel_error": me[k] / q - 1.0}
@@ -803,8 +792,8 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     from the returned object (``shaftfe.report.html.render``) and written by the caller."""
     import datetime
 
-    from shaftfe.progress import Progress
     from shaftfe.report import seed as seedmod
+    from shaftfe.util.progress import Progress
 
     prog = progress if progress is not None else Progress(stages(o), enabled=False)
     out = Path(out)
@@ -824,8 +813,8 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     with prog.stage("beam check"):
         beam_out, _ = _beam_check(variant)
     with prog.stage("static (mesh + one solve)"):
-        from shaftfe import static_cache
-        from shaftfe.static import StaticOptions, solve_static
+        from shaftfe.static import cache as static_cache
+        from shaftfe.static.solve import StaticOptions, solve_static
         sopts = StaticOptions(level=o.level, seed_load_case=o.seed_load_case)
         res = solve_static(variant, list(o.design_rpm), sopts, cache_dir=o.cache_dir)
         ref = static_cache.store(variant, sopts, res, o.cache_dir)   # the fatigue input
@@ -833,7 +822,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         with prog.stage(ERROR_STAGE):
             import dataclasses
 
-            from shaftfe.static import _estimate_error
+            from shaftfe.static.solve import _estimate_error
             ee = _estimate_error(res, variant, sopts, o.cache_dir,
                                  other_level=OTHER_LEVEL[o.level])
             res = dataclasses.replace(res, error_estimate=ee)
@@ -856,7 +845,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     with prog.stage("Campbell"):
         camp, cres, rotor_model = _campbell(variant, engine, o)
     with prog.stage("VTU"):
-        from shaftfe import export
+        from shaftfe.io import vtu as export
         rpm_vtu = float(o.design_rpm[0])
         vtu = out / f"{variant.name}.vtu"
         r = ff.result
@@ -866,7 +855,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         modes_vtu = out / "modes.vtu"                  # mode shapes: a file of their own
         modes = beam_mode_fields(rotor_model, cres, res.mesh.mesh.doflocs)
         if o.rotor_model == "solid":                   # 3D modes on the rotor's own mesh
-            from shaftfe import rotor_solid
+            from shaftfe.rotordynamics import solid_rotor as rotor_solid
             rotor_solid.write_modes_vtu(rotor_model, cres, modes_vtu)
         else:                                          # beam modes on the static mesh
             export.write_fields_vtu(res.mesh.mesh, modes_vtu, modes)
@@ -897,7 +886,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
                          "seed_load_case": a.seed_load_case,
                          "force_N": {f"{rp:g}": a.force_N(rp) for rp in o.design_rpm}}
                         for a in variant.attachments],
-        "engine": engine.name, "engine_file": rel_path(engine.source),
+        "engine": engine.name, "engine_file": repo_relative(engine.source),
         "spectrum": fat["history"]["source"], "design_rpm": list(o.design_rpm),
         "spectrum_comments": file_comments(o.spectrum),
         "campbell_range_rpm": [0.0, float(engine.max_rpm)],
@@ -922,7 +911,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
 def _pictures(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> list[tuple]:
     import numpy as np
 
-    from shaftfe import view
+    from shaftfe.io import view
 
     excl = np.flatnonzero(ff.excluded_mask)
     size = (1000, 440)
@@ -951,12 +940,13 @@ def _pictures(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> list[tup
 
 def _plots(o, out, fig_dir, variant, fres, sw, res, ff, history, material, cres, camp,
            rpm_vtu, add_fig) -> None:
-    from shaftfe import export, fatigue_plots
-    from shaftfe.atomic import write_atomic
     from shaftfe.balance import plots
-    from shaftfe.campbell import plot_campbell
     from shaftfe.fatigue import kernels
+    from shaftfe.fatigue import plots as fatigue_plots
     from shaftfe.fatigue.counting import rainflow_matrix
+    from shaftfe.io import vtu as export
+    from shaftfe.rotordynamics.kernels import plot_campbell
+    from shaftfe.util.atomic import write_atomic
 
     plots.plot_forces(fres, fig_dir / "balance_forces.png")
     add_fig("balance_forces", "shaking forces over one revolution",

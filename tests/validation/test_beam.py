@@ -1,4 +1,4 @@
-"""Validation of the stepped Timoshenko beam model (shaftfe.beam) against closed forms.
+"""Validation of the stepped Timoshenko beam model (shaftfe.beam.model) against closed forms.
 
 Closed forms used (each test names its own):
 * Timoshenko & Gere, *Mechanics of Materials* / Gere & Goodno: simply supported beam with a
@@ -21,9 +21,9 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from shaftfe import beam
+from shaftfe.beam import model as beam
 from shaftfe.errors import InputError, SolverError
-from shaftfe.variant import Attachment, Bearing, HexSocket, Material, Segment, Variant
+from shaftfe.model.variant import Attachment, Bearing, HexSocket, Material, Segment, Variant
 
 E, NU = 210_000.0, 0.3
 G = E / (2 * (1 + NU))

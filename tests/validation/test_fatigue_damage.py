@@ -24,9 +24,9 @@ from shaftfe.fatigue import (
     node_damage,
     safety_factor,
 )
+from shaftfe.fatigue.history import from_rpm, read_history
 from shaftfe.fatigue.kernels import CAPPED, FLOORED, SOLVED, damage_matrix
 from shaftfe.fatigue.sn import FatigueMaterial, SNCurve
-from shaftfe.spectra import from_rpm, read_history
 
 RPM_DAT = Path(__file__).resolve().parents[2] / "loadspectra" / "rpm.dat"
 STEEL = load_material("structural_steel")

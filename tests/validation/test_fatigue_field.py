@@ -2,7 +2,7 @@
 independent per-node loop, the hot spot of a proportional load, rpm scaling, and the seed run.
 
 One coarse static solve of x2_57 (seed load case, bearing springs) is shared by the module
-through ``shaftfe.static_cache`` in a session-wide temporary cache directory (the CLI tests use
+through ``shaftfe.static.cache`` in a session-wide temporary cache directory (the CLI tests use
 the same directory, so whichever module runs second reads it from the cache).
 """
 
@@ -22,9 +22,9 @@ RPM_DAT = ROOT / "loadspectra" / "rpm.dat"
 
 @pytest.fixture(scope="module")
 def ref(tmp_path_factory):
-    from shaftfe.static import StaticOptions
-    from shaftfe.static_cache import load_or_solve
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
+    from shaftfe.static.cache import load_or_solve
+    from shaftfe.static.solve import StaticOptions
     cache = tmp_path_factory.getbasetemp() / "shaftfe-fatigue-cache"
     return load_or_solve(load_variant("x2_57"), StaticOptions(level="coarse",
                                                               seed_load_case=True), cache)
@@ -32,7 +32,7 @@ def ref(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def history():
-    from shaftfe.spectra import read_history
+    from shaftfe.fatigue.history import read_history
     return read_history(RPM_DAT)
 
 

@@ -152,7 +152,7 @@ FAST_OR_REFUSE = {
 @pytest.mark.parametrize("name", sorted(FAST_OR_REFUSE))
 def test_fast_reader_agrees_with_the_line_reader_or_steps_aside(name):
     from shaftfe.errors import InputError
-    from shaftfe.spectra import _read_fast, _read_lines
+    from shaftfe.fatigue.history import _read_fast, _read_lines
     text = FAST_OR_REFUSE[name]
     fast = _read_fast(name, text, None, None, None)
     try:

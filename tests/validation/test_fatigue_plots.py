@@ -1,4 +1,4 @@
-"""Smoke test of the fatigue figures (shaftfe.fatigue_plots): each writes a non-empty PNG.
+"""Smoke test of the fatigue figures (shaftfe.fatigue.plots): each writes a non-empty PNG.
 Not a numerical validation; the plotted numbers are validated in test_fatigue_damage.py."""
 
 from __future__ import annotations
@@ -7,10 +7,10 @@ from pathlib import Path
 
 import numpy as np
 
-from shaftfe import fatigue_plots as fp
 from shaftfe.fatigue import count_cycles, load_material, rainflow_matrix
+from shaftfe.fatigue import plots as fp
+from shaftfe.fatigue.history import read_history
 from shaftfe.fatigue.kernels import damage_matrix
-from shaftfe.spectra import read_history
 
 
 def test_all_figures_are_written(tmp_path):

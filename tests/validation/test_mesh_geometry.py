@@ -2,7 +2,7 @@
 
 References: the exact volume (cylinders πr²L + fillet spandrel rings by Pappus − keyways by
 ∫∫ of the cut height over the stadium − hex socket (√3/2)s²d) and the exact face areas from
-``shaftfe.solid``; a mesh that reproduces them places every named face where it belongs.
+``shaftfe.solid.plan``; a mesh that reproduces them places every named face where it belongs.
 """
 
 from __future__ import annotations
@@ -12,8 +12,8 @@ import math
 import numpy as np
 import pytest
 
-from shaftfe.examples import four_step_shaft
-from shaftfe.variant import Variant
+from shaftfe.model.examples import four_step_shaft
+from shaftfe.model.variant import Variant
 
 
 def small_shaft(*, keyway_angle=0.0, load_angle=30.0, hex_end="right",
@@ -36,7 +36,7 @@ def _measure(sm):
 # mesh: P2 tets/facets interpolate the curved surfaces; measured volume error ≤ 5.2e-4 and
 # face-area error ≤ 2.6e-3 (end faces with the hex socket, x2_57 coarse) over the meshes below
 def _check(sm, variant, vol_tol=2e-3, area_tol=5e-3):
-    from shaftfe.mesh import analytic_volume, expected_areas
+    from shaftfe.solid.mesh import analytic_volume, expected_areas
     vol, areas = _measure(sm)
     exp = expected_areas(variant)
     assert set(areas) == set(exp)
@@ -49,7 +49,7 @@ def test_default_level_volume_and_areas(tmp_path):
     """Default level, small shaft: volume within 0.2 % of the exact volume, every face group
     within 0.5 % of its exact area, minSICN > Q_CURVED (the P2 repair threshold, see
     tests/test_mesh.py::test_quality_and_positive_jacobians)."""
-    from shaftfe.mesh import Q_CURVED, build_mesh
+    from shaftfe.solid.mesh import Q_CURVED, build_mesh
     v = small_shaft()
     sm = build_mesh(v, "default", cache_dir=tmp_path)
     assert sm.min_quality > Q_CURVED
@@ -60,7 +60,7 @@ def test_keyway_straddling_the_load_plane(tmp_path):
     """Keyway at 90° to a 0° load: the split plane y = 0 cuts the slot in two; each seat half
     loses exactly half of the opening (exact: ∫ R dψ over the window, round ends by
     quadrature). Coarse level, same tolerances."""
-    from shaftfe.mesh import build_mesh, expected_areas
+    from shaftfe.solid.mesh import build_mesh, expected_areas
     v = small_shaft(keyway_angle=90.0, load_angle=0.0)
     exp = expected_areas(v)
     # exact arithmetic: the same closed form on both halves (measured equal)
@@ -71,7 +71,7 @@ def test_keyway_straddling_the_load_plane(tmp_path):
 def test_hex_left_and_full_height_fillet(tmp_path):
     """Hex socket in the left end, and a fillet as high as its step (ρ = 2.5 mm): no flat
     shoulder annulus remains (no 'shoulder:c' group); volume and areas as above."""
-    from shaftfe.mesh import build_mesh
+    from shaftfe.solid.mesh import build_mesh
     v = small_shaft(hex_end="left", full_fillet=True)
     sm = build_mesh(v, "coarse", cache_dir=tmp_path)
     assert "shoulder:c" not in sm.groups and "fillet:c" in sm.groups
@@ -80,7 +80,7 @@ def test_hex_left_and_full_height_fillet(tmp_path):
 
 def test_load_angle_200_pressed_side(tmp_path):
     """'hub' force at 200°: the pressed half's facet centroids all satisfy (y, z)·e < 0."""
-    from shaftfe.mesh import build_mesh
+    from shaftfe.solid.mesh import build_mesh
     sm = build_mesh(small_shaft(), "coarse", cache_dir=tmp_path)
     m = sm.mesh
     e = np.array([math.cos(math.radians(200.0)), math.sin(math.radians(200.0))])
@@ -90,7 +90,7 @@ def test_load_angle_200_pressed_side(tmp_path):
 
 def _real_variant():
     try:
-        from shaftfe.variant import load_variant
+        from shaftfe.model.variant import load_variant
         return load_variant("x2_57")
     except Exception as exc:       # the loader / file may not exist yet
         pytest.skip(f"x2_57 not loadable: {exc}")
@@ -100,7 +100,7 @@ def _real_variant():
 def test_x2_57_coarse(tmp_path):
     """The real variant x2_57 at coarse: volume within 0.2 %, areas within 0.5 %,
     minSICN > Q_CURVED (the P2 repair threshold), all groups present."""
-    from shaftfe.mesh import Q_CURVED, build_mesh
+    from shaftfe.solid.mesh import Q_CURVED, build_mesh
     v = _real_variant()
     sm = build_mesh(v, "coarse", cache_dir=tmp_path)
     assert sm.min_quality > Q_CURVED

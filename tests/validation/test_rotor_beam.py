@@ -1,4 +1,4 @@
-"""Validation of the beam rotor model (shaftfe.rotor) at rest and spinning, against closed forms.
+"""Validation of the beam rotor model (shaftfe.rotordynamics.beam_rotor) at rest and spinning, against closed forms.
 
 References (each test names its own):
 * Timoshenko beam equations (Timoshenko, Phil. Mag. 41 (1921) 744; shear coefficient Cowper
@@ -39,8 +39,9 @@ from rotor_refs import (
     timoshenko_free_free,
 )
 
-from shaftfe import beam, rotor
-from shaftfe.variant import Bearing, Material, Segment, Variant
+from shaftfe.beam import model as beam
+from shaftfe.model.variant import Bearing, Material, Segment, Variant
+from shaftfe.rotordynamics import beam_rotor as rotor
 
 STEEL = Material("steel", E, NU, RHO, 500.0, 800.0)
 RIGID = ((0.0, 0.0), (0.0, 0.0))

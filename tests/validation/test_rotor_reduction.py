@@ -14,8 +14,10 @@ import math
 import numpy as np
 import pytest
 
-from shaftfe import beam, campbell, rotor
-from shaftfe.variant import Bearing, Material, Segment, Variant
+from shaftfe.beam import model as beam
+from shaftfe.model.variant import Bearing, Material, Segment, Variant
+from shaftfe.rotordynamics import beam_rotor as rotor
+from shaftfe.rotordynamics import kernels as campbell
 
 STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 500.0, 800.0)
 SEED_HZ = [766.29, 825.79, 884.34, 1014.4, 1609, 1932.7, 2225.7, 2362.4, 2798.3, 3250.3,
@@ -59,7 +61,7 @@ def test_top_speed_full_size_check(damping):
     """At the top speed (a deliberately high 60 000 rpm, so gyroscopics matter) the reduced
     solution agrees with the full-size quadratic eigenproblem to 1e-4, undamped and with
     light bearing damping 1 N·s/mm (damped frequencies; the undamped-mode basis is meant for
-    light damping, see shaftfe.campbell)."""
+    light damping, see shaftfe.rotordynamics.kernels)."""
     r = stepped(((30_000.0, 8000.0), (8000.0, 30_000.0)), damping=damping)
     res = rotor.campbell(r, np.linspace(0.0, 60_000.0, 7), 12)
     ver = rotor.verify(r, res)
@@ -152,7 +154,7 @@ def test_x2_57_twelve_modes_and_no_critical_speed():
     mode is far above the 2× line. The beam is a different model (see the report): its
     frequencies are compared, not asserted equal — only the same order of magnitude (first
     frequency within a factor 2 of the seed's)."""
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
 
     r = rotor.rotor_from_variant(load_variant("x2_57"))
     res = rotor.campbell(r, np.arange(0.0, 8001.0, 1000.0), 12, orders=(1.0, 2.0))
@@ -177,7 +179,7 @@ def test_x2_57_rigid_body_inertia_matches_mass_properties_and_seed():
     432.229 kg·mm² (seed 000 §8.2.2, acceleration-torque formula; SPEC §2) within 0.1 %."""
     import dataclasses
 
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
 
     v = load_variant("x2_57")
     mp = v.mass_properties()

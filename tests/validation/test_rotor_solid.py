@@ -1,4 +1,4 @@
-"""Validation of the 3D solid rotor model (shaftfe.rotor_solid) against closed forms, published
+"""Validation of the 3D solid rotor model (shaftfe.rotordynamics.solid_rotor) against closed forms, published
 rotor examples and the full-size quadratic eigenproblem.
 
 References (each test names its own):
@@ -27,8 +27,9 @@ import numpy as np
 import pytest
 from rotor_refs import ROSS_599, pinned_whirl, rod_speed, timoshenko_free_free
 
-from shaftfe import rotor, rotor_solid
-from shaftfe.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.rotordynamics import beam_rotor as rotor
+from shaftfe.rotordynamics import solid_rotor as rotor_solid
 
 E, NU, RHO = 210_000.0, 0.3, 7.85e-9
 STEEL = Material("steel", E, NU, RHO, 500.0, 800.0)
@@ -58,7 +59,7 @@ def family(res, name, i=0):
 
 @pytest.fixture(scope="module")
 def cyl_mesh(tmp_path_factory):
-    from shaftfe.mesh import build_mesh
+    from shaftfe.solid.mesh import build_mesh
     return build_mesh(cylinder(), "fine", 2, cache_dir=tmp_path_factory.mktemp("cyl"))
 
 
@@ -68,7 +69,7 @@ def test_mass_and_gyroscopic_matrix_rigid_body_identities(cyl_mesh):
     G[θ_y, θ_z] = −G[θ_z, θ_y] = I_p = Φ_θxᵀ M Φ_θx to round-off (gyroscopic moment of a
     spinning rigid body, Friswell et al. 2010 §3.6), with I_p within 1 % of ρ π D⁴ L / 32;
     no gyroscopic coupling of the translations."""
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
 
     r = rotor_solid.build_solid_rotor(cylinder(), shaft_mesh=cyl_mesh, supported=False)
     Phi = fem.rigid_body_modes(cyl_mesh.mesh, (0.5 * L, 0.0, 0.0))
@@ -154,7 +155,7 @@ EF, GF, RHO_F = 211e3, 81.2e3, 7.81e-9      # Friswell et al. (2010) Example 5.9
 def friswell_599(tmp_path_factory, coupling="distributing"):
     """Shaft 1.5 m × Ø50 mm, bearings 10 MN/m at x = 0 (end face) and 1.0 m (10 mm seat),
     disk Ø350 × 70 mm (bore 50) as a rigid attachment on the last 10 mm, centroid at 1.5 m."""
-    from shaftfe.mesh import build_mesh
+    from shaftfe.solid.mesh import build_mesh
 
     mat = Material("friswell", EF, EF / (2 * GF) - 1.0, RHO_F, 1.0, 1.0)
     d = rotor.disk_from_geometry("d", 1500.0, 350.0, 50.0, 70.0, RHO_F)

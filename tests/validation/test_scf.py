@@ -1,4 +1,4 @@
-"""Stress-concentration fits for a stepped round shaft in bending (shaftfe.scf).
+"""Stress-concentration fits for a stepped round shaft in bending (shaftfe.beam.scf).
 
 References: Young & Budynas, Roark's Formulas for Stress and Strain 7th ed., Table 17.1 case 17b
 (fit "roark"); Pilkey & Pilkey, Peterson's Stress Concentration Factors 3rd ed., Chart 3.10
@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pytest
 
-from shaftfe.scf import kt_shoulder, kt_shoulder_bending
+from shaftfe.beam.scf import kt_shoulder, kt_shoulder_bending
 
 
 def test_shigley_example_chart_reading():

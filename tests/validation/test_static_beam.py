@@ -11,7 +11,7 @@ w_rel(x) (beam deflection minus the line through the seat means) plus the line t
 spring displacements R_i/k_i. Bending stress: σ_xx = M c / I (Navier).
 
 The mesh level used here is finer than the shipped levels (k_global = 0.15 D) so that the
-far-field stress is within 1 %; it is added to ``shaftfe.mesh.LEVELS`` for this module only.
+far-field stress is within 1 %; it is added to ``shaftfe.solid.mesh.LEVELS`` for this module only.
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ import math
 import numpy as np
 import pytest
 
-from shaftfe.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
 
 STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
 D, L = 20.0, 160.0
@@ -71,8 +71,8 @@ def timoshenko(F: float, x_eval: np.ndarray, n: int = 400_001):
 
 @pytest.fixture(scope="module")
 def result(tmp_path_factory):
-    from shaftfe import mesh
-    from shaftfe.static import StaticOptions, solve_static
+    from shaftfe.solid import mesh
+    from shaftfe.static.solve import StaticOptions, solve_static
     with pytest.MonkeyPatch.context() as mp:
         mp.setitem(mesh.LEVELS, LEVEL, {"k_global": 0.15, "k_fillet": 1.0, "k_sharp": 2.0,
                                         "grad": 0.5})

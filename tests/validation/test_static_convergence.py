@@ -28,7 +28,7 @@ import dataclasses
 
 import pytest
 
-from shaftfe.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
 
 STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
 K = ((35_030.0, 0.0), (0.0, 35_030.0))
@@ -50,8 +50,8 @@ def shaft() -> Variant:
 
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
-    from shaftfe import static
-    from shaftfe.mesh import LEVELS
+    from shaftfe.solid.mesh import LEVELS
+    from shaftfe.static import solve as static
     cache = tmp_path_factory.mktemp("conv")
     v = shaft()
     LEVELS.update(TEST_LEVELS)

@@ -1,11 +1,11 @@
-"""Shoulder-fillet peak stress of a stepped shaft in bending vs the Kt fits of ``shaftfe.scf``.
+"""Shoulder-fillet peak stress of a stepped shaft in bending vs the Kt fits of ``shaftfe.beam.scf``.
 
 Shaft Ø17 / Ø22 / Ø17 with r = 1 mm fillets (D/d = 1.294, r/d = 0.059, h/r = 2.5: the
 balancer's own bearing-seat shoulders), on two bearings, loaded in the middle: each fillet sits
 in a bending field with M/V ≈ 29.5 mm ≈ 1.7 d (shear stress ~ 1/10 of the bending stress).
 
 Reference: Kt for bending of a stepped round shaft, Roark 7th ed. Table 17.1 case 17b and
-Pilkey, Peterson's SCF 3rd ed. Chart 3.10 (``shaftfe.scf``), Kt = σ_max / σ_nom with
+Pilkey, Peterson's SCF 3rd ed. Chart 3.10 (``shaftfe.beam.scf``), Kt = σ_max / σ_nom with
 σ_nom = 32 M / (π d³) at the section of the peak. The fit's stated accuracy (scf.py): the two
 fits of the same photoelastic data agree within 2.5 %, and the charts are reported to lie several
 percent, in places more than 20 %, BELOW converged FE for shoulder fillets (Tipton et al.,
@@ -20,7 +20,7 @@ fine = 25k / 30k / 168k dofs: Kt_FE = 2.090 / 2.101 / 2.168 (custom levels with 
 there). The recovery itself is verified against Goodier's exact cavity solution to 0.5 %
 (test_static_recovery_goodier.py), so the gap is the fits', as Tipton et al. report. P1 tets
 are useless here (Kt 1.13-1.62). With the hot-spot levels of issue 4 (refinement of the
-fillets' load-plane sectors, shaftfe.mesh): coarse 27k dofs Kt_FE 2.174 / 2.158, default 80k
+fillets' load-plane sectors, shaftfe.solid.mesh): coarse 27k dofs Kt_FE 2.174 / 2.158, default 80k
 dofs 2.197 / 2.205 (left / right fillet: the mirror pair now agrees to 0.4 %, was 2.8 %).
 """
 
@@ -31,7 +31,7 @@ import math
 import numpy as np
 import pytest
 
-from shaftfe.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
 
 STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
 K = ((35_030.0, 0.0), (0.0, 35_030.0))
@@ -49,14 +49,14 @@ def stepped() -> Variant:
 
 @pytest.fixture(scope="module")
 def result(tmp_path_factory):
-    from shaftfe.static import StaticOptions, solve_static
+    from shaftfe.static.solve import StaticOptions, solve_static
     return solve_static(stepped(), [RPM], StaticOptions(level="default"),
                         cache_dir=tmp_path_factory.mktemp("vf"), beam=False)
 
 
 def _kt_fe(result, group: str) -> float:
-    from shaftfe import fem
-    from shaftfe.recovery import principal
+    from shaftfe.fe import assembly as fem
+    from shaftfe.fe.recovery import principal
     m = result.mesh.mesh
     s1 = principal(result.stress_ref)[0]
     nodes = fem.face_nodes(m, m.boundaries[group])
@@ -71,7 +71,7 @@ def _kt_fe(result, group: str) -> float:
 @pytest.mark.parametrize("group", ["fillet:a", "fillet:b"])
 def test_fillet_peak_within_kt_fit_band(result, group):
     """FE Kt within [0.975 × min(Roark, Peterson), 1.25 × max(...)] (see module docstring)."""
-    from shaftfe.scf import kt_shoulder
+    from shaftfe.beam.scf import kt_shoulder
     fits = [kt_shoulder(22.0, 17.0, 1.0, f).kt for f in ("roark", "peterson")]
     kt = _kt_fe(result, group)
     # fits' own spread 2.5 % below; up to +20 % and more for converged FE above (Tipton et al.;

@@ -79,7 +79,7 @@ def _solve(m):
     from scipy.sparse.linalg import spsolve
     from skfem import LinearForm, condense
 
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
     K = fem.elasticity_stiffness(m, E, NU)
     x = m.doflocs
     n = x.shape[1]
@@ -103,7 +103,7 @@ def _solve(m):
 
 @pytest.fixture(scope="module")
 def peak(tmp_path_factory):
-    from shaftfe import recovery
+    from shaftfe.fe import recovery
     m = _mesh(0.1 * A, tmp_path_factory.mktemp("goodier"))
     u = _solve(m)
     s = recovery.nodal_stress(m, u, E, NU)

@@ -30,8 +30,8 @@ RPM = 10_000.0
 @pytest.fixture(scope="module")
 def result(tmp_path_factory):
     from shaftfe.errors import ShaftfeError
-    from shaftfe.static import StaticOptions, solve_static
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
+    from shaftfe.static.solve import StaticOptions, solve_static
     try:
         v = load_variant("x2_57")
     except (ShaftfeError, FileNotFoundError) as exc:           # geometry not there yet

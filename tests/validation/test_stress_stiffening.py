@@ -1,4 +1,4 @@
-"""Validation of the centrifugal prestress option of the 3D solid rotor (``shaftfe.rotor_solid``,
+"""Validation of the centrifugal prestress option of the 3D solid rotor (``shaftfe.rotordynamics.solid_rotor``,
 ``SolidOptions.stress_stiffening``, module docstring "Centrifugal prestress").
 
 References (each test names its own):
@@ -30,7 +30,9 @@ import pytest
 from rotor_refs import KAPPA
 from test_rotor_solid import ENDS, NU, RHO, D, E, L, cylinder, end_bearings, family
 
-from shaftfe import campbell, fem, rotor_solid
+from shaftfe.fe import assembly as fem
+from shaftfe.rotordynamics import kernels as campbell
+from shaftfe.rotordynamics import solid_rotor as rotor_solid
 
 G_SHEAR = E / (2 * (1 + NU))
 A_SEC, I_SEC = math.pi * D**2 / 4, math.pi * D**4 / 64
@@ -39,7 +41,7 @@ A_SEC, I_SEC = math.pi * D**2 / 4, math.pi * D**4 / 64
 @pytest.fixture(scope="module")
 def cyl_mesh(tmp_path_factory):
     """The uniform cylinder L = 160, D = 20 at the "fine" level (as test_rotor_solid.py)."""
-    from shaftfe.mesh import build_mesh
+    from shaftfe.solid.mesh import build_mesh
     return build_mesh(cylinder(), "fine", 2, cache_dir=tmp_path_factory.mktemp("cyl"))
 
 
@@ -101,14 +103,14 @@ def test_geometric_stiffness_tensioned_pinned_beam(cyl_mesh):
 
 
 def fine_cylinder_mesh(length: float = 60.0, radius: float = 10.0, h: float = 3.0):
-    """A P2 cylinder of uniform element size h (Gmsh, converted like shaftfe.mesh): the
+    """A P2 cylinder of uniform element size h (Gmsh, converted like shaftfe.solid.mesh): the
     shipped levels size elements as k × D (~3 across the diameter), too coarse for a
     pointwise stress profile."""
     import types
 
     import gmsh
 
-    from shaftfe.mesh import _extract, _skfem_mesh
+    from shaftfe.solid.mesh import _extract, _skfem_mesh
 
     gmsh.initialize()
     try:
@@ -200,7 +202,7 @@ def test_prestress_virial_identity_and_rigid_body_without_spin_stiffness(cyl_mes
 def spring_cylinder(tmp_path_factory):
     """Cylinder (coarse level, 1557 dofs) on anisotropic end springs, option on and off, one
     basis provider."""
-    from shaftfe.mesh import build_mesh
+    from shaftfe.solid.mesh import build_mesh
 
     sm = build_mesh(cylinder(), "coarse", 2, cache_dir=tmp_path_factory.mktemp("cylc"))
     K = ((30_000.0, 0.0), (0.0, 20_000.0))
@@ -266,7 +268,7 @@ def test_x2_57_stress_stiffening_negligible_at_8000_rpm():
     option off on the same basis — the centrifugal stress of the Ø17 shaft is < 1 MPa, so
     "off by default" (the seed's study) is justified. Measured: largest change 3.1e-5, von
     Mises of the prestress ≤ 0.51 MPa, 31 s at load 3 (values also in the assert message)."""
-    from shaftfe.variant import load_variant
+    from shaftfe.model.variant import load_variant
 
     t0 = time.perf_counter()
     off = rotor_solid.build_solid_rotor(load_variant("x2_57"))
@@ -285,7 +287,7 @@ def test_x2_57_stress_stiffening_negligible_at_8000_rpm():
 
 def test_cli_spin_softening_refused_and_stress_stiffening_solid_only(capsys):
     """``--spin-softening`` is one clear line with exit code 2 (InputError): not applicable in
-    the stationary frame, a rotating-frame term (module docstring of shaftfe.rotor_solid);
+    the stationary frame, a rotating-frame term (module docstring of shaftfe.rotordynamics.solid_rotor);
     ``--stress-stiffening`` needs ``--model solid``."""
     from shaftfe.cli import main
 

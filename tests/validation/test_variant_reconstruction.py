@@ -2,7 +2,7 @@
 
 Seed = seeds/000 (diploma thesis, VM 450), §8.2.2 unless stated; the parts list and title
 blocks are at the end of the seed. Statics and the deflection line are computed here,
-independently of shaftfe.beam.
+independently of shaftfe.beam.model.
 """
 
 import itertools
@@ -11,7 +11,7 @@ import math
 import numpy as np
 import pytest
 
-from shaftfe.variant import load_variant, rigid_support_reactions, seat_loads
+from shaftfe.model.variant import load_variant, rigid_support_reactions, seat_loads
 
 VARIANTS = ("x2_31", "x2_42", "x2_50", "x2_57")
 # seed §8.2.2 table: X2 % -> (mass kg, γ2 mm, x_T mm)
@@ -100,7 +100,7 @@ def test_gear_pitch_diameter_and_centre_distance_are_consistent():
     import tomllib
     from pathlib import Path
 
-    from shaftfe.variant import GEOMETRY_DIR
+    from shaftfe.model.variant import GEOMETRY_DIR
     parts = tomllib.loads(Path(GEOMETRY_DIR / "common" / "parts.toml").read_text("utf-8"))
     # exact (a file value): approx's default rel 1e-6
     assert parts["parts"]["gear"]["shape"]["rim_outer_radius_mm"] == pytest.approx(2 * 33 / 2)
@@ -307,7 +307,7 @@ def test_bearing_coupling_face_is_the_ring_contact_band(v57):
     are 0.6). The coupling face is the 17.5 mm ring minus 2.0 mm at each end: [31.5, 45.0] and
     [66.5, 80.0], exact area 2π · 8.5 · 13.5 = 721.00 mm², and 1.4 mm of straight seat lies
     between each coupling edge and the fillet next to it."""
-    from shaftfe.solid import expected_areas, prepare
+    from shaftfe.solid.plan import expected_areas, prepare
     for b in v57.bearings:
         assert (b.r_s_min_mm, b.chamfer_mm) == (0.6, 2.0)
         assert v57.provenance.source["bearing_types.zkl_3203.chamfer_mm"] == "standard"

@@ -7,9 +7,9 @@ API
 
 Model (issue 4)
 ---------------
-* Linear elasticity on the P2 (or P1) tet mesh of ``shaftfe.mesh``; E, ν of the variant's
+* Linear elasticity on the P2 (or P1) tet mesh of ``shaftfe.solid.mesh``; E, ν of the variant's
   shaft material; mm, N, MPa.
-* Bearings: ``shaftfe.supports`` (RBE3 remote point at the seat centre, 2×2 radial spring,
+* Bearings: ``shaftfe.fe.supports`` (RBE3 remote point at the seat centre, 2×2 radial spring,
   axial and twist held, tilt free unless given; ``rigid_supports`` → remote radial translations
   held).
 * Loads in the co-rotating frame: each attachment's m e ω² (``Attachment.force_N``) along its
@@ -50,8 +50,9 @@ from dataclasses import asdict, dataclass, field, replace
 
 import numpy as np
 
-from shaftfe import fem, recovery, supports
 from shaftfe.errors import InputError, SolverError
+from shaftfe.fe import assembly as fem
+from shaftfe.fe import recovery, supports
 
 REF_RPM = 10_000.0
 RESIDUAL_TOL = 1e-8
@@ -80,7 +81,7 @@ class StaticOptions:
     @property
     def load_case(self) -> str:
         return load_case_label(self.seed_load_case)
-    solver: str = "auto"                   # see shaftfe.solvers
+    solver: str = "auto"                   # see shaftfe.fe.solvers
     hold_twist: str = "all"                # θ_x held at "all" bearings, the "axial" one, "none"
     exclude_mm: float = 0.0                # extra band around patch edges for filtered peaks
 
@@ -141,7 +142,7 @@ class StaticCase:
     load_sum_N: tuple[float, float, float]
     reaction_sum_N: tuple[float, float, float]
     equilibrium_residual: float                # |Σ reactions + Σ loads| / |Σ loads|
-    beam: dict | None = None                   # shaftfe.beam numbers side by side
+    beam: dict | None = None                   # shaftfe.beam.model numbers side by side
 
 
 @dataclass(frozen=True, eq=False)
@@ -205,7 +206,7 @@ def _check_options(o: StaticOptions) -> None:
         raise InputError("--exclude-mm", "exclude_mm", ">= 0", got=o.exclude_mm)
     if o.hold_twist not in ("all", "axial", "none"):
         raise InputError("options", "hold_twist", "all | axial | none", got=o.hold_twist)
-    from shaftfe.solvers import METHODS
+    from shaftfe.fe.solvers import METHODS
     if o.solver not in METHODS:
         raise InputError("--solver", "solver", " | ".join(METHODS), got=o.solver)
 
@@ -230,7 +231,7 @@ def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh
     for b in variant.bearings:
         _check_bearing(b)
     if shaft_mesh is None:
-        from shaftfe.mesh import build_mesh
+        from shaftfe.solid.mesh import build_mesh
         shaft_mesh = build_mesh(variant, options.level, options.order, cache_dir=cache_dir)
     m = shaft_mesh.mesh
     mat = variant.material
@@ -311,7 +312,7 @@ def _springs(model: StaticModel) -> str:
 
 def solve_model(model: StaticModel, rhs: np.ndarray | None = None) -> UnitSolution:
     """Solve the supported system for ``rhs`` (default: the model's load at REF_RPM)."""
-    from shaftfe import solvers
+    from shaftfe.fe import solvers
     m = model.shaft_mesh.mesh
     K = model.K
     free = supports.unrestrained_modes(list(model.blocks), _modes(m))
@@ -562,7 +563,7 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
     beam_res = {}
     if beam:
         try:
-            from shaftfe import beam as beam_mod
+            from shaftfe.beam import model as beam_mod
             bopts = {"rigid_supports": options.rigid_supports, "spread_loads": True}
             for br in beam_mod.analyse(v, rpms, **bopts):
                 beam_res[br.rpm] = br
@@ -654,7 +655,7 @@ def _estimate_error(res: StaticResult, variant, options: StaticOptions, cache_di
     for stress peaks; (N_fine/N_coarse)^(1/3) from the element counts for deflections. Orders
     assumed: p = 2 for recovered P2 stresses (p = 1 for P1), p = 3 for P2 displacements (2 for
     P1). An estimate, not a bound: on a graded mesh the asymptotic range is not guaranteed."""
-    from shaftfe.mesh import LEVELS
+    from shaftfe.solid.mesh import LEVELS
     other = other_level or ("default" if options.level == "fine" else "fine")
     res2 = solve_static(variant, [c.rpm for c in res.cases], replace(options, level=other),
                         cache_dir=cache_dir, beam=False)

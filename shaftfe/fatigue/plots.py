@@ -24,7 +24,7 @@ def _plt():
 
 def _save(fig, path) -> Path:
     """Write the figure atomically (never a half-written PNG) and close it."""
-    from shaftfe.atomic import atomic_path
+    from shaftfe.util.atomic import atomic_path
 
     path = Path(path)
     try:

@@ -18,7 +18,7 @@ Pieces
 * ``surface_load``: the load vector of a pressure on a named face group, uniform or
   cosine-distributed about a direction, scaled so that its net force is exactly the given force.
 * ``rigid_rows``: the six rows that give a face's RBE3 remote-point motion (least-squares rigid
-  fit to the face displacements with area weighting); see ``shaftfe.supports``.
+  fit to the face displacements with area weighting); see ``shaftfe.fe.supports``.
 * ``body_force_load``: the centrifugal body force ρ ω² (0, y, z) of the shaft itself.
 * ``rigid_body_modes``: the six rigid motions sampled at the nodes.
 """

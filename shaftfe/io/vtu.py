@@ -28,8 +28,8 @@ def mesh_cells(m) -> tuple[list, list, list[str]]:
     """meshio cells of a scikit-fem mesh: the volume (tetra10 / tetra), then the triangles of
     every named face group; the cell data ``region`` (0 volume, k = names[k − 1]) and the
     names."""
-    from shaftfe import fem
-    from shaftfe.mesh import triangle6_connectivity
+    from shaftfe.fe import assembly as fem
+    from shaftfe.solid.mesh import triangle6_connectivity
     quad = fem.is_quadratic(m)
     vol = ("tetra10" if quad else "tetra", fem.element_nodes(m).T.astype(np.int64))
     cells = [vol]
@@ -55,7 +55,7 @@ def write_fields_vtu(m, path, point_data: dict) -> tuple[Path, list[str]]:
     and the region names."""
     import meshio
 
-    from shaftfe.atomic import atomic_path
+    from shaftfe.util.atomic import atomic_path
     cells, region, names = mesh_cells(m)
     n = m.doflocs.shape[1]
     data = {}
@@ -78,7 +78,7 @@ def write_vtu(result, path, rpm: float, *,
     """Write the fields of ``result`` (a ``StaticResult``) scaled to ``rpm``, plus
     ``extra_point_data`` (name -> one value per node, or (n, k)), written unscaled. Returns the
     path and the region names (cell data ``region`` = index + 1)."""
-    from shaftfe import recovery
+    from shaftfe.fe import recovery
     m = result.mesh.mesh
     s = (rpm / result.ref_rpm) ** 2
     stress = result.stress_ref * s
@@ -96,7 +96,7 @@ def stress_envelope(mesh, vm: np.ndarray, n_slices: int = 120) -> tuple[np.ndarr
     """The largest nodal von Mises of the elements that reach into each of ``n_slices`` equal
     slices along x: an element long in x counts in every slice it spans, so a slice without a
     node of its own (a coarse uniform segment) still shows the stress there, not 0."""
-    from shaftfe.fem import element_nodes
+    from shaftfe.fe.assembly import element_nodes
     x = np.asarray(mesh.doflocs[0])
     en = element_nodes(mesh)
     lo, hi = x[en].min(axis=0), x[en].max(axis=0)
@@ -122,7 +122,7 @@ def plot_png(result, path, rpm: float) -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from shaftfe.atomic import write_atomic
+    from shaftfe.util.atomic import write_atomic
     s = (rpm / result.ref_rpm) ** 2
     case = result.case(rpm)
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)

@@ -8,7 +8,7 @@ socket, split load seats, a bearing seat) at a size that meshes in seconds.
 
 from __future__ import annotations
 
-from shaftfe.variant import Attachment, Bearing, HexSocket, Keyway, Material, Segment, Variant
+from shaftfe.model.variant import Attachment, Bearing, HexSocket, Keyway, Material, Segment, Variant
 
 STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
 K_SEED = ((35_030.0, 8_756.0), (8_756.0, 35_030.0))     # seed 000 §8.3 bearing stiffness, N/mm

@@ -1,6 +1,6 @@
 """Export the static/modal model to an Abaqus-format input deck that CalculiX (ccx 2.20) runs.
 
-The deck holds the SAME discrete model as ``shaftfe.static`` (same nodes, same P2 tets, same
+The deck holds the SAME discrete model as ``shaftfe.static.solve`` (same nodes, same P2 tets, same
 nodal load vector, same support rows), so a CalculiX run isolates the solver and the stress
 recovery (``benchmarks/bench_calculix.py``).
 
@@ -16,7 +16,7 @@ Contents
   coordinates (``TET10_EDGES``), not assumed; negatively oriented tets get corners 2 and 3
   swapped.
 * ``*MATERIAL``: ``*ELASTIC`` E, ν and ``*DENSITY`` ρ of the shaft material (mm, N, t/mm³).
-* Supports, for every bearing (``shaftfe.supports``): the remote-point rows q = G u of the
+* Supports, for every bearing (``shaftfe.fe.supports``): the remote-point rows q = G u of the
   RBE3 coupling enter as linear ``*EQUATION`` s, not as ccx's ``*COUPLING/*DISTRIBUTING``.
   ccx 2.20 does accept the latter (checked on a one-element deck: it becomes one special
   multiple point constraint of its own with its own weighting), but that would be an
@@ -95,7 +95,7 @@ def skfem_to_abaqus_tet10() -> np.ndarray:
 def abaqus_connectivity(mesh) -> np.ndarray:
     """(ne, 10) 0-based node numbers of every P2 tet in Abaqus C3D10 order, positively
     oriented (det[x2 − x1, x3 − x1, x4 − x1] > 0 over the corners)."""
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
     if not fem.is_quadratic(mesh):
         raise ValueError("the CalculiX export needs the P2 (MeshTet2) mesh")
     conn = fem.element_nodes(mesh)[skfem_to_abaqus_tet10()].T.copy()     # (ne, 10)
@@ -391,7 +391,7 @@ def write_deck(path, model, *, steps=("static", "frequency"), n_modes: int = 12,
         out.append("")                                   # no dof line for SPRINGA
         out.append(_num(kk))
     seat_sets = {}
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
     for c in model.couplings:
         nm = "SEAT_" + "".join(ch if ch.isalnum() else "_" for ch in c.name.upper())
         seat_sets[c.name] = nm

@@ -250,7 +250,7 @@ def choose_basis(K, M, G, C, n_modes: int, Omega_max: float, *, tol: float = 1e-
     (Rayleigh-Ritz). Returns (Reduced for the chosen size, measured change, number of
     rigid-body eigenvalues dropped).
 
-    Large models (``shaftfe.rotor_solid``): ``basis_fn(m)`` returns the ``m`` lowest
+    Large models (``shaftfe.rotordynamics.solid_rotor``): ``basis_fn(m)`` returns the ``m`` lowest
     mass-normalised modes (a cached shift-invert solver) instead of ``modal_basis``, and
     ``residuals`` the damping residual vectors instead of ``damper_residuals``; K may then
     be a LinearOperator (only K @ X is used)."""

@@ -28,7 +28,7 @@ Limit of the rule: a patch edge that coincides with a fillet's tangent line puts
 peak inside the excluded element layer, and the filtered peak then grows with refinement as the
 layer shrinks (measured on x2_57 before the bearings had chamfers: collar fillet 246 → 474 MPa,
 default → fine). The geometry now prevents it: a bearing's coupling face is the ring's contact
-band (``Bearing.chamfer_mm`` off each end, ``shaftfe.solid`` rejects a band that reaches into a
+band (``Bearing.chamfer_mm`` off each end, ``shaftfe.solid.plan`` rejects a band that reaches into a
 fillet), so on x2_57 the two fillets next to the bearings lose no node to the rule and converge
 monotonically under refinement of their hot spots (reports/benchmarks/static.md: a three-level
 study with observed order ≈ 3 and the default level within ~1 % of the extrapolated value).
@@ -84,7 +84,7 @@ def element_node_stress(mesh, u: np.ndarray, E: float, nu: float):
     (nloc, ne)."""
     from skfem import Basis
 
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
     e = fem.scalar_element(mesh)
     X = np.asarray(e.doflocs, dtype=float).T                # reference node coordinates
     sb = Basis(mesh, e, quadrature=(X, np.ones(X.shape[1])))
@@ -121,7 +121,7 @@ def average_to_nodes(mesh, s: np.ndarray, nodes: np.ndarray) -> np.ndarray:
 def patch_edge_nodes(mesh, patch_facets: np.ndarray) -> np.ndarray:
     """Nodes on the boundary curve of a face patch: nodes shared by a patch facet and a
     boundary facet outside the patch."""
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
     boundary = mesh.boundary_facets()
     outside = np.setdiff1d(boundary, patch_facets)
     return np.intersect1d(fem.face_nodes(mesh, patch_facets), fem.face_nodes(mesh, outside))
@@ -131,7 +131,7 @@ def excluded_nodes(mesh, patches: list[np.ndarray], distance_mm: float = 0.0) ->
     """Nodes of every element that touches a patch edge (the singular-point rule) and, with
     ``distance_mm`` > 0, also every node closer than that to a patch-edge node (a
     mesh-independent band, so that the filtered peak converges under refinement)."""
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
     edge = np.unique(np.concatenate([patch_edge_nodes(mesh, p) for p in patches])) \
         if patches else np.zeros(0, dtype=np.int64)
     ed = fem.element_nodes(mesh)

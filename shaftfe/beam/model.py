@@ -48,7 +48,7 @@ Per rpm (``BeamResult``): bearing reactions (vector, magnitude, ISO 281 basic L1
 every element (jumps at tilt springs are kept), nominal bending stress σ = M/W (32 M/(π d³) for a
 solid section; at a shoulder each side uses its own diameter, so the maximum is on the smaller
 one), τ = T (D/2)/J (16 T/(π d³) solid), von Mises √(σ² + 3τ²), its maximum and x, and at each
-shoulder Kt (``shaftfe.scf``, bending fit) × the nominal von Mises stress on the smaller
+shoulder Kt (``shaftfe.beam.scf``, bending fit) × the nominal von Mises stress on the smaller
 diameter at the shoulder (a torsion Kts is not modelled: the seed's loads carry no torque).
 Reactions are the forces the supports exert ON the shaft (bearing load = −reaction).
 
@@ -65,8 +65,8 @@ from types import MappingProxyType
 
 import numpy as np
 
+from shaftfe.beam.scf import kt_shoulder
 from shaftfe.errors import InputError, SolverError
-from shaftfe.scf import kt_shoulder
 
 NDOF = 6
 UX, UY, UZ, RX, RY, RZ = range(NDOF)
@@ -352,7 +352,7 @@ def build_model(variant, *, rigid_supports: bool = False, max_element_mm: float 
                 spread_loads: bool = False, kt_fit: str = "roark",
                 extra_loads: Sequence[PointLoad] = (), shear_deformation: bool = True
                 ) -> BeamModel:
-    """Discretise ``variant`` (a ``shaftfe.variant.Variant``) into a Timoshenko beam model.
+    """Discretise ``variant`` (a ``shaftfe.model.variant.Variant``) into a Timoshenko beam model.
 
     ``shear_deformation=False`` gives the Euler-Bernoulli limit (κ → ∞, Φ = 0), e.g. to
     compare with tools that neglect shear."""

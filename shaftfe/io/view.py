@@ -550,7 +550,7 @@ def render(path, field: str | None = None, component: str | None = None,
     if shot is None and off_screen:
         shot = Path(path).with_name(f"{Path(path).stem}_{choice.name}.png")
     if shot is not None:
-        from shaftfe.atomic import check_output_file
+        from shaftfe.util.atomic import check_output_file
         check_output_file(shot, "--screenshot")
 
     bnd = boundary(grid, choice, np.where(finite, vals, np.nan))
@@ -727,7 +727,7 @@ def _view_iso(p, surf, hot) -> None:
 
 def _screenshot(plotter, shot: Path) -> None:
     """Render and write the image under a temporary name, then rename (never half-written)."""
-    from shaftfe.atomic import atomic_path
+    from shaftfe.util.atomic import atomic_path
 
     with atomic_path(shot) as tmp:
         plotter.screenshot(str(tmp))

@@ -30,12 +30,10 @@ from types import MappingProxyType
 from typing import Any, Literal
 
 from shaftfe.errors import InputError
+from shaftfe.util.paths import GEOMETRY_DIR  # the variant files (geometry/)
 
 Source = Literal["seed", "reconstructed", "derived", "standard"]
 SOURCES: tuple[str, ...] = ("seed", "reconstructed", "derived", "standard")
-
-#: Default directory of the variant files (``geometry/`` at the project root).
-GEOMETRY_DIR = Path(__file__).resolve().parents[1] / "geometry"
 
 
 @dataclass(frozen=True)
@@ -1000,7 +998,7 @@ def load_variant(name_or_path: str | Path) -> Variant:
         balance_target=target,
         clearance_mm=_num(shaft, "clearance_to_crankshaft_mm", ssrc, "shaft", required=False),
         stock_diameter_mm=stock)
-    from shaftfe.solid import prepare
+    from shaftfe.solid.plan import prepare
     prepare(v)       # the solid's own rules (slots, hex socket, contact bands): every command
     if target is not None:
         _check_balance(v, target, ctx.file_of("balance", top))

@@ -1,5 +1,5 @@
 """Rotor-dynamics model of the beam path: shaft gyroscopics, rigid disks, bearings, and the
-Campbell sweep / single-speed modal analysis (kernels in ``shaftfe.campbell``).
+Campbell sweep / single-speed modal analysis (kernels in ``shaftfe.rotordynamics.kernels``).
 
 Equation of motion (stationary frame, spin Ω about +x, constraints eliminated):
 
@@ -54,9 +54,10 @@ from types import MappingProxyType
 
 import numpy as np
 
-from shaftfe import beam
-from shaftfe.beam import NDOF, RX, RY, RZ, UX, UY, UZ
-from shaftfe.campbell import (
+from shaftfe.beam import model as beam
+from shaftfe.beam.model import NDOF, RX, RY, RZ, UX, UY, UZ
+from shaftfe.errors import InputError
+from shaftfe.rotordynamics.kernels import (
     TWO_PI,
     CampbellResult,
     Labelling,
@@ -64,7 +65,6 @@ from shaftfe.campbell import (
     rpm_to_rad_s,
     sweep,
 )
-from shaftfe.errors import InputError
 
 _S = np.array([1.0, -1.0, 1.0, -1.0])
 _XY = np.array([UY, RZ, NDOF + UY, NDOF + RZ])

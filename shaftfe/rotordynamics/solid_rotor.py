@@ -1,5 +1,5 @@
 """Rotor dynamics of the 3D solid shaft (P2 tets): mass, gyroscopics, rigid attachments,
-bearings, and the Campbell sweep in a reduced modal basis (kernels in ``shaftfe.campbell``).
+bearings, and the Campbell sweep in a reduced modal basis (kernels in ``shaftfe.rotordynamics.kernels``).
 
 Equation of motion (stationary frame, spin Ω about +x):
 
@@ -28,9 +28,9 @@ Matrices
   same expansion (½ Ω² ∫ ρ |∂u/∂θ|²) are of the order of the centrifugal geometric terms and
   are dropped with them, or kept with them (option ``stress_stiffening``, below). Check:
   projected on the rigid tilts of a body, G gives G[θ_y, θ_z] = ∫ ρ (y² + z²) dV = I_p, the
-  rigid-disk gyroscopic term of ``shaftfe.rotor`` (tested). Not valid for a non-axisymmetric
+  rigid-disk gyroscopic term of ``shaftfe.rotordynamics.beam_rotor`` (tested). Not valid for a non-axisymmetric
   body (keyways, the hex socket: small, their mass is < 1 % of the shaft).
-* Bearings: ``shaftfe.supports`` exactly as in the static model (RBE3 remote point at the seat
+* Bearings: ``shaftfe.fe.supports`` exactly as in the static model (RBE3 remote point at the seat
   centre, 2×2 radial spring, θ_x held at every bearing ("all") and u_x at the axial one as
   hard rows, tilt free); optional isotropic damping c on the remote point's (u_y, u_z).
 * Attachments (gear, counterweights, nuts, …): every part is a rigid body with its mass,
@@ -100,7 +100,7 @@ softening only with a rotating reference frame, not with stationary-frame Coriol
 Solution
 --------
 The bearing springs and the hard rows are never assembled into the sparse matrix (dense
-cliques); they enter every solve as a low-rank Woodbury term (as in ``shaftfe.static``):
+cliques); they enter every solve as a low-rank Woodbury term (as in ``shaftfe.static.solve``):
 B = K + σ Ω G + σ² M (sparse, SPD at Ω = 0) is factorised ONCE per shift σ, and
 (B + U C Uᵀ)⁻¹ with hard rows (C⁻¹ = 0, the exact infinite-stiffness limit) costs one small
 dense capacitance solve per right-hand side. Shift σ = −2π f_s (real, f_s = ``shift_hz``): at
@@ -109,7 +109,7 @@ dense capacitance solve per right-hand side. Shift σ = −2π f_s (real, f_s = 
 1. Basis (once): the lowest undamped modes by shift-invert Lanczos (``eigsh``, OPinv = the
    Woodbury operator with hard rows, so the modes satisfy H q = 0), mass-normalised; cached
    and reused when the basis grows.
-2. Per speed: ``shaftfe.campbell.sweep`` (projected quadratic eigenproblem, MAC tracking,
+2. Per speed: ``shaftfe.rotordynamics.kernels.sweep`` (projected quadratic eigenproblem, MAC tracking,
    whirl labels, critical speeds), basis size chosen by the convergence test there.
 3. ``verify``: the full-size quadratic eigenproblem at the top speed (shift-invert Arnoldi on
    the companion linearisation, one nonsymmetric factorisation of K + σ(C + ΩG) + σ² M with
@@ -133,8 +133,8 @@ from types import MappingProxyType
 
 import numpy as np
 
-from shaftfe.campbell import TWO_PI, CampbellResult, Labelling, ModalBasis, sweep
 from shaftfe.errors import InputError, SolverError
+from shaftfe.rotordynamics.kernels import TWO_PI, CampbellResult, Labelling, ModalBasis, sweep
 
 COUPLINGS = ("rigid", "distributing")
 
@@ -147,7 +147,7 @@ class SolidOptions:
     rigid_supports: bool = False
     bearing_damping: float = 0.0          # N·s/mm, isotropic, on every bearing
     hold_twist: str = "all"               # θ_x held at "all" bearings | "axial" | "none"
-    solver: str = "auto"                  # shaftfe.solvers for the symmetric factorisation
+    solver: str = "auto"                  # shaftfe.fe.solvers for the symmetric factorisation
     shift_hz: float = 50.0                # σ = −2π shift_hz
     stress_stiffening: bool = False       # centrifugal prestress Ω² K_g (module docstring)
 
@@ -159,7 +159,7 @@ def mass_and_gyro(mesh, density: float):
     N = nodes), by order-4 quadrature (exact on straight P2 tets)."""
     from skfem.quadrature import get_quadrature
 
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
 
     order = 4 if fem.is_quadratic(mesh) else 2
     e = fem.scalar_element(mesh)
@@ -205,7 +205,7 @@ class Body:
 
 
 def attachment_bodies(variant, mesh) -> list[Body]:
-    from shaftfe import rotor
+    from shaftfe.rotordynamics import beam_rotor as rotor
 
     disks = {d.name: d for d in rotor.disks_from_variant(variant)}
     groups: dict[tuple[float, float], list] = {}
@@ -347,7 +347,7 @@ def _check_options(o: SolidOptions) -> None:
                          got=o.bearing_damping)
     if not (math.isfinite(o.shift_hz) and o.shift_hz > 0):
         raise InputError("options", "shift_hz", "> 0 Hz", got=o.shift_hz)
-    from shaftfe.solvers import METHODS
+    from shaftfe.fe.solvers import METHODS
     if o.solver not in METHODS:
         raise InputError("--solver", "solver", " | ".join(METHODS), got=o.solver)
 
@@ -362,11 +362,12 @@ def build_solid_rotor(variant, options: SolidOptions = SolidOptions(), *, shaft_
     ``attachments=False``: the bare shaft."""
     import scipy.sparse as sp
 
-    from shaftfe import fem, supports
+    from shaftfe.fe import assembly as fem
+    from shaftfe.fe import supports
 
     _check_options(options)
     if shaft_mesh is None:
-        from shaftfe.mesh import build_mesh
+        from shaftfe.solid.mesh import build_mesh
         shaft_mesh = build_mesh(variant, options.level, options.order, cache_dir=cache_dir)
     m = shaft_mesh.mesh
     mat = variant.material
@@ -522,7 +523,7 @@ class ShiftedSolver:
 
     def __init__(self, rotor: SolidRotor, sigma: float, Omega: float = 0.0,
                  method: str | None = None, K_extra=None):
-        from shaftfe import solvers
+        from shaftfe.fe import solvers
 
         t0 = time.perf_counter()
         B = (rotor.K_sparse + (sigma * sigma) * rotor.M_sparse).tocsr()
@@ -626,7 +627,7 @@ def _auto_method(method: str, n: int) -> str:
 def _unsym_factor(A, method: str):
     """PARDISO (real nonsymmetric) if installed and asked for or ``auto`` on a model of
     ≥ 30k dofs (its setup costs ~1 s), else SuperLU."""
-    from shaftfe.solvers import available
+    from shaftfe.fe.solvers import available
     big = A.shape[0] >= 30_000
     if (method == "pardiso" or (method == "auto" and big)) and available()["pardiso"]:
         return _PardisoUnsym(A)
@@ -692,7 +693,7 @@ class BasisProvider:
 def geometric_order(mesh) -> int:
     """Quadrature order of the geometric stiffness: σ⁰ ∂φ_a ∂φ_b is cubic on a straight P2
     tet (each factor linear), constant on P1."""
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
     return 3 if fem.is_quadratic(mesh) else 1
 
 
@@ -700,7 +701,7 @@ def quadrature_stress(mesh, u: np.ndarray, E: float, nu: float,
                       intorder: int | None = None) -> np.ndarray:
     """σ = λ tr ε I + 2 μ ε at the quadrature points (ne, nq, 3, 3) of the displacement u
     (mesh dofs, interleaved), ε = sym ∇u, ∂_j u_i = Σ_a u_ai ∂_j φ_a."""
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
 
     intorder = geometric_order(mesh) if intorder is None else intorder
     dN, _ = fem.physical_gradients(mesh, intorder)                 # (ne, nq, nloc, 3)
@@ -717,7 +718,7 @@ def geometric_stiffness(mesh, stress: np.ndarray, intorder: int | None = None):
     (N × N sparse CSR) of a prestress given at the quadrature points of order ``intorder``
     (default ``geometric_order``): shape (ne, nq, 3, 3), or anything that broadcasts to it
     (a constant 3 × 3 tensor). The vector matrix is ``vector_matrix(S_σ)``."""
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
 
     intorder = geometric_order(mesh) if intorder is None else intorder
     dN, wdx = fem.physical_gradients(mesh, intorder)                 # (ne, nq, nloc, 3)
@@ -732,7 +733,7 @@ def convective_matrix(mesh, density: float):
     P2 tets), the companion of the prestress in the stationary frame (module docstring)."""
     from skfem.quadrature import get_quadrature
 
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
 
     order = 4 if fem.is_quadratic(mesh) else 2
     e = fem.scalar_element(mesh)
@@ -772,7 +773,7 @@ def centrifugal_displacement(rotor: SolidRotor, solver: ShiftedSolver, *, tol: f
     ‖Δq_k − Δq_(k−1)‖_K, is < ``tol`` ‖q‖_K. (The elastic part of Δq falls by σ²/(ω² + σ²)
     per step; on a free model the load's rigid-body part, the mesh's tiny net force, adds
     the same strain-free motion every step and drops out of the difference.)"""
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
 
     m = rotor.shaft_mesh.mesh
     f = fem.body_force_load(m, rotor.variant.material.density_t_mm3, 1.0)
@@ -884,9 +885,9 @@ def full_qep(rotor: SolidRotor, Omega: float, n_modes: int, *, sigma: float | No
 def verify(rotor: SolidRotor, res: CampbellResult, rpm: float | None = None,
            provider: BasisProvider | None = None):
     """Full-size quadratic eigenproblem at ``rpm`` (default the top speed of ``res``) against
-    the reduced sweep (the same matching as ``shaftfe.rotor.verify``); ``provider``: reuse
+    the reduced sweep (the same matching as ``shaftfe.rotordynamics.beam_rotor.verify``); ``provider``: reuse
     its prestress (``stress_stiffening``)."""
-    from shaftfe.rotor import compare_with_full, speed_index
+    from shaftfe.rotordynamics.beam_rotor import compare_with_full, speed_index
 
     i = speed_index(res, rpm)
     n = res.freq_hz.shape[1]
@@ -916,8 +917,8 @@ def write_modes_vtu(rotor: SolidRotor, res: CampbellResult, path, speed_index: i
     with PyVista/VTK (meshio's VTU writer drops field data)."""
     import pyvista as pv
 
-    from shaftfe import fem
-    from shaftfe.atomic import atomic_path
+    from shaftfe.fe import assembly as fem
+    from shaftfe.util.atomic import atomic_path
 
     if res.vectors is None:
         raise ValueError("write_modes_vtu needs a result with keep_vectors=True")

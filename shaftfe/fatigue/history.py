@@ -47,7 +47,7 @@ from pathlib import Path
 import numpy as np
 
 from shaftfe.errors import InputError
-from shaftfe.limits import RPM_CEILING
+from shaftfe.util.limits import RPM_CEILING
 
 DEFAULT_RPM_REF = 7000.0        # reference speed of the seed's static load case (seed 000 §8.3)
 SEED_SAMPLE_RATE_HZ = 1.0       # seed 000 appendix 5: one sample per second

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from shaftfe import fem
+from shaftfe.fe import assembly as fem
 
 MODE_NAMES = ("axial translation u_x", "translation u_y", "translation u_z",
               "rotation about the shaft axis θ_x", "tilt θ_y", "tilt θ_z")

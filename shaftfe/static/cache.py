@@ -4,12 +4,12 @@ The fatigue evaluation needs only the nodal stresses at the static reference spe
 coordinates, the named face regions, the singular-point exclusion and (for ``fatigue.vtu``) the
 cells. ``load_or_solve(variant, options, cache_dir)`` returns them as a ``StaticReference``,
 from ``<dir>/static-<key[:24]>.npz`` when the model is unchanged, otherwise by one
-``shaftfe.static.solve_static`` at its ``REF_RPM`` (the file is then written).
+``shaftfe.static.solve.solve_static`` at its ``REF_RPM`` (the file is then written).
 
 Key (sha256 of a canonical JSON): ``STATIC_CACHE_FORMAT``; the variant's content hash
 (``Variant.content_hash``: geometry, bearings, attachments, materials); the static options
 (``StaticOptions`` without ``solver``: every solver meets the same residual limit, 1e-8, so the
-choice does not change the stresses beyond that); the mesh key of ``shaftfe.mesh`` (geometry
+choice does not change the stresses beyond that); the mesh key of ``shaftfe.solid.mesh`` (geometry
 plan, level, order, Gmsh version and options, mesh ``CACHE_FORMAT``); the static reference
 speed; and a fingerprint (sha256) of the source of the modules that compute the stresses
 (``static``, ``recovery``, ``fem``, ``supports``), so a change of the solver code is never
@@ -40,15 +40,17 @@ import hashlib
 import importlib.util
 import json
 import math
-import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from shaftfe.util import paths
+
 STATIC_CACHE_FORMAT = 1
-FINGERPRINT_MODULES = ("shaftfe.static", "shaftfe.recovery", "shaftfe.fem", "shaftfe.supports")
+FINGERPRINT_MODULES = ("shaftfe.static.solve", "shaftfe.fe.recovery", "shaftfe.fe.assembly",
+                       "shaftfe.fe.supports")
 _KEY_SKIP_OPTIONS = ("solver",)
 
 
@@ -98,13 +100,6 @@ class StaticReference:
 
 # --------------------------------------------------------------------------- key
 
-def cache_dir_of(cache_dir=None) -> Path:
-    if cache_dir is not None:
-        return Path(cache_dir)
-    env = os.environ.get("SHAFTFE_CACHE_DIR")
-    return Path(env) if env else Path.home() / ".cache" / "shaftfe"
-
-
 def code_fingerprint() -> str:
     """sha256 over the source files of ``FINGERPRINT_MODULES`` (found without importing)."""
     h = hashlib.sha256()
@@ -118,10 +113,10 @@ def code_fingerprint() -> str:
 
 
 def predicted_mesh_key(variant, options) -> str:
-    """The key ``shaftfe.mesh.build_mesh`` gives the mesh the static solve will use (the seed
+    """The key ``shaftfe.solid.mesh.build_mesh`` gives the mesh the static solve will use (the seed
     load case meshes the variant reduced to the seed's parts, as ``static.build_model``)."""
-    from shaftfe import mesh as mesh_mod
-    from shaftfe.solid import prepare
+    from shaftfe.solid import mesh as mesh_mod
+    from shaftfe.solid.plan import prepare
     v = variant.with_seed_load_case() if options.seed_load_case else variant
     return mesh_mod.mesh_key(prepare(v), options.level, options.order, mesh_mod._gmsh_version())
 
@@ -139,12 +134,12 @@ def variant_hash(variant) -> str:
     """The variant's content hash (computed if a variant built in code has none)."""
     if getattr(variant, "content_hash", ""):
         return variant.content_hash
-    from shaftfe.variant import content_hash
+    from shaftfe.model.variant import content_hash
     return content_hash(variant)
 
 
 def cache_path(key: str, cache_dir=None) -> Path:
-    return cache_dir_of(cache_dir) / f"static-{key[:24]}.npz"
+    return paths.cache_dir(cache_dir) / f"static-{key[:24]}.npz"
 
 
 def singular_patches(mesh) -> list[np.ndarray]:
@@ -157,7 +152,7 @@ def singular_patches(mesh) -> list[np.ndarray]:
 def facet_cells(mesh) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
     """Triangles (triangle6 for P2: corners, then the mid-side nodes of edges 01, 12, 20) of
     every named face group, the group index of each, and the group names (sorted)."""
-    from shaftfe import fem
+    from shaftfe.fe import assembly as fem
     names = tuple(sorted(mesh.boundaries))
     if not names:
         return np.zeros((0, 6 if fem.is_quadratic(mesh) else 3), np.int64), \
@@ -189,7 +184,7 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
     """The static reference solution of ``variant`` with ``options`` (``StaticOptions``), read
     from the cache when the key matches, else solved (and stored). ``cache_dir`` is used for the
     mesh cache too."""
-    from shaftfe import static
+    from shaftfe.static import solve as static
     t0 = time.perf_counter()
     options = options if options is not None else static.StaticOptions()
     mkey = predicted_mesh_key(variant, options)
@@ -211,7 +206,7 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
 def store(variant, options, res, cache_dir=None) -> StaticReference:
     """Put a ``StaticResult`` solved elsewhere (``shaftfe static``) into the cache, so that a
     later ``shaftfe fatigue`` on the same model reuses it instead of solving again."""
-    from shaftfe import static
+    from shaftfe.static import solve as static
     mkey = predicted_mesh_key(variant, options)
     key = static_key(variant, options, mkey, static.REF_RPM)
     ref = from_result(res, key)
@@ -227,8 +222,10 @@ def store(variant, options, res, cache_dir=None) -> StaticReference:
 
 
 def from_result(res, key: str = "", seconds: float = 0.0) -> StaticReference:
-    """A ``StaticReference`` from a ``shaftfe.static.StaticResult`` (not cached)."""
-    from shaftfe import fem, recovery, static
+    """A ``StaticReference`` from a ``shaftfe.static.solve.StaticResult`` (not cached)."""
+    from shaftfe.fe import assembly as fem
+    from shaftfe.fe import recovery
+    from shaftfe.static import solve as static
     m = res.mesh.mesh
     band = float(getattr(res.options, "exclude_mm", 0.0))
     excl = (recovery.excluded_nodes(m, singular_patches(m), band) if band > 0
@@ -252,7 +249,7 @@ def _float_or_none(v) -> float | None:
 
 
 def _save(path: Path, ref: StaticReference) -> None:
-    from shaftfe import cachefile
+    from shaftfe.util import cachefile
     names = sorted(ref.regions)
     meta = {"format": STATIC_CACHE_FORMAT, "key": ref.key, "variant": ref.variant,
             "variant_hash": ref.variant_hash, "options": ref.options, "ref_rpm": ref.ref_rpm,
@@ -270,7 +267,7 @@ def _save(path: Path, ref: StaticReference) -> None:
 def _load(path: Path, key: str, name: str, t0: float) -> StaticReference | None:
     """Read a cache file; None (→ recompute) if it is unreadable, truncated, foreign or
     inconsistent."""
-    from shaftfe import cachefile
+    from shaftfe.util import cachefile
     got = cachefile.load(path, key, "static")
     if got is None:
         return None

@@ -2,7 +2,7 @@
 
 ``build_mesh(variant, level, order)`` returns a ``ShaftMesh`` whose ``mesh`` is a
 ``skfem.MeshTet2`` (or ``MeshTet1`` for order 1) in mm, x = shaft axis, with
-``mesh.boundaries`` (facet index arrays per physical face group, see ``shaftfe.solid``) and
+``mesh.boundaries`` (facet index arrays per physical face group, see ``shaftfe.solid.plan``) and
 ``mesh.subdomains["shaft"]``. Downstream code reaches faces only through these names.
 
 Mesh size (ours): a global size k_global × D per segment (Box fields) and, around every fillet,
@@ -54,9 +54,10 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from shaftfe.atomic import atomic_path
 from shaftfe.errors import InputError, SolverError
-from shaftfe.solid import Solid, analytic_volume, expected_areas, prepare
+from shaftfe.solid.plan import Solid, analytic_volume, expected_areas, prepare
+from shaftfe.util import paths
+from shaftfe.util.atomic import atomic_path
 
 __all__ = ["LEVELS", "ShaftMesh", "analytic_volume", "build_mesh", "cache_path",
            "expected_areas", "mesh_key", "write_mesh"]
@@ -137,17 +138,8 @@ def mesh_key(sol: Solid, level: str, order: int, gmsh_version: str) -> str:
     return hashlib.sha256(text.encode()).hexdigest()
 
 
-def _cache_dir(cache_dir) -> Path:
-    if cache_dir is not None:
-        return Path(cache_dir)
-    env = os.environ.get("SHAFTFE_CACHE_DIR")
-    if env:
-        return Path(env)
-    return Path.home() / ".cache" / "shaftfe"
-
-
 def cache_path(key: str, cache_dir=None) -> Path:
-    return _cache_dir(cache_dir) / f"mesh-{key[:24]}.npz"
+    return paths.cache_dir(cache_dir) / f"mesh-{key[:24]}.npz"
 
 
 def _gmsh_version() -> str:
@@ -192,7 +184,7 @@ def _skfem_mesh(data: dict):
             _subdomains=data["subdomains"])
     if cls is MeshTet2:
         # every FacetBasis on this mesh then inverts curved tets robustly (see fem.robust_mapping)
-        from shaftfe.fem import robust_mapping
+        from shaftfe.fe.assembly import robust_mapping
         m._cached_mapping = robust_mapping(m)
     return m
 
@@ -212,7 +204,7 @@ def _finish(data: dict, name: str, level: str, order: int, key: str, t0: float,
 
 
 def _save(path: Path, data: dict) -> None:
-    from shaftfe import cachefile
+    from shaftfe.util import cachefile
     arrays = {"doflocs": data["doflocs"], "t": data["t"]}
     names = list(data["boundaries"])
     subs = list(data["subdomains"])
@@ -229,7 +221,7 @@ def _load(path: Path, key: str) -> dict | None:
     or not ours."""
     import numpy as np
 
-    from shaftfe import cachefile
+    from shaftfe.util import cachefile
     got = cachefile.load(path, key, "mesh")
     if got is None:
         return None
@@ -264,7 +256,7 @@ def _load(path: Path, key: str) -> dict | None:
 def _generate(sol: Solid, level: str, order: int) -> dict:
     import gmsh
 
-    from shaftfe import solid as solid_mod
+    from shaftfe.solid import plan as solid_mod
     t0 = time.perf_counter()
     own = not gmsh.isInitialized()
     if own:

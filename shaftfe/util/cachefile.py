@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from shaftfe.atomic import atomic_path
+from shaftfe.util.atomic import atomic_path
 
 
 def checksum(arrays: dict[str, np.ndarray]) -> str:
