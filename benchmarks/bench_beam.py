@@ -65,7 +65,7 @@ def main() -> None:
     root = Path(__file__).resolve().parents[1]
     if (root / "geometry" / "x2_57.toml").exists():
         try:
-            from shaftfe.model.variant import load_variant
+            from shaftfe.model.loader import load_variant
             var = load_variant("x2_57")
         except Exception as exc:   # the loader may not exist yet
             print(f"x2_57: not run ({type(exc).__name__}: {exc})")

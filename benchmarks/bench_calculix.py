@@ -236,7 +236,7 @@ def our_modal(model, n_modes: int = N_MODES) -> dict:
 def _child(kind: str, level: str, rigid: bool, cache: str, out: str) -> None:
     """Our run in its own process (timed from outside): ``static`` or ``modal``."""
     t_start = time.perf_counter()
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.static.solve import REF_RPM, StaticOptions, build_model, solve_static
     t_imp = time.perf_counter() - t_start
     v = load_variant(VARIANT)
@@ -374,7 +374,7 @@ def compare_static(level: str, rigid: bool, ccx: str, work: Path, mesh_file: Pat
     from shaftfe.fe import assembly as fem
     from shaftfe.fe import recovery
     from shaftfe.io import abaqus, frd
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.static import solve as static
     v = load_variant(VARIANT)
     sm = load_mesh(mesh_file)
@@ -512,7 +512,7 @@ def compare_static(level: str, rigid: bool, ccx: str, work: Path, mesh_file: Pat
 
 def compare_modal(level: str, ccx: str, work: Path, mesh_file: Path) -> dict:
     from shaftfe.io import abaqus, frd
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.static import solve as static
     v = load_variant(VARIANT)
     sm = load_mesh(mesh_file)
@@ -805,7 +805,7 @@ def main(levels=LEVELS) -> dict | None:
     if ccx is None:
         return None
     from shaftfe.fe.solvers import available
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.solid.mesh import build_mesh
     res = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
            "ccx_version": ccx_version(ccx), "threads": THREADS, "levels": [],

@@ -33,7 +33,7 @@ def main() -> None:
     from shaftfe.fatigue import count_cycles, load_material
     from shaftfe.fatigue.field import evaluate, write_vtu
     from shaftfe.fatigue.history import read_history
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.static.cache import load_or_solve
     from shaftfe.static.solve import StaticOptions
 

@@ -77,7 +77,7 @@ def check_prefix(kind: str) -> float:
     from shaftfe.fatigue.field import evaluate
     from shaftfe.fatigue.history import from_rpm
     from shaftfe.fatigue.sn import load_material
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.static import cache as static_cache
     from shaftfe.static.solve import StaticOptions
     ref = static_cache.load_or_solve(load_variant("x2_57"), StaticOptions())

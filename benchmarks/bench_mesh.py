@@ -22,7 +22,7 @@ def _synthetic():
 def _variants():
     out = []
     try:
-        from shaftfe.model.variant import load_variant
+        from shaftfe.model.loader import load_variant
         out.append(load_variant("x2_57"))
     except Exception as exc:       # loader or file not there yet
         print(f"(x2_57 skipped: {exc})")

@@ -87,13 +87,13 @@ def _child(spec_json: str) -> None:
           "beam_fatigue": _c_beam_fatigue, "freq_beam": _c_freq_beam,
           "freq_solid": _c_freq_solid}[spec["kind"]]
     src = {m: hashlib.sha256((ROOT / "shaftfe" / f"{m}.py").read_bytes()).hexdigest()[:12]
-           for m in ("mesh", "static", "beam", "rotor")}
+           for m in ("solid/mesh", "static/solve", "beam/model", "rotordynamics/beam_rotor")}
     out = fn(spec)
     out["rss_MB"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     out["source_sha"] = src
     if "level" in spec:
-        from shaftfe.solid.mesh import LEVELS
-        out["level_settings"] = dict(LEVELS.get(spec["level"], {}))
+        from shaftfe.solid.levels import LEVELS
+        out["level_settings"] = LEVELS[spec["level"]].settings() if spec["level"] in LEVELS else {}
     print("RESULT" + json.dumps(out))
 
 
@@ -132,7 +132,7 @@ def _fatigue_defaults():
 
 
 def _c_static(spec: dict) -> dict:
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.static.solve import StaticOptions, solve_static
     v = load_variant(VARIANT)
     opts = StaticOptions(level=spec["level"], order=spec["order"], solver=spec["solver"])
@@ -159,7 +159,7 @@ def _c_fatigue(spec: dict) -> dict:
     from shaftfe.commands.fatigue import read_spectrum
     from shaftfe.fatigue.field import evaluate
     from shaftfe.fatigue.sn import load_material
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.static import cache as static_cache
     from shaftfe.static.solve import StaticOptions
     a = _fatigue_defaults()
@@ -196,7 +196,7 @@ def _notch_at(res, x: float):
 
 def _c_beam_static(spec: dict) -> dict:
     from shaftfe.beam import model as beam
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     v = load_variant(VARIANT)
     fx = _beam_fillets(v)
     def run():
@@ -221,7 +221,7 @@ def _c_beam_fatigue(spec: dict) -> dict:
     from shaftfe.commands.fatigue import read_spectrum
     from shaftfe.fatigue.field import evaluate_arrays
     from shaftfe.fatigue.sn import load_material
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     a = _fatigue_defaults()
     v = load_variant(VARIANT)
     vv = v.with_seed_load_case() if a.seed_load_case else v
@@ -258,7 +258,7 @@ def _branches(res) -> dict:
 
 
 def _c_freq_beam(spec: dict) -> dict:
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.rotordynamics import beam_rotor as rotor
     v = load_variant(VARIANT)
     def run():
@@ -275,7 +275,7 @@ def _c_freq_solid(spec: dict) -> dict:
     """3D solid rotor (``shaftfe.rotordynamics.solid_rotor``): P2/P1 mesh of the static model, attachments as
     rigid bodies (its default coupling), reduced-basis Campbell sweep with basis tolerance
     ``tol`` (the eigensolver setting that decides the basis size)."""
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.rotordynamics import solid_rotor as rotor_solid
     v = load_variant(VARIANT)
     opts = rotor_solid.SolidOptions(level=spec["level"], order=spec["order"],
@@ -339,12 +339,14 @@ def _fingerprints() -> dict:
     Kt and fatigue code, the variant's content and the spectrum; ``fe:<level>`` = that plus the
     static/mesh code (``static_cache.code_fingerprint`` + mesh, solid, static_cache) and the
     level's settings, Gmsh options and mesh cache format."""
-    from shaftfe.model.variant import load_variant
-    from shaftfe.solid.mesh import CACHE_FORMAT, GMSH_OPTIONS, LEVELS
+    from shaftfe.model.loader import load_variant
+    from shaftfe.solid.levels import LEVELS
+    from shaftfe.solid.mesh import CACHE_FORMAT, GMSH_OPTIONS
     from shaftfe.static import cache as static_cache
     b = hashlib.sha256()
-    for mod in ("beam", "rotor", "campbell", "scf", "variant", "solid", "spectra"):
-        b.update((ROOT / "shaftfe" / f"{mod}.py").read_bytes())
+    for pkg in ("beam", "model", "rotordynamics", "solid"):
+        for f in sorted((ROOT / "shaftfe" / pkg).glob("*.py")):
+            b.update(f.read_bytes())
     for f in sorted((ROOT / "shaftfe" / "fatigue").glob("*.py")):
         b.update(f.read_bytes())
     b.update(SPECTRUM.read_bytes())
@@ -352,15 +354,15 @@ def _fingerprints() -> dict:
     out = {"beam": b.hexdigest()[:16]}
     fe = b.copy()
     fe.update(static_cache.code_fingerprint().encode())
-    for mod in ("mesh", "static_cache", "solvers"):
+    for mod in ("solid/mesh", "solid/levels", "static/cache", "fe/solvers", "fe/lowrank"):
         fe.update((ROOT / "shaftfe" / f"{mod}.py").read_bytes())
     fe.update(json.dumps([GMSH_OPTIONS, CACHE_FORMAT], sort_keys=True).encode())
-    rs = ROOT / "shaftfe" / "rotor_solid.py"
+    rs = ROOT / "shaftfe" / "rotordynamics" / "solid_rotor.py"
     if rs.exists():
         out["solid"] = hashlib.sha256(rs.read_bytes()).hexdigest()[:8]
     for lv, settings in LEVELS.items():
         h = fe.copy()
-        h.update(json.dumps(settings, sort_keys=True).encode())
+        h.update(json.dumps(settings.settings(), sort_keys=True).encode())
         out[f"fe:{lv}"] = h.hexdigest()[:16]
     return out
 
@@ -390,7 +392,7 @@ def _solid_freq_plan(args) -> list[dict]:
         from shaftfe.rotordynamics import solid_rotor as rotor_solid
     except Exception:
         return []
-    from shaftfe.solid.mesh import LEVELS
+    from shaftfe.solid.levels import LEVELS
     d = rotor_solid.SolidOptions()
     tol = float(inspect.signature(rotor_solid.campbell).parameters["tol"].default)
     levels = args.solid_levels.split(",") if args.solid_levels else [d.level, "default"]
@@ -409,7 +411,7 @@ def _solid_freq_plan(args) -> list[dict]:
 def plan(args) -> list[tuple[dict, bool]]:
     """(spec, also run warm) in run order: cheap first, the finest FE levels last."""
     from shaftfe.fe import solvers
-    from shaftfe.solid.mesh import LEVELS
+    from shaftfe.solid.levels import LEVELS
     from shaftfe.static.solve import StaticOptions
     have = [s for s, ok in solvers.available().items() if ok]
     default_solver = _default_solver()
@@ -598,8 +600,8 @@ def _merge(runs: list[dict]) -> list[dict]:
 
 
 def _levels_info() -> dict:
-    from shaftfe.solid.mesh import LEVELS
-    return {k: dict(v) for k, v in LEVELS.items()}
+    from shaftfe.solid.levels import LEVELS
+    return {k: v.settings() for k, v in LEVELS.items()}
 
 
 def _fe_pair(rows: list[dict], kind: str, levels: dict):

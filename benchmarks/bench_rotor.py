@@ -47,7 +47,7 @@ def main() -> None:
 def _run(title: str) -> None:
     import numpy as np
 
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.rotordynamics import beam_rotor as rotor
     from shaftfe.rotordynamics import kernels as campbell
 

@@ -98,7 +98,7 @@ def main() -> None:
     import numpy as np
 
     from shaftfe.fe.solvers import available
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.rotordynamics import beam_rotor as rotor
 
     v = load_variant("x2_57")

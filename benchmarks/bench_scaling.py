@@ -100,13 +100,14 @@ from shaftfe.fe import solvers
 from shaftfe.static.solve import StaticOptions, build_model, solve_model
 from shaftfe.rotordynamics.kernels import modal_basis
 base = {base!r}
-mesh.LEVELS["scaling"] = {{k: (v * scale if k != "grad" else v) for k, v in base.items()}}
+from shaftfe.solid.levels import MeshLevel
+level = MeshLevel("scaling", **{{k: (v * scale if k != "grad" else v) for k, v in base.items()}})
 v = examples.four_step_shaft()
 v = dataclasses.replace(v, bearings=tuple(dataclasses.replace(b, tilt_stiffness_Nmm_per_rad=1e8,
                                                               axial=True)
                                           for b in v.bearings))
 res = {{}}
-sm, t, m = rss.stage(lambda: mesh.build_mesh(v, "scaling", 2, use_cache=False))
+sm, t, m = rss.stage(lambda: mesh.build_mesh(v, level, 2, use_cache=False))
 res["mesh"] = (t, m, rss.cpu)
 res["dofs"] = sm.n_dofs
 mat = v.material
@@ -122,7 +123,7 @@ def supports_and_loads():
     return cs, fs
 _, t, m = rss.stage(supports_and_loads)
 res["supports+loads"] = (t, m, rss.cpu)
-model = build_model(v, StaticOptions(level="scaling"), shaft_mesh=sm)
+model = build_model(v, StaticOptions(level=level), shaft_mesh=sm)
 sol, t, m = rss.stage(lambda: solve_model(model))
 d = {{**sol.diagnostics, **sol.run}}
 res["factorisation"] = (d["factor_seconds"], m, rss.cpu * d["factor_seconds"] / t)
@@ -164,7 +165,7 @@ _CHILD_DEFAULT = r"""
 import json, sys
 sys.path.insert(0, {root!r})
 from shaftfe.static.solve import StaticOptions, solve_static
-from shaftfe.model.variant import load_variant
+from shaftfe.model.loader import load_variant
 r = solve_static(load_variant("x2_57"), [10000.0], StaticOptions(level="default"),
                  cache_dir={cache!r}, beam=False)
 d = {{**r.diagnostics, **r.run}}

@@ -51,12 +51,12 @@ _CHILD = r"""
 import json, os, resource, sys, time
 sys.path.insert(0, {root!r})
 level, order, solver, cache, extra = {args!r}
-from shaftfe.solid.mesh import LEVELS
+from shaftfe.solid.levels import MeshLevel
 if extra:
-    LEVELS[level] = extra
+    level = MeshLevel(level, **extra)
 load0 = os.getloadavg()[0]
 from shaftfe.static.solve import StaticOptions, solve_static
-from shaftfe.model.variant import load_variant
+from shaftfe.model.loader import load_variant
 v = load_variant("x2_57")
 t0 = time.perf_counter()
 r = solve_static(v, [{rpm!r}], StaticOptions(level=level, order=order, solver=solver),
@@ -203,7 +203,7 @@ def _one(rows, level, order=2, cached=False):
 
 
 def write(rows: list[dict]) -> None:
-    from shaftfe.solid.mesh import LEVELS
+    from shaftfe.solid.levels import LEVELS
     series = [_one(rows, f"ref-k{k:g}") for k in REF_K]
     if any(s is None for s in series):
         print("reference series incomplete: no report")
@@ -216,7 +216,7 @@ def write(rows: list[dict]) -> None:
         r["e_peak"] = max(abs(r["e_collar"]), abs(r["e_bsg"]))
     OUT.with_suffix(".json").write_text(json.dumps(rows, indent=1))        # a list of rows
     REF_OUT.write_text(json.dumps({"reference": ref, "ref_base": REF_BASE, "ref_k": REF_K,
-                                   "levels": LEVELS}, indent=1))
+                                   "levels": {k: lv.settings() for k, lv in LEVELS.items()}}, indent=1))
     main_rows = [r for r in rows if not r["level"].startswith("ref-")]
     front = pareto(main_rows, "e_peak")
 

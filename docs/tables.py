@@ -24,7 +24,7 @@ def fatigue_x2_57() -> str:
     from shaftfe.commands.fatigue import SEED, _big, read_spectrum
     from shaftfe.fatigue.field import evaluate
     from shaftfe.fatigue.sn import load_material
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.report.assemble import DEFAULT_SPECTRUM
     from shaftfe.static import cache as static_cache
     from shaftfe.static.solve import StaticOptions, load_case_label

@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 
 from shaftfe.cli import main
-from shaftfe.model.variant import GEOMETRY_DIR
+from shaftfe.util.paths import GEOMETRY_DIR
 
 RPM_DAT = str(GEOMETRY_DIR.parent / "loadspectra" / "rpm.dat")
 SHAFT, BEAR, MATS = "common/shaft_c.toml", "common/bearings.toml", "common/materials.toml"

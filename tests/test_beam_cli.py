@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-import shaftfe.model.variant as variant_mod
+import shaftfe.model.loader as variant_mod
 from shaftfe.cli import main
 from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
 
@@ -87,7 +87,7 @@ def _real_variant_available() -> bool:
 
 
 @pytest.mark.skipif(not _real_variant_available(),
-                    reason="geometry/x2_57.toml or shaftfe.model.variant.load_variant not present yet")
+                    reason="geometry/x2_57.toml or shaftfe.model.loader.load_variant not present yet")
 def test_real_variant_x2_57_runs():
     """End-to-end on the real variant file: two bearings, reactions balance the attachments'
     m e ω² (statics), finite stresses."""

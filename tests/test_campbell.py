@@ -197,7 +197,7 @@ def test_bearing_damping_forms_and_validation():
     equivalent; a negative or non-symmetric matrix and a wrong count are InputErrors."""
     from shaftfe.beam import model as beam
     from shaftfe.errors import InputError
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.rotordynamics import beam_rotor as rotor
 
     m = beam.build_model(load_variant("x2_57"))

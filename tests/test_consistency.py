@@ -24,7 +24,7 @@ def test_every_command_loads_every_part_by_default(argv):
 
 def test_the_seed_comparison_is_printed_only_where_it_applies(tmp_path):
     from shaftfe.commands.fatigue import SEED_SETTINGS, seed_applies
-    from shaftfe.model.variant import GEOMETRY_DIR
+    from shaftfe.util.paths import GEOMETRY_DIR
     rpm = GEOMETRY_DIR.parent / "loadspectra" / "rpm.dat"
     ok = argparse.Namespace(spectrum=str(rpm), **SEED_SETTINGS)
     assert seed_applies(ok, "x2_57")

@@ -49,7 +49,7 @@ def stepped(*_a, **_k):
 
 _CHILD = _VARIANT + r"""
 import sys
-import shaftfe.model.variant as V
+import shaftfe.model.loader as V
 V.load_variant = stepped
 from shaftfe.cli import main
 sys.exit(main(["static", "--variant", "stepped", "--level", "coarse", "--rpm", "7000,10000",

@@ -104,7 +104,7 @@ def _shaftfe(*args, cache=None, **kw):
 
 
 def test_two_processes_building_one_mesh_entry_leave_a_valid_entry(tmp_path):
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.solid.mesh import build_mesh, cache_path
     procs = [_shaftfe("mesh", "--variant", "x2_57", "--level", "coarse", "--order", "1",
                       "--cache-dir", str(tmp_path), "--json") for _ in range(2)]

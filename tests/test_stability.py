@@ -22,12 +22,12 @@ import pytest
 
 from shaftfe.errors import InputError, SolverError
 from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.solid.levels import MeshLevel
 
 STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
 K_SEED = 35_030.0
 RPM = 10_000.0
-LEVEL = "stability_test"
-LEVEL_CFG = {"k_global": 0.35, "k_fillet": 0.9, "k_sharp": 5.0, "grad": 1.3}
+LEVEL = MeshLevel("stability_test", k_global=0.35, k_fillet=0.9, k_sharp=5.0, grad=1.3)
 X_L, X_R = 10.0, 150.0          # bearing centres (remote points)
 
 
@@ -54,9 +54,7 @@ def one_line(exc: BaseException) -> str:
 @pytest.fixture(scope="module")
 def mesh3d(tmp_path_factory):
     from shaftfe.solid import mesh
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setitem(mesh.LEVELS, LEVEL, LEVEL_CFG)
-        return mesh.build_mesh(cylinder(), LEVEL, 2, cache_dir=tmp_path_factory.mktemp("stab"))
+    return mesh.build_mesh(cylinder(), LEVEL, 2, cache_dir=tmp_path_factory.mktemp("stab"))
 
 
 def solve3d(variant, sm, rpms=(RPM,), **opts):
@@ -158,10 +156,8 @@ def three_bearing_cylinder(k: float = K_SEED) -> Variant:
 @pytest.fixture(scope="module")
 def mesh3d_three(tmp_path_factory):
     from shaftfe.solid import mesh
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setitem(mesh.LEVELS, LEVEL, LEVEL_CFG)
-        return mesh.build_mesh(three_bearing_cylinder(), LEVEL, 2,
-                               cache_dir=tmp_path_factory.mktemp("stab3"))
+    return mesh.build_mesh(three_bearing_cylinder(), LEVEL, 2,
+                           cache_dir=tmp_path_factory.mktemp("stab3"))
 
 
 def test_3d_three_bearings_reactions_approach_the_rigid_model_as_one_over_k(mesh3d_three):
@@ -264,9 +260,7 @@ def test_3d_slender_and_stubby_shafts(tmp_path, L_over_D):
     brg = (Bearing("L", "x", xl, w, 1e4, 1e4, K, axial=True), Bearing("R", "x", xr, w, 1e4, 1e4, K))
     att = (Attachment("w", 0.5 * (L - w), 0.5 * (L + w), 0.2, 22.0, 0.5 * L),)
     v = Variant("bar", "bar", (Segment("s", 0.0, L, D, 0.0),), brg, att, STEEL, 0.0)
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setitem(mesh.LEVELS, LEVEL, LEVEL_CFG)
-        sm = mesh.build_mesh(v, LEVEL, 2, cache_dir=tmp_path)
+    sm = mesh.build_mesh(v, LEVEL, 2, cache_dir=tmp_path)
     res = solve3d(v, sm, rigid_supports=True)
     assert res.diagnostics["relative_residual"] <= 1e-8   # solver contract (RESIDUAL_TOL)
     assert np.isfinite(res.u_ref).all() and np.isfinite(res.von_mises_ref).all()
@@ -556,21 +550,17 @@ def test_beam_condition_estimate_matches_the_dense_condition_number():
         assert exact / 3 <= sol.cond_estimate <= exact * (1 + slack)
 
 
-def test_beam_zero_stiffness_names_the_free_motion():
-    """K = 0 at both bearings / at one bearing (tilt then free): SolverError, one line, naming
-    the unrestrained motions."""
+def test_beam_zero_and_singular_stiffness_is_the_same_input_error_as_3d():
+    """K = 0 at both bearings / at one bearing, |K12| = K11 (singular) and an indefinite 2×2:
+    the beam refuses them as input with the 3D model's rule and message
+    (shaftfe.model.validate), one line naming the bearing and the field."""
     from shaftfe.beam import model as beam
-    with pytest.raises(SolverError) as ei:
-        beam.analyse(cylinder(0.0), RPM)
-    assert "translation in y" in one_line(ei.value)
-    with pytest.raises(SolverError) as ei:
-        beam.analyse(cylinder(k_right=((0.0, 0.0), (0.0, 0.0))), RPM)
-    assert "rotation about" in one_line(ei.value)
-    with pytest.raises(SolverError):
-        beam.analyse(cylinder(K_SEED, K_SEED), RPM)
-    with pytest.raises(InputError) as ei:             # indefinite: a negative spring
-        beam.analyse(cylinder(K_SEED, 2 * K_SEED), RPM)
-    assert "K_N_per_mm" in one_line(ei.value)
+    for v in (cylinder(0.0), cylinder(k_right=((0.0, 0.0), (0.0, 0.0))),
+              cylinder(K_SEED, K_SEED), cylinder(K_SEED, 2 * K_SEED)):
+        with pytest.raises(InputError) as ei:
+            beam.analyse(v, RPM)
+        msg = one_line(ei.value)
+        assert "K_N_per_mm" in msg and "positive-definite" in msg and "bearing '" in msg
 
 
 @pytest.mark.parametrize("L_over_D", [200.0, 40.0, 2.0, 0.5])

@@ -421,10 +421,10 @@ def test_cli_writes_vtu_summary_plot(tmp_path, cache, monkeypatch, capsys):
     bad input exits 2 with one line and writes nothing."""
     import meshio
 
-    import shaftfe.model.variant
+    import shaftfe.model.loader
     from shaftfe.cli import main
     monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(cache))
-    monkeypatch.setattr(shaftfe.model.variant, "load_variant", lambda name: cylinder())
+    monkeypatch.setattr(shaftfe.model.loader, "load_variant", lambda name: cylinder())
     out = tmp_path / "o"
     rc = main(["static", "--variant", "cyl", "--rpm", "7000,10000", "--level", "default",
                "--out", str(out)])

@@ -10,7 +10,9 @@ from pathlib import Path
 import pytest
 
 from shaftfe.errors import InputError
-from shaftfe.model.variant import GEOMETRY_DIR, SOURCES, list_variants, load_variant
+from shaftfe.model.loader import list_variants, load_variant
+from shaftfe.model.variant import SOURCES
+from shaftfe.util.paths import GEOMETRY_DIR
 
 VARIANTS = ("x2_31", "x2_42", "x2_50", "x2_57")
 

@@ -67,6 +67,7 @@ import numpy as np
 
 from shaftfe.beam.scf import kt_shoulder
 from shaftfe.errors import InputError, SolverError
+from shaftfe.model.validate import source_of, validate_variant
 
 NDOF = 6
 UX, UY, UZ, RX, RY, RZ = range(NDOF)
@@ -277,57 +278,10 @@ class BeamModel:
         return np.diff(self.x)
 
 
-def _src(variant) -> str:
-    return variant.source_files[0] if variant.source_files else f"variant {variant.name}"
-
-
-def _validate(variant, max_element_mm: float) -> None:
-    src = _src(variant)
+def _validate(variant, max_element_mm: float, rigid_supports: bool) -> None:
     if not (max_element_mm > 0):
         raise InputError("--max-element", "max_element_mm", "> 0", got=max_element_mm)
-    if not variant.segments:
-        raise InputError(src, "segments", "at least one segment", got=0)
-    for i, s in enumerate(variant.segments):
-        if not (s.length_mm > 0):
-            raise InputError(src, f"segments[{i}].length_mm", "> 0", got=s.length_mm)
-        if not (s.diameter_mm > 0):
-            raise InputError(src, f"segments[{i}].diameter_mm", "> 0", got=s.diameter_mm)
-        if s.fillet_mm < 0:
-            raise InputError(src, f"segments[{i}].fillet_mm", ">= 0", got=s.fillet_mm)
-        if i and abs(s.x_start_mm - variant.segments[i - 1].x_end_mm) > 1e-6:
-            raise InputError(src, f"segments[{i}].x_start_mm",
-                             f"= previous x_end ({variant.segments[i - 1].x_end_mm})",
-                             got=s.x_start_mm)
-    m = variant.material
-    if not (m.E_MPa > 0):
-        raise InputError(src, "material.E_MPa", "> 0", got=m.E_MPa)
-    if not (-1.0 < m.nu < 0.5):
-        raise InputError(src, "material.nu", "-1 < nu < 0.5", got=m.nu)
-    x0, x1 = variant.segments[0].x_start_mm, variant.segments[-1].x_end_mm
-    for i, b in enumerate(variant.bearings):
-        if not (x0 - 1e-9 <= b.x_center_mm <= x1 + 1e-9):
-            raise InputError(src, f"bearings[{i}].x_center_mm", f"in [{x0}, {x1}]",
-                             got=b.x_center_mm)
-        K = np.asarray(b.K_N_per_mm, dtype=float)
-        if K.shape != (2, 2) or not np.all(np.isfinite(K)) or abs(K[0, 1] - K[1, 0]) > 1e-9 * (
-                abs(K).max() + 1.0) or K[0, 0] < 0 or K[1, 1] < 0 or np.linalg.det(K) < -1e-9 * (
-                K[0, 0] * K[1, 1] + 1.0):
-            raise InputError(src, f"bearings[{i}].K_N_per_mm",
-                             "symmetric positive semi-definite 2x2", got=b.K_N_per_mm)
-        if b.tilt_stiffness_Nmm_per_rad < 0:
-            raise InputError(src, f"bearings[{i}].tilt_stiffness_Nmm_per_rad", ">= 0",
-                             got=b.tilt_stiffness_Nmm_per_rad)
-    for i, a in enumerate(variant.attachments):
-        lo, hi = sorted((a.seat_x_start_mm, a.seat_x_end_mm))
-        if lo < x0 - 1e-9 or hi > x1 + 1e-9:
-            raise InputError(src, f"attachments[{i}].seat", f"inside [{x0}, {x1}]",
-                             got=(a.seat_x_start_mm, a.seat_x_end_mm))
-        if a.mass_kg < 0 or a.eccentricity_mm < 0:
-            raise InputError(src, f"attachments[{i}].mass_kg/eccentricity_mm", ">= 0",
-                             got=(a.mass_kg, a.eccentricity_mm))
-    cs = variant.clearance_station_x_mm
-    if cs is not None and not (x0 - 1e-9 <= cs <= x1 + 1e-9):
-        raise InputError(src, "clearance_station_x_mm", f"in [{x0}, {x1}]", got=cs)
+    validate_variant(variant, springs=not rigid_supports)
 
 
 def _mesh(key_x: np.ndarray, max_len: float) -> np.ndarray:
@@ -356,7 +310,7 @@ def build_model(variant, *, rigid_supports: bool = False, max_element_mm: float 
 
     ``shear_deformation=False`` gives the Euler-Bernoulli limit (κ → ∞, Φ = 0), e.g. to
     compare with tools that neglect shear."""
-    _validate(variant, max_element_mm)
+    _validate(variant, max_element_mm, rigid_supports)
     segs = variant.segments
     x0, x1 = segs[0].x_start_mm, segs[-1].x_end_mm
     key = [s.x_start_mm for s in segs] + [x1]
@@ -386,7 +340,7 @@ def build_model(variant, *, rigid_supports: bool = False, max_element_mm: float 
         inside = xm < x0 + hs.depth_mm if hs.end == "left" else xm > x1 - hs.depth_mm
         hex_af[inside] = hs.across_flats_mm
         if np.any(hex_af >= D):
-            raise InputError(_src(variant), "hex_socket.across_flats_mm",
+            raise InputError(source_of(variant), "hex_socket.across_flats_mm",
                              "< the segment diameter", got=hs.across_flats_mm)
     mat = variant.material
     sec = section_properties(D, mat.nu, hex_af)

@@ -54,7 +54,7 @@ def run(args) -> int:
         check_output_file(args.plot, "--plot")
 
     from shaftfe.beam import model as beam
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
 
     variant = load_variant(args.variant)
     if args.seed_load_case:

@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 
 from shaftfe.errors import InputError
+from shaftfe.solid.levels import LEVEL_NAMES
 
 _MAX_SPEEDS = 2001
 _MAX_MODES = 200
@@ -33,7 +34,7 @@ def _common_options(p) -> None:
     p.add_argument("--model", choices=("beam", "solid"), default="beam",
                    help="rotor model: beam (Timoshenko beam + rigid disks; default) or solid "
                    "(3D P2 tets + rigid attachments; shown next to the beam result)")
-    p.add_argument("--level", choices=("coarse", "default", "fine"), default="coarse",
+    p.add_argument("--level", choices=LEVEL_NAMES, default="coarse",
                    help="solid model: mesh level (default coarse)")
     p.add_argument("--coupling", choices=("rigid", "distributing"), default="rigid",
                    help="solid model: tie of the attachments to their seats, rigid (RBE2-like, "
@@ -142,55 +143,12 @@ def _check_common(args) -> None:
 
 # --------------------------------------------------------------------------- models
 
-def _beam_rotor(args):
-    from shaftfe.model.variant import load_variant
-    from shaftfe.rotordynamics import beam_rotor as rotor
-
-    variant = load_variant(args.variant)
-    return rotor.rotor_from_variant(
-        variant, max_element_mm=args.max_element, rigid_supports=args.rigid_supports,
-        bearing_damping=args.bearing_damping if args.bearing_damping > 0 else None)
-
-
-def _solid_rotor(args):
-    from shaftfe.model.variant import load_variant
-    from shaftfe.rotordynamics import solid_rotor as rotor_solid
-
-    variant = load_variant(args.variant)
-    opts = rotor_solid.SolidOptions(level=args.level, coupling=args.coupling,
-                                    rigid_supports=args.rigid_supports,
-                                    bearing_damping=args.bearing_damping,
-                                    stress_stiffening=args.stress_stiffening)
-    return rotor_solid.build_solid_rotor(variant, opts)
-
-
-_MODEL_BUILDERS = {"beam": _beam_rotor, "solid": _solid_rotor}
-
-
-def _beam_analyses():
-    from shaftfe.rotordynamics import beam_rotor as rotor
-
-    def run(model, rpms, n, orders, keep_vectors):
-        return rotor.campbell(model, rpms, n, orders=orders, keep_vectors=keep_vectors), None
-
-    def verify(model, res, prov=None):
-        return rotor.verify(model, res)
-    return run, verify, rotor.support_energy_share
-
-
-def _solid_analyses():
-    from shaftfe.rotordynamics import solid_rotor as rotor_solid
-
-    def run(model, rpms, n, orders, keep_vectors):
-        prov = rotor_solid.BasisProvider(model)
-        return rotor_solid.campbell(model, rpms, n, orders=orders, keep_vectors=keep_vectors,
-                                    provider=prov), prov
-    def verify(model, res, prov=None):
-        return rotor_solid.verify(model, res, provider=prov)
-    return run, verify, rotor_solid.support_energy_share
-
-
-_ANALYSES = {"beam": _beam_analyses, "solid": _solid_analyses}
+def _options(args, model: str | None = None):
+    from shaftfe.rotordynamics.analyse import RotorOptions
+    return RotorOptions(model=model or args.model, rigid_supports=args.rigid_supports,
+                        bearing_damping=args.bearing_damping, max_element_mm=args.max_element,
+                        level=args.level, coupling=args.coupling,
+                        stress_stiffening=args.stress_stiffening)
 
 
 def _describe(args, model) -> str:
@@ -214,19 +172,19 @@ def _describe(args, model) -> str:
 # --------------------------------------------------------------------------- handlers
 
 def _solve(args, rpms, orders, keep_vectors=False):
-    model = _MODEL_BUILDERS[args.model](args)
-    n_max = model.n_dof // 2
-    if args.modes > n_max:
-        raise InputError("command line", "--modes", f"1..{n_max} for this model", got=args.modes)
-    run, verify, _ = _ANALYSES[args.model]()
-    res, prov = run(model, rpms, args.modes, orders, keep_vectors)
-    ver = verify(model, res, prov) if args.verify else None
+    """The sweep (shaftfe.rotordynamics.analyse) and, for the solid model, the beam model's
+    sweep beside it."""
+    from shaftfe.model.loader import load_variant
+    from shaftfe.rotordynamics.analyse import analyse
+
+    variant = load_variant(args.variant)
+    run = analyse(variant, rpms, args.modes, orders=orders, options=_options(args),
+                  keep_vectors=keep_vectors, verify=args.verify)
     beam_res = None
     if args.model == "solid":
-        from shaftfe.rotordynamics import beam_rotor as rotor
-
-        beam_res = rotor.campbell(_beam_rotor(args), rpms, args.modes, orders=orders)
-    return model, res, ver, beam_res, prov
+        beam_res = analyse(variant, rpms, args.modes, orders=orders,
+                           options=_options(args, "beam"), verify=False).result
+    return run, beam_res
 
 
 def _payload(args, model, res, ver, beam_res=None) -> dict:
@@ -341,7 +299,8 @@ def run_campbell(args) -> int:
     prog = Progress(["model + sweep", "outputs"], enabled=False if args.json else None)
     with _staged(args.out) as out:                   # every file or none
         with prog.stage("model + sweep"):
-            model, res, ver, beam_res, prov = _solve(args, rpms, orders)
+            run, beam_res = _solve(args, rpms, orders)
+            model, res, ver, prov = run.model, run.result, run.verification, run.provider
         if out is not None:
             import json
 
@@ -374,9 +333,9 @@ def run_modal(args) -> int:
     _check_common(args)
     files = "modal.csv, modal.json"
     with _staged(args.out) as out:                   # every file or none
-        model, res, ver, beam_res, _ = _solve(args, [args.rpm], [1.0], keep_vectors=True)
-        support_energy_share = _ANALYSES[args.model]()[2]
-        share = support_energy_share(model, res.vectors[0])
+        run, beam_res = _solve(args, [args.rpm], [1.0], keep_vectors=True)
+        model, res, ver = run.model, run.result, run.verification
+        share = run.support_energy_share(0)
         payload = _payload(args, model, res, ver, beam_res)
         payload["bearing_energy_share"] = share.tolist()
         if out is not None:

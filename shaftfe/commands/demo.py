@@ -13,6 +13,8 @@ the report is. See ``shaftfe.commands.report`` and ``shaftfe.report``.
 
 from __future__ import annotations
 
+from shaftfe.solid.levels import LEVEL_NAMES
+
 DEFAULT_VARIANT = "x2_57"
 
 
@@ -25,7 +27,7 @@ def register(sub) -> None:
                        "--seed-load-case): the reproduction of the seed study.")
     p.add_argument("--out", default=f"reports/{DEFAULT_VARIANT}",
                    help=f"output folder (default reports/{DEFAULT_VARIANT})")
-    p.add_argument("--level", default="default", choices=("coarse", "default", "fine"),
+    p.add_argument("--level", default="default", choices=LEVEL_NAMES,
                    help="mesh level of the 3D stages (default: default)")
     p.add_argument("--json", action="store_true", help="print summary.json instead of text")
     p.set_defaults(handler=run)

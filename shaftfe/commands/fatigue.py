@@ -24,7 +24,8 @@ from shaftfe.errors import InputError
 
 MEAN_STRESS = ("soderberg", "goodman", "gerber", "none")
 EQUIVALENT = ("von_mises", "signed_von_mises")
-LEVELS = ("coarse", "default", "fine")
+from shaftfe.solid.levels import LEVEL_NAMES as LEVELS
+
 SEED_RPM_REF = 7000.0
 
 # The seed's result (seed 000 §8.3) for the side-by-side comparison.
@@ -143,7 +144,7 @@ def run(args) -> int:
 
     _check(args)
     from shaftfe.fatigue.sn import load_material
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.util.progress import Progress
     prog = Progress(["history", "static", "rainflow + life", "outputs"],
                     enabled=False if args.json else None)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-LEVELS = ("coarse", "default", "fine")
+from shaftfe.solid.levels import LEVEL_NAMES as LEVELS
 
 
 def register(sub) -> None:
@@ -37,7 +37,7 @@ def run(args) -> int:
         raise InputError("--out", "out", "a path ending in .vtu or .msh", got=args.out)
     from shaftfe.util.atomic import check_output_file
     check_output_file(out, "--out")
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
 
     variant = load_variant(args.variant)
 

@@ -9,6 +9,7 @@ import json
 import math
 
 from shaftfe.errors import InputError
+from shaftfe.solid.levels import LEVEL_NAMES
 
 
 def register(sub) -> None:
@@ -21,7 +22,7 @@ def register(sub) -> None:
     p.add_argument("--variant", required=True, help="variant name (geometry/<name>.toml) or path")
     p.add_argument("--rpm", default="10000",
                    help="speed(s) in rpm, comma-separated (default 10000), e.g. 7000,10000")
-    p.add_argument("--level", default="default", help="mesh level: coarse | default | fine")
+    p.add_argument("--level", default="default", help="mesh level: " + " | ".join(LEVEL_NAMES))
     p.add_argument("--order", type=int, default=2, help="element order 1 | 2 (default 2)")
     p.add_argument("--rigid-supports", action="store_true",
                    help="Inventor-style rigid supports (remote-point radial translations = 0)")
@@ -55,8 +56,8 @@ def run(args) -> int:
     rpms = parse_rpm_list(args.rpm)
     if args.order not in (1, 2):
         raise InputError("--order", "--order", "1 | 2", got=args.order)
-    if args.level not in ("coarse", "default", "fine"):
-        raise InputError("--level", "--level", "coarse | default | fine", got=args.level)
+    if args.level not in LEVEL_NAMES:
+        raise InputError("--level", "--level", " | ".join(LEVEL_NAMES), got=args.level)
     if args.load_distribution not in ("uniform", "cosine"):
         raise InputError("--load-distribution", "--load-distribution", "uniform | cosine",
                          got=args.load_distribution)
@@ -65,7 +66,7 @@ def run(args) -> int:
         raise InputError("--solver", "--solver", "auto | superlu | pardiso | amg",
                          got=args.solver)
 
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.static import cache as static_cache
     from shaftfe.static.solve import StaticOptions, solve_static
 

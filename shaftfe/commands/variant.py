@@ -35,7 +35,7 @@ def register(sub) -> None:
 
 def run_list(args) -> int:
     from shaftfe.commands._common import print_json, print_table
-    from shaftfe.model.variant import list_variants, load_variant
+    from shaftfe.model.loader import list_variants, load_variant
 
     rows = []
     for name in list_variants():
@@ -58,7 +58,7 @@ def _src(v, path: str) -> str:
 
 
 def _report(v, rpms: list[float]) -> dict:
-    from shaftfe.model.variant import rigid_support_reactions, seat_loads
+    from shaftfe.model.mass import rigid_support_reactions, seat_loads
 
     mp = v.mass_properties()
     tgt = v.balance_target
@@ -122,7 +122,7 @@ def _report(v, rpms: list[float]) -> dict:
 
 def run_show(args) -> int:
     from shaftfe.commands._common import parse_rpm_list, print_json, print_table
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
 
     rpms = parse_rpm_list(args.rpm)
     v = load_variant(args.variant)
@@ -185,7 +185,7 @@ def run_show(args) -> int:
 
 def run_check(args) -> int:
     from shaftfe.commands._common import print_json
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
 
     v = load_variant(args.path)
     mp = v.mass_properties()

@@ -134,6 +134,46 @@ class _AMG:
         return np.column_stack([self._one(b[:, k]) for k in range(b.shape[1])])
 
 
+class _SuperLUGeneral:
+    name = "superlu"
+
+    def __init__(self, A):
+        import scipy.sparse as sp
+        from scipy.sparse.linalg import splu
+        self._lu = splu(sp.csc_matrix(A))
+
+    def solve(self, b):
+        return self._lu.solve(np.asarray(b, dtype=float))
+
+
+class _PardisoGeneral:
+    name = "pardiso"
+
+    def __init__(self, A):
+        import pypardiso
+        import scipy.sparse as sp
+        self._s = pypardiso.PyPardisoSolver(mtype=11)
+        self._A = sp.csr_matrix(A)
+        self._A.sort_indices()
+        self._s.factorize(self._A)
+
+    def solve(self, b):
+        b = np.asarray(b, dtype=float)
+        return np.asarray(self._s.solve(self._A, np.ascontiguousarray(b))).reshape(b.shape)
+
+
+UNSYMMETRIC_PARDISO_MIN_DOFS = 30_000   # PARDISO's setup costs ~1 s: SuperLU below this
+
+
+def factorize_unsymmetric(A, method: str = "auto"):
+    """Factorise a real nonsymmetric sparse A (a gyroscopic shift of the solid rotor): PARDISO
+    if installed and asked for, or ``auto`` on ≥ UNSYMMETRIC_PARDISO_MIN_DOFS, else SuperLU."""
+    big = A.shape[0] >= UNSYMMETRIC_PARDISO_MIN_DOFS
+    if (method == "pardiso" or (method == "auto" and big)) and _importable("pardiso"):
+        return _PardisoGeneral(A)
+    return _SuperLUGeneral(A)
+
+
 _MODULES = {"pardiso": "pypardiso", "amg": "pyamg"}
 
 

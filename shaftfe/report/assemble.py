@@ -29,9 +29,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from shaftfe.errors import InputError
+from shaftfe.solid.levels import LEVEL_NAMES
 from shaftfe.util.paths import BENCHMARK_JSON, DEFAULT_SPECTRUM, repo_relative
 
-LEVELS = ("coarse", "default", "fine")
 ROTOR_MODELS = ("beam", "solid")
 
 STAGES = ("inputs", "balancing", "beam check", "static (mesh + one solve)", "fatigue",
@@ -168,8 +168,8 @@ CAMPBELL_STEP_MIN_RPM = 10.0     # ≤ 2000 speeds up to the rpm ceiling: second
 
 def check_options(o: ReportOptions) -> None:
     """Cheap checks of everything the user typed (before any computation or output)."""
-    if o.level not in LEVELS:
-        raise InputError("command line", "--level", " | ".join(LEVELS), got=o.level)
+    if o.level not in LEVEL_NAMES:
+        raise InputError("command line", "--level", " | ".join(LEVEL_NAMES), got=o.level)
     if o.rotor_model not in ROTOR_MODELS:
         raise InputError("command line", "--rotor-model", " | ".join(ROTOR_MODELS),
                          got=o.rotor_model)
@@ -208,7 +208,7 @@ def _inputs(o: ReportOptions) -> tuple:
     from shaftfe.balance.engines import load_engine
     from shaftfe.commands.fatigue import read_spectrum
     from shaftfe.fatigue.sn import load_material
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
 
     variant = load_variant(o.variant)
     engine = load_engine(o.engine)
@@ -413,29 +413,25 @@ def _fatigue(ref, history, material, o: ReportOptions) -> tuple[dict, object]:
 def _campbell(variant, engine, o: ReportOptions) -> tuple[dict, object, object]:
     import numpy as np
 
-    from shaftfe.rotordynamics import beam_rotor as rotor
-
     top = float(engine.max_rpm)
     n = math.floor(top / o.campbell_step_rpm + 1e-9)
     rpms = [i * o.campbell_step_rpm for i in range(n + 1)]
     if top - rpms[-1] > 1e-9 * top:
         rpms.append(top)
+    from shaftfe.rotordynamics.analyse import RotorOptions, analyse
     if o.rotor_model == "solid":
-        # the 3D solid rotor (shaftfe.rotordynamics.solid_rotor): its own mesh of the full variant (every
-        # part's seat is a face group), the same level as the static mesh
-        from shaftfe.rotordynamics import solid_rotor as kind
-        model = kind.build_solid_rotor(variant, kind.SolidOptions(level=o.level),
-                                       cache_dir=o.cache_dir)
-        description = (f"3D solid rotor (P2 tets, level {o.level}, {model.n_dof} dofs), rigid "
-                       "attachments, bearing springs, undamped")
+        # the 3D solid rotor: its own mesh of the full variant (every part's seat is a face
+        # group), the same level as the static mesh
+        run = analyse(variant, rpms, o.modes, orders=o.orders, keep_vectors=True,
+                      options=RotorOptions(model="solid", level=o.level, cache_dir=o.cache_dir))
+        description = (f"3D solid rotor (P2 tets, level {o.level}, {run.model.n_dof} dofs), "
+                       "rigid attachments, bearing springs, undamped")
     else:
-        kind = rotor
-        model = rotor.rotor_from_variant(variant)
-        description = (f"Timoshenko beam ({model.beam.n_nodes} nodes) + "
-                       f"{len(model.disks)} rigid disks, bearing springs, undamped")
-    res = kind.campbell(model, rpms, o.modes, orders=o.orders, keep_vectors=True)
-    ver = kind.verify(model, res)
-    share = kind.support_energy_share(model, res.vectors[0])
+        run = analyse(variant, rpms, o.modes, orders=o.orders, keep_vectors=True)
+        description = (f"Timoshenko beam ({run.model.beam.n_nodes} nodes) + "
+                       f"{len(run.model.disks)} rigid disks, bearing springs, undamped")
+    model, res, ver = run.model, run.result, run.verification
+    share = run.support_energy_share(0)
     i0 = 0
     table = []
     for j in range(res.freq_hz.shape[1]):
@@ -501,7 +497,7 @@ def benchmark_errors(level: str, order: int = 2, path: Path = BENCHMARK_JSON) ->
     benchmark's own rule). None when the file or the runs are missing."""
     import json
 
-    from shaftfe.solid.mesh import LEVELS as MESH_LEVELS
+    from shaftfe.solid.levels import LEVELS
     try:
         rows = json.loads(Path(path).read_text())
     except (OSError, ValueError):
@@ -513,7 +509,7 @@ def benchmark_errors(level: str, order: int = 2, path: Path = BENCHMARK_JSON) ->
         (r for r in rows if r.get("level") == level and r.get("order") == order), None)
     if d is None or f is None or me is None:
         return None
-    r = MESH_LEVELS["default"]["k_fillet"] / MESH_LEVELS["fine"]["k_fillet"]
+    r = LEVELS["default"].k_fillet / LEVELS["fine"].k_fillet
     if r <= 1:
         return None
     out = {"source": repo_relative(path), "level": level, "order": order, "dofs": me.get("dofs")}

@@ -134,6 +134,7 @@ from types import MappingProxyType
 import numpy as np
 
 from shaftfe.errors import InputError, SolverError
+from shaftfe.fe.lowrank import LowRankSolver
 from shaftfe.rotordynamics.kernels import TWO_PI, CampbellResult, Labelling, ModalBasis, sweep
 
 COUPLINGS = ("rigid", "distributing")
@@ -532,7 +533,7 @@ class ShiftedSolver:
         method = rotor.options.solver if method is None else method
         if Omega != 0.0 and sigma != 0.0:
             B = (B + (sigma * Omega) * rotor.G_sparse).tocsr()
-            self._fac = _unsym_factor(B, method)
+            self._fac = solvers.factorize_unsymmetric(B, method)
         else:
             self._fac = solvers.factorize(B, _auto_method(method, B.shape[0]))
         self.name = self._fac.name
@@ -553,65 +554,25 @@ class ShiftedSolver:
         self.n = B.shape[0]
         self.n_solves = 0
         if U:
-            from scipy.linalg import block_diag, lu_factor
+            from scipy.linalg import block_diag
 
-            self.U = np.hstack(U)
-            self.Z = self._fac.solve(self.U)                        # B⁻¹ U
-            S = block_diag(*Cinv) + self.U.T @ self.Z
-            D = 1.0 / np.sqrt(np.abs(np.diag(S)))
-            self._D = D
-            Sd = D[:, None] * S * D[None, :]
-            self.cond_S = float(np.linalg.cond(Sd))
-            if not np.isfinite(self.cond_S) or self.cond_S > 1e13:
-                raise SolverError(f"the support system is singular (cond(S) = "
-                                  f"{self.cond_S:.3g}): a support is missing or redundant")
-            self._S = lu_factor(Sd)
+            self._lr = LowRankSolver(self._fac, np.hstack(U), block_diag(*Cinv),
+                                     hint="a support is missing or redundant")
+            self.cond_S = self._lr.cond_S
         else:
-            self.U = None
+            self._lr = None
             self.cond_S = 1.0
         self.seconds = time.perf_counter() - t0
 
     def solve(self, b):
-        from scipy.linalg import lu_solve
-
         b = np.asarray(b)
         if np.iscomplexobj(b):
             return self.solve(b.real) + 1j * self.solve(b.imag)
         self.n_solves += 1 if b.ndim == 1 else b.shape[1]
         y = self._fac.solve(b)
-        if self.U is None:
+        if self._lr is None:
             return y
-        lam = self._D[:, None] * lu_solve(self._S, self._D[:, None] * (
-            self.U.T @ y.reshape(self.n, -1)))
-        return (y.reshape(self.n, -1) - self.Z @ lam).reshape(y.shape)
-
-
-class _SuperLUUnsym:
-    name = "superlu"
-
-    def __init__(self, A):
-        import scipy.sparse as sp
-        from scipy.sparse.linalg import splu
-        self._lu = splu(sp.csc_matrix(A))
-
-    def solve(self, b):
-        return self._lu.solve(np.asarray(b, dtype=float))
-
-
-class _PardisoUnsym:
-    name = "pardiso"
-
-    def __init__(self, A):
-        import pypardiso
-        import scipy.sparse as sp
-        self._s = pypardiso.PyPardisoSolver(mtype=11)
-        self._A = sp.csr_matrix(A)
-        self._A.sort_indices()
-        self._s.factorize(self._A)
-
-    def solve(self, b):
-        b = np.asarray(b, dtype=float)
-        return np.asarray(self._s.solve(self._A, np.ascontiguousarray(b))).reshape(b.shape)
+        return self._lr.correct(y.reshape(self.n, -1))[0].reshape(y.shape)
 
 
 def _auto_method(method: str, n: int) -> str:
@@ -622,16 +583,6 @@ def _auto_method(method: str, n: int) -> str:
     reports/benchmarks/rotor_solid.md). The nonsymmetric factorisation of ``verify`` uses
     PARDISO when installed (159 s vs 274 s at load 10)."""
     return "superlu" if method == "auto" else method
-
-
-def _unsym_factor(A, method: str):
-    """PARDISO (real nonsymmetric) if installed and asked for or ``auto`` on a model of
-    ≥ 30k dofs (its setup costs ~1 s), else SuperLU."""
-    from shaftfe.fe.solvers import available
-    big = A.shape[0] >= 30_000
-    if (method == "pardiso" or (method == "auto" and big)) and available()["pardiso"]:
-        return _PardisoUnsym(A)
-    return _SuperLUUnsym(A)
 
 
 class BasisProvider:

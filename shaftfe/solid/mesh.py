@@ -55,11 +55,12 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from shaftfe.errors import InputError, SolverError
+from shaftfe.solid.levels import DEFAULT_LEVEL, LEVELS, MeshLevel, mesh_level
 from shaftfe.solid.plan import Solid, analytic_volume, expected_areas, prepare
 from shaftfe.util import paths
 from shaftfe.util.atomic import atomic_path
 
-__all__ = ["LEVELS", "ShaftMesh", "analytic_volume", "build_mesh", "cache_path",
+__all__ = ["LEVELS", "MeshLevel", "ShaftMesh", "analytic_volume", "build_mesh", "cache_path",
            "expected_areas", "mesh_key", "write_mesh"]
 
 CACHE_FORMAT = 3     # 2: bearing groups = the ring's contact band (chamfers off)
@@ -78,26 +79,7 @@ GMSH_OPTIONS: dict[str, float] = {
     "Mesh.Optimize": 1, "Mesh.OptimizeThreshold": 0.5, "Mesh.Smoothing": 10,
 }
 
-# Mesh levels (ours). k_global × D: global size on a segment of diameter D; k_sharp × ρ_min:
-# size at keyway edges and sharp concave shoulders; grad: growth of the size per mm of distance
-# from a fillet / sharp edge. Fillets (module docstring, "Stress relevance"): k_fillet × ρ in
-# the hot sectors (half-angle sector_deg, plateau d_hot × ρ deep, growth grad_hot), k_ring × ρ
-# on the rest of a span fillet's ring, k_fillet_end × ρ on end fillets. Chosen from the
-# run-time/error study in reports/benchmarks/static.md; ``fine`` has the hot-spot settings of
-# the reference family there (k_fillet 0.3 / 0.2 / 0.133, everything else fixed) at
-# k_fillet 0.2, and a finer far field (so that it also refines a shaft without fillets).
-# Keep k_ring and k_fillet_end ≤ 0.9: coarser fillet rings leave curved tets near minSICN 0
-# (repaired only to Q_CURVED), and one of them gave a spurious 699 MPa peak on the x2_57
-# bearing-seat-gear ring (true ~420 MPa there) with k_ring 1.2; end fillets at 1.5 ρ missed
-# the fillet's area by 0.7 % (tests/validation/test_mesh_geometry.py allows 0.5 %).
-LEVELS: dict[str, dict[str, float]] = {
-    "coarse": {"k_global": 0.70, "k_fillet": 0.45, "k_ring": 0.9, "k_fillet_end": 0.9,
-               "k_sharp": 5.0, "grad": 1.3, "grad_hot": 1.0, "d_hot": 0.25, "sector_deg": 10.0},
-    "default": {"k_global": 0.60, "k_fillet": 0.3, "k_ring": 0.9, "k_fillet_end": 0.9,
-                "k_sharp": 4.0, "grad": 1.0, "grad_hot": 0.5, "d_hot": 0.4, "sector_deg": 10.0},
-    "fine": {"k_global": 0.35, "k_fillet": 0.2, "k_ring": 0.9, "k_fillet_end": 0.9,
-             "k_sharp": 2.0, "grad": 1.0, "grad_hot": 0.5, "d_hot": 0.4, "sector_deg": 20.0},
-}
+# Mesh levels: shaftfe.solid.levels (MeshLevel, LEVELS).
 
 
 @dataclass(frozen=True)
@@ -121,17 +103,17 @@ class ShaftMesh:
         return 3 * self.n_nodes
 
 
-def _check_level(level: str, order: int) -> None:
-    if level not in LEVELS:
-        raise InputError("--level", "level", " | ".join(LEVELS), got=level)
+def _check_order(order: int) -> None:
     if order not in (1, 2):
         raise InputError("--order", "order", "1 | 2", got=order)
 
 
-def mesh_key(sol: Solid, level: str, order: int, gmsh_version: str) -> str:
+def mesh_key(sol: Solid, level: str | MeshLevel, order: int, gmsh_version: str) -> str:
+    lv = mesh_level(level)
     plan = dataclasses.asdict(sol)
     plan.pop("name")
-    payload = {"solid": plan, "level": level, "settings": LEVELS[level], "order": order,
+    payload = {"solid": plan, "level": lv.name, "settings": lv.settings(bool(sol.fillets)),
+               "order": order,
                "gmsh": gmsh_version, "options": GMSH_OPTIONS, "q_linear": Q_LINEAR,
                "q_curved": Q_CURVED, "format": CACHE_FORMAT}
     text = json.dumps(payload, sort_keys=True, default=repr)
@@ -151,18 +133,20 @@ def _gmsh_version() -> str:
         return str(gmsh.__version__)
 
 
-def build_mesh(variant, level: str = "default", order: int = 2, cache_dir=None,
+def build_mesh(variant, level: str | MeshLevel = DEFAULT_LEVEL, order: int = 2, cache_dir=None,
                use_cache: bool = True) -> ShaftMesh:
-    """Mesh ``variant`` at ``level`` (coarse | default | fine) with P``order`` tets."""
+    """Mesh ``variant`` at ``level`` (a name of ``LEVELS`` or a ``MeshLevel``) with P``order``
+    tets; the result's ``level`` is the level's name."""
     t0 = time.perf_counter()
-    _check_level(level, order)
+    level = mesh_level(level)
+    _check_order(order)
     sol = prepare(variant)                       # InputError before gmsh is touched
     key = mesh_key(sol, level, order, _gmsh_version())
     path = cache_path(key, cache_dir)
     if use_cache and path.exists():
         data = _load(path, key)
         if data is not None:
-            return _finish(data, variant.name, level, order, key, t0, True)
+            return _finish(data, variant.name, level.name, order, key, t0, True)
     data = _generate(sol, level, order)
     data["meta"]["key"] = key
     if use_cache:
@@ -170,7 +154,7 @@ def build_mesh(variant, level: str = "default", order: int = 2, cache_dir=None,
             _save(path, data)
         except OSError:
             pass                                  # a read-only cache must not break meshing
-    return _finish(data, variant.name, level, order, key, t0, False)
+    return _finish(data, variant.name, level.name, order, key, t0, False)
 
 
 # --------------------------------------------------------------------------------------
@@ -253,7 +237,7 @@ def _load(path: Path, key: str) -> dict | None:
 # gmsh
 
 
-def _generate(sol: Solid, level: str, order: int) -> dict:
+def _generate(sol: Solid, level: MeshLevel, order: int) -> dict:
     import gmsh
 
     from shaftfe.solid import plan as solid_mod
@@ -292,7 +276,7 @@ def _generate(sol: Solid, level: str, order: int) -> dict:
     except Exception as exc:
         if type(exc) is not Exception:        # gmsh raises plain Exception; others are bugs
             raise
-        raise SolverError(f"gmsh failed to mesh shaft {sol.name!r} at level {level!r}: "
+        raise SolverError(f"gmsh failed to mesh shaft {sol.name!r} at level {level.name!r}: "
                           f"{exc}") from exc
     finally:
         try:
@@ -301,7 +285,7 @@ def _generate(sol: Solid, level: str, order: int) -> dict:
             pass
         if own:
             gmsh.finalize()
-    data["meta"].update(level=level, order=order, format=CACHE_FORMAT,
+    data["meta"].update(level=level.name, order=order, format=CACHE_FORMAT,
                         mesh_seconds=time.perf_counter() - t0, phases=phases)
     return data
 
@@ -433,8 +417,9 @@ def _hot_field(f, fl, cfg: dict, axis: float | None, h_max: float) -> int:
     return m
 
 
-def _size_fields(gmsh, sol: Solid, level: str, cls: dict) -> None:
-    cfg = LEVELS[level]
+def _size_fields(gmsh, sol: Solid, level: MeshLevel, cls: dict) -> None:
+    cfg = level.settings()
+    cfg["k_global"] = level.global_size(bool(sol.fillets))
     f = gmsh.model.mesh.field
     fields: list[int] = []
     h_max = cfg["k_global"] * 2.0 * sol.r_max

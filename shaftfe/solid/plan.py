@@ -25,6 +25,7 @@ import math
 from dataclasses import dataclass
 
 from shaftfe.errors import InputError
+from shaftfe.model.validate import source_of, validate_variant
 
 TOL = 1e-6          # mm, geometric tolerance for coincident x-stations
 SQRT3 = math.sqrt(3.0)
@@ -151,50 +152,18 @@ class Solid:
 # validation
 
 
-def _src(variant) -> str:
-    files = getattr(variant, "source_files", ()) or ()
-    return str(files[0]) if files else f"variant {variant.name!r}"
-
-
-def _num(src: str, field: str, value, *, lo: float | None = None, positive: bool = False,
-         allowed: str) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise InputError(src, field, allowed, got=value) from None
-    if not math.isfinite(v) or (positive and v <= 0) or (lo is not None and v < lo):
-        raise InputError(src, field, allowed, got=value)
-    return v
-
-
-def prepare(variant) -> Solid:
-    """Validate ``variant`` for meshing and return the solid's plan (no gmsh involved)."""
-    src = _src(variant)
-    segs = tuple(variant.segments)
-    if not segs:
-        raise InputError(src, "segments", "at least one segment", got=0)
-    names: list[str] = []
-    radii: list[float] = []
+def _stations(segs) -> tuple[list[float], list[tuple[float, float]]]:
+    """Radii and [x0, x1] of the (validated, contiguous) segments."""
     xs: list[tuple[float, float]] = []
-    for i, s in enumerate(segs):
-        f = f"segments[{i}]"
-        if not s.name or s.name in names or ":" in s.name:
-            raise InputError(src, f"{f}.name", "unique, non-empty, without ':'", got=s.name)
-        names.append(s.name)
-        x0 = _num(src, f"{f}.x_start_mm", s.x_start_mm, allowed="a finite number")
-        ln = _num(src, f"{f}.length_mm", s.length_mm, positive=True, allowed="> 0")
-        d = _num(src, f"{f}.diameter_mm", s.diameter_mm, positive=True, allowed="> 0")
-        _num(src, f"{f}.fillet_mm", s.fillet_mm, lo=0.0, allowed=">= 0")
-        if i and abs(x0 - xs[-1][1]) > TOL:
-            raise InputError(src, f"{f}.x_start_mm", f"= x_end of segments[{i - 1}] "
-                             f"({xs[-1][1]:g}): segments are contiguous", got=s.x_start_mm)
-        if i:
-            x0 = xs[-1][1]
-        xs.append((x0, x0 + ln))
-        radii.append(0.5 * d)
-    n = len(segs)
+    for s in segs:
+        x0 = xs[-1][1] if xs else float(s.x_start_mm)
+        xs.append((x0, x0 + float(s.length_mm)))
+    return [0.5 * float(s.diameter_mm) for s in segs], xs
 
-    # fillets: consumption of each segment's length from the left / right
+
+def _fillets(segs, radii, xs, src: str):
+    """Fillets, shoulder annuli and the straight (fillet-free) part of every segment."""
+    n = len(segs)
     fillets: list[Fillet] = []
     shoulders: list[Shoulder] = []
     eat_left = [0.0] * n
@@ -223,10 +192,8 @@ def prepare(variant) -> Solid:
             eat_left[i + 1] = rho
         if rho > 0:
             fillets.append(Fillet(s.name, xe, small, large, rho, side))
-        if large - (small + rho) > TOL:
+        if large - (small + rho) > TOL:          # else a full-height fillet: no flat annulus
             shoulders.append(Shoulder(s.name, xe, small + rho, large))
-        elif rho > 0:
-            pass  # full-height fillet: no flat annulus left
     parts: list[CylPart] = []
     for i, s in enumerate(segs):
         a, b = xs[i][0] + eat_left[i], xs[i][1] - eat_right[i]
@@ -235,113 +202,109 @@ def prepare(variant) -> Solid:
                              f"> the fillets it carries ({eat_left[i] + eat_right[i]:g} mm)",
                              got=s.length_mm)
         parts.append(CylPart(s.name, i, a, b, radii[i]))
+    return fillets, shoulders, parts
 
+
+def _slots(segs, radii, parts, src: str) -> list[Slot]:
+    """Keyway seats, each inside the straight part of its segment with 0.5 mm to spare."""
     slots: list[Slot] = []
     for i, s in enumerate(segs):
         for j, k in enumerate(s.keyways):
-            f = f"segments[{i}].keyways[{j}]"
-            w = _num(src, f"{f}.width_mm", k.width_mm, positive=True, allowed="> 0")
-            t = _num(src, f"{f}.depth_mm", k.depth_mm, positive=True, allowed="> 0")
-            ln = _num(src, f"{f}.length_mm", k.length_mm, positive=True, allowed="> 0")
-            xc = _num(src, f"{f}.x_center_mm", k.x_center_mm, allowed="a finite number")
-            ang = _num(src, f"{f}.angle_deg", k.angle_deg, allowed="a finite number")
-            r = radii[i]
-            if w >= 1.6 * r:
-                raise InputError(src, f"{f}.width_mm", f"< 0.8 × diameter ({1.6 * r:g})", got=w)
-            if t >= 0.5 * r:
-                raise InputError(src, f"{f}.depth_mm", f"< radius / 2 ({0.5 * r:g})", got=t)
-            if ln < w + TOL:
-                raise InputError(src, f"{f}.length_mm", f">= width ({w:g})", got=ln)
-            p = parts[i]
+            xc, ln, p = float(k.x_center_mm), float(k.length_mm), parts[i]
             if xc - 0.5 * ln < p.x0 + 0.5 or xc + 0.5 * ln > p.x1 - 0.5:
-                raise InputError(src, f"{f}.x_center_mm", "slot inside the cylindrical part "
-                                 f"of its segment with 0.5 mm to spare ([{p.x0:g}, {p.x1:g}])",
-                                 got=xc)
-            slots.append(Slot(s.name, j, r, w, t, ln, xc, math.radians(ang)))
+                raise InputError(src, f"segments[{i}].keyways[{j}].x_center_mm", "slot inside "
+                                 "the cylindrical part of its segment with 0.5 mm to spare "
+                                 f"([{p.x0:g}, {p.x1:g}])", got=k.x_center_mm)
+            slots.append(Slot(s.name, j, radii[i], float(k.width_mm), float(k.depth_mm), ln,
+                              xc, math.radians(float(k.angle_deg))))
+    return slots
 
-    seats: list[Seat] = []
 
-    def seat(field: str, name: str, a, b, angle: float | None, inset: float = 0.0,
-             loaded: bool = True) -> None:
-        a = _num(src, f"{field}.start", a, allowed="a finite number")
-        b = _num(src, f"{field}.end", b, allowed="a finite number")
-        if b - a <= TOL:
-            raise InputError(src, field, "start < end", got=(a, b))
-        k = next((i for i in range(n) if xs[i][0] - TOL <= a and b <= xs[i][1] + TOL), None)
-        if k is None:
-            raise InputError(src, field, "an interval inside one segment", got=(a, b))
-        p = parts[k]
-        if inset > 0:
-            # a chamfered ring bears on [a + c, b − c] only; that band must stay on the
-            # straight seat: a shaft fillet no larger than the ring chamfer (ISO 582: the
-            # shaft fillet radius r_as max = the ring's r_s min), so the contact edge never
-            # falls inside a fillet
-            a, b = a + inset, b - inset
-            if a < p.x0 - TOL or b > p.x1 + TOL:
-                raise InputError(src, field, f"a contact band [{a:g}, {b:g}] (ring minus its "
-                                 f"chamfer {inset:g} mm) on the straight part [{p.x0:g}, "
-                                 f"{p.x1:g}] of segment {p.segment!r}", got=(a, b),
-                                 reason="reaches into a shoulder fillet: the fillet must not "
-                                 "exceed the ring chamfer")
-        a2, b2 = max(a, p.x0), min(b, p.x1)
-        if b2 - a2 <= TOL:
-            raise InputError(src, field, f"overlapping the cylindrical part [{p.x0:g}, "
-                             f"{p.x1:g}] of segment {p.segment!r}", got=(a, b))
-        for sl in slots:
-            inside = sl.x0 >= a2 - TOL and sl.x1 <= b2 + TOL
-            apart = sl.x1 <= a2 + TOL or sl.x0 >= b2 - TOL
-            if sl.segment == p.segment and not (inside or apart):
-                raise InputError(src, field, f"inside or clear of keyway "
-                                 f"{sl.segment}:{sl.index} [{sl.x0:g}, {sl.x1:g}]", got=(a, b))
-        seats.append(Seat(name, p, a2, b2, angle, loaded))
+def _seat(src: str, field: str, name: str, a: float, b: float, angle: float | None,
+          xs, parts, slots, inset: float = 0.0, loaded: bool = True) -> Seat:
+    """The face-group interval of a bearing ring or an attachment on one straight part."""
+    if b - a <= TOL:
+        raise InputError(src, field, "start < end", got=(a, b))
+    k = next((i for i in range(len(xs)) if xs[i][0] - TOL <= a and b <= xs[i][1] + TOL), None)
+    if k is None:
+        raise InputError(src, field, "an interval inside one segment", got=(a, b))
+    p = parts[k]
+    if inset > 0:
+        # a chamfered ring bears on [a + c, b − c] only; that band must stay on the straight
+        # seat: a shaft fillet no larger than the ring chamfer (ISO 582: the shaft fillet
+        # radius r_as max = the ring's r_s min), so the contact edge never falls in a fillet
+        a, b = a + inset, b - inset
+        if a < p.x0 - TOL or b > p.x1 + TOL:
+            raise InputError(src, field, f"a contact band [{a:g}, {b:g}] (ring minus its "
+                             f"chamfer {inset:g} mm) on the straight part [{p.x0:g}, "
+                             f"{p.x1:g}] of segment {p.segment!r}", got=(a, b),
+                             reason="reaches into a shoulder fillet: the fillet must not "
+                             "exceed the ring chamfer")
+    a2, b2 = max(a, p.x0), min(b, p.x1)
+    if b2 - a2 <= TOL:
+        raise InputError(src, field, f"overlapping the cylindrical part [{p.x0:g}, "
+                         f"{p.x1:g}] of segment {p.segment!r}", got=(a, b))
+    for sl in slots:
+        inside = sl.x0 >= a2 - TOL and sl.x1 <= b2 + TOL
+        apart = sl.x1 <= a2 + TOL or sl.x0 >= b2 - TOL
+        if sl.segment == p.segment and not (inside or apart):
+            raise InputError(src, field, f"inside or clear of keyway "
+                             f"{sl.segment}:{sl.index} [{sl.x0:g}, {sl.x1:g}]", got=(a, b))
+    return Seat(name, p, a2, b2, angle, loaded)
 
-    seen: set[str] = set()
+
+def _seats(variant, xs, parts, slots, src: str) -> list[Seat]:
+    seats = []
     for i, b in enumerate(variant.bearings):
-        if not b.name or b.name in seen:
-            raise InputError(src, f"bearings[{i}].name", "unique, non-empty", got=b.name)
-        seen.add(b.name)
-        w = _num(src, f"bearings[{i}].width_mm", b.width_mm, positive=True, allowed="> 0")
-        xc = _num(src, f"bearings[{i}].x_center_mm", b.x_center_mm, allowed="a finite number")
-        c = _num(src, f"bearings[{i}].chamfer_mm", getattr(b, "chamfer_mm", 0.0), lo=0.0,
-                 allowed=">= 0")
-        if c >= 0.25 * w:
-            raise InputError(src, f"bearings[{i}].chamfer_mm", f"< width / 4 ({0.25 * w:g})",
-                             got=c)
-        seat(f"bearings[{i}].seat", f"bearing:{b.name}", xc - 0.5 * w, xc + 0.5 * w, None, c)
-    seen = set()
+        xc, w, c = float(b.x_center_mm), float(b.width_mm), float(b.chamfer_mm)
+        if not w > 0:
+            raise InputError(src, f"bearings[{i}].width_mm", "> 0", got=b.width_mm)
+        if not 0 <= c < 0.25 * w:
+            raise InputError(src, f"bearings[{i}].chamfer_mm", f">= 0 and < width / 4 "
+                             f"({0.25 * w:g})", got=b.chamfer_mm)
+        seats.append(_seat(src, f"bearings[{i}].seat", f"bearing:{b.name}", xc - 0.5 * w,
+                           xc + 0.5 * w, None, xs, parts, slots, c))
     for i, at in enumerate(variant.attachments):
-        if not at.name or at.name in seen:
-            raise InputError(src, f"attachments[{i}].name", "unique, non-empty", got=at.name)
-        seen.add(at.name)
-        ang = _num(src, f"attachments[{i}].angle_deg", at.angle_deg, allowed="a finite number")
-        try:
-            me = abs(float(at.mass_kg) * float(at.eccentricity_mm))
-        except (TypeError, ValueError):
-            me = 1.0
-        seat(f"attachments[{i}].seat_x", f"load:{at.name}", at.seat_x_start_mm,
-             at.seat_x_end_mm, math.radians(ang), loaded=not me == 0.0)
+        me = abs(float(at.mass_kg) * float(at.eccentricity_mm))
+        seats.append(_seat(src, f"attachments[{i}].seat_x", f"load:{at.name}",
+                           float(at.seat_x_start_mm), float(at.seat_x_end_mm),
+                           math.radians(float(at.angle_deg)), xs, parts, slots,
+                           loaded=not me == 0.0))
+    return seats
 
-    hx = None
-    if variant.hex_socket is not None:
-        h = variant.hex_socket
-        if h.end not in ("left", "right"):
-            raise InputError(src, "hex_socket.end", "left | right", got=h.end)
-        s = _num(src, "hex_socket.across_flats_mm", h.across_flats_mm, positive=True,
-                 allowed="> 0")
-        dep = _num(src, "hex_socket.depth_mm", h.depth_mm, positive=True, allowed="> 0")
-        hx = Hex(h.end, s, dep)
-        x_end = xs[0][0] + dep if h.end == "left" else xs[-1][1] - dep
-        lo, hi = sorted((x_end, xs[0][0] if h.end == "left" else xs[-1][1]))
-        for i in range(n):
-            if xs[i][1] > lo + TOL and xs[i][0] < hi - TOL and hx.circumradius > 0.8 * radii[i]:
-                raise InputError(src, "hex_socket.across_flats_mm",
-                                 f"corner radius < 0.8 × radius of segment {names[i]!r}", got=s)
-        if dep >= xs[-1][1] - xs[0][0] - TOL:
-            raise InputError(src, "hex_socket.depth_mm", "< shaft length", got=dep)
-        for sl in slots:
-            if sl.x1 > lo and sl.x0 < hi:
-                raise InputError(src, "hex_socket.depth_mm", "clear of the keyways", got=dep)
 
+def _hex(variant, radii, xs, names, slots, src: str) -> Hex | None:
+    """The hex socket, its corners inside 0.8 × every segment radius it reaches, clear of the
+    keyways."""
+    h = variant.hex_socket
+    if h is None:
+        return None
+    s, dep = float(h.across_flats_mm), float(h.depth_mm)
+    hx = Hex(h.end, s, dep)
+    x_end = xs[0][0] + dep if h.end == "left" else xs[-1][1] - dep
+    lo, hi = sorted((x_end, xs[0][0] if h.end == "left" else xs[-1][1]))
+    for i in range(len(xs)):
+        if xs[i][1] > lo + TOL and xs[i][0] < hi - TOL and hx.circumradius > 0.8 * radii[i]:
+            raise InputError(src, "hex_socket.across_flats_mm",
+                             f"corner radius < 0.8 × radius of segment {names[i]!r}", got=s)
+    for sl in slots:
+        if sl.x1 > lo and sl.x0 < hi:
+            raise InputError(src, "hex_socket.depth_mm", "clear of the keyways", got=dep)
+    return hx
+
+
+def prepare(variant) -> Solid:
+    """Validate ``variant`` (``shaftfe.model.validate.validate_variant``, then the solid's own
+    construction rules) and return the solid's plan (no gmsh involved)."""
+    validate_variant(variant, springs=False)   # the solid never reads a stiffness
+    src = source_of(variant)
+    segs = tuple(variant.segments)
+    names = [s.name for s in segs]
+    radii, xs = _stations(segs)
+    fillets, shoulders, parts = _fillets(segs, radii, xs, src)
+    slots = _slots(segs, radii, parts, src)
+    seats = _seats(variant, xs, parts, slots, src)
+    hx = _hex(variant, radii, xs, names, slots, src)
     prof = sorted({round(x, 9) for st in seats for x in (st.x0, st.x1)})
     return Solid(variant.name, xs[-1][1] - xs[0][0], xs[0][0], xs[-1][1], tuple(radii),
                  tuple(names), tuple(xs), tuple(fillets), tuple(shoulders), tuple(parts),

@@ -53,6 +53,8 @@ import numpy as np
 from shaftfe.errors import InputError, SolverError
 from shaftfe.fe import assembly as fem
 from shaftfe.fe import recovery, supports
+from shaftfe.fe.lowrank import LowRankSolver
+from shaftfe.model.validate import validate_variant
 
 REF_RPM = 10_000.0
 RESIDUAL_TOL = 1e-8
@@ -211,25 +213,13 @@ def _check_options(o: StaticOptions) -> None:
         raise InputError("--solver", "solver", " | ".join(METHODS), got=o.solver)
 
 
-def _check_bearing(b) -> None:
-    K = np.asarray(b.K_N_per_mm, dtype=float)
-    if K.shape != (2, 2) or not np.all(np.isfinite(K)) or not np.allclose(K, K.T, rtol=1e-12) \
-            or np.linalg.eigvalsh(0.5 * (K + K.T)).min() <= 0:
-        raise InputError(f"bearing {b.name!r}", "K_N_per_mm",
-                         "a symmetric positive-definite 2×2 matrix", got=K.tolist())
-    if not (b.tilt_stiffness_Nmm_per_rad >= 0 and math.isfinite(b.tilt_stiffness_Nmm_per_rad)):
-        raise InputError(f"bearing {b.name!r}", "tilt_stiffness_Nmm_per_rad", ">= 0",
-                         got=b.tilt_stiffness_Nmm_per_rad)
-
-
 def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh=None,
                 cache_dir=None) -> StaticModel:
     """Mesh (or take ``shaft_mesh``), assemble K, couple the bearings, build the loads."""
     _check_options(options)
     if options.seed_load_case:
         variant = variant.with_seed_load_case()
-    for b in variant.bearings:
-        _check_bearing(b)
+    validate_variant(variant, springs=not options.rigid_supports)
     if shaft_mesh is None:
         from shaftfe.solid.mesh import build_mesh
         shaft_mesh = build_mesh(variant, options.level, options.order, cache_dir=cache_dir)
@@ -340,24 +330,9 @@ def solve_model(model: StaticModel, rhs: np.ndarray | None = None) -> UnitSoluti
     t1 = time.perf_counter()
     Z = fac.solve(np.column_stack([U, f]))
     Z, y = Z[:, :-1], Z[:, -1]
-    UtZ = U.T @ Z
-    # Jacobi scaling of the capacitance by its own diagonal (C⁻¹ + Uᵀ B⁻¹ U): soft spring rows
-    # are dominated by C⁻¹, so scaling by diag(Uᵀ B⁻¹ U) alone would blow cond(S) up
-    dS = np.abs(np.diag(Cinv) + np.diag(UtZ))
-    dS = np.maximum(dS, 1e-3 * np.abs(np.diag(UtZ)))
-    D = 1.0 / np.sqrt(dS)
-    S = D[:, None] * (Cinv + UtZ) * D[None, :]
-    cond = float(np.linalg.cond(S))
-    if not np.isfinite(cond) or cond > 1e13:
-        raise SolverError(f"the support system is numerically singular (cond(S) = {cond:.3g}, "
-                          f"limit 1e13): check the bearing stiffnesses; {_springs(model)}")
-    from scipy.linalg import lu_factor, lu_solve
-    S_lu = lu_factor(S)
-
-    def woodbury(yv, g):
-        """[B U; Uᵀ −C⁻¹] [u; λ] = [f; g] with yv = B⁻¹ f (pins included in U)."""
-        lam_ = D * lu_solve(S_lu, D * (U.T @ yv - g))
-        return yv - Z @ lam_, lam_
+    lr = LowRankSolver(fac, U, Cinv, Z=Z,
+                       hint=f"check the bearing stiffnesses; {_springs(model)}")
+    cond = lr.cond_S              # [B U; Uᵀ −C⁻¹] [u; λ] = [f; g] (pins included in U)
 
     # u is kept as a rigid part Φ a plus an elastic part w (K Φ = 0 analytically, never
     # computed): with soft springs the rigid motion dwarfs the elastic one and K u would carry
@@ -372,7 +347,7 @@ def solve_model(model: StaticModel, rhs: np.ndarray | None = None) -> UnitSoluti
         r2 = Cs @ lam_s - (Us.T @ (Phi @ a) + Us.T @ w)
         return r1, r2
 
-    u0, lam = woodbury(y, np.zeros(U.shape[1]))
+    u0, lam = lr.correct(y, np.zeros(U.shape[1]))
     a = Phi_pinv @ u0
     w = u0 - Phi @ a
     lam_s = lam[6:]
@@ -380,7 +355,7 @@ def solve_model(model: StaticModel, rhs: np.ndarray | None = None) -> UnitSoluti
     fn = float(np.linalg.norm(f))
     relres0 = float(np.linalg.norm(r1) / fn) if fn > 0 else 0.0
     # one step of iterative refinement with the same factor and capacitance
-    du, dlam = woodbury(fac.solve(r1), np.concatenate([np.zeros(6), -r2]))
+    du, dlam = lr.correct(fac.solve(r1), np.concatenate([np.zeros(6), -r2]))
     da = Phi_pinv @ du
     a, w, lam_s = a + da, w + (du - Phi @ da), lam_s + dlam[6:]
     r1, r2 = residuals(a, w, lam_s)
@@ -655,15 +630,15 @@ def _estimate_error(res: StaticResult, variant, options: StaticOptions, cache_di
     for stress peaks; (N_fine/N_coarse)^(1/3) from the element counts for deflections. Orders
     assumed: p = 2 for recovered P2 stresses (p = 1 for P1), p = 3 for P2 displacements (2 for
     P1). An estimate, not a bound: on a graded mesh the asymptotic range is not guaranteed."""
-    from shaftfe.solid.mesh import LEVELS
+    from shaftfe.solid.levels import level_name, mesh_level
     other = other_level or ("default" if options.level == "fine" else "fine")
+    k_this, k_other = mesh_level(options.level).k_fillet, mesh_level(other).k_fillet
     res2 = solve_static(variant, [c.rpm for c in res.cases], replace(options, level=other),
                         cache_dir=cache_dir, beam=False)
-    finer_first = LEVELS[options.level]["k_fillet"] < LEVELS[other]["k_fillet"] or (
-        LEVELS[options.level]["k_fillet"] == LEVELS[other]["k_fillet"] and other != "fine")
+    finer_first = k_this < k_other or (k_this == k_other and other != "fine")
     fine_r, coarse_r = (res, res2) if finer_first else (res2, res)
     p_s, p_u = (2, 3) if options.order == 2 else (1, 2)
-    r_s = LEVELS[coarse_r.options.level]["k_fillet"] / LEVELS[fine_r.options.level]["k_fillet"]
+    r_s = (k_other / k_this) if finer_first else (k_this / k_other)
     r_u = (fine_r.n_elements / coarse_r.n_elements) ** (1 / 3)
 
     def est(qf, qc, r, p):
@@ -672,7 +647,7 @@ def _estimate_error(res: StaticResult, variant, options: StaticOptions, cache_di
         d = (qf - qc) / (r ** p - 1)
         return {"fine": qf, "coarse": qc, "extrapolated": qf + d, "error_fine": abs(d),
                 "rel_error_fine": abs(d) / abs(qf) if qf else None}
-    out = {"levels": [fine_r.options.level, coarse_r.options.level],
+    out = {"levels": [level_name(fine_r.options.level), level_name(coarse_r.options.level)],
            "dofs": [fine_r.n_dofs, coarse_r.n_dofs], "ratio_stress": r_s, "ratio_deflection": r_u,
            "order_stress": p_s, "order_deflection": p_u, "cases": []}
     for cf, cc in zip(fine_r.cases, coarse_r.cases, strict=True):

@@ -22,7 +22,7 @@ RPM_DAT = ROOT / "loadspectra" / "rpm.dat"
 
 @pytest.fixture(scope="module")
 def ref(tmp_path_factory):
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.static.cache import load_or_solve
     from shaftfe.static.solve import StaticOptions
     cache = tmp_path_factory.getbasetemp() / "shaftfe-fatigue-cache"

@@ -154,7 +154,7 @@ def test_x2_57_twelve_modes_and_no_critical_speed():
     mode is far above the 2× line. The beam is a different model (see the report): its
     frequencies are compared, not asserted equal — only the same order of magnitude (first
     frequency within a factor 2 of the seed's)."""
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
 
     r = rotor.rotor_from_variant(load_variant("x2_57"))
     res = rotor.campbell(r, np.arange(0.0, 8001.0, 1000.0), 12, orders=(1.0, 2.0))
@@ -179,7 +179,7 @@ def test_x2_57_rigid_body_inertia_matches_mass_properties_and_seed():
     432.229 kg·mm² (seed 000 §8.2.2, acceleration-torque formula; SPEC §2) within 0.1 %."""
     import dataclasses
 
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
 
     v = load_variant("x2_57")
     mp = v.mass_properties()

@@ -71,13 +71,11 @@ def timoshenko(F: float, x_eval: np.ndarray, n: int = 400_001):
 
 @pytest.fixture(scope="module")
 def result(tmp_path_factory):
-    from shaftfe.solid import mesh
+    from shaftfe.solid.levels import MeshLevel
     from shaftfe.static.solve import StaticOptions, solve_static
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setitem(mesh.LEVELS, LEVEL, {"k_global": 0.15, "k_fillet": 1.0, "k_sharp": 2.0,
-                                        "grad": 0.5})
-        return solve_static(shaft(), [RPM], StaticOptions(level=LEVEL),
-                            cache_dir=tmp_path_factory.mktemp("vb"), beam=False)
+    level = MeshLevel(LEVEL, k_global=0.15, k_fillet=1.0, k_sharp=2.0, grad=0.5)
+    return solve_static(shaft(), [RPM], StaticOptions(level=level),
+                        cache_dir=tmp_path_factory.mktemp("vb"), beam=False)
 
 
 def test_deflection_and_reactions_match_timoshenko(result):

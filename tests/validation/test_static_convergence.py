@@ -29,13 +29,14 @@ import dataclasses
 import pytest
 
 from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.solid.levels import MeshLevel
 
 STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
 K = ((35_030.0, 0.0), (0.0, 35_030.0))
 RPM = 10_000.0
 # three test levels that differ only in the fillet element size (ratio √2 each)
-TEST_LEVELS = {f"conv{i}": {"k_global": 0.7, "k_fillet": kf, "k_sharp": 5.0, "grad": 3.0}
-               for i, kf in enumerate((0.45, 0.45 / 2 ** 0.5, 0.225))}
+TEST_LEVELS = [MeshLevel(f"conv{i}", k_global=0.7, k_fillet=kf, k_sharp=5.0, grad=3.0)
+               for i, kf in enumerate((0.45, 0.45 / 2 ** 0.5, 0.225))]
 
 
 def shaft() -> Variant:
@@ -50,20 +51,14 @@ def shaft() -> Variant:
 
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
-    from shaftfe.solid.mesh import LEVELS
     from shaftfe.static import solve as static
     cache = tmp_path_factory.mktemp("conv")
     v = shaft()
-    LEVELS.update(TEST_LEVELS)
-    try:
-        opts = static.StaticOptions(level="conv1")
-        mid = static.solve_static(v, [RPM], opts, cache_dir=cache, beam=False)
-        est = static._estimate_error(mid, v, opts, cache, other_level="conv0")
-        fine = static.solve_static(v, [RPM], dataclasses.replace(opts, level="conv2"),
-                                   cache_dir=cache, beam=False)
-    finally:
-        for k in TEST_LEVELS:
-            LEVELS.pop(k, None)
+    opts = static.StaticOptions(level=TEST_LEVELS[1])
+    mid = static.solve_static(v, [RPM], opts, cache_dir=cache, beam=False)
+    est = static._estimate_error(mid, v, opts, cache, other_level=TEST_LEVELS[0])
+    fine = static.solve_static(v, [RPM], dataclasses.replace(opts, level=TEST_LEVELS[2]),
+                               cache_dir=cache, beam=False)
     return mid, est, fine
 
 

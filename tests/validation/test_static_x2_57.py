@@ -30,7 +30,7 @@ RPM = 10_000.0
 @pytest.fixture(scope="module")
 def result(tmp_path_factory):
     from shaftfe.errors import ShaftfeError
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.static.solve import StaticOptions, solve_static
     try:
         v = load_variant("x2_57")

@@ -268,7 +268,7 @@ def test_x2_57_stress_stiffening_negligible_at_8000_rpm():
     option off on the same basis — the centrifugal stress of the Ø17 shaft is < 1 MPa, so
     "off by default" (the seed's study) is justified. Measured: largest change 3.1e-5, von
     Mises of the prestress ≤ 0.51 MPa, 31 s at load 3 (values also in the assert message)."""
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
 
     t0 = time.perf_counter()
     off = rotor_solid.build_solid_rotor(load_variant("x2_57"))

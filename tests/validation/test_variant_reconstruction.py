@@ -11,7 +11,8 @@ import math
 import numpy as np
 import pytest
 
-from shaftfe.model.variant import load_variant, rigid_support_reactions, seat_loads
+from shaftfe.model.loader import load_variant
+from shaftfe.model.mass import rigid_support_reactions, seat_loads
 
 VARIANTS = ("x2_31", "x2_42", "x2_50", "x2_57")
 # seed §8.2.2 table: X2 % -> (mass kg, γ2 mm, x_T mm)
@@ -100,7 +101,7 @@ def test_gear_pitch_diameter_and_centre_distance_are_consistent():
     import tomllib
     from pathlib import Path
 
-    from shaftfe.model.variant import GEOMETRY_DIR
+    from shaftfe.util.paths import GEOMETRY_DIR
     parts = tomllib.loads(Path(GEOMETRY_DIR / "common" / "parts.toml").read_text("utf-8"))
     # exact (a file value): approx's default rel 1e-6
     assert parts["parts"]["gear"]["shape"]["rim_outer_radius_mm"] == pytest.approx(2 * 33 / 2)

@@ -10,7 +10,7 @@ linear model or independent references:
 * Linearity in ω² (loads are m e ω²): 2× rpm gives exactly 4× every stress, deflection and
   reaction, 2⁻⁷ × the L10h (ISO 281, p = 3, life ∝ P⁻³ / n).
 * Reactions against the statics of a beam on two simple supports at the bearing centres with
-  the seat-lumped forces (``shaftfe.model.variant.rigid_support_reactions``, an independent closed
+  the seat-lumped forces (``shaftfe.model.mass.rigid_support_reactions``, an independent closed
   form): with the tilt free at the bearings the radial reactions are statically determinate,
   so springs, mesh and recovery cannot change them; 1e-5 covers the pressure centroid of the
   meshed half seats (faceted P2 surface) against the seat centre (measured 1.5e-6).
@@ -29,7 +29,7 @@ RPMS = (5_000.0, 10_000.0)
 
 
 def _variants() -> list[str]:
-    from shaftfe.model.variant import list_variants
+    from shaftfe.model.loader import list_variants
     return list_variants()
 
 
@@ -40,7 +40,7 @@ def cache(tmp_path_factory):
 
 @pytest.fixture(scope="module", params=_variants())
 def solved(request, cache):
-    from shaftfe.model.variant import load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.static.solve import StaticOptions, solve_static
     v = load_variant(request.param)
     return v, solve_static(v, list(RPMS), StaticOptions(level="coarse"), cache_dir=cache)
@@ -73,7 +73,7 @@ def test_every_variant_scales_with_rpm_squared(solved):
 def test_every_variant_reactions_are_the_statics(solved):
     """Radial reactions = statics of two simple supports at the bearing centres under the
     seat-lumped forces m e ω² of all parts (closed form, shaftfe.model.variant), within 1e-5."""
-    from shaftfe.model.variant import rigid_support_reactions
+    from shaftfe.model.mass import rigid_support_reactions
     v, res = solved
     for rpm in RPMS:
         ref = dict(rigid_support_reactions(v, rpm, seed_case=False))

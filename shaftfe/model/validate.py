@@ -1,0 +1,159 @@
+"""ONE set of rules for a variant, whoever made it (a TOML file, a notebook, a test).
+
+``validate_variant(v)`` checks what every analysis assumes: contiguous segments of positive
+length and diameter, a material with E > 0 and −1 < ν < 0.5, unique non-empty names, bearings
+inside the shaft (a width of 0 is a point support: the beam's idealisation) with a symmetric positive-definite 2×2 radial stiffness (a bearing that gives
+no stiffness in some direction leaves the shaft free there: refused as input, in the beam and
+in 3D alike), attachments inside the shaft with mass and eccentricity ≥ 0, keyways of positive
+size, and a hex socket at one end, shorter than the shaft. The loader
+(``shaftfe.model.loader.load_variant``) calls it after parsing; the beam, the solid plan and
+the static model call it on the variant they are given. The rules that need the solid's plan
+(a ring of positive width with a chamfer below a quarter of it, a keyway inside the straight
+part of its segment, a contact band clear of the fillets, the hex socket's corners) are the solid's construction rules: ``shaftfe.solid.plan.prepare``.
+
+Each failure is one ``InputError(source, field, allowed, got)`` with the variant's first
+source file as the source.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from shaftfe.errors import InputError
+
+TOL_X_MM = 1e-6       # mm: segment ends closer than this are the same station
+
+
+def source_of(variant) -> str:
+    """The file a variant came from (its first source), else ``variant <name>``."""
+    return variant.source_files[0] if variant.source_files else f"variant {variant.name}"
+
+
+def _finite(x) -> bool:
+    try:
+        return math.isfinite(float(x))
+    except (TypeError, ValueError):
+        return False
+
+
+def _positive(src: str, fld: str, x) -> None:
+    if not (_finite(x) and float(x) > 0):
+        raise InputError(src, fld, "> 0", got=x)
+
+
+def _nonneg(src: str, fld: str, x) -> None:
+    if not (_finite(x) and float(x) >= 0):
+        raise InputError(src, fld, ">= 0", got=x)
+
+
+def _unique(src: str, what: str, names) -> None:
+    seen: set[str] = set()
+    for i, n in enumerate(names):
+        if not n or n in seen or ":" in n:
+            raise InputError(src, f"{what}[{i}].name", "unique, non-empty, without ':'", got=n)
+        seen.add(n)
+
+
+def _segments(v, src: str) -> tuple[float, float]:
+    segs = v.segments
+    if not segs:
+        raise InputError(src, "segments", "at least one segment", got=0)
+    _unique(src, "segments", [s.name for s in segs])
+    for i, s in enumerate(segs):
+        f = f"segments[{i}]"
+        if not _finite(s.x_start_mm):
+            raise InputError(src, f"{f}.x_start_mm", "a finite number", got=s.x_start_mm)
+        _positive(src, f"{f}.length_mm", s.length_mm)
+        _positive(src, f"{f}.diameter_mm", s.diameter_mm)
+        _nonneg(src, f"{f}.fillet_mm", s.fillet_mm)
+        if i and abs(s.x_start_mm - segs[i - 1].x_end_mm) > TOL_X_MM:
+            raise InputError(src, f"{f}.x_start_mm", f"= x_end of segments[{i - 1}] "
+                             f"({segs[i - 1].x_end_mm:g}): segments are contiguous",
+                             got=s.x_start_mm)
+        for j, k in enumerate(s.keyways):
+            kf, r = f"{f}.keyways[{j}]", 0.5 * s.diameter_mm
+            for name in ("width_mm", "depth_mm", "length_mm"):
+                _positive(src, f"{kf}.{name}", getattr(k, name))
+            if k.width_mm >= 1.6 * r:
+                raise InputError(src, f"{kf}.width_mm", f"< 0.8 × diameter ({1.6 * r:g})",
+                                 got=k.width_mm)
+            if k.depth_mm >= 0.5 * r:
+                raise InputError(src, f"{kf}.depth_mm", f"< radius / 2 ({0.5 * r:g})",
+                                 got=k.depth_mm)
+            if k.length_mm < k.width_mm + TOL_X_MM:
+                raise InputError(src, f"{kf}.length_mm", f">= width ({k.width_mm:g})",
+                                 got=k.length_mm)
+    return segs[0].x_start_mm, segs[-1].x_end_mm
+
+
+def _material(v, src: str) -> None:
+    m = v.material
+    _positive(src, "material.E_MPa", m.E_MPa)
+    if not (_finite(m.nu) and -1.0 < m.nu < 0.5):
+        raise InputError(src, "material.nu", "-1 < nu < 0.5", got=m.nu)
+
+
+def check_bearing_stiffness(K, src: str, fld: str) -> None:
+    """A symmetric positive-definite 2×2 radial stiffness (N/mm)."""
+    try:
+        A = np.asarray(K, dtype=float)
+    except (TypeError, ValueError):
+        A = np.full(1, np.nan)
+    if A.shape != (2, 2) or not np.all(np.isfinite(A)) or not np.allclose(A, A.T, rtol=1e-12) \
+            or np.linalg.eigvalsh(0.5 * (A + A.T)).min() <= 0:
+        raise InputError(src, fld, "a symmetric positive-definite 2×2 matrix",
+                         got=A.tolist() if A.ndim == 2 else K)
+
+
+def _bearings(v, src: str, x0: float, x1: float, springs: bool) -> None:
+    _unique(src, "bearings", [b.name for b in v.bearings])
+    for i, b in enumerate(v.bearings):
+        f = f"bearings[{i}]"
+        if not (_finite(b.x_center_mm) and x0 - 1e-9 <= b.x_center_mm <= x1 + 1e-9):
+            raise InputError(src, f"{f}.x_center_mm", f"in [{x0:g}, {x1:g}]", got=b.x_center_mm)
+        if springs:
+            check_bearing_stiffness(b.K_N_per_mm, src, f"{f}.K_N_per_mm (bearing {b.name!r})")
+        _nonneg(src, f"{f}.tilt_stiffness_Nmm_per_rad", b.tilt_stiffness_Nmm_per_rad)
+
+
+def _attachments(v, src: str, x0: float, x1: float) -> None:
+    _unique(src, "attachments", [a.name for a in v.attachments])
+    for i, a in enumerate(v.attachments):
+        f = f"attachments[{i}]"
+        for name in ("seat_x_start_mm", "seat_x_end_mm", "angle_deg"):
+            if not _finite(getattr(a, name)):
+                raise InputError(src, f"{f}.{name}", "a finite number", got=getattr(a, name))
+        lo, hi = sorted((a.seat_x_start_mm, a.seat_x_end_mm))
+        if lo < x0 - 1e-9 or hi > x1 + 1e-9:
+            raise InputError(src, f"{f}.seat", f"inside [{x0:g}, {x1:g}]",
+                             got=(a.seat_x_start_mm, a.seat_x_end_mm))
+        _nonneg(src, f"{f}.mass_kg", a.mass_kg)
+        _nonneg(src, f"{f}.eccentricity_mm", a.eccentricity_mm)
+
+
+def _hex_socket(v, src: str, x0: float, x1: float) -> None:
+    h = v.hex_socket
+    if h is None:
+        return
+    if h.end not in ("left", "right"):
+        raise InputError(src, "hex_socket.end", "left | right", got=h.end)
+    _positive(src, "hex_socket.across_flats_mm", h.across_flats_mm)
+    _positive(src, "hex_socket.depth_mm", h.depth_mm)
+    if h.depth_mm >= x1 - x0 - TOL_X_MM:
+        raise InputError(src, "hex_socket.depth_mm", "< shaft length", got=h.depth_mm)
+
+
+def validate_variant(variant, *, springs: bool = True) -> None:
+    """Raise ``InputError`` on the first rule ``variant`` breaks (see the module docstring).
+    ``springs=False``: a model on rigid supports, which never reads the bearing stiffness."""
+    src = source_of(variant)
+    x0, x1 = _segments(variant, src)
+    _material(variant, src)
+    _bearings(variant, src, x0, x1, springs)
+    _attachments(variant, src, x0, x1)
+    _hex_socket(variant, src, x0, x1)
+    cs = variant.clearance_station_x_mm
+    if cs is not None and not (x0 - 1e-9 <= cs <= x1 + 1e-9):
+        raise InputError(src, "clearance_station_x_mm", f"in [{x0:g}, {x1:g}]", got=cs)
