@@ -14,7 +14,8 @@ from benchmarks._timing import best_time
 
 
 def main() -> None:
-    from shaftfe.beam import model as beam
+    from shaftfe.beam.model import PointLoad, build_model
+    from shaftfe.beam.solve import solve
     from shaftfe.model.variant import Bearing, Material, Segment, Variant
 
     E, nu, L, d, P = 210_000.0, 0.3, 200.0, 20.0, 1000.0
@@ -27,12 +28,12 @@ def main() -> None:
                 (Bearing("A", "-", 0.0, 0.0, 1e4, 1e4, K0, axial=True),
                  Bearing("B", "-", L, 0.0, 1e4, 1e4, K0)), (),
                 Material("steel", E, nu, 7.85e-9, 540.0, 800.0), 0.0)
-    load = [beam.PointLoad(L / 2, Fy_N=P)]
+    load = [PointLoad(L / 2, Fy_N=P)]
     print(f"{'case':<28}{'nodes':>7}{'time ms':>10}{'rel. error':>12}")
     for h in (100.0, 10.0, 2.0, 0.5, 0.1):
         def run(h=h):
-            m = beam.build_model(v, rigid_supports=True, max_element_mm=h, extra_loads=load)
-            return m, beam.solve(m, 0.0)[0]
+            m = build_model(v, rigid_supports=True, max_element_mm=h, extra_loads=load)
+            return m, solve(m, 0.0)[0]
         m, r = run()
         i = min(range(m.n_nodes), key=lambda k: abs(m.x[k] - L / 2))
         err = abs(r.uy[i] / ref - 1)
@@ -55,8 +56,8 @@ def main() -> None:
                   clearance_station_x_mm=50.0)
     for h in (5.0, 1.0):
         def run1(h=h):
-            m = beam.build_model(bal, max_element_mm=h)
-            return m, beam.solve(m, [10_000.0, 7000.0])
+            m = build_model(bal, max_element_mm=h)
+            return m, solve(m, [10_000.0, 7000.0])
         m, _ = run1()
         t = best_time(run1)
         print(f"{'balancer-like, h = ' + format(h, 'g') + ' mm':<28}{m.n_nodes:>7}"
@@ -72,8 +73,8 @@ def main() -> None:
             return
         for rigid in (True, False):
             def run2(rigid=rigid):
-                m = beam.build_model(var, rigid_supports=rigid)
-                return m, beam.solve(m, [10_000.0, 7000.0])
+                m = build_model(var, rigid_supports=rigid)
+                return m, solve(m, [10_000.0, 7000.0])
             m, _ = run2()
             t = best_time(run2)
             label = f"x2_57 {'rigid' if rigid else 'springs'}, 2 rpm"

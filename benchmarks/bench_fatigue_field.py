@@ -35,7 +35,7 @@ def main() -> None:
     from shaftfe.fatigue.history import read_history
     from shaftfe.model.loader import load_variant
     from shaftfe.static.cache import load_or_solve
-    from shaftfe.static.solve import StaticOptions
+    from shaftfe.static.model import StaticOptions
 
     t = time.perf_counter()
     ref = load_or_solve(load_variant("x2_57"), StaticOptions(level="default",

@@ -79,7 +79,7 @@ def check_prefix(kind: str) -> float:
     from shaftfe.fatigue.sn import load_material
     from shaftfe.model.loader import load_variant
     from shaftfe.static import cache as static_cache
-    from shaftfe.static.solve import StaticOptions
+    from shaftfe.static.model import StaticOptions
     ref = static_cache.load_or_solve(load_variant("x2_57"), StaticOptions())
     h = from_rpm(history(kind, 100_000), sample_rate_hz=100.0)
     mat = load_material("structural_steel")

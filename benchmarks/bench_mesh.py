@@ -4,7 +4,7 @@ Run: ``python -m benchmarks bench_mesh`` (or ``python benchmarks/bench_mesh.py``
 Meshes the real variant x2_57 when ``load_variant`` can load it, and always a small synthetic
 shaft (Ø15/17/22/17, 1 mm fillets, one keyway, a hex socket). The cache goes to a temporary
 directory, so "cold" is a real Gmsh build and "cached" a load of the npz just written.
-Volume error = meshed P2 volume / exact volume (shaftfe.solid.plan.analytic_volume) − 1.
+Volume error = meshed P2 volume / exact volume (shaftfe.solid.exact.analytic_volume) − 1.
 """
 
 from __future__ import annotations
@@ -38,7 +38,8 @@ def _volume(mesh) -> float:
 
 def main(levels=("coarse", "default", "fine")) -> list[dict]:
     from shaftfe.commands._common import print_table
-    from shaftfe.solid.mesh import analytic_volume, build_mesh
+    from shaftfe.solid.exact import analytic_volume
+    from shaftfe.solid.mesh import build_mesh
     rows, records = [], []
     with tempfile.TemporaryDirectory(prefix="shaftfe-bench-") as cache:
         for v in _variants():

@@ -12,7 +12,7 @@ Quantities (variant x2_57, bearing springs):
 * ``frequencies`` first 12 natural frequencies at rest and at ``TOP_RPM``; error = the largest
                   relative error of the 24.
 
-Configurations: every mesh level of ``shaftfe.solid.mesh.LEVELS`` × P1/P2 × every linear solver that
+Configurations: every mesh level of ``shaftfe.solid.levels.LEVELS`` × P1/P2 × every linear solver that
 ``shaftfe.fe.solvers.available()`` reports (SuperLU is not run above ``SUPERLU_MAX_DOFS``, as in
 bench_static), the beam model (``shaftfe.beam.model``: stresses = Kt × nominal at the shoulder,
 ``shaftfe.beam.scf``) at several element sizes, and for the frequencies the beam rotor
@@ -87,7 +87,8 @@ def _child(spec_json: str) -> None:
           "beam_fatigue": _c_beam_fatigue, "freq_beam": _c_freq_beam,
           "freq_solid": _c_freq_solid}[spec["kind"]]
     src = {m: hashlib.sha256((ROOT / "shaftfe" / f"{m}.py").read_bytes()).hexdigest()[:12]
-           for m in ("solid/mesh", "static/solve", "beam/model", "rotordynamics/beam_rotor")}
+           for m in ("solid/mesh", "static/solve", "beam/elements", "beam/model", "beam/solve",
+                     "rotordynamics/beam_rotor")}
     out = fn(spec)
     out["rss_MB"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     out["source_sha"] = src
@@ -133,7 +134,8 @@ def _fatigue_defaults():
 
 def _c_static(spec: dict) -> dict:
     from shaftfe.model.loader import load_variant
-    from shaftfe.static.solve import StaticOptions, solve_static
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
     v = load_variant(VARIANT)
     opts = StaticOptions(level=spec["level"], order=spec["order"], solver=spec["solver"])
     with _Clock() as ck:
@@ -156,12 +158,12 @@ def _c_static(spec: dict) -> dict:
 
 
 def _c_fatigue(spec: dict) -> dict:
-    from shaftfe.commands.fatigue import read_spectrum
     from shaftfe.fatigue.field import evaluate
+    from shaftfe.fatigue.run import read_spectrum
     from shaftfe.fatigue.sn import load_material
     from shaftfe.model.loader import load_variant
     from shaftfe.static import cache as static_cache
-    from shaftfe.static.solve import StaticOptions
+    from shaftfe.static.model import StaticOptions
     a = _fatigue_defaults()
     v = load_variant(VARIANT)
     opts = StaticOptions(level=spec["level"], order=spec["order"], solver=spec["solver"],
@@ -195,13 +197,14 @@ def _notch_at(res, x: float):
 
 
 def _c_beam_static(spec: dict) -> dict:
-    from shaftfe.beam import model as beam
+    from shaftfe.beam.model import build_model
+    from shaftfe.beam.solve import solve
     from shaftfe.model.loader import load_variant
     v = load_variant(VARIANT)
     fx = _beam_fillets(v)
     def run():
-        m = beam.build_model(v, max_element_mm=spec["h"], spread_loads=spec["spread"])
-        return m, beam.solve(m, [RPM])[0]
+        m = build_model(v, max_element_mm=spec["h"], spread_loads=spec["spread"])
+        return m, solve(m, [RPM])[0]
     with _Clock() as ck:
         m, r = run()
     warm = _best_of(run)
@@ -217,9 +220,10 @@ def _c_beam_fatigue(spec: dict) -> dict:
     """Beam + Kt: the largest shoulder peak Kt·σ_nom (seed load case) as a uniaxial stress."""
     import numpy as np
 
-    from shaftfe.beam import model as beam
-    from shaftfe.commands.fatigue import read_spectrum
+    from shaftfe.beam.model import build_model
+    from shaftfe.beam.solve import solve
     from shaftfe.fatigue.field import evaluate_arrays
+    from shaftfe.fatigue.run import read_spectrum
     from shaftfe.fatigue.sn import load_material
     from shaftfe.model.loader import load_variant
     a = _fatigue_defaults()
@@ -228,8 +232,8 @@ def _c_beam_fatigue(spec: dict) -> dict:
     def run():
         history = read_spectrum(str(SPECTRUM), a.ref_rpm, a.sample_rate)
         material = load_material(a.material)
-        m = beam.build_model(vv, max_element_mm=spec["h"], spread_loads=spec["spread"])
-        r, = beam.solve(m, [RPM])
+        m = build_model(vv, max_element_mm=spec["h"], spread_loads=spec["spread"])
+        r, = solve(m, [RPM])
         n = max(r.notches, key=lambda q: q.sigma_peak_MPa)
         s = np.zeros((6, 1))
         s[0, 0] = n.sigma_peak_MPa
@@ -276,13 +280,14 @@ def _c_freq_solid(spec: dict) -> dict:
     rigid bodies (its default coupling), reduced-basis Campbell sweep with basis tolerance
     ``tol`` (the eigensolver setting that decides the basis size)."""
     from shaftfe.model.loader import load_variant
+    from shaftfe.rotordynamics import solid_modal
     from shaftfe.rotordynamics import solid_rotor as rotor_solid
     v = load_variant(VARIANT)
     opts = rotor_solid.SolidOptions(level=spec["level"], order=spec["order"],
                                     solver=spec["solver"])
     with _Clock() as ck:
         rot = rotor_solid.build_solid_rotor(v, opts, cache_dir=spec["cache"])
-        res = rotor_solid.campbell(rot, [0.0, TOP_RPM], N_MODES, tol=spec["tol"])
+        res = solid_modal.campbell(rot, [0.0, TOP_RPM], N_MODES, tol=spec["tol"])
     return {"wall_s": ck.wall, "cpu_s": ck.cpu, "dofs": int(rot.n_dof),
             "basis": int(res.basis_size), **_branches(res)}
 
@@ -389,12 +394,13 @@ def _solid_freq_plan(args) -> list[dict]:
     try:
         import inspect
 
+        from shaftfe.rotordynamics import solid_modal
         from shaftfe.rotordynamics import solid_rotor as rotor_solid
     except Exception:
         return []
     from shaftfe.solid.levels import LEVELS
     d = rotor_solid.SolidOptions()
-    tol = float(inspect.signature(rotor_solid.campbell).parameters["tol"].default)
+    tol = float(inspect.signature(solid_modal.campbell).parameters["tol"].default)
     levels = args.solid_levels.split(",") if args.solid_levels else [d.level, "default"]
     if args.quick:
         levels = [d.level]
@@ -412,7 +418,7 @@ def plan(args) -> list[tuple[dict, bool]]:
     """(spec, also run warm) in run order: cheap first, the finest FE levels last."""
     from shaftfe.fe import solvers
     from shaftfe.solid.levels import LEVELS
-    from shaftfe.static.solve import StaticOptions
+    from shaftfe.static.model import StaticOptions
     have = [s for s, ok in solvers.available().items() if ok]
     default_solver = _default_solver()
     if args.quick:
@@ -455,7 +461,7 @@ def _default_solver() -> str:
     """What ``StaticOptions().solver`` resolves to here (``shaftfe.fe.solvers.factorize``'s
     "auto": PARDISO when it imports, else SuperLU)."""
     from shaftfe.fe import solvers
-    from shaftfe.static.solve import StaticOptions
+    from shaftfe.static.model import StaticOptions
     s = StaticOptions().solver
     if s != "auto":
         return s
@@ -645,8 +651,8 @@ def _fatigue_eval(tensor, scale: float = 1.0) -> tuple[float, float]:
     through the same API and settings as the children."""
     import numpy as np
 
-    from shaftfe.commands.fatigue import read_spectrum
     from shaftfe.fatigue.field import evaluate_arrays
+    from shaftfe.fatigue.run import read_spectrum
     from shaftfe.fatigue.sn import load_material
     a = _fatigue_defaults()
     h = read_spectrum(str(SPECTRUM), a.ref_rpm, a.sample_rate)
@@ -1253,7 +1259,7 @@ def main() -> None:
         write_report(data)
         return
     from shaftfe.fe import solvers
-    from shaftfe.static.solve import StaticOptions
+    from shaftfe.static.model import StaticOptions
     data = run_all(args)
     data.update(generated=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"),
                 levels=_levels_info(), solvers=solvers.available(),

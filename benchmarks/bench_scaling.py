@@ -97,7 +97,8 @@ from shaftfe.fe import assembly as fem
 from shaftfe.solid import mesh
 from shaftfe.fe import recovery
 from shaftfe.fe import solvers
-from shaftfe.static.solve import StaticOptions, build_model, solve_model
+from shaftfe.static.model import StaticOptions, build_model
+from shaftfe.static.solve import solve_model
 from shaftfe.rotordynamics.kernels import modal_basis
 base = {base!r}
 from shaftfe.solid.levels import MeshLevel
@@ -114,7 +115,7 @@ mat = v.material
 K, t, m = rss.stage(lambda: fem.elasticity_stiffness(sm.mesh, mat.E_MPa, mat.nu))
 res["assembly"] = (t, m, rss.cpu)
 from shaftfe.fe import supports
-from shaftfe.static.solve import REF_RPM, _direction
+from shaftfe.static.model import REF_RPM, _direction
 
 def supports_and_loads():
     cs = [supports.couple_bearing(sm.mesh, b) for b in v.bearings]
@@ -164,7 +165,8 @@ print("RESULT " + json.dumps(res))
 _CHILD_DEFAULT = r"""
 import json, sys
 sys.path.insert(0, {root!r})
-from shaftfe.static.solve import StaticOptions, solve_static
+from shaftfe.static.model import StaticOptions
+from shaftfe.static.solve import solve_static
 from shaftfe.model.loader import load_variant
 r = solve_static(load_variant("x2_57"), [10000.0], StaticOptions(level="default"),
                  cache_dir={cache!r}, beam=False)

@@ -24,11 +24,12 @@ from pathlib import Path
 
 import numpy as np
 
+from shaftfe.solid.levels import MeshLevel
+
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "reports" / "benchmarks" / "stability.md"
 RPM = 10_000.0
-LEVEL = "stability"
-LEVEL_CFG = {"k_global": 0.35, "k_fillet": 0.9, "k_sharp": 5.0, "grad": 1.3}
+LEVEL = MeshLevel("stability", k_global=0.35, k_fillet=0.9, k_sharp=5.0, grad=1.3)
 K_SEED = 35_030.0
 FULL = os.environ.get("SHAFTFE_BENCH_FULL") == "1"
 
@@ -55,13 +56,13 @@ def cylinder(k=K_SEED, k12=0.0, *, L=160.0, D=20.0, bearings=None):
 
 def mesh_of(variant, level=LEVEL):
     from shaftfe.solid import mesh
-    mesh.LEVELS[LEVEL] = LEVEL_CFG
     return mesh.build_mesh(variant, level, 2)
 
 
 def solve(variant, sm, rpms=(RPM,), **opts):
-    from shaftfe.static.solve import StaticOptions, solve_static
-    return solve_static(variant, list(rpms), StaticOptions(level=sm.level, **opts),
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
+    return solve_static(variant, list(rpms), StaticOptions(level=LEVEL, **opts),
                         shaft_mesh=sm, beam=False)
 
 
@@ -303,7 +304,6 @@ def slender_stubby(lines):
         L = LD * D
         v = cylinder(L=L, D=D, bearings=(0.05 * L, 0.95 * L) if L < 160 else None)
         v = _point_mid(v, L)
-        M.LEVELS[LEVEL] = LEVEL_CFG
         sm = M.build_mesh(v, LEVEL, 2)
         res, err = attempt(lambda v=v, sm=sm: solve(v, sm, rigid_supports=True))
         if res is None:
@@ -379,12 +379,12 @@ def beam_sweeps(lines):
     sys.path.insert(0, str(ROOT / "tests"))
     import test_stability as ts
 
-    from shaftfe.beam import model as beam
-    rig = beam.solve(ts.three_bearing(0.0, rigid=True), RPM)[0]
+    from shaftfe.beam import solve as beam_solve
+    rig = beam_solve.solve(ts.three_bearing(0.0, rigid=True), RPM)[0]
     Rr = np.array([b.Fy_N for b in rig.bearings])
     rows = []
     for k in 10.0 ** np.arange(0, 13):
-        r, err = attempt(lambda k=k: beam.solve(ts.three_bearing(k), RPM)[0])
+        r, err = attempt(lambda k=k: beam_solve.solve(ts.three_bearing(k), RPM)[0])
         if r is None:
             rows.append([fmt(k, "g"), "-", "-", "-", err])
             continue
@@ -412,7 +412,7 @@ def beam_sweeps(lines):
     rows = []
     for rho in (0.05, 0.1, 0.25, 0.5, 1.0, 2.0, 2.5):
         v = _stepped(rho, step_mm=30.0, bearings_mm=(15.0, 95.0), seat_mm=10.0)
-        r = beam.analyse(v, RPM)[0]
+        r = beam_solve.analyse(v, RPM)[0]
         rows.append([fmt(rho, "g")] + [f"{n.kt:.4f} ({'in' if n.kt_in_range else 'OUT of'} "
                                        "fit range)" for n in r.notches]
                     + [f"{r.max_peak_MPa:.2f}"])

@@ -55,7 +55,8 @@ from shaftfe.solid.levels import MeshLevel
 if extra:
     level = MeshLevel(level, **extra)
 load0 = os.getloadavg()[0]
-from shaftfe.static.solve import StaticOptions, solve_static
+from shaftfe.static.model import StaticOptions
+from shaftfe.static.solve import solve_static
 from shaftfe.model.loader import load_variant
 v = load_variant("x2_57")
 t0 = time.perf_counter()
@@ -260,7 +261,7 @@ def write(rows: list[dict]) -> None:
                  f"{r['e_bsg']:+.1%} | {r['defl']:.5f} | {r['e_defl']:+.2%} | "
                  f"{'yes' if i in front else ''} |")
     L += ["", "Pareto = not dominated in (total time, worst of the two fillet-peak errors); the "
-          "reference runs are not candidates.", "", "## Levels (shaftfe.solid.mesh.LEVELS)", ""]
+          "reference runs are not candidates.", "", "## Levels (shaftfe.solid.levels.LEVELS)", ""]
     for lv, cfg in LEVELS.items():
         L.append(f"- `{lv}`: " + ", ".join(f"{k} {v:g}" for k, v in cfg.items()))
     L += ["", "## Findings", ""]

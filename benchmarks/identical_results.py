@@ -10,7 +10,10 @@ here, compare. The mesh and static caches are bypassed by a fresh SHAFTFE_CACHE_
 so each record solves everything. Left out of the comparison, because they measure the run and
 not the result: ``run``, ``timing``, ``timings(_s)``, ``sub_timings(_s)``, ``machine``,
 ``created_utc`` and every key named ``seconds``, ``*_seconds``, ``from_cache`` or
-``mesh_from_cache``.
+``mesh_from_cache``; and ``cache_key``, the static cache's key, which hashes the source code of
+the static modules (``shaftfe.static.cache.code_fingerprint``) so that any edit of that code
+invalidates the cache: it changes with every code change by design and says nothing of the
+result (the mesh key and the variant hash, which do describe the model, stay compared).
 """
 
 from __future__ import annotations
@@ -31,7 +34,8 @@ RUNS = {   # name -> (argv after `shaftfe`, the summary file inside --out)
     "report": (["report", "--variant", "x2_57"], "summary.json"),
 }
 RUNTIME_KEYS = {"run", "timing", "timings", "timings_s", "sub_timings", "sub_timings_s",
-                "machine", "seconds", "from_cache", "mesh_from_cache", "created_utc"}
+                "machine", "seconds", "from_cache", "mesh_from_cache", "created_utc",
+                "cache_key"}
 
 
 def normalise(obj):

@@ -55,7 +55,7 @@ def cache(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def model(cache):
-    from shaftfe.static.solve import StaticOptions, build_model
+    from shaftfe.static.model import StaticOptions, build_model
     return build_model(cylinder(), StaticOptions(level="coarse"), cache_dir=cache)
 
 
@@ -174,7 +174,7 @@ def test_c3d10_order_in_the_written_deck(deck, model):
 # --------------------------------------------------------------------------- loads
 
 def test_cload_sum_is_the_resultant_m_e_omega2(deck, model):
-    from shaftfe.static.solve import REF_RPM
+    from shaftfe.static.model import REF_RPM
     _info, text = deck
     loads = block(keyword_blocks(text), "*CLOAD")
     F = np.zeros(3)
@@ -318,7 +318,8 @@ def test_eliminated_system_gives_our_static_solution(model, cache, case):
     from scipy.sparse.linalg import spsolve
 
     from shaftfe.io import abaqus
-    from shaftfe.static.solve import StaticOptions, build_model, solve_model
+    from shaftfe.static.model import StaticOptions, build_model
+    from shaftfe.static.solve import solve_model
     if case == "rigid":
         model = build_model(cylinder(), StaticOptions(level="coarse", rigid_supports=True),
                             shaft_mesh=model.shaft_mesh)

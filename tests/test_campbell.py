@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from shaftfe.cli import main
-from shaftfe.rotordynamics import kernels as campbell
+from shaftfe.rotordynamics import campbell, kernels, plots
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -26,7 +26,7 @@ def test_whirl_ratio_sign_convention():
     Y = 1, Z = −i for the e^{iωt} eigenvector: ratio +1 (forward); the mirror orbit −1; a
     straight line 0; an ellipse with axes 1 and 0.5 gives 2·0.5/(1 + 0.25) = 0.8."""
     V = np.array([[1.0, 1.0, 1.0, 1.0], [-1j, 1j, 0.5, -0.5j]])
-    r = campbell.whirl_ratio(V, np.array([0]), np.array([1]))
+    r = kernels.whirl_ratio(V, np.array([0]), np.array([1]))
     # exact arithmetic (round-off only, O(1) values): approx's defaults rel 1e-6 / abs 1e-12
     assert r == pytest.approx([1.0, -1.0, 0.0, 0.8])
 
@@ -37,9 +37,9 @@ def test_mac_identity_and_orthogonal_whirls():
     a = np.array([[1.0], [-1j]])
     b = np.array([[1.0], [1j]])
     # exact arithmetic (round-off only: measured ≤ 2.2e-16): approx's default rel 1e-6
-    assert campbell.mac(a, a)[0, 0] == pytest.approx(1.0)
-    assert campbell.mac(a, (2 - 3j) * a)[0, 0] == pytest.approx(1.0)
-    assert campbell.mac(a, b)[0, 0] == pytest.approx(0.0, abs=1e-15)   # exact 0 (measured 0)
+    assert kernels.mac(a, a)[0, 0] == pytest.approx(1.0)
+    assert kernels.mac(a, (2 - 3j) * a)[0, 0] == pytest.approx(1.0)
+    assert kernels.mac(a, b)[0, 0] == pytest.approx(0.0, abs=1e-15)   # exact 0 (measured 0)
 
 
 def test_critical_speed_interpolation_exact_for_linear_branches():
@@ -69,8 +69,8 @@ def test_two_dof_gyroscopic_closed_form():
     G = np.array([[0.0, Ip], [-Ip, 0.0]])          # dofs (θ_y, θ_z)
     # lateral pair for whirl: y ~ θ_z, z ~ −θ_y; give the kernel the z sign by a flipped dof
     T = np.diag([-1.0, 1.0])                       # q' = (−θ_y, θ_z)
-    lab = campbell.Labelling(groups={"lateral": np.array([0, 1])}, pair_y=np.array([1]),
-                             pair_z=np.array([0]))
+    lab = kernels.Labelling(groups={"lateral": np.array([0, 1])}, pair_y=np.array([1]),
+                            pair_z=np.array([0]))
     res = campbell.sweep(T @ K @ T, T @ M @ T, T @ G @ T, [0.0, 3000.0], 1, lab)
     Om = 3000 * math.pi / 30
     wf = (Om * Ip + math.sqrt((Om * Ip) ** 2 + 4 * Id * k)) / (2 * Id)
@@ -78,7 +78,7 @@ def test_two_dof_gyroscopic_closed_form():
     # 2×2 symmetric pencil: round-off only (measured 9e-16)
     assert res.freq_hz[1, 0] == pytest.approx(wb / (2 * math.pi), rel=1e-12)
     assert res.whirl[1][0] == "backward"
-    full = campbell.full_qep(K, M, G, Om, 2)
+    full = kernels.full_qep(K, M, G, Om, 2)
     # linearised 4×4 eigenproblem, well-separated eigenvalues (condition O(1)): round-off
     # only, measured 4e-16 (was 1e-10)
     assert sorted(full.imag) == pytest.approx(sorted([wf, wb]), rel=1e-12)
@@ -88,8 +88,8 @@ def test_forward_is_the_stiffened_branch_in_two_dof_model():
     """Same 2-dof disk: with Ip > 0 the branch whose frequency rises with speed must be labelled
     forward (physical check of the sign conventions of G and the whirl ratio together)."""
     Id, Ip, k = 2.0, 3.0, 5.0e4
-    lab = campbell.Labelling(groups={"lateral": np.array([0, 1])}, pair_y=np.array([1]),
-                             pair_z=np.array([0]))
+    lab = kernels.Labelling(groups={"lateral": np.array([0, 1])}, pair_y=np.array([1]),
+                            pair_z=np.array([0]))
     T = np.diag([-1.0, 1.0])
     G = np.array([[0.0, Ip], [-Ip, 0.0]])
     res = campbell.sweep(T @ np.diag([k, k]) @ T, np.diag([Id, Id]), T @ G @ T,
@@ -102,7 +102,7 @@ def test_sweep_rejects_bad_speeds_and_modes():
     """Validation: negative, non-increasing speeds and too many modes are InputErrors."""
     from shaftfe.errors import InputError
 
-    lab = campbell.Labelling(groups={}, pair_y=np.array([0]), pair_z=np.array([1]))
+    lab = kernels.Labelling(groups={}, pair_y=np.array([0]), pair_z=np.array([1]))
     K, M, G = np.eye(4), np.eye(4), np.zeros((4, 4))
     for rpms, n in (([-1.0], 1), ([0.0, 0.0], 1), ([0.0], 3), ([float("nan")], 1)):
         with pytest.raises(InputError):
@@ -121,7 +121,7 @@ def test_plot_campbell_png():
         criticals=tuple(campbell.critical_speeds(rpm, f, (1.0,), wl)), basis_size=2,
         basis_change=0.0, n_rigid=0, n_dof=2)
     assert len(res.criticals) == 1
-    png = campbell.plot_campbell(res, "t")
+    png = plots.plot_campbell(res, "t")
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
 
 
@@ -136,7 +136,7 @@ def test_cli_campbell_x2_57_table_files_and_verify(tmp_path, capsys):
     assert "no critical speed in 0-8000 rpm" in text
     rows = list(csv.DictReader(io.StringIO((out / "campbell.csv").read_text())))
     assert len(rows) == 9 * 12
-    assert {r["whirl"] for r in rows} <= set(campbell.WHIRL_LABELS)
+    assert {r["whirl"] for r in rows} <= set(kernels.WHIRL_LABELS)
     js = json.loads((out / "campbell.json").read_text())
     assert js["result"]["critical_speeds"] == []
     # truncated basis (24 vectors) against the full QEP: measured 7.4e-8, matching the sweep's
@@ -195,12 +195,12 @@ def test_command_module_imports_only_stdlib():
 def test_bearing_damping_forms_and_validation():
     """Bearing damping: one value, one 2×2, or one entry per bearing give the same matrix when
     equivalent; a negative or non-symmetric matrix and a wrong count are InputErrors."""
-    from shaftfe.beam import model as beam
+    from shaftfe.beam.model import build_model
     from shaftfe.errors import InputError
     from shaftfe.model.loader import load_variant
     from shaftfe.rotordynamics import beam_rotor as rotor
 
-    m = beam.build_model(load_variant("x2_57"))
+    m = build_model(load_variant("x2_57"))
     c1 = rotor.build_rotor(m, bearing_damping=0.5).C
     c2 = rotor.build_rotor(m, bearing_damping=[[0.5, 0.0], [0.0, 0.5]]).C
     c3 = rotor.build_rotor(m, bearing_damping=[0.5, 0.5]).C

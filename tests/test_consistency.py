@@ -23,7 +23,7 @@ def test_every_command_loads_every_part_by_default(argv):
 
 
 def test_the_seed_comparison_is_printed_only_where_it_applies(tmp_path):
-    from shaftfe.commands.fatigue import SEED_SETTINGS, seed_applies
+    from shaftfe.fatigue.run import SEED_SETTINGS, seed_applies
     from shaftfe.util.paths import GEOMETRY_DIR
     rpm = GEOMETRY_DIR.parent / "loadspectra" / "rpm.dat"
     ok = argparse.Namespace(spectrum=str(rpm), **SEED_SETTINGS)
@@ -64,7 +64,7 @@ def test_stress_envelope_has_no_empty_slice():
 def test_campbell_axis_shows_the_excitation_region_and_the_first_pair():
     from types import SimpleNamespace
 
-    from shaftfe.rotordynamics.kernels import campbell_top_hz
+    from shaftfe.rotordynamics.plots import campbell_top_hz
     rpm = np.linspace(0, 9500, 5)
     freq = np.tile([480.0, 600.0, 1100.0, 11_000.0], (5, 1))
     res = SimpleNamespace(freq_hz=freq, rpm=rpm, orders=(1.0, 2.0))

@@ -13,7 +13,7 @@ ROOT = Path(__file__).resolve().parents[1]
 def test_demo_runs_the_report_of_the_default_variant(monkeypatch, tmp_path):
     from shaftfe.cli import main
     from shaftfe.commands import report
-    from shaftfe.report.assemble import DEFAULT_SPECTRUM
+    from shaftfe.util.paths import DEFAULT_SPECTRUM
 
     calls = []
     monkeypatch.setattr(report, "make_report",

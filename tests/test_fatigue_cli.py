@@ -191,7 +191,8 @@ def test_static_cache_roundtrip_corruption_and_key(tmp_path):
     region peak); the static case at half the speed is the cached field × 1/4; a corrupt or
     truncated file is recomputed; a changed option changes the key."""
     from shaftfe.static.cache import cache_path, from_result, load_or_solve
-    from shaftfe.static.solve import StaticOptions, solve_static
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
     v = cylinder()
     o = StaticOptions(level="coarse")
     a = load_or_solve(v, o, tmp_path)

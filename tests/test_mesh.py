@@ -45,7 +45,7 @@ def _integrate_one(mesh, facets=None) -> float:
 
 def test_groups_exist_and_match_the_solid(coarse):
     """Every named face group of the solid exists, is non-empty, and 'shaft' holds all tets."""
-    from shaftfe.solid.mesh import expected_areas
+    from shaftfe.solid.exact import expected_areas
     m = coarse.mesh
     assert set(m.boundaries) == set(expected_areas(make_variant()))
     assert set(coarse.groups) == set(m.boundaries) | {"shaft"}
@@ -60,7 +60,7 @@ def test_group_areas_coarse(coarse):
     ``expected_areas``: cylinder 2πRL minus the keyway opening ∫∫ dx ds/√(1−s²/R²), fillet
     ring π²ρ(r+ρ) − 2πρ² (Pappus), annulus π(R²−r²), keyway walls, hex πR² − (√3/2)s² ...;
     within 0.5 %."""
-    from shaftfe.solid.mesh import expected_areas
+    from shaftfe.solid.exact import expected_areas
     exp = expected_areas(make_variant())
     for g, f in coarse.mesh.boundaries.items():
         a = _integrate_one(coarse.mesh, f)
@@ -166,7 +166,8 @@ def test_chamfered_ring_contact_band_must_clear_the_fillet():
     import dataclasses
     import math
 
-    from shaftfe.solid.plan import expected_areas, prepare
+    from shaftfe.solid.exact import expected_areas
+    from shaftfe.solid.plan import prepare
     v = make_variant(bearing=(74.0, 8.0))           # ring [70, 78] on Ø17 against the step
     v = dataclasses.replace(v, bearings=(dataclasses.replace(v.bearings[0], chamfer_mm=0.5),))
     with pytest.raises(InputError) as exc:
@@ -318,7 +319,8 @@ def test_order_one_volume(tmp_path):
     of a regular 7-gon, 1 − 7 sin(2π/7)/(2π) = 12.9 % (coarse: h = D/2 → ≥ 7 chords around)."""
     from skfem import MeshTet1
 
-    from shaftfe.solid.mesh import analytic_volume, build_mesh
+    from shaftfe.solid.exact import analytic_volume
+    from shaftfe.solid.mesh import build_mesh
     v = make_variant(hex_socket=False)
     sm = build_mesh(v, "coarse", order=1, cache_dir=tmp_path)
     m = sm.mesh
@@ -378,7 +380,8 @@ def test_exact_formulas_against_quadrature():
     ∫∫ (√(R²−s²) − (R−t)) over the stadium (scipy dblquad)."""
     from scipy.integrate import dblquad, quad
 
-    from shaftfe.solid.plan import Fillet, Slot, fillet_area, fillet_volume, slot_volume
+    from shaftfe.solid.exact import fillet_area, fillet_volume, slot_volume
+    from shaftfe.solid.plan import Fillet, Slot
     f = Fillet("b", 50.0, 8.5, 11.0, 1.5, -1)
     rho, r0 = f.rho, f.r_small
     # spandrel: u ∈ [0, ρ] from the shoulder, v ∈ [0, ρ − √(ρ² − (ρ−u)²)] above the cylinder

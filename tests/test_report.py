@@ -110,7 +110,7 @@ def test_html_is_well_formed_and_every_image_is_a_png(run):
 def test_seed_table_carries_the_computed_numbers(run):
     """Every 'ours' in the comparison is the analysis modules' number, every 'seed' the seed
     module's (not retyped), and the page shows them."""
-    from shaftfe.commands.fatigue import SEED as FATIGUE
+    from shaftfe.fatigue.run import SEED as FATIGUE
     from shaftfe.report import seed
     from shaftfe.report.html import num
 

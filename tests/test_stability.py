@@ -58,7 +58,8 @@ def mesh3d(tmp_path_factory):
 
 
 def solve3d(variant, sm, rpms=(RPM,), **opts):
-    from shaftfe.static.solve import StaticOptions, solve_static
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
     return solve_static(variant, list(rpms), StaticOptions(level=LEVEL, **opts), shaft_mesh=sm,
                         beam=False)
 
@@ -66,7 +67,7 @@ def solve3d(variant, sm, rpms=(RPM,), **opts):
 def statics_reactions(variant, sm):
     """Exact reactions of the two-bearing shaft from the assembled load vector (force and
     moment balance about each remote point; no FE solve involved)."""
-    from shaftfe.static.solve import StaticOptions, build_model
+    from shaftfe.static.model import StaticOptions, build_model
     model = build_model(variant, StaticOptions(level=LEVEL), shaft_mesh=sm)
     f = model.f.reshape(-1, 3)
     x, y = sm.mesh.doflocs[0], sm.mesh.doflocs[1]
@@ -405,15 +406,15 @@ def test_3d_fillet_larger_than_the_step_is_a_one_line_error():
 def three_bearing(k: float, *, rigid: bool = False):
     """Two equal spans (2 × 200 mm) of a Ø20 shaft on three bearings, point load P at the
     middle of span 1 (statically indeterminate)."""
-    from shaftfe.beam import model as beam
+    from shaftfe.beam.model import build_model
     K = ((k, 0.0), (0.0, k))
     segs = (Segment("s", 0.0, 400.0, 20.0, 0.0),)
     brg = tuple(Bearing(n, "x", x, 1.0, 1e4, 1e4, K, axial=(n == "A"))
                 for n, x in (("A", 0.0), ("B", 200.0), ("C", 400.0)))
     att = (Attachment("p", 99.5, 100.5, 0.2, 22.0, 100.0),)
     v = Variant("three", "three-bearing shaft", segs, brg, att, STEEL, 0.0)
-    return beam.build_model(v, rigid_supports=rigid, shear_deformation=False,
-                            max_element_mm=5.0)
+    return build_model(v, rigid_supports=rigid, shear_deformation=False,
+                       max_element_mm=5.0)
 
 
 EPS = float(np.finfo(float).eps)
@@ -428,9 +429,9 @@ def _roundoff_terms(model, sol, rows):
     dof j changes the functional i by G_ij, G = rows[:, free] K⁻¹ (its influence line), so
     |δQ| ≤ ω |G| (|K||u| + |F|): the componentwise (Skeel) form of eps·cond, much sharper
     than cond₁(K)·eps where the large entries of K⁻¹ do not reach the functional."""
-    from shaftfe.beam import model as beam
-    K = beam.assemble_stiffness(model)
-    Ks, fixed = beam.support_stiffness(model)
+    from shaftfe.beam.model import assemble_stiffness, support_stiffness
+    K = assemble_stiffness(model)
+    Ks, fixed = support_stiffness(model)
     free = np.setdiff1d(np.arange(K.shape[0]), fixed)
     Kt = (K + Ks)[np.ix_(free, free)]
     u, F = np.abs(sol.u[free, 0]), np.abs(model.load_unit)
@@ -449,9 +450,10 @@ def reaction_roundoff_bound(model, sol) -> np.ndarray:
     ``_roundoff_terms`` with the rows of K_el at the bearings (the reactions' influence lines),
     plus the rounding of the recovery R = K_el u − F, ≤ n eps (|K_el||u| + |F|) for a sum of
     n terms. Here ≈ 2e8 eps = 4e-8 relative, against cond₁(K)·eps ≈ 2e9 eps = 4e-7."""
-    from shaftfe.beam import model as beam
-    K = beam.assemble_stiffness(model)
-    h = np.array([beam.NDOF * s.node + beam.UY for s in model.supports])
+    from shaftfe.beam.elements import NDOF, UY
+    from shaftfe.beam.model import assemble_stiffness
+    K = assemble_stiffness(model)
+    h = np.array([NDOF * s.node + UY for s in model.supports])
     solve, rec, free = _roundoff_terms(model, sol, K[h])
     n_terms = np.count_nonzero(K[np.ix_(h, free)], axis=1) + 1
     return OMEGA * solve + n_terms * EPS * (rec + np.abs(model.load_unit[h]))
@@ -467,11 +469,11 @@ def test_beam_three_bearings_rigid_limit_is_the_textbook_continuous_beam():
     What is left is round-off, bounded by ``reaction_roundoff_bound`` (≈ 4e-8 relative;
     measured 4.7e-10 on OpenBLAS SkylakeX kernels, 1.9e-9 on Haswell/Prescott: the old fixed
     rtol 1e-9 failed there)."""
-    from shaftfe.beam import model as beam
+    from shaftfe.beam.solve import RESIDUAL_TOL, omega, result_at, solve_unit
     m = three_bearing(0.0, rigid=True)
-    sol = beam.solve_unit(m)
-    res = beam.result_at(sol, RPM)
-    w2 = beam.omega(RPM) ** 2
+    sol = solve_unit(m)
+    res = result_at(sol, RPM)
+    w2 = omega(RPM) ** 2
     P = 0.2 * 22.0 * 1e-3 * w2
     got = np.array([-b.Fy_N for b in res.bearings])
     ref = np.array([13 * P / 32, 11 * P / 16, -3 * P / 32])
@@ -481,7 +483,7 @@ def test_beam_three_bearings_rigid_limit_is_the_textbook_continuous_beam():
     # move the reactions by (w/2)²/(L² − a²) = 8e-6 relative (L = 200, a = 100, w = 1 mm)
     assert np.all(bound <= 1e-6 * np.abs(ref))
     # solver contract: componentwise backward error ≤ beam.RESIDUAL_TOL (it is ~eps here)
-    assert res.backward_error <= beam.RESIDUAL_TOL and math.isfinite(res.cond_estimate)
+    assert res.backward_error <= RESIDUAL_TOL and math.isfinite(res.cond_estimate)
 
 
 def test_beam_stiffness_sweep_converges_to_the_rigid_limit_as_one_over_k():
@@ -491,20 +493,20 @@ def test_beam_stiffness_sweep_converges_to_the_rigid_limit_as_one_over_k():
 
     Round-off floor: ``reaction_roundoff_bound`` of the spring solve plus that of the rigid
     reference, ≈ 4e-8 of max |R| (measured 1e-9 … 2e-9 at 1e12 on three OpenBLAS kernels)."""
-    from shaftfe.beam import model as beam
+    from shaftfe.beam.solve import RESIDUAL_TOL, omega, result_at, solve_unit
     m_rig = three_bearing(0.0, rigid=True)
-    s_rig = beam.solve_unit(m_rig)
-    rig = np.array([b.Fy_N for b in beam.result_at(s_rig, RPM).bearings])
+    s_rig = solve_unit(m_rig)
+    rig = np.array([b.Fy_N for b in result_at(s_rig, RPM).bearings])
     rb_rig = reaction_roundoff_bound(m_rig, s_rig)
-    w2 = beam.omega(RPM) ** 2
+    w2 = omega(RPM) ** 2
     ks = 10.0 ** np.arange(0, 13)
     err, floor = [], []
     for k in ks:
         m = three_bearing(k)
-        s = beam.solve_unit(m)
-        r = beam.result_at(s, RPM)
+        s = solve_unit(m)
+        r = result_at(s, RPM)
         # solver contract: componentwise backward error ≤ beam.RESIDUAL_TOL
-        assert r.backward_error <= beam.RESIDUAL_TOL and math.isfinite(r.relative_residual)
+        assert r.backward_error <= RESIDUAL_TOL and math.isfinite(r.relative_residual)
         assert math.isfinite(r.cond_estimate) and r.cond_estimate >= 1
         got = np.array([b.Fy_N for b in r.bearings])
         assert np.isfinite(got).all() and np.isfinite(r.u).all()
@@ -532,12 +534,13 @@ def test_beam_condition_estimate_matches_the_dense_condition_number():
     """Hager's estimate (``onenormest``) against numpy's exact 1-norm condition number of the
     same reduced stiffness, for a soft and a stiff bearing (an estimate is a lower bound,
     usually within a factor 3)."""
-    from shaftfe.beam import model as beam
+    from shaftfe.beam.model import assemble_stiffness, support_stiffness
+    from shaftfe.beam.solve import solve_unit
     for k in (1.0, 1e12):
         m = three_bearing(k)
-        sol = beam.solve_unit(m)
-        K = beam.assemble_stiffness(m) + beam.support_stiffness(m)[0]
-        fixed = beam.support_stiffness(m)[1]
+        sol = solve_unit(m)
+        K = assemble_stiffness(m) + support_stiffness(m)[0]
+        fixed = support_stiffness(m)[1]
         free = np.setdiff1d(np.arange(K.shape[0]), fixed)
         exact = np.linalg.cond(K[np.ix_(free, free)], 1)
         # lower end: Hager's estimate is usually within 3× (Higham, Accuracy and Stability,
@@ -554,11 +557,11 @@ def test_beam_zero_and_singular_stiffness_is_the_same_input_error_as_3d():
     """K = 0 at both bearings / at one bearing, |K12| = K11 (singular) and an indefinite 2×2:
     the beam refuses them as input with the 3D model's rule and message
     (shaftfe.model.validate), one line naming the bearing and the field."""
-    from shaftfe.beam import model as beam
+    from shaftfe.beam.solve import analyse
     for v in (cylinder(0.0), cylinder(k_right=((0.0, 0.0), (0.0, 0.0))),
               cylinder(K_SEED, K_SEED), cylinder(K_SEED, 2 * K_SEED)):
         with pytest.raises(InputError) as ei:
-            beam.analyse(v, RPM)
+            analyse(v, RPM)
         msg = one_line(ei.value)
         assert "K_N_per_mm" in msg and "positive-definite" in msg and "bearing '" in msg
 
@@ -571,7 +574,9 @@ def test_beam_slender_and_stubby_match_timoshenko(L_over_D):
     ``_roundoff_terms`` for the mid-span deflection (6e-7 at L/D = 200, cond₁ 3e11; measured
     2.4e-9 on OpenBLAS Prescott kernels, 6e-10 on SkylakeX: the old fixed rel 1e-9 failed on
     Prescott)."""
-    from shaftfe.beam import model as beam
+    from shaftfe.beam.elements import NDOF, UY
+    from shaftfe.beam.model import build_model
+    from shaftfe.beam.solve import RESIDUAL_TOL, result_at, solve_unit
     D = 10.0
     L = L_over_D * D
     segs = (Segment("s", 0.0, L, D, 0.0),)
@@ -581,28 +586,28 @@ def test_beam_slender_and_stubby_match_timoshenko(L_over_D):
            Bearing("R", "x", L, w, 1e4, 1e4, K))
     att = (Attachment("p", 0.5 * (L - w), 0.5 * (L + w), 0.1, 1.0, 0.5 * L),)
     v = Variant("bar", "bar", segs, brg, att, STEEL, 0.0)
-    m = beam.build_model(v, rigid_supports=True, max_element_mm=min(5.0, L / 16))
-    sol = beam.solve_unit(m)
-    r = beam.result_at(sol, RPM)
+    m = build_model(v, rigid_supports=True, max_element_mm=min(5.0, L / 16))
+    sol = solve_unit(m)
+    r = result_at(sol, RPM)
     P = 0.1 * 1.0 * 1e-3 * (RPM * math.pi / 30) ** 2
     E, nu = STEEL.E_MPa, STEEL.nu
     I, A, G = math.pi * D**4 / 64, math.pi * D**2 / 4, E / (2 * (1 + nu))  # noqa: E741
     kappa = 6 * (1 + nu) / (7 + 6 * nu)
     ref = P * L**3 / (48 * E * I) + P * L / (4 * kappa * G * A)
-    dof = beam.NDOF * m.stations["p"] + beam.UY
+    dof = NDOF * m.stations["p"] + UY
     e_p = np.zeros((1, sol.u.shape[0]))
     e_p[0, dof] = 1.0
     # derived round-off bound of the solve (see _roundoff_terms) + 16 eps for evaluating the
     # closed form (a dozen roundings)
     rel = OMEGA * _roundoff_terms(m, sol, e_p)[0][0] / abs(sol.u[dof, 0]) + 16 * EPS
     assert r.stations["p"].uy_mm == pytest.approx(ref, rel=rel)       # derived bound (above)
-    assert r.backward_error <= beam.RESIDUAL_TOL     # solver contract (RESIDUAL_TOL = 1e-8)
+    assert r.backward_error <= RESIDUAL_TOL     # solver contract (RESIDUAL_TOL = 1e-8)
 
 
 def test_beam_speed_0_and_20000_rpm():
     """0 rpm: zero loads, infinite life; 20 000 rpm: 4 × the 10 000 rpm reactions."""
-    from shaftfe.beam import model as beam
-    r0, r1, r2 = beam.analyse(cylinder(), [0.0, 10_000.0, 20_000.0])
+    from shaftfe.beam.solve import analyse
+    r0, r1, r2 = analyse(cylinder(), [0.0, 10_000.0, 20_000.0])
     assert all(b.F_N == 0.0 and b.L10h == math.inf for b in r0.bearings)
     for b1, b2 in zip(r1.bearings, r2.bearings, strict=True):
         # exact arithmetic (round-off only): one unit solve scaled by ω², ω(20 000) = 2 ω(10 000)
@@ -613,7 +618,7 @@ def test_beam_speed_0_and_20000_rpm():
 def test_beam_fillet_sweep_kt_finite_and_decreasing():
     """ρ from 0.05 mm to the step height (2.5 mm, Ø22/Ø17): Kt finite, > 1 and falling with
     r/d (Peterson's charts: a sharper fillet concentrates more), peak stress finite."""
-    from shaftfe.beam import model as beam
+    from shaftfe.beam.solve import analyse
     kts = []
     for rho in (0.05, 0.1, 0.25, 0.5, 1.0, 2.0, 2.5):
         segs = (Segment("a", 0.0, 40.0, 17.0, rho), Segment("b", 40.0, 30.0, 22.0, rho),
@@ -621,7 +626,7 @@ def test_beam_fillet_sweep_kt_finite_and_decreasing():
         brg = (Bearing("L", "x", 15.0, 10.0, 1e4, 1e4, ((K_SEED, 0), (0, K_SEED)), axial=True),
                Bearing("R", "x", 95.0, 10.0, 1e4, 1e4, ((K_SEED, 0), (0, K_SEED))))
         att = (Attachment("w", 50.0, 60.0, 0.2, 22.0, 55.0),)
-        r = beam.analyse(Variant("st", "stepped", segs, brg, att, STEEL, 0.0), RPM)[0]
+        r = analyse(Variant("st", "stepped", segs, brg, att, STEEL, 0.0), RPM)[0]
         kt = [n.kt for n in r.notches]
         assert all(math.isfinite(x) and x > 1 for x in kt)
         assert math.isfinite(r.max_peak_MPa)
@@ -632,15 +637,15 @@ def test_beam_fillet_sweep_kt_finite_and_decreasing():
 # --------------------------------------------------------------------------- rotor (beam)
 
 def _bar_rotor(k: float, rigid: bool = False):
-    from shaftfe.beam import model as beam
+    from shaftfe.beam.model import build_model
     from shaftfe.rotordynamics import beam_rotor as rotor
     L, D = 400.0, 10.0
     K = ((k, 0.0), (0.0, k))
     segs = (Segment("s", 0.0, L, D, 0.0),)
     brg = (Bearing("L", "x", 0.0, 1.0, 1e4, 1e4, K, axial=True),
            Bearing("R", "x", L, 1.0, 1e4, 1e4, K))
-    m = beam.build_model(Variant("bar", "bar", segs, brg, (), STEEL, 0.0),
-                         rigid_supports=rigid, max_element_mm=5.0, shear_deformation=False)
+    m = build_model(Variant("bar", "bar", segs, brg, (), STEEL, 0.0),
+                    rigid_supports=rigid, max_element_mm=5.0, shear_deformation=False)
     return rotor.build_rotor(m, ())
 
 

@@ -33,7 +33,7 @@ def statics_bearing_loads(v, cache, level="default", **opts) -> np.ndarray:
     """Bearing loads (2, 2) [(Fy, Fz) at L, at R] = −reactions, from the applied nodal load
     vector by force and moment equilibrium of a beam on two supports without moment restraint
     (tilt free): the exact statics of the discretised load, independent of the solve."""
-    from shaftfe.static import solve as static
+    from shaftfe import static
     model = static.build_model(v, static.StaticOptions(level=level, **opts), cache_dir=cache)
     f = model.f.reshape(-1, 3)
     x, y, z = model.shaft_mesh.mesh.doflocs
@@ -51,7 +51,8 @@ def cache(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def base(cache):
-    from shaftfe.static.solve import StaticOptions, solve_static
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
     return solve_static(cylinder(), [5000.0, 10000.0], StaticOptions(level="default"),
                         cache_dir=cache, beam=False)
 
@@ -184,7 +185,7 @@ def test_static_cache_keeps_the_relative_residual(base, cache):
     """The static reference that ``shaftfe fatigue`` reuses carries the solve's relative
     residual, through the disk cache too (reference: the solve's own diagnostics)."""
     from shaftfe.static import cache as static_cache
-    from shaftfe.static.solve import StaticOptions
+    from shaftfe.static.model import StaticOptions
     opts = StaticOptions(level="default")
     ref = static_cache.store(cylinder(), opts, base, cache)
     assert ref.relative_residual == base.diagnostics["relative_residual"] <= 1e-8   # contract
@@ -242,7 +243,8 @@ def test_rotating_the_load_rotates_the_response(cache):
     """Isotropic springs: turning the eccentricity by 37° turns the reactions (statics of the
     load, to 1e-9) and the deflection vector at the seat (axisymmetric structure; the two
     meshes differ — each is split on its own load plane — so magnitude to 0.5 %, angle 0.3°)."""
-    from shaftfe.static.solve import StaticOptions, solve_static
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
     v = cylinder(angle=37.0)
     r0 = solve_static(cylinder(), [10000.0], StaticOptions(level="fine"), cache_dir=cache,
                       beam=False)
@@ -269,7 +271,8 @@ def test_coupled_spring_gives_closed_form_remote_displacement(cache):
     """K12 ≠ 0: the remote point (measured from the displacement field through the RBE3 rows)
     moves by K_b⁻¹ P, P the bearing load from statics — including the component across the
     load that K12 creates."""
-    from shaftfe.static.solve import StaticOptions, solve_static
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
     Kc = ((35_030.0, 8_756.0), (8_756.0, 35_030.0))
     v = cylinder(K_left=Kc, K_right=Kc)
     r = solve_static(v, [10000.0], StaticOptions(level="default"), cache_dir=cache, beam=False)
@@ -284,7 +287,8 @@ def test_coupled_spring_gives_closed_form_remote_displacement(cache):
 
 def test_rigid_supports_hold_remote_points(cache):
     """--rigid-supports: the remote points do not move; the reactions are the statics."""
-    from shaftfe.static.solve import StaticOptions, solve_static
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
     r = solve_static(cylinder(), [10000.0], StaticOptions(level="default", rigid_supports=True),
                      cache_dir=cache, beam=False)
     P = statics_bearing_loads(cylinder(), cache, rigid_supports=True)
@@ -305,7 +309,8 @@ def test_rigid_supports_hold_remote_points(cache):
 def test_missing_support_is_named(cache, what, expect):
     """A support set that leaves a rigid motion free raises SolverError naming it, before any
     solver can return garbage (FINDINGS pitfall 8)."""
-    from shaftfe.static.solve import StaticOptions, solve_static
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
     v, opts = cylinder(), StaticOptions(level="default")
     if what == "axial":
         v = cylinder(axial=False)
@@ -321,7 +326,7 @@ def test_single_bearing_with_tilt_spring(cache):
     """One bearing with a tilt stiffness k_t carries the part as a cantilever: by statics the
     remote point takes the force F (u_y = F/k) and the moment F·(x_load − x_b) about z
     (θ_z = F (x_load − x_b) / k_t, the load acting at its seat centroid)."""
-    from shaftfe.static import solve as static
+    from shaftfe import static
     k_t = 5e7
     v = cylinder()
     v = dataclasses.replace(v, bearings=(dataclasses.replace(
@@ -361,7 +366,8 @@ def test_exclusion_band(cache):
 
 def test_bad_spring_matrix_is_input_error(cache):
     """A non-positive-definite 2×2 bearing stiffness is rejected as input."""
-    from shaftfe.static.solve import StaticOptions, solve_static
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
     bad = ((1000.0, 2000.0), (2000.0, 1000.0))
     with pytest.raises(InputError, match="K_N_per_mm"):
         solve_static(cylinder(K_left=bad), 10000.0, StaticOptions(level="default"),
@@ -371,7 +377,8 @@ def test_bad_spring_matrix_is_input_error(cache):
 def test_error_estimate_from_two_levels(cache):
     """--estimate-error: a second level is solved and the Richardson-type numbers are
     consistent: extrapolated = fine + (fine − coarse)/(r^p − 1), error = |that difference|."""
-    from shaftfe.static.solve import StaticOptions, solve_static
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
     r = solve_static(cylinder(), [10000.0], StaticOptions(level="default"), cache_dir=cache,
                      beam=False, estimate_error=True)
     ee = r.error_estimate
@@ -393,7 +400,8 @@ def test_body_force_resultant(cache):
     equilibrium and the body force adds stress."""
     from skfem import Basis, ElementTetP2, Functional
 
-    from shaftfe.static.solve import StaticOptions, solve_static
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
     a = solve_static(cylinder(), [10000.0], StaticOptions(level="default"), cache_dir=cache,
                      beam=False)
     b = solve_static(cylinder(), [10000.0], StaticOptions(level="default", body_force=True),

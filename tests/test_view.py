@@ -18,7 +18,7 @@ import pytest
 pv = pytest.importorskip("pyvista")
 
 from shaftfe.cli import main  # noqa: E402
-from shaftfe.io import view  # noqa: E402
+from shaftfe.io import render, surface, view  # noqa: E402
 
 TET10_EDGES = ((0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3))
 
@@ -48,7 +48,7 @@ def _write_result(path: Path, fields=("von_mises", "displacement", "stress", "sa
     if faces:
         # the x = 0 end face (triangle6 cells taken from the tets' boundary): region 3
         tmp = pv.UnstructuredGrid(cells, pts)
-        bnd = view.boundary(tmp, view.FieldChoice("x", "point", 1, None, "x", "-", "max"),
+        bnd = surface.boundary(tmp, view.FieldChoice("x", "point", 1, None, "x", "-", "max"),
                             np.zeros(len(pts)))
         conn = bnd.cells_dict[pv.CellType.QUADRATIC_TRIANGLE]
         # exact: grid coordinates (x = 0 stored exactly); isclose's default atol 1e-8
@@ -142,7 +142,7 @@ def test_screenshot_headless_like_ci(result, tmp_path):
 def test_hot_spot_marker_and_colours_visible(result, tmp_path, headless):
     path, _ = result
     shot = tmp_path / "a.png"
-    res = view.render(path, screenshot=shot, window_size=(800, 450))
+    res = render.render(path, screenshot=shot, window_size=(800, 450))
     assert res.off_screen and res.screenshot == str(shot)
     img = _image(shot)
     r, g, b = img[..., 0], img[..., 1], img[..., 2]
@@ -231,7 +231,7 @@ def test_region_of_face_cells_is_mapped_onto_the_boundary(result):
     g = view.load(path)
     ch = view.choose_field(g, "region", None)
     assert ch.association == "cell" and ch.rule == "none" and view.hot_spot(g, ch) is None
-    bnd = view.boundary(g, ch, view.values(g, ch))
+    bnd = surface.boundary(g, ch, view.values(g, ch))
     v = np.asarray(bnd.cell_data["_view"])
     conn = bnd.cells_dict[pv.CellType.QUADRATIC_TRIANGLE]
     on_end = np.all(np.isclose(bnd.points[conn[:, :3], 0], 0.0), axis=1)   # exact, as above

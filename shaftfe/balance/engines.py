@@ -173,8 +173,8 @@ def load_engine(name_or_path: str | Path, directory: Path = ENGINES_DIR) -> Engi
     return engine_from_dict(data, src, default_name=path.stem)
 
 
-def engine_from_dict(data: dict, source: str, default_name: str = "engine") -> Engine:
-    """Validate a parsed engine table (see the module docstring) and build an ``Engine``."""
+def _numbers(data: dict, source: str) -> dict[str, float]:
+    """Every numeric key of an engine table, checked against ``_KEYS``."""
     vals: dict[str, float] = {}
     for key, value in data.items():
         if key == "source" or key in _TEXT_KEYS:
@@ -188,40 +188,37 @@ def engine_from_dict(data: dict, source: str, default_name: str = "engine") -> E
         if not ok(value):  # type: ignore[operator]
             raise InputError(source, key, allowed, got=value)
         vals[key] = float(value)
+    return vals
 
-    def need(key: str, why: str) -> float:
-        if key not in vals:
-            raise InputError(source, key, f"a number ({why})", reason="is missing")
-        return vals[key]
 
-    R = need("crank_radius_mm", "crank radius")
-    piston = need("piston_group_mass_kg", "reciprocating mass")
+def _need(vals: dict[str, float], source: str, key: str, why: str) -> float:
+    if key not in vals:
+        raise InputError(source, key, f"a number ({why})", reason="is missing")
+    return vals[key]
 
-    # Rod: already split, or split from the weighed rod (seed 003 eq. 7-8).
+
+def _rod_split(vals: dict[str, float], source: str) -> tuple[float, float]:
+    """The rod's rotating and reciprocating masses: given, or split from the weighed rod
+    (seed 003 eq. 7-8)."""
     if "rod_rot_mass_kg" in vals or "rod_pos_mass_kg" in vals:
-        rod_rot = need("rod_rot_mass_kg", "given with rod_pos_mass_kg")
-        rod_pos = need("rod_pos_mass_kg", "given with rod_rot_mass_kg")
-    elif "rod_mass_kg" in vals:
+        return (_need(vals, source, "rod_rot_mass_kg", "given with rod_pos_mass_kg"),
+                _need(vals, source, "rod_pos_mass_kg", "given with rod_rot_mass_kg"))
+    if "rod_mass_kg" in vals:
         from shaftfe.balance.parts import split_rod
 
-        m_rod = vals["rod_mass_kg"]
-        ell = need("rod_eye_distance_mm", "needed to split rod_mass_kg")
-        l1 = need("rod_centroid_from_big_eye_mm", "needed to split rod_mass_kg")
+        ell = _need(vals, source, "rod_eye_distance_mm", "needed to split rod_mass_kg")
+        l1 = _need(vals, source, "rod_centroid_from_big_eye_mm", "needed to split rod_mass_kg")
         if l1 > ell:
             raise InputError(source, "rod_centroid_from_big_eye_mm",
                              f"<= rod_eye_distance_mm = {ell:g}", got=l1)
-        rod_rot, rod_pos = split_rod(m_rod, ell, l1)
-    else:
-        raise InputError(source, "rod_rot_mass_kg",
-                         "rod_rot_mass_kg + rod_pos_mass_kg, or rod_mass_kg + "
-                         "rod_eye_distance_mm + rod_centroid_from_big_eye_mm", reason="is missing")
+        return split_rod(vals["rod_mass_kg"], ell, l1)
+    raise InputError(source, "rod_rot_mass_kg",
+                     "rod_rot_mass_kg + rod_pos_mass_kg, or rod_mass_kg + "
+                     "rod_eye_distance_mm + rod_centroid_from_big_eye_mm", reason="is missing")
 
-    T1 = vals.get("rod_length_mm", vals.get("rod_eye_distance_mm"))
-    if T1 is None:
-        raise InputError(source, "rod_length_mm", "a number > crank_radius_mm", reason="is missing")
-    if T1 <= R:
-        raise InputError(source, "rod_length_mm", f"> crank_radius_mm = {R:g}", got=T1)
 
+def _check_pairs(vals: dict[str, float], source: str) -> None:
+    """Masses given with their radius, the crank pin with the crank, idle ≤ max rpm."""
     for a, b in (("compensation_mass_kg", "compensation_radius_mm"),
                  ("balancer_mass_kg", "balancer_radius_mm"),
                  ("crank_without_pin_mass_kg", "crank_without_pin_centroid_mm")):
@@ -236,6 +233,19 @@ def engine_from_dict(data: dict, source: str, default_name: str = "engine") -> E
         raise InputError(source, "idle_rpm", f"<= max_rpm = {vals['max_rpm']:g}",
                          got=vals["idle_rpm"])
 
+
+def engine_from_dict(data: dict, source: str, default_name: str = "engine") -> Engine:
+    """Validate a parsed engine table (see the module docstring) and build an ``Engine``."""
+    vals = _numbers(data, source)
+    R = _need(vals, source, "crank_radius_mm", "crank radius")
+    piston = _need(vals, source, "piston_group_mass_kg", "reciprocating mass")
+    rod_rot, rod_pos = _rod_split(vals, source)
+    T1 = vals.get("rod_length_mm", vals.get("rod_eye_distance_mm"))
+    if T1 is None:
+        raise InputError(source, "rod_length_mm", "a number > crank_radius_mm", reason="is missing")
+    if T1 <= R:
+        raise InputError(source, "rod_length_mm", f"> crank_radius_mm = {R:g}", got=T1)
+    _check_pairs(vals, source)
     name = data.get("name", default_name)
     pct = vals.get("crank_balance_percent")
     pct2 = vals.get("balancer_balance_percent")

@@ -57,20 +57,6 @@ def parse_rpm_list(text: str, option: str = "--rpm") -> list[float]:
     return vals
 
 
-def package_versions(*packages: str) -> dict[str, str | None]:
-    """Installed versions of shaftfe, numpy, scipy, scikit-fem, gmsh, meshio and ``packages``
-    (None when not installed), for the provenance block of a summary.json."""
-    import importlib.metadata as md
-
-    out: dict[str, str | None] = {}
-    for pkg in ("shaftfe", "numpy", "scipy", "scikit-fem", "gmsh", "meshio", *packages):
-        try:
-            out[pkg] = md.version(pkg)
-        except md.PackageNotFoundError:
-            out[pkg] = None
-    return out
-
-
 def print_json(obj: object) -> None:
     """Print JSON to stdout; a closed pipe (``| head``) ends quietly instead of a traceback."""
     try:

@@ -53,16 +53,17 @@ def run(args) -> int:
         from shaftfe.util.atomic import check_output_file
         check_output_file(args.plot, "--plot")
 
-    from shaftfe.beam import model as beam
+    from shaftfe.beam.model import build_model
+    from shaftfe.beam.solve import solve
     from shaftfe.model.loader import load_variant
 
     variant = load_variant(args.variant)
     if args.seed_load_case:
         variant = variant.with_seed_load_case()
-    model = beam.build_model(variant, rigid_supports=args.rigid_supports,
-                             max_element_mm=args.max_element, spread_loads=args.spread_loads,
-                             kt_fit=args.kt_fit, shear_deformation=not args.no_shear)
-    results = beam.solve(model, rpms)
+    model = build_model(variant, rigid_supports=args.rigid_supports,
+                        max_element_mm=args.max_element, spread_loads=args.spread_loads,
+                        kt_fit=args.kt_fit, shear_deformation=not args.no_shear)
+    results = solve(model, rpms)
 
     if args.plot:
         write_atomic(args.plot, plot_results(results, plot_fmt))

@@ -249,10 +249,11 @@ def _write_modes(args, model, prov, out) -> str | None:
     """Mode shapes at rest of the solid model as ``modes.vtu`` (None for the beam model)."""
     if args.model != "solid":
         return None
-    from shaftfe.rotordynamics import solid_rotor as rotor_solid
+    from shaftfe.rotordynamics.modes_vtu import write_modes_vtu
+    from shaftfe.rotordynamics.solid_modal import modal
 
-    rest = rotor_solid.modal(model, 0.0, args.modes, keep_vectors=True, provider=prov)
-    rotor_solid.write_modes_vtu(model, rest, out / "modes.vtu")
+    rest = modal(model, 0.0, args.modes, keep_vectors=True, provider=prov)
+    write_modes_vtu(model, rest, out / "modes.vtu")
     return "modes.vtu"
 
 
@@ -304,7 +305,7 @@ def run_campbell(args) -> int:
         if out is not None:
             import json
 
-            from shaftfe.rotordynamics.kernels import plot_campbell
+            from shaftfe.rotordynamics.plots import plot_campbell
 
             title = f"{args.variant}: Campbell diagram ({args.model} model)"
             png = plot_campbell(res, title=title)
@@ -344,9 +345,9 @@ def run_modal(args) -> int:
             write_atomic(out / "modal.csv", res.to_csv())
             write_atomic(out / "modal.json", json.dumps(payload, indent=2) + "\n")
             if args.model == "solid":
-                from shaftfe.rotordynamics import solid_rotor as rotor_solid
+                from shaftfe.rotordynamics.modes_vtu import write_modes_vtu
 
-                rotor_solid.write_modes_vtu(model, res, out / "modes.vtu")
+                write_modes_vtu(model, res, out / "modes.vtu")
                 files += ", modes.vtu"
     if args.json:
         print_json(payload)

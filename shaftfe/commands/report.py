@@ -45,7 +45,8 @@ def register(sub) -> None:
 
 
 def options_from_args(args):
-    from shaftfe.report.assemble import DEFAULT_SPECTRUM, ReportOptions
+    from shaftfe.report.assemble import ReportOptions
+    from shaftfe.util.paths import DEFAULT_SPECTRUM
 
     return ReportOptions(
         variant=args.variant, spectrum=args.spectrum or str(DEFAULT_SPECTRUM),

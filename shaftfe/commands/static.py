@@ -61,6 +61,7 @@ def run(args) -> int:
     if args.load_distribution not in ("uniform", "cosine"):
         raise InputError("--load-distribution", "--load-distribution", "uniform | cosine",
                          got=args.load_distribution)
+    from shaftfe.util.limits import check_exclude_mm
     check_exclude_mm(args.exclude_mm)
     if args.solver not in ("auto", "superlu", "pardiso", "amg"):
         raise InputError("--solver", "--solver", "auto | superlu | pardiso | amg",
@@ -68,7 +69,8 @@ def run(args) -> int:
 
     from shaftfe.model.loader import load_variant
     from shaftfe.static import cache as static_cache
-    from shaftfe.static.solve import StaticOptions, solve_static
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
 
     variant = load_variant(args.variant)
     opts = StaticOptions(level=args.level, order=args.order, rigid_supports=args.rigid_supports,
@@ -93,8 +95,9 @@ def run(args) -> int:
 
 
 def _write_outputs(args, variant, opts, res, rpms, stage) -> dict:
-    from shaftfe.commands._common import package_versions, write_atomic
+    from shaftfe.commands._common import write_atomic
     from shaftfe.io import vtu as export
+    from shaftfe.util.versions import package_versions
     rpm_vtu = rpms[0]
     vtu, regions = export.write_vtu(res, stage / "result.vtu", rpm_vtu)
     export.plot_png(res, stage / "deflection.png", rpm_vtu)
@@ -153,16 +156,6 @@ def _print_tables(res, opts, out) -> None:
                     print(f"  {c['rpm']:g} rpm {key}: {e['fine']:.4g} {unit} ± "
                           f"{e['error_fine']:.2g} (extrapolated {e['extrapolated']:.4g})")
     print(f"\nwrote {out / 'result.vtu'}, {out / 'summary.json'}, {out / 'deflection.png'}")
-
-
-EXCLUDE_MM_MAX = 5.0     # a band around patch edges; wider would exclude whole short segments
-
-
-def check_exclude_mm(v: float) -> None:
-    """``--exclude-mm`` of static and fatigue: a finite band in [0, EXCLUDE_MM_MAX] mm."""
-    if not (math.isfinite(v) and 0 <= v <= EXCLUDE_MM_MAX):
-        raise InputError("command line", "--exclude-mm",
-                         f"a band in [0, {EXCLUDE_MM_MAX:g}] mm", got=v)
 
 
 def _station_rows(stations, beam_st: dict) -> list[list]:

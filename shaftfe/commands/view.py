@@ -1,6 +1,6 @@
 """`shaftfe view`: look at a result file (.vtu) — interactive window or off-screen screenshot.
 
-Stdlib only at module level; PyVista/VTK are imported by ``shaftfe.io.view`` inside the handler.
+Stdlib only at module level; PyVista/VTK are imported by ``shaftfe.io.render`` inside the handler.
 """
 
 from __future__ import annotations
@@ -44,13 +44,13 @@ def run(args) -> int:
     import sys
 
     from shaftfe.commands._common import print_json
-    from shaftfe.io import view
+    from shaftfe.io.render import parse_warp, parse_window_size, render
 
-    size = view.parse_window_size(args.window_size)
-    warp = view.parse_warp(args.warp)
-    res = view.render(args.result, field=args.field, component=args.component, warp=warp,
-                      edges=args.edges, screenshot=args.screenshot, window_size=size,
-                      camera=args.camera)
+    size = parse_window_size(args.window_size)
+    warp = parse_warp(args.warp)
+    res = render(args.result, field=args.field, component=args.component, warp=warp,
+                 edges=args.edges, screenshot=args.screenshot, window_size=size,
+                 camera=args.camera)
     if res.warp_note:
         print(f"shaftfe view: note: {res.warp_note}", file=sys.stderr)
     if args.json:

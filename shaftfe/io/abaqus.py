@@ -168,15 +168,44 @@ def build_supports(model) -> Supports:
     spring block puts SPRINGAs between its two q dofs and ground; unused reference dofs are
     held. The m rows of a bearing are row-reduced on m pivot dofs of the seat so that each
     dependent dof (first term, coefficient 1) occurs in one equation only."""
-    from scipy.linalg import qr
-    m = model.shaft_mesh.mesh
-    n = m.doflocs.shape[1]
+    n = model.shaft_mesh.mesh.doflocs.shape[1]
     loaded = np.nonzero(model.f != 0)[0]
     by_bearing: dict[str, list] = {}
     for blk in model.blocks:
         by_bearing.setdefault(blk.bearing, []).append(blk)
     x_of = {c.name: c.x_mm for c in model.couplings}
-    # number the reference nodes first (A, then B if needed, per bearing)
+    ref_nodes, ref_xyz = _reference_nodes(by_bearing, x_of, n)
+    n_ref = len(ref_xyz)
+    eqs, springs, spc = [], [], []
+    ground_of, ground_xyz, row_dof = {}, [], {}
+    used_dep: set[int] = set()
+    for name, blks in by_bearing.items():
+        R = np.vstack([b.R for b in blks])                       # (mr, ndof)
+        labels = [lab for b in blks for lab in b.labels]
+        rd = {lab: (ref_nodes[name][_ROW[lab][0]], _ROW[lab][1]) for lab in labels}
+        row_dof[name] = rd
+        held = set()
+        for b in blks:
+            if b.C is None:
+                held.update(rd[lab] for lab in b.labels)
+                continue
+            grounds = _add_springs(b, rd, x_of[name], n + n_ref, ground_xyz, springs)
+            ground_of[name] = ground_of.get(name, ()) + grounds
+        for node in ref_nodes[name]:
+            if node < 0:
+                continue
+            for d in (1, 2, 3):
+                if (node, d) in held or (node, d) not in rd.values():
+                    spc.append((node, d))
+        eqs.extend(_bearing_equations(name, R, [rd[lab] for lab in labels], loaded, used_dep))
+    return Supports(tuple(eqs), ref_nodes, np.array(ref_xyz, dtype=float).T.reshape(3, -1),
+                    row_dof, tuple(spc), tuple(springs),
+                    np.array(ground_xyz, dtype=float).T.reshape(3, -1), ground_of)
+
+
+def _reference_nodes(by_bearing: dict, x_of: dict, n: int) -> tuple[dict, list]:
+    """Reference nodes numbered after the ``n`` mesh nodes: per bearing A, then B if one of
+    its rows is a rotation; ``(bearing -> (A, B or -1), coordinates)``."""
     ref_nodes, ref_xyz = {}, []
     nxt = n
     for name, blks in by_bearing.items():
@@ -190,71 +219,65 @@ def build_supports(model) -> Supports:
             nxt += 1
             ref_xyz.append((x_of[name], 0.0, 0.0))
         ref_nodes[name] = (a, b_)
-    n_ref = nxt - n
-    eqs, springs, spc = [], [], []
-    ground_of, ground_xyz, row_dof = {}, [], {}
-    used_dep: set[int] = set()
-    for name, blks in by_bearing.items():
-        R = np.vstack([b.R for b in blks])                       # (mr, ndof)
-        mr = R.shape[0]
-        labels = [lab for b in blks for lab in b.labels]
-        rd = {lab: (ref_nodes[name][_ROW[lab][0]], _ROW[lab][1]) for lab in labels}
-        row_dof[name] = rd
-        held = set()
-        for b in blks:
-            if b.C is None:
-                held.update(rd[lab] for lab in b.labels)
-                continue
-            (na, d1), (nb, d2) = rd[b.labels[0]], rd[b.labels[1]]
-            if na != nb or (d1, d2) != (2, 3):                   # pragma: no cover
-                raise ValueError("a spring block must act on dofs 2, 3 of one node")
-            split = spring_split(b.C)
-            grounds = []
-            for kk, (v1, v2) in zip(split.stiffness, split.directions, strict=True):
-                g = n + n_ref + len(ground_xyz)
-                ground_xyz.append((x_of[name], SPRING_ARM_MM * v1, SPRING_ARM_MM * v2))
-                springs.append((na, g, kk))
-                grounds.append(g)
-            ground_of[name] = ground_of.get(name, ()) + tuple(grounds)
-        for node in ref_nodes[name]:
-            if node < 0:
-                continue
-            for d in (1, 2, 3):
-                if (node, d) in held or (node, d) not in rd.values():
-                    spc.append((node, d))
-        cols = np.nonzero(np.abs(R).max(axis=0) > 0)[0]
-        cand = np.setdiff1d(cols, loaded)
-        cand = np.array([c for c in cand if int(c) not in used_dep], dtype=np.int64)
-        _, _, piv = qr(R[:, cand], mode="economic", pivoting=True)
-        piv = cand[piv[:mr]]
-        used_dep.update(int(p) for p in piv)
-        A = R[:, piv]
-        if np.linalg.cond(A) > 1e10:                            # pragma: no cover
-            raise ValueError(f"bearing {name!r}: support rows are (nearly) dependent")
-        Rn = np.linalg.solve(A, R[:, cols])
-        Qn = -np.linalg.inv(A)                                   # coefficients of q
-        pos = {int(c): i for i, c in enumerate(cols)}
-        qdofs = [rd[lab] for lab in labels]
-        for i in range(mr):
-            coef = Rn[i].copy()
-            for j, p in enumerate(piv):
-                coef[pos[int(p)]] = 1.0 if j == i else 0.0
-            scale = max(np.abs(coef).max(), np.abs(Qn[i]).max())
-            keep = np.abs(coef) > COEF_DROP * scale
-            keep[pos[int(piv[i])]] = False
-            d_all = cols[keep]
-            nodes = [int(piv[i]) // 3, *(d_all // 3).tolist()]
-            dofs = [int(piv[i]) % 3 + 1, *(d_all % 3 + 1).tolist()]
-            coefs = [1.0, *coef[keep].tolist()]
-            for j, (node, d) in enumerate(qdofs):
-                if abs(Qn[i, j]) > COEF_DROP * scale:
-                    nodes.append(node)
-                    dofs.append(d)
-                    coefs.append(float(Qn[i, j]))
-            eqs.append(Equation(np.array(nodes), np.array(dofs), np.array(coefs)))
-    return Supports(tuple(eqs), ref_nodes, np.array(ref_xyz, dtype=float).T.reshape(3, -1),
-                    row_dof, tuple(spc), tuple(springs),
-                    np.array(ground_xyz, dtype=float).T.reshape(3, -1), ground_of)
+    return ref_nodes, ref_xyz
+
+
+def _add_springs(blk, rd: dict, x_mm: float, first_ground: int, ground_xyz: list,
+                 springs: list) -> tuple[int, ...]:
+    """SPRINGAs of a spring block (one per eigenpair of its C) from its reference node to new
+    ground nodes (numbered from ``first_ground`` on); appends to ``ground_xyz`` and
+    ``springs``, returns the ground nodes."""
+    (na, d1), (nb, d2) = rd[blk.labels[0]], rd[blk.labels[1]]
+    if na != nb or (d1, d2) != (2, 3):                   # pragma: no cover
+        raise ValueError("a spring block must act on dofs 2, 3 of one node")
+    split = spring_split(blk.C)
+    grounds = []
+    for kk, (v1, v2) in zip(split.stiffness, split.directions, strict=True):
+        g = first_ground + len(ground_xyz)
+        ground_xyz.append((x_mm, SPRING_ARM_MM * v1, SPRING_ARM_MM * v2))
+        springs.append((na, g, kk))
+        grounds.append(g)
+    return tuple(grounds)
+
+
+def _bearing_equations(name: str, R: np.ndarray, qdofs: list, loaded: np.ndarray,
+                       used_dep: set[int]) -> list[Equation]:
+    """The equations R u − q = 0 of one bearing (rows R, their q dofs ``qdofs``), row-reduced
+    on pivot dofs of the seat that carry no load and are not in ``used_dep`` (updated): each
+    pivot is the dependent (first) term of one equation only."""
+    from scipy.linalg import qr
+    mr = R.shape[0]
+    cols = np.nonzero(np.abs(R).max(axis=0) > 0)[0]
+    cand = np.setdiff1d(cols, loaded)
+    cand = np.array([c for c in cand if int(c) not in used_dep], dtype=np.int64)
+    _, _, piv = qr(R[:, cand], mode="economic", pivoting=True)
+    piv = cand[piv[:mr]]
+    used_dep.update(int(p) for p in piv)
+    A = R[:, piv]
+    if np.linalg.cond(A) > 1e10:                            # pragma: no cover
+        raise ValueError(f"bearing {name!r}: support rows are (nearly) dependent")
+    Rn = np.linalg.solve(A, R[:, cols])
+    Qn = -np.linalg.inv(A)                                   # coefficients of q
+    pos = {int(c): i for i, c in enumerate(cols)}
+    eqs = []
+    for i in range(mr):
+        coef = Rn[i].copy()
+        for j, p in enumerate(piv):
+            coef[pos[int(p)]] = 1.0 if j == i else 0.0
+        scale = max(np.abs(coef).max(), np.abs(Qn[i]).max())
+        keep = np.abs(coef) > COEF_DROP * scale
+        keep[pos[int(piv[i])]] = False
+        d_all = cols[keep]
+        nodes = [int(piv[i]) // 3, *(d_all // 3).tolist()]
+        dofs = [int(piv[i]) % 3 + 1, *(d_all % 3 + 1).tolist()]
+        coefs = [1.0, *coef[keep].tolist()]
+        for j, (node, d) in enumerate(qdofs):
+            if abs(Qn[i, j]) > COEF_DROP * scale:
+                nodes.append(node)
+                dofs.append(d)
+                coefs.append(float(Qn[i, j]))
+        eqs.append(Equation(np.array(nodes), np.array(dofs), np.array(coefs)))
+    return eqs
 
 
 def elimination(n_dofs: int, sup: Supports):
@@ -358,30 +381,63 @@ def write_deck(path, model, *, steps=("static", "frequency"), n_modes: int = 12,
     t0 = time.perf_counter()
     path = Path(path)
     m = model.shaft_mesh.mesh
-    x = m.doflocs
-    n = x.shape[1]
+    n = m.doflocs.shape[1]
     conn = abaqus_connectivity(m)
     sup = build_supports(model)
     f = model.f if f is None else np.asarray(f, dtype=float)
-    mat = model.variant.material
+    eprint = print_elements is not None and len(print_elements)
     out: list[str] = ["*HEADING", f"shaftfe export: variant {model.variant.name}, "
                       f"mesh {model.shaft_mesh.key[:12]}, {model.shaft_mesh.level}"]
-    out.append("*NODE, NSET=NSHAFT")
+    out.extend(_node_lines(m.doflocs, sup))
+    out.extend(_element_lines(conn, sup))
+    seat_sets = _seat_sets(model)
+    out.extend(_set_lines(m, model.couplings, seat_sets, print_elements if eprint else None))
+    out.extend(_material_lines(model.variant.material))
+    out.extend(_support_lines(sup, n))
+    f3 = f.reshape(-1, 3)
+    out.extend(_step_lines(steps, f3, sup, seat_sets, bool(eprint), n_modes))
+    for ln in out:
+        if len(ln) > MAX_LINE:                              # pragma: no cover
+            raise ValueError(f"deck line longer than {MAX_LINE} characters: {ln[:40]}...")
+    text = "\n".join(out) + "\n"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+    n_ref, n_gr = sup.ref_xyz.shape[1], sup.ground_xyz.shape[1]
+    ref_ids = {b: tuple(r + 1 for r in v if r >= 0) for b, v in sup.ref_nodes.items()}
+    gr_ids = {b: tuple(g + 1 for g in v) for b, v in sup.ground_of.items()}
+    return DeckInfo(path, n + n_ref + n_gr, n, conn.shape[0], len(sup.equations),
+                    len(sup.springs), tuple(steps), ref_ids, gr_ids,
+                    {b: {lab: (nd + 1, d) for lab, (nd, d) in rd.items()}
+                     for b, rd in sup.row_dof.items()}, seat_sets,
+                    tuple(float(v) for v in f3.sum(axis=0)),
+                    0 if print_elements is None else int(np.unique(print_elements).size),
+                    time.perf_counter() - t0)
+
+
+def _node_lines(x: np.ndarray, sup: Supports) -> list[str]:
+    """``*NODE`` blocks: the mesh nodes (NSHAFT), then the reference (NREF) and ground
+    (NGROUND) nodes numbered after them."""
+    n = x.shape[1]
+    n_ref = sup.ref_xyz.shape[1]
+    out = ["*NODE, NSET=NSHAFT"]
     ids = np.arange(1, n + 1)
     out.extend(f"{i},{_num(a)},{_num(b)},{_num(c)}" for i, a, b, c in zip(ids, *x, strict=True))
-    n_ref = sup.ref_xyz.shape[1]
-    n_gr = sup.ground_xyz.shape[1]
     if n_ref:
         out.append("*NODE, NSET=NREF")
         out.extend(f"{n + 1 + k},{_num(a)},{_num(b)},{_num(c)}"
                    for k, (a, b, c) in enumerate(sup.ref_xyz.T))
-    if n_gr:
+    if sup.ground_xyz.shape[1]:
         out.append("*NODE, NSET=NGROUND")
         out.extend(f"{n + n_ref + 1 + k},{_num(a)},{_num(b)},{_num(c)}"
                    for k, (a, b, c) in enumerate(sup.ground_xyz.T))
-    out.append("*ELEMENT, TYPE=C3D10, ELSET=SHAFT")
-    c1 = conn + 1
-    out.extend(f"{e + 1}," + ",".join(map(str, row)) for e, row in enumerate(c1))
+    return out
+
+
+def _element_lines(conn: np.ndarray, sup: Supports) -> list[str]:
+    """The C3D10 elements (ELSET SHAFT), then one SPRINGA element and ``*SPRING`` per spring
+    (ELSET SPR<k>), numbered after the tets."""
+    out = ["*ELEMENT, TYPE=C3D10, ELSET=SHAFT"]
+    out.extend(f"{e + 1}," + ",".join(map(str, row)) for e, row in enumerate(conn + 1))
     ne = conn.shape[0]
     for k, (rn, g, kk) in enumerate(sup.springs):
         eid = ne + 1 + k
@@ -390,23 +446,39 @@ def write_deck(path, model, *, steps=("static", "frequency"), n_modes: int = 12,
         out.append(f"*SPRING, ELSET=SPR{k + 1}")
         out.append("")                                   # no dof line for SPRINGA
         out.append(_num(kk))
-    seat_sets = {}
+    return out
+
+
+def _seat_sets(model) -> dict[str, str]:
+    """Bearing -> name of the node set of its seat (``SEAT_<NAME>``)."""
+    return {c.name: "SEAT_" + "".join(ch if ch.isalnum() else "_" for ch in c.name.upper())
+            for c in model.couplings}
+
+
+def _set_lines(mesh, couplings, seat_sets: dict, print_elements) -> list[str]:
+    """``*NSET`` of every seat and, when ``print_elements`` is given, ``*ELSET`` EPRINT."""
     from shaftfe.fe import assembly as fem
-    for c in model.couplings:
-        nm = "SEAT_" + "".join(ch if ch.isalnum() else "_" for ch in c.name.upper())
-        seat_sets[c.name] = nm
-        out.append(f"*NSET, NSET={nm}")
-        out.extend(_lines([str(int(i) + 1) for i in fem.face_nodes(m, c.facets)], 16))
-    if print_elements is not None and len(print_elements):
+    out = []
+    for c in couplings:
+        out.append(f"*NSET, NSET={seat_sets[c.name]}")
+        out.extend(_lines([str(int(i) + 1) for i in fem.face_nodes(mesh, c.facets)], 16))
+    if print_elements is not None:
         out.append("*ELSET, ELSET=EPRINT")
         out.extend(_lines([str(int(e) + 1) for e in np.unique(print_elements)], 16))
-    out.append(f"*MATERIAL, NAME={mat.name.upper().replace(' ', '_')[:70] or 'STEEL'}")
-    out.append("*ELASTIC")
-    out.append(f"{_num(mat.E_MPa)},{_num(mat.nu)}")
-    out.append("*DENSITY")
-    out.append(_num(mat.density_t_mm3))
-    out.append(f"*SOLID SECTION, ELSET=SHAFT, MATERIAL="
-               f"{mat.name.upper().replace(' ', '_')[:70] or 'STEEL'}")
+    return out
+
+
+def _material_lines(mat) -> list[str]:
+    """``*MATERIAL`` (E, ν, ρ) and the ``*SOLID SECTION`` of the shaft that uses it."""
+    name = mat.name.upper().replace(' ', '_')[:70] or 'STEEL'
+    return [f"*MATERIAL, NAME={name}", "*ELASTIC", f"{_num(mat.E_MPa)},{_num(mat.nu)}",
+            "*DENSITY", _num(mat.density_t_mm3),
+            f"*SOLID SECTION, ELSET=SHAFT, MATERIAL={name}"]
+
+
+def _support_lines(sup: Supports, n: int) -> list[str]:
+    """``*EQUATION`` (the support rows) and ``*BOUNDARY`` (held dofs, ground nodes)."""
+    out = []
     if sup.equations:
         out.append("*EQUATION")
         for e in sup.equations:
@@ -416,54 +488,37 @@ def write_deck(path, model, *, steps=("static", "frequency"), n_modes: int = 12,
             out.extend(_lines(terms, TERMS_PER_LINE))
     out.append("*BOUNDARY")
     out.extend(f"{nd + 1},{d},{d}" for nd, d in sup.spc)
-    out.extend(f"{n + n_ref + 1 + k},1,3" for k in range(n_gr))
-    f3 = f.reshape(-1, 3)
+    n_ref = sup.ref_xyz.shape[1]
+    out.extend(f"{n + n_ref + 1 + k},1,3" for k in range(sup.ground_xyz.shape[1]))
+    return out
+
+
+def _step_lines(steps, f3: np.ndarray, sup: Supports, seat_sets: dict, eprint: bool,
+                n_modes: int) -> list[str]:
+    """One ``*STEP`` per entry of ``steps``: ``static`` (``*CLOAD`` f3 (n, 3) and the outputs)
+    or ``frequency`` (``n_modes`` modes)."""
     nz = np.nonzero(f3)
     cload = [f"{i + 1},{d + 1},{_num(f3[i, d])}" for i, d in zip(*nz, strict=True)]
+    out = []
     for s in steps:
         out.append("*STEP")
         if s == "static":
-            out.append("*STATIC")
-            out.append("*CLOAD")
-            out.extend(cload)
-            out.append("*NODE FILE")
-            out.append("U")
-            out.append("*EL FILE")
-            out.append("S")
-            if n_gr:
-                out.append("*NODE PRINT, NSET=NGROUND")
-                out.append("RF")
-            if n_ref:
-                out.append("*NODE PRINT, NSET=NREF")
-                out.append("U")
+            out.extend(["*STATIC", "*CLOAD", *cload, "*NODE FILE", "U", "*EL FILE", "S"])
+            if sup.ground_xyz.shape[1]:
+                out.extend(["*NODE PRINT, NSET=NGROUND", "RF"])
+            if sup.ref_xyz.shape[1]:
+                out.extend(["*NODE PRINT, NSET=NREF", "U"])
             for nm in seat_sets.values():
                 # internal nodal forces summed over the seat = the support's force on the shaft
-                out.append(f"*NODE PRINT, NSET={nm}, TOTALS=ONLY")
-                out.append("RF")
-            if print_elements is not None and len(print_elements):
-                out.append("*EL PRINT, ELSET=EPRINT")
-                out.append("S")
+                out.extend([f"*NODE PRINT, NSET={nm}, TOTALS=ONLY", "RF"])
+            if eprint:
+                out.extend(["*EL PRINT, ELSET=EPRINT", "S"])
         elif s == "frequency":
-            out.append("*FREQUENCY")
-            out.append(str(int(n_modes)))
+            out.extend(["*FREQUENCY", str(int(n_modes))])
         else:
             raise ValueError(f"unknown step {s!r}")
         out.append("*END STEP")
-    for ln in out:
-        if len(ln) > MAX_LINE:                              # pragma: no cover
-            raise ValueError(f"deck line longer than {MAX_LINE} characters: {ln[:40]}...")
-    text = "\n".join(out) + "\n"
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text)
-    ref_ids = {b: tuple(r + 1 for r in v if r >= 0) for b, v in sup.ref_nodes.items()}
-    gr_ids = {b: tuple(g + 1 for g in v) for b, v in sup.ground_of.items()}
-    return DeckInfo(path, n + n_ref + n_gr, n, ne, len(sup.equations), len(sup.springs),
-                    tuple(steps), ref_ids, gr_ids,
-                    {b: {lab: (nd + 1, d) for lab, (nd, d) in rd.items()}
-                     for b, rd in sup.row_dof.items()}, seat_sets,
-                    tuple(float(v) for v in f3.sum(axis=0)),
-                    0 if print_elements is None else int(np.unique(print_elements).size),
-                    time.perf_counter() - t0)
+    return out
 
 
 def mid_node_offsets(mesh, conn: np.ndarray | None = None) -> np.ndarray:

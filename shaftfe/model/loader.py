@@ -11,13 +11,24 @@ import math
 import tomllib
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any
 
 from shaftfe.errors import InputError
+from shaftfe.model.fields import (
+    FILLET_MIN_MM,
+    PROV_KEYS,
+    Ctx,
+    check_keys,
+    is_num,
+    need,
+    num,
+    plausible,
+    provenance,
+    table,
+    text,
+)
 from shaftfe.model.mass import mass_properties
 from shaftfe.model.validate import validate_variant
 from shaftfe.model.variant import (
-    SOURCES,
     Attachment,
     BalanceTarget,
     Bearing,
@@ -32,22 +43,6 @@ from shaftfe.model.variant import (
 from shaftfe.util.paths import GEOMETRY_DIR  # the variant files (geometry/)
 
 _TABLE_KINDS = {"materials", "bearing_types", "parts"}       # merged across files by sub-key
-_PROV_KEYS = {*SOURCES, "note"}
-
-
-class _Ctx:
-    """File bookkeeping: which file defined which top-level item (for error messages)."""
-
-    def __init__(self) -> None:
-        self.origin: dict[str, str] = {}
-        self.files: list[str] = []
-        self.source: dict[str, str] = {}
-        self.note: dict[str, str] = {}
-
-    def file_of(self, key: str, default: str) -> str:
-        return self.origin.get(key, default)
-
-
 def list_variants(directory: str | Path | None = None) -> list[str]:
     """Names of the variant files in ``geometry/`` (``<name>.toml``; ``common/`` excluded)."""
     d = Path(directory) if directory is not None else GEOMETRY_DIR
@@ -92,7 +87,7 @@ def _show(path: Path) -> str:
         return str(path)
 
 
-def _merge(path: Path, merged: dict, ctx: _Ctx, stack: tuple[Path, ...]) -> None:
+def _merge(path: Path, merged: dict, ctx: Ctx, stack: tuple[Path, ...]) -> None:
     shown = _show(path)
     doc = _read_toml(path, shown)
     ctx.files.append(shown)
@@ -127,200 +122,81 @@ def _merge(path: Path, merged: dict, ctx: _Ctx, stack: tuple[Path, ...]) -> None
             ctx.origin[key] = shown
 
 
-def _is_num(x: Any) -> bool:
-    return isinstance(x, int | float) and not isinstance(x, bool)
-
-
-def _is_numeric_value(x: Any) -> bool:
-    if _is_num(x):
-        return True
-    if isinstance(x, list) and x:
-        return all(_is_numeric_value(e) for e in x)
-    return False
-
-
-def _table(val: Any, src: str, fld: str) -> dict:
-    if not isinstance(val, dict):
-        raise InputError(src, fld, "a table", got=type(val).__name__)
-    return val
-
-
-def _check_keys(t: dict, allowed: set[str], src: str, fld: str) -> None:
-    for k in t:
-        if k not in allowed and k not in _PROV_KEYS:
-            raise InputError(src, f"{fld}.{k}", "one of " + ", ".join(sorted(allowed)),
-                             reason="is not a known field")
-
-
-def _num(t: dict, key: str, src: str, fld: str, *, default: float | None = None,
-         required: bool = True) -> float | None:
-    if key not in t:
-        if required and default is None:
-            raise InputError(src, f"{fld}.{key}", "a number", reason="is missing")
-        return default
-    v = t[key]
-    if not _is_num(v) or not math.isfinite(float(v)):
-        raise InputError(src, f"{fld}.{key}", "a finite number", got=v)
-    return float(v)
-
-
-def _str(t: dict, key: str, src: str, fld: str, default: str | None = None) -> str:
-    if key not in t:
-        if default is None:
-            raise InputError(src, f"{fld}.{key}", "a string", reason="is missing")
-        return default
-    v = t[key]
-    if not isinstance(v, str) or not v:
-        raise InputError(src, f"{fld}.{key}", "a non-empty string", got=v)
-    return v
-
-
-def _need(ok: bool, src: str, fld: str, allowed: str, got: Any) -> None:
-    if not ok:
-        raise InputError(src, fld, allowed, got=got)
-
-
-# Plausibility bounds for a balancer shaft of a motorcycle engine (mm, kg, N, MPa). They are far
-# wider than any real design and exist to catch a value typed in the wrong unit, which passes a
-# type check and then gives nonsense (a Ø 0.022 "mm" collar meshed for 10 minutes at 3.8 GB).
-PLAUSIBLE = {              # kind: (low, high, unit, the unit a value below `low` was typed in)
-    "diameter_mm": (2.0, 300.0, "mm", "metres"),
-    "length_mm": (0.2, 2000.0, "mm", "metres"),
-    "mass_kg": (1e-5, 20.0, "kg", "tonnes"),
-    "eccentricity_mm": (0.0, 300.0, "mm", "metres"),
-    "E_MPa": (1e4, 1e6, "MPa", "GPa"),
-    "strength_MPa": (10.0, 5000.0, "MPa", "GPa"),
-    "C_N": (100.0, 1e7, "N", "kN"),
-    "K_N_per_mm": (10.0, 1e9, "N/mm", "kN/mm"),
-}
-_ABOVE_HINT = {"mass_kg": "grams", "eccentricity_mm": "µm", "diameter_mm": "µm",
-               "length_mm": "µm", "E_MPa": "Pa", "strength_MPa": "Pa", "K_N_per_mm": "N/m"}
-
-
-FILLET_MIN_MM = 0.05
-
-
-def _plausible(v: float, kind: str, src: str, fld: str) -> None:
-    """``v`` within ``PLAUSIBLE[kind]``; else an error with a hint at the likely unit."""
-    lo, hi, unit, below = PLAUSIBLE[kind]
-    if lo <= v <= hi:
-        return
-    hint = ""
-    if 0 < v < lo:
-        hint = f" (typed in {below}?)"
-    elif v > hi and kind in _ABOVE_HINT:
-        hint = f" (typed in {_ABOVE_HINT[kind]}?)"
-    raise InputError(src, fld, f"a plausible value in [{lo:g}, {hi:g}] {unit}{hint}", got=v)
-
-
-def _provenance(t: dict, src: str, fld: str, path: str, ctx: _Ctx) -> None:
-    """Every numeric key of table ``t`` must be in exactly one of the lists seed / reconstructed
-    / derived / standard; record them under ``path``."""
-    numeric = {k for k, v in t.items() if k not in _PROV_KEYS and _is_numeric_value(v)}
-    seen: dict[str, str] = {}
-    for s in SOURCES:
-        lst = t.get(s, [])
-        if not isinstance(lst, list) or not all(isinstance(e, str) for e in lst):
-            raise InputError(src, f"{fld}.{s}", "a list of key names", got=lst)
-        for k in lst:
-            if k not in t:
-                raise InputError(src, f"{fld}.{k}", f"a number (it is listed in '{s}')",
-                                 reason="is missing")
-            if k not in numeric:
-                raise InputError(src, f"{fld}.{k}", "a number or a list of numbers",
-                                 got=t[k])
-            if k in seen:
-                raise InputError(src, f"{fld}.{k}", "listed in exactly one provenance list",
-                                 reason=f"is listed in both '{seen[k]}' and '{s}'")
-            seen[k] = s
-    for k in sorted(numeric - set(seen)):
-        raise InputError(src, f"{fld}.{k}",
-                         "listed in one of seed / reconstructed / derived / standard",
-                         reason="has no provenance")
-    for k, s in seen.items():
-        ctx.source[f"{path}.{k}"] = s
-    note = t.get("note")
-    if note is not None:
-        if not isinstance(note, str):
-            raise InputError(src, f"{fld}.note", "a string", got=note)
-        ctx.note[path] = note
-
-
-def _material(name: str, t: dict, src: str, ctx: _Ctx) -> Material:
+def _material(name: str, t: dict, src: str, ctx: Ctx) -> Material:
     fld = f"materials.{name}"
-    t = _table(t, src, fld)
-    _check_keys(t, {"description", "E_MPa", "nu", "density_t_mm3", "yield_MPa",
+    t = table(t, src, fld)
+    check_keys(t, {"description", "E_MPa", "nu", "density_t_mm3", "yield_MPa",
                     "ultimate_MPa"}, src, fld)
-    _provenance(t, src, fld, fld, ctx)
-    E = _num(t, "E_MPa", src, fld)
-    nu = _num(t, "nu", src, fld)
-    rho = _num(t, "density_t_mm3", src, fld)
-    fy = _num(t, "yield_MPa", src, fld)
-    fu = _num(t, "ultimate_MPa", src, fld)
-    _plausible(E, "E_MPa", src, f"{fld}.E_MPa")
-    _need(0.0 < nu < 0.5, src, f"{fld}.nu", "0 < nu < 0.5", nu)
-    _need(0 < rho < 1e-7, src, f"{fld}.density_t_mm3", "0 < value < 1e-7 t/mm³", rho)
-    _plausible(fy, "strength_MPa", src, f"{fld}.yield_MPa")
-    _need(fu >= fy, src, f"{fld}.ultimate_MPa", f">= yield_MPa ({fy})", fu)
+    provenance(t, src, fld, fld, ctx)
+    E = num(t, "E_MPa", src, fld)
+    nu = num(t, "nu", src, fld)
+    rho = num(t, "density_t_mm3", src, fld)
+    fy = num(t, "yield_MPa", src, fld)
+    fu = num(t, "ultimate_MPa", src, fld)
+    plausible(E, "E_MPa", src, f"{fld}.E_MPa")
+    need(0.0 < nu < 0.5, src, f"{fld}.nu", "0 < nu < 0.5", nu)
+    need(0 < rho < 1e-7, src, f"{fld}.density_t_mm3", "0 < value < 1e-7 t/mm³", rho)
+    plausible(fy, "strength_MPa", src, f"{fld}.yield_MPa")
+    need(fu >= fy, src, f"{fld}.ultimate_MPa", f">= yield_MPa ({fy})", fu)
     return Material(name=name, E_MPa=E, nu=nu, density_t_mm3=rho, yield_MPa=fy,
                     ultimate_MPa=fu, description=str(t.get("description", "")))
 
 
-def _segments(shaft: dict, src: str, ctx: _Ctx, stock: float | None) -> tuple[Segment, ...]:
+def _segments(shaft: dict, src: str, ctx: Ctx, stock: float | None) -> tuple[Segment, ...]:
     raw = shaft.get("segments")
     if not isinstance(raw, list) or not raw:
         raise InputError(src, "segments", "a non-empty list of [[shaft.segments]] tables",
                          got=raw)
     segs: list[Segment] = []
     names: set[str] = set()
-    x = _num(shaft, "x_start_mm", src, "shaft", default=0.0) or 0.0
+    x = num(shaft, "x_start_mm", src, "shaft", default=0.0) or 0.0
     for i, t in enumerate(raw):
         fld = f"segments[{i}]"
-        t = _table(t, src, fld)
-        _check_keys(t, {"name", "length_mm", "diameter_mm", "fillet_mm", "kind", "keyways",
+        t = table(t, src, fld)
+        check_keys(t, {"name", "length_mm", "diameter_mm", "fillet_mm", "kind", "keyways",
                         "thread"}, src, fld)
-        name = _str(t, "name", src, fld)
-        _need(name not in names, src, f"{fld}.name", "unique segment names", name)
+        name = text(t, "name", src, fld)
+        need(name not in names, src, f"{fld}.name", "unique segment names", name)
         names.add(name)
-        _provenance(t, src, fld, f"segments.{name}", ctx)
-        length = _num(t, "length_mm", src, fld)
-        dia = _num(t, "diameter_mm", src, fld)
-        fil = _num(t, "fillet_mm", src, fld, default=0.0)
-        kind = _str(t, "kind", src, fld, default="plain")
-        _plausible(length, "length_mm", src, f"{fld}.length_mm")
-        _plausible(dia, "diameter_mm", src, f"{fld}.diameter_mm")
+        provenance(t, src, fld, f"segments.{name}", ctx)
+        length = num(t, "length_mm", src, fld)
+        dia = num(t, "diameter_mm", src, fld)
+        fil = num(t, "fillet_mm", src, fld, default=0.0)
+        kind = text(t, "kind", src, fld, default="plain")
+        plausible(length, "length_mm", src, f"{fld}.length_mm")
+        plausible(dia, "diameter_mm", src, f"{fld}.diameter_mm")
         if stock is not None:
-            _need(dia <= stock + 1e-9, src, f"{fld}.diameter_mm",
+            need(dia <= stock + 1e-9, src, f"{fld}.diameter_mm",
                   f"<= stock diameter {stock:g} mm", dia)
         # a fillet is meshed at a fraction of its radius: a 1 µm "fillet" (a radius typed in
         # metres) would ask for millions of elements; below FILLET_MIN_MM it is a sharp corner
-        _need(fil == 0 or fil >= FILLET_MIN_MM, src, f"{fld}.fillet_mm",
+        need(fil == 0 or fil >= FILLET_MIN_MM, src, f"{fld}.fillet_mm",
               f"0 (sharp) or >= {FILLET_MIN_MM:g} mm (typed in metres?)", fil)
-        _need(kind in ("plain", "seat", "thread"), src, f"{fld}.kind",
+        need(kind in ("plain", "seat", "thread"), src, f"{fld}.kind",
               "plain | seat | thread", kind)
         kws: list[Keyway] = []
-        _need(isinstance(t.get("keyways", []), list), src, f"{fld}.keyways",
+        need(isinstance(t.get("keyways", []), list), src, f"{fld}.keyways",
               "a list of [[...keyways]] tables", t.get("keyways"))
         for j, k in enumerate(t.get("keyways", [])):
             kf = f"{fld}.keyways[{j}]"
-            k = _table(k, src, kf)
-            _check_keys(k, {"width_mm", "depth_mm", "length_mm", "x_center_mm", "angle_deg"},
+            k = table(k, src, kf)
+            check_keys(k, {"width_mm", "depth_mm", "length_mm", "x_center_mm", "angle_deg"},
                         src, kf)
-            _provenance(k, src, kf, f"segments.{name}.keyways[{j}]", ctx)
-            kw = Keyway(width_mm=_num(k, "width_mm", src, kf),
-                        depth_mm=_num(k, "depth_mm", src, kf),
-                        length_mm=_num(k, "length_mm", src, kf),
-                        x_center_mm=_num(k, "x_center_mm", src, kf),
-                        angle_deg=_num(k, "angle_deg", src, kf, default=0.0) or 0.0)
-            _need(kw.width_mm > 0, src, f"{kf}.width_mm", "> 0", kw.width_mm)
-            _need(0 < kw.depth_mm < 0.5 * dia, src, f"{kf}.depth_mm",
+            provenance(k, src, kf, f"segments.{name}.keyways[{j}]", ctx)
+            kw = Keyway(width_mm=num(k, "width_mm", src, kf),
+                        depth_mm=num(k, "depth_mm", src, kf),
+                        length_mm=num(k, "length_mm", src, kf),
+                        x_center_mm=num(k, "x_center_mm", src, kf),
+                        angle_deg=num(k, "angle_deg", src, kf, default=0.0) or 0.0)
+            need(kw.width_mm > 0, src, f"{kf}.width_mm", "> 0", kw.width_mm)
+            need(0 < kw.depth_mm < 0.5 * dia, src, f"{kf}.depth_mm",
                   f"0 < depth < radius ({0.5 * dia:g})", kw.depth_mm)
-            _need(kw.width_mm < dia, src, f"{kf}.width_mm", f"< diameter ({dia:g})",
+            need(kw.width_mm < dia, src, f"{kf}.width_mm", f"< diameter ({dia:g})",
                   kw.width_mm)
-            _need(kw.length_mm >= kw.width_mm, src, f"{kf}.length_mm",
+            need(kw.length_mm >= kw.width_mm, src, f"{kf}.length_mm",
                   f">= width ({kw.width_mm:g})", kw.length_mm)
             lo, hi = kw.x_center_mm - 0.5 * kw.length_mm, kw.x_center_mm + 0.5 * kw.length_mm
-            _need(x - 1e-9 <= lo and hi <= x + length + 1e-9, src, f"{kf}.x_center_mm",
+            need(x - 1e-9 <= lo and hi <= x + length + 1e-9, src, f"{kf}.x_center_mm",
                   f"slot [{lo:g}, {hi:g}] inside the segment [{x:g}, {x + length:g}]",
                   kw.x_center_mm)
             kws.append(kw)
@@ -333,17 +209,67 @@ def _segments(shaft: dict, src: str, ctx: _Ctx, stock: float | None) -> tuple[Se
         fld = f"segments[{i}].fillet_mm"
         step = 0.5 * abs(a.diameter_mm - b.diameter_mm)
         if step < 1e-9:
-            _need(a.fillet_mm == 0, src, fld, "0 (no step to the next segment)", a.fillet_mm)
+            need(a.fillet_mm == 0, src, fld, "0 (no step to the next segment)", a.fillet_mm)
             continue
         small = a if a.diameter_mm < b.diameter_mm else b
         limit = min(step, small.length_mm)
-        _need(a.fillet_mm <= limit + 1e-12, src, fld,
+        need(a.fillet_mm <= limit + 1e-12, src, fld,
               f"<= step height {step:g} and <= length of the smaller segment "
               f"{small.length_mm:g}", a.fillet_mm)
     return tuple(segs)
 
 
-def _bearings(shaft: dict, types: dict, segs: tuple[Segment, ...], ctx: _Ctx, src: str
+def _stiffness_matrix(bt: dict, tsrc: str, tf: str):
+    """A bearing type's 2×2 radial stiffness: numbers, finite, symmetric, positive definite,
+    both eigenvalues plausible."""
+    K = bt.get("K_N_per_mm")
+    ok = (isinstance(K, list) and len(K) == 2
+          and all(isinstance(r, list) and len(r) == 2 and all(is_num(e) for e in r)
+                  for r in K))
+    need(ok, tsrc, f"{tf}.K_N_per_mm", "[[K11, K12], [K21, K22]] in N/mm", K)
+    (k11, k12), (k21, k22) = ((float(K[0][0]), float(K[0][1])),
+                              (float(K[1][0]), float(K[1][1])))
+    need(all(math.isfinite(k) for k in (k11, k12, k21, k22)), tsrc, f"{tf}.K_N_per_mm",
+          "finite stiffnesses in N/mm (a rigid support: --rigid-supports)", K)
+    need(abs(k12 - k21) <= 1e-9 * max(abs(k11), abs(k22), 1.0), tsrc,
+          f"{tf}.K_N_per_mm", "symmetric (K12 = K21)", K)
+    need(k11 > 0 and k22 > 0 and k11 * k22 - k12 * k21 > 0, tsrc, f"{tf}.K_N_per_mm",
+          "positive definite (K11 > 0, K22 > 0, K11 K22 - K12² > 0)", K)
+    # the smaller eigenvalue: a spring softer than the bound leaves the shaft floating on
+    # a support the solver cannot tell from none (1e-9 N/mm: residual 5.6 instead of 1e-8)
+    k_min = 0.5 * (k11 + k22) - math.hypot(0.5 * (k11 - k22), k12)
+    k_max = 0.5 * (k11 + k22) + math.hypot(0.5 * (k11 - k22), k12)
+    for kk in (k_min, k_max):
+        plausible(kk, "K_N_per_mm", tsrc, f"{tf}.K_N_per_mm (eigenvalue)")
+    return (k11, k12), (k21, k22)
+
+
+def _ring(bt: dict, tsrc: str, tf: str):
+    """A bearing type's width, bore, C, C0, tilt stiffness, life exponent, chamfer, r_s min."""
+    width = num(bt, "width_mm", tsrc, tf)
+    bore = num(bt, "bore_mm", tsrc, tf)
+    C = num(bt, "C_N", tsrc, tf)
+    C0 = num(bt, "C0_N", tsrc, tf)
+    plausible(width, "length_mm", tsrc, f"{tf}.width_mm")
+    plausible(bore, "diameter_mm", tsrc, f"{tf}.bore_mm")
+    plausible(C, "C_N", tsrc, f"{tf}.C_N")
+    plausible(C0, "C_N", tsrc, f"{tf}.C0_N")
+    tilt = num(bt, "tilt_stiffness_Nmm_per_rad", tsrc, tf, default=0.0)
+    need(tilt >= 0, tsrc, f"{tf}.tilt_stiffness_Nmm_per_rad", ">= 0 N·mm/rad", tilt)
+    p_life = num(bt, "life_exponent", tsrc, tf, default=3.0)
+    need(1.0 <= p_life <= 10.0, tsrc, f"{tf}.life_exponent",
+          "in [1, 10] (ISO 281: 3 for ball, 10/3 for roller bearings)", p_life)
+    chamfer = num(bt, "chamfer_mm", tsrc, tf, default=0.0) or 0.0
+    need(0.0 <= chamfer < 0.25 * width, tsrc, f"{tf}.chamfer_mm",
+          f">= 0 and < width / 4 ({0.25 * width:g})", chamfer)
+    r_s_min = num(bt, "r_s_min_mm", tsrc, tf, default=0.0) or 0.0
+    need(0.0 <= r_s_min <= chamfer or (r_s_min >= 0 and chamfer == 0), tsrc,
+          f"{tf}.chamfer_mm", f">= r_s_min_mm ({r_s_min:g}): an actual chamfer is at "
+          "least the ISO 15 minimum (or 0 = no chamfer modelled)", chamfer)
+    return width, bore, C, C0, tilt, p_life, chamfer, r_s_min
+
+
+def _bearings(shaft: dict, types: dict, segs: tuple[Segment, ...], ctx: Ctx, src: str
               ) -> tuple[Bearing, ...]:
     raw = shaft.get("bearings")
     if not isinstance(raw, list) or len(raw) < 2:
@@ -353,85 +279,48 @@ def _bearings(shaft: dict, types: dict, segs: tuple[Segment, ...], ctx: _Ctx, sr
     out: list[Bearing] = []
     for i, t in enumerate(raw):
         fld = f"bearings[{i}]"
-        t = _table(t, src, fld)
-        _check_keys(t, {"name", "type", "x_center_mm", "axial"}, src, fld)
-        name = _str(t, "name", src, fld)
-        _provenance(t, src, fld, f"bearings.{name}", ctx)
-        typ = _str(t, "type", src, fld)
+        t = table(t, src, fld)
+        check_keys(t, {"name", "type", "x_center_mm", "axial"}, src, fld)
+        name = text(t, "name", src, fld)
+        provenance(t, src, fld, f"bearings.{name}", ctx)
+        typ = text(t, "type", src, fld)
         if typ not in types:
             raise InputError(src, f"{fld}.type", "one of " + ", ".join(sorted(types)), got=typ)
         tsrc = ctx.file_of(f"bearing_types.{typ}", src)
         tf = f"bearing_types.{typ}"
-        bt = _table(types[typ], tsrc, tf)
-        _check_keys(bt, {"designation", "bore_mm", "outer_diameter_mm", "width_mm", "C_N",
+        bt = table(types[typ], tsrc, tf)
+        check_keys(bt, {"designation", "bore_mm", "outer_diameter_mm", "width_mm", "C_N",
                          "C0_N", "K_N_per_mm", "life_exponent", "tilt_stiffness_Nmm_per_rad",
                          "chamfer_mm", "r_s_min_mm"}, tsrc, tf)
-        _provenance(bt, tsrc, tf, tf, ctx)
-        K = bt.get("K_N_per_mm")
-        ok = (isinstance(K, list) and len(K) == 2
-              and all(isinstance(r, list) and len(r) == 2 and all(_is_num(e) for e in r)
-                      for r in K))
-        _need(ok, tsrc, f"{tf}.K_N_per_mm", "[[K11, K12], [K21, K22]] in N/mm", K)
-        (k11, k12), (k21, k22) = ((float(K[0][0]), float(K[0][1])),
-                                  (float(K[1][0]), float(K[1][1])))
-        _need(all(math.isfinite(k) for k in (k11, k12, k21, k22)), tsrc, f"{tf}.K_N_per_mm",
-              "finite stiffnesses in N/mm (a rigid support: --rigid-supports)", K)
-        _need(abs(k12 - k21) <= 1e-9 * max(abs(k11), abs(k22), 1.0), tsrc,
-              f"{tf}.K_N_per_mm", "symmetric (K12 = K21)", K)
-        _need(k11 > 0 and k22 > 0 and k11 * k22 - k12 * k21 > 0, tsrc, f"{tf}.K_N_per_mm",
-              "positive definite (K11 > 0, K22 > 0, K11 K22 - K12² > 0)", K)
-        # the smaller eigenvalue: a spring softer than the bound leaves the shaft floating on
-        # a support the solver cannot tell from none (1e-9 N/mm: residual 5.6 instead of 1e-8)
-        k_min = 0.5 * (k11 + k22) - math.hypot(0.5 * (k11 - k22), k12)
-        k_max = 0.5 * (k11 + k22) + math.hypot(0.5 * (k11 - k22), k12)
-        for kk in (k_min, k_max):
-            _plausible(kk, "K_N_per_mm", tsrc, f"{tf}.K_N_per_mm (eigenvalue)")
-        width = _num(bt, "width_mm", tsrc, tf)
-        bore = _num(bt, "bore_mm", tsrc, tf)
-        C = _num(bt, "C_N", tsrc, tf)
-        C0 = _num(bt, "C0_N", tsrc, tf)
-        _plausible(width, "length_mm", tsrc, f"{tf}.width_mm")
-        _plausible(bore, "diameter_mm", tsrc, f"{tf}.bore_mm")
-        _plausible(C, "C_N", tsrc, f"{tf}.C_N")
-        _plausible(C0, "C_N", tsrc, f"{tf}.C0_N")
-        tilt = _num(bt, "tilt_stiffness_Nmm_per_rad", tsrc, tf, default=0.0)
-        _need(tilt >= 0, tsrc, f"{tf}.tilt_stiffness_Nmm_per_rad", ">= 0 N·mm/rad", tilt)
-        p_life = _num(bt, "life_exponent", tsrc, tf, default=3.0)
-        _need(1.0 <= p_life <= 10.0, tsrc, f"{tf}.life_exponent",
-              "in [1, 10] (ISO 281: 3 for ball, 10/3 for roller bearings)", p_life)
-        chamfer = _num(bt, "chamfer_mm", tsrc, tf, default=0.0) or 0.0
-        _need(0.0 <= chamfer < 0.25 * width, tsrc, f"{tf}.chamfer_mm",
-              f">= 0 and < width / 4 ({0.25 * width:g})", chamfer)
-        r_s_min = _num(bt, "r_s_min_mm", tsrc, tf, default=0.0) or 0.0
-        _need(0.0 <= r_s_min <= chamfer or (r_s_min >= 0 and chamfer == 0), tsrc,
-              f"{tf}.chamfer_mm", f">= r_s_min_mm ({r_s_min:g}): an actual chamfer is at "
-              "least the ISO 15 minimum (or 0 = no chamfer modelled)", chamfer)
-        xc = _num(t, "x_center_mm", src, fld)
+        provenance(bt, tsrc, tf, tf, ctx)
+        (k11, k12), (k21, k22) = _stiffness_matrix(bt, tsrc, tf)
+        width, bore, C, C0, tilt, p_life, chamfer, r_s_min = _ring(bt, tsrc, tf)
+        xc = num(t, "x_center_mm", src, fld)
         lo, hi = xc - 0.5 * width, xc + 0.5 * width
-        _need(x0 - 1e-9 <= lo and hi <= x1 + 1e-9, src, f"{fld}.x_center_mm",
+        need(x0 - 1e-9 <= lo and hi <= x1 + 1e-9, src, f"{fld}.x_center_mm",
               f"bearing [{lo:g}, {hi:g}] inside the shaft [{x0:g}, {x1:g}]", xc)
         under = [s for s in segs if s.x_end_mm > lo + 1e-9 and s.x_start_mm < hi - 1e-9]
         bad = [s.name for s in under if abs(s.diameter_mm - bore) > 1e-6]
-        _need(not bad, src, f"{fld}.x_center_mm",
+        need(not bad, src, f"{fld}.x_center_mm",
               f"a bearing seat of diameter = bore {bore:g} mm over [{lo:g}, {hi:g}]",
               f"{xc:g} (over {', '.join(bad)})")
         axial = t.get("axial", False)
-        _need(isinstance(axial, bool), src, f"{fld}.axial", "true | false", axial)
+        need(isinstance(axial, bool), src, f"{fld}.axial", "true | false", axial)
         out.append(Bearing(
-            name=name, designation=_str(bt, "designation", tsrc, tf), x_center_mm=xc,
+            name=name, designation=text(bt, "designation", tsrc, tf), x_center_mm=xc,
             width_mm=width, C_N=C, C0_N=C0, K_N_per_mm=((k11, k12), (k21, k22)), axial=axial,
             tilt_stiffness_Nmm_per_rad=tilt, life_exponent=p_life,
-            bore_mm=bore, outer_diameter_mm=_num(bt, "outer_diameter_mm", tsrc, tf,
+            bore_mm=bore, outer_diameter_mm=num(bt, "outer_diameter_mm", tsrc, tf,
                                                  default=0.0) or 0.0, chamfer_mm=chamfer,
             r_s_min_mm=r_s_min))
-    _need(sum(b.axial for b in out) == 1, src, "bearings[*].axial",
+    need(sum(b.axial for b in out) == 1, src, "bearings[*].axial",
           "exactly one bearing with axial = true", sum(b.axial for b in out))
     names = [b.name for b in out]
-    _need(len(set(names)) == len(names), src, "bearings[*].name", "unique names", names)
+    need(len(set(names)) == len(names), src, "bearings[*].name", "unique names", names)
     index = {b.name: i for i, b in enumerate(out)}          # as written in the file
     out.sort(key=lambda b: b.x_center_mm)
     for a, b in itertools.pairwise(out):        # two rings cannot share a seat
-        _need(a.x_center_mm + 0.5 * a.width_mm <= b.x_center_mm - 0.5 * b.width_mm + 1e-9, src,
+        need(a.x_center_mm + 0.5 * a.width_mm <= b.x_center_mm - 0.5 * b.width_mm + 1e-9, src,
               f"bearings[{index[b.name]}].x_center_mm ({b.name!r})",
               f"clear of bearing {a.name!r} (its ring ends at "
               f"{a.x_center_mm + 0.5 * a.width_mm:g} mm)", b.x_center_mm)
@@ -456,7 +345,7 @@ def _abutment_fillets(bearings: list[Bearing], segs: tuple[Segment, ...], src: s
             at_ring = abs(x - lo) <= a.fillet_mm + 1e-6 or abs(x - hi) <= a.fillet_mm + 1e-6
             if at_ring and abs(small.diameter_mm - b.bore_mm) < 1e-6 \
                     and big.diameter_mm > b.bore_mm:
-                _need(a.fillet_mm <= b.r_s_min_mm + 1e-12, src, f"segments[{i}].fillet_mm",
+                need(a.fillet_mm <= b.r_s_min_mm + 1e-12, src, f"segments[{i}].fillet_mm",
                       f"<= {b.r_s_min_mm:g} mm, the corner radius r_s min of bearing "
                       f"{b.name!r} ({b.designation}) that abuts this shoulder (ISO 582)",
                       a.fillet_mm)
@@ -468,16 +357,16 @@ _ATT_KEYS = {"name", "part", "seat", "seat_x_mm", "mass_kg", "eccentricity_mm", 
 
 
 def _attachment(t: dict, src: str, fld: str, segs: tuple[Segment, ...], mats: dict,
-                ctx: _Ctx, name: str) -> Attachment:
-    _check_keys(t, _ATT_KEYS, src, fld)
-    _provenance(t, src, fld, f"attachments.{name}", ctx)
+                ctx: Ctx, name: str) -> Attachment:
+    check_keys(t, _ATT_KEYS, src, fld)
+    provenance(t, src, fld, f"attachments.{name}", ctx)
     shape = t.get("shape")
     if shape is not None:
-        shape = _table(shape, src, f"{fld}.shape")
-        _provenance(shape, src, f"{fld}.shape", f"attachments.{name}.shape", ctx)
+        shape = table(shape, src, f"{fld}.shape")
+        provenance(shape, src, f"{fld}.shape", f"attachments.{name}.shape", ctx)
     seat_name = ""
     if "seat" in t:
-        seat_name = _str(t, "seat", src, fld)
+        seat_name = text(t, "seat", src, fld)
         seg = next((s for s in segs if s.name == seat_name), None)
         if seg is None:
             raise InputError(src, f"{fld}.seat", "the name of a shaft segment: "
@@ -485,44 +374,114 @@ def _attachment(t: dict, src: str, fld: str, segs: tuple[Segment, ...], mats: di
         lo, hi = seg.x_start_mm, seg.x_end_mm
     elif "seat_x_mm" in t:
         sx = t["seat_x_mm"]
-        _need(isinstance(sx, list) and len(sx) == 2 and all(_is_num(e) for e in sx), src,
+        need(isinstance(sx, list) and len(sx) == 2 and all(is_num(e) for e in sx), src,
               f"{fld}.seat_x_mm", "[x_start, x_end] in mm", sx)
         lo, hi = float(sx[0]), float(sx[1])
-        _need(hi > lo, src, f"{fld}.seat_x_mm", "x_start < x_end", sx)
+        need(hi > lo, src, f"{fld}.seat_x_mm", "x_start < x_end", sx)
         x0, x1 = segs[0].x_start_mm, segs[-1].x_end_mm
-        _need(x0 - 1e-9 <= lo and hi <= x1 + 1e-9, src, f"{fld}.seat_x_mm",
+        need(x0 - 1e-9 <= lo and hi <= x1 + 1e-9, src, f"{fld}.seat_x_mm",
               f"on the shaft [{x0:g}, {x1:g}]", sx)
     else:
         raise InputError(src, f"{fld}.seat", "a segment name (or seat_x_mm = [a, b])",
                          reason="is missing")
-    m = _num(t, "mass_kg", src, fld)
-    e = _num(t, "eccentricity_mm", src, fld)
-    _plausible(m, "mass_kg", src, f"{fld}.mass_kg")
-    _plausible(e, "eccentricity_mm", src, f"{fld}.eccentricity_mm")
-    xc = _num(t, "x_centroid_mm", src, fld)
+    m = num(t, "mass_kg", src, fld)
+    e = num(t, "eccentricity_mm", src, fld)
+    plausible(m, "mass_kg", src, f"{fld}.mass_kg")
+    plausible(e, "eccentricity_mm", src, f"{fld}.eccentricity_mm")
+    xc = num(t, "x_centroid_mm", src, fld)
     x0, x1 = segs[0].x_start_mm, segs[-1].x_end_mm
-    _need(x0 - 100.0 <= xc <= x1 + 100.0, src, f"{fld}.x_centroid_mm",
+    need(x0 - 100.0 <= xc <= x1 + 100.0, src, f"{fld}.x_centroid_mm",
           f"within 100 mm of the shaft [{x0:g}, {x1:g}] (a part beside its seat)", xc)
     if shape is not None:
         for k, val in shape.items():
-            if k not in _PROV_KEYS and k != "kind" and not (
-                    _is_num(val) and math.isfinite(float(val)) and float(val) >= 0):
+            if k not in PROV_KEYS and k != "kind" and not (
+                    is_num(val) and math.isfinite(float(val)) and float(val) >= 0):
                 raise InputError(src, f"{fld}.shape.{k}", "a finite number >= 0", got=val)
-    jp = _num(t, "polar_inertia_kg_mm2", src, fld, default=0.0) or 0.0
-    jd = _num(t, "diametral_inertia_kg_mm2", src, fld, default=0.0) or 0.0
-    _need(jp >= 0, src, f"{fld}.polar_inertia_kg_mm2", ">= 0", jp)
-    _need(jd >= 0, src, f"{fld}.diametral_inertia_kg_mm2", ">= 0", jd)
-    mat = _str(t, "material", src, fld)
+    jp = num(t, "polar_inertia_kg_mm2", src, fld, default=0.0) or 0.0
+    jd = num(t, "diametral_inertia_kg_mm2", src, fld, default=0.0) or 0.0
+    need(jp >= 0, src, f"{fld}.polar_inertia_kg_mm2", ">= 0", jp)
+    need(jd >= 0, src, f"{fld}.diametral_inertia_kg_mm2", ">= 0", jd)
+    mat = text(t, "material", src, fld)
     if mat not in mats:
         raise InputError(src, f"{fld}.material", "one of " + ", ".join(sorted(mats)), got=mat)
     slc = t.get("seed_load_case", False)
-    _need(isinstance(slc, bool), src, f"{fld}.seed_load_case", "true | false", slc)
+    need(isinstance(slc, bool), src, f"{fld}.seed_load_case", "true | false", slc)
     return Attachment(
         name=name, seat_x_start_mm=lo, seat_x_end_mm=hi, mass_kg=m, eccentricity_mm=e,
         x_centroid_mm=xc,
-        angle_deg=_num(t, "angle_deg", src, fld, default=0.0) or 0.0,
+        angle_deg=num(t, "angle_deg", src, fld, default=0.0) or 0.0,
         polar_inertia_kg_mm2=jp, diametral_inertia_kg_mm2=jd, material=mat,
         seed_load_case=slc, seat_segment=seat_name)
+
+
+def _hex_socket(shaft: dict, ssrc: str, segs: tuple[Segment, ...], ctx: Ctx
+                ) -> HexSocket | None:
+    if "hex_socket" not in shaft:
+        return None
+    x0, x1 = segs[0].x_start_mm, segs[-1].x_end_mm
+    ht = table(shaft["hex_socket"], ssrc, "shaft.hex_socket")
+    check_keys(ht, {"end", "across_flats_mm", "depth_mm"}, ssrc, "shaft.hex_socket")
+    provenance(ht, ssrc, "shaft.hex_socket", "hex_socket", ctx)
+    end = text(ht, "end", ssrc, "shaft.hex_socket")
+    need(end in ("left", "right"), ssrc, "hex_socket.end", "left | right", end)
+    s = num(ht, "across_flats_mm", ssrc, "hex_socket")
+    depth = num(ht, "depth_mm", ssrc, "hex_socket")
+    end_seg = segs[-1] if end == "right" else segs[0]
+    corners = 2.0 * s / math.sqrt(3.0)
+    need(0 < s and corners < end_seg.diameter_mm, ssrc, "hex_socket.across_flats_mm",
+          f"> 0 with across-corners {corners:.3f} < end diameter "
+          f"{end_seg.diameter_mm:g}", s)
+    need(0 < depth < x1 - x0, ssrc, "hex_socket.depth_mm",
+          f"0 < depth < shaft length {x1 - x0:g}", depth)
+    return HexSocket(end=end, across_flats_mm=s, depth_mm=depth)
+
+
+def _attachments(merged: dict, segs: tuple[Segment, ...], mats: dict, ctx: Ctx, top: str
+                 ) -> tuple[Attachment, ...]:
+    """Shared parts named in use_parts, then the variant's own [[attachments]]."""
+    parts = merged.get("parts", {})
+    atts: list[Attachment] = []
+    use = merged.get("use_parts", [])
+    usrc = ctx.file_of("use_parts", top)
+    need(isinstance(use, list) and all(isinstance(u, str) for u in use), usrc, "use_parts",
+          "a list of part names", use)
+    for i, pn in enumerate(use):
+        if pn not in parts:
+            raise InputError(usrc, f"use_parts[{i}]", "one of " + ", ".join(sorted(parts)),
+                             got=pn)
+        psrc = ctx.file_of(f"parts.{pn}", top)
+        atts.append(_attachment(table(parts[pn], psrc, f"parts.{pn}"), psrc, f"parts.{pn}",
+                                segs, mats, ctx, pn))
+    asrc = ctx.file_of("attachments", top)
+    raw = merged.get("attachments", [])
+    need(isinstance(raw, list), asrc, "attachments", "a list of [[attachments]] tables", raw)
+    for i, t in enumerate(raw):
+        fld = f"attachments[{i}]"
+        t = table(t, asrc, fld)
+        an = text(t, "name", asrc, fld)
+        atts.append(_attachment(t, asrc, fld, segs, mats, ctx, an))
+    anames = [a.name for a in atts]
+    dup = sorted({n for n in anames if anames.count(n) > 1})
+    need(not dup, asrc, "attachments[*].name", "unique names", dup)
+    return tuple(atts)
+
+
+def _balance_target(merged: dict, ctx: Ctx, top: str) -> BalanceTarget | None:
+    if "balance" not in merged:
+        return None
+    bsrc = ctx.file_of("balance", top)
+    bt = table(merged["balance"], bsrc, "balance")
+    check_keys(bt, {"X2_percent", "mass_kg", "gamma2_mm", "x_T_mm", "m_pos_kg",
+                     "crank_radius_mm"}, bsrc, "balance")
+    provenance(bt, bsrc, "balance", "balance", ctx)
+    target = BalanceTarget(
+        X2_percent=num(bt, "X2_percent", bsrc, "balance"),
+        mass_kg=num(bt, "mass_kg", bsrc, "balance"),
+        gamma2_mm=num(bt, "gamma2_mm", bsrc, "balance"),
+        x_T_mm=num(bt, "x_T_mm", bsrc, "balance"),
+        m_pos_kg=num(bt, "m_pos_kg", bsrc, "balance", default=0.0) or 0.0,
+        crank_radius_mm=num(bt, "crank_radius_mm", bsrc, "balance", default=0.0) or 0.0)
+    return target
 
 
 def load_variant(name_or_path: str | Path) -> Variant:
@@ -531,7 +490,7 @@ def load_variant(name_or_path: str | Path) -> Variant:
     ``name_or_path`` is a variant name (``geometry/<name>.toml``) or a path to a TOML file.
     Anything impossible raises ``InputError(file, field, allowed, got)``."""
     path = _resolve(name_or_path)
-    ctx = _Ctx()
+    ctx = Ctx()
     merged: dict = {}
     _merge(path.resolve(), merged, ctx, (path.resolve(),))
     top = _show(path.resolve())
@@ -553,95 +512,41 @@ def load_variant(name_or_path: str | Path) -> Variant:
         raise InputError(top, "shaft", "a [shaft] table (usually from an include)",
                          reason="is missing")
     ssrc = ctx.file_of("shaft", top)
-    shaft = _table(merged["shaft"], ssrc, "shaft")
-    _check_keys(shaft, {"name", "material", "stock_diameter_mm", "parting_plane_x_mm",
+    shaft = table(merged["shaft"], ssrc, "shaft")
+    check_keys(shaft, {"name", "material", "stock_diameter_mm", "parting_plane_x_mm",
                         "clearance_station_x_mm", "clearance_to_crankshaft_mm", "x_start_mm",
                         "segments", "bearings", "hex_socket"}, ssrc, "shaft")
-    _provenance(shaft, ssrc, "shaft", "shaft", ctx)
-    stock = _num(shaft, "stock_diameter_mm", ssrc, "shaft", required=False)
+    provenance(shaft, ssrc, "shaft", "shaft", ctx)
+    stock = num(shaft, "stock_diameter_mm", ssrc, "shaft", required=False)
     segs = _segments(shaft, ssrc, ctx, stock)
     x0, x1 = segs[0].x_start_mm, segs[-1].x_end_mm
-    smat = _str(shaft, "material", ssrc, "shaft")
+    smat = text(shaft, "material", ssrc, "shaft")
     if smat not in mats:
         raise InputError(ssrc, "shaft.material", "one of " + ", ".join(sorted(mats)) if mats
                          else "a material defined in [materials.*]", got=smat)
     bearings = _bearings(shaft, merged.get("bearing_types", {}), segs, ctx, ssrc)
 
-    hs = None
-    if "hex_socket" in shaft:
-        ht = _table(shaft["hex_socket"], ssrc, "shaft.hex_socket")
-        _check_keys(ht, {"end", "across_flats_mm", "depth_mm"}, ssrc, "shaft.hex_socket")
-        _provenance(ht, ssrc, "shaft.hex_socket", "hex_socket", ctx)
-        end = _str(ht, "end", ssrc, "shaft.hex_socket")
-        _need(end in ("left", "right"), ssrc, "hex_socket.end", "left | right", end)
-        s = _num(ht, "across_flats_mm", ssrc, "hex_socket")
-        depth = _num(ht, "depth_mm", ssrc, "hex_socket")
-        end_seg = segs[-1] if end == "right" else segs[0]
-        corners = 2.0 * s / math.sqrt(3.0)
-        _need(0 < s and corners < end_seg.diameter_mm, ssrc, "hex_socket.across_flats_mm",
-              f"> 0 with across-corners {corners:.3f} < end diameter "
-              f"{end_seg.diameter_mm:g}", s)
-        _need(0 < depth < x1 - x0, ssrc, "hex_socket.depth_mm",
-              f"0 < depth < shaft length {x1 - x0:g}", depth)
-        hs = HexSocket(end=end, across_flats_mm=s, depth_mm=depth)
+    hs = _hex_socket(shaft, ssrc, segs, ctx)
 
-    pp = _num(shaft, "parting_plane_x_mm", ssrc, "shaft")
-    _need(x0 <= pp <= x1, ssrc, "shaft.parting_plane_x_mm", f"on the shaft [{x0:g}, {x1:g}]", pp)
-    cs = _num(shaft, "clearance_station_x_mm", ssrc, "shaft", required=False)
+    pp = num(shaft, "parting_plane_x_mm", ssrc, "shaft")
+    need(x0 <= pp <= x1, ssrc, "shaft.parting_plane_x_mm", f"on the shaft [{x0:g}, {x1:g}]", pp)
+    cs = num(shaft, "clearance_station_x_mm", ssrc, "shaft", required=False)
     if cs is not None:
-        _need(x0 <= cs <= x1, ssrc, "shaft.clearance_station_x_mm",
+        need(x0 <= cs <= x1, ssrc, "shaft.clearance_station_x_mm",
               f"on the shaft [{x0:g}, {x1:g}]", cs)
 
-    # attachments: shared parts named in use_parts, then the variant's own [[attachments]]
-    parts = merged.get("parts", {})
-    atts: list[Attachment] = []
-    use = merged.get("use_parts", [])
-    usrc = ctx.file_of("use_parts", top)
-    _need(isinstance(use, list) and all(isinstance(u, str) for u in use), usrc, "use_parts",
-          "a list of part names", use)
-    for i, pn in enumerate(use):
-        if pn not in parts:
-            raise InputError(usrc, f"use_parts[{i}]", "one of " + ", ".join(sorted(parts)),
-                             got=pn)
-        psrc = ctx.file_of(f"parts.{pn}", top)
-        atts.append(_attachment(_table(parts[pn], psrc, f"parts.{pn}"), psrc, f"parts.{pn}",
-                                segs, mats, ctx, pn))
-    asrc = ctx.file_of("attachments", top)
-    raw = merged.get("attachments", [])
-    _need(isinstance(raw, list), asrc, "attachments", "a list of [[attachments]] tables", raw)
-    for i, t in enumerate(raw):
-        fld = f"attachments[{i}]"
-        t = _table(t, asrc, fld)
-        an = _str(t, "name", asrc, fld)
-        atts.append(_attachment(t, asrc, fld, segs, mats, ctx, an))
-    anames = [a.name for a in atts]
-    dup = sorted({n for n in anames if anames.count(n) > 1})
-    _need(not dup, asrc, "attachments[*].name", "unique names", dup)
-
-    target = None
-    if "balance" in merged:
-        bsrc = ctx.file_of("balance", top)
-        bt = _table(merged["balance"], bsrc, "balance")
-        _check_keys(bt, {"X2_percent", "mass_kg", "gamma2_mm", "x_T_mm", "m_pos_kg",
-                         "crank_radius_mm"}, bsrc, "balance")
-        _provenance(bt, bsrc, "balance", "balance", ctx)
-        target = BalanceTarget(
-            X2_percent=_num(bt, "X2_percent", bsrc, "balance"),
-            mass_kg=_num(bt, "mass_kg", bsrc, "balance"),
-            gamma2_mm=_num(bt, "gamma2_mm", bsrc, "balance"),
-            x_T_mm=_num(bt, "x_T_mm", bsrc, "balance"),
-            m_pos_kg=_num(bt, "m_pos_kg", bsrc, "balance", default=0.0) or 0.0,
-            crank_radius_mm=_num(bt, "crank_radius_mm", bsrc, "balance", default=0.0) or 0.0)
+    atts = _attachments(merged, segs, mats, ctx, top)
+    target = _balance_target(merged, ctx, top)
 
     v = Variant(
         name=name, description=str(desc), segments=segs, bearings=bearings,
-        attachments=tuple(atts), material=mats[smat], parting_plane_x_mm=pp, hex_socket=hs,
+        attachments=atts, material=mats[smat], parting_plane_x_mm=pp, hex_socket=hs,
         clearance_station_x_mm=cs,
         provenance=Provenance(source=MappingProxyType(dict(ctx.source)),
                               note=MappingProxyType(dict(ctx.note))),
         source_files=tuple(ctx.files), materials=tuple(mats[k] for k in sorted(mats)),
         balance_target=target,
-        clearance_mm=_num(shaft, "clearance_to_crankshaft_mm", ssrc, "shaft", required=False),
+        clearance_mm=num(shaft, "clearance_to_crankshaft_mm", ssrc, "shaft", required=False),
         stock_diameter_mm=stock)
     from shaftfe.solid.plan import prepare
     validate_variant(v)
@@ -661,13 +566,13 @@ BALANCE_MASS_RTOL = 0.02
 
 def _check_balance(v: Variant, t: BalanceTarget, src: str) -> None:
     mp = mass_properties(v)
-    _need(abs(mp.mass_kg - t.mass_kg) <= BALANCE_MASS_RTOL * t.mass_kg, src, "balance.mass_kg",
+    need(abs(mp.mass_kg - t.mass_kg) <= BALANCE_MASS_RTOL * t.mass_kg, src, "balance.mass_kg",
           f"the mass of the parts and shaft, {mp.mass_kg:.4f} kg (within "
           f"{100 * BALANCE_MASS_RTOL:g} %): a part's mass or the stated value is wrong",
           t.mass_kg)
     if t.m_pos_kg > 0 and t.crank_radius_mm > 0:
         x2 = 100.0 * mp.mass_kg * mp.gamma2_mm / (t.m_pos_kg * t.crank_radius_mm)
-        _need(abs(x2 - t.X2_percent) <= BALANCE_X2_TOL_POINTS, src, "balance.X2_percent",
+        need(abs(x2 - t.X2_percent) <= BALANCE_X2_TOL_POINTS, src, "balance.X2_percent",
               f"the parts' X2 = Σ m e / (m_pos R) = {x2:.1f} % (within "
               f"{BALANCE_X2_TOL_POINTS:g} points): a mass or eccentricity is wrong, e.g. "
               "typed in grams or metres", t.X2_percent)

@@ -2,14 +2,15 @@
 
 ``validate_variant(v)`` checks what every analysis assumes: contiguous segments of positive
 length and diameter, a material with E > 0 and −1 < ν < 0.5, unique non-empty names, bearings
-inside the shaft (a width of 0 is a point support: the beam's idealisation) with a symmetric positive-definite 2×2 radial stiffness (a bearing that gives
-no stiffness in some direction leaves the shaft free there: refused as input, in the beam and
-in 3D alike), attachments inside the shaft with mass and eccentricity ≥ 0, keyways of positive
-size, and a hex socket at one end, shorter than the shaft. The loader
-(``shaftfe.model.loader.load_variant``) calls it after parsing; the beam, the solid plan and
-the static model call it on the variant they are given. The rules that need the solid's plan
-(a ring of positive width with a chamfer below a quarter of it, a keyway inside the straight
-part of its segment, a contact band clear of the fillets, the hex socket's corners) are the solid's construction rules: ``shaftfe.solid.plan.prepare``.
+inside the shaft (a width of 0 is a point support: the beam's idealisation) with a symmetric
+positive-definite 2×2 radial stiffness (a bearing that gives no stiffness in some direction
+leaves the shaft free there: refused as input, in the beam and in 3D alike), attachments inside
+the shaft with mass and eccentricity ≥ 0, keyways of positive size, and a hex socket at one
+end, shorter than the shaft. The loader (``shaftfe.model.loader.load_variant``) calls it after
+parsing; the beam, the solid plan and the static model call it on the variant they are given.
+The rules that need the solid's plan (a ring of positive width with a chamfer below a quarter
+of it, a keyway inside the straight part of its segment, a contact band clear of the fillets,
+the hex socket's corners) are the solid's construction rules: ``shaftfe.solid.plan.prepare``.
 
 Each failure is one ``InputError(source, field, allowed, got)`` with the variant's first
 source file as the source.

@@ -30,7 +30,8 @@ from pathlib import Path
 
 from shaftfe.errors import InputError
 from shaftfe.solid.levels import LEVEL_NAMES
-from shaftfe.util.paths import BENCHMARK_JSON, DEFAULT_SPECTRUM, repo_relative
+from shaftfe.static.benchmark import bench_matches, benchmark_errors
+from shaftfe.util.paths import DEFAULT_SPECTRUM, repo_relative
 
 ROTOR_MODELS = ("beam", "solid")
 
@@ -186,7 +187,7 @@ def check_options(o: ReportOptions) -> None:
                          got=o.campbell_step_rpm)
     if not (1 <= o.modes <= 50):
         raise InputError("command line", "--modes", "1..50", got=o.modes)
-    from shaftfe.commands.fatigue import MEAN_STRESS, check_life_settings
+    from shaftfe.fatigue.run import MEAN_STRESS, check_life_settings
     check_life_settings(o.design_life_blocks, o.speed_kmh)
     if o.mean_stress not in MEAN_STRESS:
         raise InputError("command line", "--mean-stress", " | ".join(MEAN_STRESS),
@@ -206,7 +207,7 @@ def solid_rotor_available() -> bool:
 
 def _inputs(o: ReportOptions) -> tuple:
     from shaftfe.balance.engines import load_engine
-    from shaftfe.commands.fatigue import read_spectrum
+    from shaftfe.fatigue.run import read_spectrum
     from shaftfe.fatigue.sn import load_material
     from shaftfe.model.loader import load_variant
 
@@ -300,12 +301,13 @@ def _balancing(engine, variant, seedmod) -> tuple[dict, object, object, object]:
 
 def _beam_check(variant) -> tuple[dict, object]:
     """Inventor-style beam (rigid supports, seed load case) at 10 000 and 7000 rpm."""
-    from shaftfe.beam import model as beam
+    from shaftfe.beam.model import build_model
+    from shaftfe.beam.solve import solve
 
     v = variant.with_seed_load_case()
     rpms = [10_000.0, 7_000.0]
-    timo = beam.solve(beam.build_model(v, rigid_supports=True), rpms)
-    eb = beam.solve(beam.build_model(v, rigid_supports=True, shear_deformation=False), rpms)
+    timo = solve(build_model(v, rigid_supports=True), rpms)
+    eb = solve(build_model(v, rigid_supports=True, shear_deformation=False), rpms)
     out = {}
     for label, res in (("timoshenko", timo), ("euler_bernoulli", eb)):
         out[label] = [{"rpm": r.rpm,
@@ -464,7 +466,7 @@ def beam_mode_fields(model, res, xyz, speed_index: int = 0) -> dict:
     ``mode_<k>_<f>Hz`` (docs/FIELDS.md). Empty for a model without a beam."""
     import numpy as np
 
-    from shaftfe.beam.model import NDOF, RX, RY, RZ, UX, UY, UZ
+    from shaftfe.beam.elements import NDOF, RX, RY, RZ, UX, UY, UZ
 
     beam = getattr(model, "beam", None)
     if beam is None or res.vectors is None:
@@ -489,55 +491,6 @@ def beam_mode_fields(model, res, xyz, speed_index: int = 0) -> dict:
 
 
 # --------------------------------------------------------------------------- errors
-
-def benchmark_errors(level: str, order: int = 2, path: Path = BENCHMARK_JSON) -> dict | None:
-    """Relative errors of ``level`` against the Richardson reference of the static benchmark
-    (reports/benchmarks/static.json: x2_57, springs, all parts, 10 000 rpm; q* from the P2
-    default and fine runs, fillet size ratio r, p = 2 for stress and 3 for deflection: the
-    benchmark's own rule). None when the file or the runs are missing."""
-    import json
-
-    from shaftfe.solid.levels import LEVELS
-    try:
-        rows = json.loads(Path(path).read_text())
-    except (OSError, ValueError):
-        return None
-
-    def one(lv):
-        return next((r for r in rows if r.get("level") == lv and r.get("order") == 2), None)
-    d, f, me = one("default"), one("fine"), next(
-        (r for r in rows if r.get("level") == level and r.get("order") == order), None)
-    if d is None or f is None or me is None:
-        return None
-    r = LEVELS["default"].k_fillet / LEVELS["fine"].k_fillet
-    if r <= 1:
-        return None
-    out = {"source": repo_relative(path), "level": level, "order": order, "dofs": me.get("dofs")}
-    for k, p in (("collar", 2), ("bsg", 2), ("defl", 3)):
-        q = f[k] + (f[k] - d[k]) / (r ** p - 1.0)
-        out[k] = {"level_value": me[k], "reference": q, "rel_error": me[k] / q - 1.0}
-    return out
-
-
-def level_corrected_life(ref, ff, history, material, bench: dict | None, n_dofs: int,
-                         **settings) -> tuple[dict, dict] | None:
-    """The level's measured peak-stress error (``bench`` from ``benchmark_errors``: the collar
-    fillet) and the hot spot's life and safety factor with its stress corrected by it
-    (``fatigue.field.hot_spot_with_factor``); None where the benchmark does not cover this
-    level's mesh. Shared by the report and ``shaftfe fatigue``."""
-    from shaftfe.fatigue.field import hot_spot_with_factor
-    if bench is None or not bench_matches(bench, n_dofs):
-        return None
-    err = float(bench["collar"]["rel_error"])
-    return ({"level": bench["level"], "stress_rel_error": err, "source": bench["source"]},
-            hot_spot_with_factor(ref, ff, history, material, 1.0 / (1.0 + err), **settings))
-
-
-def bench_matches(bench: dict | None, n_dofs: int, tol: float = 0.10) -> bool:
-    """The benchmark was run on this level's current mesh: its dof count (all-parts load case,
-    whose seats are split a little differently) within ``tol`` of this run's."""
-    return bool(bench) and bool(bench.get("dofs")) and abs(bench["dofs"] / n_dofs - 1) <= tol
-
 
 def _error_estimates(report_static: dict, res, ff_out: dict, scaled: dict | None,
                      bench: dict | None, camp: dict, beam_check: dict) -> list[ErrorEstimate]:
@@ -810,7 +763,8 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         beam_out, _ = _beam_check(variant)
     with prog.stage("static (mesh + one solve)"):
         from shaftfe.static import cache as static_cache
-        from shaftfe.static.solve import StaticOptions, solve_static
+        from shaftfe.static.model import StaticOptions
+        from shaftfe.static.solve import solve_static
         sopts = StaticOptions(level=o.level, seed_load_case=o.seed_load_case)
         res = solve_static(variant, list(o.design_rpm), sopts, cache_dir=o.cache_dir)
         ref = static_cache.store(variant, sopts, res, o.cache_dir)   # the fatigue input
@@ -818,8 +772,8 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         with prog.stage(ERROR_STAGE):
             import dataclasses
 
-            from shaftfe.static.solve import _estimate_error
-            ee = _estimate_error(res, variant, sopts, o.cache_dir,
+            from shaftfe.static.error import estimate_error
+            ee = estimate_error(res, variant, sopts, o.cache_dir,
                                  other_level=OTHER_LEVEL[o.level])
             res = dataclasses.replace(res, error_estimate=ee)
     st = _static_summary(res, variant)
@@ -829,6 +783,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         life = {"theory": o.mean_stress, "design_life_blocks": o.design_life_blocks,
                 "speed_kmh": o.speed_kmh}
         bench = benchmark_errors(o.level) if not o.estimate_error else None
+        from shaftfe.fatigue.run import level_corrected_life
         corrected = level_corrected_life(ref, ff, history, material, bench, res.n_dofs, **life)
         scaled = corrected[1] if corrected else None
         if scaled is None and res.error_estimate:
@@ -851,8 +806,8 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         modes_vtu = out / "modes.vtu"                  # mode shapes: a file of their own
         modes = beam_mode_fields(rotor_model, cres, res.mesh.mesh.doflocs)
         if o.rotor_model == "solid":                   # 3D modes on the rotor's own mesh
-            from shaftfe.rotordynamics import solid_rotor as rotor_solid
-            rotor_solid.write_modes_vtu(rotor_model, cres, modes_vtu)
+            from shaftfe.rotordynamics.modes_vtu import write_modes_vtu
+            write_modes_vtu(rotor_model, cres, modes_vtu)
         else:                                          # beam modes on the static mesh
             export.write_fields_vtu(res.mesh.mesh, modes_vtu, modes)
     with prog.stage("3D pictures"):
@@ -907,7 +862,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
 def _pictures(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> list[tuple]:
     import numpy as np
 
-    from shaftfe.io import view
+    from shaftfe.io.render import render
 
     excl = np.flatnonzero(ff.excluded_mask)
     size = (1000, 440)
@@ -925,8 +880,8 @@ def _pictures(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> list[tup
          "outside the singular points."),
     )
     for name, fld, warp, title, caption in shots:
-        res = view.render(vtu, field=fld, warp=warp, screenshot=fig_dir / f"{name}.png",
-                          window_size=size, off_screen=True, hot_exclude=excl, zoom=1.9)
+        res = render(vtu, field=fld, warp=warp, screenshot=fig_dir / f"{name}.png",
+                     window_size=size, off_screen=True, hot_exclude=excl, zoom=1.9)
         if res.hot is not None:
             unit = f" {res.field.unit}" if res.field.unit not in ("-", "id") else ""
             caption += f" Marked: {res.hot.value:.4g}{unit} at x = {res.hot.xyz[0]:.1f} mm."
@@ -941,7 +896,7 @@ def _plots(o, out, fig_dir, variant, fres, sw, res, ff, history, material, cres,
     from shaftfe.fatigue import plots as fatigue_plots
     from shaftfe.fatigue.counting import rainflow_matrix
     from shaftfe.io import vtu as export
-    from shaftfe.rotordynamics.kernels import plot_campbell
+    from shaftfe.rotordynamics.plots import plot_campbell
     from shaftfe.util.atomic import write_atomic
 
     plots.plot_forces(fres, fig_dir / "balance_forces.png")

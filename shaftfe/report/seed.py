@@ -1,6 +1,6 @@
 """The seed figures the assessment report compares against, in one place (SPEC.md §1-§4).
 
-Fatigue figures live in ``shaftfe.commands.fatigue.SEED`` (the fatigue command prints them too)
+Fatigue figures live in ``shaftfe.fatigue.run.SEED`` (the fatigue command prints them too)
 and the whole-balancer figures of each variant in its file (``Variant.balance_target``, tagged
 ``seed``); this module re-exports the former and holds the rest. Every entry names its source.
 Stdlib only.
@@ -8,7 +8,7 @@ Stdlib only.
 
 from __future__ import annotations
 
-from shaftfe.commands.fatigue import SEED as FATIGUE
+from shaftfe.fatigue.run import SEED as FATIGUE
 
 __all__ = ["BALANCING", "CAMPBELL", "CRANK_C_X", "FATIGUE", "SOURCES", "STATIC", "VARIANT"]
 

@@ -84,18 +84,18 @@ class _Solid:
         return solid_rotor.build_solid_rotor(variant, opts, cache_dir=o.cache_dir)
 
     def sweep(self, model, rpms, n_modes, orders, keep_vectors):
-        from shaftfe.rotordynamics import solid_rotor
-        prov = solid_rotor.BasisProvider(model)
-        return solid_rotor.campbell(model, rpms, n_modes, orders=orders,
+        from shaftfe.rotordynamics import solid_modal
+        prov = solid_modal.BasisProvider(model)
+        return solid_modal.campbell(model, rpms, n_modes, orders=orders,
                                     keep_vectors=keep_vectors, provider=prov), prov
 
     def verify(self, model, res, provider):
-        from shaftfe.rotordynamics import solid_rotor
-        return solid_rotor.verify(model, res, provider=provider)
+        from shaftfe.rotordynamics import solid_modal
+        return solid_modal.verify(model, res, provider=provider)
 
     def support_energy_share(self, model, vecs):
-        from shaftfe.rotordynamics import solid_rotor
-        return solid_rotor.support_energy_share(model, vecs)
+        from shaftfe.rotordynamics import solid_modal
+        return solid_modal.support_energy_share(model, vecs)
 
 
 KINDS: dict[str, RotorKind] = {"beam": _Beam(), "solid": _Solid()}

@@ -54,17 +54,12 @@ from types import MappingProxyType
 
 import numpy as np
 
+from shaftfe.beam import elements
 from shaftfe.beam import model as beam
-from shaftfe.beam.model import NDOF, RX, RY, RZ, UX, UY, UZ
+from shaftfe.beam.elements import NDOF, RX, RY, RZ, UX, UY, UZ
 from shaftfe.errors import InputError
-from shaftfe.rotordynamics.kernels import (
-    TWO_PI,
-    CampbellResult,
-    Labelling,
-    full_qep,
-    rpm_to_rad_s,
-    sweep,
-)
+from shaftfe.rotordynamics.campbell import CampbellResult, sweep
+from shaftfe.rotordynamics.kernels import TWO_PI, Labelling, full_qep, rpm_to_rad_s
 
 _S = np.array([1.0, -1.0, 1.0, -1.0])
 _XY = np.array([UY, RZ, NDOF + UY, NDOF + RZ])
@@ -73,14 +68,14 @@ _XZ = np.array([UZ, RY, NDOF + UZ, NDOF + RY])
 
 # --------------------------------------------------------------------------- elements
 
-def element_gyroscopic(L, rho, E, G, sec: beam.Sections) -> np.ndarray:
+def element_gyroscopic(L, rho, E, G, sec: elements.Sections) -> np.ndarray:
     """(n, 12, 12) gyroscopic matrix per unit spin (rad/s) of IIE Timoshenko shaft elements.
 
     Skew-symmetric; couples the two bending planes through 2× the rotary-inertia matrix with
     the polar area moment I_p = 2 I (exact for the isotropic sections used here)."""
     L = np.asarray(L, dtype=float)
     phi = 12.0 * E * sec.I / (sec.kappa * G * sec.A * L**2)
-    R = beam.timoshenko_bending_mass(L, np.zeros_like(L), rho * 2.0 * sec.I, phi)
+    R = elements.timoshenko_bending_mass(L, np.zeros_like(L), rho * 2.0 * sec.I, phi)
     g = np.zeros((L.size, 2 * NDOF, 2 * NDOF))
     g[:, _XY[:, None], _XZ[None, :]] = R * _S[None, None, :]
     g[:, _XZ[:, None], _XY[None, :]] = -_S[None, :, None] * R

@@ -1,5 +1,13 @@
 """Rotor dynamics of the 3D solid shaft (P2 tets): mass, gyroscopics, rigid attachments,
-bearings, and the Campbell sweep in a reduced modal basis (kernels in ``shaftfe.rotordynamics.kernels``).
+bearings, and the Campbell sweep in a reduced modal basis (kernels in
+``shaftfe.rotordynamics.kernels``).
+
+This module builds the model (``build_solid_rotor``: matrices, attachment bodies, support
+terms); its docstring documents the whole solid rotor path, whose code is split by stage in
+``shaftfe.rotordynamics``: ``solid_solver`` (``ShiftedSolver``: the shifted factorisation with
+the support terms), ``prestress`` (centrifugal prestress, K_g), ``solid_modal``
+(``BasisProvider``, ``campbell``, ``modal``, ``full_qep``, ``verify``) and ``modes_vtu`` (mode
+shapes as VTU).
 
 Equation of motion (stationary frame, spin Ω about +x):
 
@@ -28,8 +36,8 @@ Matrices
   same expansion (½ Ω² ∫ ρ |∂u/∂θ|²) are of the order of the centrifugal geometric terms and
   are dropped with them, or kept with them (option ``stress_stiffening``, below). Check:
   projected on the rigid tilts of a body, G gives G[θ_y, θ_z] = ∫ ρ (y² + z²) dV = I_p, the
-  rigid-disk gyroscopic term of ``shaftfe.rotordynamics.beam_rotor`` (tested). Not valid for a non-axisymmetric
-  body (keyways, the hex socket: small, their mass is < 1 % of the shaft).
+  rigid-disk gyroscopic term of ``shaftfe.rotordynamics.beam_rotor`` (tested). Not valid for a
+  non-axisymmetric body (keyways, the hex socket: small, their mass is < 1 % of the shaft).
 * Bearings: ``shaftfe.fe.supports`` exactly as in the static model (RBE3 remote point at the seat
   centre, 2×2 radial spring, θ_x held at every bearing ("all") and u_x at the axial one as
   hard rows, tilt free); optional isotropic damping c on the remote point's (u_y, u_z).
@@ -109,8 +117,8 @@ dense capacitance solve per right-hand side. Shift σ = −2π f_s (real, f_s = 
 1. Basis (once): the lowest undamped modes by shift-invert Lanczos (``eigsh``, OPinv = the
    Woodbury operator with hard rows, so the modes satisfy H q = 0), mass-normalised; cached
    and reused when the basis grows.
-2. Per speed: ``shaftfe.rotordynamics.kernels.sweep`` (projected quadratic eigenproblem, MAC tracking,
-   whirl labels, critical speeds), basis size chosen by the convergence test there.
+2. Per speed: ``shaftfe.rotordynamics.campbell.sweep`` (projected quadratic eigenproblem, MAC
+   tracking, whirl labels, critical speeds), basis size chosen by the convergence test there.
 3. ``verify``: the full-size quadratic eigenproblem at the top speed (shift-invert Arnoldi on
    the companion linearisation, one nonsymmetric factorisation of K + σ(C + ΩG) + σ² M with
    the same low-rank terms).
@@ -118,7 +126,7 @@ dense capacitance solve per right-hand side. Shift σ = −2π f_s (real, f_s = 
 Labels: each mode is mapped to beam-like section motions (least-squares rigid motion of x
 slices, with diag(M) weights, plus the attachment bodies): u_x → axial, θ_x → torsional,
 (u_y, u_z, θ_y, θ_z) → lateral; the whirl ratio uses the sections' (u_y, u_z) and
-(θ_z, −θ_y) pairs (``campbell.Labelling.transform``).
+(θ_z, −θ_y) pairs (``kernels.Labelling.transform``).
 
 Units: mm, N, t, s. Heavy imports (scikit-fem) inside functions.
 """
@@ -127,15 +135,13 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from types import MappingProxyType
 
 import numpy as np
 
-from shaftfe.errors import InputError, SolverError
-from shaftfe.fe.lowrank import LowRankSolver
-from shaftfe.rotordynamics.kernels import TWO_PI, CampbellResult, Labelling, ModalBasis, sweep
+from shaftfe.errors import InputError
+from shaftfe.rotordynamics.kernels import Labelling
 
 COUPLINGS = ("rigid", "distributing")
 
@@ -361,10 +367,7 @@ def build_solid_rotor(variant, options: SolidOptions = SolidOptions(), *, shaft_
     ``support_faces``: bearing name → face group (default ``bearing:<name>``; e.g. an end face
     for a validation model). ``supported=False``: no bearings (free-free validation models).
     ``attachments=False``: the bare shaft."""
-    import scipy.sparse as sp
-
     from shaftfe.fe import assembly as fem
-    from shaftfe.fe import supports
 
     _check_options(options)
     if shaft_mesh is None:
@@ -377,74 +380,22 @@ def build_solid_rotor(variant, options: SolidOptions = SolidOptions(), *, shaft_
     Ms, Ss = mass_and_gyro(m, mat.density_t_mm3)
     M = vector_matrix(Ms)
     G = vector_matrix(Ss - Ss.T)
-    N3 = K.shape[0]
     bodies = attachment_bodies(variant, m) if attachments else []
     notes = ["spin softening: not applicable in the stationary frame (rotating-frame term)"]
     T = None
     body_rows = []          # (6, n_q) rows giving each body's motion, for the labels
     body_terms = []         # distributing coupling: low-rank mass/gyroscopic terms
     if bodies and options.coupling == "rigid":
-        slave_of = np.full(N3 // 3, -1)
-        for k, b in enumerate(bodies):
-            nodes = fem.face_nodes(m, b.facets)
-            if np.any(slave_of[nodes] >= 0):
-                raise InputError(f"variant {variant.name}", "attachment seats",
-                                 "seats that share no mesh node", got=b.name)
-            slave_of[nodes] = k
-        keep = np.flatnonzero(slave_of < 0)
-        keep_dofs = (3 * keep[:, None] + np.arange(3)).ravel()
-        n_q = keep_dofs.size + 6 * len(bodies)
-        rows, cols, vals = [keep_dofs], [np.arange(keep_dofs.size)], [np.ones(keep_dofs.size)]
-        for k, b in enumerate(bodies):
-            nodes = np.flatnonzero(slave_of == k)
-            Tn = _rigid_T(m.doflocs[:, nodes], np.array([b.x_mm, 0.0, 0.0]))   # (3n, 6)
-            d = (3 * nodes[:, None] + np.arange(3)).ravel()
-            c0 = keep_dofs.size + 6 * k
-            rows.append(np.repeat(d, 6))
-            cols.append(np.tile(c0 + np.arange(6), d.size))
-            vals.append(Tn.ravel())
-        T = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                          shape=(N3, n_q))
-        Tt = T.T.tocsr()
-        K = (Tt @ K @ T).tocsr()
-        M = (Tt @ M @ T).tolil()
-        G = (Tt @ G @ T).tolil()
-        for k, b in enumerate(bodies):
-            idx = keep_dofs.size + 6 * k + np.arange(6)
-            M[np.ix_(idx, idx)] = M[np.ix_(idx, idx)].toarray() + b.M6
-            G[np.ix_(idx, idx)] = G[np.ix_(idx, idx)].toarray() + b.G6
-            Rb = np.zeros((6, n_q))
-            Rb[:, idx] = np.eye(6)
-            body_rows.append(Rb)
-        M, G = M.tocsr(), G.tocsr()
+        T, K, M, G, body_rows = _tie_rigidly(variant, m, bodies, K, M, G)
         notes.append(f"attachments: {len(bodies)} rigid bodies tied rigidly (RBE2-like) to "
                      "their seat faces (stiffen the seats like bonded hubs)")
     elif bodies:
-        for b in bodies:
-            R6 = fem.rigid_rows(m, b.facets, (b.x_mm, 0.0, 0.0))
-            R6[np.abs(R6) < 1e-14 * np.abs(R6).max()] = 0.0
-            body_terms.append(BodyTerm(b.name, R6, b.M6, b.G6))
-            body_rows.append(R6)
+        body_terms, body_rows = _distributing_bodies(m, bodies)
         notes.append(f"attachments: {len(bodies)} rigid bodies on distributing (RBE3-like) "
                      "couplings to their seat faces (no seat stiffening)")
     terms = []
     if supported:
-        if not variant.bearings:
-            raise InputError(f"variant {variant.name}", "bearings", "at least one bearing",
-                             got=0)
-        for brg in variant.bearings:
-            hold = options.hold_twist == "all" or (options.hold_twist == "axial" and brg.axial)
-            grp = (support_faces or {}).get(brg.name)
-            c = supports.couple_bearing(m, brg, rigid=options.rigid_supports, hold_twist=hold,
-                                        group=grp)
-            for blk in supports.blocks(c):
-                R = blk.R if T is None else np.asarray((T.T @ blk.R.T).T)
-                Cd = None
-                if blk.C is not None and blk.labels == ("u_y", "u_z") \
-                        and options.bearing_damping > 0:
-                    Cd = options.bearing_damping * np.eye(2)
-                terms.append(LowRank(blk.bearing, blk.labels, R,
-                                     None if blk.C is None else np.asarray(blk.C, float), Cd))
+        terms = _support_terms(variant, m, options, T, support_faces)
         if options.bearing_damping > 0:
             notes.append("bearing damping on: frequencies are damped natural frequencies")
         notes.append(f"bearings: RBE3 remote points, θ_x held at {options.hold_twist} "
@@ -454,6 +405,93 @@ def build_solid_rotor(variant, options: SolidOptions = SolidOptions(), *, shaft_
     return SolidRotor(variant.name, variant, shaft_mesh, options, K, M, G, tuple(terms), T,
                       tuple(bodies), lab, tuple(body_terms), tuple(notes),
                       time.perf_counter() - t0)
+
+
+def _tie_rigidly(variant, m, bodies: list[Body], K, M, G):
+    """Rigid (RBE2-like) coupling: every seat node follows its body (master-slave elimination,
+    q = [free nodes, 6 dofs per body]). Returns the map T (mesh dofs × q), K, M, G on q (with
+    the bodies' mass and gyroscopic blocks) and each body's (6, n_q) motion rows."""
+    import scipy.sparse as sp
+
+    from shaftfe.fe import assembly as fem
+
+    N3 = K.shape[0]
+    body_rows = []
+    slave_of = np.full(N3 // 3, -1)
+    for k, b in enumerate(bodies):
+        nodes = fem.face_nodes(m, b.facets)
+        if np.any(slave_of[nodes] >= 0):
+            raise InputError(f"variant {variant.name}", "attachment seats",
+                             "seats that share no mesh node", got=b.name)
+        slave_of[nodes] = k
+    keep = np.flatnonzero(slave_of < 0)
+    keep_dofs = (3 * keep[:, None] + np.arange(3)).ravel()
+    n_q = keep_dofs.size + 6 * len(bodies)
+    rows, cols, vals = [keep_dofs], [np.arange(keep_dofs.size)], [np.ones(keep_dofs.size)]
+    for k, b in enumerate(bodies):
+        nodes = np.flatnonzero(slave_of == k)
+        Tn = _rigid_T(m.doflocs[:, nodes], np.array([b.x_mm, 0.0, 0.0]))   # (3n, 6)
+        d = (3 * nodes[:, None] + np.arange(3)).ravel()
+        c0 = keep_dofs.size + 6 * k
+        rows.append(np.repeat(d, 6))
+        cols.append(np.tile(c0 + np.arange(6), d.size))
+        vals.append(Tn.ravel())
+    T = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                      shape=(N3, n_q))
+    Tt = T.T.tocsr()
+    K = (Tt @ K @ T).tocsr()
+    M = (Tt @ M @ T).tolil()
+    G = (Tt @ G @ T).tolil()
+    for k, b in enumerate(bodies):
+        idx = keep_dofs.size + 6 * k + np.arange(6)
+        M[np.ix_(idx, idx)] = M[np.ix_(idx, idx)].toarray() + b.M6
+        G[np.ix_(idx, idx)] = G[np.ix_(idx, idx)].toarray() + b.G6
+        Rb = np.zeros((6, n_q))
+        Rb[:, idx] = np.eye(6)
+        body_rows.append(Rb)
+    M, G = M.tocsr(), G.tocsr()
+    return T, K, M, G, body_rows
+
+
+def _distributing_bodies(m, bodies: list[Body]) -> tuple[list[BodyTerm], list[np.ndarray]]:
+    """Distributing (RBE3-like) coupling: each body moves with its seat's area-weighted rigid
+    fit R q; returns its low-rank mass/gyroscopic terms and its (6, n_dof) motion rows."""
+    from shaftfe.fe import assembly as fem
+
+    body_terms, body_rows = [], []
+    for b in bodies:
+        R6 = fem.rigid_rows(m, b.facets, (b.x_mm, 0.0, 0.0))
+        R6[np.abs(R6) < 1e-14 * np.abs(R6).max()] = 0.0
+        body_terms.append(BodyTerm(b.name, R6, b.M6, b.G6))
+        body_rows.append(R6)
+    return body_terms, body_rows
+
+
+def _support_terms(variant, m, options: SolidOptions, T,
+                   support_faces: dict | None) -> list[LowRank]:
+    """The bearings' low-rank terms on q (``shaftfe.fe.supports``: RBE3 remote point, springs
+    or hard rows, θ_x held as ``options.hold_twist`` says; damping on the remote point's
+    (u_y, u_z)), mapped through T when the attachments are tied rigidly."""
+    from shaftfe.fe import supports
+
+    if not variant.bearings:
+        raise InputError(f"variant {variant.name}", "bearings", "at least one bearing",
+                         got=0)
+    terms = []
+    for brg in variant.bearings:
+        hold = options.hold_twist == "all" or (options.hold_twist == "axial" and brg.axial)
+        grp = (support_faces or {}).get(brg.name)
+        c = supports.couple_bearing(m, brg, rigid=options.rigid_supports, hold_twist=hold,
+                                    group=grp)
+        for blk in supports.blocks(c):
+            R = blk.R if T is None else np.asarray((T.T @ blk.R.T).T)
+            Cd = None
+            if blk.C is not None and blk.labels == ("u_y", "u_z") \
+                    and options.bearing_damping > 0:
+                Cd = options.bearing_damping * np.eye(2)
+            terms.append(LowRank(blk.bearing, blk.labels, R,
+                                 None if blk.C is None else np.asarray(blk.C, float), Cd))
+    return terms
 
 
 def _labelling(mesh, Ms, T, body_rows, bodies, M) -> Labelling:
@@ -512,385 +550,3 @@ def _labelling(mesh, Ms, T, body_rows, bodies, M) -> Labelling:
     pz = np.concatenate([np.flatnonzero(kind == 2), np.flatnonzero(kind == 5)])
     return Labelling(groups=groups, pair_y=py, pair_z=pz, weights=np.array(wts),
                      transform=Tr)
-
-
-# --------------------------------------------------------------------------- solves
-
-class ShiftedSolver:
-    """Solves (K_tot + σ D + σ² M) x = b with the hard rows H x = 0 (D = C + Ω G), by one
-    sparse factorisation of B = K + σ Ω G + σ² M (+ σ C of nothing: damping is low rank)
-    and a Woodbury correction with the support terms. ``K_extra``: a sparse stiffness added
-    to K (the prestress Ω² K_g of ``full_qep``)."""
-
-    def __init__(self, rotor: SolidRotor, sigma: float, Omega: float = 0.0,
-                 method: str | None = None, K_extra=None):
-        from shaftfe.fe import solvers
-
-        t0 = time.perf_counter()
-        B = (rotor.K_sparse + (sigma * sigma) * rotor.M_sparse).tocsr()
-        if K_extra is not None:
-            B = (B + K_extra).tocsr()
-        method = rotor.options.solver if method is None else method
-        if Omega != 0.0 and sigma != 0.0:
-            B = (B + (sigma * Omega) * rotor.G_sparse).tocsr()
-            self._fac = solvers.factorize_unsymmetric(B, method)
-        else:
-            self._fac = solvers.factorize(B, _auto_method(method, B.shape[0]))
-        self.name = self._fac.name
-        self.factor_seconds = time.perf_counter() - t0
-        U, Cinv = [], []
-        if sigma != 0.0:
-            for b in rotor.body_terms:          # σ² M_b + σ Ω G_b on the body's rows
-                U.append(b.R.T)
-                Cinv.append(np.linalg.inv(sigma * sigma * b.M6 + sigma * Omega * b.G6))
-        for t in rotor.terms:
-            U.append(t.R.T)
-            r = t.R.shape[0]
-            if t.C is None:
-                Cinv.append(np.zeros((r, r)))
-            else:
-                Ct = t.C + (sigma * t.Cd if t.Cd is not None else 0.0)
-                Cinv.append(np.linalg.inv(Ct))
-        self.n = B.shape[0]
-        self.n_solves = 0
-        if U:
-            from scipy.linalg import block_diag
-
-            self._lr = LowRankSolver(self._fac, np.hstack(U), block_diag(*Cinv),
-                                     hint="a support is missing or redundant")
-            self.cond_S = self._lr.cond_S
-        else:
-            self._lr = None
-            self.cond_S = 1.0
-        self.seconds = time.perf_counter() - t0
-
-    def solve(self, b):
-        b = np.asarray(b)
-        if np.iscomplexobj(b):
-            return self.solve(b.real) + 1j * self.solve(b.imag)
-        self.n_solves += 1 if b.ndim == 1 else b.shape[1]
-        y = self._fac.solve(b)
-        if self._lr is None:
-            return y
-        return self._lr.correct(y.reshape(self.n, -1))[0].reshape(y.shape)
-
-
-def _auto_method(method: str, n: int) -> str:
-    """``auto`` for the symmetric factorisation: SuperLU. The basis needs ~3 m single-vector
-    solves after one factorisation, and PARDISO's per-solve cost dominates (measured on x2_57
-    coarse, 70k dofs: PARDISO 3.3 s factorisation + 0.17 s per solve on an idle machine,
-    7.1 s + 1.4 s per solve at load 10; SuperLU 8-15 s + 0.05-0.3 s;
-    reports/benchmarks/rotor_solid.md). The nonsymmetric factorisation of ``verify`` uses
-    PARDISO when installed (159 s vs 274 s at load 10)."""
-    return "superlu" if method == "auto" else method
-
-
-class BasisProvider:
-    """Lowest undamped modes by shift-invert Lanczos, one factorisation, cached: asking for
-    m ≤ the modes already computed slices them."""
-
-    def __init__(self, rotor: SolidRotor, solver: ShiftedSolver | None = None,
-                 sigma: float | None = None):
-        self.rotor = rotor
-        self.sigma = -TWO_PI * rotor.options.shift_hz if sigma is None else sigma
-        self.solver = solver or ShiftedSolver(rotor, self.sigma)
-        self._basis: ModalBasis | None = None
-        self._prestress: Prestress | None = None
-        self.eig_seconds = 0.0
-
-    def prestress(self) -> Prestress:
-        """The centrifugal prestress on this provider's factorisation (computed once)."""
-        if self._prestress is None:
-            self._prestress = centrifugal_prestress(self.rotor, self.solver)
-        return self._prestress
-
-    def Kg(self, rotor: SolidRotor | None = None):
-        """The speed-squared stiffness K_g if ``rotor``'s (default: this provider's rotor's)
-        ``stress_stiffening`` asks for it, else None."""
-        on = (rotor or self.rotor).options.stress_stiffening
-        return self.prestress().Kg if on else None
-
-    def __call__(self, m: int) -> ModalBasis:
-        if self._basis is not None and self._basis.omega.size >= m:
-            return ModalBasis(np.ascontiguousarray(self._basis.Phi[:, :m]),
-                              self._basis.omega[:m])
-        from scipy.sparse.linalg import LinearOperator, eigsh
-
-        t0 = time.perf_counter()
-        r = self.rotor
-        n = r.n_dof
-        op = LinearOperator((n, n), matvec=self.solver.solve, dtype=float)
-        lam_s = -self.sigma**2
-        v0 = np.random.default_rng(0).standard_normal(n)   # reproducible (ARPACK's is random)
-        w2, Phi = eigsh(r.K, k=m, M=r.M, sigma=lam_s, which="LM", OPinv=op, tol=1e-12, v0=v0)
-        order = np.argsort(w2)
-        w2, Phi = w2[order], Phi[:, order]
-        mm = np.einsum("ij,ij->j", Phi, np.asarray(r.M @ Phi))
-        Phi = Phi / np.sqrt(mm)
-        self._basis = ModalBasis(Phi=Phi, omega=np.sqrt(np.clip(w2, 0.0, None)))
-        self.eig_seconds += time.perf_counter() - t0
-        return self._basis
-
-    def residuals(self) -> np.ndarray | None:
-        """(K + σ² M)⁻¹ Rᵀ of the damped rows (static-like residual vectors for damping)."""
-        R = [t.R for t in self.rotor.terms if t.Cd is not None]
-        if not R:
-            return None
-        return self.solver.solve(np.vstack(R).T)
-
-
-# --------------------------------------------------------------------------- prestress
-
-def geometric_order(mesh) -> int:
-    """Quadrature order of the geometric stiffness: σ⁰ ∂φ_a ∂φ_b is cubic on a straight P2
-    tet (each factor linear), constant on P1."""
-    from shaftfe.fe import assembly as fem
-    return 3 if fem.is_quadratic(mesh) else 1
-
-
-def quadrature_stress(mesh, u: np.ndarray, E: float, nu: float,
-                      intorder: int | None = None) -> np.ndarray:
-    """σ = λ tr ε I + 2 μ ε at the quadrature points (ne, nq, 3, 3) of the displacement u
-    (mesh dofs, interleaved), ε = sym ∇u, ∂_j u_i = Σ_a u_ai ∂_j φ_a."""
-    from shaftfe.fe import assembly as fem
-
-    intorder = geometric_order(mesh) if intorder is None else intorder
-    dN, _ = fem.physical_gradients(mesh, intorder)                 # (ne, nq, nloc, 3)
-    ue = np.asarray(u, float).reshape(-1, 3)[fem.element_nodes(mesh).T]   # (ne, nloc, 3)
-    grad = np.einsum("eai,eqaj->eqij", ue, dN)                     # ∂_j u_i
-    eps = 0.5 * (grad + grad.transpose(0, 1, 3, 2))
-    lam, mu = fem.lame(E, nu)
-    tr = np.trace(eps, axis1=2, axis2=3)
-    return 2.0 * mu * eps + (lam * tr)[:, :, None, None] * np.eye(3)
-
-
-def geometric_stiffness(mesh, stress: np.ndarray, intorder: int | None = None):
-    """Scalar geometric (initial-stress) stiffness (S_σ)_ab = ∫ σ⁰_ij ∂_i φ_a ∂_j φ_b dV
-    (N × N sparse CSR) of a prestress given at the quadrature points of order ``intorder``
-    (default ``geometric_order``): shape (ne, nq, 3, 3), or anything that broadcasts to it
-    (a constant 3 × 3 tensor). The vector matrix is ``vector_matrix(S_σ)``."""
-    from shaftfe.fe import assembly as fem
-
-    intorder = geometric_order(mesh) if intorder is None else intorder
-    dN, wdx = fem.physical_gradients(mesh, intorder)                 # (ne, nq, nloc, 3)
-    S = np.broadcast_to(np.asarray(stress, float), (*dN.shape[:2], 3, 3))
-    sdN = np.einsum("eqij,eqbj->eqbi", S * wdx[:, :, None, None], dN)    # w σ⁰ ∂φ_b
-    Ke = np.einsum("eqai,eqbi->eab", dN, sdN)
-    return fem.assemble_blocks(mesh, Ke, 1)
-
-
-def convective_matrix(mesh, density: float):
-    """Scalar A_θ = ∫ ρ ∂_θ φ_a ∂_θ φ_b dV, ∂_θ = −z ∂_y + y ∂_z (order 4: exact on straight
-    P2 tets), the companion of the prestress in the stationary frame (module docstring)."""
-    from skfem.quadrature import get_quadrature
-
-    from shaftfe.fe import assembly as fem
-
-    order = 4 if fem.is_quadratic(mesh) else 2
-    e = fem.scalar_element(mesh)
-    X, _ = get_quadrature(mesh.refdom, order)
-    phi = np.array([e.lbasis(X, a)[0] for a in range(e.doflocs.shape[0])])   # (nloc, nq)
-    dN, wdx = fem.physical_gradients(mesh, order)
-    xq = np.einsum("iae,aq->eqi", mesh.doflocs[:, fem.element_nodes(mesh)], phi)
-    dth = -xq[:, :, 2:3] * dN[..., 1] + xq[:, :, 1:2] * dN[..., 2]             # (ne, nq, nloc)
-    Ae = np.einsum("eqa,eqb->eab", dth * (density * wdx)[:, :, None], dth)
-    return fem.assemble_blocks(mesh, Ae, 1)
-
-
-@dataclass(frozen=True, eq=False)
-class Prestress:
-    """Centrifugal prestress of the shaft body per unit Ω² (Ω_ref = 1 rad/s): displacement
-    ``u`` (mesh dofs), stress at the quadrature points (ne, nq, 3, 3) of ``intorder``, and
-    ``Kg`` = K_σ,1 − A_θ on q (sparse), so that the stiffness at Ω is K + Ω² Kg."""
-    u: np.ndarray
-    stress: np.ndarray
-    intorder: int
-    Kg: object
-    iterations: int
-    seconds: float
-
-    def max_von_mises(self, Omega: float) -> float:
-        """Largest von Mises stress [MPa] at the quadrature points at spin Ω [rad/s]."""
-        s = self.stress
-        dev = s - (np.trace(s, axis1=2, axis2=3) / 3.0)[:, :, None, None] * np.eye(3)
-        return float(Omega**2 * np.sqrt(1.5 * np.einsum("eqij,eqij->eq", dev, dev)).max())
-
-
-def centrifugal_displacement(rotor: SolidRotor, solver: ShiftedSolver, *, tol: float = 1e-8,
-                             max_iter: int = 60) -> tuple[np.ndarray, int]:
-    """Static displacement q of the supported rotor under the shaft's body force at
-    Ω = 1 rad/s, by iterative refinement on ``solver`` = (K_tot + σ² M)⁻¹ (hard rows kept):
-    q ← q + Δq, Δq = solver(f − K_tot q), until the energy norm of the change of the step,
-    ‖Δq_k − Δq_(k−1)‖_K, is < ``tol`` ‖q‖_K. (The elastic part of Δq falls by σ²/(ω² + σ²)
-    per step; on a free model the load's rigid-body part, the mesh's tiny net force, adds
-    the same strain-free motion every step and drops out of the difference.)"""
-    from shaftfe.fe import assembly as fem
-
-    m = rotor.shaft_mesh.mesh
-    f = fem.body_force_load(m, rotor.variant.material.density_t_mm3, 1.0)
-    if rotor.T is not None:
-        f = rotor.T.T @ f
-    K = rotor.K
-    q = np.zeros_like(f)
-    r, dq_old = f, 0.0
-    for it in range(1, max_iter + 1):
-        dq = solver.solve(r)
-        q = q + dq
-        Kq = K @ q
-        r = f - Kq
-        d = dq - dq_old
-        dq_old = dq
-        if abs(float(d @ (K @ d))) <= tol**2 * abs(float(q @ Kq)):
-            return q, it
-    raise SolverError(f"centrifugal prestress: the refinement did not converge in {max_iter} "
-                      f"steps (shift {rotor.options.shift_hz:g} Hz too high for the lowest "
-                      "mode?)")
-
-
-def centrifugal_prestress(rotor: SolidRotor, solver: ShiftedSolver | None = None) -> Prestress:
-    """Prestress of the shaft body per unit Ω² and its stiffness Kg = K_σ,1 − A_θ on q (module
-    docstring); ``solver``: the basis's factorisation (a new one at the rotor's shift if
-    None)."""
-    t0 = time.perf_counter()
-    if solver is None:
-        solver = ShiftedSolver(rotor, -TWO_PI * rotor.options.shift_hz)
-    q, it = centrifugal_displacement(rotor, solver)
-    m = rotor.shaft_mesh.mesh
-    mat = rotor.variant.material
-    u = rotor.mesh_vector(q)
-    order = geometric_order(m)
-    stress = quadrature_stress(m, u, mat.E_MPa, mat.nu, order)
-    Kg = vector_matrix(geometric_stiffness(m, stress, order)
-                       - convective_matrix(m, mat.density_t_mm3))
-    if rotor.T is not None:
-        Kg = (rotor.T.T @ Kg @ rotor.T).tocsr()
-    return Prestress(u, stress, order, Kg, it, time.perf_counter() - t0)
-
-
-# --------------------------------------------------------------------------- analyses
-
-def campbell(rotor: SolidRotor, rpms: Sequence[float], n_modes: int = 12, *,
-             orders: Sequence[float] = (1.0,), tol: float = 1e-6, keep_vectors: bool = False,
-             provider: BasisProvider | None = None) -> CampbellResult:
-    """Campbell sweep of the solid rotor (reduced basis, MAC tracking, labels, criticals);
-    with ``options.stress_stiffening`` the reduced stiffness at Ω is diag ω² + Ω² Φᵀ K_g Φ
-    (K_g from ``provider.prestress()``, on the basis's factorisation)."""
-    prov = provider or BasisProvider(rotor)
-    Kg = prov.Kg(rotor)
-    res = sweep(rotor.K, rotor.M, rotor.G, rpms, n_modes, rotor.labelling, C=rotor.C,
-                orders=orders, tol=tol, keep_vectors=keep_vectors, basis_fn=prov,
-                residuals=prov.residuals(), Kg=Kg)
-    ss = "stress stiffening: off"
-    if Kg is not None:
-        ps, top = prov.prestress(), float(np.max(rpms))
-        ss = (f"stress stiffening: on (centrifugal prestress of the shaft body, von Mises ≤ "
-              f"{ps.max_von_mises(top * TWO_PI / 60.0):.3g} MPa at {top:g} rpm; "
-              f"{ps.iterations} refinement steps)")
-    return replace(res, notes=res.notes + rotor.notes + (ss,))
-
-
-def modal(rotor: SolidRotor, rpm: float = 0.0, n_modes: int = 12, *,
-          keep_vectors: bool = False, provider: BasisProvider | None = None) -> CampbellResult:
-    return campbell(rotor, [rpm], n_modes, keep_vectors=keep_vectors, provider=provider)
-
-
-def full_qep(rotor: SolidRotor, Omega: float, n_modes: int, *, sigma: float | None = None,
-             method: str | None = None, Kg=None):
-    """The ``n_modes`` lowest oscillatory eigenvalues (Im s > 0) of the full-size quadratic
-    eigenproblem with the hard rows, by shift-invert Arnoldi on the companion pencil
-    A − s B, A = [[0, I], [−K, −D]], B = [[I, 0], [0, M]] at the real shift σ: the operator
-    (A − σB)⁻¹ B needs one factorisation of K + σ D + σ² M (``ShiftedSolver``). With
-    ``stress_stiffening`` K is K + Ω² K_g (``Kg``: the basis's, else computed here, one more
-    symmetric factorisation)."""
-    from scipy.sparse.linalg import LinearOperator, eigs
-
-    sigma = -TWO_PI * rotor.options.shift_hz if sigma is None else sigma
-    if rotor.options.stress_stiffening and Kg is None:
-        Kg = centrifugal_prestress(rotor).Kg
-    K_extra = None if Kg is None or Omega == 0.0 else (Omega * Omega) * Kg
-    sol = ShiftedSolver(rotor, sigma, Omega, method, K_extra)
-    n = rotor.n_dof
-    M, G = rotor.M, rotor.G
-    Cop = rotor.C
-
-    def D(y):
-        out = Omega * (G @ y)
-        return out + Cop @ y if Cop is not None else out
-
-    def op(y):
-        y1, y2 = y[:n], y[n:]
-        x1 = -sol.solve(M @ y2 + D(y1) + sigma * (M @ y1))
-        return np.concatenate([x1, y1 + sigma * x1])
-
-    k = min(2 * n - 2, 2 * n_modes + 8)
-    v0 = np.random.default_rng(0).standard_normal(2 * n)       # reproducible start vector
-    mu = eigs(LinearOperator((2 * n, 2 * n), matvec=op, dtype=float), k=k, which="LM",
-              return_eigenvectors=False, tol=1e-12, v0=v0)
-    s = sigma + 1.0 / mu
-    scale = float(np.max(np.abs(s))) if s.size else 1.0
-    keep = (np.abs(s) > 1e-6 * scale) & (s.imag > 1e-9 * np.abs(s))
-    s = s[keep]
-    return s[np.argsort(s.imag)][:n_modes]
-
-
-def verify(rotor: SolidRotor, res: CampbellResult, rpm: float | None = None,
-           provider: BasisProvider | None = None):
-    """Full-size quadratic eigenproblem at ``rpm`` (default the top speed of ``res``) against
-    the reduced sweep (the same matching as ``shaftfe.rotordynamics.beam_rotor.verify``); ``provider``: reuse
-    its prestress (``stress_stiffening``)."""
-    from shaftfe.rotordynamics.beam_rotor import compare_with_full, speed_index
-
-    i = speed_index(res, rpm)
-    n = res.freq_hz.shape[1]
-    Kg = provider.Kg(rotor) if provider is not None else None
-    s = full_qep(rotor, float(res.rpm[i]) * TWO_PI / 60.0, n + 6, Kg=Kg)
-    return compare_with_full(res, i, s.imag / TWO_PI)
-
-
-def support_energy_share(rotor: SolidRotor, vecs: np.ndarray) -> np.ndarray:
-    num = np.einsum("ij,ij->j", vecs.conj(), rotor.K_support @ vecs).real
-    den = np.einsum("ij,ij->j", vecs.conj(), rotor.K @ vecs).real
-    return num / den
-
-
-# --------------------------------------------------------------------------- output
-
-def mode_field_name(k: int, f_hz: float) -> str:
-    """docs/FIELDS.md: ``mode_<k>_<freq>Hz`` (k from 1, two decimals)."""
-    return f"mode_{k}_{f_hz:.2f}Hz"
-
-
-def write_modes_vtu(rotor: SolidRotor, res: CampbellResult, path, speed_index: int = 0):
-    """Mode shapes of ``res`` (kept vectors) at ``speed_index`` as VTU point fields
-    ``mode_<k>_<f>Hz`` (docs/FIELDS.md: the real part after the phase rotation that makes the
-    largest component real, normalised to a largest nodal displacement of 1); field data
-    ``frequencies_hz`` and ``rpm``. Cells: the volume's tetra10 (P2) or tetra (P1). Written
-    with PyVista/VTK (meshio's VTU writer drops field data)."""
-    import pyvista as pv
-
-    from shaftfe.fe import assembly as fem
-    from shaftfe.util.atomic import atomic_path
-
-    if res.vectors is None:
-        raise ValueError("write_modes_vtu needs a result with keep_vectors=True")
-    m = rotor.shaft_mesh.mesh
-    conn = fem.element_nodes(m).T.astype(np.int64)
-    ctype = pv.CellType.QUADRATIC_TETRA if fem.is_quadratic(m) else pv.CellType.TETRA
-    cells = np.hstack([np.full((conn.shape[0], 1), conn.shape[1]), conn]).ravel()
-    grid = pv.UnstructuredGrid(cells, np.full(conn.shape[0], ctype, dtype=np.uint8),
-                               np.ascontiguousarray(m.doflocs.T))
-    X = res.vectors[speed_index]
-    for j in range(X.shape[1]):
-        u = rotor.mesh_vector(X[:, j])
-        k = int(np.argmax(np.abs(u)))
-        u = (u * np.exp(-1j * np.angle(u[k]))).real.reshape(-1, 3)
-        u = u / max(float(np.linalg.norm(u, axis=1).max()), 1e-300)
-        grid.point_data[mode_field_name(j + 1, float(res.freq_hz[speed_index, j]))] = u
-    grid.field_data["frequencies_hz"] = np.asarray(res.freq_hz[speed_index], dtype=float)
-    grid.field_data["rpm"] = np.array([float(res.rpm[speed_index])])
-    from pathlib import Path
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with atomic_path(path) as tmp:
-        grid.save(str(tmp))
-    return path

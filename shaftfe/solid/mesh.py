@@ -55,13 +55,12 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from shaftfe.errors import InputError, SolverError
-from shaftfe.solid.levels import DEFAULT_LEVEL, LEVELS, MeshLevel, mesh_level
-from shaftfe.solid.plan import Solid, analytic_volume, expected_areas, prepare
+from shaftfe.solid.levels import DEFAULT_LEVEL, MeshLevel, mesh_level
+from shaftfe.solid.plan import Solid, prepare
 from shaftfe.util import paths
 from shaftfe.util.atomic import atomic_path
 
-__all__ = ["LEVELS", "MeshLevel", "ShaftMesh", "analytic_volume", "build_mesh", "cache_path",
-           "expected_areas", "mesh_key", "write_mesh"]
+__all__ = ["ShaftMesh", "build_mesh", "cache_path", "mesh_key", "write_mesh"]
 
 CACHE_FORMAT = 3     # 2: bearing groups = the ring's contact band (chamfers off)
 #                      3: deterministic P2 repair (_untangle) instead of Gmsh's HighOrder
@@ -240,7 +239,7 @@ def _load(path: Path, key: str) -> dict | None:
 def _generate(sol: Solid, level: MeshLevel, order: int) -> dict:
     import gmsh
 
-    from shaftfe.solid import plan as solid_mod
+    from shaftfe.solid import occ
     t0 = time.perf_counter()
     own = not gmsh.isInitialized()
     if own:
@@ -254,8 +253,8 @@ def _generate(sol: Solid, level: MeshLevel, order: int) -> dict:
         for d in ("1D", "2D", "3D"):
             gmsh.option.setNumber(f"Mesh.MaxNumThreads{d}", 1)
         gmsh.model.add(model)
-        solid_mod.build_occ(gmsh, sol)
-        cls = solid_mod.classify(gmsh, sol)
+        occ.build_occ(gmsh, sol)
+        cls = occ.classify(gmsh, sol)
         _size_fields(gmsh, sol, level, cls)
         for name, value in GMSH_OPTIONS.items():
             gmsh.option.setNumber(name, value)

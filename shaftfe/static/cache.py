@@ -49,7 +49,8 @@ import numpy as np
 from shaftfe.util import paths
 
 STATIC_CACHE_FORMAT = 1
-FINGERPRINT_MODULES = ("shaftfe.static.solve", "shaftfe.fe.recovery", "shaftfe.fe.assembly",
+FINGERPRINT_MODULES = ("shaftfe.static.model", "shaftfe.static.solve", "shaftfe.static.result",
+                       "shaftfe.fe.recovery", "shaftfe.fe.assembly", "shaftfe.fe.lowrank",
                        "shaftfe.fe.supports")
 _KEY_SKIP_OPTIONS = ("solver",)
 
@@ -184,7 +185,7 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
     """The static reference solution of ``variant`` with ``options`` (``StaticOptions``), read
     from the cache when the key matches, else solved (and stored). ``cache_dir`` is used for the
     mesh cache too."""
-    from shaftfe.static import solve as static
+    from shaftfe import static
     t0 = time.perf_counter()
     options = options if options is not None else static.StaticOptions()
     mkey = predicted_mesh_key(variant, options)
@@ -206,7 +207,7 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
 def store(variant, options, res, cache_dir=None) -> StaticReference:
     """Put a ``StaticResult`` solved elsewhere (``shaftfe static``) into the cache, so that a
     later ``shaftfe fatigue`` on the same model reuses it instead of solving again."""
-    from shaftfe.static import solve as static
+    from shaftfe import static
     mkey = predicted_mesh_key(variant, options)
     key = static_key(variant, options, mkey, static.REF_RPM)
     ref = from_result(res, key)
@@ -223,9 +224,9 @@ def store(variant, options, res, cache_dir=None) -> StaticReference:
 
 def from_result(res, key: str = "", seconds: float = 0.0) -> StaticReference:
     """A ``StaticReference`` from a ``shaftfe.static.solve.StaticResult`` (not cached)."""
+    from shaftfe import static
     from shaftfe.fe import assembly as fem
     from shaftfe.fe import recovery
-    from shaftfe.static import solve as static
     m = res.mesh.mesh
     band = float(getattr(res.options, "exclude_mm", 0.0))
     excl = (recovery.excluded_nodes(m, singular_patches(m), band) if band > 0

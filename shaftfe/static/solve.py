@@ -46,214 +46,25 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from shaftfe.errors import InputError, SolverError
+from shaftfe.errors import InputError, ShaftfeError, SolverError
 from shaftfe.fe import assembly as fem
 from shaftfe.fe import recovery, supports
 from shaftfe.fe.lowrank import LowRankSolver
-from shaftfe.model.validate import validate_variant
+from shaftfe.static.model import (
+    REF_RPM,
+    StaticModel,
+    StaticOptions,
+    _patches,
+    build_model,
+    region_nodes,
+)
+from shaftfe.static.result import BearingReaction, StaticCase, StaticResult, Station
 
-REF_RPM = 10_000.0
 RESIDUAL_TOL = 1e-8
-DISTRIBUTIONS = ("uniform", "cosine")
-
-
-LOAD_CASES = {False: "all parts", True: "seed load case (gear + counterweight 1 = F1, "
-                                       "counterweight 2 = Fv2)"}
-
-
-def load_case_label(seed_load_case: bool) -> str:
-    """The load case in words, for every table header and summary.json: every part of the
-    variant (the default of every command), or the seed's F1 + Fv2 only."""
-    return LOAD_CASES[bool(seed_load_case)]
-
-
-@dataclass(frozen=True)
-class StaticOptions:
-    level: str = "default"
-    order: int = 2
-    rigid_supports: bool = False
-    load_distribution: str = "uniform"     # "uniform" | "cosine"
-    body_force: bool = False               # the shaft's own centrifugal load
-    seed_load_case: bool = False           # only the parts the seed loaded (gear, CW1, CW2)
-
-    @property
-    def load_case(self) -> str:
-        return load_case_label(self.seed_load_case)
-    solver: str = "auto"                   # see shaftfe.fe.solvers
-    hold_twist: str = "all"                # θ_x held at "all" bearings, the "axial" one, "none"
-    exclude_mm: float = 0.0                # extra band around patch edges for filtered peaks
-
-
-@dataclass(frozen=True, eq=False)
-class StaticModel:
-    variant: object
-    shaft_mesh: object
-    options: StaticOptions
-    K: object                             # scipy CSR stiffness
-    couplings: tuple
-    blocks: tuple
-    loads: dict                           # attachment name -> load vector at REF_RPM
-    load_force: dict                      # attachment name -> (Fx, Fy, Fz) at REF_RPM
-    f: np.ndarray                         # total load vector at REF_RPM
-    assembly_seconds: float
-
-
-@dataclass(frozen=True)
-class BearingReaction:
-    """Force the support exerts ON the shaft at the remote point (bearing load = −this)."""
-    name: str
-    x_mm: float
-    Fx_N: float
-    Fy_N: float
-    Fz_N: float
-    F_radial_N: float
-    uy_mm: float                 # remote-point radial translation
-    uz_mm: float
-    L10h: float | None           # ISO 281 basic, hours (None: unloaded or rpm 0)
-    C_N: float
-    life_exponent: float
-
-
-@dataclass(frozen=True)
-class Station:
-    name: str
-    x_mm: float
-    uy_mm: float
-    uz_mm: float
-    u_mm: float
-
-
-@dataclass(frozen=True)
-class StaticCase:
-    rpm: float
-    scale: float                               # (rpm / REF_RPM)²
-    bearings: tuple[BearingReaction, ...]
-    stations: tuple[Station, ...]
-    max_deflection_mm: float                   # max nodal |(u_y, u_z)|
-    max_deflection_xyz_mm: tuple[float, float, float]
-    max_axis_deflection_mm: float              # max over the axis line
-    peaks: tuple                               # recovery.RegionPeak per region
-    peak_von_mises_MPa: float                  # filtered, whole shaft
-    peak_von_mises_xyz_mm: tuple[float, float, float]
-    peak_von_mises_unfiltered_MPa: float
-    peak_von_mises_unfiltered_xyz_mm: tuple[float, float, float]
-    load_sum_N: tuple[float, float, float]
-    reaction_sum_N: tuple[float, float, float]
-    equilibrium_residual: float                # |Σ reactions + Σ loads| / |Σ loads|
-    beam: dict | None = None                   # shaftfe.beam.model numbers side by side
-
-
-@dataclass(frozen=True, eq=False)
-class StaticResult:
-    variant: str
-    variant_hash: str
-    options: StaticOptions
-    ref_rpm: float
-    n_nodes: int
-    n_elements: int
-    n_dofs: int
-    mesh_key: str
-    u_ref: np.ndarray = field(repr=False)          # (ndof,) at REF_RPM
-    stress_ref: np.ndarray = field(repr=False)     # (6, n_nodes) at REF_RPM, xx yy zz xy yz xz
-    von_mises_ref: np.ndarray = field(repr=False)
-    axis_x: np.ndarray = field(repr=False)         # deflection line (FE, on the axis)
-    axis_u_ref: np.ndarray = field(repr=False)     # (n, 3) at REF_RPM
-    cases: tuple[StaticCase, ...] = ()
-    diagnostics: dict = field(default_factory=dict)    # results only: identical run to run
-    error_estimate: dict | None = None
-    notes: tuple[str, ...] = ()
-    mesh: object = field(default=None, repr=False)
-    run: dict = field(default_factory=dict)            # wall-clock seconds, mesh_from_cache
-
-    def case(self, rpm: float) -> StaticCase:
-        return next(c for c in self.cases if math.isclose(c.rpm, rpm))
-
-    def to_dict(self) -> dict:
-        def clean(o):
-            if isinstance(o, float):
-                return o if math.isfinite(o) else None
-            if isinstance(o, dict):
-                return {k: clean(v) for k, v in o.items()}
-            if isinstance(o, list | tuple):
-                return [clean(v) for v in o]
-            return o
-        return clean({
-            "variant": self.variant, "variant_hash": self.variant_hash,
-            "options": asdict(self.options), "load_case": self.options.load_case,
-            "ref_rpm": self.ref_rpm,
-            "mesh": {"key": self.mesh_key, "nodes": self.n_nodes, "elements": self.n_elements,
-                     "dofs": self.n_dofs},
-            "cases": [asdict(c) for c in self.cases],
-            "diagnostics": self.diagnostics, "error_estimate": self.error_estimate,
-            "notes": list(self.notes), "run": self.run,
-        })
-
-
-# --------------------------------------------------------------------------- model
-
-def _direction(angle_deg: float) -> np.ndarray:
-    a = math.radians(angle_deg)
-    return np.array([0.0, math.cos(a), math.sin(a)])
-
-
-def _check_options(o: StaticOptions) -> None:
-    if o.load_distribution not in DISTRIBUTIONS:
-        raise InputError("--load-distribution", "load_distribution", " | ".join(DISTRIBUTIONS),
-                         got=o.load_distribution)
-    if not (math.isfinite(o.exclude_mm) and o.exclude_mm >= 0):
-        raise InputError("--exclude-mm", "exclude_mm", ">= 0", got=o.exclude_mm)
-    if o.hold_twist not in ("all", "axial", "none"):
-        raise InputError("options", "hold_twist", "all | axial | none", got=o.hold_twist)
-    from shaftfe.fe.solvers import METHODS
-    if o.solver not in METHODS:
-        raise InputError("--solver", "solver", " | ".join(METHODS), got=o.solver)
-
-
-def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh=None,
-                cache_dir=None) -> StaticModel:
-    """Mesh (or take ``shaft_mesh``), assemble K, couple the bearings, build the loads."""
-    _check_options(options)
-    if options.seed_load_case:
-        variant = variant.with_seed_load_case()
-    validate_variant(variant, springs=not options.rigid_supports)
-    if shaft_mesh is None:
-        from shaftfe.solid.mesh import build_mesh
-        shaft_mesh = build_mesh(variant, options.level, options.order, cache_dir=cache_dir)
-    m = shaft_mesh.mesh
-    mat = variant.material
-    t0 = time.perf_counter()
-    K = fem.elasticity_stiffness(m, mat.E_MPa, mat.nu)
-    couplings = []
-    for b in variant.bearings:
-        hold = options.hold_twist == "all" or (options.hold_twist == "axial" and b.axial)
-        couplings.append(supports.couple_bearing(m, b, rigid=options.rigid_supports,
-                                                 hold_twist=hold))
-    blocks = tuple(blk for c in couplings for blk in supports.blocks(c))
-    loads, forces = {}, {}
-    face_cache: dict = {}          # facet bases shared by parts on the same seat
-    for a in variant.attachments:
-        F = a.force_N(REF_RPM)
-        if F == 0:
-            continue
-        e = _direction(a.angle_deg)
-        loads[a.name] = fem.surface_load(m, m.boundaries[f"load:{a.name}:pressed"], F, e,
-                                         options.load_distribution, cache=face_cache)
-        forces[a.name] = tuple(float(c) for c in F * e)
-    if options.body_force:
-        w2 = (REF_RPM * 2 * math.pi / 60) ** 2
-        fb = fem.body_force_load(m, mat.density_t_mm3, w2)
-        loads["shaft_body"] = fb
-        forces["shaft_body"] = tuple(float(c) for c in fb.reshape(-1, 3).sum(axis=0))
-    f = np.zeros(K.shape[0])
-    for v in loads.values():
-        f += v
-    return StaticModel(variant, shaft_mesh, options, K, tuple(couplings), blocks, loads,
-                       forces, f, time.perf_counter() - t0)
-
 
 # --------------------------------------------------------------------------- solve
 
@@ -300,6 +111,18 @@ def _springs(model: StaticModel) -> str:
             f"{stiff!r} ({k[stiff]:.3g} N/mm)")
 
 
+def _support_columns(model: StaticModel, P: np.ndarray, kp: float):
+    """U = [pins | support rows] and the block-diagonal compliance C⁻¹ (−I/k_p for the pins
+    that cancel, the spring compliance, 0 for a hard row)."""
+    from scipy.linalg import block_diag
+    cols = [P] + [blk.R.T for blk in model.blocks]
+    U = np.ascontiguousarray(np.hstack(cols))       # canonical layout: bit-reproducible BLAS
+    Cinv = [np.eye(6) * (-1.0 / kp)]
+    for blk in model.blocks:
+        Cinv.append(np.zeros((blk.R.shape[0],) * 2) if blk.C is None else np.linalg.inv(blk.C))
+    return U, block_diag(*Cinv)
+
+
 def solve_model(model: StaticModel, rhs: np.ndarray | None = None) -> UnitSolution:
     """Solve the supported system for ``rhs`` (default: the model's load at REF_RPM)."""
     from shaftfe.fe import solvers
@@ -319,13 +142,7 @@ def solve_model(model: StaticModel, rhs: np.ndarray | None = None) -> UnitSoluti
     fac = solvers.factorize(K, model.options.solver, rigid_modes=_modes(m),
                             diag_add=(pins, np.full(6, kp)))          # B = K + kp Σ e eᵀ
     t_fac = time.perf_counter() - t0
-    cols = [P] + [blk.R.T for blk in model.blocks]
-    U = np.ascontiguousarray(np.hstack(cols))       # canonical layout: bit-reproducible BLAS
-    Cinv = [np.eye(6) * (-1.0 / kp)]
-    for blk in model.blocks:
-        Cinv.append(np.zeros((blk.R.shape[0],) * 2) if blk.C is None else np.linalg.inv(blk.C))
-    from scipy.linalg import block_diag
-    Cinv = block_diag(*Cinv)
+    U, Cinv = _support_columns(model, P, kp)
     f = model.f if rhs is None else rhs
     t1 = time.perf_counter()
     Z = fac.solve(np.column_stack([U, f]))
@@ -452,79 +269,43 @@ def l10h(C: float, P: float, rpm: float, p: float) -> float | None:
     return (C / P) ** p * 1e6 / (60.0 * rpm)
 
 
-def region_facets(mesh) -> dict[str, np.ndarray]:
-    """Stress regions: each fillet, keyway, shoulder and seat (a split load seat counted once),
-    the hex socket and the end faces."""
-    groups: dict[str, list] = {}
-    for g, f in mesh.boundaries.items():
-        if g.startswith("load:"):
-            name = "seat:" + g.split(":")[1]
-        elif g.startswith("bearing:"):
-            name = "seat:" + g
-        else:
-            name = g
-        groups.setdefault(name, []).append(np.asarray(f))
-    return {k: np.concatenate(v) for k, v in groups.items()}
+@dataclass(frozen=True, eq=False)
+class _Recovered:
+    """Nodal stresses at REF_RPM and what the peaks are taken over."""
+    stress: np.ndarray
+    vm: np.ndarray
+    s1: np.ndarray
+    excluded: np.ndarray
+    regions: dict
+    seconds: float
 
 
-def region_nodes(mesh) -> dict[str, np.ndarray]:
-    """Region name -> node ids (of ``region_facets``), sorted by name: the regions whose peaks
-    ``shaftfe static`` reports and ``shaftfe fatigue`` uses for its hot spots."""
-    return {k: fem.face_nodes(mesh, f).astype(np.int64)
-            for k, f in sorted(region_facets(mesh).items())}
-
-
-def _patches(mesh) -> list[np.ndarray]:
-    return [np.asarray(f) for g, f in mesh.boundaries.items()
-            if g.startswith("bearing:") or g.endswith(":pressed")]
-
-
-def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), *,
-                 shaft_mesh=None, cache_dir=None, beam: bool = True,
-                 estimate_error: bool = False) -> StaticResult:
-    """Solve once at REF_RPM and report every rpm in ``rpm`` (a number or a sequence)."""
-    t_all = time.perf_counter()
-    rpms = [float(rpm)] if isinstance(rpm, int | float) else [float(r) for r in rpm]
-    if not rpms or any(not (math.isfinite(r) and r >= 0) for r in rpms):
-        raise InputError("--rpm", "rpm", "numbers >= 0", got=rpm)
-    t0 = time.perf_counter()
-    model = build_model(variant, options, shaft_mesh=shaft_mesh, cache_dir=cache_dir)
-    v = model.variant
-    sm = model.shaft_mesh
-    m = sm.mesh
-    t_model = time.perf_counter() - t0
-    sol = solve_model(model)
+def _recover(model: StaticModel, u: np.ndarray, options: StaticOptions) -> _Recovered:
     t1 = time.perf_counter()
-    mat = v.material
-    u = sol.u
+    m, mat = model.shaft_mesh.mesh, model.variant.material
     stress = recovery.nodal_stress(m, u, mat.E_MPa, mat.nu)
     vm = recovery.von_mises(stress)
     s1 = recovery.principal(stress)[0]
-    xyz = m.doflocs
     excl = recovery.excluded_nodes(m, _patches(m), options.exclude_mm)
-    regions = region_nodes(m)
-    all_nodes = np.arange(xyz.shape[1])
-    t_rec = time.perf_counter() - t1
+    return _Recovered(stress, vm, s1, excl, region_nodes(m), time.perf_counter() - t1)
 
-    # stations and the deflection line
-    x0, x1 = float(xyz[0].min()), float(xyz[0].max())
+
+def _station_list(model: StaticModel) -> list[tuple[str, float]]:
+    """Seats of the loaded parts, bearing centres and the clearance station."""
+    v = model.variant
     stations = [(f"seat:{a.name}", a.seat_center_mm) for a in v.attachments
                 if a.name in model.loads]
     stations += [(f"bearing:{c.name}", c.x_mm) for c in model.couplings]
     if v.clearance_station_x_mm is not None:
         stations.append(("clearance", float(v.clearance_station_x_mm)))
-    st_u = axis_deflection(v, m, u, [s[1] for s in stations])
-    ax_x = np.linspace(x0 + 1e-6, x1 - 1e-6, 121)
-    ax_u = axis_deflection(v, m, u, ax_x)
-    radial = np.hypot(u[1::3], u[2::3])
-    imax = int(np.argmax(radial))
+    return stations
 
-    # reactions (at REF_RPM) from the support forces
+
+def _reactions(model: StaticModel, sol: UnitSolution):
+    """Support reactions per bearing at REF_RPM (6 components), Σ loads, Σ reactions and the
+    relative equilibrium residual."""
     reac = {}
-    k = 0
-    for blk in model.blocks:
-        lb = sol.lam[k]
-        k += 1
+    for blk, lb in zip(model.blocks, sol.lam, strict=True):
         r = reac.setdefault(blk.bearing, np.zeros(6))
         for lab, val in zip(blk.labels, lb, strict=True):
             r[supports._DOF[lab]] -= val
@@ -534,43 +315,98 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
     scale = max(float(np.linalg.norm(load_sum)),
                 1e-6 * float(np.abs(model.f.reshape(-1, 3)).sum()))
     eq_res = float(np.linalg.norm(reac_sum + load_sum) / scale) if scale > 0 else 0.0
+    return reac, load_sum, reac_sum, eq_res
 
-    beam_res = {}
-    if beam:
-        try:
-            from shaftfe.beam import model as beam_mod
-            bopts = {"rigid_supports": options.rigid_supports, "spread_loads": True}
-            for br in beam_mod.analyse(v, rpms, **bopts):
-                beam_res[br.rpm] = br
-        except Exception as exc:
-            beam_res = {"error": f"{type(exc).__name__}: {exc}"}
+
+def _beam_check(v, rpms: list[float], options: StaticOptions) -> dict:
+    """The beam model's answer at every rpm for the side-by-side check; a variant the beam
+    cannot model (a ShaftfeError: bad input for the beam, a singular beam system) is reported
+    as such, anything else is a bug and propagates."""
+    from shaftfe.beam import solve as beam_solve
+    try:
+        return {br.rpm: br for br in beam_solve.analyse(
+            v, rpms, rigid_supports=options.rigid_supports, spread_loads=True)}
+    except ShaftfeError as exc:
+        return {"error": f"{type(exc).__name__}: {exc}"}
+
+
+def _bearing_rows(model: StaticModel, reac: dict, u: np.ndarray, r: float, s: float):
+    v = model.variant
+    bearings = []
+    for c in model.couplings:
+        rv = reac.get(c.name, np.zeros(6)) * s
+        q = c.G @ u * s
+        F = float(math.hypot(rv[1], rv[2]))
+        b = v.bearing(c.name)
+        bearings.append(BearingReaction(c.name, c.x_mm, float(rv[0]), float(rv[1]),
+                                        float(rv[2]), F, float(q[1]), float(q[2]),
+                                        l10h(b.C_N, F, r, b.life_exponent), b.C_N,
+                                        b.life_exponent))
+    return tuple(bearings)
+
+
+def _load_cross_force(model: StaticModel) -> dict:
+    """Per part: the nodal load's component across its intended direction, relative."""
+    out = {}
+    for nm, F in model.load_force.items():
+        if nm == "shaft_body":
+            continue
+        fv = model.loads[nm].reshape(-1, 3).sum(axis=0)
+        e = np.asarray(F) / np.linalg.norm(F)
+        out[nm] = float(np.linalg.norm(fv - (fv @ e) * e) / np.linalg.norm(F))
+    return out
+
+
+def _check_rpms(rpm) -> list[float]:
+    rpms = [float(rpm)] if isinstance(rpm, int | float) else [float(r) for r in rpm]
+    if not rpms or any(not (math.isfinite(r) and r >= 0) for r in rpms):
+        raise InputError("--rpm", "rpm", "numbers >= 0", got=rpm)
+    return rpms
+
+
+def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), *,
+                 shaft_mesh=None, cache_dir=None, beam: bool = True,
+                 estimate_error: bool = False) -> StaticResult:
+    """Solve once at REF_RPM and report every rpm in ``rpm`` (a number or a sequence): the
+    loads scale with ω², so every case is the reference solution × (rpm / REF_RPM)²."""
+    t_all = time.perf_counter()
+    rpms = _check_rpms(rpm)
+    t0 = time.perf_counter()
+    model = build_model(variant, options, shaft_mesh=shaft_mesh, cache_dir=cache_dir)
+    v, sm = model.variant, model.shaft_mesh
+    m = sm.mesh
+    t_model = time.perf_counter() - t0
+    sol = solve_model(model)
+    u = sol.u
+    rec = _recover(model, u, options)
+    xyz = m.doflocs
+    all_nodes = np.arange(xyz.shape[1])
+    stations = _station_list(model)
+    st_u = axis_deflection(v, m, u, [s[1] for s in stations])
+    x0, x1 = float(xyz[0].min()), float(xyz[0].max())
+    ax_x = np.linspace(x0 + 1e-6, x1 - 1e-6, 121)
+    ax_u = axis_deflection(v, m, u, ax_x)
+    radial = np.hypot(u[1::3], u[2::3])
+    imax = int(np.argmax(radial))
+    reac, load_sum, reac_sum, eq_res = _reactions(model, sol)
+    beam_res = _beam_check(v, rpms, options) if beam else {}
 
     cases = []
     for r in rpms:
         s = (r / REF_RPM) ** 2
-        bearings = []
-        for c in model.couplings:
-            rv = reac.get(c.name, np.zeros(6)) * s
-            q = c.G @ u * s
-            F = float(math.hypot(rv[1], rv[2]))
-            b = v.bearing(c.name)
-            bearings.append(BearingReaction(c.name, c.x_mm, float(rv[0]), float(rv[1]),
-                                            float(rv[2]), F, float(q[1]), float(q[2]),
-                                            l10h(b.C_N, F, r, b.life_exponent), b.C_N,
-                                            b.life_exponent))
         sts = tuple(Station(nm, float(x), float(uu[1] * s), float(uu[2] * s),
                             float(math.hypot(uu[1], uu[2]) * s))
                     for (nm, x), uu in zip(stations, st_u, strict=True))
-        peaks = tuple(recovery.peak(vm, s1, xyz, nodes, excl, name, s)
-                      for name, nodes in sorted(regions.items()))
-        g = recovery.peak(vm, s1, xyz, all_nodes, excl, "shaft", s)
+        peaks = tuple(recovery.peak(rec.vm, rec.s1, xyz, nodes, rec.excluded, name, s)
+                      for name, nodes in sorted(rec.regions.items()))
+        g = recovery.peak(rec.vm, rec.s1, xyz, all_nodes, rec.excluded, "shaft", s)
         bm = None
         if "error" in beam_res:
             bm = {"error": beam_res["error"]}
         elif r in beam_res:
             bm = _beam_summary(beam_res[r])
         cases.append(StaticCase(
-            rpm=r, scale=s, bearings=tuple(bearings), stations=sts,
+            rpm=r, scale=s, bearings=_bearing_rows(model, reac, u, r, s), stations=sts,
             max_deflection_mm=float(radial[imax] * s),
             max_deflection_xyz_mm=tuple(float(c) for c in xyz[:, imax]),
             max_axis_deflection_mm=float(np.hypot(ax_u[:, 1], ax_u[:, 2]).max() * s),
@@ -582,26 +418,22 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
             equilibrium_residual=eq_res, beam=bm))
 
     diag = dict(sol.diagnostics)
-    diag.update(min_quality=sm.min_quality, n_excluded_nodes=int(excl.size))
+    diag.update(min_quality=sm.min_quality, n_excluded_nodes=int(rec.excluded.size))
+    cross = _load_cross_force(model)
+    if cross:
+        diag["load_cross_force_rel"] = cross
     run = dict(sol.run)
     run.update(mesh_seconds=sm.build_seconds, mesh_from_cache=sm.from_cache,
                assembly_seconds=model.assembly_seconds, model_seconds=t_model,
-               recovery_seconds=t_rec)
-    notes = []
-    for nm, F in model.load_force.items():
-        if nm == "shaft_body":
-            continue
-        fv = model.loads[nm].reshape(-1, 3).sum(axis=0)
-        e = np.asarray(F) / np.linalg.norm(F)
-        diag.setdefault("load_cross_force_rel", {})[nm] = float(
-            np.linalg.norm(fv - (fv @ e) * e) / np.linalg.norm(F))
+               recovery_seconds=rec.seconds)
     res = StaticResult(
         variant=v.name, variant_hash=v.content_hash, options=options, ref_rpm=REF_RPM,
         n_nodes=sm.n_nodes, n_elements=sm.n_elements, n_dofs=3 * sm.n_nodes, mesh_key=sm.key,
-        u_ref=u, stress_ref=stress, von_mises_ref=vm, axis_x=ax_x, axis_u_ref=ax_u,
-        cases=tuple(cases), diagnostics=diag, notes=tuple(notes), mesh=sm, run=run)
+        u_ref=u, stress_ref=rec.stress, von_mises_ref=rec.vm, axis_x=ax_x, axis_u_ref=ax_u,
+        cases=tuple(cases), diagnostics=diag, notes=(), mesh=sm, run=run)
     if estimate_error:
-        res = replace(res, error_estimate=_estimate_error(res, variant, options, cache_dir))
+        from shaftfe.static.error import estimate_error
+        res = replace(res, error_estimate=estimate_error(res, variant, options, cache_dir))
     res.run["total_seconds"] = time.perf_counter() - t_all
     return res
 
@@ -618,49 +450,3 @@ def _beam_summary(br) -> dict:
             "x_line_mm": br.x.tolist(), "u_line_mm": br.u.tolist()}
 
 
-def _estimate_error(res: StaticResult, variant, options: StaticOptions, cache_dir,
-                    other_level: str | None = None) -> dict:
-    """Richardson-type estimate from a second mesh level.
-
-    Second level: ``other_level`` if given, else "fine" (or "default" when the first is
-    "fine"); the finer of the two is the one with the smaller fillet size k_fillet. With q_h
-    (finer) and q_H,
-    the estimated error of q_h is |q_h − q_H| / (r^p − 1) and the extrapolated value
-    q_h + (q_h − q_H)/(r^p − 1). Ratios r: element size on the fillets (k_fillet of the levels)
-    for stress peaks; (N_fine/N_coarse)^(1/3) from the element counts for deflections. Orders
-    assumed: p = 2 for recovered P2 stresses (p = 1 for P1), p = 3 for P2 displacements (2 for
-    P1). An estimate, not a bound: on a graded mesh the asymptotic range is not guaranteed."""
-    from shaftfe.solid.levels import level_name, mesh_level
-    other = other_level or ("default" if options.level == "fine" else "fine")
-    k_this, k_other = mesh_level(options.level).k_fillet, mesh_level(other).k_fillet
-    res2 = solve_static(variant, [c.rpm for c in res.cases], replace(options, level=other),
-                        cache_dir=cache_dir, beam=False)
-    finer_first = k_this < k_other or (k_this == k_other and other != "fine")
-    fine_r, coarse_r = (res, res2) if finer_first else (res2, res)
-    p_s, p_u = (2, 3) if options.order == 2 else (1, 2)
-    r_s = (k_other / k_this) if finer_first else (k_this / k_other)
-    r_u = (fine_r.n_elements / coarse_r.n_elements) ** (1 / 3)
-
-    def est(qf, qc, r, p):
-        if not (math.isfinite(qf) and math.isfinite(qc)) or r <= 1:
-            return None
-        d = (qf - qc) / (r ** p - 1)
-        return {"fine": qf, "coarse": qc, "extrapolated": qf + d, "error_fine": abs(d),
-                "rel_error_fine": abs(d) / abs(qf) if qf else None}
-    out = {"levels": [level_name(fine_r.options.level), level_name(coarse_r.options.level)],
-           "dofs": [fine_r.n_dofs, coarse_r.n_dofs], "ratio_stress": r_s, "ratio_deflection": r_u,
-           "order_stress": p_s, "order_deflection": p_u, "cases": []}
-    for cf, cc in zip(fine_r.cases, coarse_r.cases, strict=True):
-        pk_c = {p.region: p for p in cc.peaks}
-        peaks = {p.region: est(p.von_mises_MPa, pk_c[p.region].von_mises_MPa, r_s, p_s)
-                 for p in cf.peaks if p.region in pk_c
-                 and (p.region.startswith("fillet:") or p.region.startswith("keyway:"))}
-        st_c = {s.name: s for s in cc.stations}
-        out["cases"].append({
-            "rpm": cf.rpm,
-            "peak_von_mises": est(cf.peak_von_mises_MPa, cc.peak_von_mises_MPa, r_s, p_s),
-            "region_peaks": peaks,
-            "max_deflection": est(cf.max_deflection_mm, cc.max_deflection_mm, r_u, p_u),
-            "stations": {s.name: est(s.u_mm, st_c[s.name].u_mm, r_u, p_u)
-                         for s in cf.stations if s.name in st_c}})
-    return out

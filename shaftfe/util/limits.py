@@ -8,6 +8,9 @@ turns at most 10 000 rpm); a larger number is a typing or unit mistake (rad/s, o
 ``BEAM_ELEMENT_MIN_MM``: the shortest beam element a user may ask for with ``--max-element``; a
 150 mm shaft then has at most about 1500 elements (the default is 5 mm), while 1e-6 mm would
 ask for 10^8 elements and tens of GiB.
+
+``EXCLUDE_MM_MAX``: the widest band around bearing and load-patch edges that the filtered hot
+spot of ``static`` and ``fatigue`` may leave out (``--exclude-mm``).
 """
 
 from __future__ import annotations
@@ -18,6 +21,7 @@ from shaftfe.errors import InputError
 
 RPM_CEILING = 20_000.0
 BEAM_ELEMENT_MIN_MM = 0.1
+EXCLUDE_MM_MAX = 5.0     # a band around patch edges; wider would exclude whole short segments
 
 
 def check_rpm(v: float, option: str, source: str = "command line", *,
@@ -34,3 +38,10 @@ def check_max_element(v: float, option: str = "--max-element") -> float:
         raise InputError("command line", option, f">= {BEAM_ELEMENT_MIN_MM:g} mm (a beam "
                          "element length)", got=v)
     return float(v)
+
+
+def check_exclude_mm(v: float) -> None:
+    """``--exclude-mm`` of static and fatigue: a finite band in [0, EXCLUDE_MM_MAX] mm."""
+    if not (math.isfinite(v) and 0 <= v <= EXCLUDE_MM_MAX):
+        raise InputError("command line", "--exclude-mm",
+                         f"a band in [0, {EXCLUDE_MM_MAX:g}] mm", got=v)

@@ -21,7 +21,25 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from shaftfe.beam import model as beam
+from shaftfe.beam.elements import (
+    NDOF,
+    RX,
+    RZ,
+    UY,
+    cowper_kappa,
+    hexagon_area_inertia,
+    section_properties,
+)
+from shaftfe.beam.model import (
+    PointLoad,
+    assemble_mass,
+    assemble_stiffness,
+    build_model,
+    rigid_body_modes,
+    shaft_mass_kg,
+    support_stiffness,
+)
+from shaftfe.beam.solve import l10h, solve, solve_unit
 from shaftfe.errors import InputError, SolverError
 from shaftfe.model.variant import Attachment, Bearing, HexSocket, Material, Segment, Variant
 
@@ -61,8 +79,8 @@ def node(model, x):
 
 
 def one(v, rpm=0.0, **kw):
-    m = beam.build_model(v, **kw)
-    return m, beam.solve(m, rpm)[0]
+    m = build_model(v, **kw)
+    return m, solve(m, rpm)[0]
 
 
 # EXACT: the closed forms below are reproduced exactly by the IIE element (exact for nodal
@@ -82,10 +100,10 @@ def test_cowper_kappa_solid_and_thin_tube_limit():
     the table's numeric column as 0.886), and the hollow-circle formula must reduce to the thin
     tube entry 2(1+ν)/(4+3ν) as m → 1."""
     # exact arithmetic (round-off only) for both forms
-    assert beam.cowper_kappa(0.3) == pytest.approx(0.8863636363636364, rel=1e-12)
+    assert cowper_kappa(0.3) == pytest.approx(0.8863636363636364, rel=1e-12)
     for nu in (0.0, 0.25, 0.3, 0.45):
         # exact arithmetic (round-off only)
-        assert beam.cowper_kappa(nu, 1.0) == pytest.approx(2 * (1 + nu) / (4 + 3 * nu), rel=1e-12)
+        assert cowper_kappa(nu, 1.0) == pytest.approx(2 * (1 + nu) / (4 + 3 * nu), rel=1e-12)
 
 
 def _polygon_inertia(pts):
@@ -104,7 +122,7 @@ def test_hexagon_section_matches_polygon_integration():
     for phase in (0.0, 0.3, math.pi / 6):
         ang = phase + np.arange(6) * math.pi / 3
         area, Ix = _polygon_inertia(np.column_stack([a * np.cos(ang), a * np.sin(ang)]))
-        A_h, I_h = beam.hexagon_area_inertia(s)
+        A_h, I_h = hexagon_area_inertia(s)
         # exact arithmetic (closed form vs exact polygon integration, round-off only)
         assert A_h == pytest.approx(area, rel=1e-12)
         assert I_h == pytest.approx(Ix, rel=1e-12)
@@ -114,9 +132,9 @@ def test_element_stiffness_annihilates_rigid_body_modes_and_is_symmetric():
     """A free-free beam has exactly six zero-energy modes (three translations, three small
     rotations); the assembled elastic stiffness must map them to zero and be symmetric."""
     v = make_variant([(30, 20), (40, 25), (30, 15)], [(10, RIGID), (90, RIGID)])
-    m = beam.build_model(v, max_element_mm=6, rigid_supports=True)   # K_N_per_mm unused
-    K = beam.assemble_stiffness(m)
-    R = beam.rigid_body_modes(m.x, 50.0, 100.0)
+    m = build_model(v, max_element_mm=6, rigid_supports=True)   # K_N_per_mm unused
+    K = assemble_stiffness(m)
+    R = rigid_body_modes(m.x, 50.0, 100.0)
     # exact arithmetic (round-off only: measured 8e-17 and 0)
     assert np.abs(K @ R).max() < 1e-9 * np.abs(K).max()
     assert np.abs(K - K.T).max() < 1e-9 * np.abs(K).max()
@@ -138,7 +156,7 @@ def test_simply_supported_central_load(max_el):
     A, Ia = props(d)
     v = make_variant([(L, d)], [(0.0, RIGID), (L, RIGID)])
     m, r = one(v, rigid_supports=True, max_element_mm=max_el,
-               extra_loads=[beam.PointLoad(L / 2, Fy_N=P)])
+               extra_loads=[PointLoad(L / 2, Fy_N=P)])
     ref = P * L**3 / (48 * E * Ia) + P * L / (4 * KAPPA * G * A)
     # exact element: round-off only (EXACT, see its definition)
     assert r.uy[node(m, L / 2)] == pytest.approx(ref, rel=EXACT)
@@ -161,7 +179,7 @@ def test_overhang_tip_load():
     A, Ia = props(d)
     v = make_variant([(L + a, d)], [(0.0, RIGID), (L, RIGID)])
     _, r = one(v, rigid_supports=True, max_element_mm=5,
-               extra_loads=[beam.PointLoad(L + a, Fz_N=P)])
+               extra_loads=[PointLoad(L + a, Fz_N=P)])
     ref = P * a**2 * (L + a) / (3 * E * Ia) + P * a * (L + a) / (L * KAPPA * G * A)
     # exact element: round-off only (EXACT, see its definition)
     assert r.uz[-1] == pytest.approx(ref, rel=EXACT)
@@ -178,7 +196,7 @@ def test_cantilever_on_radial_and_tilt_springs():
     L, d, P, k, kt = 120.0, 16.0, 500.0, 20_000.0, 3.0e7
     A, Ia = props(d)
     v = make_variant([(L, d)], [(0.0, ((k, 0.0), (0.0, k)), True, kt)])
-    _, r = one(v, max_element_mm=10, extra_loads=[beam.PointLoad(L, Fy_N=P)])
+    _, r = one(v, max_element_mm=10, extra_loads=[PointLoad(L, Fy_N=P)])
     ref = P * L**3 / (3 * E * Ia) + P * L / (KAPPA * G * A) + P / k + P * L**2 / kt
     # exact element: round-off only (EXACT, see its definition)
     assert r.uy[-1] == pytest.approx(ref, rel=EXACT)
@@ -191,7 +209,7 @@ def test_simply_supported_on_unequal_springs():
     L, d, P, k1, k2 = 200.0, 20.0, 1000.0, 35_030.0, 12_000.0
     A, Ia = props(d)
     v = make_variant([(L, d)], [(0.0, ((k1, 0), (0, k1))), (L, ((k2, 0), (0, k2)))])
-    m, r = one(v, max_element_mm=8, extra_loads=[beam.PointLoad(L / 2, Fy_N=P)])
+    m, r = one(v, max_element_mm=8, extra_loads=[PointLoad(L / 2, Fy_N=P)])
     rigid = P * L**3 / (48 * E * Ia) + P * L / (4 * KAPPA * G * A)
     ref = rigid + 0.5 * (P / 2 / k1 + P / 2 / k2)
     # exact element: round-off only (EXACT, see its definition)
@@ -206,7 +224,7 @@ def test_overhang_on_springs_lever_rule():
     L, a, d, P, k1, k2 = 150.0, 60.0, 18.0, 800.0, 30_000.0, 50_000.0
     A, Ia = props(d)
     v = make_variant([(L + a, d)], [(0.0, ((k1, 0), (0, k1))), (L, ((k2, 0), (0, k2)))])
-    _, r = one(v, max_element_mm=5, extra_loads=[beam.PointLoad(L + a, Fy_N=P)])
+    _, r = one(v, max_element_mm=5, extra_loads=[PointLoad(L + a, Fy_N=P)])
     tip_rigid = P * a**2 * (L + a) / (3 * E * Ia) + P * a * (L + a) / (L * KAPPA * G * A)
     dA = -P * a / L / k1            # bearing A is pulled away from the load (−y)
     dB = P * (L + a) / L / k2
@@ -224,7 +242,7 @@ def test_coupled_spring_support_displacement_is_K_inverse_R():
     L, d, P, xp, ang = 180.0, 20.0, 2000.0, 70.0, math.radians(30)
     v = make_variant([(L, d)], [(0.0, Kc), (L, Kc)])
     Py, Pz = P * math.cos(ang), P * math.sin(ang)
-    m, r = one(v, max_element_mm=6, extra_loads=[beam.PointLoad(xp, Fy_N=Py, Fz_N=Pz)])
+    m, r = one(v, max_element_mm=6, extra_loads=[PointLoad(xp, Fy_N=Py, Fz_N=Pz)])
     load_on = {0: np.array([Py, Pz]) * (L - xp) / L, 1: np.array([Py, Pz]) * xp / L}
     Kinv = np.linalg.inv(np.array(Kc))
     for i, b in enumerate(r.bearings):
@@ -235,7 +253,7 @@ def test_coupled_spring_support_displacement_is_K_inverse_R():
         # exact element: round-off only (EXACT, see its definition)
         assert np.allclose(disp, Kinv @ load_on[i], rtol=EXACT)
     # a pure y load still moves the supports in z through K12
-    m2, ry = one(v, max_element_mm=6, extra_loads=[beam.PointLoad(L / 2, Fy_N=P)])
+    m2, ry = one(v, max_element_mm=6, extra_loads=[PointLoad(L / 2, Fy_N=P)])
     A, Ia = props(d)
     rigid = P * L**3 / (48 * E * Ia) + P * L / (4 * KAPPA * G * A)
     sup = Kinv @ np.array([P / 2, 0.0])
@@ -257,7 +275,7 @@ def test_stepped_hollow_shaft_against_unit_load_integral():
     xa, xb, xp, P = 5.0, 110.0, 45.0, 3000.0
     v = make_variant(segs, [(xa, RIGID), (xb, RIGID)], hex_socket=hs)
     m, r = one(v, rigid_supports=True, max_element_mm=4,
-               extra_loads=[beam.PointLoad(xp, Fy_N=P)])
+               extra_loads=[PointLoad(xp, Fy_N=P)])
     span = xb - xa
     Ra = P * (xb - xp) / span
 
@@ -280,7 +298,7 @@ def test_stepped_hollow_shaft_against_unit_load_integral():
         xm = 0.5 * (lo + hi)
         dia = next(sd for (sl, sd, *_), x0 in zip(segs, [0, 25, 65, 100], strict=True)
                    if x0 <= xm < x0 + sl)
-        sec = beam.section_properties(np.array([dia]), NU, np.array([8.0 if xm < 10 else 0.0]))
+        sec = section_properties(np.array([dia]), NU, np.array([8.0 if xm < 10 else 0.0]))
         EI, kGA = E * sec.I[0], sec.kappa[0] * G * sec.A[0]
         delta += quad(lambda x, EI=EI, kGA=kGA: M(x) * m1(x) / EI + V(x) * v1(x) / kGA,
                       lo, hi, epsabs=0, epsrel=1e-13)[0]   # reference to ~round-off
@@ -367,8 +385,8 @@ def test_rotating_load_directions_rotates_the_response():
 def test_doubling_rpm_quadruples_forces_and_stresses():
     """Centrifugal loads m e ω² (Attachment.force_N): doubling rpm gives exactly 4× forces,
     deflections and stresses (linear model), and L10h scales by 1/(2·4^p)."""
-    m = beam.build_model(_balancer_like())
-    r1, r2 = beam.solve(m, [5000.0, 10_000.0])
+    m = build_model(_balancer_like())
+    r1, r2 = solve(m, [5000.0, 10_000.0])
     for b1, b2 in zip(r1.bearings, r2.bearings, strict=True):
         # exact arithmetic (round-off only): one unit solve scaled by ω²
         assert b2.F_N == pytest.approx(4 * b1.F_N, rel=1e-12)
@@ -399,7 +417,7 @@ def test_torque_gives_tau_and_von_mises():
     L, d, T, P = 200.0, 20.0, 40_000.0, 1000.0
     v = make_variant([(L, d)], [(0.0, RIGID, True), (150.0, RIGID, False)])
     m, r = one(v, rigid_supports=True, max_element_mm=10,
-               extra_loads=[beam.PointLoad(100.0, Fy_N=P), beam.PointLoad(L, Mx_Nmm=T)])
+               extra_loads=[PointLoad(100.0, Fy_N=P), PointLoad(L, Mx_Nmm=T)])
     tau = 16 * T / (math.pi * d**3)
     inside = r.x_sec < 200.0
     # exact element: round-off only (EXACT, see its definition)
@@ -409,17 +427,17 @@ def test_torque_gives_tau_and_von_mises():
     # rotation of the free end = T L/(G J)
     Ip = math.pi * d**4 / 32
     assert r.x[-1] == L
-    u = beam.solve_unit(m).u[:, 1]
+    u = solve_unit(m).u[:, 1]
     # exact element: round-off only (EXACT, see its definition)
-    assert u[beam.NDOF * (m.n_nodes - 1) + beam.RX] == pytest.approx(T * L / (G * Ip), rel=EXACT)
+    assert u[NDOF * (m.n_nodes - 1) + RX] == pytest.approx(T * L / (G * Ip), rel=EXACT)
 
 
 def test_l10h_reproduces_seed_value():
     """ISO 281 basic life (C/P)^3 10⁶/(60 n): seed 000 §8.2, bearing 3303 (C = 23 649 N) with
     P = 2931 N at 7000 rpm → 1250.7 h (seed, 5 significant digits)."""
     # seed's 5 digits: ±0.05 (ours 1250.667); 0.1 = one unit of the printed digit
-    assert beam.l10h(23_649.0, 2931.0, 7000.0, 3.0) == pytest.approx(1250.7, abs=0.1)
-    assert math.isinf(beam.l10h(23_649.0, 0.0, 7000.0))
+    assert l10h(23_649.0, 2931.0, 7000.0, 3.0) == pytest.approx(1250.7, abs=0.1)
+    assert math.isinf(l10h(23_649.0, 0.0, 7000.0))
 
 
 def test_shaft_mass_uniform_cylinder_minus_hexagon():
@@ -428,7 +446,7 @@ def test_shaft_mass_uniform_cylinder_minus_hexagon():
     v = make_variant([(100.0, 20.0)], [(0.0, RIGID), (100.0, RIGID)],
                      hex_socket=HexSocket("right", 8.0, 10.0))
     vol = math.pi * 20**2 / 4 * 100 - math.sqrt(3) / 2 * 64 * 10
-    assert beam.shaft_mass_kg(v) == pytest.approx(vol * 7.85e-9 * 1e3, rel=1e-12)   # exact
+    assert shaft_mass_kg(v) == pytest.approx(vol * 7.85e-9 * 1e3, rel=1e-12)   # exact
 
 
 # ----------------------------------------------------------------------------- singularity
@@ -438,35 +456,35 @@ def test_singular_supports_raise_solver_error():
     k = ((30_000.0, 0.0), (0.0, 30_000.0))
     one_bearing = make_variant([(100, 20)], [(10.0, k, True)])
     with pytest.raises(SolverError, match="rotation about"):
-        beam.solve(beam.build_model(one_bearing), 1000.0)
+        solve(build_model(one_bearing), 1000.0)
     no_axial = make_variant([(100, 20)], [(10.0, k, False), (90.0, k, False)])
     with pytest.raises(SolverError, match="axial"):
-        beam.solve(beam.build_model(no_axial), 1000.0)
+        solve(build_model(no_axial), 1000.0)
     # a bearing without stiffness in z is refused as input (shaftfe.model.validate: one rule
     # for the beam and the 3D model), naming the field, before any matrix is built
     y_only = ((30_000.0, 0.0), (0.0, 0.0))
     no_z = make_variant([(100, 20)], [(10.0, y_only, True), (90.0, y_only, False)])
     with pytest.raises(InputError, match="K_N_per_mm"):
-        beam.build_model(no_z)
+        build_model(no_z)
     none = make_variant([(100, 20)], [])
     with pytest.raises(SolverError, match="no bearings"):
-        beam.solve(beam.build_model(none), 1000.0)
+        solve(build_model(none), 1000.0)
     # the same one-bearing model is regular once the bearing has tilt stiffness
     tilted = make_variant([(100, 20)], [(10.0, k, True, 1e7)])
-    beam.solve(beam.build_model(tilted), 1000.0)
+    solve(build_model(tilted), 1000.0)
 
 
 def test_bad_input_raises_input_error():
     """Negative spring matrix, bearing outside the shaft, bad element length, negative rpm."""
     with pytest.raises(InputError):
-        beam.build_model(make_variant([(100, 20)], [(10.0, ((-1.0, 0.0), (0.0, 1.0)))]))
+        build_model(make_variant([(100, 20)], [(10.0, ((-1.0, 0.0), (0.0, 1.0)))]))
     with pytest.raises(InputError):
-        beam.build_model(make_variant([(100, 20)], [(120.0, RIGID)]))
+        build_model(make_variant([(100, 20)], [(120.0, RIGID)]))
     v = make_variant([(100, 20)], [(0.0, RIGID), (100.0, RIGID)])
     with pytest.raises(InputError):
-        beam.build_model(v, max_element_mm=0.0)
+        build_model(v, max_element_mm=0.0)
     with pytest.raises(InputError):
-        beam.solve(beam.build_model(v, rigid_supports=True), -5.0)
+        solve(build_model(v, rigid_supports=True), -5.0)
 
 
 # ----------------------------------------------------------------------------- mass matrix
@@ -475,9 +493,9 @@ def test_consistent_mass_rigid_body_mass_and_inertia():
     """The consistent mass must reproduce the rigid-body inertia of a stepped shaft: mass
     Σ ρ A L for each translation, and Σ ρ J L (polar) for torsion (exact integrals)."""
     v = make_variant([(30, 20), (40, 25), (30, 15)], [(10, RIGID), (90, RIGID)])
-    m = beam.build_model(v, max_element_mm=6, rigid_supports=True)   # K_N_per_mm unused
-    M = beam.assemble_mass(m)
-    R = beam.rigid_body_modes(m.x, 0.0, 1.0)
+    m = build_model(v, max_element_mm=6, rigid_supports=True)   # K_N_per_mm unused
+    M = assemble_mass(m)
+    R = rigid_body_modes(m.x, 0.0, 1.0)
     rho = STEEL.density_t_mm3
     mass = rho * math.pi / 4 * (20**2 * 30 + 25**2 * 40 + 15**2 * 30)
     Jp = rho * math.pi / 32 * (20**4 * 30 + 25**4 * 40 + 15**4 * 30)
@@ -492,13 +510,13 @@ def _ss_frequencies_sq(L, d, h):
     from scipy.linalg import eigh
 
     v = make_variant([(L, d)], [(0.0, RIGID), (L, RIGID)])
-    m = beam.build_model(v, rigid_supports=True, max_element_mm=h)
-    K = beam.assemble_stiffness(m)
-    M = beam.assemble_mass(m)
-    _, fixed = beam.support_stiffness(m)
+    m = build_model(v, rigid_supports=True, max_element_mm=h)
+    K = assemble_stiffness(m)
+    M = assemble_mass(m)
+    _, fixed = support_stiffness(m)
     # keep only the y-plane bending dofs (v, θ_z) of the free nodes
     dofs = np.arange(K.shape[0])
-    plane = np.isin(dofs % beam.NDOF, [beam.UY, beam.RZ]) & ~np.isin(dofs, fixed)
+    plane = np.isin(dofs % NDOF, [UY, RZ]) & ~np.isin(dofs, fixed)
     return eigh(K[np.ix_(plane, plane)], M[np.ix_(plane, plane)], eigvals_only=True,
                 subset_by_index=[0, 2])
 
@@ -539,7 +557,7 @@ def test_euler_bernoulli_limit():
     _, Ia = props(d)
     v = make_variant([(L + a, d)], [(0.0, RIGID), (L, RIGID)])
     m, r = one(v, rigid_supports=True, max_element_mm=5, shear_deformation=False,
-               extra_loads=[beam.PointLoad(L / 2, Fy_N=P), beam.PointLoad(L + a, Fz_N=P)])
+               extra_loads=[PointLoad(L / 2, Fy_N=P), PointLoad(L + a, Fz_N=P)])
     # exact element: round-off only, Skeel bound 1.2e-10 here (κ → ∞ stiffens the shear
     # terms): 10 × EXACT leaves 80× (was rel 1e-6)
     assert r.uy[node(m, L / 2)] == pytest.approx(P * L**3 / (48 * E * Ia), rel=10 * EXACT)

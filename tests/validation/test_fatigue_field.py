@@ -24,7 +24,7 @@ RPM_DAT = ROOT / "loadspectra" / "rpm.dat"
 def ref(tmp_path_factory):
     from shaftfe.model.loader import load_variant
     from shaftfe.static.cache import load_or_solve
-    from shaftfe.static.solve import StaticOptions
+    from shaftfe.static.model import StaticOptions
     cache = tmp_path_factory.getbasetemp() / "shaftfe-fatigue-cache"
     return load_or_solve(load_variant("x2_57"), StaticOptions(level="coarse",
                                                               seed_load_case=True), cache)

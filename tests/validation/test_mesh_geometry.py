@@ -36,7 +36,7 @@ def _measure(sm):
 # mesh: P2 tets/facets interpolate the curved surfaces; measured volume error ≤ 5.2e-4 and
 # face-area error ≤ 2.6e-3 (end faces with the hex socket, x2_57 coarse) over the meshes below
 def _check(sm, variant, vol_tol=2e-3, area_tol=5e-3):
-    from shaftfe.solid.mesh import analytic_volume, expected_areas
+    from shaftfe.solid.exact import analytic_volume, expected_areas
     vol, areas = _measure(sm)
     exp = expected_areas(variant)
     assert set(areas) == set(exp)
@@ -60,7 +60,8 @@ def test_keyway_straddling_the_load_plane(tmp_path):
     """Keyway at 90° to a 0° load: the split plane y = 0 cuts the slot in two; each seat half
     loses exactly half of the opening (exact: ∫ R dψ over the window, round ends by
     quadrature). Coarse level, same tolerances."""
-    from shaftfe.solid.mesh import build_mesh, expected_areas
+    from shaftfe.solid.exact import expected_areas
+    from shaftfe.solid.mesh import build_mesh
     v = small_shaft(keyway_angle=90.0, load_angle=0.0)
     exp = expected_areas(v)
     # exact arithmetic: the same closed form on both halves (measured equal)

@@ -39,7 +39,7 @@ from rotor_refs import (
     timoshenko_free_free,
 )
 
-from shaftfe.beam import model as beam
+from shaftfe.beam.model import build_model
 from shaftfe.model.variant import Bearing, Material, Segment, Variant
 from shaftfe.rotordynamics import beam_rotor as rotor
 
@@ -78,7 +78,7 @@ def test_free_free_bending_matches_timoshenko_theory(L, D):
     less than 1 % for the first three modes (the Timoshenko correction is small); for the
     stubby case (L/D = 10) they differ by more than 3 % on mode 2 and the FE still matches
     Timoshenko."""
-    m = beam.build_model(cyl(L, D), max_element_mm=L / 100)
+    m = build_model(cyl(L, D), max_element_mm=L / 100)
     res = rotor.modal(rotor.build_rotor(m, check=False), 0.0, 16)
     assert res.n_rigid == 6
     fe = lateral(res)[0:8:2]
@@ -102,7 +102,7 @@ def test_free_free_axial_and_torsion_closed_forms():
     """Free-free uniform rod: axial f_n = n √(E/ρ)/(2L), torsion f_n = n √(G/ρ)/(2L)
     (Rao, Mechanical Vibrations, §8.4-8.5), first two of each within 1 %."""
     L, D = 500.0, 20.0
-    m = beam.build_model(cyl(L, D), max_element_mm=5.0)
+    m = build_model(cyl(L, D), max_element_mm=5.0)
     res = rotor.modal(rotor.build_rotor(m, check=False), 0.0, 40)
     n = np.array([1, 2])
     ax = family(res, "axial")[:2]
@@ -119,7 +119,7 @@ def test_pinned_pinned_at_rest_and_fixed_free_rod_modes():
     fixed-free rods f = (2n−1) c/(4L) (Rao §8.4-8.5). All within 1 %."""
     L, D = 200.0, 40.0
     v = cyl(L, D, (brg("a", 0.0, axial=True), brg("b", L)))
-    m = beam.build_model(v, rigid_supports=True, max_element_mm=2.0)
+    m = build_model(v, rigid_supports=True, max_element_mm=2.0)
     res = rotor.modal(rotor.build_rotor(m), 0.0, 10)
     fe = lateral(res)[0:4:2]
     ref = [pinned_whirl(L, D, n, 0.0)[0] for n in (1, 2)]
@@ -141,7 +141,7 @@ def test_spinning_pinned_shaft_forward_backward_split(rpm):
     the labels right (forward above backward)."""
     L, D = 200.0, 40.0
     v = cyl(L, D, (brg("a", 0.0, axial=True), brg("b", L)))
-    m = beam.build_model(v, rigid_supports=True, max_element_mm=2.0)
+    m = build_model(v, rigid_supports=True, max_element_mm=2.0)
     res = rotor.modal(rotor.build_rotor(m), rpm, 10)
     Om = rpm * math.pi / 30
     lat = [(f, w) for f, w, fam in zip(res.freq_hz[0], res.whirl[0], res.family[0],
@@ -168,7 +168,7 @@ def test_overhung_disk_gyroscopic_split_closed_form(offset):
     L, D = 300.0, 20.0
     massless = Material("massless", E, NU, RHO * 1e-9, 1.0, 1.0)
     v = cyl(L, D, (), mat=massless)
-    m = beam.build_model(v, max_element_mm=L, shear_deformation=False)
+    m = build_model(v, max_element_mm=L, shear_deformation=False)
     disk = rotor.disk_from_geometry("d", L + offset, 300.0, 0.0, 40.0, RHO, x_node_mm=L)
     clamp = np.arange(6)            # all six dofs of node 0
     r = rotor.build_rotor(m, [disk], extra_fixed=clamp, check=False)
@@ -209,7 +209,7 @@ def friswell_591(kyy=1000.0, max_element_mm=250.0):
     mat = Material("friswell", Ef, Ef / (2 * Gf) - 1.0, rho, 1.0, 1.0)
     K = ((1000.0, 0.0), (0.0, kyy))                   # 1 MN/m = 1000 N/mm
     v = cyl(1500.0, 50.0, (brg("a", 0.0, K, axial=True), brg("b", 1500.0, K)), mat)
-    m = beam.build_model(v, max_element_mm=max_element_mm)
+    m = build_model(v, max_element_mm=max_element_mm)
     disks = [rotor.disk_from_geometry("d1", 500.0, 280.0, 50.0, 70.0, rho),
              rotor.disk_from_geometry("d2", 1000.0, 350.0, 50.0, 70.0, rho)]
     return rotor.build_rotor(m, disks)
@@ -247,7 +247,7 @@ def test_friswell_example_5_9_9_overhung(h):
     mat = Material("friswell", Ef, Ef / (2 * Gf) - 1.0, rho, 1.0, 1.0)
     K = ((10_000.0, 0.0), (0.0, 10_000.0))
     v = cyl(1500.0, 50.0, (brg("a", 0.0, K, axial=True), brg("b", 1000.0, K)), mat)
-    m = beam.build_model(v, max_element_mm=h)
+    m = build_model(v, max_element_mm=h)
     r = rotor.build_rotor(m, [rotor.disk_from_geometry("d", 1500.0, 350.0, 50.0, 70.0, rho)])
     rpms = np.arange(0.0, 4001.0, 250.0)
     res = rotor.campbell(r, rpms, 10)

@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pytest
 
-from shaftfe.beam import model as beam
+from shaftfe.beam.model import build_model, rigid_body_modes
 from shaftfe.model.variant import Bearing, Material, Segment, Variant
 from shaftfe.rotordynamics import beam_rotor as rotor
 from shaftfe.rotordynamics import kernels as campbell
@@ -32,7 +32,7 @@ def stepped(K1, K2=None, damping=None):
     brgs = (Bearing("g", "-", 35.0, 10.0, 1.0, 1.0, K1, axial=True),
             Bearing("f", "-", 75.0, 10.0, 1.0, 1.0, K2))
     v = Variant("stepped", "test", segs, brgs, (), STEEL, 0.0)
-    m = beam.build_model(v, max_element_mm=4.0)
+    m = build_model(v, max_element_mm=4.0)
     x_cw = float(m.x[np.argmin(np.abs(m.x - 92.0))])        # cw2 seat node, centroid 4 mm out
     disks = [rotor.disk_from_geometry("gear", 15.0, 70.0, 17.0, 12.0, 7.85e-9),
              rotor.disk_from_geometry("cw", x_cw + 4.0, 80.0, 17.0, 25.0, 7.85e-9,
@@ -183,9 +183,9 @@ def test_x2_57_rigid_body_inertia_matches_mass_properties_and_seed():
 
     v = load_variant("x2_57")
     mp = v.mass_properties()
-    m = beam.build_model(dataclasses.replace(v, bearings=()))
+    m = build_model(dataclasses.replace(v, bearings=()))
     r = rotor.build_rotor(m, rotor.disks_from_variant(v), check=False)
-    R = beam.rigid_body_modes(m.x, mp.x_centroid_mm, 1.0)
+    R = rigid_body_modes(m.x, mp.x_centroid_mm, 1.0)
     Mr = R.T @ r.M @ R * 1e3                       # t → kg
     # the beam ignores the keyways (docstring): measured 2.0e-3 mass, 1.7e-4 polar, 1.7e-3
     # diametral
@@ -211,7 +211,7 @@ def test_bearing_energy_share_limits():
     segs = (Segment("a", 0.0, 110.0, 17.0),)
     brgs = (Bearing("g", "-", 35.0, 10.0, 1.0, 1.0, ISO, axial=True),
             Bearing("f", "-", 75.0, 10.0, 1.0, 1.0, ISO))
-    m = beam.build_model(Variant("r", "t", segs, brgs, (), STEEL, 0.0), rigid_supports=True)
+    m = build_model(Variant("r", "t", segs, brgs, (), STEEL, 0.0), rigid_supports=True)
     rig = rotor.build_rotor(m)
     res = rotor.modal(rig, 0.0, 4, keep_vectors=True)
     assert np.all(rotor.support_energy_share(rig, res.vectors[0]) == 0.0)

@@ -29,6 +29,7 @@ from rotor_refs import ROSS_599, pinned_whirl, rod_speed, timoshenko_free_free
 
 from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
 from shaftfe.rotordynamics import beam_rotor as rotor
+from shaftfe.rotordynamics import modes_vtu, solid_modal
 from shaftfe.rotordynamics import solid_rotor as rotor_solid
 
 E, NU, RHO = 210_000.0, 0.3, 7.85e-9
@@ -93,7 +94,7 @@ def test_free_free_cylinder_against_timoshenko_and_rod_theory(cyl_mesh):
     matrix, Pestel & Leckie 1963), the first axial mode and the first two torsional modes
     within 1 % of f_n = n c/(2L) (Rao §8.4-8.5); six rigid-body modes dropped."""
     r = rotor_solid.build_solid_rotor(cylinder(), shaft_mesh=cyl_mesh, supported=False)
-    res = rotor_solid.modal(r, 0.0, 14)
+    res = solid_modal.modal(r, 0.0, 14)
     assert res.n_rigid == 6
     lat = family(res, "lateral")
     ref = timoshenko_free_free(L, D, 3, 1.3 * lat[5])
@@ -118,7 +119,7 @@ def test_cylinder_on_stiff_supports_pinned_and_held_rods(cyl_mesh):
     r = rotor_solid.build_solid_rotor(
         v, rotor_solid.SolidOptions(rigid_supports=True), shaft_mesh=cyl_mesh,
         support_faces=ENDS)
-    res = rotor_solid.modal(r, 0.0, 10)
+    res = solid_modal.modal(r, 0.0, 10)
     assert res.n_rigid == 0
     lat = family(res, "lateral")
     ref = [pinned_whirl(L, D, n, 0.0)[0] for n in (1, 2)]
@@ -138,7 +139,7 @@ def test_pairs_isotropic_and_split_with_anisotropic_bearings(cyl_mesh, K, split)
     √K, √2 here)."""
     v = cylinder(end_bearings(K))
     r = rotor_solid.build_solid_rotor(v, shaft_mesh=cyl_mesh, support_faces=ENDS)
-    res = rotor_solid.modal(r, 0.0, 8)
+    res = solid_modal.modal(r, 0.0, 8)
     lat = family(res, "lateral")
     rel = np.abs(lat[1:4:2] / lat[0:4:2] - 1)
     if split:
@@ -176,8 +177,8 @@ def friswell_599(tmp_path_factory, coupling="distributing"):
 @pytest.fixture(scope="module")
 def f599(tmp_path_factory):
     r = friswell_599(tmp_path_factory)
-    prov = rotor_solid.BasisProvider(r)
-    res = rotor_solid.campbell(r, [0.0, 2000.0, 4000.0], 10, provider=prov)
+    prov = solid_modal.BasisProvider(r)
+    res = solid_modal.campbell(r, [0.0, 2000.0, 4000.0], 10, provider=prov)
     return r, prov, res
 
 
@@ -210,12 +211,12 @@ def test_reduced_basis_against_full_size_problem(f599):
     (shift-invert Arnoldi on the companion pencil, no reduction) to 1e-6; at the top speed
     (4000 rpm, strong gyroscopics) ``verify`` agrees to 1e-4 with no mode missed."""
     r, _, res = f599
-    s = rotor_solid.full_qep(r, 0.0, 10)
+    s = solid_modal.full_qep(r, 0.0, 10)
     full = np.sort(s.imag) / (2 * math.pi)
     # at Ω = 0 the basis holds the exact modes: round-off of the two solvers (shift-invert
     # ARPACK on a 3D pencil vs the reduced one), measured 3.1e-11
     assert np.max(np.abs(np.sort(res.freq_hz[0]) / full - 1)) < 1e-6
-    ver = rotor_solid.verify(r, res)
+    ver = solid_modal.verify(r, res)
     assert ver.rpm == 4000.0
     # truncated basis: measured 5.3e-7 (its basis ×1.5 change 4.9e-7); 1e-4 leaves 190×
     assert ver.max_rel_diff < 1e-4 and ver.n_missed == 0
@@ -232,10 +233,10 @@ def test_mode_shapes_vtu_follow_the_field_convention(cyl_mesh, tmp_path):
     r = rotor_solid.build_solid_rotor(
         v, rotor_solid.SolidOptions(rigid_supports=True), shaft_mesh=cyl_mesh,
         support_faces=ENDS)
-    res = rotor_solid.modal(r, 0.0, 6, keep_vectors=True)
-    path = rotor_solid.write_modes_vtu(r, res, tmp_path / "modes.vtu")
+    res = solid_modal.modal(r, 0.0, 6, keep_vectors=True)
+    path = modes_vtu.write_modes_vtu(r, res, tmp_path / "modes.vtu")
     m = meshio.read(path)
-    names = [rotor_solid.mode_field_name(j + 1, f) for j, f in enumerate(res.freq_hz[0])]
+    names = [modes_vtu.mode_field_name(j + 1, f) for j, f in enumerate(res.freq_hz[0])]
     assert set(names) <= set(m.point_data)
     # written and read back (float64: exact); allclose's default rtol 1e-5
     assert np.allclose(m.field_data["frequencies_hz"], res.freq_hz[0])
@@ -265,8 +266,8 @@ def test_bearing_damping_damped_frequencies_against_full_size_problem(cyl_mesh):
     v = cylinder(end_bearings(K))
     r = rotor_solid.build_solid_rotor(v, rotor_solid.SolidOptions(bearing_damping=2.0),
                                       shaft_mesh=cyl_mesh, support_faces=ENDS)
-    res = rotor_solid.campbell(r, [0.0, 30_000.0], 6)
-    ver = rotor_solid.verify(r, res)
+    res = solid_modal.campbell(r, [0.0, 30_000.0], 6)
+    ver = solid_modal.verify(r, res)
     # basis with the dampers' residual vectors vs the damped full problem: measured 3.6e-6
     assert ver.max_rel_diff < 1e-4 and ver.n_missed == 0
     # ζ ≥ 0 up to round-off (passive damping); the bearing modes are damped (measured 0.16)

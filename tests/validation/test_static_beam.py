@@ -11,7 +11,7 @@ w_rel(x) (beam deflection minus the line through the seat means) plus the line t
 spring displacements R_i/k_i. Bending stress: σ_xx = M c / I (Navier).
 
 The mesh level used here is finer than the shipped levels (k_global = 0.15 D) so that the
-far-field stress is within 1 %; it is added to ``shaftfe.solid.mesh.LEVELS`` for this module only.
+far-field stress is within 1 %; a ``MeshLevel`` of this module only.
 """
 
 from __future__ import annotations
@@ -72,7 +72,8 @@ def timoshenko(F: float, x_eval: np.ndarray, n: int = 400_001):
 @pytest.fixture(scope="module")
 def result(tmp_path_factory):
     from shaftfe.solid.levels import MeshLevel
-    from shaftfe.static.solve import StaticOptions, solve_static
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
     level = MeshLevel(LEVEL, k_global=0.15, k_fillet=1.0, k_sharp=2.0, grad=0.5)
     return solve_static(shaft(), [RPM], StaticOptions(level=level),
                         cache_dir=tmp_path_factory.mktemp("vb"), beam=False)

@@ -7,7 +7,7 @@ short of the fillet's tangent line: the coupling edge (a traction jump, singular
 construction) is separated from the fillet by straight seat. One part on the Ø14 middle is
 spun at 10 000 rpm.
 
-Reference: Richardson extrapolation (the module's own ``static._estimate_error``). The test
+Reference: Richardson extrapolation (the module's own ``static.estimate_error``). The test
 asserts what issue 4 asks of it: a mesh refinement does not move the peak fillet stress by more
 than the estimate said. Three test levels differ only in the fillet element size
 (k_fillet 0.45, 0.32, 0.225 × ρ: ratio √2 each; 24k / 48k / 112k dofs, ~1 min). The estimate
@@ -51,12 +51,12 @@ def shaft() -> Variant:
 
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
-    from shaftfe.static import solve as static
+    from shaftfe import static
     cache = tmp_path_factory.mktemp("conv")
     v = shaft()
     opts = static.StaticOptions(level=TEST_LEVELS[1])
     mid = static.solve_static(v, [RPM], opts, cache_dir=cache, beam=False)
-    est = static._estimate_error(mid, v, opts, cache, other_level=TEST_LEVELS[0])
+    est = static.estimate_error(mid, v, opts, cache, other_level=TEST_LEVELS[0])
     fine = static.solve_static(v, [RPM], dataclasses.replace(opts, level=TEST_LEVELS[2]),
                                cache_dir=cache, beam=False)
     return mid, est, fine

@@ -49,7 +49,8 @@ def stepped() -> Variant:
 
 @pytest.fixture(scope="module")
 def result(tmp_path_factory):
-    from shaftfe.static.solve import StaticOptions, solve_static
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
     return solve_static(stepped(), [RPM], StaticOptions(level="default"),
                         cache_dir=tmp_path_factory.mktemp("vf"), beam=False)
 

@@ -31,7 +31,8 @@ RPM = 10_000.0
 def result(tmp_path_factory):
     from shaftfe.errors import ShaftfeError
     from shaftfe.model.loader import load_variant
-    from shaftfe.static.solve import StaticOptions, solve_static
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
     try:
         v = load_variant("x2_57")
     except (ShaftfeError, FileNotFoundError) as exc:           # geometry not there yet

@@ -31,7 +31,7 @@ from rotor_refs import KAPPA
 from test_rotor_solid import ENDS, NU, RHO, D, E, L, cylinder, end_bearings, family
 
 from shaftfe.fe import assembly as fem
-from shaftfe.rotordynamics import kernels as campbell
+from shaftfe.rotordynamics import campbell, prestress, solid_modal
 from shaftfe.rotordynamics import solid_rotor as rotor_solid
 
 G_SHEAR = E / (2 * (1 + NU))
@@ -78,17 +78,17 @@ def test_geometric_stiffness_tensioned_pinned_beam(cyl_mesh):
     solid follows the Timoshenko form."""
     r0 = pinned_rotor(cyl_mesh)
     m = cyl_mesh.mesh
-    dN, _ = fem.physical_gradients(m, rotor_solid.geometric_order(m))
+    dN, _ = fem.physical_gradients(m, prestress.geometric_order(m))
     k1 = math.pi / L
     T0 = 0.45 * E * I_SEC * k1**2                       # N; mode 1: +20 % in tension
-    lat0 = family(rotor_solid.modal(r0, 0.0, 8), "lateral")
+    lat0 = family(solid_modal.modal(r0, 0.0, 8), "lateral")
     for T in (T0, -T0):
         stress = np.zeros((*dN.shape[:2], 3, 3))
         stress[..., 0, 0] = T / A_SEC
-        Kq = rotor_solid.vector_matrix(rotor_solid.geometric_stiffness(m, stress))
+        Kq = rotor_solid.vector_matrix(prestress.geometric_stiffness(m, stress))
         Kq = (r0.T.T @ Kq @ r0.T) if r0.T is not None else Kq
         r = replace(r0, K_sparse=(r0.K_sparse + Kq).tocsr())
-        lat = family(rotor_solid.modal(r, 0.0, 8), "lateral")
+        lat = family(solid_modal.modal(r, 0.0, 8), "lateral")
         for n, j in ((1, 0), (2, 2)):
             ref = tensioned_pinned(n, T) / tensioned_pinned(n, 0.0)
             for jj in (j, j + 1):                                    # both of the pair
@@ -150,7 +150,7 @@ def test_centrifugal_prestress_rotating_long_cylinder():
     sm = fine_cylinder_mesh(length, b)
     r = rotor_solid.build_solid_rotor(cylinder(), shaft_mesh=sm, supported=False,
                                       attachments=False)
-    ps = rotor_solid.centrifugal_prestress(r)                 # per unit Ω² (Ω = 1 rad/s)
+    ps = prestress.centrifugal_prestress(r)                 # per unit Ω² (Ω = 1 rad/s)
     xq = quadrature_points(sm.mesh, ps.intorder)
     sel = np.abs(xq[..., 0] - length / 2) < 0.1 * length    # band, not a tolerance: 6 mm
     _, y, z = xq[sel].T
@@ -182,13 +182,13 @@ def test_prestress_virial_identity_and_rigid_body_without_spin_stiffness(cyl_mes
     rigid body keeps the classical gyroscopic equations without Ω² stiffness (Friswell et
     al. 2010, §3.6), which K_σ alone would violate."""
     r = rotor_solid.build_solid_rotor(cylinder(), shaft_mesh=cyl_mesh, supported=False)
-    ps = rotor_solid.centrifugal_prestress(r)
+    ps = prestress.centrifugal_prestress(r)
     m = cyl_mesh.mesh
     Phi = fem.rigid_body_modes(m, (0.5 * L, 0.0, 0.0))
     Ip = float(Phi[:, 3] @ (r.M @ Phi[:, 3]))
-    Ks = Phi.T @ (rotor_solid.vector_matrix(rotor_solid.geometric_stiffness(m, ps.stress))
+    Ks = Phi.T @ (rotor_solid.vector_matrix(prestress.geometric_stiffness(m, ps.stress))
                   @ Phi)
-    At = Phi.T @ (rotor_solid.vector_matrix(rotor_solid.convective_matrix(m, RHO)) @ Phi)
+    At = Phi.T @ (rotor_solid.vector_matrix(prestress.convective_matrix(m, RHO)) @ Phi)
     for X in (Ks, At):
         # the virial identity holds for the discrete prestress up to its solve/quadrature
         # error: 0.1 % (docstring)
@@ -209,22 +209,22 @@ def spring_cylinder(tmp_path_factory):
     v = cylinder(end_bearings(K))
     off = rotor_solid.build_solid_rotor(v, shaft_mesh=sm, support_faces=ENDS)
     on = replace(off, options=replace(off.options, stress_stiffening=True))
-    return off, on, rotor_solid.BasisProvider(off)
+    return off, on, solid_modal.BasisProvider(off)
 
 
 def test_option_off_is_bit_identical_and_on_leaves_rest_unchanged(spring_cylinder):
-    """Default (off): ``rotor_solid.campbell`` gives bit-identical frequencies to the kernel
+    """Default (off): ``solid_modal.campbell`` gives bit-identical frequencies to the kernel
     sweep without any Ω² term (the code path before the option existed), on the same basis;
     the default options have the option off; with the option on the frequencies at rest are
     bit-identical too (Ω² K_g = 0) and change at 30 000 rpm."""
     off, on, prov = spring_cylinder
     assert rotor_solid.SolidOptions().stress_stiffening is False
     rpms = [0.0, 30_000.0]
-    a = rotor_solid.campbell(off, rpms, 8, provider=prov)
+    a = solid_modal.campbell(off, rpms, 8, provider=prov)
     b = campbell.sweep(off.K, off.M, off.G, rpms, 8, off.labelling, C=off.C, basis_fn=prov,
                        residuals=prov.residuals())
     assert np.array_equal(a.freq_hz, b.freq_hz)
-    c = rotor_solid.campbell(on, rpms, 8, provider=prov)
+    c = solid_modal.campbell(on, rpms, 8, provider=prov)
     assert np.array_equal(c.freq_hz[0], a.freq_hz[0])
     # must change: ~1.2e-5 at 100 000 rpm ∝ Ω², so ~1e-6 at 30 000 rpm, ≫ round-off (1e-7)
     assert np.max(np.abs(c.freq_hz[-1] / a.freq_hz[-1] - 1)) > 1e-7
@@ -240,22 +240,22 @@ def test_stress_stiffening_reduced_against_full_size_problem(spring_cylinder):
     speed-squared stiffness, a uniform tension T = 6.4e4 N (σ_xx = 204 MPa) reached at
     20 000 rpm (first pair +2.5 / +3.1 %): < 1e-5 (measured 4.8e-6, basis 54 modes)."""
     off, on, prov = spring_cylinder
-    res = rotor_solid.campbell(on, [0.0, 100_000.0], 8, provider=prov)
-    ver = rotor_solid.verify(on, res, provider=prov)
+    res = solid_modal.campbell(on, [0.0, 100_000.0], 8, provider=prov)
+    ver = solid_modal.verify(on, res, provider=prov)
     # truncated basis: measured 9.9e-7 (docstring); 3e-6 stays below the 1.1e-5 that
     # dropping K_g from the full problem would give, so the check can fail
     assert ver.max_rel_diff < 3e-6 and ver.n_missed == 0, ver.max_rel_diff
     m = off.shaft_mesh.mesh
     Om = 20_000.0 * 2 * math.pi / 60
     T = 0.1 * E * I_SEC * (math.pi / L) ** 2
-    Kt = rotor_solid.vector_matrix(rotor_solid.geometric_stiffness(
+    Kt = rotor_solid.vector_matrix(prestress.geometric_stiffness(
         m, np.diag([T / A_SEC, 0.0, 0.0])))
     Kg = (Kt / Om**2).tocsr()
     rpms = [0.0, 20_000.0]
     red = campbell.sweep(off.K, off.M, off.G, rpms, 8, off.labelling, basis_fn=prov, Kg=Kg)
     base = campbell.sweep(off.K, off.M, off.G, rpms, 8, off.labelling, basis_fn=prov)
     assert red.freq_hz[-1, 0] / base.freq_hz[-1, 0] > 1.02     # the tension acts (+2.5 %)
-    full = np.sort(rotor_solid.full_qep(off, Om, 14, Kg=Kg).imag) / (2 * math.pi)
+    full = np.sort(solid_modal.full_qep(off, Om, 14, Kg=Kg).imag) / (2 * math.pi)
     f_red = np.sort(red.freq_hz[-1])
     f_full = full[np.argmin(np.abs(full[None, :] - f_red[:, None]), axis=1)]
     # truncated basis (54 modes): measured 4.8e-6 (docstring), ≪ the +2.5 % effect
@@ -273,9 +273,9 @@ def test_x2_57_stress_stiffening_negligible_at_8000_rpm():
     t0 = time.perf_counter()
     off = rotor_solid.build_solid_rotor(load_variant("x2_57"))
     on = replace(off, options=replace(off.options, stress_stiffening=True))
-    prov = rotor_solid.BasisProvider(off)
-    f_off = rotor_solid.campbell(off, [8000.0], 12, provider=prov).freq_hz[0]
-    f_on = rotor_solid.campbell(on, [8000.0], 12, provider=prov).freq_hz[0]
+    prov = solid_modal.BasisProvider(off)
+    f_off = solid_modal.campbell(off, [8000.0], 12, provider=prov).freq_hz[0]
+    f_on = solid_modal.campbell(on, [8000.0], 12, provider=prov).freq_hz[0]
     change = float(np.max(np.abs(np.sort(f_on) / np.sort(f_off) - 1)))
     vm = prov.prestress().max_von_mises(8000.0 * 2 * math.pi / 60)
     msg = (f"max relative change {change:.2e}, von Mises ≤ {vm:.3g} MPa, "

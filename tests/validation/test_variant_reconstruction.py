@@ -308,7 +308,8 @@ def test_bearing_coupling_face_is_the_ring_contact_band(v57):
     are 0.6). The coupling face is the 17.5 mm ring minus 2.0 mm at each end: [31.5, 45.0] and
     [66.5, 80.0], exact area 2π · 8.5 · 13.5 = 721.00 mm², and 1.4 mm of straight seat lies
     between each coupling edge and the fillet next to it."""
-    from shaftfe.solid.plan import expected_areas, prepare
+    from shaftfe.solid.exact import expected_areas
+    from shaftfe.solid.plan import prepare
     for b in v57.bearings:
         assert (b.r_s_min_mm, b.chamfer_mm) == (0.6, 2.0)
         assert v57.provenance.source["bearing_types.zkl_3203.chamfer_mm"] == "standard"

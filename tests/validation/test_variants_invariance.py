@@ -41,7 +41,8 @@ def cache(tmp_path_factory):
 @pytest.fixture(scope="module", params=_variants())
 def solved(request, cache):
     from shaftfe.model.loader import load_variant
-    from shaftfe.static.solve import StaticOptions, solve_static
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
     v = load_variant(request.param)
     return v, solve_static(v, list(RPMS), StaticOptions(level="coarse"), cache_dir=cache)
 

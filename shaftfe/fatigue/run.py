@@ -1,0 +1,204 @@
+"""The fatigue job as an API: ``run_fatigue(FatigueJob(...))`` → ``FatigueRun``.
+
+The static reference solution (3D FE at ``shaftfe.static.solve.REF_RPM``) comes from the disk
+cache of ``shaftfe.static.cache`` when the model is unchanged, else it is solved once. The
+history's load factor is re-referenced to the static solution's speed, every node is evaluated
+at once (``shaftfe.fatigue.field``), and where the static benchmark measured this mesh level's
+peak-stress error (``shaftfe.static.benchmark``) the hot spot's life is also given with the
+stress corrected by it. ``shaftfe.fatigue.outputs`` writes the files; ``shaftfe fatigue`` is a
+thin command over both.
+
+Defaults = the seed's settings (SPEC §3): von Mises, Soderberg, Ansys "Structural Steel",
+design life 1e7 blocks, 70 km/h, bearing springs; every part of the variant loads the shaft
+(``seed_load_case=True``: only the forces the seed applied).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+from shaftfe.errors import InputError
+from shaftfe.solid.levels import LEVEL_NAMES
+from shaftfe.util.limits import check_exclude_mm
+
+MEAN_STRESS = ("soderberg", "goodman", "gerber", "none")
+EQUIVALENT = ("von_mises", "signed_von_mises")
+SEED_RPM_REF = 7000.0     # a normalised history without a stated reference: the seed's
+
+# The seed's result (seed 000 §8.3) for the side-by-side comparison.
+SEED = {"safety_factor_at_1e7": 0.7, "life_blocks": 25_000.0, "life_hours": 2083.0,
+        "life_km": 145_810.0,
+        "hot_spot": "fillet at the heavier counterweight (the collar fillet on the "
+                    "counterweight-2 side, x ≈ 64.5 mm)",
+        "hot_spot_x_mm": 64.5}
+SEED_SETTINGS = {"mean_stress": "soderberg", "equivalent": "von_mises",
+                 "material": "structural_steel", "design_life": 1e7, "kf": 1.0,
+                 "seed_load_case": True}
+
+
+@dataclass(frozen=True)
+class FatigueJob:
+    """What to assess (the command's options, with the same names)."""
+    spectrum: str                          # rpm history file (shaftfe.fatigue.history)
+    variant: str = "x2_57"                 # variant name or path
+    ref_rpm: float | None = None           # reference of a normalised history
+    sample_rate: float | None = None       # Hz, for a file without a header
+    mean_stress: str = "soderberg"
+    equivalent: str = "von_mises"
+    material: str = "structural_steel"     # S-N card in geometry/common/sn_curves.toml
+    design_life: float = 1e7               # blocks
+    speed_kmh: float = 70.0
+    kf: float = 1.0                        # fatigue strength factor in (0, 1]
+    level: str = "default"                 # mesh level
+    exclude_mm: float = 0.0                # extra band around patch edges (filtered hot spot)
+    seed_load_case: bool = False
+    cache_dir: str | None = None
+
+
+@dataclass(frozen=True, eq=False)
+class FatigueRun:
+    """A finished assessment: its inputs and every result the outputs are made of."""
+    job: FatigueJob
+    variant: object                        # shaftfe.model.variant.Variant
+    history: object                        # shaftfe.fatigue.history.History
+    material: object                       # shaftfe.fatigue.sn.FatigueMaterial
+    ref: object                            # shaftfe.static.cache.StaticReference
+    field: object                          # shaftfe.fatigue.field.FatigueField
+    eval_seconds: float
+    level_error: dict | None               # the level-corrected hot spot (see module doc)
+
+
+def check_life_settings(design_life: float, speed_kmh: float) -> None:
+    """The design life (blocks) and the speed that turns hours into km: finite and > 0
+    (shared by ``shaftfe fatigue`` and ``shaftfe report``)."""
+    if not (math.isfinite(design_life) and design_life > 0):
+        raise InputError("command line", "--design-life", "a finite number > 0 (blocks)",
+                         got=design_life)
+    if not (math.isfinite(speed_kmh) and speed_kmh > 0):
+        raise InputError("command line", "--speed-kmh", "a finite number > 0 (km/h)",
+                         got=speed_kmh)
+
+
+def check_job(job: FatigueJob) -> None:
+    if job.mean_stress not in MEAN_STRESS:
+        raise InputError("command line", "--mean-stress", " | ".join(MEAN_STRESS),
+                         got=job.mean_stress)
+    if job.equivalent not in EQUIVALENT:
+        raise InputError("command line", "--equivalent", " | ".join(EQUIVALENT),
+                         got=job.equivalent)
+    if job.level not in LEVEL_NAMES:
+        raise InputError("command line", "--level", " | ".join(LEVEL_NAMES), got=job.level)
+    check_life_settings(job.design_life, job.speed_kmh)
+    if not (math.isfinite(job.kf) and 0 < job.kf <= 1):
+        raise InputError("command line", "--kf", "a number in (0, 1]", got=job.kf)
+    check_exclude_mm(job.exclude_mm)
+    if job.ref_rpm is not None and not (math.isfinite(job.ref_rpm) and job.ref_rpm > 0):
+        raise InputError("command line", "--ref-rpm", "a finite speed > 0 (rpm)",
+                         got=job.ref_rpm)
+
+
+def read_spectrum(path: str, ref_rpm: float | None, sample_rate: float | None):
+    """The history; a normalised file without a reference (header or option) is taken as
+    normalised to 7000 rpm, the seed's reference."""
+    from shaftfe.fatigue.history import read_history
+    try:
+        return read_history(path, rpm_ref=ref_rpm, sample_rate_hz=sample_rate)
+    except InputError as exc:
+        if ref_rpm is None and exc.field == "reference_rpm":
+            return read_history(path, rpm_ref=SEED_RPM_REF, sample_rate_hz=sample_rate)
+        raise
+
+
+def seed_applies(job, variant_name: str) -> bool:
+    """The seed's x2_57 result is comparable only for variant x2_57, the seed's rpm.dat (same
+    bytes) and the seed's settings (``SEED_SETTINGS``)."""
+    from pathlib import Path
+
+    from shaftfe.util.paths import DEFAULT_SPECTRUM
+    try:
+        same_file = Path(job.spectrum).read_bytes() == DEFAULT_SPECTRUM.read_bytes()
+    except OSError:
+        same_file = False
+    return (variant_name == "x2_57" and same_file
+            and all(getattr(job, k) == v for k, v in SEED_SETTINGS.items()))
+
+
+def finite_or_none(v: float):
+    return float(v) if math.isfinite(v) else None
+
+
+def level_corrected_life(ref, ff, history, material, bench: dict | None, n_dofs: int,
+                         **settings) -> tuple[dict, dict] | None:
+    """The level's measured peak-stress error (``bench`` from
+    ``shaftfe.static.benchmark.benchmark_errors``: the collar fillet) and the hot spot's life
+    and safety factor with its stress corrected by it (``fatigue.field.hot_spot_with_factor``);
+    None where the benchmark does not cover this level's mesh. Shared by the report and
+    ``run_fatigue``."""
+    from shaftfe.fatigue.field import hot_spot_with_factor
+    from shaftfe.static.benchmark import bench_matches
+    if bench is None or not bench_matches(bench, n_dofs):
+        return None
+    err = float(bench["collar"]["rel_error"])
+    return ({"level": bench["level"], "stress_rel_error": err, "source": bench["source"]},
+            hot_spot_with_factor(ref, ff, history, material, 1.0 / (1.0 + err), **settings))
+
+
+def _level_correction(job: FatigueJob, ref, ff, history, material) -> dict | None:
+    from shaftfe.static.benchmark import benchmark_errors
+    got = level_corrected_life(ref, ff, history, material, benchmark_errors(job.level),
+                               3 * ref.n_nodes, equivalent=job.equivalent,
+                               theory=job.mean_stress, kf=job.kf,
+                               design_life_blocks=job.design_life, speed_kmh=job.speed_kmh)
+    if got is None:
+        return None
+    meta, corr = got
+    return {**meta, **{k: finite_or_none(v) for k, v in corr.items()}}
+
+
+@dataclass(frozen=True, eq=False)
+class FatigueInputs:
+    history: object
+    material: object
+    variant: object
+
+
+def load_inputs(job: FatigueJob) -> FatigueInputs:
+    """The job's history, S-N material and variant (each InputError names its file)."""
+    from shaftfe.fatigue.sn import load_material
+    from shaftfe.model.loader import load_variant
+    check_job(job)
+    history = read_spectrum(job.spectrum, job.ref_rpm, job.sample_rate)
+    return FatigueInputs(history, load_material(job.material), load_variant(job.variant))
+
+
+def run_fatigue(job: FatigueJob, inputs: FatigueInputs | None = None,
+                progress=None) -> FatigueRun:
+    """Read the inputs (unless given), load or solve the static reference, evaluate every
+    node. ``progress``: a ``shaftfe.util.progress.Progress`` with the stages "history",
+    "static" and "rainflow + life"."""
+    from contextlib import nullcontext
+
+    from shaftfe.fatigue.field import evaluate
+    from shaftfe.static import cache as static_cache
+    from shaftfe.static.model import StaticOptions
+
+    def stage(name):
+        return progress.stage(name) if progress is not None else nullcontext()
+    if inputs is None:
+        with stage("history"):
+            inputs = load_inputs(job)
+    history, material, variant = inputs.history, inputs.material, inputs.variant
+    extra = {"exclude_mm": job.exclude_mm} if job.exclude_mm > 0 else {}
+    opts = StaticOptions(level=job.level, seed_load_case=job.seed_load_case, **extra)
+    with stage("static"):
+        ref = static_cache.load_or_solve(variant, opts, job.cache_dir)
+    with stage("rainflow + life"):
+        t0 = time.perf_counter()
+        ff = evaluate(ref, history, material, equivalent=job.equivalent,
+                      theory=job.mean_stress, kf=job.kf, design_life_blocks=job.design_life,
+                      speed_kmh=job.speed_kmh)
+        t_eval = time.perf_counter() - t0
+        level_error = _level_correction(job, ref, ff, history, material)
+    return FatigueRun(job, variant, history, material, ref, ff, t_eval, level_error)

@@ -1,0 +1,386 @@
+"""Draw a result file with PyVista: the chosen field on the curved boundary surface, scalar bar
+with the unit, the hot spot marked with its value and coordinates; an interactive window or an
+off-screen screenshot.
+
+``render`` is what ``shaftfe view`` runs. The file is read and the field and hot spot chosen by
+``shaftfe.io.view``; the surface comes from ``shaftfe.io.surface``. PyVista / VTK are imported
+inside the functions, so importing this module costs nothing.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+from shaftfe.io.surface import boundary, element_edges, subdivision_level, surface
+from shaftfe.io.view import (
+    MODE_PREFIX,
+    FieldChoice,
+    HotSpot,
+    choose_field,
+    group_names,
+    hot_spot,
+    load,
+    values,
+)
+
+SF_CLIP = 3.0                  # safety factor colour scale: 1.0 marked, clipped above this
+CAMERAS = ("iso", "xy", "xz", "yz")
+SCREENSHOT_SUFFIXES = (".png", ".jpg", ".jpeg")
+
+
+@dataclass
+class ViewResult:
+    path: str
+    field: FieldChoice
+    vmin: float
+    vmax: float
+    n_nonfinite: int
+    hot: HotSpot | None
+    warp: float               # factor applied (0: none)
+    warp_note: str | None
+    screenshot: str | None
+    window_size: tuple[int, int]
+    seconds: float
+    off_screen: bool
+
+    def summary(self) -> str:
+        f = self.field
+        unit = f" {f.unit}" if f.unit not in ("-", "id") else ""
+        parts = [f"view {self.path}", f"field {f.label} [{f.unit}] ({f.association} data)",
+                 f"range {_g(self.vmin)} .. {_g(self.vmax)}{unit}"]
+        if self.n_nonfinite:
+            parts.append(f"{self.n_nonfinite} non-finite values not shown")
+        if self.hot is None:
+            parts.append("hot spot n/a")
+        else:
+            h = self.hot
+            what = {"max": "max", "min": "min", "max_abs": "max |value|"}[h.rule]
+            kind = "node" if f.association == "point" else "cell"
+            parts.append(f"hot spot ({what}) {_g(h.value)}{unit} at x={h.xyz[0]:.2f} "
+                         f"y={h.xyz[1]:.2f} z={h.xyz[2]:.2f} mm ({kind} {h.index})")
+        if self.warp:
+            parts.append(f"warp x{_g(self.warp)}")
+        if self.screenshot:
+            w, hgt = self.window_size
+            parts.append(f"screenshot {self.screenshot} ({w}x{hgt}, {self.seconds:.2f} s)")
+        elif not self.off_screen:
+            parts.append("interactive window")
+        return "; ".join(parts)
+
+
+def _g(v: float) -> str:
+    return f"{v:.4g}"
+
+
+def headless() -> bool:
+    """True on a Linux/BSD machine without an X or Wayland display."""
+    if sys.platform.startswith(("win", "darwin")):
+        return False
+    return not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+def use_offscreen_egl() -> None:
+    """Make VTK pick its EGL render window (no X server) unless the user chose one."""
+    os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+
+
+def parse_window_size(text: str) -> tuple[int, int]:
+    from shaftfe.errors import InputError
+
+    allowed = "WIDTHxHEIGHT in pixels, each 64..8192 (e.g. 1600x900)"
+    try:
+        w, h = (int(t) for t in text.lower().split("x"))
+    except ValueError:
+        raise InputError("command line", "--window-size", allowed, got=text) from None
+    if not (64 <= w <= 8192 and 64 <= h <= 8192):
+        raise InputError("command line", "--window-size", allowed, got=text)
+    return w, h
+
+
+def parse_warp(text: str | float | None) -> float | str:
+    """``auto`` or a finite factor >= 0."""
+    from shaftfe.errors import InputError
+
+    if text is None:
+        return 0.0
+    if isinstance(text, str) and text.strip().lower() == "auto":
+        return "auto"
+    try:
+        v = float(text)
+    except ValueError:
+        v = float("nan")
+    if not (0 <= v < float("inf")):
+        raise InputError("command line", "--warp", "auto or a factor >= 0", got=text)
+    return v
+
+
+def render(path, field: str | None = None, component: str | None = None,
+           warp: float | str = 0.0, edges: bool = False, screenshot=None,
+           window_size: tuple[int, int] = (1600, 900), camera: str = "iso",
+           off_screen: bool | None = None, hot_exclude=None,
+           zoom: float | None = None) -> ViewResult:
+    """Load ``path``, render ``field`` and either save ``screenshot`` (written atomically) or
+    open an interactive window. Input errors are raised before anything is drawn.
+    ``hot_exclude``: point/cell ids the hot spot is not searched in (drawn all the same).
+    ``zoom``: camera zoom after fitting the model (default 1.35; the yz end view fits the
+    cross-section instead)."""
+    import numpy as np
+
+    from shaftfe.errors import InputError
+
+    t0 = time.perf_counter()
+    shot = _screenshot_option(camera, screenshot)
+    if off_screen is None:
+        off_screen = shot is not None or headless()
+    if off_screen:
+        use_offscreen_egl()
+    grid = load(path)
+    choice = choose_field(grid, field, component, source=str(path))
+    vals = values(grid, choice)
+    finite = np.isfinite(vals)
+    if not finite.any():
+        raise InputError(str(path), choice.name, "at least one finite value",
+                         reason="has no finite values")
+    vmin, vmax = float(vals[finite].min()), float(vals[finite].max())
+    hot = hot_spot(grid, choice, vals, exclude=hot_exclude)
+    shape_field = _shape_field(grid, choice)
+    factor, warp_note = _warp_factor(grid, shape_field, warp, path)
+
+    if shot is None and off_screen:
+        shot = Path(path).with_name(f"{Path(path).stem}_{choice.name}.png")
+    if shot is not None:
+        from shaftfe.util.atomic import check_output_file
+        check_output_file(shot, "--screenshot")
+
+    surf, edge_lines = _scene(grid, choice, np.where(finite, vals, np.nan), factor,
+                              shape_field, edges)
+    names = group_names(grid, path) if choice.rule == "none" else {}
+    plotter = _plot(path, surf, edge_lines, choice, vmin, vmax, hot, factor,
+                    shape_field, grid, window_size, camera, off_screen, names, zoom)
+    n_nonfinite = int((~finite).sum())
+    try:
+        if shot is not None:
+            _screenshot(plotter, shot)
+            return ViewResult(str(path), choice, vmin, vmax, n_nonfinite, hot, factor,
+                              warp_note, str(shot), window_size, time.perf_counter() - t0,
+                              bool(off_screen))
+        res = ViewResult(str(path), choice, vmin, vmax, n_nonfinite, hot, factor,
+                         warp_note, None, window_size, time.perf_counter() - t0, False)
+        print(res.summary(), flush=True)
+        plotter.show()
+        return res
+    finally:
+        plotter.close()
+
+
+def _screenshot_option(camera: str, screenshot) -> Path | None:
+    """Check ``--camera`` and the ``--screenshot`` suffix; the screenshot path or None."""
+    from shaftfe.errors import InputError
+
+    if camera not in CAMERAS:
+        raise InputError("command line", "--camera", " | ".join(CAMERAS), got=camera)
+    shot = Path(screenshot) if screenshot is not None else None
+    if shot is not None and shot.suffix.lower() not in SCREENSHOT_SUFFIXES:
+        raise InputError("command line", "--screenshot",
+                         "a path ending in " + " | ".join(SCREENSHOT_SUFFIXES), got=str(shot))
+    return shot
+
+
+def _shape_field(grid, choice: FieldChoice) -> str | None:
+    """The point field the shape is warped by: a mode by its own shape, anything else by
+    ``displacement`` (3 components); None when the file has neither."""
+    import numpy as np
+
+    disp = grid.point_data["displacement"] if "displacement" in grid.point_data.keys() else None
+    if choice.name.startswith(MODE_PREFIX) and choice.n_components == 3:
+        return choice.name
+    if disp is not None and np.ndim(disp) == 2 and np.shape(disp)[1] == 3:
+        return "displacement"
+    return None
+
+
+def _warp_factor(grid, shape_field: str | None, warp: float | str,
+                 path) -> tuple[float, str | None]:
+    """(factor, note): ``auto`` makes the largest displacement 5 % of the model size; a
+    requested warp without a shape field gives factor 0 and a note saying so."""
+    import numpy as np
+
+    if not (warp == "auto" or (isinstance(warp, float) and warp > 0)):
+        return 0.0, None
+    if shape_field is None:
+        return 0.0, f"no 'displacement' field in {path}: not warped"
+    u = np.asarray(grid.point_data[shape_field], float)
+    umax = float(np.nanmax(np.linalg.norm(u, axis=1)))
+    if warp == "auto":
+        return (0.05 * grid.length / umax if umax > 0 else 0.0), None
+    return float(warp), None
+
+
+def _scene(grid, choice: FieldChoice, shown, factor: float, shape_field: str | None,
+           edges: bool):
+    """(curved boundary surface, element edge lines or None) with ``shown`` as ``_view``,
+    warped by ``shape_field`` × ``factor``."""
+    bnd = boundary(grid, choice, shown)
+    if factor:
+        bnd = bnd.warp_by_vector(shape_field, factor=factor)
+    level = subdivision_level(bnd)
+    surf = surface(bnd, level)
+    edge_lines = element_edges(bnd, level) if edges else None
+    return surf, edge_lines
+
+
+def _plot(path, surf, edge_src, choice, vmin, vmax, hot, factor, shape_field, grid,
+          window_size, camera, off_screen, names, zoom=None):
+    import pyvista as pv
+
+    p = pv.Plotter(off_screen=off_screen, window_size=list(window_size))
+    p.set_background("white")
+    title = f"{choice.label} [{choice.unit}]"
+    if factor:
+        title += f"  (deformed x{factor:.3g})"
+    clim, sbar, kw = _colour_scale(surf, choice, vmin, vmax, title, names)
+    actor = p.add_mesh(surf, scalars="_view", clim=clim, scalar_bar_args=sbar,
+                       smooth_shading=True, split_sharp_edges=True, nan_color="lightgrey",
+                       show_scalar_bar=True, **kw)
+    if edge_src is not None:
+        # push the faces back a little so that the edge lines on them are not z-fighting
+        actor.mapper.SetResolveCoincidentTopologyToPolygonOffset()
+        actor.mapper.SetRelativeCoincidentTopologyPolygonOffsetParameters(2.0, 4.0)
+        p.add_mesh(edge_src, color="black", line_width=1, opacity=0.6)
+    _set_camera(p, surf, hot, camera, zoom)
+    if hot is not None:
+        _mark_hot_spot(p, surf, hot, choice, grid, factor, shape_field, camera)
+    p.add_axes(color="black", xlabel="x", ylabel="y", zlabel="z")
+    p.add_text(f"{Path(path).name}: {choice.label}", position="upper_left", font_size=12,
+               color="black")
+    return p
+
+
+def _colour_scale(surf, choice: FieldChoice, vmin: float, vmax: float, title: str,
+                  names: dict) -> tuple[list, dict, dict]:
+    """(colour limits, scalar bar arguments, colour map keywords of ``add_mesh``): a colour per
+    id (named when ``names`` has the groups) for categorical fields, diverging and centred on 0
+    for signed components, red below 1 / green above for the safety factor, jet otherwise
+    (reversed for min-rule fields, logarithmic for a life range over 100)."""
+    import numpy as np
+
+    sbar = dict(title=title + "\n", title_font_size=20, label_font_size=18, color="black",
+                vertical=False, position_x=0.2, position_y=0.03, width=0.6, height=0.1,
+                fmt="%.4g", n_labels=5)
+    kw: dict = {}
+    if choice.rule == "none":
+        ids = np.unique(np.asarray(surf.cell_data["_view"] if "_view" in surf.cell_data.keys()
+                                   else surf.point_data["_view"]))
+        kw["cmap"] = "tab20" if ids.size <= 20 else "nipy_spectral"   # a colour per id
+        kw["categories"] = True
+        kw["n_colors"] = max(int(ids.size), 2)
+        if names and ids.size <= 40:
+            kw["annotations"] = {float(i): names.get(int(i), "(no group)" if i == 0 else str(i))
+                                 for i in ids}
+            sbar.update(n_labels=0, vertical=True, position_x=0.80, position_y=0.05,
+                        width=0.06, height=0.9, title=title,
+                        label_font_size=18 if ids.size <= 20 else 11)
+        else:                                             # ids without names: whole numbers
+            sbar.update(fmt="%.0f", n_labels=int(min(ids.size, 10)))
+    elif choice.rule == "max_abs":                        # signed: diverging, centred on 0
+        kw["cmap"] = "coolwarm"
+        a = max(abs(vmin), abs(vmax))
+        vmin, vmax = -a, a
+    elif choice.name == "safety_factor":
+        # an engineer reads a safety factor around 1: red below 1, green above, clipped at
+        # SF_CLIP (a linear 0.47-15 scale painted everything from 0.5 to 4 the same red)
+        kw["cmap"] = "RdYlGn"
+        kw["above_color"] = "darkgreen"
+        kw["annotations"] = {1.0: "1.0"}
+        vmin, vmax = min(vmin, 0.9), SF_CLIP
+        sbar.update(title=title.replace("\n", "") + f" (clipped at {SF_CLIP:g})\n")
+    else:
+        kw["cmap"] = "jet" if choice.rule != "min" else "jet_r"
+        if choice.name == "life_blocks" and vmin > 0 and vmax / vmin > 100:
+            kw["log_scale"] = True
+    clim = [vmin, vmax] if vmax > vmin else [vmin - 0.5, vmax + 0.5]
+    if choice.rule == "none":
+        clim = [float(np.min(ids)), float(np.max(ids))] if ids.size > 1 else clim
+    return clim, sbar, kw
+
+
+def _set_camera(p, surf, hot: HotSpot | None, camera: str, zoom: float | None) -> None:
+    """Point the camera (``iso``: facing the hot spot; ``yz``: the end view fitted to the
+    cross-section) and zoom."""
+    import numpy as np
+
+    if camera == "iso":
+        _view_iso(p, surf, hot)
+    else:
+        {"xy": p.view_xy, "xz": p.view_xz, "yz": p.view_yz}[camera]()
+        p.reset_camera()
+    if camera == "yz":                                    # end view: fit the cross-section
+        b = np.asarray(surf.bounds, float).reshape(3, 2)
+        across = max(b[1, 1] - b[1, 0], b[2, 1] - b[2, 0], 1e-9)
+        p.camera.zoom(float(np.clip(0.5 * surf.length / across, 0.9, 8.0)))
+    else:
+        p.camera.zoom(1.35 if zoom is None else float(zoom))
+
+
+def _mark_hot_spot(p, surf, hot: HotSpot, choice: FieldChoice, grid, factor: float,
+                   shape_field: str | None, camera: str) -> None:
+    """Magenta sphere on the (deformed) hot spot, its value and coordinates in a label above it
+    (screen up), joined by a leader line."""
+    import numpy as np
+    import pyvista as pv
+
+    xyz = np.array(hot.xyz)
+    if factor and choice.association == "point":
+        xyz = xyz + factor * np.asarray(grid.point_data[shape_field][hot.index], float)
+    what = {"max": "max", "min": "min", "max_abs": "max abs"}[hot.rule]  # no "|": VTK
+    unit = f" {choice.unit}" if choice.unit != "-" else ""
+    text = (f"{what} {hot.value:.4g}{unit}\n"
+            f"({hot.xyz[0]:.1f}, {hot.xyz[1]:.1f}, {hot.xyz[2]:.1f}) mm")
+    # marker on the surface; the label sits above it (screen up), joined by a leader line
+    b = np.asarray(surf.bounds, float).reshape(3, 2)
+    lift = 0.75 * max(b[1, 1] - b[1, 0], b[2, 1] - b[2, 0], 0.1 * surf.length)
+    anchor = xyz + lift * np.asarray(p.camera.up, float)
+    if camera == "iso":
+        # the label grows to the right of its anchor: near the right end of the shaft,
+        # move the anchor left along the axis so that the text stays in the picture
+        t = (xyz[0] - b[0, 0]) / max(b[0, 1] - b[0, 0], 1e-9)
+        if t > 0.7:
+            anchor = anchor - np.array([0.28 * (b[0, 1] - b[0, 0]), 0.0, 0.0])
+    p.add_mesh(pv.Sphere(radius=0.015 * surf.length, center=xyz), color="magenta")
+    p.add_mesh(pv.Line(xyz, anchor), color="black", line_width=2)
+    p.add_point_labels(anchor.reshape(1, 3), [text], font_size=18, show_points=False,
+                       always_visible=True, shape_opacity=0.85, shape_color="white",
+                       text_color="black", margin=4)
+
+
+def _view_iso(p, surf, hot) -> None:
+    """Oblique view with the shaft axis (x) across the screen, looking at the side of the
+    shaft where the hot spot is (from +y, +z when there is none)."""
+    import numpy as np
+
+    r = np.array([0.0, 1.0, 1.0])
+    if hot is not None and np.hypot(hot.xyz[1], hot.xyz[2]) > 1e-9:
+        r = np.array([0.0, hot.xyz[1], hot.xyz[2]])
+    r /= np.linalg.norm(r)
+    t = np.cross([1.0, 0.0, 0.0], r)
+    d = np.array([0.5, 0.0, 0.0]) + r + 0.4 * t         # from the focal point to the eye
+    d /= np.linalg.norm(d)
+    up = np.cross(d, [1.0, 0.0, 0.0])
+    up /= np.linalg.norm(up)                              # keeps +x pointing right
+    c = np.array(surf.center)
+    p.camera.focal_point = c
+    p.camera.position = c + d * surf.length
+    p.camera.up = up
+    p.reset_camera()
+
+
+def _screenshot(plotter, shot: Path) -> None:
+    """Render and write the image under a temporary name, then rename (never half-written)."""
+    from shaftfe.util.atomic import atomic_path
+
+    with atomic_path(shot) as tmp:
+        plotter.screenshot(str(tmp))

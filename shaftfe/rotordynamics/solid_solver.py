@@ -1,0 +1,82 @@
+"""Solves with the 3D solid rotor's shifted matrix (``ShiftedSolver``): one sparse
+factorisation per shift and a low-rank Woodbury correction for the support terms and the
+hard rows (method: ``shaftfe.rotordynamics.solid_rotor`` module docstring, "Solution").
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from shaftfe.fe.lowrank import LowRankSolver
+from shaftfe.rotordynamics.solid_rotor import SolidRotor
+
+
+class ShiftedSolver:
+    """Solves (K_tot + σ D + σ² M) x = b with the hard rows H x = 0 (D = C + Ω G), by one
+    sparse factorisation of B = K + σ Ω G + σ² M (+ σ C of nothing: damping is low rank)
+    and a Woodbury correction with the support terms. ``K_extra``: a sparse stiffness added
+    to K (the prestress Ω² K_g of ``full_qep``)."""
+
+    def __init__(self, rotor: SolidRotor, sigma: float, Omega: float = 0.0,
+                 method: str | None = None, K_extra=None):
+        from shaftfe.fe import solvers
+
+        t0 = time.perf_counter()
+        B = (rotor.K_sparse + (sigma * sigma) * rotor.M_sparse).tocsr()
+        if K_extra is not None:
+            B = (B + K_extra).tocsr()
+        method = rotor.options.solver if method is None else method
+        if Omega != 0.0 and sigma != 0.0:
+            B = (B + (sigma * Omega) * rotor.G_sparse).tocsr()
+            self._fac = solvers.factorize_unsymmetric(B, method)
+        else:
+            self._fac = solvers.factorize(B, _auto_method(method, B.shape[0]))
+        self.name = self._fac.name
+        self.factor_seconds = time.perf_counter() - t0
+        U, Cinv = [], []
+        if sigma != 0.0:
+            for b in rotor.body_terms:          # σ² M_b + σ Ω G_b on the body's rows
+                U.append(b.R.T)
+                Cinv.append(np.linalg.inv(sigma * sigma * b.M6 + sigma * Omega * b.G6))
+        for t in rotor.terms:
+            U.append(t.R.T)
+            r = t.R.shape[0]
+            if t.C is None:
+                Cinv.append(np.zeros((r, r)))
+            else:
+                Ct = t.C + (sigma * t.Cd if t.Cd is not None else 0.0)
+                Cinv.append(np.linalg.inv(Ct))
+        self.n = B.shape[0]
+        self.n_solves = 0
+        if U:
+            from scipy.linalg import block_diag
+
+            self._lr = LowRankSolver(self._fac, np.hstack(U), block_diag(*Cinv),
+                                     hint="a support is missing or redundant")
+            self.cond_S = self._lr.cond_S
+        else:
+            self._lr = None
+            self.cond_S = 1.0
+        self.seconds = time.perf_counter() - t0
+
+    def solve(self, b):
+        b = np.asarray(b)
+        if np.iscomplexobj(b):
+            return self.solve(b.real) + 1j * self.solve(b.imag)
+        self.n_solves += 1 if b.ndim == 1 else b.shape[1]
+        y = self._fac.solve(b)
+        if self._lr is None:
+            return y
+        return self._lr.correct(y.reshape(self.n, -1))[0].reshape(y.shape)
+
+
+def _auto_method(method: str, n: int) -> str:
+    """``auto`` for the symmetric factorisation: SuperLU. The basis needs ~3 m single-vector
+    solves after one factorisation, and PARDISO's per-solve cost dominates (measured on x2_57
+    coarse, 70k dofs: PARDISO 3.3 s factorisation + 0.17 s per solve on an idle machine,
+    7.1 s + 1.4 s per solve at load 10; SuperLU 8-15 s + 0.05-0.3 s;
+    reports/benchmarks/rotor_solid.md). The nonsymmetric factorisation of ``verify`` uses
+    PARDISO when installed (159 s vs 274 s at load 10)."""
+    return "superlu" if method == "auto" else method

@@ -1,0 +1,310 @@
+"""The Gmsh OCC model of the solid plan: the profile revolved about x with its fillet arcs,
+keyway seats and the hex socket cut, the load-plane lines of every attachment imprinted on its
+seat, and every face classified into its named group (Gmsh is passed in: imported by the
+caller)."""
+
+from __future__ import annotations
+
+import math
+
+from shaftfe.solid.plan import TOL, Slot, Solid
+
+
+def _profile(sol: Solid) -> list[tuple[str, tuple]]:
+    """Outer profile in the (x, r) half plane from the left end (r = 0 excluded): a list of
+    ("line", (x, r)) points and ("arc", (x_end, r_end, xc, rc)) pieces."""
+    pts: list[tuple[str, tuple]] = [("line", (sol.x_left, sol.radii[0]))]
+    fil = {round(f.x_shoulder, 9): f for f in sol.fillets}
+    n = len(sol.radii)
+    for i in range(n):
+        r = sol.radii[i]
+        part = sol.parts[i]
+        for x in sol.profile_x:
+            if part.x0 + TOL < x < part.x1 - TOL:
+                pts.append(("line", (x, r)))
+        if i == n - 1:
+            pts.append(("line", (sol.x_right, r)))
+            break
+        xe = sol.segment_x[i][1]
+        r1 = sol.radii[i + 1]
+        if abs(r1 - r) <= TOL:
+            pts.append(("line", (xe, r)))     # keep a face edge between equal segments
+            continue
+        f = fil.get(round(xe, 9))
+        if f is None:
+            pts += [("line", (xe, r)), ("line", (xe, r1))]
+        elif f.side < 0:      # step up: arc on the left of the shoulder
+            pts.append(("line", (xe - f.rho, r)))
+            pts.append(("arc", (xe, r + f.rho, xe - f.rho, r + f.rho)))
+            if r1 - (r + f.rho) > TOL:
+                pts.append(("line", (xe, r1)))
+        else:                 # step down: arc on the right of the shoulder
+            pts.append(("line", (xe, r)))
+            if r - (r1 + f.rho) > TOL:
+                pts.append(("line", (xe, r1 + f.rho)))
+            pts.append(("arc", (xe + f.rho, r1, xe + f.rho, r1 + f.rho)))
+    return pts
+
+
+def build_occ(gmsh, sol: Solid) -> dict:
+    """Build the partitioned solid in the current Gmsh model and synchronise.
+
+    Returns {"volumes": [...], "faces": {group: [surface tags]}, "fillet_faces": [...],
+    "sharp_curves": [...]} (sharp_curves: keyway edges and sharp concave shoulder circles)."""
+    occ = gmsh.model.occ
+    prof = _profile(sol)
+    tags = [occ.addPoint(sol.x_left, 0.0, 0.0)]
+    curves = []
+    for kind, data in prof:
+        if kind == "line":
+            p = occ.addPoint(data[0], data[1], 0.0)
+            curves.append(occ.addLine(tags[-1], p))
+            tags.append(p)
+        else:
+            c = occ.addPoint(data[2], data[3], 0.0)
+            p = occ.addPoint(data[0], data[1], 0.0)
+            curves.append(occ.addCircleArc(tags[-1], c, p))
+            tags.append(p)
+    p_end = occ.addPoint(sol.x_right, 0.0, 0.0)
+    curves.append(occ.addLine(tags[-1], p_end))
+    curves.append(occ.addLine(p_end, tags[0]))
+    loop = occ.addCurveLoop(curves)
+    face = occ.addPlaneSurface([loop])
+    rev = occ.revolve([(2, face)], 0, 0, 0, 1, 0, 0, 2 * math.pi)
+    vols = [dt for dt in rev if dt[0] == 3]
+    occ.remove([(2, face)], recursive=True)
+    splits = _split_lines(sol)
+    # put the revolution seam where no split line runs (coincident edges are fragile)
+    occ.rotate(vols, 0, 0, 0, 1, 0, 0, _seam_angle([ang for _, _, _, ang in splits]))
+
+    tools = []
+    for k in sol.slots:
+        tools.append(_slot_tool(occ, k))
+    if sol.hex is not None:
+        tools.append(_hex_tool(occ, sol))
+    if tools:
+        vols, _ = occ.cut(vols, [(3, t) for t in tools])
+    if splits:
+        # imprint the generator lines of each load plane on the seat cylinder: the seat face
+        # splits into two exact halves without any cut through the interior (whose internal
+        # faces would force tiny elements across the whole section)
+        lines = []
+        for x0, x1, r, ang in splits:
+            y, z = r * math.cos(ang), r * math.sin(ang)
+            lines.append((1, occ.addLine(occ.addPoint(x0, y, z), occ.addPoint(x1, y, z))))
+        vols_out, _ = occ.fragment(vols, lines)
+        vols = [dt for dt in vols_out if dt[0] == 3]
+    occ.synchronize()
+    loose = [(1, c) for _, c in gmsh.model.getEntities(1)
+             if len(gmsh.model.getAdjacencies(1, c)[0]) == 0]
+    if loose:                       # parts of split lines that ran over a keyway opening
+        occ.remove(loose, recursive=True)
+        occ.synchronize()
+    return {"volumes": [t for _, t in vols]}
+
+
+def _split_lines(sol: Solid) -> list[tuple[float, float, float, float]]:
+    """(x0, x1, R, angle) of each generator line bounding a load half, deduplicated."""
+    out, seen = [], set()
+    for st in sol.seats:
+        if st.angle is None:
+            continue
+        for ang in (st.angle + 0.5 * math.pi, st.angle - 0.5 * math.pi):
+            a = math.remainder(ang, 2 * math.pi)
+            key = (round(st.x0, 9), round(st.x1, 9), round(math.degrees(a) % 360.0, 6))
+            if key not in seen:
+                seen.add(key)
+                out.append((st.x0, st.x1, st.part.r, a))
+    return out
+
+
+def _seam_angle(angles: list[float]) -> float:
+    """The whole degree farthest from every split angle (0 when there is none)."""
+    if not angles:
+        return 0.0
+
+    def gap(deg: int) -> float:
+        t = math.radians(deg)
+        return min(abs(math.remainder(t - a, 2 * math.pi)) for a in angles)
+
+    return math.radians(max(range(360), key=lambda d: (round(gap(d), 9), -d)))
+
+
+def _slot_tool(occ, k: Slot) -> int:
+    """Stadium prism from the slot bottom to beyond the surface, opening towards +y, then
+    rotated to the slot's angle."""
+    a = 0.5 * k.width
+    y0 = k.r - k.depth
+    hgt = k.depth + 2.0
+    box = occ.addBox(k.x0 + a, y0, -a, k.length - k.width, hgt, k.width)
+    c1 = occ.addCylinder(k.x0 + a, y0, 0.0, 0.0, hgt, 0.0, a)
+    c2 = occ.addCylinder(k.x1 - a, y0, 0.0, 0.0, hgt, 0.0, a)
+    out, _ = occ.fuse([(3, box)], [(3, c1), (3, c2)])
+    tag = out[0][1]
+    occ.rotate([(3, tag)], 0, 0, 0, 1, 0, 0, k.angle)
+    return tag
+
+
+def _hex_tool(occ, sol: Solid) -> int:
+    """Hexagonal prism (across flats s, flat bottom) from the end face inwards; one flat is
+    normal to +y."""
+    hx = sol.hex
+    rc = hx.circumradius
+    if hx.end == "left":
+        x0, dx = sol.x_left - 1.0, hx.depth + 1.0
+    else:
+        x0, dx = sol.x_right - hx.depth, hx.depth + 1.0
+    pts = [occ.addPoint(x0, rc * math.sin(math.pi / 3 * i), rc * math.cos(math.pi / 3 * i))
+           for i in range(6)]
+    lines = [occ.addLine(pts[i], pts[(i + 1) % 6]) for i in range(6)]
+    s = occ.addPlaneSurface([occ.addCurveLoop(lines)])
+    ext = occ.extrude([(2, s)], dx, 0, 0)
+    return next(t for d, t in ext if d == 3)
+
+
+def _surface_samples(gmsh, s: int):
+    """Points of the (untrimmed) underlying surface on a 3×3 parameter grid."""
+    lo, hi = gmsh.model.getParametrizationBounds(2, s)
+    uv = []
+    for fu in (0.1, 0.5, 0.9):
+        for fv in (0.1, 0.5, 0.9):
+            uv += [lo[0] + fu * (hi[0] - lo[0]), lo[1] + fv * (hi[1] - lo[1])]
+    xyz = gmsh.model.getValue(2, s, uv)
+    return [xyz[3 * i:3 * i + 3] for i in range(len(uv) // 2)]
+
+
+def _hex_range(sol: Solid) -> tuple[float, float] | None:
+    hx = sol.hex
+    if hx is None:
+        return None
+    return (sol.x_left, sol.x_left + hx.depth) if hx.end == "left" else \
+        (sol.x_right - hx.depth, sol.x_right)
+
+
+def _plane_groups(gmsh, s: int, sol: Solid, bbox, eps: float) -> list[str]:
+    """End faces, shoulder annuli, the hex socket's bottom and flats."""
+    bx0, by0, bz0, bx1, by1, bz1 = bbox
+    hx, hex_x = sol.hex, _hex_range(sol)
+    lo, hi = gmsh.model.getParametrizationBounds(2, s)
+    nrm = gmsh.model.getNormal(s, [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])])
+    rmax = max(abs(by0), abs(by1), abs(bz0), abs(bz1))
+    if abs(abs(nrm[0]) - 1.0) < 1e-9 and bx1 - bx0 < eps:
+        x = 0.5 * (bx0 + bx1)
+        if hex_x is not None and abs(x - (hex_x[1] if hx.end == "left" else hex_x[0])) \
+                < eps and rmax <= hx.circumradius + eps:
+            return ["hex_socket"]
+        if abs(x - sol.x_left) < eps:
+            return ["end:left"]
+        if abs(x - sol.x_right) < eps:
+            return ["end:right"]
+        return [f"shoulder:{sh.segment}" for sh in sol.shoulders
+                if abs(x - sh.x) < eps and rmax <= sh.r_out + eps]
+    if hex_x is not None and abs(nrm[0]) < 1e-9 and bx0 > hex_x[0] - eps \
+            and bx1 < hex_x[1] + eps and rmax <= hx.circumradius + eps:
+        return ["hex_socket"]
+    return []
+
+
+def _cylinder_groups(gmsh, s: int, sol: Solid, bbox, com, eps: float) -> list[str]:
+    """A straight part's surface ("") and the seats it lies in (loads split pressed / free)."""
+    bx0, bx1 = bbox[0], bbox[3]
+    rs = [math.hypot(p[1], p[2]) for p in _surface_samples(gmsh, s)]
+    part = next((p for p in sol.parts if all(abs(r - p.r) < eps for r in rs)
+                 and bx0 > p.x0 - eps and bx1 < p.x1 + eps), None)
+    if part is None:
+        return []
+    groups = [""]                             # plain shaft surface (maybe in a seat)
+    for st in sol.seats:
+        if st.part != part or bx0 < st.x0 - eps or bx1 > st.x1 + eps:
+            continue
+        if st.angle is None:
+            groups.append(st.name)
+        else:
+            side = com[1] * math.cos(st.angle) + com[2] * math.sin(st.angle)
+            groups.append(f"{st.name}:{'pressed' if side < 0 else 'free'}")
+    return groups
+
+
+def _fillet_group(sol: Solid, com, eps: float) -> str | None:
+    for f in sol.fillets:
+        xa, xb = (f.x_shoulder - f.rho, f.x_shoulder) if f.side < 0 else \
+            (f.x_shoulder, f.x_shoulder + f.rho)
+        if xa - eps < com[0] < xb + eps:        # (OCC's torus bounding box is loose)
+            return f"fillet:{f.segment}"
+    return None
+
+
+def _keyway_group(sol: Solid, bbox, com, eps: float) -> str | None:
+    """The keyway whose box holds the face and whose open side faces it best."""
+    best, score = None, -2.0
+    for k in sol.slots:
+        if bbox[0] > k.x0 - eps and bbox[3] < k.x1 + eps:
+            rr = math.hypot(com[1], com[2]) or 1.0
+            sc = (com[1] * math.cos(k.angle) + com[2] * math.sin(k.angle)) / rr
+            if sc > score:
+                best, score = k, sc
+    return f"keyway:{best.segment}:{best.index}" if best is not None and score > 0.5 else None
+
+
+def _sharp_curves(gmsh, sol: Solid, faces: dict, keyway_faces: list[int], eps: float
+                  ) -> list[int]:
+    """Sharp re-entrant edges: keyway edges, the inner circle of a sharp concave shoulder."""
+    sharp: set[int] = set()
+    for s in keyway_faces:
+        for _, c in gmsh.model.getBoundary([(2, s)], oriented=False):
+            sharp.add(abs(c))
+    for sh in sol.shoulders:
+        if any(abs(f.x_shoulder - sh.x) < eps for f in sol.fillets):
+            continue
+        for s in faces[f"shoulder:{sh.segment}"]:
+            for _, c in gmsh.model.getBoundary([(2, s)], oriented=False):
+                b = gmsh.model.getBoundingBox(1, abs(c))
+                if max(abs(b[1]), abs(b[4]), abs(b[2]), abs(b[5])) < sh.r_in + eps:
+                    sharp.add(abs(c))
+    return sorted(sharp)
+
+
+def classify(gmsh, sol: Solid) -> dict:
+    """Assign every boundary surface of the synchronised model to its face group(s).
+
+    CAD faces are exact entities, so each test below is exact up to the tolerance of the
+    kernel: a shaft cylinder has every point of its underlying surface at r = R; a fillet is a
+    torus inside the fillet's axial range; end / shoulder / hex-bottom faces are planes normal
+    to x at their station; whatever else lies in a keyway's or the hex socket's box belongs to
+    it. Raises RuntimeError for a face that fits nothing (a bug, not a user error).
+
+    Returns {"faces": {group: [surface tags]}, "fillet_faces": [...], "sharp_curves": [...]}.
+    """
+    faces: dict[str, list[int]] = {g: [] for g in sol.groups()}
+    fillet_faces: list[int] = []
+    keyway_faces: list[int] = []
+    eps = 1e-5 * max(sol.length, 1.0)
+    for _, s in gmsh.model.getEntities(2):
+        up, _ = gmsh.model.getAdjacencies(2, s)
+        if len(up) != 1:
+            continue                          # internal partition face
+        kind = gmsh.model.getType(2, s)
+        bbox = gmsh.model.getBoundingBox(2, s)
+        com = gmsh.model.occ.getCenterOfMass(2, s)
+        groups: list[str] = _plane_groups(gmsh, s, sol, bbox, eps) if kind == "Plane" else []
+        if not groups and kind == "Cylinder":
+            groups = _cylinder_groups(gmsh, s, sol, bbox, com, eps)
+        if not groups and kind == "Torus":
+            g = _fillet_group(sol, com, eps)
+            if g is not None:
+                groups, fillet_faces = [g], [*fillet_faces, s]
+        if not groups:
+            g = _keyway_group(sol, bbox, com, eps)
+            if g is not None:
+                groups, keyway_faces = [g], [*keyway_faces, s]
+        if not groups:
+            raise RuntimeError(f"shaft solid: surface {s} ({kind}, bbox x {bbox[0]:g}.."
+                               f"{bbox[3]:g}) matches no face group")
+        for g in groups:
+            if g:
+                faces[g].append(s)
+    empty = [g for g, v in faces.items() if not v]
+    if empty:
+        raise RuntimeError(f"shaft solid: no faces found for groups {empty}")
+    return {"faces": faces, "fillet_faces": sorted(fillet_faces),
+            "sharp_curves": _sharp_curves(gmsh, sol, faces, keyway_faces, eps)}

@@ -1,0 +1,151 @@
+"""The 3D static model: options, the assembled model (stiffness, bearing couplings, loads at
+REF_RPM) and the mesh's named regions. ``build_model`` validates the variant, meshes it (or takes
+a mesh), assembles K and couples the bearings. See ``shaftfe.static.solve`` for the solve."""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from shaftfe.errors import InputError
+from shaftfe.fe import assembly as fem
+from shaftfe.fe import supports
+from shaftfe.model.validate import validate_variant
+
+REF_RPM = 10_000.0
+DISTRIBUTIONS = ("uniform", "cosine")
+
+
+LOAD_CASES = {False: "all parts", True: "seed load case (gear + counterweight 1 = F1, "
+                                       "counterweight 2 = Fv2)"}
+
+
+def load_case_label(seed_load_case: bool) -> str:
+    """The load case in words, for every table header and summary.json: every part of the
+    variant (the default of every command), or the seed's F1 + Fv2 only."""
+    return LOAD_CASES[bool(seed_load_case)]
+
+
+@dataclass(frozen=True)
+class StaticOptions:
+    level: str = "default"
+    order: int = 2
+    rigid_supports: bool = False
+    load_distribution: str = "uniform"     # "uniform" | "cosine"
+    body_force: bool = False               # the shaft's own centrifugal load
+    seed_load_case: bool = False           # only the parts the seed loaded (gear, CW1, CW2)
+
+    @property
+    def load_case(self) -> str:
+        return load_case_label(self.seed_load_case)
+    solver: str = "auto"                   # see shaftfe.fe.solvers
+    hold_twist: str = "all"                # θ_x held at "all" bearings, the "axial" one, "none"
+    exclude_mm: float = 0.0                # extra band around patch edges for filtered peaks
+
+
+@dataclass(frozen=True, eq=False)
+class StaticModel:
+    variant: object
+    shaft_mesh: object
+    options: StaticOptions
+    K: object                             # scipy CSR stiffness
+    couplings: tuple
+    blocks: tuple
+    loads: dict                           # attachment name -> load vector at REF_RPM
+    load_force: dict                      # attachment name -> (Fx, Fy, Fz) at REF_RPM
+    f: np.ndarray                         # total load vector at REF_RPM
+    assembly_seconds: float
+
+
+# --------------------------------------------------------------------------- model
+
+def _direction(angle_deg: float) -> np.ndarray:
+    a = math.radians(angle_deg)
+    return np.array([0.0, math.cos(a), math.sin(a)])
+
+
+def _check_options(o: StaticOptions) -> None:
+    if o.load_distribution not in DISTRIBUTIONS:
+        raise InputError("--load-distribution", "load_distribution", " | ".join(DISTRIBUTIONS),
+                         got=o.load_distribution)
+    if not (math.isfinite(o.exclude_mm) and o.exclude_mm >= 0):
+        raise InputError("--exclude-mm", "exclude_mm", ">= 0", got=o.exclude_mm)
+    if o.hold_twist not in ("all", "axial", "none"):
+        raise InputError("options", "hold_twist", "all | axial | none", got=o.hold_twist)
+    from shaftfe.fe.solvers import METHODS
+    if o.solver not in METHODS:
+        raise InputError("--solver", "solver", " | ".join(METHODS), got=o.solver)
+
+
+def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh=None,
+                cache_dir=None) -> StaticModel:
+    """Mesh (or take ``shaft_mesh``), assemble K, couple the bearings, build the loads."""
+    _check_options(options)
+    if options.seed_load_case:
+        variant = variant.with_seed_load_case()
+    validate_variant(variant, springs=not options.rigid_supports)
+    if shaft_mesh is None:
+        from shaftfe.solid.mesh import build_mesh
+        shaft_mesh = build_mesh(variant, options.level, options.order, cache_dir=cache_dir)
+    m = shaft_mesh.mesh
+    mat = variant.material
+    t0 = time.perf_counter()
+    K = fem.elasticity_stiffness(m, mat.E_MPa, mat.nu)
+    couplings = []
+    for b in variant.bearings:
+        hold = options.hold_twist == "all" or (options.hold_twist == "axial" and b.axial)
+        couplings.append(supports.couple_bearing(m, b, rigid=options.rigid_supports,
+                                                 hold_twist=hold))
+    blocks = tuple(blk for c in couplings for blk in supports.blocks(c))
+    loads, forces = {}, {}
+    face_cache: dict = {}          # facet bases shared by parts on the same seat
+    for a in variant.attachments:
+        F = a.force_N(REF_RPM)
+        if F == 0:
+            continue
+        e = _direction(a.angle_deg)
+        loads[a.name] = fem.surface_load(m, m.boundaries[f"load:{a.name}:pressed"], F, e,
+                                         options.load_distribution, cache=face_cache)
+        forces[a.name] = tuple(float(c) for c in F * e)
+    if options.body_force:
+        w2 = (REF_RPM * 2 * math.pi / 60) ** 2
+        fb = fem.body_force_load(m, mat.density_t_mm3, w2)
+        loads["shaft_body"] = fb
+        forces["shaft_body"] = tuple(float(c) for c in fb.reshape(-1, 3).sum(axis=0))
+    f = np.zeros(K.shape[0])
+    for v in loads.values():
+        f += v
+    return StaticModel(variant, shaft_mesh, options, K, tuple(couplings), blocks, loads,
+                       forces, f, time.perf_counter() - t0)
+
+
+def region_facets(mesh) -> dict[str, np.ndarray]:
+    """Stress regions: each fillet, keyway, shoulder and seat (a split load seat counted once),
+    the hex socket and the end faces."""
+    groups: dict[str, list] = {}
+    for g, f in mesh.boundaries.items():
+        if g.startswith("load:"):
+            name = "seat:" + g.split(":")[1]
+        elif g.startswith("bearing:"):
+            name = "seat:" + g
+        else:
+            name = g
+        groups.setdefault(name, []).append(np.asarray(f))
+    return {k: np.concatenate(v) for k, v in groups.items()}
+
+
+def region_nodes(mesh) -> dict[str, np.ndarray]:
+    """Region name -> node ids (of ``region_facets``), sorted by name: the regions whose peaks
+    ``shaftfe static`` reports and ``shaftfe fatigue`` uses for its hot spots."""
+    return {k: fem.face_nodes(mesh, f).astype(np.int64)
+            for k, f in sorted(region_facets(mesh).items())}
+
+
+def _patches(mesh) -> list[np.ndarray]:
+    return [np.asarray(f) for g, f in mesh.boundaries.items()
+            if g.startswith("bearing:") or g.endswith(":pressed")]
+
+

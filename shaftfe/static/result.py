@@ -1,0 +1,104 @@
+"""What a static solve returns: per-rpm cases (bearing reactions and L10h, stations, peak
+stresses) and the reference solution at REF_RPM (frozen; arrays read-only by convention)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from shaftfe.static.model import StaticOptions
+
+
+@dataclass(frozen=True)
+class BearingReaction:
+    """Force the support exerts ON the shaft at the remote point (bearing load = −this)."""
+    name: str
+    x_mm: float
+    Fx_N: float
+    Fy_N: float
+    Fz_N: float
+    F_radial_N: float
+    uy_mm: float                 # remote-point radial translation
+    uz_mm: float
+    L10h: float | None           # ISO 281 basic, hours (None: unloaded or rpm 0)
+    C_N: float
+    life_exponent: float
+
+
+@dataclass(frozen=True)
+class Station:
+    name: str
+    x_mm: float
+    uy_mm: float
+    uz_mm: float
+    u_mm: float
+
+
+@dataclass(frozen=True)
+class StaticCase:
+    rpm: float
+    scale: float                               # (rpm / REF_RPM)²
+    bearings: tuple[BearingReaction, ...]
+    stations: tuple[Station, ...]
+    max_deflection_mm: float                   # max nodal |(u_y, u_z)|
+    max_deflection_xyz_mm: tuple[float, float, float]
+    max_axis_deflection_mm: float              # max over the axis line
+    peaks: tuple                               # recovery.RegionPeak per region
+    peak_von_mises_MPa: float                  # filtered, whole shaft
+    peak_von_mises_xyz_mm: tuple[float, float, float]
+    peak_von_mises_unfiltered_MPa: float
+    peak_von_mises_unfiltered_xyz_mm: tuple[float, float, float]
+    load_sum_N: tuple[float, float, float]
+    reaction_sum_N: tuple[float, float, float]
+    equilibrium_residual: float                # |Σ reactions + Σ loads| / |Σ loads|
+    beam: dict | None = None                   # shaftfe.beam.model numbers side by side
+
+
+@dataclass(frozen=True, eq=False)
+class StaticResult:
+    variant: str
+    variant_hash: str
+    options: StaticOptions
+    ref_rpm: float
+    n_nodes: int
+    n_elements: int
+    n_dofs: int
+    mesh_key: str
+    u_ref: np.ndarray = field(repr=False)          # (ndof,) at REF_RPM
+    stress_ref: np.ndarray = field(repr=False)     # (6, n_nodes) at REF_RPM, xx yy zz xy yz xz
+    von_mises_ref: np.ndarray = field(repr=False)
+    axis_x: np.ndarray = field(repr=False)         # deflection line (FE, on the axis)
+    axis_u_ref: np.ndarray = field(repr=False)     # (n, 3) at REF_RPM
+    cases: tuple[StaticCase, ...] = ()
+    diagnostics: dict = field(default_factory=dict)    # results only: identical run to run
+    error_estimate: dict | None = None
+    notes: tuple[str, ...] = ()
+    mesh: object = field(default=None, repr=False)
+    run: dict = field(default_factory=dict)            # wall-clock seconds, mesh_from_cache
+
+    def case(self, rpm: float) -> StaticCase:
+        return next(c for c in self.cases if math.isclose(c.rpm, rpm))
+
+    def to_dict(self) -> dict:
+        def clean(o):
+            if isinstance(o, float):
+                return o if math.isfinite(o) else None
+            if isinstance(o, dict):
+                return {k: clean(v) for k, v in o.items()}
+            if isinstance(o, list | tuple):
+                return [clean(v) for v in o]
+            return o
+        return clean({
+            "variant": self.variant, "variant_hash": self.variant_hash,
+            "options": asdict(self.options), "load_case": self.options.load_case,
+            "ref_rpm": self.ref_rpm,
+            "mesh": {"key": self.mesh_key, "nodes": self.n_nodes, "elements": self.n_elements,
+                     "dofs": self.n_dofs},
+            "cases": [asdict(c) for c in self.cases],
+            "diagnostics": self.diagnostics, "error_estimate": self.error_estimate,
+            "notes": list(self.notes), "run": self.run,
+        })
+
+
