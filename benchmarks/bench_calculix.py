@@ -660,7 +660,8 @@ def write_report(res: dict) -> None:
         L += [f"## {lv['level']}: first {N_MODES} natural frequencies at rest (shaft alone, "
               "spring supports)", "",
               "ours = K/M shift-invert with ccx's 4-point C3D10 mass rule (isolates the "
-              "eigensolver); rotor_solid = `shaftfe.rotordynamics.solid_rotor.modal` at 0 rpm, bare shaft "
+              "eigensolver); rotor_solid = `shaftfe.rotordynamics.solid_modal.modal` at 0 rpm, "
+              "bare shaft "
               "(`attachments=False`), exact order-4 mass.", ""]
         if srows:
             L += ["| mode | ours [Hz] | ccx [Hz] | difference | rotor_solid [Hz] | vs ccx |",

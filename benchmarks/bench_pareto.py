@@ -12,11 +12,13 @@ Quantities (variant x2_57, bearing springs):
 * ``frequencies`` first 12 natural frequencies at rest and at ``TOP_RPM``; error = the largest
                   relative error of the 24.
 
-Configurations: every mesh level of ``shaftfe.solid.levels.LEVELS`` × P1/P2 × every linear solver that
+Configurations: every mesh level of ``shaftfe.solid.levels.LEVELS`` × P1/P2 × every linear solver
+that
 ``shaftfe.fe.solvers.available()`` reports (SuperLU is not run above ``SUPERLU_MAX_DOFS``, as in
 bench_static), the beam model (``shaftfe.beam.model``: stresses = Kt × nominal at the shoulder,
 ``shaftfe.beam.scf``) at several element sizes, and for the frequencies the beam rotor
-(``shaftfe.rotordynamics.beam_rotor``) at several element sizes and basis tolerances of the reduced-basis
+(``shaftfe.rotordynamics.beam_rotor``) at several element sizes and basis tolerances of the
+reduced-basis
 eigensolver (plus ``shaftfe.rotordynamics.solid_rotor`` when it exists: see ``_solid_freq_plan``).
 
 Every run is a FRESH subprocess: ``cold`` = an empty mesh cache (Gmsh runs), ``warm`` = the same
@@ -276,7 +278,8 @@ def _c_freq_beam(spec: dict) -> dict:
 
 
 def _c_freq_solid(spec: dict) -> dict:
-    """3D solid rotor (``shaftfe.rotordynamics.solid_rotor``): P2/P1 mesh of the static model, attachments as
+    """3D solid rotor (``shaftfe.rotordynamics.solid_rotor``): P2/P1 mesh of the static model,
+    attachments as
     rigid bodies (its default coupling), reduced-basis Campbell sweep with basis tolerance
     ``tol`` (the eigensolver setting that decides the basis size)."""
     from shaftfe.model.loader import load_variant
@@ -387,7 +390,7 @@ def _key(spec: dict) -> str:
 
 def _solid_freq_plan(args) -> list[dict]:
     """3D solid modal configurations when ``shaftfe.rotordynamics.solid_rotor`` imports: its default
-    (``SolidOptions()``: level, order, solver; ``rotor_solid.campbell``'s tolerance) and a looser
+    (``SolidOptions()``: level, order, solver; ``solid_modal.campbell``'s tolerance) and a looser
     basis tolerance at that level, then the finer levels of ``--solid-levels`` (default: the
     solid default level and ``default``; the ``fine`` level's modal solve is left out by
     default: minutes and GB on this shared machine)."""
@@ -1208,7 +1211,8 @@ def write_report(data: dict) -> dict:
                     + ", ".join(res["mixed_levels"]) + "): runs of those levels used different "
                     "meshes, so their rows are not comparable. Re-run.")
     if not any(r["kind"] == "freq_solid" for r in runs):
-        miss.append("The 3D solid modal path (`shaftfe/rotordynamics/solid_rotor.py`) was not available "
+        miss.append("The 3D solid modal path (`shaftfe/rotordynamics/solid_rotor.py`) was "
+                    "not available "
                     "when this ran (absent or without `campbell_from_variant`): the frequency "
                     "front covers the beam rotor only, and its reference is the finest beam, "
                     "which measures the beam's discretisation error, NOT the modelling error "

@@ -217,7 +217,8 @@ def write(rows: list[dict]) -> None:
         r["e_peak"] = max(abs(r["e_collar"]), abs(r["e_bsg"]))
     OUT.with_suffix(".json").write_text(json.dumps(rows, indent=1))        # a list of rows
     REF_OUT.write_text(json.dumps({"reference": ref, "ref_base": REF_BASE, "ref_k": REF_K,
-                                   "levels": {k: lv.settings() for k, lv in LEVELS.items()}}, indent=1))
+                                   "levels": {k: lv.settings() for k, lv in LEVELS.items()}},
+                              indent=1))
     main_rows = [r for r in rows if not r["level"].startswith("ref-")]
     front = pareto(main_rows, "e_peak")
 

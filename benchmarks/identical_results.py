@@ -14,6 +14,8 @@ not the result: ``run``, ``timing``, ``timings(_s)``, ``sub_timings(_s)``, ``mac
 the static modules (``shaftfe.static.cache.code_fingerprint``) so that any edit of that code
 invalidates the cache: it changes with every code change by design and says nothing of the
 result (the mesh key and the variant hash, which do describe the model, stay compared).
+The checkout's own path (the default spectrum of ``report`` is an absolute path) is written as
+``<repo>``, so records made in two checkouts (a worktree of the old commit) compare.
 """
 
 from __future__ import annotations
@@ -48,6 +50,12 @@ def normalise(obj):
     return obj
 
 
+def write_normalised(summary: Path, dest: Path) -> None:
+    data = normalise(json.loads(summary.read_text(encoding="utf-8")))
+    text = json.dumps(data, indent=1, sort_keys=True) + "\n"
+    dest.write_text(text.replace(str(ROOT), "<repo>"), encoding="utf-8")
+
+
 def record(out: Path) -> None:
     out.mkdir(parents=True, exist_ok=True)
     env = dict(os.environ, MPLBACKEND="Agg", SHAFTFE_CACHE_DIR=str(out / "cache"))
@@ -57,9 +65,7 @@ def record(out: Path) -> None:
                            cwd=ROOT, env=env, capture_output=True, text=True)
         if p.returncode != 0:
             raise SystemExit(f"{name}: shaftfe exited {p.returncode}: {p.stderr.strip()}")
-        data = normalise(json.loads((run_dir / summary).read_text(encoding="utf-8")))
-        (out / f"{name}.json").write_text(json.dumps(data, indent=1, sort_keys=True) + "\n",
-                                          encoding="utf-8")
+        write_normalised(run_dir / summary, out / f"{name}.json")
         print(f"recorded {name}")
 
 

@@ -30,11 +30,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.model.examples import K_SEED, STEEL
+from shaftfe.model.variant import Attachment, Bearing, Segment, Variant
 
 FIX = Path(__file__).parent / "fixtures" / "ccx"
-STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
-K_SEED = ((35_030.0, 8_756.0), (8_756.0, 35_030.0))        # seed 000 §8.3 bushing
 
 
 def cylinder(tilt: float = 0.0) -> Variant:
@@ -46,11 +45,6 @@ def cylinder(tilt: float = 0.0) -> Variant:
                    tilt_stiffness_Nmm_per_rad=tilt))
     att = (Attachment("w", 55.0, 65.0, 0.24, 20.0, 60.0, angle_deg=30.0),)
     return Variant("cyl", "test cylinder", segs, brg, att, STEEL, 0.0)
-
-
-@pytest.fixture(scope="module")
-def cache(tmp_path_factory):
-    return tmp_path_factory.mktemp("abaqus-cache")
 
 
 @pytest.fixture(scope="module")

@@ -87,7 +87,8 @@ def _real_variant_available() -> bool:
 
 
 @pytest.mark.skipif(not _real_variant_available(),
-                    reason="geometry/x2_57.toml or shaftfe.model.loader.load_variant not present yet")
+                    reason="geometry/x2_57.toml or shaftfe.model.loader.load_variant "
+                           "not present yet")
 def test_real_variant_x2_57_runs():
     """End-to-end on the real variant file: two bearings, reactions balance the attachments'
     m e ω² (statics), finite stresses."""

@@ -1,4 +1,5 @@
-"""Kernels of shaftfe.rotordynamics.kernels (model-independent) and the `campbell` / `modal` commands."""
+"""Kernels of shaftfe.rotordynamics.kernels (model-independent) and the `campbell` / `modal`
+commands."""
 
 from __future__ import annotations
 

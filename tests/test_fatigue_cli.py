@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 
 from shaftfe.cli import main
-from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.model.examples import STEEL
+from shaftfe.model.variant import Attachment, Bearing, Segment, Variant
 
 ROOT = Path(__file__).resolve().parents[1]
 RPM_DAT = ROOT / "loadspectra" / "rpm.dat"
@@ -171,7 +172,6 @@ def test_missing_spectrum_exit_2(tmp_path, capsys):
 
 # --------------------------------------------------------------------------- static cache
 
-STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
 K_ISO = ((35_030.0, 0.0), (0.0, 35_030.0))
 
 

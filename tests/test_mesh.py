@@ -23,11 +23,6 @@ def make_variant(**kwargs) -> Variant:
 
 
 @pytest.fixture(scope="module")
-def cache(tmp_path_factory):
-    return tmp_path_factory.mktemp("meshcache")
-
-
-@pytest.fixture(scope="module")
 def coarse(cache):
     from shaftfe.solid.mesh import build_mesh
     return build_mesh(make_variant(), "coarse", cache_dir=cache)

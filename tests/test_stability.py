@@ -21,10 +21,10 @@ import numpy as np
 import pytest
 
 from shaftfe.errors import InputError, SolverError
-from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.model.examples import STEEL
+from shaftfe.model.variant import Attachment, Bearing, Segment, Variant
 from shaftfe.solid.levels import MeshLevel
 
-STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
 K_SEED = 35_030.0
 RPM = 10_000.0
 LEVEL = MeshLevel("stability_test", k_global=0.35, k_fillet=0.9, k_sharp=5.0, grad=1.3)

@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 
 from shaftfe.errors import InputError, SolverError
-from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.model.examples import STEEL
+from shaftfe.model.variant import Attachment, Bearing, Segment, Variant
 
-STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
 K_ISO = ((35_030.0, 0.0), (0.0, 35_030.0))
 
 
@@ -42,11 +42,6 @@ def statics_bearing_loads(v, cache, level="default", **opts) -> np.ndarray:
     load_r = np.array([(x - xl) @ f[:, 1] - y @ f[:, 0],
                        (x - xl) @ f[:, 2] - z @ f[:, 0]]) / (xr - xl)
     return np.array([f[:, 1:].sum(axis=0) - load_r, load_r])
-
-
-@pytest.fixture(scope="module")
-def cache(tmp_path_factory):
-    return tmp_path_factory.mktemp("static-cache")
 
 
 @pytest.fixture(scope="module")
@@ -377,10 +372,12 @@ def test_bad_spring_matrix_is_input_error(cache):
 def test_error_estimate_from_two_levels(cache):
     """--estimate-error: a second level is solved and the Richardson-type numbers are
     consistent: extrapolated = fine + (fine − coarse)/(r^p − 1), error = |that difference|."""
+    from shaftfe.static.error import with_error_estimate
     from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
-    r = solve_static(cylinder(), [10000.0], StaticOptions(level="default"), cache_dir=cache,
-                     beam=False, estimate_error=True)
+    opts = StaticOptions(level="default")
+    r = with_error_estimate(solve_static(cylinder(), [10000.0], opts, cache_dir=cache,
+                                         beam=False), cylinder(), opts, cache)
     ee = r.error_estimate
     assert ee["levels"] == ["fine", "default"]
     d = ee["cases"][0]["max_deflection"]

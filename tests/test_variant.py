@@ -11,6 +11,7 @@ import pytest
 
 from shaftfe.errors import InputError
 from shaftfe.model.loader import list_variants, load_variant
+from shaftfe.model.mass import mass_properties
 from shaftfe.model.variant import SOURCES
 from shaftfe.util.paths import GEOMETRY_DIR
 
@@ -274,7 +275,7 @@ def test_cli_show_json_matches_api():
     # exact arithmetic: the same computation, JSON floats round-trip (approx's default 1e-6)
     assert cw2["force_N"]["10000"] == pytest.approx(v.attachment("counterweight_2")
                                                     .force_N(10000))
-    assert rep["mass_properties"]["mass_kg"] == pytest.approx(v.mass_properties().mass_kg)  # same
+    assert rep["mass_properties"]["mass_kg"] == pytest.approx(mass_properties(v).mass_kg)  # same
 
 
 def test_cli_show_table_and_list_run():

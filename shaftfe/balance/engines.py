@@ -204,7 +204,7 @@ def _rod_split(vals: dict[str, float], source: str) -> tuple[float, float]:
         return (_need(vals, source, "rod_rot_mass_kg", "given with rod_pos_mass_kg"),
                 _need(vals, source, "rod_pos_mass_kg", "given with rod_rot_mass_kg"))
     if "rod_mass_kg" in vals:
-        from shaftfe.balance.parts import split_rod
+        from shaftfe.balance.kinematics import split_rod
 
         ell = _need(vals, source, "rod_eye_distance_mm", "needed to split rod_mass_kg")
         l1 = _need(vals, source, "rod_centroid_from_big_eye_mm", "needed to split rod_mass_kg")

@@ -20,6 +20,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from shaftfe.errors import InputError
+
 
 def rad_per_s(rpm: ArrayLike) -> NDArray[np.float64]:
     """Angular speed in rad/s from rpm."""
@@ -76,3 +78,15 @@ def rotate(Fx: ArrayLike, Fy: ArrayLike,
     Fx = np.asarray(Fx, dtype=float)
     Fy = np.asarray(Fy, dtype=float)
     return Fx * c - Fy * s, Fx * s + Fy * c
+
+
+def split_rod(m_rod: float, eye_distance: float, centroid_from_big_eye: float
+              ) -> tuple[float, float]:
+    """Two-point rod split (seed 003 eq. 7-8): (rotating share, reciprocating share)."""
+    if eye_distance <= 0:
+        raise InputError("split_rod", "eye_distance", "> 0", got=eye_distance)
+    if not 0 <= centroid_from_big_eye <= eye_distance:
+        raise InputError("split_rod", "centroid_from_big_eye", f"in [0, {eye_distance:g}]",
+                         got=centroid_from_big_eye)
+    m_rot = m_rod * (eye_distance - centroid_from_big_eye) / eye_distance
+    return m_rot, m_rod - m_rot

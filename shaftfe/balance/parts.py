@@ -18,18 +18,6 @@ from shaftfe.balance.engines import Engine
 from shaftfe.errors import InputError
 
 
-def split_rod(m_rod: float, eye_distance: float, centroid_from_big_eye: float
-              ) -> tuple[float, float]:
-    """Two-point rod split (seed 003 eq. 7-8): (rotating share, reciprocating share)."""
-    if eye_distance <= 0:
-        raise InputError("split_rod", "eye_distance", "> 0", got=eye_distance)
-    if not 0 <= centroid_from_big_eye <= eye_distance:
-        raise InputError("split_rod", "centroid_from_big_eye", f"in [0, {eye_distance:g}]",
-                         got=centroid_from_big_eye)
-    m_rot = m_rod * (eye_distance - centroid_from_big_eye) / eye_distance
-    return m_rot, m_rod - m_rot
-
-
 @dataclass(frozen=True)
 class PartsRatios:
     """Seed 003 quantities (kg, mm) and the ratios P, Pv; X, X2 in seed 000 terms."""

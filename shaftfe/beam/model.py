@@ -57,7 +57,6 @@ from shaftfe.beam.elements import (
     Sections,
     element_mass,
     element_stiffness,
-    hexagon_area_inertia,
     section_properties,
 )
 from shaftfe.beam.scf import kt_shoulder
@@ -446,17 +445,3 @@ def check_supports(model: BeamModel) -> None:
 
 
 # --------------------------------------------------------------------------- mass properties
-
-def shaft_volume_mm3(variant) -> float:
-    """Volume of the stepped shaft from its segments minus the hex socket (fillets, keyways and
-    threads ignored)."""
-    v = sum(0.25 * math.pi * s.diameter_mm**2 * s.length_mm for s in variant.segments)
-    if variant.hex_socket is not None:
-        v -= float(hexagon_area_inertia(variant.hex_socket.across_flats_mm)[0]) \
-            * variant.hex_socket.depth_mm
-    return v
-
-
-def shaft_mass_kg(variant) -> float:
-    """Shaft mass in kg (density in t/mm³ → ×1000 kg/t)."""
-    return shaft_volume_mm3(variant) * variant.material.density_t_mm3 * 1e3

@@ -35,7 +35,7 @@ def register(sub) -> None:
 
 def run(args) -> int:
     from shaftfe.commands import report
-    from shaftfe.report.assemble import ReportOptions
+    from shaftfe.report.options import ReportOptions
 
     options = ReportOptions(variant=DEFAULT_VARIANT, level=args.level, seed_load_case=True)
     return report.make_report(options, args.out, json_out=args.json)

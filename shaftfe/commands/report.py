@@ -45,7 +45,7 @@ def register(sub) -> None:
 
 
 def options_from_args(args):
-    from shaftfe.report.assemble import ReportOptions
+    from shaftfe.report.options import ReportOptions
     from shaftfe.util.paths import DEFAULT_SPECTRUM
 
     return ReportOptions(
@@ -69,13 +69,14 @@ def make_report(options, out=None, *, json_out: bool = False, progress=None) -> 
     from shaftfe import report as report_pkg
     from shaftfe.commands._common import print_json
     from shaftfe.report import assemble
+    from shaftfe.report.options import check_options, stages
     from shaftfe.util.atomic import staged_dir
     from shaftfe.util.progress import Progress
 
-    assemble.check_options(options)
+    check_options(options)
     variant_name = Path(options.variant).stem
     out = Path(out) if out else Path("reports") / variant_name
-    prog = progress or Progress(assemble.stages(options), enabled=False if json_out else None)
+    prog = progress or Progress(stages(options), enabled=False if json_out else None)
     with staged_dir(out) as stage:              # every file of the report or none
         rep = assemble.run_report(options, stage, prog)
         report_pkg.write(rep, stage)

@@ -82,8 +82,10 @@ def run(args) -> int:
     prog = Progress(["mesh + solve", "outputs"], enabled=False if args.json else None)
     with staged_dir(out) as stage:             # all three files or none
         with prog.stage("mesh + solve"):
-            res = solve_static(variant, rpms, opts, beam=not args.no_beam,
-                               estimate_error=args.estimate_error)
+            res = solve_static(variant, rpms, opts, beam=not args.no_beam)
+            if args.estimate_error:
+                from shaftfe.static.error import with_error_estimate
+                res = with_error_estimate(res, variant, opts)
             static_cache.store(variant, opts, res)  # `shaftfe fatigue` on this model reuses it
         with prog.stage("outputs"):
             summary = _write_outputs(args, variant, opts, res, rpms, stage)

@@ -36,11 +36,12 @@ def register(sub) -> None:
 def run_list(args) -> int:
     from shaftfe.commands._common import print_json, print_table
     from shaftfe.model.loader import list_variants, load_variant
+    from shaftfe.model.mass import mass_properties
 
     rows = []
     for name in list_variants():
         v = load_variant(name)
-        mp = v.mass_properties()
+        mp = mass_properties(v)
         rows.append({"name": v.name, "description": v.description,
                      "mass_kg": round(mp.mass_kg, 4), "gamma2_mm": round(mp.gamma2_mm, 3),
                      "x_T_mm": round(mp.x_T_mm, 3), "content_hash": v.content_hash})
@@ -58,9 +59,9 @@ def _src(v, path: str) -> str:
 
 
 def _report(v, rpms: list[float]) -> dict:
-    from shaftfe.model.mass import rigid_support_reactions, seat_loads
+    from shaftfe.model.mass import mass_properties, rigid_support_reactions, seat_loads
 
-    mp = v.mass_properties()
+    mp = mass_properties(v)
     tgt = v.balance_target
     segs = [{"name": s.name, "kind": s.kind, "x_start_mm": s.x_start_mm, "x_end_mm": s.x_end_mm,
              "length_mm": s.length_mm, "diameter_mm": s.diameter_mm, "fillet_mm": s.fillet_mm,
@@ -186,9 +187,10 @@ def run_show(args) -> int:
 def run_check(args) -> int:
     from shaftfe.commands._common import print_json
     from shaftfe.model.loader import load_variant
+    from shaftfe.model.mass import mass_properties
 
     v = load_variant(args.path)
-    mp = v.mass_properties()
+    mp = mass_properties(v)
     info = {"ok": True, "name": v.name, "files": list(v.source_files),
             "content_hash": v.content_hash, "segments": len(v.segments),
             "bearings": len(v.bearings), "attachments": len(v.attachments),

@@ -2,7 +2,8 @@
 
 ``assess(sigma_ref, history, material)``: ``sigma_ref`` is the static solution at the history's
 reference speed (per node, (N, 6) components xx, yy, zz, xy, yz, xz in MPa, or an (N,) array of
-equivalent stresses already computed; ``shaftfe.static.solve`` stores (6, N): pass ``stress_ref.T``);
+equivalent stresses already computed; ``shaftfe.static.solve`` stores (6, N): pass
+``stress_ref.T``);
 ``history`` a ``shaftfe.fatigue.history.LoadHistory`` whose ``rpm_ref`` is the speed of the static
 solution (``history.with_reference(static_rpm)`` otherwise); its load factor is counted once.
 Life: blocks = 1 / D, hours = blocks · block duration / 3600, km = hours · average speed

@@ -2,7 +2,8 @@
 
 ``evaluate(ref, history, material, ...)`` takes a static reference solution (a
 ``shaftfe.static.cache.StaticReference``: nodal stresses at ``ref.ref_rpm``, coordinates, named
-regions, the excluded singular nodes) and a ``shaftfe.fatigue.history.LoadHistory``. The stress at time t
+regions, the excluded singular nodes) and a ``shaftfe.fatigue.history.LoadHistory``. The stress at
+time t
 is σ_ref · (rpm(t) / ref_rpm)², so the history is first RE-REFERENCED to the static solution's
 speed (``history.with_reference(ref.ref_rpm)``: e.g. the seed's rpm.dat, normalised to
 7000 rpm, against the static solve at 10 000 rpm: load factor × (7000 / 10 000)²). Then

@@ -62,7 +62,7 @@ class FatigueRun:
     """A finished assessment: its inputs and every result the outputs are made of."""
     job: FatigueJob
     variant: object                        # shaftfe.model.variant.Variant
-    history: object                        # shaftfe.fatigue.history.History
+    history: object                        # shaftfe.fatigue.history.LoadHistory
     material: object                       # shaftfe.fatigue.sn.FatigueMaterial
     ref: object                            # shaftfe.static.cache.StaticReference
     field: object                          # shaftfe.fatigue.field.FatigueField

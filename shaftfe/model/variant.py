@@ -243,10 +243,6 @@ class Variant:
         return dataclasses.replace(
             self, attachments=tuple(a for a in self.attachments if a.seed_load_case))
 
-    def mass_properties(self) -> MassProperties:
-        from shaftfe.model.mass import mass_properties
-        return mass_properties(self)
-
 
 def _canonical(obj: Any) -> Any:
     if dataclasses.is_dataclass(obj):

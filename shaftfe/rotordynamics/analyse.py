@@ -36,7 +36,7 @@ class RotorOptions:
 class RotorAnalysis:
     """A sweep with the model it ran on (the model is not changed by the sweep)."""
     model: object
-    result: object                        # rotordynamics.kernels.CampbellResult
+    result: object                        # rotordynamics.campbell.CampbellResult
     verification: object | None           # beam_rotor.Verification, or None if not asked
     provider: object | None               # the solid rotor's basis (its factorisation), reused
     kind: RotorKind

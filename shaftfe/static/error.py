@@ -9,6 +9,13 @@ from shaftfe.static.model import StaticOptions
 from shaftfe.static.result import StaticResult
 
 
+def with_error_estimate(res: StaticResult, variant, options: StaticOptions, cache_dir=None,
+                        other_level=None) -> StaticResult:
+    """``res`` with its ``error_estimate`` from a second solve (``estimate_error``)."""
+    return replace(res, error_estimate=estimate_error(res, variant, options, cache_dir,
+                                                      other_level))
+
+
 def estimate_error(res: StaticResult, variant, options: StaticOptions, cache_dir,
                     other_level: str | None = None) -> dict:
     """Richardson-type estimate from a second mesh level.

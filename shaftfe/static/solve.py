@@ -46,7 +46,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -365,8 +365,7 @@ def _check_rpms(rpm) -> list[float]:
 
 
 def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), *,
-                 shaft_mesh=None, cache_dir=None, beam: bool = True,
-                 estimate_error: bool = False) -> StaticResult:
+                 shaft_mesh=None, cache_dir=None, beam: bool = True) -> StaticResult:
     """Solve once at REF_RPM and report every rpm in ``rpm`` (a number or a sequence): the
     loads scale with ω², so every case is the reference solution × (rpm / REF_RPM)²."""
     t_all = time.perf_counter()
@@ -431,9 +430,6 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
         n_nodes=sm.n_nodes, n_elements=sm.n_elements, n_dofs=3 * sm.n_nodes, mesh_key=sm.key,
         u_ref=u, stress_ref=rec.stress, von_mises_ref=rec.vm, axis_x=ax_x, axis_u_ref=ax_u,
         cases=tuple(cases), diagnostics=diag, notes=(), mesh=sm, run=run)
-    if estimate_error:
-        from shaftfe.static.error import estimate_error
-        res = replace(res, error_estimate=estimate_error(res, variant, options, cache_dir))
     res.run["total_seconds"] = time.perf_counter() - t_all
     return res
 

@@ -5,7 +5,8 @@ from __future__ import annotations
 import pytest
 
 from shaftfe.balance.engines import load_engine
-from shaftfe.balance.parts import ratios, split_rod
+from shaftfe.balance.kinematics import split_rod
+from shaftfe.balance.parts import ratios
 from shaftfe.errors import InputError
 
 

@@ -1,4 +1,5 @@
-"""Validation of the beam rotor model (shaftfe.rotordynamics.beam_rotor) at rest and spinning, against closed forms.
+"""Validation of the beam rotor model (shaftfe.rotordynamics.beam_rotor) at rest and spinning,
+against closed forms.
 
 References (each test names its own):
 * Timoshenko beam equations (Timoshenko, Phil. Mag. 41 (1921) 744; shear coefficient Cowper

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from shaftfe.beam.model import build_model, rigid_body_modes
+from shaftfe.model.mass import mass_properties
 from shaftfe.model.variant import Bearing, Material, Segment, Variant
 from shaftfe.rotordynamics import beam_rotor as rotor
 from shaftfe.rotordynamics import kernels as campbell
@@ -182,7 +183,7 @@ def test_x2_57_rigid_body_inertia_matches_mass_properties_and_seed():
     from shaftfe.model.loader import load_variant
 
     v = load_variant("x2_57")
-    mp = v.mass_properties()
+    mp = mass_properties(v)
     m = build_model(dataclasses.replace(v, bearings=()))
     r = rotor.build_rotor(m, rotor.disks_from_variant(v), check=False)
     R = rigid_body_modes(m.x, mp.x_centroid_mm, 1.0)

@@ -1,4 +1,5 @@
-"""Validation of the 3D solid rotor model (shaftfe.rotordynamics.solid_rotor) against closed forms, published
+"""Validation of the 3D solid rotor model (shaftfe.rotordynamics.solid_rotor) against closed forms,
+published
 rotor examples and the full-size quadratic eigenproblem.
 
 References (each test names its own):

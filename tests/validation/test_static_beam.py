@@ -21,9 +21,9 @@ import math
 import numpy as np
 import pytest
 
-from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.model.examples import STEEL
+from shaftfe.model.variant import Attachment, Bearing, Segment, Variant
 
-STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
 D, L = 20.0, 160.0
 SEATS = ((5.0, 15.0), (145.0, 155.0))
 PATCH = (45.0, 55.0)

@@ -28,10 +28,10 @@ import dataclasses
 
 import pytest
 
-from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.model.examples import STEEL
+from shaftfe.model.variant import Attachment, Bearing, Segment, Variant
 from shaftfe.solid.levels import MeshLevel
 
-STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
 K = ((35_030.0, 0.0), (0.0, 35_030.0))
 RPM = 10_000.0
 # three test levels that differ only in the fillet element size (ratio √2 each)

@@ -31,9 +31,9 @@ import math
 import numpy as np
 import pytest
 
-from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.model.examples import STEEL
+from shaftfe.model.variant import Attachment, Bearing, Segment, Variant
 
-STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
 K = ((35_030.0, 0.0), (0.0, 35_030.0))
 RPM = 10_000.0
 

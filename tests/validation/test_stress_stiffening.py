@@ -1,4 +1,5 @@
-"""Validation of the centrifugal prestress option of the 3D solid rotor (``shaftfe.rotordynamics.solid_rotor``,
+"""Validation of the centrifugal prestress option of the 3D solid rotor
+(``shaftfe.rotordynamics.solid_rotor``,
 ``SolidOptions.stress_stiffening``, module docstring "Centrifugal prestress").
 
 References (each test names its own):
@@ -287,7 +288,8 @@ def test_x2_57_stress_stiffening_negligible_at_8000_rpm():
 
 def test_cli_spin_softening_refused_and_stress_stiffening_solid_only(capsys):
     """``--spin-softening`` is one clear line with exit code 2 (InputError): not applicable in
-    the stationary frame, a rotating-frame term (module docstring of shaftfe.rotordynamics.solid_rotor);
+    the stationary frame, a rotating-frame term (module docstring of
+    shaftfe.rotordynamics.solid_rotor);
     ``--stress-stiffening`` needs ``--model solid``."""
     from shaftfe.cli import main
 

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from shaftfe.model.loader import load_variant
-from shaftfe.model.mass import rigid_support_reactions, seat_loads
+from shaftfe.model.mass import mass_properties, rigid_support_reactions, seat_loads
 
 VARIANTS = ("x2_31", "x2_42", "x2_50", "x2_57")
 # seed §8.2.2 table: X2 % -> (mass kg, γ2 mm, x_T mm)
@@ -142,7 +142,7 @@ def test_whole_balancer_mass_gamma2_and_centroid_match_the_seed_table(name):
     """Seed §8.2.2 table (X2 / m / γ2 / x_T from the crankcase parting plane): the files'
     full mass properties (shaft body + gear + counterweights + screws, keys, nuts, washers)
     reproduce m, γ2 = |Σ m e|/m and x_T within 1 %."""
-    mp = load_variant(name).mass_properties()
+    mp = mass_properties(load_variant(name))
     m, g2, xt = TABLE[name]
     # reconstruction vs the seed's table (printed to 3-4 digits): 1 % (measured ≤ 0.14 %)
     assert mp.mass_kg == pytest.approx(m, rel=0.01)
@@ -162,7 +162,7 @@ def test_x2_57_sum_me_two_load_cases(v57):
     me = sum(a.mass_kg * a.eccentricity_mm for a in s.attachments)
     # exact arithmetic: the same numbers summed (measured 2.2e-16); was 1e-9
     assert me == pytest.approx(seed_me, rel=1e-12)
-    mp = v57.mass_properties()
+    mp = mass_properties(v57)
     # reconstruction, 1 % as the table (measured 1e-6)
     assert mp.mass_kg * mp.gamma2_mm == pytest.approx(0.761 * 10.76, rel=0.01)
     screws = v57.attachment("screws_cw1")
@@ -176,7 +176,7 @@ def test_x2_57_polar_inertia(v57):
     """Seed §8.2.2 ('Pohon vyvažovacího hřídele'): moment of inertia of the x2_57 balancer about
     its axis I_o = 432.229 kg·mm² (fitted through counterweight 2's crescent inner radius)."""
     # reconstruction, 1 % as the table (fitted: measured 1.8e-4)
-    assert v57.mass_properties().polar_inertia_kg_mm2 == pytest.approx(432.229, rel=0.01)
+    assert mass_properties(v57).polar_inertia_kg_mm2 == pytest.approx(432.229, rel=0.01)
 
 
 def test_shaft_mass_is_what_the_assembly_leaves(v57):
@@ -185,7 +185,7 @@ def test_shaft_mass_is_what_the_assembly_leaves(v57):
     0.761 − 0.517 − hardware, within 1 % of the whole; and it is a steel Ø17–Ø22 shaft:
     its mass is ρ Σ π D² L / 4 minus the hex socket ρ (√3/2) s² depth minus the two keyways,
     each between 0 and the box ρ b t1 l."""
-    mp = v57.mass_properties()
+    mp = mass_properties(v57)
     hardware = sum(a.mass_kg for a in v57.attachments
                    if a.name not in ("gear", "counterweight_1", "counterweight_2"))
     # reconstruction: 1 % of the whole balancer (measured 0.14 %)

@@ -1,0 +1,90 @@
+"""The report's options, their checks and its progress stages."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from shaftfe.errors import InputError
+from shaftfe.rotordynamics.analyse import ROTOR_MODELS
+from shaftfe.solid.levels import LEVEL_NAMES
+from shaftfe.util.paths import DEFAULT_SPECTRUM
+
+STAGES = ("inputs", "balancing", "beam check", "static (mesh + one solve)", "fatigue",
+          "Campbell", "VTU", "3D pictures", "plots")
+
+
+ERROR_STAGE = "error estimate (second mesh level)"
+
+
+# --estimate-error: the second level of the Richardson estimate (the neighbour level; the
+# coarser one where there is one, so the estimate costs less than the run itself)
+OTHER_LEVEL = {"coarse": "default", "default": "coarse", "fine": "default"}
+
+
+def stages(o) -> tuple[str, ...]:
+    """The progress stages of a run with options ``o``."""
+    if not o.estimate_error:
+        return STAGES
+    i = STAGES.index("static (mesh + one solve)") + 1
+    return (*STAGES[:i], ERROR_STAGE, *STAGES[i:])
+
+
+@dataclass(frozen=True)
+class ReportOptions:
+    variant: str = "x2_57"
+    spectrum: str = str(DEFAULT_SPECTRUM)
+    engine: str = "vm450"
+    level: str = "default"
+    design_rpm: tuple[float, ...] = (10_000.0, 7_000.0)   # seed §8.2.2 static check, §8.3 ref
+    campbell_step_rpm: float = 500.0
+    modes: int = 12
+    orders: tuple[float, ...] = (1.0, 2.0)
+    rotor_model: str = "beam"
+    estimate_error: bool = False          # solve a second mesh level (OTHER_LEVEL)
+    mean_stress: str = "soderberg"
+    material: str = "structural_steel"
+    design_life_blocks: float = 1e7
+    speed_kmh: float = 70.0
+    cache_dir: str | None = None
+    pictures: bool = True                 # PyVista renders (off: no VTK import)
+    seed_load_case: bool = False          # every part (as every command); True: the seed's F1+Fv2
+
+
+CAMPBELL_STEP_MIN_RPM = 10.0     # ≤ 2000 speeds up to the rpm ceiling: seconds, not GiB
+
+
+def check_options(o: ReportOptions) -> None:
+    """Cheap checks of everything the user typed (before any computation or output)."""
+    if o.level not in LEVEL_NAMES:
+        raise InputError("command line", "--level", " | ".join(LEVEL_NAMES), got=o.level)
+    if o.rotor_model not in ROTOR_MODELS:
+        raise InputError("command line", "--rotor-model", " | ".join(ROTOR_MODELS),
+                         got=o.rotor_model)
+    from shaftfe.util.limits import RPM_CEILING, check_rpm
+    if not o.design_rpm:
+        raise InputError("command line", "--rpm", "one or more speeds", got="")
+    for r in o.design_rpm:
+        check_rpm(r, "--rpm", positive=True)
+    if not (math.isfinite(o.campbell_step_rpm)
+            and CAMPBELL_STEP_MIN_RPM <= o.campbell_step_rpm <= RPM_CEILING):
+        raise InputError("command line", "--campbell-step",
+                         f"a step in [{CAMPBELL_STEP_MIN_RPM:g}, {RPM_CEILING:g}] rpm (at most "
+                         f"{RPM_CEILING / CAMPBELL_STEP_MIN_RPM:.0f} speeds)",
+                         got=o.campbell_step_rpm)
+    if not (1 <= o.modes <= 50):
+        raise InputError("command line", "--modes", "1..50", got=o.modes)
+    from shaftfe.fatigue.run import MEAN_STRESS, check_life_settings
+    check_life_settings(o.design_life_blocks, o.speed_kmh)
+    if o.mean_stress not in MEAN_STRESS:
+        raise InputError("command line", "--mean-stress", " | ".join(MEAN_STRESS),
+                         got=o.mean_stress)
+    if o.rotor_model == "solid" and not solid_rotor_available():
+        raise InputError("command line", "--rotor-model",
+                         "beam (the 3D solid rotor model is not available yet)", got="solid")
+
+
+def solid_rotor_available() -> bool:
+    """True when the 3D solid rotor model (``shaftfe.rotordynamics.solid_rotor``) is installed."""
+    import importlib.util
+    return importlib.util.find_spec("shaftfe.rotordynamics.solid_rotor") is not None

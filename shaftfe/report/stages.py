@@ -1,0 +1,296 @@
+"""The report's stages: each computes one analysis of the variant through the package's API and
+returns its summary (a JSON-ready dict) with the objects the later stages need."""
+
+from __future__ import annotations
+
+import math
+
+from shaftfe.errors import InputError
+from shaftfe.model.mass import mass_properties
+from shaftfe.report.options import ReportOptions
+from shaftfe.util.paths import repo_relative
+
+
+def read_inputs(o: ReportOptions) -> tuple:
+    from shaftfe.balance.engines import load_engine
+    from shaftfe.fatigue.run import read_spectrum
+    from shaftfe.fatigue.sn import load_material
+    from shaftfe.model.loader import load_variant
+
+    variant = load_variant(o.variant)
+    engine = load_engine(o.engine)
+    if engine.max_rpm is None or not engine.max_rpm > 0:
+        raise InputError(engine.source, "max_rpm", "> 0 rpm (the Campbell range ends there)",
+                         got=engine.max_rpm, reason="is missing")
+    history = read_spectrum(o.spectrum, None, None)
+    material = load_material(o.material)
+    return variant, engine, history, material
+
+
+def file_comments(path, limit: int = 20) -> list[str]:
+    """The leading '#' comment lines of a text file that are not ``key = value`` header keys:
+    what an rpm history says about its own provenance."""
+    out = []
+    try:
+        with open(path, encoding="utf-8", errors="replace") as fh:
+            for line in fh:
+                t = line.strip()
+                if not t.startswith("#"):
+                    break
+                t = t.lstrip("#").strip()
+                if t and not (" = " in t and t.split(" = ", 1)[0].isidentifier()):
+                    out.append(t)
+                if len(out) >= limit:
+                    break
+    except OSError:
+        return []
+    return out
+
+
+def provenance_summary(variant) -> dict:
+    """Counts of the provenance tags and the list of reconstructed values."""
+    counts: dict[str, int] = {}
+    recon = []
+    for path, tag in sorted(variant.provenance.source.items()):
+        counts[tag] = counts.get(tag, 0) + 1
+        if tag == "reconstructed":
+            recon.append(path)
+    return {"counts": counts, "reconstructed": recon,
+            "document": "geometry/RECONSTRUCTION.md",
+            "files": list(variant.source_files)}
+
+
+def balancing(engine, variant, seedmod) -> tuple[dict, object, object, object]:
+    import numpy as np
+
+    from shaftfe.balance import single, sweep
+
+    mp = mass_properties(variant)
+    tgt = variant.balance_target
+    if tgt is not None and tgt.m_pos_kg > 0 and tgt.crank_radius_mm > 0:
+        x2 = mp.mass_kg * mp.gamma2_mm / (tgt.m_pos_kg * tgt.crank_radius_mm)
+    elif tgt is not None:
+        x2 = tgt.X2_percent / 100.0
+    else:                                     # no balance table: the engine's own balancer
+        x2 = engine.X2 if engine.X2 is not None else 0.0
+    X = seedmod.CRANK_C_X
+    res = single.forces(engine, X=X, X2=x2, rpm=engine.rpm)
+    sw = sweep.sweep(engine, [X], np.arange(0.0, 1.0001, 0.01), rpm=engine.rpm,
+                     tilt_deg=0.0)            # cylinder frame, as the seed's fig. 58
+    mins = {k: (float(v[0][0]), 100.0 * float(v[1][0])) for k, v in sw.minima().items()}
+    sb = seedmod.BALANCING
+    sw2 = sweep.sweep(engine, [sb["X"]], np.arange(0.0, 1.0001, 0.01), rpm=sb["rpm"],
+                      tilt_deg=0.0)
+    mins2 = {k: (float(v[0][0]), 100.0 * float(v[1][0])) for k, v in sw2.minima().items()}
+    omega = 2 * math.pi * sb["rpm"] / 60.0
+    bal_force = engine.balancer_mass_kg * engine.balancer_radius_mm * 1e-3 * omega ** 2 \
+        if engine.balancer_mass_kg and engine.balancer_radius_mm else None
+    out = {
+        "engine": engine.name, "engine_file": repo_relative(engine.source), "rpm": engine.rpm,
+        "tilt_deg": engine.tilt_deg, "idle_rpm": engine.idle_rpm, "max_rpm": engine.max_rpm,
+        "m_pos_kg": engine.m_pos_kg, "m_rot_kg": engine.m_rot_kg,
+        "crank_radius_mm": engine.crank_radius_mm, "rod_length_mm": engine.rod_length_mm,
+        "X_percent": 100 * X, "X2_percent": 100 * x2,
+        "first_order_amplitude_N": res.first_order_amplitude,
+        "metrics": res.metrics.as_dict(),
+        "sweep_minima": {k: {"value_N": v[0], "at_X2_percent": v[1]} for k, v in mins.items()},
+        "seed_row": {"X_percent": 100 * sb["X"], "rpm": sb["rpm"], "tilt_deg": 0.0,
+                     "minima": {k: {"value_N": v[0], "at_X2_percent": v[1]}
+                                for k, v in mins2.items()}},
+        "balancer_force_A1_N": bal_force,
+        "mass_properties": {"mass_kg": mp.mass_kg, "gamma2_mm": mp.gamma2_mm,
+                            "x_T_mm": mp.x_T_mm,
+                            "polar_inertia_kg_mm2": mp.polar_inertia_kg_mm2},
+    }
+    return out, res, sw, mins2
+
+
+def beam_check(variant) -> tuple[dict, object]:
+    """Inventor-style beam (rigid supports, seed load case) at 10 000 and 7000 rpm."""
+    from shaftfe.beam.model import build_model
+    from shaftfe.beam.solve import solve
+
+    v = variant.with_seed_load_case()
+    rpms = [10_000.0, 7_000.0]
+    timo = solve(build_model(v, rigid_supports=True), rpms)
+    eb = solve(build_model(v, rigid_supports=True, shear_deformation=False), rpms)
+    out = {}
+    for label, res in (("timoshenko", timo), ("euler_bernoulli", eb)):
+        out[label] = [{"rpm": r.rpm,
+                       "bearings": {b.name: {"F_N": b.F_N, "L10h": b.L10h} for b in r.bearings},
+                       "stations": {k: s.u_mm for k, s in r.stations.items()},
+                       "max_sigma_vm_nominal_MPa": r.max_sigma_vm_MPa,
+                       "x_max_sigma_vm_mm": r.x_max_sigma_vm_mm,
+                       "max_peak_with_kt_MPa": r.max_peak_MPa,
+                       "x_max_peak_mm": r.x_max_peak_mm} for r in res]
+    return out, timo
+
+
+def _relative_deflection(case, x_mm: float) -> float:
+    """|u| of the axis at ``x_mm`` relative to the straight line through the two bearings'
+    remote points (the shaft's own bending; equals the rigid-support deflection for two
+    supports with free tilt, where the reactions are statically determinate)."""
+    b = sorted(case.bearings, key=lambda b: b.x_mm)
+    st = min(case.stations, key=lambda s: abs(s.x_mm - x_mm))
+    if len(b) != 2:
+        return st.u_mm
+    t = (st.x_mm - b[0].x_mm) / (b[1].x_mm - b[0].x_mm)
+    uy = st.uy_mm - (b[0].uy_mm + t * (b[1].uy_mm - b[0].uy_mm))
+    uz = st.uz_mm - (b[0].uz_mm + t * (b[1].uz_mm - b[0].uz_mm))
+    return math.hypot(uy, uz)
+
+
+def static_summary(res, variant) -> dict:
+    from dataclasses import asdict
+    cases = []
+    gear_x = next((a.seat_center_mm for a in variant.attachments if a.name == "gear"), None)
+    for c in res.cases:
+        rel = {}
+        if gear_x is not None:
+            rel["gear"] = _relative_deflection(c, gear_x)
+        if variant.clearance_station_x_mm is not None:
+            rel["clearance"] = _relative_deflection(c, variant.clearance_station_x_mm)
+        cases.append({
+            "rpm": c.rpm,
+            "bearings": [asdict(b) for b in c.bearings],
+            "stations": [asdict(s) for s in c.stations],
+            "relative_deflection_mm": rel,
+            "max_deflection_mm": c.max_deflection_mm,
+            "max_deflection_xyz_mm": c.max_deflection_xyz_mm,
+            "peaks": [asdict(p) for p in c.peaks],
+            "peak_von_mises_MPa": c.peak_von_mises_MPa,
+            "peak_von_mises_xyz_mm": c.peak_von_mises_xyz_mm,
+            "peak_region": _region_of_peak(c),
+            "peak_von_mises_unfiltered_MPa": c.peak_von_mises_unfiltered_MPa,
+            "peak_von_mises_unfiltered_xyz_mm": c.peak_von_mises_unfiltered_xyz_mm,
+            "equilibrium_residual": c.equilibrium_residual,
+            "load_sum_N": c.load_sum_N,
+            "beam_springs": {k: v for k, v in (c.beam or {}).items()
+                             if k not in ("x_line_mm", "u_line_mm")},
+        })
+    d = res.diagnostics
+    return {"level": res.options.level, "order": res.options.order,
+            "supports": "rigid" if res.options.rigid_supports else "bearing springs (2×2)",
+            "load_case": res.options.load_case,
+            "ref_rpm": res.ref_rpm, "n_nodes": res.n_nodes, "n_elements": res.n_elements,
+            "n_dofs": res.n_dofs, "mesh_key": res.mesh_key, "variant_hash": res.variant_hash,
+            "solver": d.get("solver"), "relative_residual": d.get("relative_residual"),
+            "cond_S": d.get("cond_S"), "min_quality": d.get("min_quality"),
+            "mesh_from_cache": getattr(res, "run", {}).get("mesh_from_cache"),
+            "n_excluded_nodes": d.get("n_excluded_nodes"),
+            "cases": cases, "error_estimate": res.error_estimate, "notes": list(res.notes)}
+
+
+def _region_of_peak(c) -> str:
+    best = max((p for p in c.peaks if math.isfinite(p.von_mises_MPa)),
+               key=lambda p: p.von_mises_MPa, default=None)
+    return best.region if best is not None and math.isclose(
+        best.von_mises_MPa, c.peak_von_mises_MPa, rel_tol=1e-9) else "-"
+
+
+def fatigue(ref, history, material, o: ReportOptions) -> tuple[dict, object]:
+    from shaftfe.fatigue.field import evaluate
+
+    ff = evaluate(ref, history, material, equivalent="von_mises", theory=o.mean_stress,
+                  kf=1.0, design_life_blocks=o.design_life_blocks, speed_kmh=o.speed_kmh)
+    r = ff.result
+    lf = ff.history.load_factor
+    hot, raw = ff.hot_spot, ff.hot_spot_unfiltered
+    out = {
+        "history": {"source": repo_relative(history.source), "format": history.format,
+                    "samples": history.n_samples, "duration_s": history.duration_s,
+                    "rpm_min": float(history.rpm.min()), "rpm_max": float(history.rpm.max()),
+                    "rpm_ref_of_file": history.rpm_ref, "static_ref_rpm": ff.ref_rpm,
+                    "load_factor_min": float(lf.min()), "load_factor_max": float(lf.max())},
+        "settings": {"equivalent": "von_mises", "mean_stress": o.mean_stress,
+                     "material": material.name, "design_life_blocks": o.design_life_blocks,
+                     "speed_kmh": o.speed_kmh, "kf": 1.0,
+                     "yield_MPa": material.yield_MPa, "ultimate_MPa": material.ultimate_MPa,
+                     "endurance_MPa": material.sn.endurance_MPa},
+        "cycles_per_block": r.cycles.total_count, "cycle_classes": r.cycles.n,
+        "closure": r.cycles.closure,
+        "hot_spot": hot.to_dict(), "hot_spot_unfiltered": raw.to_dict(),
+        "regions": [h.to_dict() for h in ff.region_hot_spots
+                    if h is not None and not h.region.startswith("end:")],
+        "n_excluded_nodes": ff.n_excluded, "evaluation_seconds": ff.seconds,
+        "notes": list(r.notes),
+    }
+    return out, ff
+
+
+def campbell(variant, engine, o: ReportOptions) -> tuple[dict, object, object]:
+    import numpy as np
+
+    top = float(engine.max_rpm)
+    n = math.floor(top / o.campbell_step_rpm + 1e-9)
+    rpms = [i * o.campbell_step_rpm for i in range(n + 1)]
+    if top - rpms[-1] > 1e-9 * top:
+        rpms.append(top)
+    from shaftfe.rotordynamics.analyse import RotorOptions, analyse
+    if o.rotor_model == "solid":
+        # the 3D solid rotor: its own mesh of the full variant (every part's seat is a face
+        # group), the same level as the static mesh
+        run = analyse(variant, rpms, o.modes, orders=o.orders, keep_vectors=True,
+                      options=RotorOptions(model="solid", level=o.level, cache_dir=o.cache_dir))
+        description = (f"3D solid rotor (P2 tets, level {o.level}, {run.model.n_dof} dofs), "
+                       "rigid attachments, bearing springs, undamped")
+    else:
+        run = analyse(variant, rpms, o.modes, orders=o.orders, keep_vectors=True)
+        description = (f"Timoshenko beam ({run.model.beam.n_nodes} nodes) + "
+                       f"{len(run.model.disks)} rigid disks, bearing springs, undamped")
+    model, res, ver = run.model, run.result, run.verification
+    share = run.support_energy_share(0)
+    i0 = 0
+    table = []
+    for j in range(res.freq_hz.shape[1]):
+        table.append({"mode": j + 1, "f0_hz": float(res.freq_hz[i0, j]),
+                      "f_top_hz": float(res.freq_hz[-1, j]),
+                      "whirl": res.branch_whirl[j], "family": res.family[-1][j],
+                      "whirl_ratio_top": float(res.whirl_ratio[-1, j]),
+                      "bearing_energy_share": float(share[j])})
+    out = {"model": o.rotor_model, "description": description, "n_dof": res.n_dof,
+           "rpm": [float(r) for r in res.rpm], "orders": list(res.orders),
+           "freq_hz": res.freq_hz.tolist(), "branch_whirl": list(res.branch_whirl),
+           "table": table,
+           "criticals": [{"order": c.order, "mode": c.branch + 1, "rpm": c.rpm,
+                          "freq_hz": c.freq_hz, "whirl": c.whirl} for c in res.criticals],
+           "statement": res.statement(), "basis_size": res.basis_size,
+           "basis_change": res.basis_change,
+           "verify": {"rpm": ver.rpm, "max_rel_diff": ver.max_rel_diff,
+                      "n_missed": ver.n_missed},
+           "tracking_mac_min": float(np.min(res.mac_min)), "notes": list(res.notes)}
+    return out, res, model
+
+
+def beam_mode_fields(model, res, xyz, speed_index: int = 0) -> dict:
+    """Mode shapes of a beam rotor model at ``res.rpm[speed_index]`` as 3D point fields on the
+    nodes ``xyz`` (3, n): the beam's node values interpolated linearly along x and carried over
+    each cross-section as a rigid section, u = u0 + θ × (0, y, z), i.e.
+    u_x = u0_x + θ_y z − θ_z y, u_y = u0_y − θ_x z, u_z = u0_z + θ_x y. Each complex mode is
+    turned real by the phase of its largest entry and scaled to a largest nodal displacement
+    of 1; stored as float32 (a shape needs no more, and it halves the file). Names
+    ``mode_<k>_<f>Hz`` (docs/FIELDS.md). Empty for a model without a beam."""
+    import numpy as np
+
+    from shaftfe.beam.elements import NDOF, RX, RY, RZ, UX, UY, UZ
+
+    beam = getattr(model, "beam", None)
+    if beam is None or res.vectors is None:
+        return {}
+    xb = np.asarray(beam.x, dtype=float)
+    x, y, z = (np.asarray(c, dtype=float) for c in xyz)
+    full = model.full_vector(res.vectors[speed_index])            # (6 n_nodes, nb)
+    out = {}
+    for j in range(full.shape[1]):
+        q = full[:, j]
+        q = (q * np.exp(-1j * np.angle(q[np.argmax(np.abs(q))]))).real
+
+        def at(d, q=q):
+            return np.interp(x, xb, q[d::NDOF])
+        ux, uy, uz, tx, ty, tz = (at(d) for d in (UX, UY, UZ, RX, RY, RZ))
+        u = np.column_stack([ux + ty * z - tz * y, uy - tx * z, uz + tx * y])
+        umax = float(np.linalg.norm(u, axis=1).max())
+        if umax > 0:
+            u /= umax
+        out[f"mode_{j + 1}_{res.freq_hz[speed_index, j]:.2f}Hz"] = u.astype(np.float32)
+    return out
