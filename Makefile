@@ -70,6 +70,7 @@ tables: $(STAMP)
 	$(BIN)/python docs/tables.py
 
 # Record the summaries that a no-behaviour-change refactoring must leave byte-identical
-# (benchmarks/identical_results.py): make identical DIR=/tmp/after, then compare two records.
+# (benchmarks/identical_results.py): make identical BEFORE=<commit> records that commit and this
+# tree and compares them (exit 1 on any difference); without BEFORE, records this tree into DIR.
 identical: $(STAMP)
-	$(BIN)/python -m benchmarks.identical_results record $(or $(DIR),reports/identical)
+	$(if $(BEFORE),$(BIN)/python -m benchmarks.identical_results against $(BEFORE),$(BIN)/python -m benchmarks.identical_results record $(or $(DIR),reports/identical))

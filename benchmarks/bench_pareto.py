@@ -12,14 +12,13 @@ Quantities (variant x2_57, bearing springs):
 * ``frequencies`` first 12 natural frequencies at rest and at ``TOP_RPM``; error = the largest
                   relative error of the 24.
 
-Configurations: every mesh level of ``shaftfe.solid.levels.LEVELS`` × P1/P2 × every linear solver
-that
-``shaftfe.fe.solvers.available()`` reports (SuperLU is not run above ``SUPERLU_MAX_DOFS``, as in
-bench_static), the beam model (``shaftfe.beam.model``: stresses = Kt × nominal at the shoulder,
-``shaftfe.beam.scf``) at several element sizes, and for the frequencies the beam rotor
-(``shaftfe.rotordynamics.beam_rotor``) at several element sizes and basis tolerances of the
-reduced-basis
-eigensolver (plus ``shaftfe.rotordynamics.solid_rotor`` when it exists: see ``_solid_freq_plan``).
+Configurations: every mesh level of ``shaftfe.solid.levels.LEVELS`` × P1/P2 × every linear
+solver that ``shaftfe.fe.solvers.available()`` reports (SuperLU is not run above
+``SUPERLU_MAX_DOFS``, as in bench_static), the beam model (``shaftfe.beam.solve``: stresses = Kt
+× nominal at the shoulder, ``shaftfe.beam.scf``) at several element sizes, and for the
+frequencies the beam rotor (``shaftfe.rotordynamics.beam_rotor``) at several element sizes and
+basis tolerances of the reduced-basis eigensolver (plus ``shaftfe.rotordynamics.solid_rotor``
+when it exists: see ``_solid_freq_plan``).
 
 Every run is a FRESH subprocess: ``cold`` = an empty mesh cache (Gmsh runs), ``warm`` = the same
 configuration again on the cache the cold run left (no Gmsh). Measured per run: wall time and
@@ -279,9 +278,8 @@ def _c_freq_beam(spec: dict) -> dict:
 
 def _c_freq_solid(spec: dict) -> dict:
     """3D solid rotor (``shaftfe.rotordynamics.solid_rotor``): P2/P1 mesh of the static model,
-    attachments as
-    rigid bodies (its default coupling), reduced-basis Campbell sweep with basis tolerance
-    ``tol`` (the eigensolver setting that decides the basis size)."""
+    attachments as rigid bodies (its default coupling), reduced-basis Campbell sweep with basis
+    tolerance ``tol`` (the eigensolver setting that decides the basis size)."""
     from shaftfe.model.loader import load_variant
     from shaftfe.rotordynamics import solid_modal
     from shaftfe.rotordynamics import solid_rotor as rotor_solid

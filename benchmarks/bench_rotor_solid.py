@@ -2,8 +2,7 @@
 the mesh is built, split into its parts, against the error of the frequencies.
 
 Variant x2_57, ``shaftfe.rotordynamics.solid_rotor`` (P2 tets, attachments rigidly tied, bearing
-springs as
-low-rank terms), 0-8000 rpm in 1000 rpm steps, 12 modes. Timed separately (wall time, one
+springs as low-rank terms), 0-8000 rpm in 1000 rpm steps, 12 modes. Timed separately (wall time, one
 run each: the parts are seconds long):
 
 * assembly: K, M, G, the attachment tie, the support rows, the labelling map;

@@ -1,13 +1,12 @@
 """Numerical stability sweep (issue 8): the longer version of tests/test_stability.py.
 
-3D path (``shaftfe.static.solve``) and beam path (``shaftfe.beam.model``,
-``shaftfe.rotordynamics.beam_rotor``) under
-bearing stiffness 0 and 1e0 … 1e12 N/mm, cross-coupling up to |K12| = K11, 0 … 20 000 rpm,
-fillet radii 0.1 mm … the step height (0.05 mm with ``SHAFTFE_BENCH_FULL=1``: 110k P2 nodes,
-minutes), slender and stubby shafts and a badly shaped element forced into the mesh. For each:
-finite or a one-line error, the relative residual and condition estimate of the solve, and the
-convergence to the rigid-support model (the deflection/reaction gap times k is constant when the
-approach is 1/k).
+3D path (``shaftfe.static.solve``) and beam path (``shaftfe.beam.solve``,
+``shaftfe.rotordynamics.beam_rotor``) under bearing stiffness 0 and 1e0 … 1e12 N/mm, cross-coupling
+up to |K12| = K11, 0 … 20 000 rpm, fillet radii 0.1 mm … the step height (0.05 mm with
+``SHAFTFE_BENCH_FULL=1``: 110k P2 nodes, minutes), slender and stubby shafts and a badly shaped
+element forced into the mesh. For each: finite or a one-line error, the relative residual and
+condition estimate of the solve, and the convergence to the rigid-support model (the
+deflection/reaction gap times k is constant when the approach is 1/k).
 
 The soft-spring rows also show a prototype of the fix proposed for ``static.solve_model``
 (rigid/elastic split of u + one refinement step), computed here outside the package.

@@ -2,11 +2,14 @@
 issue 14): summary.json of `static`, `fatigue`, `campbell`, `campbell --model solid --level
 coarse` and `report` on x2_57, with the run-time blocks left out, byte for byte.
 
-    python -m benchmarks.identical_results record DIR     # run the five commands into DIR
-    python -m benchmarks.identical_results compare A B    # exit 1 if any summary differs
+    python -m benchmarks.identical_results against COMMIT  # record COMMIT and this tree, compare
+    python -m benchmarks.identical_results record DIR      # run the five commands into DIR
+    python -m benchmarks.identical_results compare A B     # exit 1 if any summary differs
 
-Typical use: `git worktree add /tmp/before <commit>`, record there with its own venv, record
-here, compare. The mesh and static caches are bypassed by a fresh SHAFTFE_CACHE_DIR inside DIR,
+``against`` (``make identical BEFORE=<commit>``) checks COMMIT out into a temporary git
+worktree, records it there (``python -m shaftfe`` run inside that checkout imports its own
+code, with this environment's packages), records this tree, compares, and removes the worktree. The
+mesh and static caches are bypassed by a fresh SHAFTFE_CACHE_DIR inside DIR,
 so each record solves everything. Left out of the comparison, because they measure the run and
 not the result: ``run``, ``timing``, ``timings(_s)``, ``sub_timings(_s)``, ``machine``,
 ``created_utc`` and every key named ``seconds``, ``*_seconds``, ``from_cache`` or
@@ -50,22 +53,23 @@ def normalise(obj):
     return obj
 
 
-def write_normalised(summary: Path, dest: Path) -> None:
+def write_normalised(summary: Path, dest: Path, root: Path = ROOT) -> None:
     data = normalise(json.loads(summary.read_text(encoding="utf-8")))
     text = json.dumps(data, indent=1, sort_keys=True) + "\n"
-    dest.write_text(text.replace(str(ROOT), "<repo>"), encoding="utf-8")
+    dest.write_text(text.replace(str(root), "<repo>"), encoding="utf-8")
 
 
-def record(out: Path) -> None:
+def record(out: Path, root: Path = ROOT) -> None:
+    """Run the five commands of the checkout ``root`` into ``out`` (fresh caches)."""
     out.mkdir(parents=True, exist_ok=True)
     env = dict(os.environ, MPLBACKEND="Agg", SHAFTFE_CACHE_DIR=str(out / "cache"))
     for name, (argv, summary) in RUNS.items():
         run_dir = out / "runs" / name
         p = subprocess.run([sys.executable, "-m", "shaftfe", *argv, "--out", str(run_dir)],
-                           cwd=ROOT, env=env, capture_output=True, text=True)
+                           cwd=root, env=env, capture_output=True, text=True)
         if p.returncode != 0:
             raise SystemExit(f"{name}: shaftfe exited {p.returncode}: {p.stderr.strip()}")
-        write_normalised(run_dir / summary, out / f"{name}.json")
+        write_normalised(run_dir / summary, out / f"{name}.json", root)
         print(f"recorded {name}")
 
 
@@ -85,7 +89,24 @@ def compare(a: Path, b: Path) -> int:
     return 1 if bad else 0
 
 
+def against(commit: str) -> int:
+    """Record ``commit`` (a temporary worktree) and this tree, and compare."""
+    import tempfile
+    with tempfile.TemporaryDirectory(prefix="identical-") as tmp:
+        old = Path(tmp) / "checkout"
+        subprocess.run(["git", "worktree", "add", "--detach", "-q", str(old), commit],
+                       cwd=ROOT, check=True)
+        try:
+            record(Path(tmp) / "before", old.resolve())
+            record(Path(tmp) / "after", ROOT)
+            return compare(Path(tmp) / "before", Path(tmp) / "after")
+        finally:
+            subprocess.run(["git", "worktree", "remove", "--force", str(old)], cwd=ROOT)
+
+
 def main(argv: list[str]) -> int:
+    if len(argv) == 2 and argv[0] == "against":
+        return against(argv[1])
     if len(argv) == 2 and argv[0] == "record":
         record(Path(argv[1]))
         return 0

@@ -1,22 +1,15 @@
 """`shaftfe campbell` and `shaftfe modal`: natural frequencies with gyroscopic effects.
 
-Stdlib only at module level; numpy/scipy (shaftfe.rotordynamics.beam_rotor,
-shaftfe.rotordynamics.solid_rotor,
-shaftfe.rotordynamics.kernels) and matplotlib inside the handlers. The model is chosen by
-``--model``:
-``beam`` (Timoshenko beam + rigid disks, milliseconds) or ``solid`` (3D P2 tets of the static
-model's mesh at ``--level``, attachments as rigid bodies tied to their seats by ``--coupling``;
-``shaftfe.rotordynamics.solid_rotor``). A builder in ``_MODEL_BUILDERS`` returns an object like
-``shaftfe.rotordynamics.beam_rotor.RotorModel`` — M, K, G, C (dense, sparse or LinearOperator, free
-dofs),
-``labelling`` (``shaftfe.rotordynamics.kernels.Labelling``), ``notes``, ``n_dof`` and optionally
-``K_support`` (bearing springs, for the energy shares), ``beam``/``disks`` (only for the
-description line); ``_ANALYSES`` gives its sweep and full-size check. The solid model's
-results are shown next to the beam model's (same variant and options), and with ``--out``
-its mode shapes at rest are written as ``modes.vtu`` (docs/FIELDS.md, "Mode shapes").
-``--stress-stiffening`` (solid model only, off by default) adds the centrifugal prestress of the
-shaft body (``shaftfe.rotordynamics.solid_rotor``, "Centrifugal prestress"); ``--spin-softening``
-is refused
+Stdlib only at module level; numpy/scipy and matplotlib inside the handlers. A thin command: the
+options become a ``shaftfe.rotordynamics.analyse.RotorOptions`` and
+``shaftfe.rotordynamics.analyse.analyse`` builds the model chosen by ``--model`` — ``beam``
+(Timoshenko beam + rigid disks, milliseconds) or ``solid`` (3D P2 tets of the static model's mesh at
+``--level``, attachments as rigid bodies tied to their seats by ``--coupling``;
+``shaftfe.rotordynamics.solid_rotor``) — sweeps the speeds and checks the reduced sweep against the
+full-size problem. The solid model's results are shown next to the beam model's (same variant and
+options), and with ``--out`` its mode shapes at rest are written as ``modes.vtu`` (docs/FIELDS.md,
+"Mode shapes"). ``--stress-stiffening`` (solid model only, off by default) adds the centrifugal
+prestress of the shaft body (``shaftfe.rotordynamics.prestress``); ``--spin-softening`` is refused
 (a rotating-frame term, not applicable in the stationary-frame formulation used here).
 """
 

@@ -41,7 +41,8 @@ def run(args) -> int:
 
     variant = load_variant(args.variant)
 
-    from shaftfe.solid.mesh import build_mesh, write_mesh
+    from shaftfe.io.vtu import write_mesh
+    from shaftfe.solid.mesh import build_mesh
     from shaftfe.util.progress import Progress
     prog = Progress(["mesh"], enabled=False if args.json else None)
     with prog.stage("mesh"):

@@ -3,13 +3,12 @@
 ``assess(sigma_ref, history, material)``: ``sigma_ref`` is the static solution at the history's
 reference speed (per node, (N, 6) components xx, yy, zz, xy, yz, xz in MPa, or an (N,) array of
 equivalent stresses already computed; ``shaftfe.static.solve`` stores (6, N): pass
-``stress_ref.T``);
-``history`` a ``shaftfe.fatigue.history.LoadHistory`` whose ``rpm_ref`` is the speed of the static
-solution (``history.with_reference(static_rpm)`` otherwise); its load factor is counted once.
-Life: blocks = 1 / D, hours = blocks · block duration / 3600, km = hours · average speed
-(default 70 km/h, seed 000 §8.3). A history without cycles (constant speed) or a node without
-stress has D = 0: life = ∞ and the safety factor is capped; the result says so in ``notes``
-instead of dividing by zero.
+``stress_ref.T``); ``history`` a ``shaftfe.fatigue.history.LoadHistory`` whose ``rpm_ref`` is the
+speed of the static solution (``history.with_reference(static_rpm)`` otherwise); its load factor is
+counted once. Life: blocks = 1 / D, hours = blocks · block duration / 3600, km = hours · average
+speed (default 70 km/h, seed 000 §8.3). A history without cycles (constant speed) or a node without
+stress has D = 0: life = ∞ and the safety factor is capped; the result says so in ``notes`` instead
+of dividing by zero.
 """
 
 from __future__ import annotations

@@ -3,14 +3,13 @@
 ``evaluate(ref, history, material, ...)`` takes a static reference solution (a
 ``shaftfe.static.cache.StaticReference``: nodal stresses at ``ref.ref_rpm``, coordinates, named
 regions, the excluded singular nodes) and a ``shaftfe.fatigue.history.LoadHistory``. The stress at
-time t
-is σ_ref · (rpm(t) / ref_rpm)², so the history is first RE-REFERENCED to the static solution's
-speed (``history.with_reference(ref.ref_rpm)``: e.g. the seed's rpm.dat, normalised to
+time t is σ_ref · (rpm(t) / ref_rpm)², so the history is first RE-REFERENCED to the static
+solution's speed (``history.with_reference(ref.ref_rpm)``: e.g. the seed's rpm.dat, normalised to
 7000 rpm, against the static solve at 10 000 rpm: load factor × (7000 / 10 000)²). Then
-``shaftfe.fatigue.assess`` evaluates every node at once (broadcast over nodes × cycle classes,
-no Python loop over nodes): equivalent stress, rainflow cycles of the load factor (counted
-once), mean-stress correction, S-N curve, Miner damage per block, life in blocks / hours / km
-and the safety factor at the design life (exact scalar-root method).
+``shaftfe.fatigue.assess`` evaluates every node at once (broadcast over nodes × cycle classes, no
+Python loop over nodes): equivalent stress, rainflow cycles of the load factor (counted once),
+mean-stress correction, S-N curve, Miner damage per block, life in blocks / hours / km and the
+safety factor at the design life (exact scalar-root method).
 
 Hot spot = the node of largest damage per block (shortest life); ties (e.g. every node below
 the endurance limit: no damage) are broken by the smaller safety factor, then by the larger

@@ -23,13 +23,15 @@ from pathlib import Path
 
 import numpy as np
 
+from shaftfe.errors import InputError
+from shaftfe.util.atomic import atomic_path
+
 
 def mesh_cells(m) -> tuple[list, list, list[str]]:
     """meshio cells of a scikit-fem mesh: the volume (tetra10 / tetra), then the triangles of
     every named face group; the cell data ``region`` (0 volume, k = names[k − 1]) and the
     names."""
     from shaftfe.fe import assembly as fem
-    from shaftfe.solid.mesh import triangle6_connectivity
     quad = fem.is_quadratic(m)
     vol = ("tetra10" if quad else "tetra", fem.element_nodes(m).T.astype(np.int64))
     cells = [vol]
@@ -158,3 +160,74 @@ def plot_png(result, path, rpm: float) -> Path:
     fig.savefig(buf, format="png", dpi=110)
     plt.close(fig)
     return write_atomic(path, buf.getvalue())
+
+
+# --------------------------------------------------------------------------- mesh files
+
+def triangle6_connectivity(m, facets):
+    """(n, 6) triangle6 node ids of the given facets of a P2 skfem mesh: the three corners, then
+    the mid-side nodes of edges 01, 12, 20 (VTK / meshio order)."""
+    import numpy as np
+
+    nv = m.p.shape[1]
+    a, b, c = m.facets[:, facets].astype(np.int64)
+    ekey = m.edges[0].astype(np.int64) * nv + m.edges[1]
+    order = np.argsort(ekey)
+    ks = ekey[order]
+    edofs = m.dofs.edge_dofs[0]
+
+    def mid(i, j):
+        return edofs[order[np.searchsorted(ks, np.minimum(i, j) * nv + np.maximum(i, j))]]
+    return np.vstack([a, b, c, mid(a, b), mid(b, c), mid(c, a)]).T
+
+
+GROUP_NAMES_FIELD = "group_names_utf8"     # field data of mesh.vtu: the group names, UTF-8
+
+
+def write_mesh(sm, path) -> Path:
+    """Write the ``ShaftMesh`` ``sm`` as .vtu (VTK) or .msh (Gmsh 2.2): volume cells (group
+    id 0) plus each face group's triangles with cell data ``group`` = 1-based index into
+    ``sm.groups``."""
+    import meshio
+    import numpy as np
+    path = Path(path)
+    m = sm.mesh
+    if path.suffix not in (".vtu", ".msh"):
+        raise InputError("--out", "out", "a path ending in .vtu or .msh", got=str(path))
+    if sm.order == 2:
+        vol = ("tetra10", m.dofs.element_dofs.T.astype(np.int64))
+        tri_cells = "triangle6"
+    else:
+        vol = ("tetra", m.t.T.astype(np.int64))
+        tri_cells = "triangle"
+    tris, ids = [], []
+    for i, g in enumerate(sm.groups):
+        if g not in m.boundaries:
+            continue
+        f = np.asarray(m.boundaries[g])
+        if sm.order == 2:
+            tris.append(triangle6_connectivity(m, f))
+        else:
+            tris.append(m.facets[:, f].T)
+        ids.append(np.full(f.size, i + 1, dtype=np.int32))
+    cells = [vol]
+    data = [np.zeros(vol[1].shape[0], dtype=np.int32)]
+    if tris:
+        cells.append((tri_cells, np.concatenate(tris).astype(np.int64)))
+        data.append(np.concatenate(ids))
+    out = meshio.Mesh(m.doflocs.T if sm.order == 2 else m.p.T, cells,
+                      cell_data={"group": data})
+    with atomic_path(path) as tmp:
+        if path.suffix == ".msh":
+            out.cell_data = {"gmsh:physical": data, "gmsh:geometrical": data}
+            meshio.write(tmp, out, file_format="gmsh22", binary=False)
+        else:
+            # VTK's own writer, for the group names as field data (meshio's writer drops field
+            # data, and its reader refuses VTK string arrays): UTF-8 bytes, one name a line, so
+            # `shaftfe view mesh.vtu` names the groups and meshio still reads the file
+            import pyvista as pv
+            grid = pv.from_meshio(out)
+            grid.field_data[GROUP_NAMES_FIELD] = np.frombuffer(
+                "\n".join(sm.groups).encode("utf-8"), dtype=np.uint8)
+            grid.save(str(tmp))
+    return path

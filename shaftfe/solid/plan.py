@@ -3,11 +3,11 @@
 ``prepare(variant)`` checks a ``Variant`` and turns it into a ``Solid`` plan (profile, fillets,
 cylindrical parts, face-group intervals), so a bad variant fails with ``InputError`` before Gmsh
 is ever imported. ``shaftfe.solid.exact`` gives the plan's exact volume and face areas;
-``shaftfe.solid.occ`` builds it in Gmsh: ``build_occ(gmsh, solid)`` builds the solid of revolution
-(profile with fillet arcs
-revolved about x), cuts keyway seats and the hex socket, and imprints the two generator
-lines of every attachment's load plane on its seat cylinder (an OCC fragment with line
-segments), so the pressed / free halves are exact faces and no cut runs through the interior.
+``shaftfe.solid.occ`` builds it in Gmsh: ``build_occ(gmsh, solid)`` builds the solid of
+revolution (profile with fillet arcs revolved about x), cuts keyway seats and the hex socket, and
+imprints the two generator lines of every attachment's load plane on its seat cylinder (an OCC
+fragment with line segments), so the pressed / free halves are exact faces and no cut runs
+through the interior.
 
 Conventions: x = shaft axis (mm); angles in the y–z plane, 0° = +y, 90° = +z. A keyway's
 ``angle_deg`` is the direction of its open side. The seat of an attachment is the cylindrical

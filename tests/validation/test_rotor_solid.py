@@ -1,6 +1,5 @@
-"""Validation of the 3D solid rotor model (shaftfe.rotordynamics.solid_rotor) against closed forms,
-published
-rotor examples and the full-size quadratic eigenproblem.
+"""Validation of the 3D solid rotor model (shaftfe.rotordynamics.solid_rotor) against closed
+forms, published rotor examples and the full-size quadratic eigenproblem.
 
 References (each test names its own):
 * Rigid-body identities: the gyroscopic moment of a spinning rigid body, H = I_p Ω

@@ -1,6 +1,6 @@
 """Validation of the centrifugal prestress option of the 3D solid rotor
-(``shaftfe.rotordynamics.solid_rotor``,
-``SolidOptions.stress_stiffening``, module docstring "Centrifugal prestress").
+(``shaftfe.rotordynamics.solid_rotor``, ``SolidOptions.stress_stiffening``, module docstring
+"Centrifugal prestress").
 
 References (each test names its own):
 * Beam under axial load, pinned-pinned: ω_n² = [E I k⁴ + T k²] / (ρ A), k = nπ/L (Blevins,
@@ -289,8 +289,7 @@ def test_x2_57_stress_stiffening_negligible_at_8000_rpm():
 def test_cli_spin_softening_refused_and_stress_stiffening_solid_only(capsys):
     """``--spin-softening`` is one clear line with exit code 2 (InputError): not applicable in
     the stationary frame, a rotating-frame term (module docstring of
-    shaftfe.rotordynamics.solid_rotor);
-    ``--stress-stiffening`` needs ``--model solid``."""
+    shaftfe.rotordynamics.solid_rotor); ``--stress-stiffening`` needs ``--model solid``."""
     from shaftfe.cli import main
 
     assert main(["campbell", "0:8000", "--spin-softening"]) == 2
