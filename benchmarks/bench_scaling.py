@@ -20,7 +20,7 @@ that outlive it (K, the factor, M) count in its increase:
 * stress recovery — ``recovery.nodal_stress`` + von Mises + principal stresses;
 * mass — the P2 consistent mass matrix, assembled here with scikit-fem (quadrature order 4);
 * eigen solution — 12 elastic modes (+ the 6 rigid ones of the free shaft) of (K, M) by
-  ``campbell.modal_basis`` with shift-invert at σ = −(2π·100 Hz)² (K − σM is positive
+  ``rotordynamics.kernels.modal_basis`` with shift-invert at σ = −(2π·100 Hz)² (K − σM is positive
   definite), OPinv from ``solvers.factorize`` of K − σM (its factorisation included);
 * mesh — the Gmsh build (cache off), for reference.
 

@@ -21,13 +21,13 @@ README = ROOT / "README.md"
 def fatigue_x2_57() -> str:
     """x2_57, the seed's fatigue settings on loadspectra/rpm.dat, default mesh, both load cases,
     next to the seed's Ansys result (seed 000 §8.3)."""
-    from shaftfe.commands.fatigue import _big
     from shaftfe.fatigue.field import evaluate
     from shaftfe.fatigue.run import SEED, read_spectrum
     from shaftfe.fatigue.sn import load_material
     from shaftfe.model.loader import load_variant
     from shaftfe.static import cache as static_cache
     from shaftfe.static.model import StaticOptions, load_case_label
+    from shaftfe.util.fmt import big as _big
     from shaftfe.util.paths import DEFAULT_SPECTRUM
 
     v = load_variant("x2_57")

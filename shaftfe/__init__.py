@@ -55,10 +55,10 @@ _API = {
     "run_fatigue": ("shaftfe.fatigue.run", "run_fatigue"),
     "write_fatigue_outputs": ("shaftfe.fatigue.outputs", "write_outputs"),
     # rotor dynamics
-    "RotorOptions": ("shaftfe.rotordynamics.analyse", "RotorOptions"),
+    "RotorOptions": ("shaftfe.rotordynamics.options", "RotorOptions"),
     "analyse_rotor": ("shaftfe.rotordynamics.analyse", "analyse"),
     # report
-    "ReportOptions": ("shaftfe.report.assemble", "ReportOptions"),
+    "ReportOptions": ("shaftfe.report.options", "ReportOptions"),
     "run_report": ("shaftfe.report.assemble", "run_report"),
     "write_report": ("shaftfe.report", "write"),
 }

@@ -234,7 +234,7 @@ def test_corrupt_cache_is_rebuilt(tmp_path):
     first = build_mesh(v, "coarse", order=1, cache_dir=tmp_path)
     path = cache_path(first.key, tmp_path)
     assert path.exists()
-    assert first.key == mesh_key(prepare(v), "coarse", 1, _gmsh_version())
+    assert first.key == mesh_key(prepare(v), "coarse", 1, gmsh_version())
     for junk in (b"not a zip file", path.read_bytes()[:200]):
         path.write_bytes(junk)
         again = build_mesh(v, "coarse", order=1, cache_dir=tmp_path)
@@ -243,9 +243,9 @@ def test_corrupt_cache_is_rebuilt(tmp_path):
     assert build_mesh(v, "coarse", order=1, cache_dir=tmp_path).from_cache
 
 
-def _gmsh_version():
-    from shaftfe.solid.mesh import _gmsh_version
-    return _gmsh_version()
+def gmsh_version():
+    from shaftfe.solid import mesh
+    return mesh.gmsh_version()
 
 
 def test_cache_dir_from_environment(monkeypatch, tmp_path):

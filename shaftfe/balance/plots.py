@@ -113,3 +113,51 @@ def plot_sweep(result, path: str | Path) -> Path:
         ax.legend(fontsize=8)
     ax1.set_title(f"{result.engine}: minima over X2, {result.rpm:g} rpm", fontsize=9)
     return _save(fig, path, fmt)
+
+
+def plot_multi(res, title: str, fmt: str) -> bytes:
+    """A multi-cylinder result: forces, force locus, couples and the order spectrum."""
+    import io
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    deg = np.degrees(res.theta)
+    fig, ax = plt.subplots(2, 2, figsize=(11, 8))
+    a = ax[0, 0]
+    a.plot(deg, res.Fx, label="Fx")
+    a.plot(deg, res.Fy, label="Fy")
+    a.plot(deg, res.F, "k", lw=1, label="|F|")
+    a.set(xlabel="crank angle [deg]", ylabel="force [N]", title="resultant force")
+    a.legend()
+    a.grid(alpha=0.3)
+    a = ax[0, 1]
+    a.plot(res.Fx, res.Fy)
+    a.set(xlabel="Fx [N]", ylabel="Fy [N]", title="force locus")
+    a.set_aspect("equal", adjustable="datalim")
+    a.grid(alpha=0.3)
+    a = ax[1, 0]
+    a.plot(deg, res.Mx, label="Mx (pitch)")
+    a.plot(deg, res.My, label="My (yaw)")
+    a.set(xlabel="crank angle [deg]", ylabel="couple [N m]", title="resultant couple")
+    a.legend()
+    a.grid(alpha=0.3)
+    a = ax[1, 1]
+    ks = np.array([o.order for o in res.force_orders])
+    a.bar(ks - 0.2, [o.amplitude for o in res.force_orders], 0.4, label="|F_k| [N]")
+    a2 = a.twinx()
+    a2.bar(ks + 0.2, [o.amplitude for o in res.couple_orders], 0.4, color="C1",
+           label="|M_k| [N m]")
+    a.set(xlabel="order", ylabel="force amplitude [N]", title="orders", xticks=ks)
+    a2.set_ylabel("couple amplitude [N m]")
+    a.legend(loc="upper left")
+    a2.legend(loc="upper right")
+    fig.suptitle(title)
+    fig.tight_layout()
+    buf = io.BytesIO()
+    fig.savefig(buf, format=fmt, dpi=110)
+    plt.close(fig)
+    return buf.getvalue()

@@ -8,7 +8,7 @@ Modules, in pipeline order:
 * ``scf``: stress-concentration factors Kt of the shoulder fillets (bending fits).
 * ``model``: ``build_model`` (nodes, sections, supports, centrifugal and static loads, stations,
   shoulders) into a ``BeamModel``; assembled stiffness, mass and support matrices, rigid-body
-  modes and the support check; the idealised shaft volume and mass.
+  modes and the support check.
 * ``solve``: one supported solve per unit ω² (``solve_unit``), its scaling and post-processing
   per rpm (``result_at``, ``solve``, ``analyse``) into ``BeamResult`` (reactions, L10h,
   deflections, nominal and Kt-corrected stresses).

@@ -199,7 +199,8 @@ def _report(args, command, label, rpm, mech, omega, cyls, res, layout, head) -> 
         "force_orders": [o.as_dict() for o in res.force_orders],
         "couple_orders": [o.as_dict() for o in res.couple_orders],
     }
-    png = _plot(res, f"balance {command}: {label}, {rpm:g} rpm",
+    from shaftfe.balance.plots import plot_multi
+    png = plot_multi(res, f"balance {command}: {label}, {rpm:g} rpm",
                 args.plot.rsplit(".", 1)[-1].lower()) if args.plot else None
     if png is not None:
         write_atomic(args.plot, png)
@@ -226,50 +227,3 @@ def _report(args, command, label, rpm, mech, omega, cyls, res, layout, head) -> 
     if png is not None:
         print(f"wrote {args.plot}")
     return 0
-
-
-def _plot(res, title: str, fmt: str) -> bytes:
-    import io
-
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    import numpy as np
-
-    deg = np.degrees(res.theta)
-    fig, ax = plt.subplots(2, 2, figsize=(11, 8))
-    a = ax[0, 0]
-    a.plot(deg, res.Fx, label="Fx")
-    a.plot(deg, res.Fy, label="Fy")
-    a.plot(deg, res.F, "k", lw=1, label="|F|")
-    a.set(xlabel="crank angle [deg]", ylabel="force [N]", title="resultant force")
-    a.legend()
-    a.grid(alpha=0.3)
-    a = ax[0, 1]
-    a.plot(res.Fx, res.Fy)
-    a.set(xlabel="Fx [N]", ylabel="Fy [N]", title="force locus")
-    a.set_aspect("equal", adjustable="datalim")
-    a.grid(alpha=0.3)
-    a = ax[1, 0]
-    a.plot(deg, res.Mx, label="Mx (pitch)")
-    a.plot(deg, res.My, label="My (yaw)")
-    a.set(xlabel="crank angle [deg]", ylabel="couple [N m]", title="resultant couple")
-    a.legend()
-    a.grid(alpha=0.3)
-    a = ax[1, 1]
-    ks = np.array([o.order for o in res.force_orders])
-    a.bar(ks - 0.2, [o.amplitude for o in res.force_orders], 0.4, label="|F_k| [N]")
-    a2 = a.twinx()
-    a2.bar(ks + 0.2, [o.amplitude for o in res.couple_orders], 0.4, color="C1",
-           label="|M_k| [N m]")
-    a.set(xlabel="order", ylabel="force amplitude [N]", title="orders", xticks=ks)
-    a2.set_ylabel("couple amplitude [N m]")
-    a.legend(loc="upper left")
-    a2.legend(loc="upper right")
-    fig.suptitle(title)
-    fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format=fmt, dpi=110)
-    plt.close(fig)
-    return buf.getvalue()

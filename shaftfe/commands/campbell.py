@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 
 from shaftfe.errors import InputError
+from shaftfe.rotordynamics.options import COUPLINGS, ROTOR_MODELS, RotorOptions, check_options
 from shaftfe.solid.levels import LEVEL_NAMES
 
 _MAX_SPEEDS = 2001
@@ -28,12 +29,12 @@ _SHORT = {"forward": "F", "backward": "B", "torsional": "T", "axial": "A", "unde
 def _common_options(p) -> None:
     p.add_argument("--variant", default="x2_57", help="variant name (default x2_57)")
     p.add_argument("--modes", type=int, default=12, help="number of modes (default 12)")
-    p.add_argument("--model", choices=("beam", "solid"), default="beam",
+    p.add_argument("--model", choices=ROTOR_MODELS, default="beam",
                    help="rotor model: beam (Timoshenko beam + rigid disks; default) or solid "
                    "(3D P2 tets + rigid attachments; shown next to the beam result)")
     p.add_argument("--level", choices=LEVEL_NAMES, default="coarse",
                    help="solid model: mesh level (default coarse)")
-    p.add_argument("--coupling", choices=("rigid", "distributing"), default="rigid",
+    p.add_argument("--coupling", choices=COUPLINGS, default="rigid",
                    help="solid model: tie of the attachments to their seats, rigid (RBE2-like, "
                    "bonded hub; default) or distributing (RBE3-like, no seat stiffening)")
     p.add_argument("--max-element", type=float, default=5.0, metavar="MM",
@@ -121,27 +122,15 @@ def parse_orders(text: str) -> list[float]:
 def _check_common(args) -> None:
     if not (1 <= args.modes <= _MAX_MODES):
         raise InputError("command line", "--modes", f"1..{_MAX_MODES}", got=args.modes)
-    from shaftfe.util.limits import check_max_element
-    check_max_element(args.max_element)
-    if not (math.isfinite(args.bearing_damping) and args.bearing_damping >= 0):
-        raise InputError("command line", "--bearing-damping", ">= 0 N s/mm",
-                         got=args.bearing_damping)
     if args.spin_softening:
         raise InputError("command line", "--spin-softening", "omit it (its stationary-frame "
                          "counterpart −Ω² A_θ comes with --stress-stiffening)",
                          reason="is not applicable in the stationary frame (rotating-frame "
                          "term)")
-    if args.stress_stiffening and args.model != "solid":
-        raise InputError("command line", f"--stress-stiffening with --model {args.model}",
-                         "--stress-stiffening with --model solid",
-                         reason="is not available (the prestress is modelled only in the 3D "
-                         "solid rotor)")
+    check_options(_options(args))
 
 
-# --------------------------------------------------------------------------- models
-
-def _options(args, model: str | None = None):
-    from shaftfe.rotordynamics.analyse import RotorOptions
+def _options(args, model: str | None = None) -> RotorOptions:
     return RotorOptions(model=model or args.model, rigid_supports=args.rigid_supports,
                         bearing_damping=args.bearing_damping, max_element_mm=args.max_element,
                         level=args.level, coupling=args.coupling,
@@ -196,7 +185,8 @@ def _payload(args, model, res, ver, beam_res=None) -> dict:
                       "attachment_bodies": [b.name for b in model.bodies]}
     if beam_res is not None:
         d["beam"] = beam_res.to_dict()
-        d["side_by_side"] = _side_by_side(res, beam_res)
+        from shaftfe.rotordynamics.analyse import side_by_side
+        d["side_by_side"] = side_by_side(res, beam_res)
     if ver is not None:
         d["verify"] = {"rpm": ver.rpm, "freq_reduced_hz": list(ver.freq_reduced_hz),
                        "freq_full_hz": list(ver.freq_full_hz),
@@ -204,33 +194,12 @@ def _payload(args, model, res, ver, beam_res=None) -> dict:
     return d
 
 
-def _side_by_side(res, beam_res) -> list[dict]:
-    """Per 3D mode, at the first and the last speed: the beam mode of the same family
-    (lateral / torsional / axial) and the same rank within it (None if the beam's first
-    modes hold no such mode), with frequencies and whirl labels."""
-    out = []
-    for i in sorted({0, len(res.rpm) - 1}):
-        fam_b = list(beam_res.family[i])
-        for j in range(res.freq_hz.shape[1]):
-            fam = res.family[i][j]
-            rank = list(res.family[i][:j]).count(fam)
-            hits = [k for k, f in enumerate(fam_b) if f == fam]
-            k = hits[rank] if rank < len(hits) else None
-            fs = float(res.freq_hz[i, j])
-            fb = float(beam_res.freq_hz[i, k]) if k is not None else None
-            out.append({"rpm": float(res.rpm[i]), "mode": j + 1, "family": fam,
-                        "solid_hz": fs, "solid_whirl": res.whirl[i][j],
-                        "beam_mode": None if k is None else k + 1, "beam_hz": fb,
-                        "beam_whirl": None if k is None else beam_res.whirl[i][k],
-                        "solid_over_beam": None if fb is None else fs / fb})
-    return out
-
-
 def _print_side_by_side(res, beam_res) -> None:
     from shaftfe.commands._common import print_table
 
     rows = []
-    for r in _side_by_side(res, beam_res):
+    from shaftfe.rotordynamics.analyse import side_by_side
+    for r in side_by_side(res, beam_res):
         beam = "—" if r["beam_hz"] is None else (
             f"{r['beam_hz']:.1f} {_SHORT[r['beam_whirl']]} (mode {r['beam_mode']})")
         diff = "—" if r["solid_over_beam"] is None else f"{100 * (r['solid_over_beam'] - 1):+.1f}"
@@ -240,18 +209,6 @@ def _print_side_by_side(res, beam_res) -> None:
                 title="3D solid model next to the beam model (same variant and bearings; each "
                 "3D mode against the beam mode of the same family and rank; torsion is held at "
                 "both bearings in 3D, at one node in the beam)")
-
-
-def _write_modes(args, model, prov, out) -> str | None:
-    """Mode shapes at rest of the solid model as ``modes.vtu`` (None for the beam model)."""
-    if args.model != "solid":
-        return None
-    from shaftfe.rotordynamics.modes_vtu import write_modes_vtu
-    from shaftfe.rotordynamics.solid_modal import modal
-
-    rest = modal(model, 0.0, args.modes, keep_vectors=True, provider=prov)
-    write_modes_vtu(model, rest, out / "modes.vtu")
-    return "modes.vtu"
 
 
 def _print_tables(args, model, res, ver) -> None:
@@ -298,7 +255,7 @@ def run_campbell(args) -> int:
     with _staged(args.out) as out:                   # every file or none
         with prog.stage("model + sweep"):
             run, beam_res = _solve(args, rpms, orders)
-            model, res, ver, prov = run.model, run.result, run.verification, run.provider
+            model, res, ver = run.model, run.result, run.verification
         if out is not None:
             import json
 
@@ -311,7 +268,8 @@ def run_campbell(args) -> int:
             for name, data in (("campbell.png", png), ("campbell.csv", csv),
                                ("campbell.json", js + "\n")):
                 write_atomic(out / name, data)
-            vtu = _write_modes(args, model, prov, out)
+            from shaftfe.rotordynamics.analyse import write_rest_modes
+            vtu = "modes.vtu" if write_rest_modes(run, args.modes, out / "modes.vtu") else None
     if args.json:
         print_json(_payload(args, model, res, ver, beam_res))
     else:

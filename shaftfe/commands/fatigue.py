@@ -15,6 +15,7 @@ import dataclasses
 import math
 
 from shaftfe.solid.levels import LEVEL_NAMES
+from shaftfe.util.fmt import big, life
 
 
 def register(sub) -> None:
@@ -98,7 +99,7 @@ def run(args) -> int:
     if e is not None:
         print(f"mesh level {job.level}: its peak stress reads {100 * e['stress_rel_error']:+.1f} "
               f"% against the static benchmark's converged reference ({e['source']}); with the "
-              f"hot-spot stress corrected by that, the life is {_life(e['life_blocks'])} blocks "
+              f"hot-spot stress corrected by that, the life is {life(e['life_blocks'])} blocks "
               f"({_pct(e['life_blocks'], result.field.hot_spot.life_blocks)}) and the safety "
               f"factor {e['safety_factor']:.3f}")
     return 0
@@ -146,8 +147,8 @@ def _print_result(run, out, plots) -> None:
         print(f"life: 0 blocks (static failure: a cycle's mean stress reaches the "
               f"{'yield' if args.mean_stress == 'soderberg' else 'ultimate'} strength)")
     else:
-        print(f"life: {_big(hot.life_blocks)} blocks = {_big(hot.life_hours)} h = "
-              f"{_big(hot.life_km)} km at {args.speed_kmh:g} km/h")
+        print(f"life: {big(hot.life_blocks)} blocks = {big(hot.life_hours)} h = "
+              f"{big(hot.life_km)} km at {args.speed_kmh:g} km/h")
     cap = " (capped: life at this load factor >= design life)" \
         if hot.safety_status == "capped" else ""
     print(f"safety factor at {args.design_life:g} blocks: {hot.safety_factor:.3f}{cap}")
@@ -158,10 +159,10 @@ def _print_result(run, out, plots) -> None:
           + " "
           f"(singular points excluded: {ff.n_excluded} nodes)")
     print(f"unfiltered minimum: {raw.region} at x y z = {_xyz(raw.xyz_mm)} mm, life "
-          f"{_life(raw.life_blocks)} blocks, safety factor {raw.safety_factor:.3g}"
+          f"{life(raw.life_blocks)} blocks, safety factor {raw.safety_factor:.3g}"
           f"{' (a singular point, excluded)' if raw.excluded else ''}")
     print()
-    rows = [[h.region, h.xyz_mm[0], h.sigma_eq_ref_MPa, _life(h.life_blocks), h.safety_factor]
+    rows = [[h.region, h.xyz_mm[0], h.sigma_eq_ref_MPa, life(h.life_blocks), h.safety_factor]
             for h in ff.region_hot_spots if h is not None and not h.region.startswith("end:")]
     print_table(["region", "x mm", f"sigma_eq MPa @{ref.ref_rpm:g}", "life blocks",
                  f"SF @{args.design_life:g}"], rows, title="per region (filtered)")
@@ -178,14 +179,3 @@ def _print_result(run, out, plots) -> None:
 
 def _xyz(p) -> str:
     return " ".join(f"{c:.2f}" for c in p)
-
-
-def _big(v: float) -> str:
-    """Thousands with a space (25 000), small values with 3 significant digits."""
-    return f"{v:,.0f}".replace(",", " ") if abs(v) >= 1000 else f"{v:.3g}"
-
-
-def _life(v: float | None) -> str:
-    return "inf" if v is None or not math.isfinite(v) else f"{v:.4g}"
-
-

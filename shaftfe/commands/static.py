@@ -5,7 +5,6 @@ Stdlib only at module level; numpy / scikit-fem / gmsh / meshio / matplotlib ins
 
 from __future__ import annotations
 
-import json
 import math
 
 from shaftfe.errors import InputError
@@ -88,33 +87,13 @@ def run(args) -> int:
                 res = with_error_estimate(res, variant, opts)
             static_cache.store(variant, opts, res)  # `shaftfe fatigue` on this model reuses it
         with prog.stage("outputs"):
-            summary = _write_outputs(args, variant, opts, res, rpms, stage)
+            from shaftfe.static.outputs import write_outputs
+            summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
     if args.json:
         print_json(summary)
         return 0
     _print_tables(res, opts, out)
     return 0
-
-
-def _write_outputs(args, variant, opts, res, rpms, stage) -> dict:
-    from shaftfe.commands._common import write_atomic
-    from shaftfe.io import vtu as export
-    from shaftfe.util.versions import package_versions
-    rpm_vtu = rpms[0]
-    vtu, regions = export.write_vtu(res, stage / "result.vtu", rpm_vtu)
-    export.plot_png(res, stage / "deflection.png", rpm_vtu)
-    summary = {
-        "inputs": {"variant": args.variant, "rpm": rpms, "options": vars_of(opts),
-                   "source_files": list(getattr(variant, "source_files", ()))},
-        "versions": package_versions("pypardiso"),
-        "vtu": {"file": vtu.name, "rpm": rpm_vtu, "regions": regions,
-                "stress_components": ["xx", "yy", "zz", "xy", "yz", "xz"],
-                "note": "fields at vtu.rpm; scale by (rpm / vtu.rpm)^2 for another speed"},
-        **res.to_dict(),
-    }
-    text = json.dumps(summary, indent=2, allow_nan=False)
-    write_atomic(stage / "summary.json", text + "\n")
-    return summary
 
 
 def _print_tables(res, opts, out) -> None:
@@ -171,11 +150,6 @@ def _station_rows(stations, beam_st: dict) -> list[list]:
         else:
             rows[key] = [s.name, s.x_mm, s.u_mm * 1e3, _beam_station(beam_st, s.name)]
     return list(rows.values())
-
-
-def vars_of(opts) -> dict:
-    from dataclasses import asdict
-    return asdict(opts)
 
 
 def _fmt_life(v) -> object:

@@ -59,7 +59,12 @@ def _src(v, path: str) -> str:
 
 
 def _report(v, rpms: list[float]) -> dict:
-    from shaftfe.model.mass import mass_properties, rigid_support_reactions, seat_loads
+    from shaftfe.model.mass import (
+        balance_ratio,
+        mass_properties,
+        rigid_support_reactions,
+        seat_loads,
+    )
 
     mp = mass_properties(v)
     tgt = v.balance_target
@@ -89,9 +94,8 @@ def _report(v, rpms: list[float]) -> dict:
                      "source": {f: _src(v, f"attachments.{a.name}.{f}")
                                 for f in ("mass_kg", "eccentricity_mm", "x_centroid_mm")},
                      "force_N": {f"{r:g}": a.force_N(r) for r in rpms}})
-    x2 = None
-    if tgt and tgt.m_pos_kg > 0 and tgt.crank_radius_mm > 0:
-        x2 = 100.0 * mp.mass_kg * mp.gamma2_mm / (tgt.m_pos_kg * tgt.crank_radius_mm)
+    ratio = balance_ratio(mp, tgt)
+    x2 = None if ratio is None else 100.0 * ratio
     mass = {"mass_kg": mp.mass_kg, "shaft_mass_kg": mp.shaft_mass_kg,
             "gamma2_mm": mp.gamma2_mm, "sum_me_kg_mm": mp.mass_kg * mp.gamma2_mm,
             "x_centroid_mm": mp.x_centroid_mm, "x_T_mm": mp.x_T_mm, "X2_percent": x2,

@@ -2,53 +2,35 @@
 
 The balancer shaft's loads are centrifugal, so the stress at every node is the static solution
 at the reference speed times one scalar load factor: σ(t) = σ_ref · (rpm(t)/rpm_ref)². The
-load-factor history is rainflow-counted ONCE (``counting``), and every node is evaluated at once by
-broadcasting (``kernels``): amplitude = σ_eq · range_factor / 2, mean = σ_eq · mean_factor, a
-mean-stress correction, an S-N curve (``sn``), Miner's rule, the life in blocks / hours / km and
-the safety factor at a design life. ``assess`` is the thin wrapper that chains them.
+load-factor history (``history``) is rainflow-counted ONCE (``counting``: our own three-point
+detector on NumPy reversals, split from the recorder of cycle arrays and matrices; the
+``rainflow`` package is its validation peer), and every node is evaluated at once by
+broadcasting (``kernels``: equivalent stress, mean-stress theories, Miner damage, safety factor;
+pure NumPy), with S-N curves and material cards from ``sn``. ``assess`` chains them for one
+stress field, ``field`` for the whole static solution (hot spots per region), ``run`` is the
+job as an API (``FatigueJob`` → ``FatigueRun``), ``outputs`` writes its files, ``plots`` its
+figures, ``reference`` an independent recomputation for the validation tests.
 
-Modules: ``counting`` (rainflow detection with the ``rainflow`` package, recording into cycle
-arrays and matrices), ``kernels`` (pure NumPy: equivalent stress, mean-stress theories, Miner
-damage, safety factor), ``sn`` (S-N curves and material cards), ``assess`` (the chain).
-Importing this package loads NumPy only.
+The names below load their module on first use: importing this package costs nothing.
 """
 
-from shaftfe.fatigue.assess import FatigueResult, assess, life_hours, life_km
-from shaftfe.fatigue.counting import Cycles, count_cycles, rainflow_matrix
-from shaftfe.fatigue.kernels import (
-    MEAN_STRESS_THEORIES,
-    SAFETY_FACTOR_MAX,
-    damage_matrix,
-    equivalent_stress,
-    mean_stress_correction,
-    miner_damage,
-    node_damage,
-    safety_factor,
-    signed_von_mises,
-    von_mises,
-)
-from shaftfe.fatigue.sn import FatigueMaterial, SNCurve, known_materials, load_material
+from __future__ import annotations
 
-__all__ = [
-    "MEAN_STRESS_THEORIES",
-    "SAFETY_FACTOR_MAX",
-    "Cycles",
-    "FatigueMaterial",
-    "FatigueResult",
-    "SNCurve",
-    "assess",
-    "count_cycles",
-    "damage_matrix",
-    "equivalent_stress",
-    "known_materials",
-    "life_hours",
-    "life_km",
-    "load_material",
-    "mean_stress_correction",
-    "miner_damage",
-    "node_damage",
-    "rainflow_matrix",
-    "safety_factor",
-    "signed_von_mises",
-    "von_mises",
-]
+import importlib
+
+_HOME = {
+    "FatigueResult": "assess", "assess": "assess", "life_hours": "assess", "life_km": "assess",
+    "Cycles": "counting", "count_cycles": "counting", "rainflow_matrix": "counting",
+    "MEAN_STRESS_THEORIES": "kernels", "SAFETY_FACTOR_MAX": "kernels",
+    "damage_matrix": "kernels", "equivalent_stress": "kernels",
+    "mean_stress_correction": "kernels", "miner_damage": "kernels", "node_damage": "kernels",
+    "safety_factor": "kernels", "signed_von_mises": "kernels", "von_mises": "kernels",
+    "FatigueMaterial": "sn", "SNCurve": "sn", "known_materials": "sn", "load_material": "sn",
+}
+__all__ = sorted(_HOME)
+
+
+def __getattr__(name: str):
+    if name in _HOME:
+        return getattr(importlib.import_module(f"{__name__}.{_HOME[name]}"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,6 +1,6 @@
 """The fatigue job as an API: ``run_fatigue(FatigueJob(...))`` → ``FatigueRun``.
 
-The static reference solution (3D FE at ``shaftfe.static.solve.REF_RPM``) comes from the disk
+The static reference solution (3D FE at ``shaftfe.static.model.REF_RPM``) comes from the disk
 cache of ``shaftfe.static.cache`` when the model is unchanged, else it is solved once. The
 history's load factor is re-referenced to the static solution's speed, every node is evaluated
 at once (``shaftfe.fatigue.field``), and where the static benchmark measured this mesh level's
@@ -20,11 +20,14 @@ import time
 from dataclasses import dataclass
 
 from shaftfe.errors import InputError
+from shaftfe.fatigue.kernels import EQUIVALENT_STRESSES, MEAN_STRESS_THEORIES
 from shaftfe.solid.levels import LEVEL_NAMES
 from shaftfe.util.limits import check_exclude_mm
 
-MEAN_STRESS = ("soderberg", "goodman", "gerber", "none")
-EQUIVALENT = ("von_mises", "signed_von_mises")
+MEAN_STRESS = MEAN_STRESS_THEORIES
+# the seed's von Mises and its signed variant; the hydrostatic-signed kind is for studies
+# through the API (shaftfe.fatigue.kernels.EQUIVALENT_STRESSES)
+EQUIVALENT = EQUIVALENT_STRESSES[:2]
 SEED_RPM_REF = 7000.0     # a normalised history without a stated reference: the seed's
 
 # The seed's result (seed 000 §8.3) for the side-by-side comparison.

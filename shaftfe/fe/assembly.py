@@ -47,14 +47,6 @@ def is_quadratic(mesh) -> bool:
     return isinstance(mesh, MeshTet2)
 
 
-def scalar_basis(mesh, intorder: int | None = None):
-    """Scalar basis whose dofs are the mesh nodes (``basis.doflocs == mesh.doflocs``)."""
-    from skfem import Basis
-    if intorder is None:
-        intorder = 2 if is_quadratic(mesh) else 1
-    return Basis(mesh, scalar_element(mesh), intorder=intorder)
-
-
 def vector_basis(mesh, intorder: int | None = None):
     from skfem import Basis, ElementVector
     if intorder is None:
@@ -247,12 +239,6 @@ def face_nodes(mesh, facets) -> np.ndarray:
         return np.unique(corners)
     mids = mesh.dofs.edge_dofs[0][mesh.f2e[:, facets]].ravel()
     return np.unique(np.concatenate([corners, mids]))
-
-
-def face_area(mesh, facets) -> float:
-    from skfem import Functional
-    fb = facet_basis(mesh, facets)
-    return float(Functional(lambda w: 1.0 + 0.0 * w.x[0]).assemble(fb))
 
 
 def _rigid_field(x, k: int, center):

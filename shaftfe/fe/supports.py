@@ -1,9 +1,9 @@
 """Bearing supports as the reference study modelled them (seed 000 §8.3, Ansys "bushing").
 
 Each bearing is a remote point at the centre of its seat (x = seat centre, on the axis), tied
-to the seat face ``bearing:<name>`` by a distributing (RBE3-type) coupling: the remote point's
-six motions q = (u_x, u_y, u_z, θ_x, θ_y, θ_z) are the area-weighted least-squares rigid motion
-of the seat face, q = G u (``fem.rigid_rows``). The coupling itself adds no stiffness; it only
+to the seat face ``bearing:<name>`` by a distributing (RBE3-type) coupling: the remote point's six
+motions q = (u_x, u_y, u_z, θ_x, θ_y, θ_z) are the area-weighted least-squares rigid motion of the
+seat face, q = G u (``fe.assembly.rigid_rows``). The coupling itself adds no stiffness; it only
 spreads the support force over the seat. From the remote point to ground:
 
 * radial: a 2×2 spring on (u_y, u_z) with ``Bearing.K_N_per_mm`` (K11, K12, K21, K22); with
@@ -28,6 +28,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from shaftfe.fe import assembly as fem
+
+HOLD_TWIST = ("all", "axial", "none")   # bearings that hold θ_x: every one, the axial one, none
 
 MODE_NAMES = ("axial translation u_x", "translation u_y", "translation u_z",
               "rotation about the shaft axis θ_x", "tilt θ_y", "tilt θ_z")

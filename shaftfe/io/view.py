@@ -43,10 +43,6 @@ def field_unit(name: str) -> str:
     return "-"
 
 
-def is_categorical(name: str) -> bool:
-    return name in FIELDS and FIELDS[name][1] == "none"
-
-
 @dataclass(frozen=True)
 class FieldChoice:
     name: str

@@ -26,7 +26,7 @@ from shaftfe.model.fields import (
     table,
     text,
 )
-from shaftfe.model.mass import mass_properties
+from shaftfe.model.mass import balance_ratio, mass_properties
 from shaftfe.model.validate import validate_variant
 from shaftfe.model.variant import (
     Attachment,
@@ -567,12 +567,13 @@ BALANCE_MASS_RTOL = 0.02
 def _check_balance(v: Variant, t: BalanceTarget, src: str) -> None:
     mp = mass_properties(v)
     need(abs(mp.mass_kg - t.mass_kg) <= BALANCE_MASS_RTOL * t.mass_kg, src, "balance.mass_kg",
-          f"the mass of the parts and shaft, {mp.mass_kg:.4f} kg (within "
-          f"{100 * BALANCE_MASS_RTOL:g} %): a part's mass or the stated value is wrong",
-          t.mass_kg)
-    if t.m_pos_kg > 0 and t.crank_radius_mm > 0:
-        x2 = 100.0 * mp.mass_kg * mp.gamma2_mm / (t.m_pos_kg * t.crank_radius_mm)
+         f"the mass of the parts and shaft, {mp.mass_kg:.4f} kg (within "
+         f"{100 * BALANCE_MASS_RTOL:g} %): a part's mass or the stated value is wrong",
+         t.mass_kg)
+    ratio = balance_ratio(mp, t)
+    if ratio is not None:
+        x2 = 100.0 * ratio
         need(abs(x2 - t.X2_percent) <= BALANCE_X2_TOL_POINTS, src, "balance.X2_percent",
-              f"the parts' X2 = Σ m e / (m_pos R) = {x2:.1f} % (within "
-              f"{BALANCE_X2_TOL_POINTS:g} points): a mass or eccentricity is wrong, e.g. "
-              "typed in grams or metres", t.X2_percent)
+             f"the parts' X2 = Σ m e / (m_pos R) = {x2:.1f} % (within "
+             f"{BALANCE_X2_TOL_POINTS:g} points): a mass or eccentricity is wrong, e.g. "
+             "typed in grams or metres", t.X2_percent)

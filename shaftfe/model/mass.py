@@ -129,3 +129,11 @@ def rigid_support_reactions(v: Variant, rpm: float, seed_case: bool = True
     ra = math.hypot(out[0][0], out[1][0])
     rb_ = math.hypot(out[0][1], out[1][1])
     return ((a.name, ra), (b.name, rb_))
+
+
+def balance_ratio(mp: MassProperties, target) -> float | None:
+    """The balancer's ratio X2 = Σ m e / (m_pos R) (a fraction) from its mass properties and
+    the engine figures of the variant's [balance] table; None without them."""
+    if target is None or not (target.m_pos_kg > 0 and target.crank_radius_mm > 0):
+        return None
+    return mp.mass_kg * mp.gamma2_mm / (target.m_pos_kg * target.crank_radius_mm)

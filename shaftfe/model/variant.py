@@ -234,9 +234,6 @@ class Variant:
     def attachment(self, name: str) -> Attachment:
         return next(a for a in self.attachments if a.name == name)
 
-    def material_named(self, name: str) -> Material:
-        return next(m for m in self.materials if m.name == name)
-
     def with_seed_load_case(self) -> Variant:
         """The same variant carrying only the attachments the seed loaded the shaft with
         (gear, counterweight 1, counterweight 2), as Inventor's shaft module did."""

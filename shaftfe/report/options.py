@@ -6,8 +6,8 @@ import math
 from dataclasses import dataclass
 
 from shaftfe.errors import InputError
-from shaftfe.rotordynamics.analyse import ROTOR_MODELS
-from shaftfe.solid.levels import LEVEL_NAMES
+from shaftfe.rotordynamics.options import ROTOR_MODELS
+from shaftfe.solid.levels import ESTIMATE_PAIR_CHEAP, LEVEL_NAMES
 from shaftfe.util.paths import DEFAULT_SPECTRUM
 
 STAGES = ("inputs", "balancing", "beam check", "static (mesh + one solve)", "fatigue",
@@ -19,7 +19,7 @@ ERROR_STAGE = "error estimate (second mesh level)"
 
 # --estimate-error: the second level of the Richardson estimate (the neighbour level; the
 # coarser one where there is one, so the estimate costs less than the run itself)
-OTHER_LEVEL = {"coarse": "default", "default": "coarse", "fine": "default"}
+OTHER_LEVEL = ESTIMATE_PAIR_CHEAP
 
 
 def stages(o) -> tuple[str, ...]:

@@ -3,7 +3,6 @@
 Fatigue figures live in ``shaftfe.fatigue.run.SEED`` (the fatigue command prints them too)
 and the whole-balancer figures of each variant in its file (``Variant.balance_target``, tagged
 ``seed``); this module re-exports the former and holds the rest. Every entry names its source.
-Stdlib only.
 """
 
 from __future__ import annotations

@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from shaftfe.errors import InputError
-from shaftfe.model.mass import mass_properties
+from shaftfe.model.mass import balance_ratio, mass_properties
 from shaftfe.report.options import ReportOptions
 from shaftfe.util.paths import repo_relative
 
@@ -67,11 +67,10 @@ def balancing(engine, variant, seedmod) -> tuple[dict, object, object, object]:
 
     mp = mass_properties(variant)
     tgt = variant.balance_target
-    if tgt is not None and tgt.m_pos_kg > 0 and tgt.crank_radius_mm > 0:
-        x2 = mp.mass_kg * mp.gamma2_mm / (tgt.m_pos_kg * tgt.crank_radius_mm)
-    elif tgt is not None:
+    x2 = balance_ratio(mp, tgt)
+    if x2 is None and tgt is not None:
         x2 = tgt.X2_percent / 100.0
-    else:                                     # no balance table: the engine's own balancer
+    elif x2 is None:                          # no balance table: the engine's own balancer
         x2 = engine.X2 if engine.X2 is not None else 0.0
     X = seedmod.CRANK_C_X
     res = single.forces(engine, X=X, X2=x2, rpm=engine.rpm)
@@ -226,7 +225,8 @@ def campbell(variant, engine, o: ReportOptions) -> tuple[dict, object, object]:
     rpms = [i * o.campbell_step_rpm for i in range(n + 1)]
     if top - rpms[-1] > 1e-9 * top:
         rpms.append(top)
-    from shaftfe.rotordynamics.analyse import RotorOptions, analyse
+    from shaftfe.rotordynamics.analyse import analyse
+    from shaftfe.rotordynamics.options import RotorOptions
     if o.rotor_model == "solid":
         # the 3D solid rotor: its own mesh of the full variant (every part's seat is a face
         # group), the same level as the static mesh

@@ -11,25 +11,13 @@ knows which model it holds.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Protocol
-
-import numpy as np
+from typing import TYPE_CHECKING, Protocol
 
 from shaftfe.errors import InputError
+from shaftfe.rotordynamics.options import ROTOR_MODELS, RotorOptions, check_options
 
-ROTOR_MODELS = ("beam", "solid")
-
-
-@dataclass(frozen=True)
-class RotorOptions:
-    model: str = "beam"                   # "beam" | "solid"
-    rigid_supports: bool = False
-    bearing_damping: float = 0.0          # N·s/mm, isotropic, on every bearing (0: undamped)
-    max_element_mm: float = 5.0           # beam elements
-    level: object = "coarse"              # solid: mesh level (name or MeshLevel)
-    coupling: str = "rigid"               # solid: attachments "rigid" | "distributing"
-    stress_stiffening: bool = False       # solid: centrifugal prestress
-    cache_dir: object = None
+if TYPE_CHECKING:
+    import numpy as np
 
 
 @dataclass(frozen=True, eq=False)
@@ -99,6 +87,7 @@ class _Solid:
 
 
 KINDS: dict[str, RotorKind] = {"beam": _Beam(), "solid": _Solid()}
+assert tuple(KINDS) == ROTOR_MODELS
 
 
 def rotor_kind(model: str, option: str = "--model") -> RotorKind:
@@ -117,6 +106,7 @@ def analyse(variant, rpms, n_modes: int = 12, *, orders=(1.0,),
             verify: bool = True, model=None) -> RotorAnalysis:
     """Build (or take ``model``), sweep ``rpms``, and verify the reduced sweep at the top speed.
     InputError if ``n_modes`` exceeds half the model's dofs."""
+    check_options(options)
     kind = rotor_kind(options.model)
     if model is None:
         model = kind.build(variant, options)
@@ -126,3 +116,37 @@ def analyse(variant, rpms, n_modes: int = 12, *, orders=(1.0,),
     res, prov = kind.sweep(model, rpms, n_modes, orders, keep_vectors)
     ver = kind.verify(model, res, prov) if verify else None
     return RotorAnalysis(model, res, ver, prov, kind)
+
+
+def side_by_side(res, beam_res) -> list[dict]:
+    """Per 3D mode, at the first and the last speed: the beam mode of the same family
+    (lateral / torsional / axial) and the same rank within it (None if the beam's first
+    modes hold no such mode), with frequencies and whirl labels."""
+    out = []
+    for i in sorted({0, len(res.rpm) - 1}):
+        fam_b = list(beam_res.family[i])
+        for j in range(res.freq_hz.shape[1]):
+            fam = res.family[i][j]
+            rank = list(res.family[i][:j]).count(fam)
+            hits = [k for k, f in enumerate(fam_b) if f == fam]
+            k = hits[rank] if rank < len(hits) else None
+            fs = float(res.freq_hz[i, j])
+            fb = float(beam_res.freq_hz[i, k]) if k is not None else None
+            out.append({"rpm": float(res.rpm[i]), "mode": j + 1, "family": fam,
+                        "solid_hz": fs, "solid_whirl": res.whirl[i][j],
+                        "beam_mode": None if k is None else k + 1, "beam_hz": fb,
+                        "beam_whirl": None if k is None else beam_res.whirl[i][k],
+                        "solid_over_beam": None if fb is None else fs / fb})
+    return out
+
+
+def write_rest_modes(run: RotorAnalysis, n_modes: int, path) -> bool:
+    """The solid model's mode shapes at rest as a VTU (on the sweep's own factorisation);
+    False for the beam model, whose shapes live on the beam's nodes."""
+    if run.provider is None:
+        return False
+    from shaftfe.rotordynamics.modes_vtu import write_modes_vtu
+    from shaftfe.rotordynamics.solid_modal import modal
+    rest = modal(run.model, 0.0, n_modes, keep_vectors=True, provider=run.provider)
+    write_modes_vtu(run.model, rest, path)
+    return True

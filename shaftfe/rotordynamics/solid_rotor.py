@@ -15,9 +15,9 @@ Equation of motion (stationary frame, spin Ω about +x):
 
 Matrices
 --------
-* K: linear elasticity of the shaft (``fem.elasticity_stiffness``, E, ν of the variant's shaft
-  material). Stress stiffening: an option, OFF by default like the seed's study (section
-  "Centrifugal prestress" below). Spin softening: not applicable in the stationary frame
+* K: linear elasticity of the shaft (``fe.assembly.elasticity_stiffness``, E, ν of the
+  variant's shaft material). Stress stiffening: an option, OFF by default like the seed's study
+  (section "Centrifugal prestress" below). Spin softening: not applicable in the stationary frame
   (a rotating-frame term; below).
 * M: consistent mass ∫ ρ Nᵀ N dV of the P2 solid (quadrature of order 4: exact for straight
   tets), ρ of the shaft material.
@@ -42,7 +42,7 @@ Matrices
   centre, 2×2 radial spring, θ_x held at every bearing ("all") and u_x at the axial one as
   hard rows, tilt free); optional isotropic damping c on the remote point's (u_y, u_z).
 * Attachments (gear, counterweights, nuts, …): every part is a rigid body with its mass,
-  centroid offset and inertia (``rotor.disks_from_variant``: axisymmetrised Ip + m e²,
+  centroid offset and inertia (``beam_rotor.disks_from_variant``: axisymmetrised Ip + m e²,
   Id + m e²/2; polar inertia → gyroscopic block G[θ_y, θ_z] = Ip). Parts on the same seat form
   one body at the seat centre. Tie to the seat faces (``load:<part>:pressed|free``):
 
@@ -69,7 +69,7 @@ Equation with the option: M q̈ + (C + Ω G) q̇ + (K + Ω² K_g) q = 0, K_g = K
   σ⁰ = λ tr ε I + 2 μ ε from the displacement gradient at the quadrature points
   (``quadrature_stress``; order 3, exact on straight P2 tets: σ⁰ and ∂φ are linear) of the
   static solution of the SUPPORTED rotor under the shaft's own body force ρ Ω² (0, y, z)
-  (``fem.body_force_load``). σ⁰ ∝ Ω²: solved once at Ω_ref = 1 rad/s, K_σ(Ω) = Ω² K_σ,1.
+  (``fe.assembly.body_force_load``). σ⁰ ∝ Ω²: solved once at Ω_ref = 1 rad/s, K_σ(Ω) = Ω² K_σ,1.
 * A_θ = kron(∫ ρ ∂_θ φ_a ∂_θ φ_b dV, I₃) (``convective_matrix``): the Ω² term
   ½ Ω² ∫ ρ |∂u/∂θ|² of the kinetic energy above (L = T − V: a stiffness −Ω² A_θ). It
   belongs to the same order as K_σ and must come with it: on a rigid tilt θ_y both give
@@ -142,8 +142,7 @@ import numpy as np
 
 from shaftfe.errors import InputError
 from shaftfe.rotordynamics.kernels import Labelling
-
-COUPLINGS = ("rigid", "distributing")
+from shaftfe.rotordynamics.options import COUPLINGS
 
 
 @dataclass(frozen=True)
@@ -339,16 +338,12 @@ class SolidRotor:
     def mesh_vector(self, q: np.ndarray) -> np.ndarray:
         return q if self.T is None else self.T @ q
 
-    def hard_rows(self) -> np.ndarray:
-        H = [t.R for t in self.terms if t.C is None]
-        return np.vstack(H) if H else np.zeros((0, self.n_dof))
-
-
 def _check_options(o: SolidOptions) -> None:
     if o.coupling not in COUPLINGS:
         raise InputError("--coupling", "coupling", " | ".join(COUPLINGS), got=o.coupling)
-    if o.hold_twist not in ("all", "axial", "none"):
-        raise InputError("options", "hold_twist", "all | axial | none", got=o.hold_twist)
+    from shaftfe.fe.supports import HOLD_TWIST
+    if o.hold_twist not in HOLD_TWIST:
+        raise InputError("options", "hold_twist", " | ".join(HOLD_TWIST), got=o.hold_twist)
     if not (math.isfinite(o.bearing_damping) and o.bearing_damping >= 0):
         raise InputError("--bearing-damping", "bearing damping", ">= 0 N s/mm",
                          got=o.bearing_damping)

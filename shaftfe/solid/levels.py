@@ -83,6 +83,13 @@ LEVEL_NAMES: tuple[str, ...] = tuple(LEVELS)
 DEFAULT_LEVEL = "default"
 ALLOWED = " | ".join(LEVEL_NAMES)
 
+# The second level of a two-level (Richardson) error estimate: the finer one, "fine" (or
+# "default" when the first is "fine"); or, where the estimate must cost less than the run
+# itself (the report's --estimate-error), the neighbour level, the coarser one where there is one.
+ESTIMATE_PAIR = MappingProxyType({"coarse": "fine", "default": "fine", "fine": "default"})
+ESTIMATE_PAIR_CHEAP = MappingProxyType({"coarse": "default", "default": "coarse",
+                                        "fine": "default"})
+
 
 def mesh_level(level: str | MeshLevel, option: str = "--level") -> MeshLevel:
     """The ``MeshLevel`` of a name (InputError naming ``option`` if unknown) or the value."""

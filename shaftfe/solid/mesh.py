@@ -122,7 +122,7 @@ def cache_path(key: str, cache_dir=None) -> Path:
     return paths.cache_dir(cache_dir) / f"mesh-{key[:24]}.npz"
 
 
-def _gmsh_version() -> str:
+def gmsh_version() -> str:
     import importlib.metadata
     try:
         return importlib.metadata.version("gmsh")
@@ -139,7 +139,7 @@ def build_mesh(variant, level: str | MeshLevel = DEFAULT_LEVEL, order: int = 2, 
     level = mesh_level(level)
     _check_order(order)
     sol = prepare(variant)                       # InputError before gmsh is touched
-    key = mesh_key(sol, level, order, _gmsh_version())
+    key = mesh_key(sol, level, order, gmsh_version())
     path = cache_path(key, cache_dir)
     if use_cache and path.exists():
         data = _load(path, key)
@@ -165,7 +165,8 @@ def _skfem_mesh(data: dict):
     m = cls(data["doflocs"], data["t"], _boundaries=data["boundaries"],
             _subdomains=data["subdomains"])
     if cls is MeshTet2:
-        # every FacetBasis on this mesh then inverts curved tets robustly (see fem.robust_mapping)
+        # every FacetBasis on this mesh then inverts curved tets robustly
+        # (shaftfe.fe.assembly.robust_mapping)
         from shaftfe.fe.assembly import robust_mapping
         m._cached_mapping = robust_mapping(m)
     return m

@@ -12,7 +12,8 @@ Key (sha256 of a canonical JSON): ``STATIC_CACHE_FORMAT``; the variant's content
 choice does not change the stresses beyond that); the mesh key of ``shaftfe.solid.mesh`` (geometry
 plan, level, order, Gmsh version and options, mesh ``CACHE_FORMAT``); the static reference
 speed; and a fingerprint (sha256) of the source of the modules that compute the stresses
-(``static``, ``recovery``, ``fem``, ``supports``), so a change of the solver code is never
+(``FINGERPRINT_MODULES``: static model, solve and result, fe assembly, supports,
+recovery and the low-rank solve), so a change of the solver code is never
 served a stale result. Bump ``STATIC_CACHE_FORMAT`` when the stored arrays change meaning.
 
 Stored arrays: ``stress_ref`` (6, n) MPa in the order xx yy zz xy yz xz, ``von_mises_ref`` (n,),
@@ -94,11 +95,6 @@ class StaticReference:
     def n_nodes(self) -> int:
         return int(self.xyz.shape[1])
 
-    @property
-    def quadratic(self) -> bool:
-        return self.cells.shape[1] == 10
-
-
 # --------------------------------------------------------------------------- key
 
 def code_fingerprint() -> str:
@@ -119,7 +115,7 @@ def predicted_mesh_key(variant, options) -> str:
     from shaftfe.solid import mesh as mesh_mod
     from shaftfe.solid.plan import prepare
     v = variant.with_seed_load_case() if options.seed_load_case else variant
-    return mesh_mod.mesh_key(prepare(v), options.level, options.order, mesh_mod._gmsh_version())
+    return mesh_mod.mesh_key(prepare(v), options.level, options.order, mesh_mod.gmsh_version())
 
 
 def static_key(variant, options, mesh_key: str, ref_rpm: float) -> str:
@@ -185,18 +181,19 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
     """The static reference solution of ``variant`` with ``options`` (``StaticOptions``), read
     from the cache when the key matches, else solved (and stored). ``cache_dir`` is used for the
     mesh cache too."""
-    from shaftfe import static
+    from shaftfe.static.model import REF_RPM, StaticOptions
     t0 = time.perf_counter()
-    options = options if options is not None else static.StaticOptions()
+    options = options if options is not None else StaticOptions()
     mkey = predicted_mesh_key(variant, options)
-    key = static_key(variant, options, mkey, static.REF_RPM)
+    key = static_key(variant, options, mkey, REF_RPM)
     path = cache_path(key, cache_dir)
     if use_cache and path.exists():
         ref = _load(path, key, variant.name, t0)
         if ref is not None:
             return ref
-    res = static.solve_static(variant, static.REF_RPM, options, cache_dir=cache_dir, beam=False,
-                              **(solve_kwargs or {}))
+    from shaftfe.static.solve import solve_static
+    res = solve_static(variant, REF_RPM, options, cache_dir=cache_dir, beam=False,
+                       **(solve_kwargs or {}))
     if use_cache:
         ref = store(variant, options, res, cache_dir)
     else:
@@ -207,9 +204,9 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
 def store(variant, options, res, cache_dir=None) -> StaticReference:
     """Put a ``StaticResult`` solved elsewhere (``shaftfe static``) into the cache, so that a
     later ``shaftfe fatigue`` on the same model reuses it instead of solving again."""
-    from shaftfe import static
+    from shaftfe.static.model import REF_RPM
     mkey = predicted_mesh_key(variant, options)
-    key = static_key(variant, options, mkey, static.REF_RPM)
+    key = static_key(variant, options, mkey, REF_RPM)
     ref = from_result(res, key)
     notes: list[str] = []
     if res.mesh_key != mkey:        # the prediction missed: do not store under a wrong key
@@ -223,10 +220,10 @@ def store(variant, options, res, cache_dir=None) -> StaticReference:
 
 
 def from_result(res, key: str = "", seconds: float = 0.0) -> StaticReference:
-    """A ``StaticReference`` from a ``shaftfe.static.solve.StaticResult`` (not cached)."""
-    from shaftfe import static
+    """A ``StaticReference`` from a ``shaftfe.static.result.StaticResult`` (not cached)."""
     from shaftfe.fe import assembly as fem
     from shaftfe.fe import recovery
+    from shaftfe.static.model import region_nodes
     m = res.mesh.mesh
     band = float(getattr(res.options, "exclude_mm", 0.0))
     excl = (recovery.excluded_nodes(m, singular_patches(m), band) if band > 0
@@ -237,7 +234,7 @@ def from_result(res, key: str = "", seconds: float = 0.0) -> StaticReference:
         options=dataclasses.asdict(res.options), ref_rpm=float(res.ref_rpm),
         mesh_key=res.mesh_key, key=key, stress_ref=np.asarray(res.stress_ref, dtype=float),
         von_mises_ref=np.asarray(res.von_mises_ref, dtype=float),
-        xyz=np.asarray(m.doflocs, dtype=float), excluded=excl, regions=static.region_nodes(m),
+        xyz=np.asarray(m.doflocs, dtype=float), excluded=excl, regions=region_nodes(m),
         cells=fem.element_nodes(m).T.astype(np.int64), face_cells=fc, face_group=gid,
         face_groups=names, n_elements=int(res.n_elements),
         solve_seconds=float(getattr(res, "run", {}).get("total_seconds", seconds)),

@@ -28,8 +28,8 @@ def estimate_error(res: StaticResult, variant, options: StaticOptions, cache_dir
     for stress peaks; (N_fine/N_coarse)^(1/3) from the element counts for deflections. Orders
     assumed: p = 2 for recovered P2 stresses (p = 1 for P1), p = 3 for P2 displacements (2 for
     P1). An estimate, not a bound: on a graded mesh the asymptotic range is not guaranteed."""
-    from shaftfe.solid.levels import level_name, mesh_level
-    other = other_level or ("default" if options.level == "fine" else "fine")
+    from shaftfe.solid.levels import ESTIMATE_PAIR, level_name, mesh_level
+    other = other_level or ESTIMATE_PAIR.get(level_name(options.level), "fine")
     k_this, k_other = mesh_level(options.level).k_fillet, mesh_level(other).k_fillet
     from shaftfe.static.solve import solve_static
     res2 = solve_static(variant, [c.rpm for c in res.cases], replace(options, level=other),

@@ -14,6 +14,7 @@ from shaftfe.errors import InputError
 from shaftfe.fe import assembly as fem
 from shaftfe.fe import supports
 from shaftfe.model.validate import validate_variant
+from shaftfe.solid.levels import MeshLevel
 
 REF_RPM = 10_000.0
 DISTRIBUTIONS = ("uniform", "cosine")
@@ -31,19 +32,19 @@ def load_case_label(seed_load_case: bool) -> str:
 
 @dataclass(frozen=True)
 class StaticOptions:
-    level: str = "default"
+    level: str | MeshLevel = "default"     # a level name of shaftfe.solid.levels or a MeshLevel
     order: int = 2
     rigid_supports: bool = False
     load_distribution: str = "uniform"     # "uniform" | "cosine"
     body_force: bool = False               # the shaft's own centrifugal load
     seed_load_case: bool = False           # only the parts the seed loaded (gear, CW1, CW2)
+    solver: str = "auto"                   # see shaftfe.fe.solvers
+    hold_twist: str = "all"                # θ_x held at "all" bearings, the "axial" one, "none"
+    exclude_mm: float = 0.0                # extra band around patch edges for filtered peaks
 
     @property
     def load_case(self) -> str:
         return load_case_label(self.seed_load_case)
-    solver: str = "auto"                   # see shaftfe.fe.solvers
-    hold_twist: str = "all"                # θ_x held at "all" bearings, the "axial" one, "none"
-    exclude_mm: float = 0.0                # extra band around patch edges for filtered peaks
 
 
 @dataclass(frozen=True, eq=False)
@@ -73,8 +74,9 @@ def _check_options(o: StaticOptions) -> None:
                          got=o.load_distribution)
     if not (math.isfinite(o.exclude_mm) and o.exclude_mm >= 0):
         raise InputError("--exclude-mm", "exclude_mm", ">= 0", got=o.exclude_mm)
-    if o.hold_twist not in ("all", "axial", "none"):
-        raise InputError("options", "hold_twist", "all | axial | none", got=o.hold_twist)
+    if o.hold_twist not in supports.HOLD_TWIST:
+        raise InputError("options", "hold_twist", " | ".join(supports.HOLD_TWIST),
+                         got=o.hold_twist)
     from shaftfe.fe.solvers import METHODS
     if o.solver not in METHODS:
         raise InputError("--solver", "solver", " | ".join(METHODS), got=o.solver)

@@ -29,14 +29,10 @@ RPM = 10_000.0
 
 @pytest.fixture(scope="module")
 def result(tmp_path_factory):
-    from shaftfe.errors import ShaftfeError
     from shaftfe.model.loader import load_variant
     from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
-    try:
-        v = load_variant("x2_57")
-    except (ShaftfeError, FileNotFoundError) as exc:           # geometry not there yet
-        pytest.skip(f"x2_57 does not load: {exc}")
+    v = load_variant("x2_57")           # a loader regression fails here, it is not skipped
     return solve_static(v, [RPM], StaticOptions(level="coarse", rigid_supports=True,
                                                 seed_load_case=True),
                         cache_dir=tmp_path_factory.mktemp("vx"), beam=False)

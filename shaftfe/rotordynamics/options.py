@@ -1,0 +1,41 @@
+"""The rotor analysis's options (stdlib only: the CLI reads the choices without numpy)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from shaftfe.errors import InputError
+
+ROTOR_MODELS = ("beam", "solid")
+COUPLINGS = ("rigid", "distributing")     # solid model: RBE2-like (bonded) | RBE3-like
+
+
+@dataclass(frozen=True)
+class RotorOptions:
+    model: str = "beam"                   # "beam" | "solid"
+    rigid_supports: bool = False
+    bearing_damping: float = 0.0          # N·s/mm, isotropic, on every bearing (0: undamped)
+    max_element_mm: float = 5.0           # beam elements
+    level: object = "coarse"              # solid: mesh level (name or MeshLevel)
+    coupling: str = "rigid"               # solid: attachments "rigid" | "distributing"
+    stress_stiffening: bool = False       # solid: centrifugal prestress
+    cache_dir: object = None
+
+
+def check_options(o: RotorOptions) -> None:
+    """The rules of an analysis, whoever asks (the CLI names the same options)."""
+    from shaftfe.util.limits import check_max_element
+    if o.model not in ROTOR_MODELS:
+        raise InputError("command line", "--model", " | ".join(ROTOR_MODELS), got=o.model)
+    check_max_element(o.max_element_mm)
+    if not (math.isfinite(o.bearing_damping) and o.bearing_damping >= 0):
+        raise InputError("command line", "--bearing-damping", ">= 0 N s/mm",
+                         got=o.bearing_damping)
+    if o.coupling not in COUPLINGS:
+        raise InputError("--coupling", "coupling", " | ".join(COUPLINGS), got=o.coupling)
+    if o.stress_stiffening and o.model != "solid":
+        raise InputError("command line", f"--stress-stiffening with --model {o.model}",
+                         "--stress-stiffening with --model solid",
+                         reason="is not available (the prestress is modelled only in the 3D "
+                         "solid rotor)")
