@@ -40,6 +40,7 @@ from shaftfe.beam.model import (
     check_supports,
 )
 from shaftfe.errors import InputError, SolverError
+from shaftfe.model.bearing_life import l10h
 
 # --------------------------------------------------------------------------- solve
 
@@ -272,13 +273,6 @@ class BeamResult:
                           "uz_mm": self.uz.tolist(), "x_sec_mm": self.x_sec.tolist(),
                           "M_Nmm": self.M.tolist(), "sigma_vm_MPa": self.sigma_vm.tolist()}
         return d
-
-
-def l10h(C_N: float, P_N: float, rpm: float, p: float = 3.0) -> float:
-    """ISO 281 basic rating life in hours: (C/P)^p · 10⁶ / (60 n)."""
-    if P_N <= 0 or rpm <= 0:
-        return math.inf
-    return (C_N / P_N) ** p * 1e6 / (60.0 * rpm)
 
 
 def omega(rpm: float) -> float:

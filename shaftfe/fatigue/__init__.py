@@ -11,7 +11,9 @@ stress field, ``field`` for the whole static solution (hot spots per region), ``
 job as an API (``FatigueJob`` → ``FatigueRun``), ``outputs`` writes its files, ``plots`` its
 figures, ``reference`` an independent recomputation for the validation tests.
 
-The names below load their module on first use: importing this package costs nothing.
+The names below load their module on first use: importing this package costs nothing. The
+function ``assess`` is imported from its module (``shaftfe.fatigue.assess.assess``): the
+package attribute ``assess`` is that module.
 """
 
 from __future__ import annotations
@@ -19,7 +21,7 @@ from __future__ import annotations
 import importlib
 
 _HOME = {
-    "FatigueResult": "assess", "assess": "assess", "life_hours": "assess", "life_km": "assess",
+    "FatigueResult": "assess", "life_hours": "assess", "life_km": "assess",
     "Cycles": "counting", "count_cycles": "counting", "rainflow_matrix": "counting",
     "MEAN_STRESS_THEORIES": "kernels", "SAFETY_FACTOR_MAX": "kernels",
     "damage_matrix": "kernels", "equivalent_stress": "kernels",

@@ -54,6 +54,7 @@ from shaftfe.errors import InputError, ShaftfeError, SolverError
 from shaftfe.fe import assembly as fem
 from shaftfe.fe import recovery, supports
 from shaftfe.fe.lowrank import LowRankSolver
+from shaftfe.model.bearing_life import l10h
 from shaftfe.static.model import (
     REF_RPM,
     StaticModel,
@@ -264,13 +265,6 @@ def axis_deflection(variant, mesh, u: np.ndarray, xs) -> np.ndarray:
     return out
 
 
-def l10h(C: float, P: float, rpm: float, p: float) -> float | None:
-    """ISO 281 basic rating life, hours: (C/P)^p 10⁶ / (60 n)."""
-    if P <= 0 or rpm <= 0:
-        return None
-    return (C / P) ** p * 1e6 / (60.0 * rpm)
-
-
 @dataclass(frozen=True, eq=False)
 class _Recovered:
     """Nodal stresses at REF_RPM and what the peaks are taken over."""
@@ -332,6 +326,10 @@ def _beam_check(v, rpms: list[float], options: StaticOptions) -> dict:
         return {"error": f"{type(exc).__name__}: {exc}"}
 
 
+def _finite(v: float) -> float | None:
+    return v if math.isfinite(v) else None            # JSON: null for an infinite life
+
+
 def _bearing_rows(model: StaticModel, reac: dict, u: np.ndarray, r: float, s: float):
     v = model.variant
     bearings = []
@@ -342,7 +340,7 @@ def _bearing_rows(model: StaticModel, reac: dict, u: np.ndarray, r: float, s: fl
         b = v.bearing(c.name)
         bearings.append(BearingReaction(c.name, c.x_mm, float(rv[0]), float(rv[1]),
                                         float(rv[2]), F, float(q[1]), float(q[2]),
-                                        l10h(b.C_N, F, r, b.life_exponent), b.C_N,
+                                        _finite(l10h(b.C_N, F, r, b.life_exponent)), b.C_N,
                                         b.life_exponent))
     return tuple(bearings)
 

@@ -38,8 +38,9 @@ from shaftfe.beam.model import (
     rigid_body_modes,
     support_stiffness,
 )
-from shaftfe.beam.solve import l10h, solve, solve_unit
+from shaftfe.beam.solve import solve, solve_unit
 from shaftfe.errors import InputError, SolverError
+from shaftfe.model.bearing_life import l10h
 from shaftfe.model.variant import Attachment, Bearing, HexSocket, Material, Segment, Variant
 
 E, NU = 210_000.0, 0.3

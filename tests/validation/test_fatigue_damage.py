@@ -13,20 +13,20 @@ import numpy as np
 import pytest
 
 from shaftfe.errors import InputError
-from shaftfe.fatigue import (
-    assess,
-    count_cycles,
+from shaftfe.fatigue.assess import assess, life_hours, life_km
+from shaftfe.fatigue.counting import count_cycles
+from shaftfe.fatigue.history import from_rpm, read_history
+from shaftfe.fatigue.kernels import (
+    CAPPED,
+    FLOORED,
+    SOLVED,
+    damage_matrix,
     equivalent_stress,
-    life_hours,
-    life_km,
-    load_material,
     mean_stress_correction,
     node_damage,
     safety_factor,
 )
-from shaftfe.fatigue.history import from_rpm, read_history
-from shaftfe.fatigue.kernels import CAPPED, FLOORED, SOLVED, damage_matrix
-from shaftfe.fatigue.sn import FatigueMaterial, SNCurve
+from shaftfe.fatigue.sn import FatigueMaterial, SNCurve, load_material
 
 RPM_DAT = Path(__file__).resolve().parents[2] / "loadspectra" / "rpm.dat"
 STEEL = load_material("structural_steel")
