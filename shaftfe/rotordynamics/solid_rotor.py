@@ -363,8 +363,10 @@ def build_solid_rotor(variant, options: SolidOptions = SolidOptions(), *, shaft_
     for a validation model). ``supported=False``: no bearings (free-free validation models).
     ``attachments=False``: the bare shaft."""
     from shaftfe.fe import assembly as fem
+    from shaftfe.model.validate import validate_variant
 
     _check_options(options)
+    validate_variant(variant, springs=supported and not options.rigid_supports)
     if shaft_mesh is None:
         from shaftfe.solid.mesh import build_mesh
         shaft_mesh = build_mesh(variant, options.level, options.order, cache_dir=cache_dir)
