@@ -50,6 +50,10 @@ _API = {
     # static
     "StaticOptions": ("shaftfe.static.model", "StaticOptions"),
     "solve_static": ("shaftfe.static.solve", "solve_static"),
+    # axisymmetric (Fourier harmonics on the meridian plane)
+    "AxiOptions": ("shaftfe.axisymmetric.model", "AxiOptions"),
+    "solve_axisymmetric": ("shaftfe.axisymmetric.solve", "solve_axisymmetric"),
+    "stepped_bar_kt": ("shaftfe.axisymmetric.kt", "converged"),
     # fatigue
     "FatigueJob": ("shaftfe.fatigue.run", "FatigueJob"),
     "run_fatigue": ("shaftfe.fatigue.run", "run_fatigue"),

@@ -10,6 +10,8 @@ import math
 from shaftfe.errors import InputError
 from shaftfe.solid.levels import LEVEL_NAMES
 
+MODELS = ("solid", "axisymmetric")
+
 
 def register(sub) -> None:
     p = sub.add_parser(
@@ -21,6 +23,10 @@ def register(sub) -> None:
     p.add_argument("--variant", required=True, help="variant name (geometry/<name>.toml) or path")
     p.add_argument("--rpm", default="10000",
                    help="speed(s) in rpm, comma-separated (default 10000), e.g. 7000,10000")
+    p.add_argument("--model", default="solid", choices=MODELS,
+                   help="solid: 3D P2 tets (default); axisymmetric: the body of revolution in "
+                   "Fourier harmonics on a 2D meridian mesh (keyways and the hex socket left "
+                   "out; says which peaks they affect)")
     p.add_argument("--level", default="default", help="mesh level: " + " | ".join(LEVEL_NAMES))
     p.add_argument("--order", type=int, default=2, help="element order 1 | 2 (default 2)")
     p.add_argument("--rigid-supports", action="store_true",
@@ -67,6 +73,8 @@ def run(args) -> int:
                          got=args.solver)
 
     from shaftfe.model.loader import load_variant
+    if args.model == "axisymmetric":
+        return _run_axisymmetric(args, rpms, load_variant(args.variant))
     from shaftfe.static import cache as static_cache
     from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
@@ -94,6 +102,60 @@ def run(args) -> int:
         return 0
     _print_tables(res, opts, out)
     return 0
+
+
+def _run_axisymmetric(args, rpms, variant) -> int:
+    from pathlib import Path
+
+    from shaftfe.axisymmetric.model import AxiOptions
+    from shaftfe.axisymmetric.outputs import write_outputs
+    from shaftfe.axisymmetric.solve import solve_axisymmetric
+    from shaftfe.commands._common import print_json
+    from shaftfe.util.atomic import staged_dir
+    for flag, bad in (("--order", args.order != 2), ("--body-force", args.body_force),
+                      ("--estimate-error", args.estimate_error),
+                      ("--solver", args.solver != "auto")):
+        if bad:
+            raise InputError(flag, flag, "not with --model axisymmetric (P2 harmonics, SuperLU, "
+                             "no body force; the reference tables give its error)")
+    opts = AxiOptions(level=args.level, rigid_supports=args.rigid_supports,
+                      load_distribution=args.load_distribution,
+                      seed_load_case=args.seed_load_case, exclude_mm=args.exclude_mm)
+    out = Path(args.out) if args.out else Path("reports") / variant.name / "static"
+    with staged_dir(out) as stage:             # both files or none
+        res = solve_axisymmetric(variant, rpms, opts)
+        summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
+    if args.json:
+        print_json(summary)
+        return 0
+    _print_axi(res, opts, out)
+    return 0
+
+
+def _print_axi(res, opts, out) -> None:
+    from shaftfe.commands._common import print_table
+    print(f"variant {res.variant}: axisymmetric (Fourier harmonics n = 0..{res.harmonics[-1]}, "
+          f"{len(res.harmonics)} solved), {opts.level}, {res.n_nodes} meridian nodes, "
+          f"{'rigid supports' if opts.rigid_supports else 'bearing springs'}, "
+          f"{res.run['total_seconds']:.2f} s")
+    print(f"load case: {opts.load_case}")
+    for c in res.cases:
+        print()
+        print_table(["bearing", "x mm", "|F| N", "L10h h"],
+                    [[b.name, b.x_mm, b.F_radial_N, _fmt_life(b.L10h)] for b in c.bearings],
+                    title=f"{c.rpm:g} rpm, {opts.load_case}: bearing reactions")
+        print(f"equilibrium residual {c.equilibrium_residual:.1e}")
+        print_table(["station", "x mm", "deflection µm"],
+                    [r[:3] for r in _station_rows(c.stations, {})])
+        rows = [[p.region, p.von_mises_MPa, p.max_principal_MPa, p.xyz_mm[0], p.theta_deg,
+                 "-" if p.fillet_angle_deg is None else p.fillet_angle_deg,
+                 p.omitted_zone or ""]
+                for p in c.peaks if not p.region.startswith(("end:", "seat:"))]
+        print_table(["region", "von Mises MPa", "max principal MPa", "x mm", "θ deg",
+                     "on fillet deg", "in the zone of"], rows)
+    for n in res.notes:
+        print(f"note: {n}")
+    print(f"\nwrote {out / 'result.vtu'}, {out / 'summary.json'}")
 
 
 def _print_tables(res, opts, out) -> None:

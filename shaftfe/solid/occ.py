@@ -7,43 +7,7 @@ from __future__ import annotations
 
 import math
 
-from shaftfe.solid.plan import TOL, Slot, Solid
-
-
-def _profile(sol: Solid) -> list[tuple[str, tuple]]:
-    """Outer profile in the (x, r) half plane from the left end (r = 0 excluded): a list of
-    ("line", (x, r)) points and ("arc", (x_end, r_end, xc, rc)) pieces."""
-    pts: list[tuple[str, tuple]] = [("line", (sol.x_left, sol.radii[0]))]
-    fil = {round(f.x_shoulder, 9): f for f in sol.fillets}
-    n = len(sol.radii)
-    for i in range(n):
-        r = sol.radii[i]
-        part = sol.parts[i]
-        for x in sol.profile_x:
-            if part.x0 + TOL < x < part.x1 - TOL:
-                pts.append(("line", (x, r)))
-        if i == n - 1:
-            pts.append(("line", (sol.x_right, r)))
-            break
-        xe = sol.segment_x[i][1]
-        r1 = sol.radii[i + 1]
-        if abs(r1 - r) <= TOL:
-            pts.append(("line", (xe, r)))     # keep a face edge between equal segments
-            continue
-        f = fil.get(round(xe, 9))
-        if f is None:
-            pts += [("line", (xe, r)), ("line", (xe, r1))]
-        elif f.side < 0:      # step up: arc on the left of the shoulder
-            pts.append(("line", (xe - f.rho, r)))
-            pts.append(("arc", (xe, r + f.rho, xe - f.rho, r + f.rho)))
-            if r1 - (r + f.rho) > TOL:
-                pts.append(("line", (xe, r1)))
-        else:                 # step down: arc on the right of the shoulder
-            pts.append(("line", (xe, r)))
-            if r - (r1 + f.rho) > TOL:
-                pts.append(("line", (xe, r1 + f.rho)))
-            pts.append(("arc", (xe + f.rho, r1, xe + f.rho, r1 + f.rho)))
-    return pts
+from shaftfe.solid.plan import Slot, Solid, profile
 
 
 def build_occ(gmsh, sol: Solid) -> dict:
@@ -52,7 +16,7 @@ def build_occ(gmsh, sol: Solid) -> dict:
     Returns {"volumes": [...], "faces": {group: [surface tags]}, "fillet_faces": [...],
     "sharp_curves": [...]} (sharp_curves: keyway edges and sharp concave shoulder circles)."""
     occ = gmsh.model.occ
-    prof = _profile(sol)
+    prof = profile(sol)
     tags = [occ.addPoint(sol.x_left, 0.0, 0.0)]
     curves = []
     for kind, data in prof:

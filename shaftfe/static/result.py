@@ -82,15 +82,8 @@ class StaticResult:
         return next(c for c in self.cases if math.isclose(c.rpm, rpm))
 
     def to_dict(self) -> dict:
-        def clean(o):
-            if isinstance(o, float):
-                return o if math.isfinite(o) else None
-            if isinstance(o, dict):
-                return {k: clean(v) for k, v in o.items()}
-            if isinstance(o, list | tuple):
-                return [clean(v) for v in o]
-            return o
-        return clean({
+        from shaftfe.util.fmt import json_clean
+        return json_clean({
             "variant": self.variant, "variant_hash": self.variant_hash,
             "options": asdict(self.options), "load_case": self.options.load_case,
             "ref_rpm": self.ref_rpm,

@@ -13,3 +13,15 @@ def big(v: float) -> str:
 def life(v: float | None) -> str:
     """A life in blocks: 4 significant digits, ``inf`` for none or infinite."""
     return "inf" if v is None or not math.isfinite(v) else f"{v:.4g}"
+
+
+def json_clean(o):
+    """``o`` with every non-finite float replaced by None (JSON has no inf/nan), recursively
+    through dicts, lists and tuples (tuples become lists)."""
+    if isinstance(o, float):
+        return o if math.isfinite(o) else None
+    if isinstance(o, dict):
+        return {k: json_clean(v) for k, v in o.items()}
+    if isinstance(o, list | tuple):
+        return [json_clean(v) for v in o]
+    return o

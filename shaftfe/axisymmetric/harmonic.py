@@ -1,0 +1,205 @@
+"""Assembly and solution of the harmonic problems on one meridian mesh.
+
+``Harmonics(mesh, E, nu)`` assembles the three matrices K00, K01 + K01ᵀ, K11 once
+(``kernels``); ``K(n)`` is then a linear combination. Dofs: (U_x, U_r, U_θ) per node,
+interleaved. Axis conditions (regularity of the 3D field on r = 0), applied by elimination
+(``reduction``): n = 0: U_r = U_θ = 0; n = 1: U_x = 0 and U_θ = −U_r (a lateral translation is
+U_r = −U_θ); n ≥ 2: U_x = U_r = U_θ = 0.
+
+``solve(K, F, springs, hard, T)`` solves one (coupled) harmonic system with springs (rows R, a
+k×k stiffness C: energy ½ (R u)ᵀ C (R u)) and hard rows H u = 0 (Lagrange multipliers) by a
+sparse LU of the saddle-point matrix, one factorisation for all right-hand sides.
+
+``Rbe3`` gives the remote-point rows of a seat (the area-weighted least-squares rigid motion of
+the seat face, as ``fe.assembly.rigid_rows`` does in 3D): on a full surface of revolution the six
+rigid modes split by harmonic: u_x and θ_x live in n = 0, (u_y, θ_z) in the symmetric n = 1
+part and (u_z, θ_y) in the antisymmetric one with the same rows (θ_y = −θ_z's functional).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+from shaftfe.axisymmetric import kernels as kn
+from shaftfe.errors import SolverError
+
+CHUNK = 4000                # elements per assembly block (memory ~ CHUNK × 25 × 6 × 18 × 8 B × 4)
+
+
+def weight(n: int) -> float:
+    """∫ cos² nθ dθ over a revolution (2π for n = 0, π otherwise)."""
+    return 2 * math.pi if n == 0 else math.pi
+
+
+@dataclass(frozen=True, eq=False)
+class Harmonics:
+    mesh: object
+    E: float
+    nu: float
+    K00: sp.csr_matrix = field(repr=False)
+    K01: sp.csr_matrix = field(repr=False)     # K01 + K01ᵀ
+    K11: sp.csr_matrix = field(repr=False)
+    seconds: float = 0.0
+
+    @property
+    def ndof(self) -> int:
+        return 3 * self.mesh.n_nodes
+
+    def K(self, n: int) -> sp.csr_matrix:
+        return (weight(n) * (self.K00 + n * self.K01 + (n * n) * self.K11)).tocsr()
+
+    def reduction(self, n: int) -> sp.csr_matrix:
+        """T (ndof × nred): u = T û with the axis conditions of harmonic n built in."""
+        N = self.mesh.n_nodes
+        axis = np.zeros(N, dtype=bool)
+        axis[self.mesh.axis_nodes()] = True
+        keep = np.ones((N, 3), dtype=bool)
+        if n == 0:
+            keep[axis, 1:] = False
+        elif n == 1:
+            keep[axis, 0] = False
+            keep[axis, 2] = False               # U_θ = −U_r: a slave of U_r
+        else:
+            keep[axis] = False
+        cols = -np.ones(3 * N, dtype=np.int64)
+        kept = np.nonzero(keep.ravel())[0]
+        cols[kept] = np.arange(kept.size)
+        rows, cc, vals = list(kept), list(cols[kept]), [1.0] * kept.size
+        if n == 1:
+            ax = np.nonzero(axis)[0]
+            rows += list(3 * ax + 2)
+            cc += list(cols[3 * ax + 1])
+            vals += [-1.0] * ax.size
+        return sp.csr_matrix((vals, (rows, cc)), shape=(3 * N, kept.size))
+
+    # ------------------------------------------------------------------ boundary terms
+
+    def edge_coords(self, edge_ids: np.ndarray):
+        m = self.mesh
+        e = m.edges[:, edge_ids]
+        return e, m.xr[0][e].T, m.xr[1][e].T
+
+    def traction_vector(self, edge_ids, traction, n: int) -> np.ndarray:
+        """Load vector (ndof,) of a traction with amplitudes ``traction(x, r)`` -> (T_x, T_r,
+        T_θ) on the edges, for harmonic n (the weight w_n included)."""
+        f = np.zeros(self.ndof)
+        if len(edge_ids) == 0:
+            return f
+        e, X, R = self.edge_coords(np.asarray(edge_ids))
+        fe = kn.edge_load(X, R, traction)               # (m, 3, 3)
+        for c in range(3):
+            np.add.at(f, 3 * e.T.ravel() + c, fe[:, :, c].ravel())
+        return weight(n) * f
+
+
+def assemble(mesh, E: float, nu: float) -> Harmonics:
+    import time
+    t0 = time.perf_counter()
+    D = kn.elasticity_matrix(E, nu)
+    N = mesh.n_nodes
+    parts = [[], [], []]
+    rows = cols = None
+    dof = (3 * mesh.tri.T[:, :, None] + np.arange(3)).reshape(-1, 18)     # (ne, 18)
+    for a in range(0, mesh.n_elements, CHUNK):
+        t = mesh.tri[:, a:a + CHUNK]
+        K00, K01, K11 = kn.stiffness_blocks(mesh.xr[0][t].T, mesh.xr[1][t].T, D)
+        parts[0].append(K00.ravel())
+        parts[1].append((K01 + K01.transpose(0, 2, 1)).ravel())
+        parts[2].append(K11.ravel())
+    d = dof
+    rows = np.repeat(d, 18, axis=1).ravel()
+    cols = np.tile(d, (1, 18)).ravel()
+    mats = [sp.csr_matrix((np.concatenate(p), (rows, cols)), shape=(3 * N, 3 * N))
+            for p in parts]
+    return Harmonics(mesh, E, nu, *mats, seconds=time.perf_counter() - t0)
+
+
+# ---------------------------------------------------------------------- remote points
+
+
+@dataclass(frozen=True, eq=False)
+class Rbe3:
+    """Remote-point rows of one seat (functionals on one harmonic's dof vector):
+    ``ux``, ``tx`` on n = 0; ``uy``, ``tz`` on the symmetric n = 1 part (the antisymmetric part
+    gives u_z = ``uy`` · V and θ_y = −``tz`` · V)."""
+    x_mm: float
+    ux: np.ndarray
+    tx: np.ndarray
+    uy: np.ndarray
+    tz: np.ndarray
+    area: float
+
+
+def rbe3(h: Harmonics, edge_ids, x_c: float) -> Rbe3:
+    """Least-squares rigid motion of the seat (area inner product), per harmonic part."""
+    e, X, R = h.edge_coords(np.asarray(edge_ids))
+
+    def scatter(rows):
+        out = np.zeros((rows.shape[0], h.ndof))
+        for k in range(rows.shape[0]):
+            for c in range(3):
+                np.add.at(out[k], 3 * e.T.ravel() + c, rows[k, :, :, c].ravel())
+        return out
+
+    zero, one = 0.0, 1.0
+    # n = 0: u_x mode (1, 0, 0); θ_x mode (0, 0, r)  (Gram diagonal: they do not couple)
+    rows0, g0 = kn.edge_moments(X, R, [lambda x, r: (one, zero, zero),
+                                       lambda x, r: (zero, zero, r)])
+    r0 = scatter(rows0)
+    ux, tx = r0[0] / g0[0, 0], r0[1] / g0[1, 1]
+    # n = 1 symmetric: u_y mode amplitudes (0, 1, −1); θ_z mode (−r, x − c, −(x − c))
+    rows1, g1 = kn.edge_moments(X, R, [lambda x, r: (zero, one, -one),
+                                       lambda x, r: (-r, x - x_c, -(x - x_c))])
+    r1 = np.linalg.solve(g1, scatter(rows1))
+    area = 2 * math.pi * g0[0, 0]
+    return Rbe3(float(x_c), ux, tx, r1[0], r1[1], area)
+
+
+# ---------------------------------------------------------------------- the solve
+
+
+@dataclass(frozen=True, eq=False)
+class Solution:
+    u: np.ndarray                 # (ndof, nrhs) full dof vectors
+    multipliers: np.ndarray       # (n_hard, nrhs): forces of the hard rows (on the rows' sense)
+    relres: float
+
+
+def solve(K: sp.spmatrix, F: np.ndarray, T: sp.spmatrix, springs=(), hard=None) -> Solution:
+    """Minimise ½ uᵀ K u + ½ Σ (R u)ᵀ C (R u) − uᵀ F with u = T û and H u = 0.
+
+    ``springs``: (R (k × ndof), C (k × k)); ``hard``: H (h × ndof) or None. The saddle-point
+    matrix [[Tᵀ(K + Σ RᵀCR)T, (H T)ᵀ], [H T, 0]] is factorised once (SuperLU); the residual of
+    every right-hand side is checked (relative 1e-9, SolverError beyond)."""
+    from scipy.sparse.linalg import splu
+    F = np.atleast_2d(np.asarray(F, dtype=float).T).T
+    A = K
+    for R, C in springs:
+        Rs = sp.csr_matrix(R)
+        A = A + Rs.T @ sp.csr_matrix(np.asarray(C, dtype=float)) @ Rs
+    Ar = (T.T @ A @ T).tocsc()
+    nh = 0 if hard is None else hard.shape[0]
+    if nh:
+        Hr = sp.csr_matrix(hard) @ T
+        M = sp.bmat([[Ar, Hr.T], [Hr, None]], format="csc")
+    else:
+        M = Ar
+    rhs = np.vstack([T.T @ F, np.zeros((nh, F.shape[1]))])
+    try:
+        lu = splu(M, permc_spec="COLAMD")
+    except RuntimeError as exc:
+        raise SolverError(f"the harmonic system is singular ({exc}): a rigid motion is not "
+                          "held by the supports") from None
+    z = lu.solve(rhs)
+    res = M @ z - rhs
+    scale = max(float(np.abs(rhs).max()), 1e-300)
+    relres = float(np.abs(res).max() / scale)
+    if not np.all(np.isfinite(z)) or relres > 1e-9:
+        raise SolverError(f"the harmonic solve did not converge (relative residual "
+                          f"{relres:.2e}): a rigid motion may not be held by the supports")
+    u = T @ z[:Ar.shape[0]]
+    return Solution(u, z[Ar.shape[0]:], relres)

@@ -1,0 +1,156 @@
+"""Converged stress-concentration factors of a shoulder fillet in a stepped round bar, by the
+harmonic solver: tension (n = 0), bending (n = 1), torsion (n = 0, u_θ).
+
+Bar: diameter d over 4 d, diameter D over 4 D, fillet radius ρ at the step, free except for
+the end loads: a uniform axial traction (tension), a linear one σ_x = k r cos θ (pure bending),
+a shear τ_xθ = g r (torsion), equal and opposite on the two ends, so the far field is exact
+Saint-Venant (verified: ``tests/validation/test_axisymmetric_exact.py``). Three minimal
+point conditions remove the rigid motions without any reaction. Nominal stresses on d:
+4P/(πd²), 32M/(πd³), 16T/(πd³) (as Peterson). Kt = the largest principal stress on the fillet
+over the nominal stress (for torsion the surface state is pure shear, σ1 = τ_max).
+
+Convergence: ``converged`` meshes the bar at one level and refines it uniformly ``levels`` − 1
+times (every triangle into four, the fillet kept exact); Richardson extrapolation of the last
+three values gives the converged value, the observed order and the error bar |K_∞ − K_finest|
+(``richardson``). The peak's position is the angle along the fillet arc from the tangent point
+on the smaller diameter.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from shaftfe.axisymmetric import harmonic as hm
+from shaftfe.axisymmetric import recovery as rc
+from shaftfe.axisymmetric.mesh import (
+    AxiLevel,
+    Curve,
+    MeridianGeometry,
+    arc_length_angle,
+    mesh_geometry,
+)
+
+LEVEL = AxiLevel("kt", k_far=0.12, k_fillet=0.2, grad=0.25)
+LOADS = ("tension", "bending", "torsion")
+
+
+def stepped_bar(D: float, d: float, rho: float) -> MeridianGeometry:
+    r, R = 0.5 * d, 0.5 * D
+    L1, L2 = 4 * d, 4 * D
+    cur = [Curve((0.0, 0.0), (0.0, r), ("end:left",)),
+           Curve((0.0, r), (L1 - rho, r), ("surface",)),
+           Curve((L1 - rho, r), (L1, r + rho), ("fillet:step",), (L1 - rho, r + rho), rho)]
+    if R - (r + rho) > 1e-9:
+        cur.append(Curve((L1, r + rho), (L1, R), ("shoulder:step",)))
+    cur += [Curve((L1, R), (L1 + L2, R), ("surface",)),
+            Curve((L1 + L2, R), (L1 + L2, 0.0), ("end:right",)),
+            Curve((L1 + L2, 0.0), (0.0, 0.0), ("axis",))]
+    return MeridianGeometry(f"step_{D:g}_{d:g}_{rho:g}", tuple(cur), d,
+                            bands=((0.0, L1, d), (L1, L1 + L2, D)))
+
+
+@dataclass(frozen=True)
+class KtValue:
+    load: str
+    kt: float
+    angle_deg: float          # along the fillet arc from the small-diameter tangent point
+
+
+def kt_once(D: float, d: float, rho: float, refine: int = 0, level: AxiLevel = LEVEL,
+            E: float = 210000.0, nu: float = 0.3, cache_dir=None):
+    """Kt in tension, bending and torsion on one mesh: ({load: KtValue}, nodes)."""
+    geo = stepped_bar(D, d, rho)
+    mesh = mesh_geometry(geo, level, refine, cache_dir=cache_dir)
+    h = hm.assemble(mesh, E, nu)
+    left, right = mesh.group_edges("end:left"), mesh.group_edges("end:right")
+    S = rc.Surface(mesh)
+    fil = [i for i, c in enumerate(geo.curves) if "fillet:step" in c.groups]
+    on = np.nonzero(np.isin(S.curve, fil) & ~S.kink)[0]
+    ax = mesh.axis_nodes()
+    a0, a1 = ax[np.argmin(mesh.xr[0][ax])], ax[np.argmax(mesh.xr[0][ax])]
+    far = int(np.argmax(mesh.xr[1]))
+    r = 0.5 * d
+    out = {}
+    R = 0.5 * D
+    for load in LOADS:
+        # the small end (x = 0) carries the nominal field; the large end the same resultant
+        if load == "tension":          # σ_x = 1: σ_nom = 4P/(πd²) = 1
+            n, trac, q, s_nom = 0, (lambda x, rr: (1.0, 0.0, 0.0)), (r / R) ** 2, 1.0
+            pins = [3 * a0, 3 * far + 2]
+        elif load == "bending":        # σ_x = r cos θ (k = 1): M = π r⁴/4, 32M/(πd³) = r
+            n, trac, q, s_nom = 1, (lambda x, rr: (rr, 0.0, 0.0)), (r / R) ** 4, r
+            pins = [3 * a0 + 1, 3 * a1 + 1]
+        else:                          # τ_xθ = r (g = 1): T = π r⁴/2, 16T/(πd³) = r
+            n, trac, q, s_nom = 0, (lambda x, rr: (0.0, 0.0, rr)), (r / R) ** 4, r
+            pins = [3 * a0, 3 * far + 2]
+        f = q * h.traction_vector(right, trac, n) - h.traction_vector(left, trac, n)
+        H = np.zeros((len(pins), h.ndof))
+        H[range(len(pins)), pins] = 1.0
+        u = hm.solve(h.K(n), f, h.reduction(n), hard=H).u[:, 0]
+        s = S.stress(u, n, E, nu)[:, on]
+        s1 = rc.principal_max_local(s)            # θ = 0 is the extreme for n = 0 and n = 1
+        kt_val, ang_val = _arc_peak(geo.curves[fil[0]], mesh.xr[:, S.nodes[on]], s1)
+        out[load] = KtValue(load, kt_val / s_nom, ang_val)
+    return out, mesh.n_nodes
+
+
+def _arc_peak(c: Curve, xr: np.ndarray, val: np.ndarray) -> tuple[float, float]:
+    """Peak of ``val`` at points ``xr`` on arc ``c``: the parabola in the arc angle through
+    the largest value and its two neighbours (the nodes are P2 nodes of the outline, so the
+    recovered stress is piecewise quadratic along the arc)."""
+    ang = arc_length_angle(c, xr[0], xr[1])
+    o = np.argsort(ang)
+    a, v = ang[o], val[o]
+    j = int(np.argmax(v))
+    if 0 < j < v.size - 1:
+        A = np.vander(a[j - 1:j + 2], 3)
+        c2, c1, c0 = np.linalg.solve(A, v[j - 1:j + 2])
+        if c2 < 0:
+            x = float(np.clip(-c1 / (2 * c2), a[j - 1], a[j + 1]))
+            return float(c2 * x * x + c1 * x + c0), x
+    return float(v[j]), float(a[j])
+
+
+def richardson(values) -> dict:
+    """Extrapolation of the last three values of a sequence refined by 2 each time: the
+    observed order p = log2(|K1 − K0| / |K2 − K1|), K_∞ = K2 + (K2 − K1)/(2^p − 1) and the
+    error bar |K_∞ − K2| (the finest value's error). Non-monotone or p < 1: no order
+    is claimed, K_∞ = K2 and the bar is max |Ki − K2| over the three."""
+    k0, k1, k2 = values[-3:]
+    d1, d2 = k1 - k0, k2 - k1
+    if d1 != 0 and d2 != 0 and d1 * d2 > 0 and abs(d1) > abs(d2):
+        p = math.log2(abs(d1) / abs(d2))
+        if p >= 1.0:
+            kinf = k2 + d2 / (2 ** p - 1)
+            return {"value": kinf, "error": abs(kinf - k2), "order": p, "finest": k2}
+    return {"value": k2, "error": max(abs(k0 - k2), abs(k1 - k2)), "order": None,
+            "finest": k2}
+
+
+def converged(D: float, d: float, rho: float, levels: int = 3, level: AxiLevel = LEVEL,
+              cache_dir=None) -> dict:
+    """{load: {"kt", "error", "order", "angle_deg", "values"}} from ``levels`` uniform
+    refinements (≥ 3)."""
+    import time
+    vals = {ld: [] for ld in LOADS}
+    angles = {}
+    nodes, secs = [], []
+    for ref in range(levels):
+        t0 = time.perf_counter()
+        res, nn = kt_once(D, d, rho, ref, level, cache_dir=cache_dir)
+        secs.append(time.perf_counter() - t0)
+        nodes.append(nn)
+        for ld in LOADS:
+            vals[ld].append(res[ld].kt)
+            angles[ld] = res[ld].angle_deg
+    out = {}
+    for ld in LOADS:
+        rich = richardson(vals[ld])
+        out[ld] = {"kt": rich["value"], "error": rich["error"], "order": rich["order"],
+                   "angle_deg": angles[ld], "values": vals[ld]}
+    out["nodes"] = nodes
+    out["seconds"] = secs
+    return out

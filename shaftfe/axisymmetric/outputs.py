@@ -1,0 +1,97 @@
+"""Files of an axisymmetric run: ``summary.json`` and ``result.vtu``, the meridian solution
+revolved to 3D (the corner nodes of every triangle swept over ``SECTORS`` sectors into wedges;
+displacement and the nodally averaged von Mises stress at the first speed), each written
+atomically into ``out`` (the command stages the whole directory)."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import asdict
+
+import numpy as np
+
+from shaftfe.axisymmetric import recovery as rc
+
+SECTORS = 72
+
+
+def revolved_fields(sol, scale: float, sectors: int = SECTORS):
+    """Points (n·s, 3), wedge cells, displacement (n·s, 3) and von Mises (n·s,) of the
+    meridian solution swept over ``sectors`` angles (× ``scale``)."""
+    mesh = sol.mesh
+    used = np.unique(mesh.tri[:3])
+    idx = -np.ones(mesh.n_nodes, dtype=np.int64)
+    idx[used] = np.arange(used.size)
+    x, r = mesh.xr[:, used]
+    th = np.linspace(0.0, 2 * np.pi, sectors, endpoint=False)
+    c, s = np.cos(th), np.sin(th)
+    pts = np.stack([np.repeat(x[None], sectors, 0), r[None] * c[:, None],
+                    r[None] * s[:, None]], axis=-1).reshape(-1, 3)
+    m = used.size
+    tri = idx[mesh.tri[:3]].T                                   # (ne, 3)
+    cells = []
+    for k in range(sectors):
+        k2 = (k + 1) % sectors
+        cells.append(np.hstack([tri + k * m, tri + k2 * m]))
+    cells = np.vstack(cells)
+    # displacement and stress by harmonic synthesis at the sector angles
+    ux = np.zeros((sectors, m))
+    ur = np.zeros((sectors, m))
+    ut = np.zeros((sectors, m))
+    stress = np.zeros((6, m, sectors))
+    E, nu = float(sol.variant.material.E_MPa), float(sol.variant.material.nu)
+    parts = []
+    for h in sol.harmonics:
+        n = h.n
+        U = h.sym.reshape(-1, 3)[used]
+        cs = np.ones(sectors) if n == 0 else np.cos(n * th)
+        sn = np.ones(sectors) if n == 0 else np.sin(n * th)
+        ux += cs[:, None] * U[:, 0]
+        ur += cs[:, None] * U[:, 1]
+        ut += sn[:, None] * U[:, 2]
+        avg_s = rc.nodal_average(mesh, h.sym, n, E, nu)[:, used]
+        avg_a = None
+        if h.anti is not None:
+            V = h.anti.reshape(-1, 3)[used]
+            ux += np.sin(n * th)[:, None] * V[:, 0]
+            ur += np.sin(n * th)[:, None] * V[:, 1]
+            ut -= np.cos(n * th)[:, None] * V[:, 2]
+            avg_a = rc.nodal_average(mesh, h.anti, n, E, nu)[:, used]
+        parts.append((n, avg_s, avg_a))
+    stress = rc.synthesize(parts, th, rc.CYL_SHEAR)                # (6, m, s)
+    vm = rc.von_mises_local(stress).T.reshape(-1) * scale
+    uy = ur * c[:, None] - ut * s[:, None]
+    uz = ur * s[:, None] + ut * c[:, None]
+    disp = np.stack([ux, uy, uz], axis=-1).reshape(-1, 3) * scale
+    return pts, cells, disp, vm
+
+
+def write_outputs(variant_arg: str, variant, opts, res, rpms, out) -> dict:
+    import meshio
+
+    from shaftfe.util.atomic import atomic_path, write_atomic
+    from shaftfe.util.versions import package_versions
+    rpm_vtu = rpms[0]
+    s = res.case(rpm_vtu).scale
+    pts, cells, disp, vm = revolved_fields(res.solution, s)
+    path = out / "result.vtu"
+    with atomic_path(path, suffix=".vtu") as tmp:
+        meshio.write(str(tmp), meshio.Mesh(pts, [("wedge", cells)],
+                                           point_data={"displacement_mm": disp,
+                                                       "von_mises_MPa": vm}))
+    opts_d = asdict(opts)
+    if not isinstance(opts.level, str):
+        opts_d["level"] = opts.level.name
+    summary = {
+        "inputs": {"variant": variant_arg, "rpm": rpms, "model": "axisymmetric",
+                   "options": opts_d,
+                   "source_files": list(getattr(variant, "source_files", ()))},
+        "versions": package_versions(),
+        "vtu": {"file": path.name, "rpm": rpm_vtu, "sectors": SECTORS,
+                "note": "the meridian solution revolved to 3D (P1 wedges on the P2 corner "
+                "nodes; nodally averaged von Mises); fields at vtu.rpm, scale by "
+                "(rpm / vtu.rpm)^2 for another speed"},
+        **res.to_dict(),
+    }
+    write_atomic(out / "summary.json", json.dumps(summary, indent=2, allow_nan=False) + "\n")
+    return summary

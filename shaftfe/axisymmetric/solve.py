@@ -1,0 +1,304 @@
+"""`shaftfe static --model axisymmetric`: the shaft as a body of revolution, every rpm from one
+solve at REF_RPM (loads ∝ ω²), the same outputs as the 3D path (``static.result``): bearing
+reactions and L10h, axis deflections at the stations, peaks per region (von Mises and max
+principal with their location), plus what the model leaves out.
+
+A peak is the maximum over the region's surface nodes and θ of the surface-recovered stress
+(``recovery``), located by a parabola through the three best θ samples (1° grid) and the three
+best nodes along the outline. Nodes of the boundary edges that touch a seat end (a traction
+jump: the singular-point rule of the 3D path) are excluded from the filtered peak; on a loaded
+seat the pressure's θ-edges (angle ± 90°) are singular lines too and a band of ±10° around them
+is left out of its peak.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from shaftfe.axisymmetric import recovery as rc
+from shaftfe.axisymmetric.mesh import arc_length_angle, omitted_features
+from shaftfe.axisymmetric.model import AxiOptions, AxiSolution, solve_model
+from shaftfe.model.bearing_life import l10h
+from shaftfe.static.model import REF_RPM
+from shaftfe.static.result import BearingReaction, Station
+
+THETA_STEP_DEG = 1.0
+SEAT_EDGE_BAND_DEG = 10.0
+
+
+@dataclass(frozen=True)
+class AxiPeak:
+    region: str
+    von_mises_MPa: float
+    xyz_mm: tuple[float, float, float]
+    theta_deg: float
+    max_principal_MPa: float
+    max_principal_xyz_mm: tuple[float, float, float]
+    fillet_angle_deg: float | None      # along the fillet arc from its start (fillets only)
+    n_nodes: int
+    n_excluded: int
+    omitted_zone: str | None            # the omitted 3D feature whose zone the peak lies in
+
+
+@dataclass(frozen=True)
+class AxiCase:
+    rpm: float
+    scale: float
+    bearings: tuple[BearingReaction, ...]
+    stations: tuple[Station, ...]
+    max_axis_deflection_mm: float
+    peaks: tuple[AxiPeak, ...]
+    load_sum_N: tuple[float, float, float]
+    reaction_sum_N: tuple[float, float, float]
+    equilibrium_residual: float
+
+
+@dataclass(frozen=True, eq=False)
+class AxiResult:
+    variant: str
+    variant_hash: str
+    options: AxiOptions
+    ref_rpm: float
+    n_nodes: int
+    n_elements: int
+    harmonics: tuple[int, ...]
+    truncation_change: float
+    omitted: tuple[dict, ...]
+    cases: tuple[AxiCase, ...]
+    axis_x: np.ndarray = field(repr=False)
+    axis_u_ref: np.ndarray = field(repr=False)       # (n, 3) at REF_RPM
+    solution: AxiSolution | None = field(default=None, repr=False)
+    notes: tuple[str, ...] = ()
+    run: dict = field(default_factory=dict)
+
+    def case(self, rpm: float) -> AxiCase:
+        return next(c for c in self.cases if math.isclose(c.rpm, rpm))
+
+    def to_dict(self) -> dict:
+        from shaftfe.util.fmt import json_clean
+        opts = asdict(self.options)
+        if not isinstance(self.options.level, str):
+            opts["level"] = self.options.level.name
+        return json_clean({
+            "model": "axisymmetric", "variant": self.variant, "variant_hash": self.variant_hash,
+            "options": opts, "load_case": self.options.load_case, "ref_rpm": self.ref_rpm,
+            "mesh": {"nodes": self.n_nodes, "elements": self.n_elements,
+                     "dofs_per_harmonic": 3 * self.n_nodes,
+                     "harmonics": list(self.harmonics),
+                     "truncation": {"tolerance": self.options.truncation,
+                                    "last_change": self.truncation_change,
+                                    "criterion": "the last two loaded harmonics each change "
+                                    "every fillet's peak von Mises stress by less than the "
+                                    "tolerance × the largest fillet peak"}},
+            "omitted_features": list(self.omitted),
+            "cases": [asdict(c) for c in self.cases],
+            "notes": list(self.notes), "run": self.run,
+        })
+
+
+# ------------------------------------------------------------------------------ helpers
+
+
+def axis_displacement(sol: AxiSolution, xs) -> np.ndarray:
+    """(n, 3) displacement of the axis at ``xs``: u_x from n = 0 (U_x), u_y and u_z from the
+    n = 1 parts (U_r on the axis; every other harmonic vanishes there), P2 along the axis."""
+    mesh = sol.mesh
+    ids = [i for i, c in enumerate(mesh.geometry.curves) if "axis" in c.groups]
+    e = mesh.edges[:, np.isin(mesh.edge_curve, ids)]
+    x0, x1 = mesh.xr[0][e[0]], mesh.xr[0][e[1]]
+    lo, hi = np.minimum(x0, x1), np.maximum(x0, x1)
+    f0 = sol.harmonics[0].sym
+    f1 = next(h for h in sol.harmonics if h.n == 1)
+    out = np.full((len(xs), 3), np.nan)
+    for k, x in enumerate(np.asarray(xs, dtype=float)):
+        j = np.nonzero((lo - 1e-9 <= x) & (x <= hi + 1e-9))[0]
+        if j.size == 0:
+            continue
+        j = j[0]
+        s = (x - x0[j]) / (x1[j] - x0[j])
+        N = np.array([(1 - s) * (1 - 2 * s), s * (2 * s - 1), 4 * s * (1 - s)])
+        nodes = e[:, j]
+        out[k] = [N @ f0[3 * nodes], N @ f1.sym[3 * nodes + 1], N @ f1.anti[3 * nodes + 1]]
+    return out
+
+
+def _parabola(y0, y1, y2) -> tuple[float, float]:
+    """Vertex offset (in samples, within ±1) and value of the parabola through 3 samples."""
+    den = y0 - 2 * y1 + y2
+    if den >= 0:
+        return 0.0, y1
+    d = float(np.clip(0.5 * (y0 - y2) / den, -1.0, 1.0))
+    return d, float(y1 - 0.25 * (y0 - y2) * d)
+
+
+def _regions(mesh) -> dict[str, list[int]]:
+    out: dict[str, list[int]] = {}
+    for i, c in enumerate(mesh.geometry.curves):
+        for g in c.groups:
+            if g == "axis":
+                continue
+            name = ("seat:" + g.split(":", 1)[1] if g.startswith("load:")
+                    else "seat:" + g if g.startswith("bearing:") else g)
+            out.setdefault(name, []).append(i)
+    return out
+
+
+def _excluded(sol: AxiSolution, exclude_mm: float) -> np.ndarray:
+    """Surface-node mask: nodes of boundary edges touching a seat end, and nodes within
+    ``exclude_mm`` of one."""
+    mesh, S = sol.mesh, sol.surface
+    ends = []
+    for c in mesh.geometry.curves:
+        if any(g.startswith(("load:", "bearing:")) for g in c.groups):
+            ends += [c.start, c.end]
+    mask = np.zeros(S.nodes.size, dtype=bool)
+    if not ends:
+        return mask
+    P = np.array(ends).T
+    xr = mesh.xr[:, S.nodes]
+    d = np.sqrt(((xr[:, :, None] - P[:, None, :]) ** 2).sum(axis=0)).min(axis=1)
+    mark = np.zeros(mesh.n_nodes, dtype=bool)
+    mark[S.nodes[d < 1e-9]] = True
+    e = mesh.edges
+    touch = mark[e].any(axis=0)
+    bad = np.zeros(mesh.n_nodes, dtype=bool)
+    bad[e[:, touch].ravel()] = True
+    mask = bad[S.nodes]
+    if exclude_mm > 0:
+        mask |= d < exclude_mm
+    return mask
+
+
+def region_peaks(sol: AxiSolution, omitted=()) -> tuple[AxiPeak, ...]:
+    """Peaks per region at REF_RPM (see the module docstring)."""
+    mesh, S = sol.mesh, sol.surface
+    theta = np.radians(np.arange(0.0, 360.0, THETA_STEP_DEG))
+    excl = _excluded(sol, sol.options.exclude_mm)
+    seat_angles = {}
+    for ld in sol.loads:
+        nm = "seat:" + ld.group.split(":", 1)[1]
+        seat_angles.setdefault(nm, []).append(ld.angle_deg)
+    out = []
+    for name, ids in sorted(_regions(mesh).items()):
+        on = np.isin(S.curve, ids)
+        idx = np.nonzero(on & ~excl & ~S.on_axis)[0]
+        n_all = int((on & ~S.on_axis).sum())
+        if idx.size == 0:
+            continue
+        parts = [(n, a[:, idx], None if b is None else b[:, idx])
+                 for n, a, b in sol.surface_stress]
+        sig = rc.synthesize(parts, theta, rc.LOCAL_SHEAR)         # (6, k, q)
+        vm = rc.von_mises_local(sig)
+        s1 = rc.principal_max_local(sig)
+        if name in seat_angles:           # the pressure's θ-edges: singular lines
+            keep = np.ones(theta.size, dtype=bool)
+            for a in seat_angles[name]:
+                for edge in (a + 90.0, a - 90.0):
+                    dd = np.abs(np.remainder(np.degrees(theta) - edge + 180.0, 360.0) - 180.0)
+                    keep &= dd > SEAT_EDGE_BAND_DEG
+            vm = np.where(keep[None], vm, -np.inf)
+            s1 = np.where(keep[None], s1, -np.inf)
+        vpk, vloc, vth, fang = _locate(mesh, S, idx, vm, theta)
+        ppk, ploc, _, _ = _locate(mesh, S, idx, s1, theta)
+        zone = next((f["feature"] for f in omitted
+                     if f["zone_mm"][0] <= vloc[0] <= f["zone_mm"][1]), None)
+        out.append(AxiPeak(name, vpk, vloc, vth, ppk, ploc, fang, n_all,
+                           int(n_all - idx.size), zone))
+    return tuple(out)
+
+
+def _locate(mesh, S, idx, val, theta):
+    """Peak of val (k, q) over nodes and θ: parabolic in θ, then along the outline."""
+    k, q = np.unravel_index(int(np.argmax(val)), val.shape)
+    dq, _ = _parabola(val[k, (q - 1) % theta.size], val[k, q], val[k, (q + 1) % theta.size])
+    th = float(theta[q] + dq * np.radians(THETA_STEP_DEG))
+    node = S.nodes[idx[k]]
+    x, r = mesh.xr[:, node]
+    # neighbours along the outline: the nearest two nodes of the region, one each side
+    xr = mesh.xr[:, S.nodes[idx]]
+    d = np.hypot(xr[0] - x, xr[1] - r)
+    pk = float(val[k, q])
+    order = np.argsort(d)
+    if order.size >= 3:
+        a, b = order[1], order[2]
+        ta = (xr[:, a] - [x, r]) @ (xr[:, b] - [x, r])
+        if ta < 0:                         # on opposite sides: fit along the outline
+            ya, yb = float(val[a, q]), float(val[b, q])
+            da, db = -d[a], d[b]
+            A = np.array([[da * da, da, 1], [0, 0, 1], [db * db, db, 1]])
+            c2, c1, c0 = np.linalg.solve(A, [ya, pk, yb])
+            if c2 < 0:
+                s = float(np.clip(-c1 / (2 * c2), da, db))
+                pk = max(pk, float(c2 * s * s + c1 * s + c0))
+    c = mesh.geometry.curves[int(S.curve[idx[k]])]
+    fang = float(arc_length_angle(c, np.array([x]), np.array([r]))[0]) \
+        if c.center is not None else None
+    loc = (float(x), float(r * math.cos(th)), float(r * math.sin(th)))
+    return pk, loc, float(np.degrees(th) % 360.0), fang
+
+
+# ------------------------------------------------------------------------------ the API
+
+
+def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(), *,
+                       cache_dir=None) -> AxiResult:
+    """Solve once at REF_RPM and report every rpm in ``rpm``: results × (rpm / REF_RPM)²."""
+    from shaftfe.static.solve import _check_rpms
+    t0 = time.perf_counter()
+    rpms = _check_rpms(rpm)
+    sol = solve_model(variant, options, cache_dir=cache_dir)
+    v = sol.variant
+    t1 = time.perf_counter()
+    omitted = tuple(omitted_features(v))
+    peaks = region_peaks(sol, omitted)
+    stations = [(f"seat:{ld.name}", v.attachment(ld.name).seat_center_mm) for ld in sol.loads]
+    stations += [(f"bearing:{name}", rb.x_mm) for name, rb, _ in sol.bearings]
+    if v.clearance_station_x_mm is not None:
+        stations.append(("clearance", float(v.clearance_station_x_mm)))
+    st_u = axis_displacement(sol, [x for _, x in stations])
+    x0, x1 = float(sol.mesh.xr[0].min()), float(sol.mesh.xr[0].max())
+    ax_x = np.linspace(x0, x1, 121)
+    ax_u = axis_displacement(sol, ax_x)
+    load_sum = np.zeros(3)
+    for ld in sol.loads:
+        a = math.radians(ld.angle_deg)
+        load_sum += ld.force_N * np.array([0.0, math.cos(a), math.sin(a)])
+    reac_sum = sum((np.array(r[:3]) for r in sol.reactions.values()), np.zeros(3))
+    scale_f = max(float(np.linalg.norm(load_sum)), 1e-300)
+    eq = float(np.linalg.norm(load_sum + reac_sum) / scale_f)
+    cases = []
+    for r in rpms:
+        s = (r / REF_RPM) ** 2
+        brs = []
+        for name, rb, b in sol.bearings:
+            Fx, Fy, Fz, qy, qz = sol.reactions[name]
+            F = math.hypot(Fy, Fz) * s
+            life = l10h(b.C_N, F, r, b.life_exponent)
+            brs.append(BearingReaction(name, rb.x_mm, Fx * s, Fy * s, Fz * s, F, qy * s,
+                                       qz * s, life if math.isfinite(life) else None,
+                                       b.C_N, b.life_exponent))
+        sts = tuple(Station(nm, float(x), float(u[1] * s), float(u[2] * s),
+                            float(math.hypot(u[1], u[2]) * s))
+                    for (nm, x), u in zip(stations, st_u, strict=True))
+        pk = tuple(AxiPeak(p.region, p.von_mises_MPa * s, p.xyz_mm, p.theta_deg,
+                           p.max_principal_MPa * s, p.max_principal_xyz_mm, p.fillet_angle_deg,
+                           p.n_nodes, p.n_excluded, p.omitted_zone) for p in peaks)
+        cases.append(AxiCase(r, s, tuple(brs), sts,
+                             float(np.nanmax(np.hypot(ax_u[:, 1], ax_u[:, 2])) * s), pk,
+                             tuple(float(c) for c in load_sum * s),
+                             tuple(float(c) for c in reac_sum * s), eq))
+    notes = [f"{f['feature']} is not modelled (a body of revolution); peaks with x in "
+             f"[{f['zone_mm'][0]:g}, {f['zone_mm'][1]:g}] mm lie in its zone of influence: "
+             "use the 3D path there" for f in omitted]
+    notes.append("threads are plain cylinders at their modelled diameter (as in the 3D path)")
+    run = dict(sol.seconds)
+    run["post_seconds"] = time.perf_counter() - t1
+    run["total_seconds"] = time.perf_counter() - t0
+    return AxiResult(v.name, v.content_hash, options, REF_RPM, sol.mesh.n_nodes,
+                     sol.mesh.n_elements, tuple(h.n for h in sol.harmonics),
+                     sol.truncation_change, omitted, tuple(cases), ax_x, ax_u, sol,
+                     tuple(notes), run)
