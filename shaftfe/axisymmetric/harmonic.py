@@ -102,7 +102,6 @@ def assemble(mesh, E: float, nu: float) -> Harmonics:
     D = kn.elasticity_matrix(E, nu)
     N = mesh.n_nodes
     parts = [[], [], []]
-    rows = cols = None
     dof = (3 * mesh.tri.T[:, :, None] + np.arange(3)).reshape(-1, 18)     # (ne, 18)
     for a in range(0, mesh.n_elements, CHUNK):
         t = mesh.tri[:, a:a + CHUNK]
@@ -110,9 +109,8 @@ def assemble(mesh, E: float, nu: float) -> Harmonics:
         parts[0].append(K00.ravel())
         parts[1].append((K01 + K01.transpose(0, 2, 1)).ravel())
         parts[2].append(K11.ravel())
-    d = dof
-    rows = np.repeat(d, 18, axis=1).ravel()
-    cols = np.tile(d, (1, 18)).ravel()
+    rows = np.repeat(dof, 18, axis=1).ravel()
+    cols = np.tile(dof, (1, 18)).ravel()
     mats = [sp.csr_matrix((np.concatenate(p), (rows, cols)), shape=(3 * N, 3 * N))
             for p in parts]
     return Harmonics(mesh, E, nu, *mats, seconds=time.perf_counter() - t0)

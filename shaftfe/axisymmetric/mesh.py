@@ -1,7 +1,7 @@
 """The meridian-plane mesh: a closed (x, r) outline of named curves, meshed by Gmsh 2D into P2
 triangles whose edges on arcs are curved (Gmsh places the mid-side nodes on the arc).
 
-``shaft_geometry(variant)`` turns a variant into its outline with the SAME group names as the 3D
+``shaft_geometry(plan)`` turns a solid plan into its outline with the SAME group names as the 3D
 solid's faces (``end:left``, ``end:right``, ``fillet:<seg>``, ``shoulder:<seg>``,
 ``bearing:<name>``, ``load:<name>``; a pressed/free half of the 3D model is a θ-range of the
 ``load:`` line here), plus ``axis`` (r = 0) and ``surface`` (the plain cylinder). Keyway seats
@@ -121,12 +121,12 @@ class MeridianMesh:
 # ------------------------------------------------------------------------------- the shaft
 
 
-def shaft_geometry(variant) -> MeridianGeometry:
-    """The variant's outline (the profile of the 3D solid, ``solid.plan.profile``) with the 3D
+def shaft_geometry(sol) -> MeridianGeometry:
+    """The outline of a solid plan ``sol`` (``solid.plan.prepare(variant)``): the profile the
+    3D solid revolves (``solid.plan.profile``), with the 3D
     face-group names on its curves. Hot curves: every fillet (size factor ρ), every sharp
     concave shoulder corner (a hot point, size factor r_small / 10)."""
-    from shaftfe.solid.plan import TOL, prepare, profile
-    sol = prepare(variant)
+    from shaftfe.solid.plan import TOL, profile
     prof = profile(sol)
     fil = {round(f.x_shoulder, 9): f for f in sol.fillets}
     shoulder_at = {round(s.x, 9): s for s in sol.shoulders}
@@ -168,12 +168,11 @@ def shaft_geometry(variant) -> MeridianGeometry:
     return MeridianGeometry(sol.name, tuple(curves), 2 * sol.r_max, tuple(points), bands)
 
 
-def omitted_features(variant) -> list[dict]:
-    """The 3D features the outline leaves out, with their axial zone of influence: the feature's
+def omitted_features(sol) -> list[dict]:
+    """The 3D features of the solid plan ``sol`` that the outline leaves out, with their
+    axial zone of influence: the feature's
     extent widened by the local diameter on each side (Saint-Venant: a self-equilibrated
     disturbance of a bar decays over about one diameter)."""
-    from shaftfe.solid.plan import prepare
-    sol = prepare(variant)
     out = []
     for k in sol.slots:
         d = 2 * k.r

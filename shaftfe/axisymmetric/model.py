@@ -34,6 +34,7 @@ from shaftfe.axisymmetric import kernels as kn
 from shaftfe.axisymmetric import recovery as rc
 from shaftfe.axisymmetric.mesh import AxiLevel, axi_level, mesh_geometry, shaft_geometry
 from shaftfe.errors import InputError, SolverError
+from shaftfe.fe.recovery import von_mises
 from shaftfe.fe.supports import HOLD_TWIST
 from shaftfe.model.validate import validate_variant
 from shaftfe.static.model import DISTRIBUTIONS, REF_RPM, load_case_label
@@ -96,6 +97,7 @@ class AxiSolution:
     """The solved model at REF_RPM (frozen; arrays read-only by convention)."""
     variant: object
     options: AxiOptions
+    plan: object                       # solid.plan.Solid
     mesh: object
     harmonics: tuple[HarmonicField, ...]
     loads: tuple[SeatLoad, ...]
@@ -108,9 +110,8 @@ class AxiSolution:
     seconds: dict
 
 
-def seat_loads(variant, distribution: str) -> list[SeatLoad]:
-    from shaftfe.solid.plan import prepare
-    sol = prepare(variant)
+def pressure_loads(variant, sol, distribution: str) -> list[SeatLoad]:
+    """Each loaded attachment's half-seat pressure at REF_RPM on its seat of the plan ``sol``."""
     seats = {s.name: s for s in sol.seats}
     out = []
     per = kn.force_per_p0(distribution)
@@ -165,13 +166,6 @@ def _sigma_n(surface, mesh, by_group: dict) -> np.ndarray:
     return out
 
 
-def notch_nodes(surface, mesh) -> np.ndarray:
-    """Surface-node indices on fillets and shoulders (the truncation criterion's nodes)."""
-    ids = [i for i, c in enumerate(mesh.geometry.curves)
-           if any(g.startswith(("fillet:", "shoulder:")) for g in c.groups)]
-    return np.nonzero(np.isin(surface.curve, ids) & ~surface.kink)[0]
-
-
 def solve_model(variant, options: AxiOptions = AxiOptions(), *, cache_dir=None) -> AxiSolution:
     """Mesh, assemble and solve every harmonic the loads need (see the module docstring)."""
     t0 = time.perf_counter()
@@ -179,13 +173,15 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, cache_dir=None) 
     if options.seed_load_case:
         variant = variant.with_seed_load_case()
     validate_variant(variant, springs=not options.rigid_supports)
-    mesh = mesh_geometry(shaft_geometry(variant), options.level, options.refine,
+    from shaftfe.solid.plan import prepare
+    plan = prepare(variant)                      # the solid plan: outline, seats, omissions
+    mesh = mesh_geometry(shaft_geometry(plan), options.level, options.refine,
                          cache_dir=cache_dir)
     t_mesh = time.perf_counter() - t0
     mat = variant.material
     E, nu = float(mat.E_MPa), float(mat.nu)
     h = hm.assemble(mesh, E, nu)
-    loads = seat_loads(variant, options.load_distribution)
+    loads = pressure_loads(variant, plan, options.load_distribution)
     coeffs = kn.half_pressure_coefficients(options.load_distribution, options.n_max)
     S = rc.Surface(mesh)
     bearings = [(b.name, hm.rbe3(h, mesh.group_edges(f"bearing:{b.name}"), b.x_center_mm), b)
@@ -284,7 +280,7 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, cache_dir=None) 
     secs = {"mesh_seconds": t_mesh, "assembly_seconds": t_asm,
             "solve_seconds": t_all - t_mesh - t_asm, "total_seconds": t_all,
             "mesh_from_cache": mesh.from_cache}
-    return AxiSolution(variant, options, mesh, tuple(fields), tuple(loads), tuple(bearings),
+    return AxiSolution(variant, options, plan, mesh, tuple(fields), tuple(loads), tuple(bearings),
                        {k: tuple(float(c) for c in v) for k, v in reac.items()}, S,
                        tuple(stresses), n_used, change, secs)
 
@@ -311,7 +307,7 @@ class _PeakTracker:
             return 0.0
         sub = [(n, s[:, self.idx], None if a is None else a[:, self.idx]) for n, s, a in parts]
         self.sum += rc.synthesize(sub, self.theta, rc.LOCAL_SHEAR)
-        vm = rc.von_mises_local(self.sum).max(axis=1)
+        vm = von_mises(self.sum).max(axis=1)
         new, k = [], 0
         for st in self.sets:
             new.append(float(vm[k:k + st.size].max()))

@@ -11,6 +11,7 @@ from dataclasses import asdict
 import numpy as np
 
 from shaftfe.axisymmetric import recovery as rc
+from shaftfe.fe.recovery import von_mises
 
 SECTORS = 72
 
@@ -38,7 +39,6 @@ def revolved_fields(sol, scale: float, sectors: int = SECTORS):
     ux = np.zeros((sectors, m))
     ur = np.zeros((sectors, m))
     ut = np.zeros((sectors, m))
-    stress = np.zeros((6, m, sectors))
     E, nu = float(sol.variant.material.E_MPa), float(sol.variant.material.nu)
     parts = []
     for h in sol.harmonics:
@@ -59,7 +59,7 @@ def revolved_fields(sol, scale: float, sectors: int = SECTORS):
             avg_a = rc.nodal_average(mesh, h.anti, n, E, nu)[:, used]
         parts.append((n, avg_s, avg_a))
     stress = rc.synthesize(parts, th, rc.CYL_SHEAR)                # (6, m, s)
-    vm = rc.von_mises_local(stress).T.reshape(-1) * scale
+    vm = von_mises(stress).T.reshape(-1) * scale
     uy = ur * c[:, None] - ut * s[:, None]
     uz = ur * s[:, None] + ut * c[:, None]
     disp = np.stack([ux, uy, uz], axis=-1).reshape(-1, 3) * scale

@@ -87,7 +87,6 @@ class Surface:
         self.J, self.t, self.dN = J, t, dN
         self.e = e
         nodes = e.T.ravel()                                     # (m*3,) edge-local order
-        self.entry_node = nodes
         uniq, inv = np.unique(nodes, return_inverse=True)
         r = mesh.xr[1][uniq]
         self.on_axis = r <= 1e-9 * max(1.0, float(mesh.xr[1].max()))
@@ -175,20 +174,12 @@ def synthesize(parts, theta: np.ndarray, shear: np.ndarray) -> np.ndarray:
     return out
 
 
-def von_mises_local(s: np.ndarray) -> np.ndarray:
-    """von Mises of (6, ...) in either component order (both list three normal stresses and
-    then three shears)."""
-    a, b, c, d, e, f = s
-    return np.sqrt(0.5 * ((a - b) ** 2 + (b - c) ** 2 + (c - a) ** 2) + 3 * (d * d + e * e + f * f))
-
-
-def principal_max_local(s: np.ndarray, order: str = "local") -> np.ndarray:
-    """Largest principal stress of (6, ...) tensors (closed form for symmetric 3×3:
-    the trigonometric solution of the characteristic cubic)."""
-    if order == "local":          # tt, θθ, nn, tθ, nθ, nt
-        a, b, c, ab, bc, ac = s
-    else:                         # xx, rr, θθ, xr, rθ, xθ
-        a, b, c, ab, bc, ac = s
+def principal_max_local(s: np.ndarray) -> np.ndarray:
+    """Largest principal stress of (6, ...) tensors in either order here (three normal
+    stresses a, b, c, then the shears ab, bc, ca: tt, θθ, nn, tθ, θn, nt or xx, rr, θθ, xr, rθ,
+    θx). Closed form (the trigonometric solution of the characteristic cubic), not
+    ``fe.recovery.principal``'s eigvalsh: the peaks evaluate ~10⁶ tensors (nodes × θ grid)."""
+    a, b, c, ab, bc, ac = s
     q = (a + b + c) / 3.0
     p1 = ab * ab + bc * bc + ac * ac
     p2 = (a - q) ** 2 + (b - q) ** 2 + (c - q) ** 2 + 2 * p1

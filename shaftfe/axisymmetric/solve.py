@@ -22,6 +22,7 @@ import numpy as np
 from shaftfe.axisymmetric import recovery as rc
 from shaftfe.axisymmetric.mesh import arc_length_angle, omitted_features
 from shaftfe.axisymmetric.model import AxiOptions, AxiSolution, solve_model
+from shaftfe.fe.recovery import von_mises
 from shaftfe.model.bearing_life import l10h
 from shaftfe.static.model import REF_RPM
 from shaftfe.static.result import BearingReaction, Station
@@ -192,7 +193,7 @@ def region_peaks(sol: AxiSolution, omitted=()) -> tuple[AxiPeak, ...]:
         parts = [(n, a[:, idx], None if b is None else b[:, idx])
                  for n, a, b in sol.surface_stress]
         sig = rc.synthesize(parts, theta, rc.LOCAL_SHEAR)         # (6, k, q)
-        vm = rc.von_mises_local(sig)
+        vm = von_mises(sig)
         s1 = rc.principal_max_local(sig)
         if name in seat_angles:           # the pressure's θ-edges: singular lines
             keep = np.ones(theta.size, dtype=bool)
@@ -253,7 +254,7 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
     sol = solve_model(variant, options, cache_dir=cache_dir)
     v = sol.variant
     t1 = time.perf_counter()
-    omitted = tuple(omitted_features(v))
+    omitted = tuple(omitted_features(sol.plan))
     peaks = region_peaks(sol, omitted)
     stations = [(f"seat:{ld.name}", v.attachment(ld.name).seat_center_mm) for ld in sol.loads]
     stations += [(f"bearing:{name}", rb.x_mm) for name, rb, _ in sol.bearings]
