@@ -32,7 +32,13 @@ import scipy.sparse as sp
 from shaftfe.axisymmetric import harmonic as hm
 from shaftfe.axisymmetric import kernels as kn
 from shaftfe.axisymmetric import recovery as rc
-from shaftfe.axisymmetric.mesh import AxiLevel, axi_level, mesh_geometry, shaft_geometry
+from shaftfe.axisymmetric.mesh import (
+    AxiLevel,
+    axi_level,
+    mesh_geometry,
+    omitted_features,
+    shaft_geometry,
+)
 from shaftfe.errors import InputError, SolverError
 from shaftfe.fe.recovery import von_mises
 from shaftfe.fe.supports import HOLD_TWIST
@@ -51,6 +57,10 @@ class AxiOptions:
     seed_load_case: bool = False
     hold_twist: str = "all"
     truncation: float = 1e-4                 # relative stress change of the last harmonics
+    # the truncation criterion's fillets: False = those outside the zones of the features the
+    # outline leaves out (their peaks are not valid anyway; "use the 3D path there"),
+    # True = every fillet (up to n ≈ 23 on x2_57 instead of n = 3)
+    converge_all_fillets: bool = False
     n_max: int = N_MAX
     exclude_mm: float = 0.0
 
@@ -107,7 +117,8 @@ class AxiSolution:
     surface_stress: tuple              # (n, sym (6, k), anti (6, k) | None) per harmonic
     n_used: int
     truncation_change: float           # the last loaded harmonic's change, relative
-    seconds: dict
+    truncation_fillets: tuple          # the fillets the truncation criterion follows
+    seconds: dict                      # timings, mesh_from_cache, largest relative_residual
 
 
 def pressure_loads(variant, sol, distribution: str) -> list[SeatLoad]:
@@ -180,7 +191,7 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, cache_dir=None) 
     t_mesh = time.perf_counter() - t0
     mat = variant.material
     E, nu = float(mat.E_MPa), float(mat.nu)
-    h = hm.assemble(mesh, E, nu)
+    h = hm.assemble(mesh, E, nu, cache_dir=cache_dir)
     loads = pressure_loads(variant, plan, options.load_distribution)
     coeffs = kn.half_pressure_coefficients(options.load_distribution, options.n_max)
     S = rc.Surface(mesh)
@@ -190,7 +201,6 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, cache_dir=None) 
 
     fields, stresses = [], []
     # n = 0: axisymmetric part of the pressures; u_x and θ_x held at the bearings
-    fs, _, sn_s, _ = _pressure_parts(h, mesh, loads, coeffs, 0)
     hard, hard_lab = [], []
     for name, rb, b in bearings:
         if b.axial:
@@ -203,56 +213,35 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, cache_dir=None) 
     if not any(lab == "u_x" for _, lab in hard_lab):
         raise SolverError("the supports leave the shaft free to move: axial translation u_x "
                           "(mark one bearing with axial = true)")
-    sol0 = hm.solve(h.K(0), fs, h.reduction(0), hard=np.array(hard))
-    fields.append(HarmonicField(0, sol0.u[:, 0], None))
-    stresses.append((0, S.stress(sol0.u[:, 0], 0, E, nu, _sigma_n(S, mesh, sn_s)), None))
-    reac = {name: np.zeros(5) for name, _, _ in bearings}
-    for (name, lab), lam in zip(hard_lab, sol0.multipliers[:, 0], strict=True):
-        if lab == "u_x":
-            reac[name][0] = -lam
-
-    # n = 1: symmetric and antisymmetric parts coupled by the bearing springs
-    fs, fa, sn_s, sn_a = _pressure_parts(h, mesh, loads, coeffs, 1)
-    K1, T1 = h.K(1), h.reduction(1)
-    K = sp.block_diag([K1, K1], format="csr")
-    T = sp.block_diag([T1, T1], format="csr")
-    z = np.zeros(h.ndof)
-    springs, hard1 = [], []
-    for _, rb, b in bearings:
-        R = np.array([np.concatenate([rb.uy, z]), np.concatenate([z, rb.uy])])
-        if options.rigid_supports:
-            hard1 += list(R)
-        else:
-            springs.append((R, np.asarray(b.K_N_per_mm, dtype=float).reshape(2, 2)))
-        tk = float(b.tilt_stiffness_Nmm_per_rad)
-        if tk > 0:
-            Rt = np.array([np.concatenate([rb.tz, z]), np.concatenate([z, -rb.tz])])
-            springs.append((Rt, tk * np.eye(2)))
-    sol1 = hm.solve(K, np.concatenate([fs, fa]), T, springs=springs,
-                    hard=np.array(hard1) if hard1 else None)
-    u1 = sol1.u[:, 0]
-    us, ua = u1[:h.ndof], u1[h.ndof:]
-    fields.append(HarmonicField(1, us, ua))
-    stresses.append((1, S.stress(us, 1, E, nu, _sigma_n(S, mesh, sn_s)),
-                     S.stress(ua, 1, E, nu, _sigma_n(S, mesh, sn_a))))
-    for k, (name, rb, b) in enumerate(bearings):
-        q = np.array([rb.uy @ us, rb.uy @ ua])
-        if options.rigid_supports:
-            F = -sol1.multipliers[2 * k:2 * k + 2, 0]
-        else:
-            F = -np.asarray(b.K_N_per_mm, dtype=float).reshape(2, 2) @ q
-        reac[name][1:3] = F
-        reac[name][3:5] = q
-
-    # n ≥ 2: the half-seat pressure patches, until no fillet's peak changes any more
-    track = _PeakTracker(S, mesh)
-    track.add(stresses)
-    last: list[float] = []
-    n_used, change = 1, 0.0
-    todo = [n for n in range(2, options.n_max + 1) if coeffs[n] != 0.0] if loads else []
-    done = False
     from concurrent.futures import ThreadPoolExecutor
-    with ThreadPoolExecutor(2) as pool:       # two harmonics at a time (SuperLU frees the GIL)
+    pool = ThreadPoolExecutor(2)              # two harmonics at a time (SuperLU frees the GIL)
+    try:
+        p0, p1 = (_pressure_parts(h, mesh, loads, coeffs, n) for n in (0, 1))
+        job0 = pool.submit(hm.solve, h.K(0), p0[0], h.reduction(0), hard=np.array(hard))
+        job1 = pool.submit(_solve_n1, h, bearings, p1[0], p1[1], options.rigid_supports)
+        sol0, (us, ua, reac1, res1) = job0.result(), job1.result()
+        relres = [sol0.relres, res1]
+        fields.append(HarmonicField(0, sol0.u[:, 0], None))
+        stresses.append((0, S.stress(sol0.u[:, 0], 0, E, nu, _sigma_n(S, mesh, p0[2])), None))
+        reac = {name: np.zeros(5) for name, _, _ in bearings}
+        for (name, lab), lam in zip(hard_lab, sol0.multipliers[:, 0], strict=True):
+            if lab == "u_x":
+                reac[name][0] = -lam
+        fields.append(HarmonicField(1, us, ua))
+        stresses.append((1, S.stress(us, 1, E, nu, _sigma_n(S, mesh, p1[2])),
+                         S.stress(ua, 1, E, nu, _sigma_n(S, mesh, p1[3]))))
+        for name, r in reac1.items():
+            reac[name][1:5] = r
+
+        # n ≥ 2: the half-seat pressure patches, until no fillet's peak changes any more
+        zones = [] if options.converge_all_fillets else \
+            [f["zone_mm"] for f in omitted_features(plan)]
+        track = _PeakTracker(S, mesh, zones)
+        track.add(stresses)
+        last: list[float] = []
+        n_used, change = 1, 0.0
+        todo = [n for n in range(2, options.n_max + 1) if coeffs[n] != 0.0] if loads else []
+        done = False
         for k in range(0, len(todo), 2):
             batch = todo[k:k + 2]
             rhs = [_pressure_parts(h, mesh, loads, coeffs, n) for n in batch]
@@ -260,6 +249,7 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, cache_dir=None) 
                                                     h.reduction(a[0])),
                                  zip(batch, rhs, strict=True)))
             for n, (_, _, sn_s, sn_a), sol in zip(batch, rhs, sols, strict=True):
+                relres.append(sol.relres)
                 fields.append(HarmonicField(n, sol.u[:, 0], sol.u[:, 1]))
                 ss = S.stress(sol.u[:, 0], n, E, nu, _sigma_n(S, mesh, sn_s))
                 sa = S.stress(sol.u[:, 1], n, E, nu, _sigma_n(S, mesh, sn_a))
@@ -272,6 +262,8 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, cache_dir=None) 
                     break
             if done:
                 break
+    finally:
+        pool.shutdown()
     if not done:
         if todo and max(last, default=0.0) >= options.truncation:
             raise SolverError(f"the harmonic series did not converge to {options.truncation:g} "
@@ -279,24 +271,91 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, cache_dir=None) 
     t_all = time.perf_counter() - t0
     secs = {"mesh_seconds": t_mesh, "assembly_seconds": t_asm,
             "solve_seconds": t_all - t_mesh - t_asm, "total_seconds": t_all,
-            "mesh_from_cache": mesh.from_cache}
+            "mesh_from_cache": mesh.from_cache, "relative_residual": max(relres)}
     return AxiSolution(variant, options, plan, mesh, tuple(fields), tuple(loads), tuple(bearings),
                        {k: tuple(float(c) for c in v) for k, v in reac.items()}, S,
-                       tuple(stresses), n_used, change, secs)
+                       tuple(stresses), n_used, change, track.names, secs)
+
+
+def _solve_n1(h, bearings, fs, fa, rigid: bool):
+    """Harmonic n = 1, both parts. The bearings' 2×2 springs C couple the symmetric (y) and
+    antisymmetric (z) parts. With c̄ = (C11 + C22)/2 per bearing, K̃ = K1 + Σ c̄ uyᵀuy (+ the
+    tilt springs, the same in both parts) is factorised ONCE for both parts, and the rest,
+    ΔC = C − c̄ I, is a rank-2-per-bearing term U ΔC Uᵀ solved by the Woodbury identity:
+    x = x0 − A0⁻¹U (I + ΔC UᵀA0⁻¹U)⁻¹ ΔC Uᵀ x0. Rigid supports: the remote points' u_y held in
+    both parts (no coupling). Returns (U_sym, U_anti, {bearing: (F_y, F_z, q_y, q_z)}, the
+    largest relative residual of the coupled system)."""
+    K1, T1 = h.K(1), h.reduction(1)
+    tilt = [(rb.tz[None], np.array([[float(b.tilt_stiffness_Nmm_per_rad)]]))
+            for _, rb, b in bearings if float(b.tilt_stiffness_Nmm_per_rad) > 0]
+    uy = np.array([rb.uy for _, rb, _ in bearings])                       # (nb, ndof)
+    nb = len(bearings)
+    if rigid:
+        sol = hm.solve(K1, np.column_stack([fs, fa]), T1, springs=tilt, hard=uy)
+        us, ua = sol.u[:, 0], sol.u[:, 1]
+        reac = {name: (-sol.multipliers[k, 0], -sol.multipliers[k, 1], 0.0, 0.0)
+                for k, (name, _, _) in enumerate(bearings)}
+        return us, ua, reac, sol.relres
+    C = [np.asarray(b.K_N_per_mm, dtype=float).reshape(2, 2) for _, _, b in bearings]
+    cbar = [0.5 * (c[0, 0] + c[1, 1]) for c in C]
+    iso = [(uy[[k]], np.array([[cbar[k]]])) for k in range(nb)]
+    sol = hm.solve(K1, np.column_stack([fs, fa, *uy]), T1, springs=iso + tilt)
+    x0s, x0a, Z = sol.u[:, 0], sol.u[:, 1], sol.u[:, 2:]
+    G = uy @ Z                                                            # (nb, nb)
+    D = np.zeros((2 * nb, 2 * nb))
+    for k, c in enumerate(C):
+        D[np.ix_([k, nb + k], [k, nb + k])] = c - cbar[k] * np.eye(2)
+    GG = np.zeros((2 * nb, 2 * nb))
+    GG[:nb, :nb] = GG[nb:, nb:] = G
+    w = np.concatenate([uy @ x0s, uy @ x0a])
+    y = np.linalg.solve(np.eye(2 * nb) + D @ GG, D @ w)
+    us, ua = x0s - Z @ y[:nb], x0a - Z @ y[nb:]
+    # the residual of the coupled system, on the reduced dofs (Tᵀ (K x − f))
+    A0 = K1
+    for R, c in iso + tilt:
+        A0 = A0 + sp.csr_matrix(R).T @ sp.csr_matrix(c) @ sp.csr_matrix(R)
+    qs, qa = uy @ us, uy @ ua
+    scale = max(float(np.abs(T1.T @ fs).max()), float(np.abs(T1.T @ fa).max()), 1e-300)
+    rel = 0.0
+    for x, f, part in ((us, fs, 0), (ua, fa, 1)):
+        extra = np.zeros(h.ndof)
+        for k, c in enumerate(C):
+            q = np.array([qs[k], qa[k]])
+            extra += ((c - cbar[k] * np.eye(2)) @ q)[part] * uy[k]
+        r = T1.T @ (A0 @ x + extra - f)
+        rel = max(rel, float(np.abs(r).max()) / scale)
+    if not np.all(np.isfinite(us)) or not np.all(np.isfinite(ua)) or rel > 1e-9:
+        raise SolverError(f"the n = 1 harmonic solve did not converge (relative residual "
+                          f"{rel:.2e})")
+    reac = {}
+    for k, (name, _, _) in enumerate(bearings):
+        q = np.array([qs[k], qa[k]])
+        F = -C[k] @ q
+        reac[name] = (F[0], F[1], q[0], q[1])
+    return us, ua, reac, max(rel, sol.relres)
 
 
 class _PeakTracker:
-    """Running θ-synthesis (1° grid) of the surface stress on every fillet; ``add`` returns the
-    largest change of a fillet's peak von Mises stress relative to the largest fillet peak."""
+    """Running θ-synthesis (1° grid) of the surface stress on the fillets outside ``zones``
+    (x intervals in mm; every fillet when none is outside); ``add`` returns the largest change
+    of such a fillet's peak von Mises stress relative to the largest of their peaks."""
 
-    def __init__(self, surface, mesh):
+    def __init__(self, surface, mesh, zones=()):
         ids = {}
         for i, c in enumerate(mesh.geometry.curves):
             for g in c.groups:
                 if g.startswith("fillet:"):
                     ids.setdefault(g, []).append(i)
-        self.sets = [np.nonzero(np.isin(surface.curve, v) & ~surface.kink)[0]
-                     for v in ids.values()]
+        sets = {g: np.nonzero(np.isin(surface.curve, v) & ~surface.kink)[0]
+                for g, v in ids.items()}
+        x = mesh.xr[0][surface.nodes]
+
+        def clear(nodes) -> bool:
+            return not any(((lo <= x[nodes]) & (x[nodes] <= hi)).any() for lo, hi in zones)
+        keep = ([g for g, nd in sets.items() if nd.size and clear(nd)]
+                or [g for g, nd in sets.items() if nd.size])
+        self.names = tuple(keep)
+        self.sets = [sets[g] for g in keep]
         self.idx = np.concatenate(self.sets) if self.sets else np.zeros(0, dtype=np.int64)
         self.theta = np.radians(np.arange(0.0, 360.0, 1.0))
         self.sum = np.zeros((6, self.idx.size, self.theta.size))

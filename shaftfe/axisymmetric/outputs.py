@@ -13,7 +13,8 @@ import numpy as np
 from shaftfe.axisymmetric import recovery as rc
 from shaftfe.fe.recovery import von_mises
 
-SECTORS = 72
+SECTORS = 36          # 10°: a viewing mesh (the peaks come from the 1° analysis); 72 doubles the
+                      # zlib-compressed write (measured 0.48 → 0.96 s, 8.6 → 17 MB)
 
 
 def revolved_fields(sol, scale: float, sectors: int = SECTORS):

@@ -93,8 +93,11 @@ class AxiResult:
                      "truncation": {"tolerance": self.options.truncation,
                                     "last_change": self.truncation_change,
                                     "criterion": "the last two loaded harmonics each change "
-                                    "every fillet's peak von Mises stress by less than the "
-                                    "tolerance × the largest fillet peak"}},
+                                    "the peak von Mises stress of every fillet outside the "
+                                    "omitted features' zones (or of every fillet) by less "
+                                    "than the tolerance × the largest of those peaks",
+                                    "fillets": list(self.solution.truncation_fillets)
+                                    if self.solution is not None else None}},
             "omitted_features": list(self.omitted),
             "cases": [asdict(c) for c in self.cases],
             "notes": list(self.notes), "run": self.run,
@@ -136,7 +139,9 @@ def _parabola(y0, y1, y2) -> tuple[float, float]:
     return d, float(y1 - 0.25 * (y0 - y2) * d)
 
 
-def _regions(mesh) -> dict[str, list[int]]:
+def regions(mesh) -> dict[str, list[int]]:
+    """Region name -> outline curve ids, named as the 3D path's regions: each face group, a
+    load seat as ``seat:<part>``, a bearing seat as ``seat:bearing:<side>``."""
     out: dict[str, list[int]] = {}
     for i, c in enumerate(mesh.geometry.curves):
         for g in c.groups:
@@ -148,7 +153,7 @@ def _regions(mesh) -> dict[str, list[int]]:
     return out
 
 
-def _excluded(sol: AxiSolution, exclude_mm: float) -> np.ndarray:
+def excluded_nodes(sol: AxiSolution, exclude_mm: float) -> np.ndarray:
     """Surface-node mask: nodes of boundary edges touching a seat end, and nodes within
     ``exclude_mm`` of one."""
     mesh, S = sol.mesh, sol.surface
@@ -174,33 +179,53 @@ def _excluded(sol: AxiSolution, exclude_mm: float) -> np.ndarray:
     return mask
 
 
+def loaded_seat_angles(sol: AxiSolution) -> dict[str, list[float]]:
+    """Region name of each loaded seat -> the angles (°) of the forces pressing on it."""
+    out: dict[str, list[float]] = {}
+    for ld in sol.loads:
+        out.setdefault("seat:" + ld.group.split(":", 1)[1], []).append(ld.angle_deg)
+    return out
+
+
+def seat_edge_band(theta: np.ndarray, angles) -> np.ndarray:
+    """(q,) True where θ (rad) lies within ``SEAT_EDGE_BAND_DEG`` of a half-seat pressure's
+    θ-edge (the force angle ± 90°): a singular line of the 3D path's pressure patch too."""
+    band = np.zeros(theta.size, dtype=bool)
+    deg = np.degrees(theta)
+    for a in angles:
+        for edge in (a + 90.0, a - 90.0):
+            dd = np.abs(np.remainder(deg - edge + 180.0, 360.0) - 180.0)
+            band |= dd <= SEAT_EDGE_BAND_DEG
+    return band
+
+
+def surface_sigma(sol: AxiSolution, idx: np.ndarray, theta: np.ndarray,
+                  shear: np.ndarray = rc.LOCAL_SHEAR) -> np.ndarray:
+    """(6, k, q) surface-recovered stress (surface-local components, ``recovery.LOCAL``) at the
+    surface nodes ``idx`` (indices into ``sol.surface.nodes``) and angles θ (rad)."""
+    parts = [(n, a[:, idx], None if b is None else b[:, idx])
+             for n, a, b in sol.surface_stress]
+    return rc.synthesize(parts, theta, shear)
+
+
 def region_peaks(sol: AxiSolution, omitted=()) -> tuple[AxiPeak, ...]:
     """Peaks per region at REF_RPM (see the module docstring)."""
     mesh, S = sol.mesh, sol.surface
     theta = np.radians(np.arange(0.0, 360.0, THETA_STEP_DEG))
-    excl = _excluded(sol, sol.options.exclude_mm)
-    seat_angles = {}
-    for ld in sol.loads:
-        nm = "seat:" + ld.group.split(":", 1)[1]
-        seat_angles.setdefault(nm, []).append(ld.angle_deg)
+    excl = excluded_nodes(sol, sol.options.exclude_mm)
+    seat_angles = loaded_seat_angles(sol)
     out = []
-    for name, ids in sorted(_regions(mesh).items()):
+    for name, ids in sorted(regions(mesh).items()):
         on = np.isin(S.curve, ids)
         idx = np.nonzero(on & ~excl & ~S.on_axis)[0]
         n_all = int((on & ~S.on_axis).sum())
         if idx.size == 0:
             continue
-        parts = [(n, a[:, idx], None if b is None else b[:, idx])
-                 for n, a, b in sol.surface_stress]
-        sig = rc.synthesize(parts, theta, rc.LOCAL_SHEAR)         # (6, k, q)
+        sig = surface_sigma(sol, idx, theta)                      # (6, k, q)
         vm = von_mises(sig)
         s1 = rc.principal_max_local(sig)
         if name in seat_angles:           # the pressure's θ-edges: singular lines
-            keep = np.ones(theta.size, dtype=bool)
-            for a in seat_angles[name]:
-                for edge in (a + 90.0, a - 90.0):
-                    dd = np.abs(np.remainder(np.degrees(theta) - edge + 180.0, 360.0) - 180.0)
-                    keep &= dd > SEAT_EDGE_BAND_DEG
+            keep = ~seat_edge_band(theta, seat_angles[name])
             vm = np.where(keep[None], vm, -np.inf)
             s1 = np.where(keep[None], s1, -np.inf)
         vpk, vloc, vth, fang = _locate(mesh, S, idx, vm, theta)
@@ -296,6 +321,14 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
              f"[{f['zone_mm'][0]:g}, {f['zone_mm'][1]:g}] mm lie in its zone of influence: "
              "use the 3D path there" for f in omitted]
     notes.append("threads are plain cylinders at their modelled diameter (as in the 3D path)")
+    others = sorted(p.region for p in peaks if p.region.startswith("fillet:")
+                    and p.region not in sol.truncation_fillets)
+    if others:
+        notes.append(f"harmonic series cut at n = {sol.n_used} when the fillets "
+                     f"{', '.join(sol.truncation_fillets)} had converged to "
+                     f"{options.truncation:g}; the peaks of {', '.join(others)} (in the zone of "
+                     "an omitted feature) are not converged in n (AxiOptions("
+                     "converge_all_fillets=True) includes them)")
     run = dict(sol.seconds)
     run["post_seconds"] = time.perf_counter() - t1
     run["total_seconds"] = time.perf_counter() - t0

@@ -48,7 +48,11 @@ def register(sub) -> None:
                    help="average riding speed for the life in km (default 70)")
     p.add_argument("--kf", type=float, default=1.0,
                    help="fatigue strength factor in (0, 1] multiplying the S-N curve (default 1)")
-    p.add_argument("--level", default="default", help="mesh level: " + " | ".join(LEVEL_NAMES))
+    p.add_argument("--model", default="solid",
+                   help="static model: solid (3D P2 tets, default) | axisymmetric (Fourier "
+                   "harmonics on the revolved surface; keyways and the hex socket left out)")
+    p.add_argument("--level", default="default", help="mesh level: " + " | ".join(LEVEL_NAMES)
+                   + " (axisymmetric: coarse | default | fine)")
     p.add_argument("--exclude-mm", type=float, default=0.0,
                    help="exclude also nodes closer than this to a bearing / load patch edge "
                    "from the filtered hot spot (default 0: one element layer, as shaftfe static)")
@@ -125,7 +129,11 @@ def _print_result(run, out, plots) -> None:
     print(f"{variant.name} fatigue: {history.source} ({history.n_samples} samples, "
           f"{history.duration_s:g} s block, rpm {history.rpm.min():.0f}-{history.rpm.max():.0f}, "
           f"file reference {history.rpm_ref:g} rpm)")
-    if ref.from_cache:
+    if args.model == "axisymmetric":
+        print(f"static: axisymmetric, solved in {ref.seconds:.1f} s ({ref.ref_rpm:g} rpm, "
+              f"harmonics n = 0..{ref.options['harmonics'][-1]}, {args.level}; "
+              f"{ref.n_nodes} surface points)")
+    elif ref.from_cache:
         print(f"static: from cache ({ref.seconds:.2f} s; solved at {ref.ref_rpm:g} rpm, "
               f"{ref.n_nodes} nodes, P2 {args.level})")
     else:

@@ -21,6 +21,9 @@ def register(sub) -> None:
                    help="rpm history (default: the bundled loadspectra/rpm.dat)")
     p.add_argument("--engine", default="vm450", help="engine file (default vm450)")
     p.add_argument("--level", default="default", help="mesh level: coarse | default | fine")
+    p.add_argument("--model", default="solid",
+                   help="static model: solid (3D P2 tets, default) | axisymmetric (Fourier "
+                   "harmonics on a meridian mesh; keyways and the hex socket left out)")
     p.add_argument("--rotor-model", default="beam",
                    help="rotor model of the Campbell diagram: beam (default) | solid")
     p.add_argument("--campbell-step", type=float, default=500.0, metavar="RPM",
@@ -53,7 +56,7 @@ def options_from_args(args):
         engine=args.engine, level=args.level, rotor_model=args.rotor_model,
         campbell_step_rpm=args.campbell_step, estimate_error=args.estimate_error,
         cache_dir=args.cache_dir, pictures=not args.no_pictures,
-        seed_load_case=args.seed_load_case)
+        seed_load_case=args.seed_load_case, model=args.model)
 
 
 def run(args) -> int:
@@ -105,7 +108,7 @@ def _print_summary(rep, page) -> None:
     c0 = st["cases"][0]
     print(f"{rep.inputs['variant']}: {rep.inputs['description']}")
     print(f"load case: {st['load_case']}")
-    print(f"static P{st['order']} {st['level']} ({num(st['n_dofs'])} dofs): peak von Mises "
+    print(f"static {st['model_label']} ({num(st['n_dofs'])} dofs): peak von Mises "
           f"{num(c0['peak_von_mises_MPa'], 4)} MPa at {num(c0['rpm'])} rpm ({c0['peak_region']})")
     print(f"fatigue: life {num(hs['life_blocks'], 4)} blocks = {num(hs['life_hours'], 4)} h = "
           f"{num(hs['life_km'], 4)} km; safety factor {num(hs['safety_factor'], 3)} at "

@@ -9,8 +9,7 @@ import math
 
 from shaftfe.errors import InputError
 from shaftfe.solid.levels import LEVEL_NAMES
-
-MODELS = ("solid", "axisymmetric")
+from shaftfe.static import MODELS
 
 
 def register(sub) -> None:

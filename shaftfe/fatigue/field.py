@@ -235,8 +235,10 @@ def write_vtu(ref, ff: FatigueField, path) -> object:
 
     from shaftfe.util.atomic import atomic_path
     quad = ref.cells.shape[1] == 10
-    cells = [("tetra10" if quad else "tetra", np.asarray(ref.cells, dtype=np.int64))]
-    region = [np.zeros(ref.cells.shape[0], dtype=np.int32)]
+    cells, region = [], []
+    if ref.cells.shape[0]:             # none for a surface-only field (axisymmetric model)
+        cells.append(("tetra10" if quad else "tetra", np.asarray(ref.cells, dtype=np.int64)))
+        region.append(np.zeros(ref.cells.shape[0], dtype=np.int32))
     if ref.face_cells.shape[0]:
         cells.append(("triangle6" if quad else "triangle",
                       np.asarray(ref.face_cells, dtype=np.int64)))

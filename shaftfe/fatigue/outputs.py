@@ -40,7 +40,7 @@ def _inputs(job) -> dict:
             "sample_rate_hz": job.sample_rate, "mean_stress": job.mean_stress,
             "equivalent": job.equivalent, "material": job.material,
             "design_life_blocks": job.design_life, "speed_kmh": job.speed_kmh, "kf": job.kf,
-            "level": job.level, "seed_load_case": job.seed_load_case,
+            "level": job.level, "model": job.model, "seed_load_case": job.seed_load_case,
             "load_case": load_case_label(job.seed_load_case), "exclude_mm": job.exclude_mm,
             "supports": "bearing springs (2x2 radial stiffness)"}
 

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from shaftfe.errors import InputError
 from shaftfe.fatigue.kernels import EQUIVALENT_STRESSES, MEAN_STRESS_THEORIES
 from shaftfe.solid.levels import LEVEL_NAMES
+from shaftfe.static import MODELS
 from shaftfe.util.limits import check_exclude_mm
 
 MEAN_STRESS = MEAN_STRESS_THEORIES
@@ -58,6 +59,7 @@ class FatigueJob:
     exclude_mm: float = 0.0                # extra band around patch edges (filtered hot spot)
     seed_load_case: bool = False
     cache_dir: str | None = None
+    model: str = "solid"                   # static model: solid | axisymmetric (MODELS)
 
 
 @dataclass(frozen=True, eq=False)
@@ -91,7 +93,13 @@ def check_job(job: FatigueJob) -> None:
     if job.equivalent not in EQUIVALENT:
         raise InputError("command line", "--equivalent", " | ".join(EQUIVALENT),
                          got=job.equivalent)
-    if job.level not in LEVEL_NAMES:
+    if job.model not in MODELS:
+        raise InputError("command line", "--model", " | ".join(MODELS), got=job.model)
+    if job.model == "axisymmetric":
+        from shaftfe.axisymmetric.mesh import AXI_LEVELS
+        if job.level not in AXI_LEVELS:
+            raise InputError("command line", "--level", " | ".join(AXI_LEVELS), got=job.level)
+    elif job.level not in LEVEL_NAMES:
         raise InputError("command line", "--level", " | ".join(LEVEL_NAMES), got=job.level)
     check_life_settings(job.design_life, job.speed_kmh)
     if not (math.isfinite(job.kf) and 0 < job.kf <= 1):
@@ -176,6 +184,27 @@ def load_inputs(job: FatigueJob) -> FatigueInputs:
     return FatigueInputs(history, load_material(job.material), load_variant(job.variant))
 
 
+def static_reference(variant, job: FatigueJob):
+    """The static solution at its reference speed that fatigue scales: the 3D one from the
+    static cache (solved once when missing), or the axisymmetric one on its revolved surface
+    (``shaftfe.axisymmetric.reference``; solved each time from the cached meridian mesh: a
+    few seconds, no cache of its own)."""
+    if job.model == "axisymmetric":
+        from shaftfe.axisymmetric.model import AxiOptions
+        from shaftfe.axisymmetric.reference import static_reference as axi_reference
+        from shaftfe.axisymmetric.solve import solve_axisymmetric
+        opts = AxiOptions(level=job.level, seed_load_case=job.seed_load_case,
+                          exclude_mm=job.exclude_mm)
+        t0 = time.perf_counter()
+        res = solve_axisymmetric(variant, options=opts, cache_dir=job.cache_dir)
+        return axi_reference(res, time.perf_counter() - t0)
+    from shaftfe.static import cache as static_cache
+    from shaftfe.static.model import StaticOptions
+    extra = {"exclude_mm": job.exclude_mm} if job.exclude_mm > 0 else {}
+    opts = StaticOptions(level=job.level, seed_load_case=job.seed_load_case, **extra)
+    return static_cache.load_or_solve(variant, opts, job.cache_dir)
+
+
 def run_fatigue(job: FatigueJob, inputs: FatigueInputs | None = None,
                 progress=None) -> FatigueRun:
     """Read the inputs (unless given), load or solve the static reference, evaluate every
@@ -184,8 +213,6 @@ def run_fatigue(job: FatigueJob, inputs: FatigueInputs | None = None,
     from contextlib import nullcontext
 
     from shaftfe.fatigue.field import evaluate
-    from shaftfe.static import cache as static_cache
-    from shaftfe.static.model import StaticOptions
 
     def stage(name):
         return progress.stage(name) if progress is not None else nullcontext()
@@ -193,15 +220,14 @@ def run_fatigue(job: FatigueJob, inputs: FatigueInputs | None = None,
         with stage("history"):
             inputs = load_inputs(job)
     history, material, variant = inputs.history, inputs.material, inputs.variant
-    extra = {"exclude_mm": job.exclude_mm} if job.exclude_mm > 0 else {}
-    opts = StaticOptions(level=job.level, seed_load_case=job.seed_load_case, **extra)
     with stage("static"):
-        ref = static_cache.load_or_solve(variant, opts, job.cache_dir)
+        ref = static_reference(variant, job)
     with stage("rainflow + life"):
         t0 = time.perf_counter()
         ff = evaluate(ref, history, material, equivalent=job.equivalent,
                       theory=job.mean_stress, kf=job.kf, design_life_blocks=job.design_life,
                       speed_kmh=job.speed_kmh)
         t_eval = time.perf_counter() - t0
-        level_error = _level_correction(job, ref, ff, history, material)
+        level_error = _level_correction(job, ref, ff, history, material) \
+            if job.model == "solid" else None
     return FatigueRun(job, variant, history, material, ref, ff, t_eval, level_error)

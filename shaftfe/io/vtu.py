@@ -96,19 +96,27 @@ def write_vtu(result, path, rpm: float, *,
 
 def stress_envelope(mesh, vm: np.ndarray, n_slices: int = 120) -> tuple[np.ndarray, np.ndarray]:
     """The largest nodal von Mises of the elements that reach into each of ``n_slices`` equal
-    slices along x: an element long in x counts in every slice it spans, so a slice without a
-    node of its own (a coarse uniform segment) still shows the stress there, not 0."""
+    slices along x (``span_envelope`` over the elements of ``mesh``)."""
     from shaftfe.fe.assembly import element_nodes
     x = np.asarray(mesh.doflocs[0])
     en = element_nodes(mesh)
-    lo, hi = x[en].min(axis=0), x[en].max(axis=0)
-    v = np.asarray(vm)[en].max(axis=0)
-    bins = np.linspace(x.min(), x.max(), n_slices + 1)
+    return span_envelope(x[en].min(axis=0), x[en].max(axis=0), np.asarray(vm)[en].max(axis=0),
+                         (float(x.min()), float(x.max())), n_slices)
+
+
+def span_envelope(lo, hi, v, x_range: tuple[float, float],
+                  n_slices: int = 120) -> tuple[np.ndarray, np.ndarray]:
+    """Slice bins over ``x_range`` and, in each slice, the largest ``v`` of the pieces
+    (elements, outline segments) spanning [lo, hi] in x: a piece long in x counts in every slice
+    it spans, so a slice without a node of its own (a coarse uniform segment) still shows the
+    stress there, not 0."""
+    lo, hi, v = (np.asarray(a, dtype=float) for a in (lo, hi, v))
+    bins = np.linspace(x_range[0], x_range[1], n_slices + 1)
     i0 = np.clip(np.searchsorted(bins, lo, side="right") - 1, 0, n_slices - 1)
     i1 = np.clip(np.searchsorted(bins, hi, side="left") - 1, 0, n_slices - 1)
     i1 = np.maximum(i1, i0)
     count = i1 - i0 + 1
-    rep = np.repeat(np.arange(en.shape[1]), count)
+    rep = np.repeat(np.arange(lo.size), count)
     first = np.repeat(np.cumsum(count) - count, count)
     slices = i0[rep] + (np.arange(rep.size) - first)
     env = np.zeros(n_slices)
@@ -116,8 +124,10 @@ def stress_envelope(mesh, vm: np.ndarray, n_slices: int = 120) -> tuple[np.ndarr
     return bins, env
 
 
-def plot_png(result, path, rpm: float) -> Path:
-    """Deflection line (FE axis and beam) and the surface von Mises envelope along x."""
+def plot_png(result, path, rpm: float, *, envelope=None, model: str = "3D FE") -> Path:
+    """Deflection line (FE axis and beam) and the von Mises envelope along x: of the elements
+    of ``result.mesh`` unless ``envelope`` = (bins, values at ``result.ref_rpm``) is given (the
+    axisymmetric model's surface); ``model`` labels the curves."""
     import io
 
     import matplotlib
@@ -129,9 +139,10 @@ def plot_png(result, path, rpm: float) -> Path:
     case = result.case(rpm)
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
     u = result.axis_u_ref * s
-    a1.plot(result.axis_x, np.hypot(u[:, 1], u[:, 2]) * 1e3, label="3D FE, axis |u_yz|")
-    if case.beam and "x_line_mm" in case.beam:
-        a1.plot(case.beam["x_line_mm"], np.asarray(case.beam["u_line_mm"]) * 1e3, "--",
+    a1.plot(result.axis_x, np.hypot(u[:, 1], u[:, 2]) * 1e3, label=f"{model}, axis |u_yz|")
+    beam = getattr(case, "beam", None)
+    if beam and "x_line_mm" in beam:
+        a1.plot(beam["x_line_mm"], np.asarray(beam["u_line_mm"]) * 1e3, "--",
                 label="beam model")
     merged: dict[float, list] = {}                 # one label per position (gear + CW1)
     for st in case.stations:
@@ -147,9 +158,14 @@ def plot_png(result, path, rpm: float) -> Path:
     a1.set_ylabel("deflection [µm]")
     a1.legend(fontsize=8)
     a1.grid(alpha=0.3)
-    bins, env = stress_envelope(result.mesh.mesh, result.von_mises_ref * s)
+    if envelope is None:
+        bins, env = stress_envelope(result.mesh.mesh, result.von_mises_ref * s)
+        what = "the elements"
+    else:
+        bins, env = envelope[0], np.asarray(envelope[1]) * s
+        what = "the surface"
     a2.step(0.5 * (bins[1:] + bins[:-1]), env, where="mid",
-            label="3D FE, max von Mises of the elements in each slice")
+            label=f"{model}, max von Mises of {what} in each slice")
     a2.set_xlabel("x along the shaft [mm]")
     a2.set_ylabel("von Mises [MPa]")
     a2.grid(alpha=0.3)

@@ -39,6 +39,7 @@ from shaftfe.report.stages import (
     provenance_summary,
     read_inputs,
     static_summary,
+    static_summary_axisymmetric,
 )
 from shaftfe.static.benchmark import benchmark_errors
 from shaftfe.util.paths import repo_relative
@@ -76,6 +77,16 @@ def _static(o: ReportOptions, variant, prog):
     from shaftfe.static import cache as static_cache
     from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
+    if o.model == "axisymmetric":
+        from shaftfe.axisymmetric.model import AxiOptions
+        from shaftfe.axisymmetric.reference import static_reference
+        from shaftfe.axisymmetric.solve import solve_axisymmetric
+        with prog.stage("static (mesh + one solve)"):
+            res = solve_axisymmetric(variant, list(o.design_rpm),
+                                     AxiOptions(level=o.level, seed_load_case=o.seed_load_case),
+                                     cache_dir=o.cache_dir)
+            ref = static_reference(res)                             # the fatigue input
+        return res, ref
     with prog.stage("static (mesh + one solve)"):
         sopts = StaticOptions(level=o.level, seed_load_case=o.seed_load_case)
         res = solve_static(variant, list(o.design_rpm), sopts, cache_dir=o.cache_dir)
@@ -97,10 +108,13 @@ def _fatigue(o: ReportOptions, res, ref, history, material):
     fat, ff = fatigue(ref, history, material, o)
     life = {"theory": o.mean_stress, "design_life_blocks": o.design_life_blocks,
             "speed_kmh": o.speed_kmh}
-    bench = benchmark_errors(o.level) if not o.estimate_error else None
-    corrected = level_corrected_life(ref, ff, history, material, bench, res.n_dofs, **life)
+    # the 3D level's measured error (the axisymmetric levels' errors are in
+    # reports/benchmarks/axisymmetric.md; none corrects the life here)
+    bench = benchmark_errors(o.level) if not o.estimate_error and o.model == "solid" else None
+    corrected = level_corrected_life(ref, ff, history, material, bench,
+                                     getattr(res, "n_dofs", 0), **life)
     scaled = corrected[1] if corrected else None
-    if scaled is None and res.error_estimate:
+    if scaled is None and getattr(res, "error_estimate", None):
         e = res.error_estimate["cases"][0]["peak_von_mises"]
         ours = res.cases[0].peak_von_mises_MPa
         if e and ours and e["extrapolated"]:
@@ -110,28 +124,54 @@ def _fatigue(o: ReportOptions, res, ref, history, material):
     return fat, ff, scaled, bench
 
 
-def _vtu(o: ReportOptions, out: Path, variant, res, ff, rotor_model, cres) -> dict:
+def _axi_vtu(res, ref, ff, vtu: Path, rpm: float) -> list[str]:
+    """The axisymmetric run's VTU: the revolved surface with the static fields at ``rpm`` and
+    the fatigue fields (the same points)."""
+    import numpy as np
+
+    from shaftfe.axisymmetric.recovery import principal_max_local
+    from shaftfe.axisymmetric.reference import surface_displacement, write_surface_vtu
+    s = (rpm / ref.ref_rpm) ** 2
+    stress = np.asarray(ref.stress_ref) * s
+    r = ff.result
+    write_surface_vtu(ref, vtu, {
+        "displacement": surface_displacement(res, ref) * s, "von_mises": ref.von_mises_ref * s,
+        "max_principal": principal_max_local(stress), "stress": np.ascontiguousarray(stress.T),
+        "safety_factor": r.safety_factor, "life_blocks": r.life_blocks,
+        "damage_per_block": r.damage_per_block})
+    return list(ref.face_groups)
+
+
+def _vtu(o: ReportOptions, out: Path, variant, res, ref, ff, rotor_model, cres) -> dict:
     """The run's VTU (static + fatigue fields at the first design speed) and the mode shapes
     (a file of their own); returns the ``files`` block of the report."""
     from shaftfe.io import vtu as export
     rpm_vtu = float(o.design_rpm[0])
     vtu = out / f"{variant.name}.vtu"
     r = ff.result
-    _, regions = export.write_vtu(res, vtu, rpm_vtu, extra_point_data={
-        "safety_factor": r.safety_factor, "life_blocks": r.life_blocks,
-        "damage_per_block": r.damage_per_block})
+    axi = o.model == "axisymmetric"
+    if axi:
+        regions = _axi_vtu(res, ref, ff, vtu, rpm_vtu)
+    else:
+        _, regions = export.write_vtu(res, vtu, rpm_vtu, extra_point_data={
+            "safety_factor": r.safety_factor, "life_blocks": r.life_blocks,
+            "damage_per_block": r.damage_per_block})
     modes_vtu = out / "modes.vtu"
-    modes = beam_mode_fields(rotor_model, cres, res.mesh.mesh.doflocs)
+    modes = beam_mode_fields(rotor_model, cres, ref.xyz if axi else res.mesh.mesh.doflocs)
     if o.rotor_model == "solid":                   # 3D modes on the rotor's own mesh
         from shaftfe.rotordynamics.modes_vtu import write_modes_vtu
         write_modes_vtu(rotor_model, cres, modes_vtu)
+    elif axi:                                      # beam modes on the revolved surface
+        from shaftfe.axisymmetric.reference import write_surface_vtu
+        write_surface_vtu(ref, modes_vtu, modes)
     else:                                          # beam modes on the static mesh
         export.write_fields_vtu(res.mesh.mesh, modes_vtu, modes)
     return {"vtu": vtu.name, "vtu_rpm": rpm_vtu, "regions": regions,
             "figures_dir": "figures", "mode_fields": list(modes),
             "mode_rpm": float(cres.rpm[0]),
-            "mode_note": "mode shapes of the beam rotor model at mode_rpm mapped onto the 3D "
-                         "mesh (rigid cross-sections), largest displacement 1"
+            "mode_note": ("mode shapes of the beam rotor model at mode_rpm mapped onto the "
+                          + ("revolved surface" if axi else "3D mesh")
+                          + " (rigid cross-sections), largest displacement 1")
             if modes else "3D mode shapes of the solid rotor model on its own mesh",
             "modes_vtu": modes_vtu.name}
 
@@ -192,21 +232,22 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     with prog.stage("beam check"):
         beam_out, _ = beam_check(variant)
     res, ref = _static(o, variant, prog)
-    st = static_summary(res, variant)
+    st = (static_summary_axisymmetric if o.model == "axisymmetric" else static_summary)(
+        res, variant)
     with prog.stage("fatigue"):
         fat, ff, scaled, bench = _fatigue(o, res, ref, history, material)
     with prog.stage("Campbell"):
         camp, cres, rotor_model = campbell(variant, engine, o)
     with prog.stage("VTU"):
-        files = _vtu(o, out, variant, res, ff, rotor_model, cres)
+        files = _vtu(o, out, variant, res, ref, ff, rotor_model, cres)
     with prog.stage("3D pictures"):
         pics = _pictures(o, out / files["vtu"], fig_dir, ff, files["vtu_rpm"], st) \
             if o.pictures else []
         for name, title, caption in pics:
             add_fig(name, title, caption)
     with prog.stage("plots"):
-        _plots(o, out, fig_dir, variant, fres, sw, res, ff, history, material, cres, camp,
-               files["vtu_rpm"], add_fig)
+        _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, cres,
+               camp, files["vtu_rpm"], add_fig)
     errs = error_estimates(st, res, fat, scaled, bench, camp, beam_out)
     comps = comparisons(bal, beam_out, st, fat, camp, variant, seedmod)
     notes = tuple(dict.fromkeys(list(res.notes) + list(ref.notes)))
@@ -249,7 +290,7 @@ def _pictures(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> list[tup
     return out
 
 
-def _plots(o, out, fig_dir, variant, fres, sw, res, ff, history, material, cres, camp,
+def _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, cres, camp,
            rpm_vtu, add_fig) -> None:
     from shaftfe.balance import plots
     from shaftfe.fatigue import kernels
@@ -270,9 +311,16 @@ def _plots(o, out, fig_dir, variant, fres, sw, res, ff, history, material, cres,
             f"max|Fx|, max|Fy|, RMS|F|, max|F| [N] against the balancer ratio X2 [%] for crank "
             f"C (X = {100 * sw.X[0]:.1f} %), {sw.rpm:g} rpm, cylinder frame (as the seed's "
             "fig. 58: x across, y along the cylinder axis).")
-    export.plot_png(res, fig_dir / "deflection.png", rpm_vtu)
+    if o.model == "axisymmetric":
+        from shaftfe.axisymmetric.reference import surface_envelope
+        export.plot_png(res, fig_dir / "deflection.png", rpm_vtu,
+                        envelope=surface_envelope(ref), model="axisymmetric FE")
+        what = "axisymmetric FE, bearing springs"
+    else:
+        export.plot_png(res, fig_dir / "deflection.png", rpm_vtu)
+        what = "3D FE and beam, bearing springs"
     add_fig("deflection", "deflection line and stress envelope",
-            f"{rpm_vtu:g} rpm: deflection of the axis [µm] (3D FE and beam, bearing springs) "
+            f"{rpm_vtu:g} rpm: deflection of the axis [µm] ({what}) "
             "and the largest von Mises stress [MPa] in each 1 mm slice along the shaft x [mm].")
     camp_png = plot_campbell(cres, title=f"{variant.name}: Campbell diagram "
                              f"({o.rotor_model} model)")

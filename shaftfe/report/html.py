@@ -169,9 +169,7 @@ def _inputs(r) -> str:
                                f"{num(i['campbell_range_rpm'][1])} rpm, step "
                                f"{num(o.campbell_step_rpm)} rpm, {o.modes} modes, orders "
                                + ", ".join(f"{k:g}×" for k in o.orders)],
-            ["3D mesh", f"P{r.static['order']} {r.static['level']}, {num(r.static['n_nodes'])} "
-                        f"nodes, {num(r.static['n_elements'])} tets, {num(r.static['n_dofs'])} "
-                        "dofs"],
+            _mesh_row(r.static),
             ["supports / load case", f"{r.static['supports']}; {r.static['load_case']}"]]
     s = '<h2 id="inputs">Inputs and what is reconstructed</h2>'
     s += table(["input", "value"], rows)
@@ -225,15 +223,38 @@ def _balancing(r) -> str:
     return s
 
 
+def _mesh_row(st: dict) -> list[str]:
+    if st.get("model") == "axisymmetric":
+        return ["meridian mesh", f"P2 {st['level']}, {num(st['n_nodes'])} nodes, "
+                f"{num(st['n_elements'])} triangles, harmonics n = "
+                f"{', '.join(str(n) for n in st['harmonics'])} ({num(st['n_dofs'])} dofs in "
+                "all)"]
+    return ["3D mesh", f"P{st['order']} {st['level']}, {num(st['n_nodes'])} nodes, "
+            f"{num(st['n_elements'])} tets, {num(st['n_dofs'])} dofs"]
+
+
 def _static(r) -> str:
     st = r.static
-    s = ('<h2 id="static">Static: stress, deflection, reactions</h2>'
-         f"<p>One 3D solve at {num(st['ref_rpm'])} rpm (P{st['order']} {st['level']}, "
-         f"{num(st['n_dofs'])} dofs, solver {_e(st['solver'])}, relative residual "
-         f"{st['relative_residual']:.1e}); every speed is that solution × (n / "
-         f"{num(st['ref_rpm'])})². {_e(st['supports'])}; {_e(st['load_case'])}. Peaks exclude "
-         f"{num(st['n_excluded_nodes'])} singular nodes (one element layer at the edges of the "
-         "bearing couplings and load patches; the unfiltered value is shown beside).</p>")
+    if st.get("model") == "axisymmetric":
+        omitted = ", ".join(f"{f['feature']} (x {num(f['zone_mm'][0])} to "
+                            f"{num(f['zone_mm'][1])} mm)" for f in st["omitted_features"])
+        head = (f"<p>One axisymmetric solve at {num(st['ref_rpm'])} rpm: the shaft as a body "
+                f"of revolution in Fourier harmonics n = 0 … {st['harmonics'][-1]} on a P2 "
+                f"meridian mesh ({st['level']}, {num(st['n_dofs'])} dofs in all, "
+                f"{_e(st['solver'])}, relative residual {st['relative_residual']:.1e}); every "
+                f"speed is that solution × (n / {num(st['ref_rpm'])})². {_e(st['supports'])}; "
+                f"{_e(st['load_case'])}. Left out: {_e(omitted)}; a peak in such a zone needs "
+                "the 3D model. Peaks are located on the surface-recovered stress; the seat "
+                "ends and the pressure edges are left out.</p>")
+    else:
+        head = (f"<p>One 3D solve at {num(st['ref_rpm'])} rpm (P{st['order']} {st['level']}, "
+                f"{num(st['n_dofs'])} dofs, solver {_e(st['solver'])}, relative residual "
+                f"{st['relative_residual']:.1e}); every speed is that solution × (n / "
+                f"{num(st['ref_rpm'])})². {_e(st['supports'])}; {_e(st['load_case'])}. Peaks "
+                f"exclude {num(st['n_excluded_nodes'])} singular nodes (one element layer at "
+                "the edges of the bearing couplings and load patches; the unfiltered value is "
+                "shown beside).</p>")
+    s = '<h2 id="static">Static: stress, deflection, reactions</h2>' + head
     s += '<div class="two">' + figure(r, "von_mises_3d") + figure(r, "displacement_3d") + "</div>"
     s += figure(r, "deflection", narrow=True)
     s += "<h3>Bearing reactions and lives (ISO 281 basic, p = 3)</h3>"
@@ -245,7 +266,9 @@ def _static(r) -> str:
             rows.append([num(c["rpm"]), b["name"], num(b["x_mm"]), num(b["F_radial_N"], 5),
                          num(bb.get("F_N"), 5), num(b["C_N"], 5), num(b["L10h"], 4),
                          num(b["uy_mm"] * 1e3, 4)])
-    s += table(["speed [rpm]", "bearing", "x [mm]", "radial load, 3D FE [N]",
+    s += table(["speed [rpm]", "bearing", "x [mm]",
+                f"radial load, {'axisymmetric' if st.get('model') == 'axisymmetric' else '3D'}"
+                " FE [N]",
                 "radial load, beam [N]", "C [N]", "L10h [h]", "bearing u_y [µm]"], rows,
                numeric={0, 2, 3, 4, 5, 6, 7})
     s += "<h3>Deflections</h3>"
@@ -402,7 +425,10 @@ def _timing(r) -> str:
 def _files(r) -> str:
     f = r.files
     s = ('<h2 id="files">Result files</h2>'
-         f"<p><code>{_e(f['vtu'])}</code>: the 3D mesh with point data <code>displacement</code> "
+         f"<p><code>{_e(f['vtu'])}</code>: "
+         + ("the revolved surface of the axisymmetric model (triangles; no volume)"
+            if r.static.get("model") == "axisymmetric" else "the 3D mesh")
+         + " with point data <code>displacement</code> "
          "[mm], <code>von_mises</code>, <code>max_principal</code>, <code>stress</code> (xx, yy, "
          f"zz, xy, yz, xz) [MPa] at {num(f['vtu_rpm'])} rpm, and <code>safety_factor</code> [-], "
          "<code>life_blocks</code> [blocks], <code>damage_per_block</code> [-] of the fatigue "

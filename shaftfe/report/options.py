@@ -49,6 +49,7 @@ class ReportOptions:
     cache_dir: str | None = None
     pictures: bool = True                 # PyVista renders (off: no VTK import)
     seed_load_case: bool = False          # every part (as every command); True: the seed's F1+Fv2
+    model: str = "solid"                  # static model: solid | axisymmetric (static.MODELS)
 
 
 CAMPBELL_STEP_MIN_RPM = 10.0     # ≤ 2000 speeds up to the rpm ceiling: seconds, not GiB
@@ -56,7 +57,18 @@ CAMPBELL_STEP_MIN_RPM = 10.0     # ≤ 2000 speeds up to the rpm ceiling: second
 
 def check_options(o: ReportOptions) -> None:
     """Cheap checks of everything the user typed (before any computation or output)."""
-    if o.level not in LEVEL_NAMES:
+    from shaftfe.static import MODELS
+    if o.model not in MODELS:
+        raise InputError("command line", "--model", " | ".join(MODELS), got=o.model)
+    if o.model == "axisymmetric":
+        from shaftfe.axisymmetric.mesh import AXI_LEVELS
+        if o.level not in AXI_LEVELS:
+            raise InputError("command line", "--level", " | ".join(AXI_LEVELS), got=o.level)
+        if o.estimate_error:
+            raise InputError("command line", "--estimate-error", "not with --model "
+                             "axisymmetric (its levels' errors are in "
+                             "reports/benchmarks/axisymmetric.md)")
+    elif o.level not in LEVEL_NAMES:
         raise InputError("command line", "--level", " | ".join(LEVEL_NAMES), got=o.level)
     if o.rotor_model not in ROTOR_MODELS:
         raise InputError("command line", "--rotor-model", " | ".join(ROTOR_MODELS),

@@ -139,21 +139,32 @@ def _relative_deflection(case, x_mm: float) -> float:
     return math.hypot(uy, uz)
 
 
+def _relative_deflections(case, variant) -> dict:
+    """Under the gear and at the closest clearance, relative to the bearing line."""
+    rel = {}
+    gear_x = next((a.seat_center_mm for a in variant.attachments if a.name == "gear"), None)
+    if gear_x is not None:
+        rel["gear"] = _relative_deflection(case, gear_x)
+    if variant.clearance_station_x_mm is not None:
+        rel["clearance"] = _relative_deflection(case, variant.clearance_station_x_mm)
+    return rel
+
+
+def _case_common(c, variant) -> dict:
+    """The keys of a speed's static summary that every model has."""
+    from dataclasses import asdict
+    return {"rpm": c.rpm, "bearings": [asdict(b) for b in c.bearings],
+            "stations": [asdict(s) for s in c.stations],
+            "relative_deflection_mm": _relative_deflections(c, variant),
+            "equilibrium_residual": c.equilibrium_residual, "load_sum_N": c.load_sum_N}
+
+
 def static_summary(res, variant) -> dict:
     from dataclasses import asdict
     cases = []
-    gear_x = next((a.seat_center_mm for a in variant.attachments if a.name == "gear"), None)
     for c in res.cases:
-        rel = {}
-        if gear_x is not None:
-            rel["gear"] = _relative_deflection(c, gear_x)
-        if variant.clearance_station_x_mm is not None:
-            rel["clearance"] = _relative_deflection(c, variant.clearance_station_x_mm)
         cases.append({
-            "rpm": c.rpm,
-            "bearings": [asdict(b) for b in c.bearings],
-            "stations": [asdict(s) for s in c.stations],
-            "relative_deflection_mm": rel,
+            **_case_common(c, variant),
             "max_deflection_mm": c.max_deflection_mm,
             "max_deflection_xyz_mm": c.max_deflection_xyz_mm,
             "peaks": [asdict(p) for p in c.peaks],
@@ -162,13 +173,13 @@ def static_summary(res, variant) -> dict:
             "peak_region": _region_of_peak(c),
             "peak_von_mises_unfiltered_MPa": c.peak_von_mises_unfiltered_MPa,
             "peak_von_mises_unfiltered_xyz_mm": c.peak_von_mises_unfiltered_xyz_mm,
-            "equilibrium_residual": c.equilibrium_residual,
-            "load_sum_N": c.load_sum_N,
             "beam_springs": {k: v for k, v in (c.beam or {}).items()
                              if k not in ("x_line_mm", "u_line_mm")},
         })
     d = res.diagnostics
-    return {"level": res.options.level, "order": res.options.order,
+    return {"model": "solid",
+            "model_label": f"3D FE P{res.options.order} {res.options.level}",
+            "level": res.options.level, "order": res.options.order,
             "supports": "rigid" if res.options.rigid_supports else "bearing springs (2×2)",
             "load_case": res.options.load_case,
             "ref_rpm": res.ref_rpm, "n_nodes": res.n_nodes, "n_elements": res.n_elements,
@@ -178,6 +189,49 @@ def static_summary(res, variant) -> dict:
             "mesh_from_cache": getattr(res, "run", {}).get("mesh_from_cache"),
             "n_excluded_nodes": d.get("n_excluded_nodes"),
             "cases": cases, "error_estimate": res.error_estimate, "notes": list(res.notes)}
+
+
+def static_summary_axisymmetric(res, variant) -> dict:
+    """``static_summary`` of an ``AxiResult`` (``shaftfe.axisymmetric.solve``): the same keys;
+    peaks are the located surface peaks (no unfiltered value: the singular points are left out
+    by construction), the whole shaft's peak is the largest of them."""
+    from dataclasses import asdict
+
+    import numpy as np
+    cases = []
+    i_max = int(np.nanargmax(np.hypot(res.axis_u_ref[:, 1], res.axis_u_ref[:, 2])))
+    for c in res.cases:
+        peaks = [{**asdict(p), "von_mises_unfiltered_MPa": None} for p in c.peaks]
+        best = max((p for p in c.peaks if not p.region.startswith("end:")),
+                   key=lambda p: p.von_mises_MPa)
+        cases.append({
+            **_case_common(c, variant),
+            "max_deflection_mm": c.max_axis_deflection_mm,
+            "max_deflection_xyz_mm": (float(res.axis_x[i_max]), 0.0, 0.0),
+            "peaks": peaks,
+            "peak_von_mises_MPa": best.von_mises_MPa,
+            "peak_von_mises_xyz_mm": best.xyz_mm,
+            "peak_region": best.region,
+            "peak_von_mises_unfiltered_MPa": None,
+            "peak_von_mises_unfiltered_xyz_mm": None,
+            "beam_springs": {},
+        })
+    o = res.options
+    level = o.level if isinstance(o.level, str) else o.level.name
+    return {"model": "axisymmetric",
+            "model_label": f"axisymmetric FE (P2, harmonics n ≤ {res.harmonics[-1]}) {level}",
+            "level": level, "order": 2,
+            "supports": "rigid" if o.rigid_supports else "bearing springs (2×2)",
+            "load_case": o.load_case, "ref_rpm": res.ref_rpm, "n_nodes": res.n_nodes,
+            "n_elements": res.n_elements, "n_dofs": 3 * res.n_nodes * len(res.harmonics),
+            "harmonics": list(res.harmonics), "mesh_key": None,
+            "variant_hash": res.variant_hash,
+            "solver": f"SuperLU, one factorisation per harmonic ({len(res.harmonics)})",
+            "relative_residual": res.run.get("relative_residual"), "cond_S": None,
+            "min_quality": None, "mesh_from_cache": res.run.get("mesh_from_cache"),
+            "n_excluded_nodes": sum(p.n_excluded for p in res.cases[0].peaks),
+            "omitted_features": list(res.omitted),
+            "cases": cases, "error_estimate": None, "notes": list(res.notes)}
 
 
 def _region_of_peak(c) -> str:

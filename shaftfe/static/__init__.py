@@ -11,6 +11,10 @@ from __future__ import annotations
 
 import importlib
 
+# The static models every command that takes a static solution accepts as --model: 3D P2
+# tets, or the body of revolution in Fourier harmonics (shaftfe.axisymmetric).
+MODELS = ("solid", "axisymmetric")
+
 _HOME = {
     "REF_RPM": "model", "StaticOptions": "model", "StaticModel": "model",
     "build_model": "model", "load_case_label": "model", "region_nodes": "model",

@@ -22,7 +22,13 @@ import pytest
 
 from shaftfe.axisymmetric import harmonic as hm
 from shaftfe.axisymmetric import recovery as rc
-from shaftfe.axisymmetric.mesh import AxiLevel, Curve, MeridianGeometry, mesh_geometry
+from shaftfe.axisymmetric.mesh import (
+    AxiLevel,
+    Curve,
+    MeridianGeometry,
+    cylinder_geometry,
+    mesh_geometry,
+)
 
 E, NU = 210000.0, 0.3
 # round-off bound: the bar's reduced stiffness has cond ≈ 3.5e3 (n = 0) and 1.1e4 (n = 1) on
@@ -32,11 +38,8 @@ ROUNDOFF = 1e-10
 
 
 def _bar(R=5.0, L=40.0):
-    geo = MeridianGeometry("bar", (Curve((0, 0), (0, R), ("end:left",)),
-                                   Curve((0, R), (L, R), ("surface",)),
-                                   Curve((L, R), (L, 0), ("end:right",)),
-                                   Curve((L, 0), (0, 0), ("axis",))), 2 * R)
-    return mesh_geometry(geo, AxiLevel("t", 0.3, 0.3, 0.3), use_cache=False)
+    return mesh_geometry(cylinder_geometry(R, L), AxiLevel("t", 0.3, 0.3, 0.3),
+                         use_cache=False)
 
 
 def _pins(h, dofs):
@@ -48,7 +51,7 @@ def _pins(h, dofs):
 @pytest.fixture(scope="module")
 def bar():
     m = _bar()
-    return m, hm.assemble(m, E, NU)
+    return m, hm.assemble(m, E, NU, use_cache=False)
 
 
 @pytest.mark.parametrize("case", ["tension", "bending", "torsion"])
@@ -82,6 +85,24 @@ def test_saint_venant_exact(bar, case):
     want_tq = 50.0 if case == "torsion" else 0.0
     assert np.abs(s[0, lat] - want_tt).max() <= ROUNDOFF * scale
     assert np.abs(s[3, lat] - want_tq).max() <= ROUNDOFF * scale
+    # the same surface stresses synthesised over θ and rotated to x y z
+    # (``axisymmetric.reference``, the fatigue input): σ_xx = 100 (tension), σ_xx = k y
+    # (bending), σ_xy = −g z and σ_xz = g y (torsion)
+    from shaftfe.axisymmetric.reference import local_to_cartesian
+    idx = np.nonzero(lat)[0]
+    theta = np.radians(np.arange(0.0, 360.0, 15.0))
+    loc = rc.synthesize([(n, s[:, idx], None)], theta, rc.LOCAL_SHEAR)
+    cart = local_to_cartesian(loc, S.tangent[:, idx], S.sign[idx], theta)
+    rr = m.xr[1][S.nodes[idx]][:, None]
+    y, z = rr * np.cos(theta)[None], rr * np.sin(theta)[None]
+    want = np.zeros_like(cart)
+    if case == "tension":
+        want[0] = 100.0
+    elif case == "bending":
+        want[0] = 10.0 * y
+    else:
+        want[3], want[5] = -10.0 * z, 10.0 * y
+    assert np.abs(cart - want).max() <= ROUNDOFF * scale
 
 
 def test_lame_open_cylinder():
@@ -98,7 +119,7 @@ def test_lame_open_cylinder():
     errs = []
     for ref in (0, 1):
         m = mesh_geometry(geo, AxiLevel("t", 0.1, 0.1, 0.1), ref, use_cache=False)
-        h = hm.assemble(m, E, NU)
+        h = hm.assemble(m, E, NU, use_cache=False)
         f = h.traction_vector(m.group_edges("inner"), lambda x, r: (0, p, 0), 0)
         x0 = int(np.argmin(np.hypot(m.xr[0], m.xr[1] - b)))
         u = hm.solve(h.K(0), f, h.reduction(0), hard=_pins(h, [3 * x0, 3 * x0 + 2])).u[:, 0]
@@ -145,7 +166,7 @@ def _cavity_solution(refine, load):
         Curve((B, 0), (B, B), ("outer",)), Curve((B, B), (-B, B), ("outer",)),
         Curve((-B, B), (-B, 0), ("outer",))), 2 * a)
     m = mesh_geometry(geo, AxiLevel("t", 1.0, 0.25, 0.4), refine, use_cache=False)
-    h = hm.assemble(m, E, NU)
+    h = hm.assemble(m, E, NU, use_cache=False)
     th = np.linspace(0, 2 * np.pi, 32, endpoint=False)
     n = 0 if load == "tension" else 2
 

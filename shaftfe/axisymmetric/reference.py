@@ -1,0 +1,192 @@
+"""The axisymmetric solution as the fatigue stage's input: a ``shaftfe.static.cache.
+StaticReference`` on the revolved free surface.
+
+Points: every outline node off the axis (``recovery.Surface``) at θ = 0°, 1°, …, 359° (the
+peaks' grid, ``solve.THETA_STEP_DEG``: a peak between two samples is missed by at most
+1 − cos(0.5° · n) of a harmonic-n variation, 4e-5 for the n = 1 bending that carries the fillets).
+Stresses: the surface recovery of ``recovery.Surface`` synthesised over θ and rotated from the
+surface frame (t, θ, n) to Cartesian xx yy zz xy yz xz, at the solution's reference speed. Regions
+and the singular-point rule are those of the axisymmetric peaks (``solve.regions``,
+``solve.excluded_nodes`` and, on a loaded seat, the ± ``SEAT_EDGE_BAND_DEG`` band around the
+pressure's θ-edges), so ``shaftfe fatigue --model axisymmetric`` finds its hot spot where
+``shaftfe static --model axisymmetric`` reports its peaks. Cells: the revolved outline as
+linear triangles (each P2 outline edge split at its mid node, two per sector), grouped by region
+for the VTU; the volume is not stored (fatigue starts at the surface), and the points on the
+axis (the centres of the end faces) are left out, so the end faces show a pinhole.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from shaftfe.axisymmetric.solve import (
+    THETA_STEP_DEG,
+    excluded_nodes,
+    loaded_seat_angles,
+    regions,
+    seat_edge_band,
+    surface_sigma,
+)
+
+
+def local_to_cartesian(s: np.ndarray, tangent: np.ndarray, sign: np.ndarray,
+                       theta: np.ndarray) -> np.ndarray:
+    """(6, k, q) surface-local stresses (tt, θθ, nn, tθ, θn, nt) at nodes with meridian tangent
+    (2, k) = (t_x, t_r) and outward normal sign (k,) → Cartesian (6, k, q) in the order xx yy zz
+    xy yz xz. Basis at angle θ: t = (t_x, t_r cos θ, t_r sin θ), e_θ = (0, −sin θ, cos θ),
+    n = (n_x, n_r cos θ, n_r sin θ) with (n_x, n_r) = sign · (t_r, −t_x) (``recovery.
+    cyl_to_local``); σ_ij = Σ_ab σ_ab a_i b_j."""
+    tx, tr = tangent[0][:, None], tangent[1][:, None]
+    nx, nr = sign[:, None] * tr, -sign[:, None] * tx
+    c, sn = np.cos(theta)[None], np.sin(theta)[None]
+    one = np.ones_like(tx * c)
+    B = np.stack([np.stack([tx * one, tr * c, tr * sn], -1),          # t
+                  np.stack([0 * one, -sn * one, c * one], -1),         # e_θ
+                  np.stack([nx * one, nr * c, nr * sn], -1)], -2)      # n   (k, q, 3, 3)
+    tt, qq, nn, tq, qn, nt = s
+    L = np.stack([np.stack([tt, tq, nt], -1), np.stack([tq, qq, qn], -1),
+                  np.stack([nt, qn, nn], -1)], -2)                     # (k, q, 3, 3)
+    C = np.einsum("kqai,kqab,kqbj->kqij", B, L, B)
+    return np.stack([C[..., 0, 0], C[..., 1, 1], C[..., 2, 2], C[..., 0, 1], C[..., 1, 2],
+                     C[..., 0, 2]])
+
+
+def _triangles(S, keep: np.ndarray, q: int) -> tuple[np.ndarray, np.ndarray]:
+    """Linear triangles of the revolved outline over the points (k kept nodes × q angles,
+    point = j · q + i) and the outline curve of each."""
+    pos = -np.ones(S.nodes.size, dtype=np.int64)
+    pos[keep] = np.arange(keep.size)
+    loc = np.searchsorted(S.nodes, S.e)                     # (3, m): ends 0, 1 and mid 2
+    segs = np.concatenate([loc[[0, 2]], loc[[2, 1]]], axis=1)
+    curve = np.tile(S.mesh.edge_curve[S.edge_ids], 2)
+    a, b = pos[segs[0]], pos[segs[1]]
+    ok = (a >= 0) & (b >= 0)
+    a, b, curve = a[ok], b[ok], curve[ok]
+    i = np.arange(q)
+    i2 = (i + 1) % q
+    A0, A1 = a[:, None] * q + i, a[:, None] * q + i2
+    B0, B1 = b[:, None] * q + i, b[:, None] * q + i2
+    tri = np.concatenate([np.stack([A0, B0, B1], -1).reshape(-1, 3),
+                          np.stack([A0, B1, A1], -1).reshape(-1, 3)])
+    cur = np.concatenate([np.repeat(curve, q), np.repeat(curve, q)])
+    return tri, cur
+
+
+def static_reference(res, seconds: float | None = None):
+    """The ``StaticReference`` (see the module docstring) of an ``AxiResult`` at its
+    reference speed."""
+    from shaftfe.static.cache import StaticReference
+    t0 = time.perf_counter()
+    sol = res.solution
+    mesh, S = sol.mesh, sol.surface
+    keep = np.nonzero(~S.on_axis)[0]
+    theta = np.radians(np.arange(0.0, 360.0, THETA_STEP_DEG))
+    q = theta.size
+    sig = local_to_cartesian(surface_sigma(sol, keep, theta), S.tangent[:, keep],
+                             S.sign[keep], theta)
+    stress = sig.reshape(6, -1)                                     # point = j · q + i
+    x, r = mesh.xr[:, S.nodes[keep]]
+    xyz = np.stack([np.repeat(x, q), (r[:, None] * np.cos(theta)).ravel(),
+                    (r[:, None] * np.sin(theta)).ravel()])
+    node_excl = excluded_nodes(sol, sol.options.exclude_mm)[keep]
+    excl = np.repeat(node_excl, q)
+    seat_angles = loaded_seat_angles(sol)
+    reg = {}
+    curve_region = {}
+    for name, ids in sorted(regions(mesh).items()):
+        on = np.nonzero(np.isin(S.curve[keep], ids))[0]
+        if on.size == 0:
+            continue
+        pts = (on[:, None] * q + np.arange(q)).ravel()
+        reg[name] = pts
+        if name in seat_angles:
+            band = seat_edge_band(theta, seat_angles[name])
+            excl[(on[:, None] * q + np.nonzero(band)[0]).ravel()] = True
+        for c in ids:
+            curve_region.setdefault(c, name)
+    tri, cur = _triangles(S, keep, q)
+    names = tuple(reg)
+    lookup = -np.ones(len(mesh.geometry.curves), dtype=np.int64)
+    for c, name in curve_region.items():
+        lookup[c] = names.index(name)
+    gid = lookup[cur]
+    ok = gid >= 0
+    from shaftfe.fe.recovery import von_mises
+    vm = von_mises(stress)
+    o = res.options
+    return StaticReference(
+        variant=res.variant, variant_hash=res.variant_hash,
+        options={"model": "axisymmetric", "level": o.level if isinstance(o.level, str)
+                 else o.level.name, "refine": o.refine, "seed_load_case": o.seed_load_case,
+                 "exclude_mm": o.exclude_mm, "harmonics": list(res.harmonics)},
+        ref_rpm=float(res.ref_rpm), mesh_key="", key="", stress_ref=stress,
+        von_mises_ref=vm, xyz=xyz, excluded=np.flatnonzero(excl), regions=reg,
+        cells=np.zeros((0, 4), dtype=np.int64), face_cells=tri[ok],
+        face_group=gid[ok], face_groups=names, n_elements=int(res.n_elements),
+        solve_seconds=float(res.run.get("total_seconds", 0.0)), from_cache=False,
+        seconds=float(seconds if seconds is not None else 0.0)
+        + time.perf_counter() - t0,
+        notes=(*res.notes, f"axisymmetric model: fatigue on the revolved surface "
+               f"({keep.size} outline nodes × {q} angles), surface-recovered stresses"),
+        relative_residual=res.run.get("relative_residual"))
+
+
+def surface_displacement(res, ref) -> np.ndarray:
+    """(n, 3) Cartesian displacement in mm at the points of ``ref`` (= ``static_reference(res)``)
+    at the reference speed: each harmonic's U_x, U_r, U_θ at the outline nodes with its trig
+    factors (``kernels``: U_x, U_r ∝ cos nθ, U_θ ∝ sin nθ in the symmetric part, every
+    component × 1 for n = 0; sin nθ and −cos nθ in the antisymmetric part), rotated to y, z."""
+    sol = res.solution
+    S = sol.surface
+    keep = np.nonzero(~S.on_axis)[0]
+    q = ref.n_nodes // keep.size
+    theta = np.radians(np.arange(q) * (360.0 / q))
+    nodes = S.nodes[keep]
+    ux, ur, ut = (np.zeros((keep.size, q)) for _ in range(3))
+    for h in sol.harmonics:
+        c, s = np.cos(h.n * theta)[None], np.sin(h.n * theta)[None]
+        U = h.sym.reshape(-1, 3)[nodes]
+        ux += U[:, [0]] * c
+        ur += U[:, [1]] * c
+        ut += U[:, [2]] * (s if h.n else 1.0)        # n = 0: torsion, u_θ = U_θ
+        if h.anti is not None:
+            V = h.anti.reshape(-1, 3)[nodes]
+            ux += V[:, [0]] * s
+            ur += V[:, [1]] * s
+            ut -= V[:, [2]] * c
+    c, s = np.cos(theta)[None], np.sin(theta)[None]
+    return np.stack([ux.ravel(), (ur * c - ut * s).ravel(), (ur * s + ut * c).ravel()], -1)
+
+
+def surface_envelope(ref, n_slices: int = 120) -> tuple[np.ndarray, np.ndarray]:
+    """The von Mises envelope along x of the revolved surface at the reference speed: the
+    largest value of the triangles spanning each slice (``io.vtu.span_envelope``)."""
+    from shaftfe.io.vtu import span_envelope
+    x = ref.xyz[0][ref.face_cells]
+    v = ref.von_mises_ref[ref.face_cells].max(axis=1)
+    return span_envelope(x.min(axis=1), x.max(axis=1), v,
+                         (float(ref.xyz[0].min()), float(ref.xyz[0].max())), n_slices)
+
+
+def write_surface_vtu(ref, path, point_data: dict):
+    """The revolved surface of ``ref`` (triangles, cell data ``region`` = index + 1 into
+    ``ref.face_groups``) with the given point fields; written atomically. Returns the path."""
+    import meshio
+
+    from shaftfe.util.atomic import atomic_path
+    n = ref.n_nodes
+    data = {}
+    for name, arr in point_data.items():
+        a = np.asarray(arr)
+        a = a if a.dtype == np.float32 else a.astype(float)
+        if a.shape[:1] != (n,):
+            raise ValueError(f"point field {name!r}: shape {a.shape}, needs ({n}, ...)")
+        data[name] = a
+    mesh = meshio.Mesh(np.ascontiguousarray(ref.xyz.T), [("triangle", ref.face_cells)],
+                       point_data=data,
+                       cell_data={"region": [np.asarray(ref.face_group, dtype=np.int32) + 1]})
+    with atomic_path(path) as tmp:
+        meshio.write(tmp, mesh, file_format="vtu")
+    return path
