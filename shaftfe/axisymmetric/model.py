@@ -13,6 +13,12 @@ Bearings (``fe.supports``): the RBE3 remote point at the seat-band centre, radia
 it couples through K12/K21; tilt spring if given; u_x held at the axial bearing and θ_x at the
 bearings of ``hold_twist`` (n = 0); ``rigid_supports``: u_y = u_z = 0 at the remote points.
 
+Spin softening (``AxiOptions.spin_softening``, off by default): in the co-rotating frame each
+attachment's centrifugal force is m ω² (e + u), u its seat's rigid translation; the part
+m ω² u is a negative spring −m ω² on the seat's remote point (u_y, u_z: both n = 1 parts, the
+same RBE3 rows as a bearing; the tilt of the part is left out). The response is then not ∝ ω²:
+a solve serves one speed only.
+
 Truncation (``AxiOptions.truncation``): harmonics are added in order until the two last loaded
 ones each change the stress on every fillet and shoulder by less than ``truncation`` × the
 largest von Mises stress there (at most ``n_max``). Their series decays geometrically with n
@@ -61,6 +67,9 @@ class AxiOptions:
     # outline leaves out (their peaks are not valid anyway; "use the 3D path there"),
     # True = every fillet (up to n ≈ 23 on x2_57 instead of n = 3)
     converge_all_fillets: bool = False
+    # the attachments' m ω² u in the co-rotating frame (see the module docstring); a solve
+    # then serves one speed
+    spin_softening: bool = False
     n_max: int = N_MAX
     exclude_mm: float = 0.0
 
@@ -89,7 +98,7 @@ class SeatLoad:
     name: str
     group: str
     angle_deg: float
-    force_N: float          # at REF_RPM
+    force_N: float          # at the solve's speed
     p0_MPa: float
     radius_mm: float
 
@@ -104,7 +113,8 @@ class HarmonicField:
 
 @dataclass(frozen=True, eq=False)
 class AxiSolution:
-    """The solved model at REF_RPM (frozen; arrays read-only by convention)."""
+    """The solved model at ``rpm`` (REF_RPM unless spin softening asks for another speed;
+    frozen, arrays read-only by convention)."""
     variant: object
     options: AxiOptions
     plan: object                       # solid.plan.Solid
@@ -119,15 +129,18 @@ class AxiSolution:
     truncation_change: float           # the last loaded harmonic's change, relative
     truncation_fillets: tuple          # the fillets the truncation criterion follows
     seconds: dict                      # timings, mesh_from_cache, largest relative_residual
+    rpm: float = REF_RPM               # the speed of the loads (and of the spin softening)
+    attachment_motion: dict = field(default_factory=dict)   # name -> (q_y, q_z) mm, when
+    softening_N_per_mm: dict = field(default_factory=dict)  # spin softening: name -> m ω²
 
 
-def pressure_loads(variant, sol, distribution: str) -> list[SeatLoad]:
-    """Each loaded attachment's half-seat pressure at REF_RPM on its seat of the plan ``sol``."""
+def pressure_loads(variant, sol, distribution: str, rpm: float = REF_RPM) -> list[SeatLoad]:
+    """Each loaded attachment's half-seat pressure at ``rpm`` on its seat of the plan ``sol``."""
     seats = {s.name: s for s in sol.seats}
     out = []
     per = kn.force_per_p0(distribution)
     for a in variant.attachments:
-        F = a.force_N(REF_RPM)
+        F = a.force_N(rpm)
         if F == 0:
             continue
         st = seats[f"load:{a.name}"]
@@ -177,8 +190,10 @@ def _sigma_n(surface, mesh, by_group: dict) -> np.ndarray:
     return out
 
 
-def solve_model(variant, options: AxiOptions = AxiOptions(), *, cache_dir=None) -> AxiSolution:
-    """Mesh, assemble and solve every harmonic the loads need (see the module docstring)."""
+def solve_model(variant, options: AxiOptions = AxiOptions(), *, rpm: float = REF_RPM,
+                cache_dir=None) -> AxiSolution:
+    """Mesh, assemble and solve every harmonic the loads at ``rpm`` need (see the module
+    docstring)."""
     t0 = time.perf_counter()
     check_options(options)
     if options.seed_load_case:
@@ -192,7 +207,11 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, cache_dir=None) 
     mat = variant.material
     E, nu = float(mat.E_MPa), float(mat.nu)
     h = hm.assemble(mesh, E, nu, cache_dir=cache_dir)
-    loads = pressure_loads(variant, plan, options.load_distribution)
+    loads = pressure_loads(variant, plan, options.load_distribution, rpm)
+    omega2 = (rpm * 2.0 * math.pi / 60.0) ** 2
+    soft = [(a.name, hm.rbe3(h, mesh.group_edges(f"load:{a.name}"), a.seat_center_mm).uy,
+             a.mass_kg * omega2 * 1e-3)                       # kg/s² = N/m → N/mm
+            for a in variant.attachments if options.spin_softening and a.mass_kg > 0]
     coeffs = kn.half_pressure_coefficients(options.load_distribution, options.n_max)
     S = rc.Surface(mesh)
     bearings = [(b.name, hm.rbe3(h, mesh.group_edges(f"bearing:{b.name}"), b.x_center_mm), b)
@@ -218,7 +237,8 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, cache_dir=None) 
     try:
         p0, p1 = (_pressure_parts(h, mesh, loads, coeffs, n) for n in (0, 1))
         job0 = pool.submit(hm.solve, h.K(0), p0[0], h.reduction(0), hard=np.array(hard))
-        job1 = pool.submit(_solve_n1, h, bearings, p1[0], p1[1], options.rigid_supports)
+        job1 = pool.submit(_solve_n1, h, bearings, p1[0], p1[1], options.rigid_supports,
+                           [(row, k) for _, row, k in soft])
         sol0, (us, ua, reac1, res1) = job0.result(), job1.result()
         relres = [sol0.relres, res1]
         fields.append(HarmonicField(0, sol0.u[:, 0], None))
@@ -272,58 +292,67 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, cache_dir=None) 
     secs = {"mesh_seconds": t_mesh, "assembly_seconds": t_asm,
             "solve_seconds": t_all - t_mesh - t_asm, "total_seconds": t_all,
             "mesh_from_cache": mesh.from_cache, "relative_residual": max(relres)}
+    motion = {name: (float(row @ us), float(row @ ua)) for name, row, _ in soft}
     return AxiSolution(variant, options, plan, mesh, tuple(fields), tuple(loads), tuple(bearings),
                        {k: tuple(float(c) for c in v) for k, v in reac.items()}, S,
-                       tuple(stresses), n_used, change, track.names, secs)
+                       tuple(stresses), n_used, change, track.names, secs, float(rpm), motion,
+                       {name: float(k) for name, _, k in soft})
 
 
-def _solve_n1(h, bearings, fs, fa, rigid: bool):
+def _solve_n1(h, bearings, fs, fa, rigid: bool, soft=()):
     """Harmonic n = 1, both parts. The bearings' 2×2 springs C couple the symmetric (y) and
     antisymmetric (z) parts. With c̄ = (C11 + C22)/2 per bearing, K̃ = K1 + Σ c̄ uyᵀuy (+ the
     tilt springs, the same in both parts) is factorised ONCE for both parts, and the rest,
     ΔC = C − c̄ I, is a rank-2-per-bearing term U ΔC Uᵀ solved by the Woodbury identity:
-    x = x0 − A0⁻¹U (I + ΔC UᵀA0⁻¹U)⁻¹ ΔC Uᵀ x0. Rigid supports: the remote points' u_y held in
-    both parts (no coupling). Returns (U_sym, U_anti, {bearing: (F_y, F_z, q_y, q_z)}, the
-    largest relative residual of the coupled system)."""
+    x = x0 − A0⁻¹U (I + ΔC UᵀA0⁻¹U)⁻¹ ΔC Uᵀ x0. ``soft``: (u_y row, m ω²) of each attachment's
+    seat, a negative isotropic spring −m ω² I in the same low-rank term. Rigid supports: the
+    remote points' u_y held in both parts (no coupling), the softening as springs. Returns
+    (U_sym, U_anti, {bearing: (F_y, F_z, q_y, q_z)}, the largest relative residual of the
+    coupled system)."""
     K1, T1 = h.K(1), h.reduction(1)
     tilt = [(rb.tz[None], np.array([[float(b.tilt_stiffness_Nmm_per_rad)]]))
             for _, rb, b in bearings if float(b.tilt_stiffness_Nmm_per_rad) > 0]
     uy = np.array([rb.uy for _, rb, _ in bearings])                       # (nb, ndof)
-    nb = len(bearings)
     if rigid:
-        sol = hm.solve(K1, np.column_stack([fs, fa]), T1, springs=tilt, hard=uy)
+        neg = [(row[None], np.array([[-k]])) for row, k in soft]
+        sol = hm.solve(K1, np.column_stack([fs, fa]), T1, springs=tilt + neg, hard=uy)
         us, ua = sol.u[:, 0], sol.u[:, 1]
         reac = {name: (-sol.multipliers[k, 0], -sol.multipliers[k, 1], 0.0, 0.0)
                 for k, (name, _, _) in enumerate(bearings)}
         return us, ua, reac, sol.relres
     C = [np.asarray(b.K_N_per_mm, dtype=float).reshape(2, 2) for _, _, b in bearings]
     cbar = [0.5 * (c[0, 0] + c[1, 1]) for c in C]
-    iso = [(uy[[k]], np.array([[cbar[k]]])) for k in range(nb)]
-    sol = hm.solve(K1, np.column_stack([fs, fa, *uy]), T1, springs=iso + tilt)
+    iso = [(uy[[k]], np.array([[cbar[k]]])) for k in range(len(C))]
+    # the low-rank items: each a row and its 2×2 stiffness on (symmetric, antisymmetric)
+    rows = np.array([*uy, *(row for row, _ in soft)])                   # (m, ndof)
+    blocks = [c - cb * np.eye(2) for c, cb in zip(C, cbar, strict=True)]
+    blocks += [-k * np.eye(2) for _, k in soft]
+    m = len(blocks)
+    sol = hm.solve(K1, np.column_stack([fs, fa, *rows]), T1, springs=iso + tilt)
     x0s, x0a, Z = sol.u[:, 0], sol.u[:, 1], sol.u[:, 2:]
-    G = uy @ Z                                                            # (nb, nb)
-    D = np.zeros((2 * nb, 2 * nb))
-    for k, c in enumerate(C):
-        D[np.ix_([k, nb + k], [k, nb + k])] = c - cbar[k] * np.eye(2)
-    GG = np.zeros((2 * nb, 2 * nb))
-    GG[:nb, :nb] = GG[nb:, nb:] = G
-    w = np.concatenate([uy @ x0s, uy @ x0a])
-    y = np.linalg.solve(np.eye(2 * nb) + D @ GG, D @ w)
-    us, ua = x0s - Z @ y[:nb], x0a - Z @ y[nb:]
-    # the residual of the coupled system, on the reduced dofs (Tᵀ (K x − f))
+    G = rows @ Z                                                          # (m, m)
+    D = np.zeros((2 * m, 2 * m))
+    for k, c in enumerate(blocks):
+        D[np.ix_([k, m + k], [k, m + k])] = c
+    GG = np.zeros((2 * m, 2 * m))
+    GG[:m, :m] = GG[m:, m:] = G
+    w = np.concatenate([rows @ x0s, rows @ x0a])
+    y = np.linalg.solve(np.eye(2 * m) + D @ GG, D @ w)
+    us, ua = x0s - Z @ y[:m], x0a - Z @ y[m:]
+    # the residual of the coupled system on the reduced dofs, Tᵀ (K x − f)
     A0 = K1
     for R, c in iso + tilt:
         A0 = A0 + sp.csr_matrix(R).T @ sp.csr_matrix(c) @ sp.csr_matrix(R)
-    qs, qa = uy @ us, uy @ ua
-    scale = max(float(np.abs(T1.T @ fs).max()), float(np.abs(T1.T @ fa).max()), 1e-300)
+    qs, qa = rows @ us, rows @ ua
+    Ar = T1.T @ A0 @ T1
     rel = 0.0
     for x, f, part in ((us, fs, 0), (ua, fa, 1)):
         extra = np.zeros(h.ndof)
-        for k, c in enumerate(C):
-            q = np.array([qs[k], qa[k]])
-            extra += ((c - cbar[k] * np.eye(2)) @ q)[part] * uy[k]
+        for k, c in enumerate(blocks):
+            extra += (c @ np.array([qs[k], qa[k]]))[part] * rows[k]
         r = T1.T @ (A0 @ x + extra - f)
-        rel = max(rel, float(np.abs(r).max()) / scale)
+        # normwise backward error against the factorised part (the low-rank part is small)
+        rel = max(rel, hm.backward_error(Ar, x, T1.T @ f, r))
     if not np.all(np.isfinite(us)) or not np.all(np.isfinite(ua)) or rel > 1e-9:
         raise SolverError(f"the n = 1 harmonic solve did not converge (relative residual "
                           f"{rel:.2e})")

@@ -71,7 +71,7 @@ class AxiResult:
     omitted: tuple[dict, ...]
     cases: tuple[AxiCase, ...]
     axis_x: np.ndarray = field(repr=False)
-    axis_u_ref: np.ndarray = field(repr=False)       # (n, 3) at REF_RPM
+    axis_u_ref: np.ndarray = field(repr=False)       # (n, 3) at ref_rpm
     solution: AxiSolution | None = field(default=None, repr=False)
     notes: tuple[str, ...] = ()
     run: dict = field(default_factory=dict)
@@ -272,11 +272,17 @@ def _locate(mesh, S, idx, val, theta):
 
 def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(), *,
                        cache_dir=None) -> AxiResult:
-    """Solve once at REF_RPM and report every rpm in ``rpm``: results × (rpm / REF_RPM)²."""
+    """Solve once at REF_RPM and report every rpm in ``rpm``: results × (rpm / REF_RPM)².
+    With ``options.spin_softening`` the response is not ∝ rpm²: one speed, solved at it."""
+    from shaftfe.errors import InputError
     from shaftfe.static.solve import _check_rpms
     t0 = time.perf_counter()
     rpms = _check_rpms(rpm)
-    sol = solve_model(variant, options, cache_dir=cache_dir)
+    if options.spin_softening and len(rpms) != 1:
+        raise InputError("--rpm", "rpm", "one speed with spin softening (the response is not "
+                         "∝ rpm²: one solve per speed)", got=rpm)
+    ref_rpm = rpms[0] if options.spin_softening else REF_RPM
+    sol = solve_model(variant, options, rpm=ref_rpm, cache_dir=cache_dir)
     v = sol.variant
     t1 = time.perf_counter()
     omitted = tuple(omitted_features(sol.plan))
@@ -293,12 +299,14 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
     for ld in sol.loads:
         a = math.radians(ld.angle_deg)
         load_sum += ld.force_N * np.array([0.0, math.cos(a), math.sin(a)])
+    for name, (qy, qz) in sol.attachment_motion.items():     # spin softening: m ω² u
+        load_sum += sol.softening_N_per_mm[name] * np.array([0.0, qy, qz])
     reac_sum = sum((np.array(r[:3]) for r in sol.reactions.values()), np.zeros(3))
     scale_f = max(float(np.linalg.norm(load_sum)), 1e-300)
     eq = float(np.linalg.norm(load_sum + reac_sum) / scale_f)
     cases = []
     for r in rpms:
-        s = (r / REF_RPM) ** 2
+        s = (r / ref_rpm) ** 2
         brs = []
         for name, rb, b in sol.bearings:
             Fx, Fy, Fz, qy, qz = sol.reactions[name]
@@ -332,7 +340,10 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
     run = dict(sol.seconds)
     run["post_seconds"] = time.perf_counter() - t1
     run["total_seconds"] = time.perf_counter() - t0
-    return AxiResult(v.name, v.content_hash, options, REF_RPM, sol.mesh.n_nodes,
+    if options.spin_softening:
+        notes.append(f"spin softening included: each attachment's m ω² u at {ref_rpm:g} rpm "
+                     "(its seat's translation; its tilt left out)")
+    return AxiResult(v.name, v.content_hash, options, ref_rpm, sol.mesh.n_nodes,
                      sol.mesh.n_elements, tuple(h.n for h in sol.harmonics),
                      sol.truncation_change, omitted, tuple(cases), ax_x, ax_u, sol,
                      tuple(notes), run)

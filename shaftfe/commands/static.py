@@ -34,6 +34,9 @@ def register(sub) -> None:
                    help="pressure on the pressed half seat: uniform | cosine (default uniform)")
     p.add_argument("--body-force", action="store_true",
                    help="add the shaft's own centrifugal body force (off by default)")
+    p.add_argument("--spin-softening", action="store_true",
+                   help="with --model axisymmetric: add each part's m ω² u (the deflected "
+                   "part's centrifugal force in the co-rotating frame); one --rpm per run")
     p.add_argument("--seed-load-case", action="store_true",
                    help="load only the parts the seed loaded (gear, counterweights 1 and 2)")
     p.add_argument("--solver", default="auto",
@@ -72,6 +75,9 @@ def run(args) -> int:
                          got=args.solver)
 
     from shaftfe.model.loader import load_variant
+    if args.spin_softening and args.model != "axisymmetric":
+        raise InputError("--spin-softening", "--spin-softening", "with --model axisymmetric "
+                         "(the 3D path does not include it yet)")
     if args.model == "axisymmetric":
         return _run_axisymmetric(args, rpms, load_variant(args.variant))
     from shaftfe.static import cache as static_cache
@@ -119,7 +125,8 @@ def _run_axisymmetric(args, rpms, variant) -> int:
                              "no body force; the reference tables give its error)")
     opts = AxiOptions(level=args.level, rigid_supports=args.rigid_supports,
                       load_distribution=args.load_distribution,
-                      seed_load_case=args.seed_load_case, exclude_mm=args.exclude_mm)
+                      seed_load_case=args.seed_load_case, exclude_mm=args.exclude_mm,
+                      spin_softening=args.spin_softening)
     out = Path(args.out) if args.out else Path("reports") / variant.name / "static"
     with staged_dir(out) as stage:             # both files or none
         res = solve_axisymmetric(variant, rpms, opts)

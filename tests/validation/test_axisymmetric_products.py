@@ -243,3 +243,69 @@ def test_report_axisymmetric(tmp_path, cache, monkeypatch):
     html = (out / "index.html").read_text()
     assert "axisymmetric" in html and "revolved surface" in html
     assert math.isfinite(s["fatigue"]["hot_spot"]["safety_factor"])
+
+
+def _mass_on_springs(k: float):
+    """Ø20 × 100 steel shaft on two isotropic springs k at x = 10 and 90, one 1 kg part at
+    mid-span with e = 2 mm: the classic mass on springs, the shaft a third spring in series."""
+    from shaftfe.model.examples import STEEL
+    from shaftfe.model.variant import Attachment, Bearing, Segment, Variant
+    K = ((k, 0.0), (0.0, k))
+    brg = (Bearing("L", "x", 10.0, 10.0, 1e4, 1e4, K, axial=True),
+           Bearing("R", "x", 90.0, 10.0, 1e4, 1e4, K))
+    att = (Attachment("w", 45.0, 55.0, 1.0, 2.0, 50.0, angle_deg=0.0),)
+    return Variant("spin", "mass on springs", (Segment("a", 0.0, 100.0, 20.0, 0.0),), brg, att,
+                   STEEL, 0.0)
+
+
+def test_spin_softening_is_the_mass_on_springs(tmp_path):
+    """u = m e ω² / (k_eff − m ω²): the equilibrium k_eff u = m ω² (e + u) of a mass on a
+    spring in the co-rotating frame (the undamped Jeffcott rotor's synchronous response below
+    its critical speed), with k_eff the two bearing springs in parallel in series with the
+    shaft at mid-span (Timoshenko beam: L³/(48 E I) + L/(4 κ G A), κ = 6(1 + ν)/(7 + 6ν) for
+    a solid circle, Cowper 1966)."""
+    v = _mass_on_springs(100.0)
+    m, e, k = 1.0, 2.0, 100.0
+    w2 = 50e3 / m                              # m ω² = 50 N/mm: the softening halves 2k − mω²
+    rpm = math.sqrt(w2) * 60 / (2 * math.pi)
+    res = solve_axisymmetric(v, rpm, AxiOptions(spin_softening=True), cache_dir=tmp_path)
+    q = res.solution.attachment_motion["w"][0]
+    E, nu, d, L = v.material.E_MPa, v.material.nu, 20.0, 80.0
+    inertia, area = math.pi * d ** 4 / 64, math.pi * d ** 2 / 4
+    kap = 6 * (1 + nu) / (7 + 6 * nu)
+    c_shaft = L ** 3 / (48 * E * inertia) + L / (4 * kap * E / (2 * (1 + nu)) * area)
+    k_eff = 1.0 / (1.0 / (2 * k) + c_shaft)
+    mw2 = m * w2 * 1e-3
+    want = m * e * 1e-3 * w2 / (k_eff - mw2)
+    # the beam model of the shaft's share of the compliance (δ = 2k c_shaft = 1.5e-3 of it)
+    # misses the local seat deformation and the load's distribution; allowing 10 % of that
+    # share, amplified by 2k/(2k − mω²) = 1.33: 2.0e-4 (measured −8.7e-5)
+    delta, amp = 2 * k * c_shaft, 2 * k / (2 * k - mw2)
+    assert abs(q / want - 1) <= 0.1 * delta * amp
+    # without softening the same shaft gives the unamplified deflection
+    plain = solve_axisymmetric(v, rpm, AxiOptions(), cache_dir=tmp_path)
+    u0 = {s.name: s for s in plain.cases[0].stations}["seat:w"].uy_mm
+    assert abs(u0 / (m * e * 1e-3 * w2 / k_eff) - 1) <= 0.1 * delta
+    # the reactions balance the load and the softening force m ω² u: the direct solve's
+    # backward error (≤ 1e-9) times the rigid translation's share of the reactions
+    assert res.cases[0].equilibrium_residual <= 1e-8
+
+
+def test_spin_softening_needs_one_speed(tmp_path):
+    from shaftfe.errors import InputError
+    with pytest.raises(InputError, match="one speed"):
+        solve_axisymmetric(_mass_on_springs(100.0), [7000.0, 10000.0],
+                           AxiOptions(spin_softening=True), cache_dir=tmp_path)
+
+
+@pytest.mark.parametrize("argv, needle", [
+    (["--model", "axisymmetric", "--spin-softening", "--rpm", "7000,10000"], "one speed"),
+    (["--spin-softening"], "--model axisymmetric"),
+])
+def test_spin_softening_flag_errors(tmp_path, capsys, argv, needle):
+    from shaftfe.cli import main
+    out = tmp_path / "o"
+    code = main(["static", "--variant", "x2_57", *argv, "--out", str(out)])
+    err = capsys.readouterr().err
+    assert code == 2 and needle in err and len(err.strip().splitlines()) == 1
+    assert not out.exists()
