@@ -300,67 +300,88 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, rpm: float = REF
 
 
 def _solve_n1(h, bearings, fs, fa, rigid: bool, soft=()):
-    """Harmonic n = 1, both parts. The bearings' 2×2 springs C couple the symmetric (y) and
-    antisymmetric (z) parts. With c̄ = (C11 + C22)/2 per bearing, K̃ = K1 + Σ c̄ uyᵀuy (+ the
-    tilt springs, the same in both parts) is factorised ONCE for both parts, and the rest,
-    ΔC = C − c̄ I, is a rank-2-per-bearing term U ΔC Uᵀ solved by the Woodbury identity:
-    x = x0 − A0⁻¹U (I + ΔC UᵀA0⁻¹U)⁻¹ ΔC Uᵀ x0. ``soft``: (u_y row, m ω²) of each attachment's
-    seat, a negative isotropic spring −m ω² I in the same low-rank term. Rigid supports: the
-    remote points' u_y held in both parts (no coupling), the softening as springs. Returns
-    (U_sym, U_anti, {bearing: (F_y, F_z, q_y, q_z)}, the largest relative residual of the
-    coupled system)."""
+    """Harmonic n = 1, both parts, with ONE factorisation for both.
+
+    Springs: the bearings' 2×2 springs C couple the symmetric (y) and antisymmetric (z) parts.
+    With c̄ = (C11 + C22)/2 per bearing, K̃ = K1 + Σ c̄ uyᵀuy (+ the tilt springs, the same in
+    both parts) is factorised, and the rest, ΔC = C − c̄ I, is a rank-2-per-bearing term
+    U ΔC Uᵀ solved by the Woodbury identity: x = x0 − A0⁻¹U (I + ΔC UᵀA0⁻¹U)⁻¹ ΔC Uᵀ x0.
+    Rigid supports: the remote points' u_y held in both parts by multipliers instead.
+    ``soft``: (u_y row, m ω²) of each attachment's seat, a negative isotropic spring −m ω² I in
+    the same low-rank term. The softened system is positive definite exactly when every
+    eigenvalue of I + D UᵀA0⁻¹U is positive (A0 and UᵀA0⁻¹U are; determinant lemma): else the
+    speed is at or above a critical speed of the softened rotor and a SolverError says so.
+
+    Returns (U_sym, U_anti, {bearing: (F_y, F_z, q_y, q_z)}, the largest backward error of the
+    coupled system, ``harmonic.backward_error``)."""
     K1, T1 = h.K(1), h.reduction(1)
     tilt = [(rb.tz[None], np.array([[float(b.tilt_stiffness_Nmm_per_rad)]]))
             for _, rb, b in bearings if float(b.tilt_stiffness_Nmm_per_rad) > 0]
     uy = np.array([rb.uy for _, rb, _ in bearings])                       # (nb, ndof)
-    if rigid:
-        neg = [(row[None], np.array([[-k]])) for row, k in soft]
-        sol = hm.solve(K1, np.column_stack([fs, fa]), T1, springs=tilt + neg, hard=uy)
-        us, ua = sol.u[:, 0], sol.u[:, 1]
-        reac = {name: (-sol.multipliers[k, 0], -sol.multipliers[k, 1], 0.0, 0.0)
-                for k, (name, _, _) in enumerate(bearings)}
-        return us, ua, reac, sol.relres
     C = [np.asarray(b.K_N_per_mm, dtype=float).reshape(2, 2) for _, _, b in bearings]
-    cbar = [0.5 * (c[0, 0] + c[1, 1]) for c in C]
-    iso = [(uy[[k]], np.array([[cbar[k]]])) for k in range(len(C))]
-    # the low-rank items: each a row and its 2×2 stiffness on (symmetric, antisymmetric)
-    rows = np.array([*uy, *(row for row, _ in soft)])                   # (m, ndof)
-    blocks = [c - cb * np.eye(2) for c, cb in zip(C, cbar, strict=True)]
+    if rigid:
+        base, hard, rows, blocks = tilt, uy, [], []
+    else:
+        cbar = [0.5 * (c[0, 0] + c[1, 1]) for c in C]
+        base = [(uy[[k]], np.array([[cbar[k]]])) for k in range(len(C))] + tilt
+        hard, rows = None, list(uy)
+        blocks = [c - cb * np.eye(2) for c, cb in zip(C, cbar, strict=True)]
+    rows += [row for row, _ in soft]
     blocks += [-k * np.eye(2) for _, k in soft]
     m = len(blocks)
-    sol = hm.solve(K1, np.column_stack([fs, fa, *rows]), T1, springs=iso + tilt)
+    rows = np.array(rows).reshape(m, h.ndof)
+    sol = hm.solve(K1, np.column_stack([fs, fa, *rows]), T1, springs=base, hard=hard)
     x0s, x0a, Z = sol.u[:, 0], sol.u[:, 1], sol.u[:, 2:]
-    G = rows @ Z                                                          # (m, m)
-    D = np.zeros((2 * m, 2 * m))
-    for k, c in enumerate(blocks):
-        D[np.ix_([k, m + k], [k, m + k])] = c
-    GG = np.zeros((2 * m, 2 * m))
-    GG[:m, :m] = GG[m:, m:] = G
-    w = np.concatenate([rows @ x0s, rows @ x0a])
-    y = np.linalg.solve(np.eye(2 * m) + D @ GG, D @ w)
+    mu = sol.multipliers                                       # (n_hard, 2 + m)
+    y = np.zeros(2 * m)
+    if m:
+        G = rows @ Z                                                          # (m, m)
+        D = np.zeros((2 * m, 2 * m))
+        for k, c in enumerate(blocks):
+            D[np.ix_([k, m + k], [k, m + k])] = c
+        GG = np.zeros((2 * m, 2 * m))
+        GG[:m, :m] = GG[m:, m:] = G
+        M = np.eye(2 * m) + D @ GG
+        if soft and np.linalg.eigvals(M).real.min() <= 0:
+            raise SolverError("spin softening: the speed is at or above a critical speed of "
+                              "the softened rotor (the parts' m ω² exceeds what the shaft and "
+                              "bearings hold); the static co-rotating solution is not stable")
+        y = np.linalg.solve(M, D @ np.concatenate([rows @ x0s, rows @ x0a]))
     us, ua = x0s - Z @ y[:m], x0a - Z @ y[m:]
-    # the residual of the coupled system on the reduced dofs, Tᵀ (K x − f)
+    # the residual of the coupled system on the reduced dofs, Tᵀ (A0 x + Hᵀμ + extra − f)
     A0 = K1
-    for R, c in iso + tilt:
+    for R, c in base:
         A0 = A0 + sp.csr_matrix(R).T @ sp.csr_matrix(c) @ sp.csr_matrix(R)
-    qs, qa = rows @ us, rows @ ua
     Ar = T1.T @ A0 @ T1
-    rel = 0.0
+    w = np.asarray(T1.multiply(T1).sum(axis=0)).ravel()        # 1, or 2 on the axis (U_θ = −U_r)
+    qs, qa = rows @ us, rows @ ua
+    Hr = sp.csr_matrix(hard) @ T1 if hard is not None else sp.csr_matrix((0, Ar.shape[0]))
+    Msys = sp.bmat([[Ar, Hr.T], [Hr, None]]) if hard is not None else Ar
+    rel, mult = 0.0, []
     for x, f, part in ((us, fs, 0), (ua, fa, 1)):
         extra = np.zeros(h.ndof)
         for k, c in enumerate(blocks):
             extra += (c @ np.array([qs[k], qa[k]]))[part] * rows[k]
+        xr = (T1.T @ x) / w
         r = T1.T @ (A0 @ x + extra - f)
-        # normwise backward error against the factorised part (the low-rank part is small)
-        rel = max(rel, hm.backward_error(Ar, x, T1.T @ f, r))
+        lam = np.zeros(0)
+        if hard is not None:
+            lam = mu[:, part] - mu[:, 2:] @ y[part * m:(part + 1) * m]
+            r = np.concatenate([r + Hr.T @ lam, Hr @ xr])
+            mult.append(lam)
+        b = np.concatenate([T1.T @ f, np.zeros(lam.size)])
+        rel = max(rel, hm.backward_error(Msys, np.concatenate([xr, lam]), b, r, Ar.shape[0]))
     if not np.all(np.isfinite(us)) or not np.all(np.isfinite(ua)) or rel > 1e-9:
-        raise SolverError(f"the n = 1 harmonic solve did not converge (relative residual "
+        raise SolverError(f"the n = 1 harmonic solve did not converge (backward error "
                           f"{rel:.2e})")
     reac = {}
     for k, (name, _, _) in enumerate(bearings):
-        q = np.array([qs[k], qa[k]])
-        F = -C[k] @ q
-        reac[name] = (F[0], F[1], q[0], q[1])
+        if rigid:
+            reac[name] = (-mult[0][k], -mult[1][k], 0.0, 0.0)
+        else:
+            q = np.array([uy[k] @ us, uy[k] @ ua])
+            F = -C[k] @ q
+            reac[name] = (F[0], F[1], q[0], q[1])
     return us, ua, reac, max(rel, sol.relres)
 
 

@@ -306,7 +306,7 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
     eq = float(np.linalg.norm(load_sum + reac_sum) / scale_f)
     cases = []
     for r in rpms:
-        s = (r / ref_rpm) ** 2
+        s = 1.0 if options.spin_softening else (r / ref_rpm) ** 2   # softening: one speed
         brs = []
         for name, rb, b in sol.bearings:
             Fx, Fy, Fz, qy, qz = sol.reactions[name]

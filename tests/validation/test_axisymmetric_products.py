@@ -245,15 +245,16 @@ def test_report_axisymmetric(tmp_path, cache, monkeypatch):
     assert math.isfinite(s["fatigue"]["hot_spot"]["safety_factor"])
 
 
-def _mass_on_springs(k: float):
-    """Ø20 × 100 steel shaft on two isotropic springs k at x = 10 and 90, one 1 kg part at
-    mid-span with e = 2 mm: the classic mass on springs, the shaft a third spring in series."""
+def _mass_on_springs(k, angle_deg: float = 0.0):
+    """Ø20 × 100 steel shaft on two equal springs at x = 10 and 90 (k: a stiffness in N/mm, or
+    a 2×2 matrix), one 1 kg part at mid-span with e = 2 mm: the classic mass on springs, the
+    shaft a third spring in series."""
     from shaftfe.model.examples import STEEL
     from shaftfe.model.variant import Attachment, Bearing, Segment, Variant
-    K = ((k, 0.0), (0.0, k))
+    K = ((k, 0.0), (0.0, k)) if np.isscalar(k) else tuple(map(tuple, k))
     brg = (Bearing("L", "x", 10.0, 10.0, 1e4, 1e4, K, axial=True),
            Bearing("R", "x", 90.0, 10.0, 1e4, 1e4, K))
-    att = (Attachment("w", 45.0, 55.0, 1.0, 2.0, 50.0, angle_deg=0.0),)
+    att = (Attachment("w", 45.0, 55.0, 1.0, 2.0, 50.0, angle_deg=angle_deg),)
     return Variant("spin", "mass on springs", (Segment("a", 0.0, 100.0, 20.0, 0.0),), brg, att,
                    STEEL, 0.0)
 
@@ -266,14 +267,11 @@ def test_spin_softening_is_the_mass_on_springs(tmp_path):
     a solid circle, Cowper 1966)."""
     v = _mass_on_springs(100.0)
     m, e, k = 1.0, 2.0, 100.0
-    w2 = 50e3 / m                              # m ω² = 50 N/mm: the softening halves 2k − mω²
+    c_shaft = _shaft_compliance(v)
+    w2 = 50e3 / m                              # m ω² = 50 N/mm: 2k − m ω² = 150 = ¾ of 2k
     rpm = math.sqrt(w2) * 60 / (2 * math.pi)
     res = solve_axisymmetric(v, rpm, AxiOptions(spin_softening=True), cache_dir=tmp_path)
     q = res.solution.attachment_motion["w"][0]
-    E, nu, d, L = v.material.E_MPa, v.material.nu, 20.0, 80.0
-    inertia, area = math.pi * d ** 4 / 64, math.pi * d ** 2 / 4
-    kap = 6 * (1 + nu) / (7 + 6 * nu)
-    c_shaft = L ** 3 / (48 * E * inertia) + L / (4 * kap * E / (2 * (1 + nu)) * area)
     k_eff = 1.0 / (1.0 / (2 * k) + c_shaft)
     mw2 = m * w2 * 1e-3
     want = m * e * 1e-3 * w2 / (k_eff - mw2)
@@ -289,6 +287,69 @@ def test_spin_softening_is_the_mass_on_springs(tmp_path):
     # the reactions balance the load and the softening force m ω² u: the direct solve's
     # backward error (≤ 1e-9) times the rigid translation's share of the reactions
     assert res.cases[0].equilibrium_residual <= 1e-8
+
+
+def _shaft_compliance(v) -> float:
+    """Mid-span compliance of the 80 mm bearing span, Timoshenko beam (Cowper's κ)."""
+    E, nu, d, L = v.material.E_MPa, v.material.nu, 20.0, 80.0
+    inertia, area = math.pi * d ** 4 / 64, math.pi * d ** 2 / 4
+    kap = 6 * (1 + nu) / (7 + 6 * nu)
+    return L ** 3 / (48 * E * inertia) + L / (4 * kap * E / (2 * (1 + nu)) * area)
+
+
+def test_spin_softening_anisotropic_bearings_off_axis(tmp_path):
+    """The same closed form in 2D: K12 ≠ 0, K11 ≠ K22 and a load at 30°, so both n = 1 parts
+    and the bearings' Woodbury term carry it: u = (K_eff − m ω² I)⁻¹ F d with
+    K_eff = ((2K)⁻¹ + c_shaft I)⁻¹."""
+    Kb = np.array([[100.0, 30.0], [30.0, 150.0]])
+    v = _mass_on_springs(Kb, 30.0)
+    w2 = 50e3
+    rpm = math.sqrt(w2) * 60 / (2 * math.pi)
+    res = solve_axisymmetric(v, rpm, AxiOptions(spin_softening=True), cache_dir=tmp_path)
+    q = np.array(res.solution.attachment_motion["w"])
+    c_shaft = _shaft_compliance(v)
+    K_eff = np.linalg.inv(np.linalg.inv(2 * Kb) + c_shaft * np.eye(2))
+    mw2, F = w2 * 1e-3, 2e-3 * w2
+    d = np.array([math.cos(math.radians(30.0)), math.sin(math.radians(30.0))])
+    want = np.linalg.solve(K_eff - mw2 * np.eye(2), F * d)
+    # as the isotropic case: 10 % of the shaft's compliance share (c_shaft · λmax(2K)),
+    # amplified at most by λmax(K_eff)/(λmin(K_eff) − m ω²): 6.6e-4 (measured 9.0e-5)
+    lam = np.linalg.eigvalsh(K_eff)
+    bound = 0.1 * c_shaft * np.linalg.eigvalsh(2 * Kb).max() * lam.max() / (lam.min() - mw2)
+    assert np.abs(q - want).max() <= bound * np.abs(want).max()
+    assert res.cases[0].equilibrium_residual <= 1e-8
+
+
+def test_spin_softening_rigid_supports_are_the_stiff_spring_limit(tmp_path):
+    """The rigid-support branch (multipliers) against the spring branch with k = 1e8 N/mm:
+    they differ by the springs' share of the compliance, (1/c_shaft)/(2k) = 6.8e-4, amplified
+    by k_shaft/(k_shaft − m ω²) = 1.04; allowing 4× for the seats' distribution: 2.8e-3
+    (measured 7.4e-4). The reactions, from the multipliers, close the equilibrium."""
+    w2 = 5e6                                   # m ω² = 5000 N/mm, 4 % of the shaft's stiffness
+    rpm = math.sqrt(w2) * 60 / (2 * math.pi)
+    opts = AxiOptions(spin_softening=True)
+    rigid = solve_axisymmetric(_mass_on_springs(100.0), rpm,
+                               AxiOptions(spin_softening=True, rigid_supports=True),
+                               cache_dir=tmp_path)
+    k = 1e8
+    stiff = solve_axisymmetric(_mass_on_springs(k), rpm, opts, cache_dir=tmp_path)
+    ks = 1.0 / _shaft_compliance(stiff.solution.variant)
+    bound = 4 * ks / (2 * k) * ks / (ks - w2 * 1e-3)
+    qr = rigid.solution.attachment_motion["w"][0]
+    qs = stiff.solution.attachment_motion["w"][0]
+    assert abs(qs / qr - 1) <= bound
+    for a, b in zip(rigid.cases[0].bearings, stiff.cases[0].bearings, strict=True):
+        assert abs(b.F_radial_N / a.F_radial_N - 1) <= bound
+    assert rigid.cases[0].equilibrium_residual <= 1e-8
+
+
+def test_spin_softening_refuses_a_supercritical_speed(tmp_path):
+    """m ω² = 300 N/mm > 2k = 200 N/mm: the softened rotor is past its critical speed."""
+    from shaftfe.errors import SolverError
+    rpm = math.sqrt(3e5) * 60 / (2 * math.pi)
+    with pytest.raises(SolverError, match="critical speed"):
+        solve_axisymmetric(_mass_on_springs(100.0), rpm, AxiOptions(spin_softening=True),
+                           cache_dir=tmp_path)
 
 
 def test_spin_softening_needs_one_speed(tmp_path):
