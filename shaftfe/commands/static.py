@@ -57,7 +57,7 @@ def register(sub) -> None:
 def run(args) -> int:
     from pathlib import Path
 
-    from shaftfe.commands._common import parse_rpm_list, print_json
+    from shaftfe.commands._common import parse_rpm_list
     from shaftfe.util.atomic import staged_dir
 
     rpms = parse_rpm_list(args.rpm)
@@ -102,10 +102,16 @@ def run(args) -> int:
         with prog.stage("outputs"):
             from shaftfe.static.outputs import write_outputs
             summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
+    return _report(args, summary, lambda: _print_tables(res, opts, out))
+
+
+def _report(args, summary: dict, show) -> int:
+    """The command's output: summary.json on stdout with --json, else the text tables."""
     if args.json:
+        from shaftfe.commands._common import print_json
         print_json(summary)
-        return 0
-    _print_tables(res, opts, out)
+    else:
+        show()
     return 0
 
 
@@ -115,7 +121,6 @@ def _run_axisymmetric(args, rpms, variant) -> int:
     from shaftfe.axisymmetric.model import AxiOptions
     from shaftfe.axisymmetric.outputs import write_outputs
     from shaftfe.axisymmetric.solve import solve_axisymmetric
-    from shaftfe.commands._common import print_json
     from shaftfe.util.atomic import staged_dir
     for flag, bad in (("--order", args.order != 2), ("--body-force", args.body_force),
                       ("--estimate-error", args.estimate_error),
@@ -131,11 +136,7 @@ def _run_axisymmetric(args, rpms, variant) -> int:
     with staged_dir(out) as stage:             # both files or none
         res = solve_axisymmetric(variant, rpms, opts)
         summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
-    if args.json:
-        print_json(summary)
-        return 0
-    _print_axi(res, opts, out)
-    return 0
+    return _report(args, summary, lambda: _print_axi(res, opts, out))
 
 
 def _print_axi(res, opts, out) -> None:
