@@ -105,22 +105,11 @@ def _order(p) -> str:
 
 
 def _converged(v) -> dict:
-    from shaftfe.axisymmetric.kt import richardson
+    from shaftfe.axisymmetric.kt import converged_peaks
     from shaftfe.axisymmetric.mesh import AxiLevel
-    from shaftfe.axisymmetric.model import AxiOptions
-    from shaftfe.axisymmetric.solve import solve_axisymmetric
-    vals, nodes = {k: [] for k in REGIONS}, []
-    for ref in (0, 1, 2):
-        res = solve_axisymmetric(v, 10000, AxiOptions(AxiLevel(*REFERENCE_FAMILY), refine=ref,
-                                                      n_max=1))
-        pk = {p.region: p.von_mises_MPa for p in res.cases[0].peaks}
-        for key, reg in REGIONS.items():
-            vals[key].append(pk[reg])
-        nodes.append(res.n_nodes)
-    out = {"nodes": nodes}
-    for key in REGIONS:
-        out[key] = {**richardson(vals[key]), "values": [round(x, 3) for x in vals[key]]}
-    return out
+    c = converged_peaks(v, 10000.0, list(REGIONS.values()), AxiLevel(*REFERENCE_FAMILY),
+                        n_max=1)
+    return {"nodes": c["nodes"], **{key: c[reg]["von_mises"] for key, reg in REGIONS.items()}}
 
 
 def _cross_check(lines: list[str]) -> None:

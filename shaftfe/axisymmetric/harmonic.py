@@ -218,7 +218,8 @@ def rbe3(h: Harmonics, edge_ids, x_c: float) -> Rbe3:
 class Solution:
     u: np.ndarray                 # (ndof, nrhs) full dof vectors
     multipliers: np.ndarray       # (n_hard, nrhs): forces of the hard rows (on the rows' sense)
-    relres: float
+    relres: float                 # the largest backward error (``backward_error``)
+    matrix: sp.spmatrix = field(default=None, repr=False)   # the factorised (saddle) matrix
 
 
 def _norm(A) -> float:
@@ -293,4 +294,4 @@ def solve(K: sp.spmatrix, F: np.ndarray, T: sp.spmatrix, springs=(), hard=None) 
         raise SolverError(f"the harmonic solve did not converge (relative residual "
                           f"{relres:.2e}): a rigid motion may not be held by the supports")
     u = T @ z[:Ar.shape[0]]
-    return Solution(u, z[Ar.shape[0]:], relres)
+    return Solution(u, z[Ar.shape[0]:], relres, M)

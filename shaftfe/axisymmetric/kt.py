@@ -103,19 +103,16 @@ def kt_once(D: float, d: float, rho: float, refine: int = 0, level: AxiLevel = L
 
 
 def _arc_peak(c: Curve, xr: np.ndarray, val: np.ndarray) -> tuple[float, float]:
-    """Peak of ``val`` at points ``xr`` on arc ``c``: the parabola in the arc angle through
-    the largest value and its two neighbours (the nodes are P2 nodes of the outline, so the
-    recovered stress is piecewise quadratic along the arc)."""
+    """Peak of ``val`` at points ``xr`` on arc ``c`` in the arc angle: ``recovery.parabola_peak``
+    through the largest value and its two neighbours (the nodes are P2 nodes of the outline,
+    so the recovered stress is piecewise quadratic along the arc)."""
     ang = arc_length_angle(c, xr[0], xr[1])
     o = np.argsort(ang)
     a, v = ang[o], val[o]
     j = int(np.argmax(v))
     if 0 < j < v.size - 1:
-        A = np.vander(a[j - 1:j + 2], 3)
-        c2, c1, c0 = np.linalg.solve(A, v[j - 1:j + 2])
-        if c2 < 0:
-            x = float(np.clip(-c1 / (2 * c2), a[j - 1], a[j + 1]))
-            return float(c2 * x * x + c1 * x + c0), x
+        x, y = rc.parabola_peak(a[j - 1:j + 2], v[j - 1:j + 2])
+        return y, x
     return float(v[j]), float(a[j])
 
 
@@ -166,4 +163,28 @@ def converged(D: float, d: float, rho: float, levels: int = 3, level: AxiLevel =
                    "angle_deg": angles[ld], "values": vals[ld]}
     out["nodes"] = nodes
     out["seconds"] = secs
+    return out
+
+
+def converged_peaks(variant, rpm: float, regions, level="default", levels: int = 3,
+                    **options) -> dict:
+    """The shaft's (or any variant's) region peaks converged like the Kt values: the
+    axisymmetric solve at ``levels`` uniform refinements of ``level`` (``AxiOptions`` fields in
+    ``options``), ``richardson`` of each region's von Mises and max principal peak:
+    {region: {"von_mises": …, "max_principal": …}, "nodes": [...]}, each with its "values"."""
+    from shaftfe.axisymmetric.model import AxiOptions
+    from shaftfe.axisymmetric.solve import solve_axisymmetric
+    vals = {r: {"von_mises": [], "max_principal": []} for r in regions}
+    nodes = []
+    for ref in range(levels):
+        res = solve_axisymmetric(variant, rpm, AxiOptions(level, refine=ref, **options))
+        pk = {p.region: p for p in res.case(rpm).peaks}
+        for r in regions:
+            vals[r]["von_mises"].append(pk[r].von_mises_MPa)
+            vals[r]["max_principal"].append(pk[r].max_principal_MPa)
+        nodes.append(res.n_nodes)
+    out: dict = {"nodes": nodes}
+    for r in regions:
+        out[r] = {q: {**richardson(v), "values": [round(x, 3) for x in v]}
+                  for q, v in vals[r].items()}
     return out

@@ -33,7 +33,6 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.sparse as sp
 
 from shaftfe.axisymmetric import harmonic as hm
 from shaftfe.axisymmetric import kernels as kn
@@ -348,29 +347,24 @@ def _solve_n1(h, bearings, fs, fa, rigid: bool, soft=()):
                               "bearings hold); the static co-rotating solution is not stable")
         y = np.linalg.solve(M, D @ np.concatenate([rows @ x0s, rows @ x0a]))
     us, ua = x0s - Z @ y[:m], x0a - Z @ y[m:]
-    # the residual of the coupled system on the reduced dofs, Tᵀ (A0 x + Hᵀμ + extra − f)
-    A0 = K1
-    for R, c in base:
-        A0 = A0 + sp.csr_matrix(R).T @ sp.csr_matrix(c) @ sp.csr_matrix(R)
-    Ar = T1.T @ A0 @ T1
+    # the residual of the coupled system with the factorised matrix of ``hm.solve``:
+    # M [x̂; λ] + [Tᵀ (low-rank term); 0] − [Tᵀ f; 0]
+    Msys, n_u = sol.matrix, T1.shape[1]
     w = np.asarray(T1.multiply(T1).sum(axis=0)).ravel()        # 1, or 2 on the axis (U_θ = −U_r)
     qs, qa = rows @ us, rows @ ua
-    Hr = sp.csr_matrix(hard) @ T1 if hard is not None else sp.csr_matrix((0, Ar.shape[0]))
-    Msys = sp.bmat([[Ar, Hr.T], [Hr, None]]) if hard is not None else Ar
     rel, mult = 0.0, []
     for x, f, part in ((us, fs, 0), (ua, fa, 1)):
         extra = np.zeros(h.ndof)
         for k, c in enumerate(blocks):
             extra += (c @ np.array([qs[k], qa[k]]))[part] * rows[k]
-        xr = (T1.T @ x) / w
-        r = T1.T @ (A0 @ x + extra - f)
         lam = np.zeros(0)
         if hard is not None:
             lam = mu[:, part] - mu[:, 2:] @ y[part * m:(part + 1) * m]
-            r = np.concatenate([r + Hr.T @ lam, Hr @ xr])
             mult.append(lam)
+        z = np.concatenate([(T1.T @ x) / w, lam])
         b = np.concatenate([T1.T @ f, np.zeros(lam.size)])
-        rel = max(rel, hm.backward_error(Msys, np.concatenate([xr, lam]), b, r, Ar.shape[0]))
+        r = Msys @ z + np.concatenate([T1.T @ extra, np.zeros(lam.size)]) - b
+        rel = max(rel, hm.backward_error(Msys, z, b, r, n_u))
     if not np.all(np.isfinite(us)) or not np.all(np.isfinite(ua)) or rel > 1e-9:
         raise SolverError(f"the n = 1 harmonic solve did not converge (backward error "
                           f"{rel:.2e})")
@@ -407,7 +401,7 @@ class _PeakTracker:
         self.names = tuple(keep)
         self.sets = [sets[g] for g in keep]
         self.idx = np.concatenate(self.sets) if self.sets else np.zeros(0, dtype=np.int64)
-        self.theta = np.radians(np.arange(0.0, 360.0, 1.0))
+        self.theta = rc.theta_grid()
         self.sum = np.zeros((6, self.idx.size, self.theta.size))
         self.peaks = np.zeros(len(self.sets))
 

@@ -37,33 +37,16 @@ def revolved_fields(sol, scale: float, sectors: int = SECTORS):
         cells.append(np.hstack([tri + k * m, tri + k2 * m]))
     cells = np.vstack(cells)
     # displacement and stress by harmonic synthesis at the sector angles
-    ux = np.zeros((sectors, m))
-    ur = np.zeros((sectors, m))
-    ut = np.zeros((sectors, m))
     E, nu = float(sol.variant.material.E_MPa), float(sol.variant.material.nu)
     parts = []
     for h in sol.harmonics:
-        n = h.n
-        U = h.sym.reshape(-1, 3)[used]
-        cs = np.ones(sectors) if n == 0 else np.cos(n * th)
-        sn = np.ones(sectors) if n == 0 else np.sin(n * th)
-        ux += cs[:, None] * U[:, 0]
-        ur += cs[:, None] * U[:, 1]
-        ut += sn[:, None] * U[:, 2]
-        avg_s = rc.nodal_average(mesh, h.sym, n, E, nu)[:, used]
-        avg_a = None
-        if h.anti is not None:
-            V = h.anti.reshape(-1, 3)[used]
-            ux += np.sin(n * th)[:, None] * V[:, 0]
-            ur += np.sin(n * th)[:, None] * V[:, 1]
-            ut -= np.cos(n * th)[:, None] * V[:, 2]
-            avg_a = rc.nodal_average(mesh, h.anti, n, E, nu)[:, used]
-        parts.append((n, avg_s, avg_a))
+        avg_s = rc.nodal_average(mesh, h.sym, h.n, E, nu)[:, used]
+        avg_a = None if h.anti is None else rc.nodal_average(mesh, h.anti, h.n, E, nu)[:, used]
+        parts.append((h.n, avg_s, avg_a))
     stress = rc.synthesize(parts, th, rc.CYL_SHEAR)                # (6, m, s)
     vm = von_mises(stress).T.reshape(-1) * scale
-    uy = ur * c[:, None] - ut * s[:, None]
-    uz = ur * s[:, None] + ut * c[:, None]
-    disp = np.stack([ux, uy, uz], axis=-1).reshape(-1, 3) * scale
+    d = rc.displacement(sol.harmonics, used, th)                   # (3, m, s)
+    disp = d.transpose(2, 1, 0).reshape(-1, 3) * scale             # point = k · m + j
     return pts, cells, disp, vm
 
 

@@ -40,6 +40,12 @@ CYL = ("xx", "rr", "θθ", "xr", "rθ", "xθ")
 LOCAL_SHEAR = np.array([False, False, False, True, True, False])
 CYL_SHEAR = np.array([False, False, False, False, True, True])
 KINK_COS = np.cos(np.radians(10.0))
+THETA_STEP_DEG = 1.0        # the θ grid of every peak search (truncation, peaks, fatigue)
+
+
+def theta_grid() -> np.ndarray:
+    """θ = 0°, 1°, …, 359° in rad."""
+    return np.radians(np.arange(0.0, 360.0, THETA_STEP_DEG))
 
 
 def nodal_average(mesh, U: np.ndarray, n: int, E: float, nu: float,
@@ -172,6 +178,42 @@ def synthesize(parts, theta: np.ndarray, shear: np.ndarray) -> np.ndarray:
             fa = np.where(shear[:, None], -c[None], s[None])
             out += anti[:, :, None] * fa[:, None, :]
     return out
+
+
+def parabola_peak(x, y) -> tuple[float, float]:
+    """The peak of the parabola through three points (x sorted, the middle one the largest
+    sample): its vertex, kept within [x0, x2], and the parabola's value there; the middle point
+    itself where the parabola is not concave or a value is not finite. The one peak locator
+    of the surface stresses (in θ, along the outline, along a fillet arc)."""
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    if not np.all(np.isfinite(y)):             # a neighbour left out (−inf): no fit
+        return float(x[1]), float(y[1])
+    c2, c1, c0 = np.linalg.solve(np.vander(x, 3), y)
+    if not c2 < 0:
+        return float(x[1]), float(y[1])
+    xv = float(np.clip(-c1 / (2 * c2), x[0], x[2]))
+    return xv, float((c2 * xv + c1) * xv + c0)
+
+
+def displacement(harmonics, nodes: np.ndarray, theta: np.ndarray) -> np.ndarray:
+    """(3, k, q) Cartesian displacement (x, y, z) at ``nodes`` and angles θ (rad): each
+    harmonic's U_x, U_r, U_θ with its trig factors (``kernels``: U_x, U_r ∝ cos nθ,
+    U_θ ∝ sin nθ in the symmetric part, every component × 1 for n = 0; sin nθ and −cos nθ in
+    the antisymmetric part), u_r and u_θ rotated to y, z."""
+    ux, ur, ut = (np.zeros((nodes.size, theta.size)) for _ in range(3))
+    for h in harmonics:
+        c, s = np.cos(h.n * theta)[None], np.sin(h.n * theta)[None]
+        U = h.sym.reshape(-1, 3)[nodes]
+        ux += U[:, [0]] * c
+        ur += U[:, [1]] * c
+        ut += U[:, [2]] * (s if h.n else 1.0)        # n = 0: torsion, u_θ = U_θ
+        if h.anti is not None:
+            V = h.anti.reshape(-1, 3)[nodes]
+            ux += V[:, [0]] * s
+            ur += V[:, [1]] * s
+            ut -= V[:, [2]] * c
+    c, s = np.cos(theta)[None], np.sin(theta)[None]
+    return np.stack([ux, ur * c - ut * s, ur * s + ut * c])
 
 
 def principal_max_local(s: np.ndarray) -> np.ndarray:

@@ -2,7 +2,7 @@
 StaticReference`` on the revolved free surface.
 
 Points: every outline node off the axis (``recovery.Surface``) at θ = 0°, 1°, …, 359° (the
-peaks' grid, ``solve.THETA_STEP_DEG``: a peak between two samples is missed by at most
+peaks' grid, ``recovery.theta_grid``: a peak between two samples is missed by at most
 1 − cos(0.5° · n) of a harmonic-n variation, 4e-5 for the n = 1 bending that carries the fillets).
 Stresses: the surface recovery of ``recovery.Surface`` synthesised over θ and rotated from the
 surface frame (t, θ, n) to Cartesian xx yy zz xy yz xz, at the solution's reference speed. Regions
@@ -21,8 +21,8 @@ import time
 
 import numpy as np
 
+from shaftfe.axisymmetric import recovery as rc
 from shaftfe.axisymmetric.solve import (
-    THETA_STEP_DEG,
     excluded_nodes,
     loaded_seat_angles,
     regions,
@@ -82,7 +82,7 @@ def static_reference(res, seconds: float | None = None):
     sol = res.solution
     mesh, S = sol.mesh, sol.surface
     keep = np.nonzero(~S.on_axis)[0]
-    theta = np.radians(np.arange(0.0, 360.0, THETA_STEP_DEG))
+    theta = rc.theta_grid()
     q = theta.size
     sig = local_to_cartesian(surface_sigma(sol, keep, theta), S.tangent[:, keep],
                              S.sign[keep], theta)
@@ -135,29 +135,13 @@ def static_reference(res, seconds: float | None = None):
 
 def surface_displacement(res, ref) -> np.ndarray:
     """(n, 3) Cartesian displacement in mm at the points of ``ref`` (= ``static_reference(res)``)
-    at the reference speed: each harmonic's U_x, U_r, U_θ at the outline nodes with its trig
-    factors (``kernels``: U_x, U_r ∝ cos nθ, U_θ ∝ sin nθ in the symmetric part, every
-    component × 1 for n = 0; sin nθ and −cos nθ in the antisymmetric part), rotated to y, z."""
-    sol = res.solution
-    S = sol.surface
+    at the reference speed (``recovery.displacement``)."""
+    S = res.solution.surface
     keep = np.nonzero(~S.on_axis)[0]
     q = ref.n_nodes // keep.size
     theta = np.radians(np.arange(q) * (360.0 / q))
-    nodes = S.nodes[keep]
-    ux, ur, ut = (np.zeros((keep.size, q)) for _ in range(3))
-    for h in sol.harmonics:
-        c, s = np.cos(h.n * theta)[None], np.sin(h.n * theta)[None]
-        U = h.sym.reshape(-1, 3)[nodes]
-        ux += U[:, [0]] * c
-        ur += U[:, [1]] * c
-        ut += U[:, [2]] * (s if h.n else 1.0)        # n = 0: torsion, u_θ = U_θ
-        if h.anti is not None:
-            V = h.anti.reshape(-1, 3)[nodes]
-            ux += V[:, [0]] * s
-            ur += V[:, [1]] * s
-            ut -= V[:, [2]] * c
-    c, s = np.cos(theta)[None], np.sin(theta)[None]
-    return np.stack([ux.ravel(), (ur * c - ut * s).ravel(), (ur * s + ut * c).ravel()], -1)
+    d = rc.displacement(res.solution.harmonics, S.nodes[keep], theta)     # (3, k, q)
+    return d.transpose(1, 2, 0).reshape(-1, 3)                          # point = j · q + i
 
 
 def surface_envelope(ref, n_slices: int = 120) -> tuple[np.ndarray, np.ndarray]:
@@ -172,21 +156,8 @@ def surface_envelope(ref, n_slices: int = 120) -> tuple[np.ndarray, np.ndarray]:
 
 def write_surface_vtu(ref, path, point_data: dict):
     """The revolved surface of ``ref`` (triangles, cell data ``region`` = index + 1 into
-    ``ref.face_groups``) with the given point fields; written atomically. Returns the path."""
-    import meshio
-
-    from shaftfe.util.atomic import atomic_path
-    n = ref.n_nodes
-    data = {}
-    for name, arr in point_data.items():
-        a = np.asarray(arr)
-        a = a if a.dtype == np.float32 else a.astype(float)
-        if a.shape[:1] != (n,):
-            raise ValueError(f"point field {name!r}: shape {a.shape}, needs ({n}, ...)")
-        data[name] = a
-    mesh = meshio.Mesh(np.ascontiguousarray(ref.xyz.T), [("triangle", ref.face_cells)],
-                       point_data=data,
-                       cell_data={"region": [np.asarray(ref.face_group, dtype=np.int32) + 1]})
-    with atomic_path(path) as tmp:
-        meshio.write(tmp, mesh, file_format="vtu")
-    return path
+    ``ref.face_groups``) with the given point fields (``io.vtu.write_point_fields``)."""
+    from shaftfe.io.vtu import write_point_fields
+    return write_point_fields(ref.xyz.T, [("triangle", ref.face_cells)],
+                              [np.asarray(ref.face_group, dtype=np.int32) + 1], path,
+                              point_data)

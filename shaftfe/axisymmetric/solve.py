@@ -27,7 +27,6 @@ from shaftfe.model.bearing_life import l10h
 from shaftfe.static.model import REF_RPM
 from shaftfe.static.result import BearingReaction, Station
 
-THETA_STEP_DEG = 1.0
 SEAT_EDGE_BAND_DEG = 10.0
 
 
@@ -130,15 +129,6 @@ def axis_displacement(sol: AxiSolution, xs) -> np.ndarray:
     return out
 
 
-def _parabola(y0, y1, y2) -> tuple[float, float]:
-    """Vertex offset (in samples, within ±1) and value of the parabola through 3 samples."""
-    den = y0 - 2 * y1 + y2
-    if den >= 0:
-        return 0.0, y1
-    d = float(np.clip(0.5 * (y0 - y2) / den, -1.0, 1.0))
-    return d, float(y1 - 0.25 * (y0 - y2) * d)
-
-
 def regions(mesh) -> dict[str, list[int]]:
     """Region name -> outline curve ids, named as the 3D path's regions: each face group, a
     load seat as ``seat:<part>``, a bearing seat as ``seat:bearing:<side>``."""
@@ -211,7 +201,7 @@ def surface_sigma(sol: AxiSolution, idx: np.ndarray, theta: np.ndarray,
 def region_peaks(sol: AxiSolution, omitted=()) -> tuple[AxiPeak, ...]:
     """Peaks per region at REF_RPM (see the module docstring)."""
     mesh, S = sol.mesh, sol.surface
-    theta = np.radians(np.arange(0.0, 360.0, THETA_STEP_DEG))
+    theta = rc.theta_grid()
     excl = excluded_nodes(sol, sol.options.exclude_mm)
     seat_angles = loaded_seat_angles(sol)
     out = []
@@ -240,8 +230,9 @@ def region_peaks(sol: AxiSolution, omitted=()) -> tuple[AxiPeak, ...]:
 def _locate(mesh, S, idx, val, theta):
     """Peak of val (k, q) over nodes and θ: parabolic in θ, then along the outline."""
     k, q = np.unravel_index(int(np.argmax(val)), val.shape)
-    dq, _ = _parabola(val[k, (q - 1) % theta.size], val[k, q], val[k, (q + 1) % theta.size])
-    th = float(theta[q] + dq * np.radians(THETA_STEP_DEG))
+    dq, _ = rc.parabola_peak([-1.0, 0.0, 1.0], [val[k, (q - 1) % theta.size], val[k, q],
+                                               val[k, (q + 1) % theta.size]])
+    th = float(theta[q] + dq * np.radians(rc.THETA_STEP_DEG))
     node = S.nodes[idx[k]]
     x, r = mesh.xr[:, node]
     # neighbours along the outline: the nearest two nodes of the region, one each side
@@ -253,13 +244,7 @@ def _locate(mesh, S, idx, val, theta):
         a, b = order[1], order[2]
         ta = (xr[:, a] - [x, r]) @ (xr[:, b] - [x, r])
         if ta < 0:                         # on opposite sides: fit along the outline
-            ya, yb = float(val[a, q]), float(val[b, q])
-            da, db = -d[a], d[b]
-            A = np.array([[da * da, da, 1], [0, 0, 1], [db * db, db, 1]])
-            c2, c1, c0 = np.linalg.solve(A, [ya, pk, yb])
-            if c2 < 0:
-                s = float(np.clip(-c1 / (2 * c2), da, db))
-                pk = max(pk, float(c2 * s * s + c1 * s + c0))
+            _, pk = rc.parabola_peak([-d[a], 0.0, d[b]], [val[a, q], pk, val[b, q]])
     c = mesh.geometry.curves[int(S.curve[idx[k]])]
     fang = float(arc_length_angle(c, np.array([x]), np.array([r]))[0]) \
         if c.center is not None else None

@@ -52,14 +52,18 @@ def mesh_cells(m) -> tuple[list, list, list[str]]:
 
 
 def write_fields_vtu(m, path, point_data: dict) -> tuple[Path, list[str]]:
-    """The mesh ``m`` (scikit-fem) with the given point fields (one row per node; float32 kept,
-    anything else as float64) and the cell data ``region``; written atomically. Returns the path
-    and the region names."""
+    """The mesh ``m`` (scikit-fem) with the given point fields and the cell data ``region``;
+    written atomically (``write_point_fields``). Returns the path and the region names."""
+    cells, region, names = mesh_cells(m)
+    return write_point_fields(m.doflocs.T, cells, region, path, point_data), names
+
+
+def write_point_fields(points, cells: list, region: list, path, point_data: dict) -> Path:
+    """Points (n, 3), meshio cell blocks with their ``region`` cell data, and point fields (one
+    row per point; float32 kept, anything else as float64), written atomically as VTU."""
     import meshio
 
-    from shaftfe.util.atomic import atomic_path
-    cells, region, names = mesh_cells(m)
-    n = m.doflocs.shape[1]
+    n = np.asarray(points).shape[0]
     data = {}
     for name, arr in point_data.items():
         a = np.asarray(arr)
@@ -67,12 +71,12 @@ def write_fields_vtu(m, path, point_data: dict) -> tuple[Path, list[str]]:
         if a.shape[:1] != (n,):
             raise ValueError(f"point field {name!r}: shape {a.shape}, needs ({n}, ...)")
         data[name] = a
-    out = meshio.Mesh(np.ascontiguousarray(m.doflocs.T), cells, point_data=data,
+    out = meshio.Mesh(np.ascontiguousarray(points), cells, point_data=data,
                       cell_data={"region": region})
     path = Path(path)
     with atomic_path(path) as tmp:
         meshio.write(tmp, out, file_format="vtu")
-    return path, names
+    return path
 
 
 def write_vtu(result, path, rpm: float, *,
