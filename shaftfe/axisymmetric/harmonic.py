@@ -183,7 +183,6 @@ class Rbe3:
     tx: np.ndarray
     uy: np.ndarray
     tz: np.ndarray
-    area: float
 
 
 def rbe3(h: Harmonics, edge_ids, x_c: float) -> Rbe3:
@@ -207,8 +206,7 @@ def rbe3(h: Harmonics, edge_ids, x_c: float) -> Rbe3:
     rows1, g1 = kn.edge_moments(X, R, [lambda x, r: (zero, one, -one),
                                        lambda x, r: (-r, x - x_c, -(x - x_c))])
     r1 = np.linalg.solve(g1, scatter(rows1))
-    area = 2 * math.pi * g0[0, 0]
-    return Rbe3(float(x_c), ux, tx, r1[0], r1[1], area)
+    return Rbe3(float(x_c), ux, tx, r1[0], r1[1])
 
 
 # ---------------------------------------------------------------------- the solve

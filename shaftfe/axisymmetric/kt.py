@@ -78,23 +78,27 @@ def kt_once(D: float, d: float, rho: float, refine: int = 0, level: AxiLevel = L
     a0, a1 = ax[np.argmin(mesh.xr[0][ax])], ax[np.argmax(mesh.xr[0][ax])]
     far = int(np.argmax(mesh.xr[1]))
     r = 0.5 * d
-    out = {}
     R = 0.5 * D
+    # the small end (x = 0) carries the nominal field; the large end the same resultant.
+    # tension σ_x = 1: σ_nom = 4P/(πd²) = 1; bending σ_x = r cos θ (k = 1): M = π r⁴/4,
+    # 32M/(πd³) = r; torsion τ_xθ = r (g = 1): T = π r⁴/2, 16T/(πd³) = r
+    cases = {"tension": (0, (lambda x, rr: (1.0, 0.0, 0.0)), (r / R) ** 2, 1.0),
+             "bending": (1, (lambda x, rr: (rr, 0.0, 0.0)), (r / R) ** 4, r),
+             "torsion": (0, (lambda x, rr: (0.0, 0.0, rr)), (r / R) ** 4, r)}
+    pins = {0: [3 * a0, 3 * far + 2], 1: [3 * a0 + 1, 3 * a1 + 1]}
+    disp = {}
+    for n in (0, 1):                   # one factorisation per harmonic, its loads as columns
+        loads = [ld for ld in LOADS if cases[ld][0] == n]
+        f = np.column_stack([q * h.traction_vector(right, trac, n)
+                             - h.traction_vector(left, trac, n)
+                             for trac, q in (cases[ld][1:3] for ld in loads)])
+        H = np.zeros((2, h.ndof))
+        H[[0, 1], pins[n]] = 1.0
+        u = hm.solve(h.K(n), f, h.reduction(n), hard=H).u
+        disp.update({ld: u[:, j] for j, ld in enumerate(loads)})
+    out = {}
     for load in LOADS:
-        # the small end (x = 0) carries the nominal field; the large end the same resultant
-        if load == "tension":          # σ_x = 1: σ_nom = 4P/(πd²) = 1
-            n, trac, q, s_nom = 0, (lambda x, rr: (1.0, 0.0, 0.0)), (r / R) ** 2, 1.0
-            pins = [3 * a0, 3 * far + 2]
-        elif load == "bending":        # σ_x = r cos θ (k = 1): M = π r⁴/4, 32M/(πd³) = r
-            n, trac, q, s_nom = 1, (lambda x, rr: (rr, 0.0, 0.0)), (r / R) ** 4, r
-            pins = [3 * a0 + 1, 3 * a1 + 1]
-        else:                          # τ_xθ = r (g = 1): T = π r⁴/2, 16T/(πd³) = r
-            n, trac, q, s_nom = 0, (lambda x, rr: (0.0, 0.0, rr)), (r / R) ** 4, r
-            pins = [3 * a0, 3 * far + 2]
-        f = q * h.traction_vector(right, trac, n) - h.traction_vector(left, trac, n)
-        H = np.zeros((len(pins), h.ndof))
-        H[range(len(pins)), pins] = 1.0
-        u = hm.solve(h.K(n), f, h.reduction(n), hard=H).u[:, 0]
+        n, s_nom, u = cases[load][0], cases[load][3], disp[load]
         s = S.stress(u, n, E, nu)[:, on]
         s1 = rc.principal_max_local(s)            # θ = 0 is the extreme for n = 0 and n = 1
         kt_val, ang_val = _arc_peak(geo.curves[fil[0]], mesh.xr[:, S.nodes[on]], s1)

@@ -111,13 +111,6 @@ class MeridianMesh:
         ids = [i for i, c in enumerate(self.geometry.curves) if name in c.groups]
         return np.nonzero(np.isin(self.edge_curve, ids))[0]
 
-    def groups(self) -> tuple[str, ...]:
-        seen: dict[str, None] = {}
-        for c in self.geometry.curves:
-            for g in c.groups:
-                seen[g] = None
-        return tuple(seen)
-
     def axis_nodes(self) -> np.ndarray:
         return np.nonzero(self.xr[1] <= 1e-9 * max(1.0, float(self.xr[1].max())))[0]
 

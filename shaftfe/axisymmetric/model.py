@@ -76,6 +76,10 @@ class AxiOptions:
     def load_case(self) -> str:
         return load_case_label(self.seed_load_case)
 
+    @property
+    def level_name(self) -> str:
+        return self.level if isinstance(self.level, str) else self.level.name
+
 
 def check_options(o: AxiOptions) -> None:
     axi_level(o.level)
@@ -99,7 +103,6 @@ class SeatLoad:
     angle_deg: float
     force_N: float          # at the solve's speed
     p0_MPa: float
-    radius_mm: float
 
 
 @dataclass(frozen=True, eq=False)
@@ -144,8 +147,7 @@ def pressure_loads(variant, sol, distribution: str, rpm: float = REF_RPM) -> lis
             continue
         st = seats[f"load:{a.name}"]
         p0 = F / (per * st.part.r * (st.x1 - st.x0))
-        out.append(SeatLoad(a.name, st.name, float(a.angle_deg), float(F), float(p0),
-                            float(st.part.r)))
+        out.append(SeatLoad(a.name, st.name, float(a.angle_deg), float(F), float(p0)))
     return out
 
 
@@ -373,7 +375,7 @@ def _solve_n1(h, bearings, fs, fa, rigid: bool, soft=()):
         if rigid:
             reac[name] = (-mult[0][k], -mult[1][k], 0.0, 0.0)
         else:
-            q = np.array([uy[k] @ us, uy[k] @ ua])
+            q = np.array([qs[k], qa[k]])          # the bearings' rows come first
             F = -C[k] @ q
             reac[name] = (F[0], F[1], q[0], q[1])
     return us, ua, reac, max(rel, sol.relres)

@@ -1,6 +1,7 @@
 """Files of an axisymmetric run: ``summary.json`` and ``result.vtu``, the meridian solution
 revolved to 3D (the corner nodes of every triangle swept over ``SECTORS`` sectors into wedges;
-displacement and the nodally averaged von Mises stress at the first speed), each written
+displacement and the nodally averaged von Mises stress at the first speed; cell data
+``region`` 0, the volume), each written
 atomically into ``out`` (the command stages the whole directory)."""
 
 from __future__ import annotations
@@ -51,21 +52,16 @@ def revolved_fields(sol, scale: float, sectors: int = SECTORS):
 
 
 def write_outputs(variant_arg: str, variant, opts, res, rpms, out) -> dict:
-    import meshio
-
-    from shaftfe.util.atomic import atomic_path, write_atomic
+    from shaftfe.io.vtu import write_point_fields
+    from shaftfe.util.atomic import write_atomic
     from shaftfe.util.versions import package_versions
     rpm_vtu = rpms[0]
     s = res.case(rpm_vtu).scale
     pts, cells, disp, vm = revolved_fields(res.solution, s)
     path = out / "result.vtu"
-    with atomic_path(path, suffix=".vtu") as tmp:
-        meshio.write(str(tmp), meshio.Mesh(pts, [("wedge", cells)],
-                                           point_data={"displacement_mm": disp,
-                                                       "von_mises_MPa": vm}))
-    opts_d = asdict(opts)
-    if not isinstance(opts.level, str):
-        opts_d["level"] = opts.level.name
+    write_point_fields(pts, [("wedge", cells)], [np.zeros(cells.shape[0], dtype=np.int32)],
+                       path, {"displacement_mm": disp, "von_mises_MPa": vm})
+    opts_d = {**asdict(opts), "level": opts.level_name}
     summary = {
         "inputs": {"variant": variant_arg, "rpm": rpms, "model": "axisymmetric",
                    "options": opts_d,

@@ -80,9 +80,7 @@ class AxiResult:
 
     def to_dict(self) -> dict:
         from shaftfe.util.fmt import json_clean
-        opts = asdict(self.options)
-        if not isinstance(self.options.level, str):
-            opts["level"] = self.options.level.name
+        opts = {**asdict(self.options), "level": self.options.level_name}
         return json_clean({
             "model": "axisymmetric", "variant": self.variant, "variant_hash": self.variant_hash,
             "options": opts, "load_case": self.options.load_case, "ref_rpm": self.ref_rpm,

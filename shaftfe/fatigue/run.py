@@ -86,6 +86,20 @@ def check_life_settings(design_life: float, speed_kmh: float) -> None:
                          got=speed_kmh)
 
 
+def check_model_level(model: str, level: str) -> None:
+    """--model one of ``static.MODELS`` and --level one of that model's levels (shared by
+    ``shaftfe fatigue`` and ``shaftfe report``)."""
+    if model not in MODELS:
+        raise InputError("command line", "--model", " | ".join(MODELS), got=model)
+    if model == "axisymmetric":
+        from shaftfe.axisymmetric.mesh import AXI_LEVELS
+        names = tuple(AXI_LEVELS)
+    else:
+        names = LEVEL_NAMES
+    if level not in names:
+        raise InputError("command line", "--level", " | ".join(names), got=level)
+
+
 def check_job(job: FatigueJob) -> None:
     if job.mean_stress not in MEAN_STRESS:
         raise InputError("command line", "--mean-stress", " | ".join(MEAN_STRESS),
@@ -93,14 +107,7 @@ def check_job(job: FatigueJob) -> None:
     if job.equivalent not in EQUIVALENT:
         raise InputError("command line", "--equivalent", " | ".join(EQUIVALENT),
                          got=job.equivalent)
-    if job.model not in MODELS:
-        raise InputError("command line", "--model", " | ".join(MODELS), got=job.model)
-    if job.model == "axisymmetric":
-        from shaftfe.axisymmetric.mesh import AXI_LEVELS
-        if job.level not in AXI_LEVELS:
-            raise InputError("command line", "--level", " | ".join(AXI_LEVELS), got=job.level)
-    elif job.level not in LEVEL_NAMES:
-        raise InputError("command line", "--level", " | ".join(LEVEL_NAMES), got=job.level)
+    check_model_level(job.model, job.level)
     check_life_settings(job.design_life, job.speed_kmh)
     if not (math.isfinite(job.kf) and 0 < job.kf <= 1):
         raise InputError("command line", "--kf", "a number in (0, 1]", got=job.kf)

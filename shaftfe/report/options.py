@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 from shaftfe.errors import InputError
 from shaftfe.rotordynamics.options import ROTOR_MODELS
-from shaftfe.solid.levels import ESTIMATE_PAIR_CHEAP, LEVEL_NAMES
+from shaftfe.solid.levels import ESTIMATE_PAIR_CHEAP
 from shaftfe.util.paths import DEFAULT_SPECTRUM
 
 STAGES = ("inputs", "balancing", "beam check", "static (mesh + one solve)", "fatigue",
@@ -57,19 +57,11 @@ CAMPBELL_STEP_MIN_RPM = 10.0     # ≤ 2000 speeds up to the rpm ceiling: second
 
 def check_options(o: ReportOptions) -> None:
     """Cheap checks of everything the user typed (before any computation or output)."""
-    from shaftfe.static import MODELS
-    if o.model not in MODELS:
-        raise InputError("command line", "--model", " | ".join(MODELS), got=o.model)
-    if o.model == "axisymmetric":
-        from shaftfe.axisymmetric.mesh import AXI_LEVELS
-        if o.level not in AXI_LEVELS:
-            raise InputError("command line", "--level", " | ".join(AXI_LEVELS), got=o.level)
-        if o.estimate_error:
-            raise InputError("command line", "--estimate-error", "not with --model "
-                             "axisymmetric (its levels' errors are in "
-                             "reports/benchmarks/axisymmetric.md)")
-    elif o.level not in LEVEL_NAMES:
-        raise InputError("command line", "--level", " | ".join(LEVEL_NAMES), got=o.level)
+    from shaftfe.fatigue.run import check_model_level
+    check_model_level(o.model, o.level)
+    if o.model == "axisymmetric" and o.estimate_error:
+        raise InputError("command line", "--estimate-error", "not with --model axisymmetric "
+                         "(its levels' errors are in reports/benchmarks/axisymmetric.md)")
     if o.rotor_model not in ROTOR_MODELS:
         raise InputError("command line", "--rotor-model", " | ".join(ROTOR_MODELS),
                          got=o.rotor_model)

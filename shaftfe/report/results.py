@@ -7,6 +7,7 @@ import math
 from dataclasses import dataclass, field
 
 from shaftfe.report.options import ReportOptions
+from shaftfe.util.fmt import json_clean
 
 
 @dataclass(frozen=True)
@@ -69,7 +70,7 @@ class Report:
 
     def to_dict(self) -> dict:
         from dataclasses import asdict
-        return _clean({
+        return json_clean({
             "options": asdict(self.options), "created_utc": self.created_utc,
             "inputs": self.inputs, "provenance": self.provenance, "balancing": self.balancing,
             "beam": self.beam, "static": self.static, "fatigue": self.fatigue,
@@ -82,18 +83,3 @@ class Report:
             "notes": list(self.notes), "machine": self.machine})
 
 
-def _clean(o):
-    """JSON-safe: non-finite floats → None, tuples → lists, numpy scalars → float."""
-    if isinstance(o, dict):
-        return {str(k): _clean(v) for k, v in o.items()}
-    if isinstance(o, list | tuple):
-        return [_clean(v) for v in o]
-    if isinstance(o, bool | str) or o is None:
-        return o
-    if isinstance(o, int):
-        return int(o)
-    try:
-        f = float(o)
-    except (TypeError, ValueError):
-        return str(o)
-    return f if math.isfinite(f) else None

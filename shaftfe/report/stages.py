@@ -217,7 +217,7 @@ def static_summary_axisymmetric(res, variant) -> dict:
             "beam_springs": {},
         })
     o = res.options
-    level = o.level if isinstance(o.level, str) else o.level.name
+    level = o.level_name
     return {"model": "axisymmetric",
             "model_label": f"axisymmetric FE (P2, harmonics n ≤ {res.harmonics[-1]}) {level}",
             "level": level, "order": 2,

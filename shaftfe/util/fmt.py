@@ -16,12 +16,18 @@ def life(v: float | None) -> str:
 
 
 def json_clean(o):
-    """``o`` with every non-finite float replaced by None (JSON has no inf/nan), recursively
-    through dicts, lists and tuples (tuples become lists)."""
-    if isinstance(o, float):
-        return o if math.isfinite(o) else None
+    """``o`` made JSON-safe, recursively: non-finite floats → None (JSON has no inf/nan),
+    tuples → lists, keys → str, numpy scalars → float or int, anything else not JSON → str."""
     if isinstance(o, dict):
-        return {k: json_clean(v) for k, v in o.items()}
+        return {str(k): json_clean(v) for k, v in o.items()}
     if isinstance(o, list | tuple):
         return [json_clean(v) for v in o]
-    return o
+    if isinstance(o, bool | str) or o is None:
+        return o
+    if isinstance(o, int):
+        return int(o)
+    try:
+        f = float(o)
+    except (TypeError, ValueError):
+        return str(o)
+    return f if math.isfinite(f) else None
