@@ -182,9 +182,12 @@ def test_vtu_has_the_documented_fields(run):
     sf = np.asarray(g.point_data["safety_factor"])
     # exact: the same float64 in the .vtu and the JSON (measured equal; approx's default 1e-6)
     assert sf.min() == pytest.approx(s["fatigue"]["hot_spot_unfiltered"]["safety_factor"])
-    # exact arithmetic (scale (10 000/REF_RPM)² = 1; measured equal); was 1e-9
-    assert np.asarray(g.point_data["von_mises"]).max() == pytest.approx(
-        s["static"]["cases"][0]["peak_von_mises_unfiltered_MPa"], rel=1e-12)
+    # the peak is located by a local fit (shaftfe.fe.surface.local_peak) whose polynomial
+    # passes through the largest node's value at that node (the same patch fit that recovered
+    # it): so the nodal maximum can never exceed it (1e-12: round-off of the same sums, scale
+    # (10 000/REF_RPM)² = 1)
+    assert np.asarray(g.point_data["von_mises"]).max() <= (
+        s["static"]["cases"][0]["peak_von_mises_unfiltered_MPa"] * (1 + 1e-12))
 
 
 @pytest.mark.parametrize("argv, needle", [

@@ -267,23 +267,42 @@ def axis_deflection(variant, mesh, u: np.ndarray, xs) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class _Recovered:
-    """Nodal stresses at REF_RPM and what the peaks are taken over."""
+    """Nodal stresses at REF_RPM (the free surface's from the surface recovery) and the peaks
+    per region (at REF_RPM: every case scales them)."""
     stress: np.ndarray
     vm: np.ndarray
-    s1: np.ndarray
     excluded: np.ndarray
-    regions: dict
+    peaks: tuple
+    shaft: recovery.RegionPeak
+    n_surface: int
     seconds: float
 
 
+def free_facets(mesh) -> np.ndarray:
+    """Boundary facets without a load or a bearing coupling on them (traction-free)."""
+    return np.setdiff1d(mesh.boundary_facets(), np.concatenate(_patches(mesh)))
+
+
 def _recover(model: StaticModel, u: np.ndarray, options: StaticOptions) -> _Recovered:
+    """Nodal averaging everywhere, then the surface recovery (``shaftfe.fe.surface``) on the
+    traction-free faces, whose values replace the averaged ones there."""
+    from shaftfe.fe import surface
     t1 = time.perf_counter()
     m, mat = model.shaft_mesh.mesh, model.variant.material
     stress = recovery.nodal_stress(m, u, mat.E_MPa, mat.nu)
+    surf = None
+    if fem.is_quadratic(m):
+        surf = surface.surface_stress(m, u, mat.E_MPa, mat.nu, free_facets(m))
+        ok = np.isfinite(surf.stress[0])
+        stress[:, surf.nodes[ok]] = surf.stress[:, ok]
     vm = recovery.von_mises(stress)
-    s1 = recovery.principal(stress)[0]
     excl = recovery.excluded_nodes(m, _patches(m), options.exclude_mm)
-    return _Recovered(stress, vm, s1, excl, region_nodes(m), time.perf_counter() - t1)
+    xyz = m.doflocs
+    peaks = tuple(recovery.peak(stress, xyz, nodes, excl, name, surf)
+                  for name, nodes in sorted(region_nodes(m).items()))
+    shaft = recovery.peak(stress, xyz, np.arange(xyz.shape[1]), excl, "shaft", surf)
+    n_surf = 0 if surf is None else int(np.isfinite(surf.stress[0]).sum())
+    return _Recovered(stress, vm, excl, peaks, shaft, n_surf, time.perf_counter() - t1)
 
 
 def _station_list(model: StaticModel) -> list[tuple[str, float]]:
@@ -379,7 +398,6 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
     u = sol.u
     rec = _recover(model, u, options)
     xyz = m.doflocs
-    all_nodes = np.arange(xyz.shape[1])
     stations = _station_list(model)
     st_u = axis_deflection(v, m, u, [s[1] for s in stations])
     x0, x1 = float(xyz[0].min()), float(xyz[0].max())
@@ -396,9 +414,8 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
         sts = tuple(Station(nm, float(x), float(uu[1] * s), float(uu[2] * s),
                             float(math.hypot(uu[1], uu[2]) * s))
                     for (nm, x), uu in zip(stations, st_u, strict=True))
-        peaks = tuple(recovery.peak(rec.vm, rec.s1, xyz, nodes, rec.excluded, name, s)
-                      for name, nodes in sorted(rec.regions.items()))
-        g = recovery.peak(rec.vm, rec.s1, xyz, all_nodes, rec.excluded, "shaft", s)
+        peaks = tuple(p.scaled(s) for p in rec.peaks)
+        g = rec.shaft.scaled(s)
         bm = None
         if "error" in beam_res:
             bm = {"error": beam_res["error"]}
@@ -417,7 +434,8 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
             equilibrium_residual=eq_res, beam=bm))
 
     diag = dict(sol.diagnostics)
-    diag.update(min_quality=sm.min_quality, n_excluded_nodes=int(rec.excluded.size))
+    diag.update(min_quality=sm.min_quality, n_excluded_nodes=int(rec.excluded.size),
+                n_surface_recovered_nodes=rec.n_surface)
     cross = _load_cross_force(model)
     if cross:
         diag["load_cross_force_rel"] = cross
