@@ -17,8 +17,9 @@ def register(sub) -> None:
         "static", help="3D FE static check: stresses, deflections, bearing reactions, L10h",
         description="3D P2 finite-element static analysis of a balancer-shaft variant in the "
         "co-rotating frame: centrifugal loads m e ω² on the pressed half of each seat, bearings "
-        "as RBE3 remote points on 2×2 radial springs (or rigid). One solve serves every rpm "
-        "(loads ∝ rpm²). Writes result.vtu, summary.json and deflection.png to --out.")
+        "as RBE3 remote points on 2×2 radial springs (or rigid). One factorisation serves every "
+        "rpm (loads ∝ rpm²; with --spin-softening each rpm exactly by a low-rank update). "
+        "Writes result.vtu, summary.json and deflection.png to --out.")
     p.add_argument("--variant", required=True, help="variant name (geometry/<name>.toml) or path")
     p.add_argument("--rpm", default="10000",
                    help="speed(s) in rpm, comma-separated (default 10000), e.g. 7000,10000")
@@ -35,8 +36,9 @@ def register(sub) -> None:
     p.add_argument("--body-force", action="store_true",
                    help="add the shaft's own centrifugal body force (off by default)")
     p.add_argument("--spin-softening", action="store_true",
-                   help="with --model axisymmetric: add each part's m ω² u (the deflected "
-                   "part's centrifugal force in the co-rotating frame); one --rpm per run")
+                   help="add each part's m ω² u (the deflected part's centrifugal force in the "
+                   "co-rotating frame; off by default); 3D: every --rpm solved exactly by a "
+                   "low-rank update of one factorisation; --model axisymmetric: one --rpm")
     p.add_argument("--seed-load-case", action="store_true",
                    help="load only the parts the seed loaded (gear, counterweights 1 and 2)")
     p.add_argument("--solver", default="auto",
@@ -75,9 +77,6 @@ def run(args) -> int:
                          got=args.solver)
 
     from shaftfe.model.loader import load_variant
-    if args.spin_softening and args.model != "axisymmetric":
-        raise InputError("--spin-softening", "--spin-softening", "with --model axisymmetric "
-                         "(the 3D path does not include it yet)")
     if args.model == "axisymmetric":
         return _run_axisymmetric(args, rpms, load_variant(args.variant))
     from shaftfe.static import cache as static_cache
@@ -88,7 +87,8 @@ def run(args) -> int:
     opts = StaticOptions(level=args.level, order=args.order, rigid_supports=args.rigid_supports,
                          load_distribution=args.load_distribution, body_force=args.body_force,
                          seed_load_case=args.seed_load_case, solver=args.solver,
-                         exclude_mm=args.exclude_mm)
+                         exclude_mm=args.exclude_mm,
+                         spin_softening=args.spin_softening)
     out = Path(args.out) if args.out else Path("reports") / variant.name / "static"
     from shaftfe.util.progress import Progress
     prog = Progress(["mesh + solve", "outputs"], enabled=False if args.json else None)
@@ -98,7 +98,8 @@ def run(args) -> int:
             if args.estimate_error:
                 from shaftfe.static.error import with_error_estimate
                 res = with_error_estimate(res, variant, opts)
-            static_cache.store(variant, opts, res)  # `shaftfe fatigue` on this model reuses it
+            if not opts.spin_softening:          # `shaftfe fatigue` scales this one
+                static_cache.store(variant, opts, res)
         with prog.stage("outputs"):
             from shaftfe.static.outputs import write_outputs
             summary = write_outputs(args.variant, variant, opts, res, rpms, stage)

@@ -41,6 +41,7 @@ class StaticOptions:
     solver: str = "auto"                   # see shaftfe.fe.solvers
     hold_twist: str = "all"                # θ_x held at "all" bearings, the "axial" one, "none"
     exclude_mm: float = 0.0                # extra band around patch edges for filtered peaks
+    spin_softening: bool = False           # the parts' m ω² u (see shaftfe.static.solve.soften)
 
     @property
     def load_case(self) -> str:
@@ -59,6 +60,16 @@ class StaticModel:
     load_force: dict                      # attachment name -> (Fx, Fy, Fz) at REF_RPM
     f: np.ndarray                         # total load vector at REF_RPM
     assembly_seconds: float
+    soft: tuple = ()                      # SoftSeat per spinning part (spin softening)
+
+
+@dataclass(frozen=True, eq=False)
+class SoftSeat:
+    """A part's seat for spin softening: its remote point's (u_y, u_z) = R u (the RBE3 rows of
+    the whole seat about the seat centre on the axis) and the part's mass."""
+    name: str
+    R: np.ndarray                         # (2, ndof)
+    mass_t: float
 
 
 # --------------------------------------------------------------------------- model
@@ -120,8 +131,15 @@ def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh
     f = np.zeros(K.shape[0])
     for v in loads.values():
         f += v
+    soft = []
+    for a in variant.attachments if options.spin_softening else ():
+        groups = [np.asarray(fc) for g, fc in m.boundaries.items()
+                  if g.startswith(f"load:{a.name}:")]
+        if a.mass_kg > 0 and groups:
+            R = fem.rigid_rows(m, np.concatenate(groups), (a.seat_center_mm, 0.0, 0.0))[[1, 2]]
+            soft.append(SoftSeat(a.name, np.ascontiguousarray(R), a.mass_kg * 1e-3))
     return StaticModel(variant, shaft_mesh, options, K, tuple(couplings), blocks, loads,
-                       forces, f, time.perf_counter() - t0)
+                       forces, f, time.perf_counter() - t0, tuple(soft))
 
 
 def region_facets(mesh) -> dict[str, np.ndarray]:

@@ -39,7 +39,7 @@ class Station:
 @dataclass(frozen=True)
 class StaticCase:
     rpm: float
-    scale: float                               # (rpm / REF_RPM)²
+    scale: float                               # (rpm / ref_rpm)²: the loads' ratio
     bearings: tuple[BearingReaction, ...]
     stations: tuple[Station, ...]
     max_deflection_mm: float                   # max nodal |(u_y, u_z)|
@@ -54,6 +54,7 @@ class StaticCase:
     reaction_sum_N: tuple[float, float, float]
     equilibrium_residual: float                # |Σ reactions + Σ loads| / |Σ loads|
     beam: dict | None = None                   # shaftfe.beam.model numbers side by side
+    spin_softening_N: dict | None = None       # part -> (F_y, F_z) of m ω² ū (None: off)
 
 
 @dataclass(frozen=True, eq=False)

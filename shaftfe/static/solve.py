@@ -125,9 +125,10 @@ def _support_columns(model: StaticModel, P: np.ndarray, kp: float):
 
 
 def solve_model(model: StaticModel, rhs: np.ndarray | None = None, *,
-                tol: float = RESIDUAL_TOL) -> UnitSolution:
-    """Solve the supported system for ``rhs`` (default: the model's load at REF_RPM); a
-    relative residual or support-row violation above ``tol`` is a SolverError."""
+                tol: float = RESIDUAL_TOL):
+    """Solve the supported system for ``rhs`` (default: the model's load at REF_RPM; a 2D array
+    (ndof, k) gives a list of k solutions from the same factorisation); a relative residual or
+    support-row violation above ``tol`` is a SolverError."""
     from shaftfe.fe import solvers
     m = model.shaft_mesh.mesh
     K = model.K
@@ -146,10 +147,11 @@ def solve_model(model: StaticModel, rhs: np.ndarray | None = None, *,
                             diag_add=(pins, np.full(6, kp)))          # B = K + kp Σ e eᵀ
     t_fac = time.perf_counter() - t0
     U, Cinv = _support_columns(model, P, kp)
-    f = model.f if rhs is None else rhs
+    F = model.f if rhs is None else rhs
+    F2 = F.reshape(n, -1)
     t1 = time.perf_counter()
-    Z = fac.solve(np.column_stack([U, f]))
-    Z, y = Z[:, :-1], Z[:, -1]
+    Z = fac.solve(np.column_stack([U, F2]))
+    Z, Y = Z[:, :U.shape[1]], Z[:, U.shape[1]:]
     lr = LowRankSolver(fac, U, Cinv, Z=Z,
                        hint=f"check the bearing stiffnesses; {_springs(model)}")
     cond = lr.cond_S              # [B U; Uᵀ −C⁻¹] [u; λ] = [f; g] (pins included in U)
@@ -162,45 +164,52 @@ def solve_model(model: StaticModel, rhs: np.ndarray | None = None, *,
     Phi_pinv = np.ascontiguousarray(np.linalg.pinv(Phi))
     Us, Cs = U[:, 6:], Cinv[6:, 6:]
 
-    def residuals(a, w, lam_s):
+    def residuals(f, a, w, lam_s):
         r1 = f - K @ w - Us @ lam_s
         r2 = Cs @ lam_s - (Us.T @ (Phi @ a) + Us.T @ w)
         return r1, r2
 
-    u0, lam = lr.correct(y, np.zeros(U.shape[1]))
+    # every right-hand side at once (columns), so that each factor solve is one multi-RHS call
+    u0, lam = lr.correct(Y, np.zeros((U.shape[1], Y.shape[1])))
     a = Phi_pinv @ u0
     w = u0 - Phi @ a
     lam_s = lam[6:]
-    r1, r2 = residuals(a, w, lam_s)
-    fn = float(np.linalg.norm(f))
-    relres0 = float(np.linalg.norm(r1) / fn) if fn > 0 else 0.0
+    r1, r2 = residuals(F2, a, w, lam_s)
+    fn = np.linalg.norm(F2, axis=0)
+    fn_safe = np.where(fn > 0, fn, 1.0)
+    relres0 = np.where(fn > 0, np.linalg.norm(r1, axis=0) / fn_safe, 0.0)
     # one step of iterative refinement with the same factor and capacitance
-    du, dlam = lr.correct(fac.solve(r1), np.concatenate([np.zeros(6), -r2]))
+    du, dlam = lr.correct(fac.solve(r1).reshape(r1.shape),
+                          np.vstack([np.zeros((6, r1.shape[1])), -r2]))
     da = Phi_pinv @ du
     a, w, lam_s = a + da, w + (du - Phi @ da), lam_s + dlam[6:]
-    r1, r2 = residuals(a, w, lam_s)
+    r1, r2 = residuals(F2, a, w, lam_s)
+    u_all = Phi @ a + w
+    relres = np.where(fn > 0, np.linalg.norm(r1, axis=0) / fn_safe, 0.0)
+    umax = np.abs(u_all).max(axis=0) if u_all.size else np.zeros(F2.shape[1])
+    hard = np.abs(r2).max(axis=0) if r2.size else np.zeros(F2.shape[1])
+    hard_rel = np.where(umax > 0, hard / np.where(umax > 0, umax, 1.0), 0.0)
     t_sol = time.perf_counter() - t1
-    u = Phi @ a + w
-    relres = float(np.linalg.norm(r1) / fn) if fn > 0 else 0.0
-    umax = float(np.abs(u).max()) if u.size else 0.0
-    hard_rel = float(np.abs(r2).max()) / umax if umax > 0 and r2.size else 0.0
-    lam_blocks = []
-    k = 0
-    for blk in model.blocks:
-        mk = blk.R.shape[0]
-        lam_blocks.append(lam_s[k:k + mk])
-        k += mk
-    if relres > tol or hard_rel > tol:
-        raise SolverError(f"the linear solve did not converge (relative residual {relres:.2e}, "
-                          f"support-row violation {hard_rel:.2e}; limit {tol:g}): "
-                          f"check the bearing stiffnesses; {_springs(model)}")
-    diag = {"solver": fac.name, "solver_note": getattr(fac, "note", ""),
-            "n_low_rank": int(U.shape[1]),
-            "cond_S": cond, "relative_residual": relres, "hard_violation_rel": hard_rel,
-            "relative_residual_before_refinement": relres0,
-            "pin_stiffness": kp}
-    run = {"factor_seconds": t_fac, "solve_seconds": t_sol}
-    return UnitSolution(u, lam_blocks, relres, hard_rel, cond, diag, run)
+    bad = (relres > tol) | (hard_rel > tol)
+    if bad.any():
+        j = int(np.argmax(bad))
+        raise SolverError(f"the linear solve did not converge (relative residual "
+                          f"{relres[j]:.2e}, support-row violation {hard_rel[j]:.2e}; limit "
+                          f"{tol:g}): check the bearing stiffnesses; {_springs(model)}")
+    starts = np.cumsum([0] + [blk.R.shape[0] for blk in model.blocks])
+    sols = []
+    for j in range(F2.shape[1]):
+        lam_blocks = [lam_s[starts[k]:starts[k + 1], j] for k in range(len(model.blocks))]
+        diag = {"solver": fac.name, "solver_note": getattr(fac, "note", ""),
+                "n_low_rank": int(U.shape[1]),
+                "cond_S": cond, "relative_residual": float(relres[j]),
+                "hard_violation_rel": float(hard_rel[j]),
+                "relative_residual_before_refinement": float(relres0[j]),
+                "pin_stiffness": kp}
+        run = {"factor_seconds": t_fac, "solve_seconds": t_sol}
+        sols.append(UnitSolution(np.ascontiguousarray(u_all[:, j]), lam_blocks,
+                                 float(relres[j]), float(hard_rel[j]), cond, diag, run))
+    return sols[0] if F.ndim == 1 else sols
 
 
 # --------------------------------------------------------------------------- post-processing
@@ -316,21 +325,69 @@ def _station_list(model: StaticModel) -> list[tuple[str, float]]:
     return stations
 
 
-def _reactions(model: StaticModel, sol: UnitSolution):
-    """Support reactions per bearing at REF_RPM (6 components), Σ loads, Σ reactions and the
-    relative equilibrium residual."""
+def _reactions(model: StaticModel, lam: list, f: np.ndarray):
+    """Support reactions per bearing (6 components) from the multipliers ``lam`` of a solve
+    with the load vector ``f``, Σ loads, Σ reactions and the relative equilibrium residual."""
     reac = {}
-    for blk, lb in zip(model.blocks, sol.lam, strict=True):
+    for blk, lb in zip(model.blocks, lam, strict=True):
         r = reac.setdefault(blk.bearing, np.zeros(6))
         for lab, val in zip(blk.labels, lb, strict=True):
             r[supports._DOF[lab]] -= val
-    load_sum = model.f.reshape(-1, 3).sum(axis=0)
+    load_sum = f.reshape(-1, 3).sum(axis=0)
     reac_sum = sum((r[:3] for r in reac.values()), np.zeros(3))
     # scale: |Σ loads|, or Σ |nodal loads| when the loads are self-equilibrated (body force)
     scale = max(float(np.linalg.norm(load_sum)),
-                1e-6 * float(np.abs(model.f.reshape(-1, 3)).sum()))
+                1e-6 * float(np.abs(f.reshape(-1, 3)).sum()))
     eq_res = float(np.linalg.norm(reac_sum + load_sum) / scale) if scale > 0 else 0.0
     return reac, load_sum, reac_sum, eq_res
+
+
+@dataclass(frozen=True, eq=False)
+class SpeedSolution:
+    """The solution at one speed with its loads scaled by ``scale`` = (rpm / REF_RPM)²: u, the
+    support multipliers per block, and the spin-softening force on each part's seat (N)."""
+    rpm: float
+    scale: float
+    u: np.ndarray
+    lam: list
+    soft_N: dict                      # part -> (F_y, F_z): m ω² (u_y, u_z) of its seat
+    extra: np.ndarray | None          # the softening forces as a load vector (ndof) or None
+
+
+def soften(model: StaticModel, base: UnitSolution, unit: list, rpm: float) -> SpeedSolution:
+    """Spin softening at ``rpm`` (exact, by a second Woodbury step on the solved system).
+
+    In the co-rotating frame each part's centrifugal force is m ω² (e + ū), ū = R u its seat's
+    remote-point motion (``StaticModel.soft``): the m ω² ū part is a negative spring −m ω² on
+    R. With u₀ the solution for the loads at REF_RPM and W = A⁻¹ Rᵀ (``unit``: the supported
+    system's responses to unit seat forces, from the same factorisation), the softened solution
+    for the loads × s is u = s u₀ + W μ with μ = D ū, D = diag(m ω²), and
+    (I − R W D) ū = s R u₀. The softened stiffness is positive definite exactly when
+    I − D^½ (R W) D^½ is (R W is the seats' compliance, symmetric positive definite): else the
+    speed is at or above a critical speed of the softened rotor and the static co-rotating
+    solution does not exist (SolverError). The same combination gives the multipliers."""
+    s = (rpm / REF_RPM) ** 2
+    if not model.soft or rpm == 0:
+        return SpeedSolution(rpm, s, base.u * s, [lb * s for lb in base.lam], {}, None)
+    R = np.vstack([sd.R for sd in model.soft])
+    W = np.column_stack([w.u for w in unit])
+    RW = R @ W
+    RW = 0.5 * (RW + RW.T)
+    w2 = (rpm * 2.0 * math.pi / 60.0) ** 2
+    d = np.repeat([sd.mass_t * w2 for sd in model.soft], 2)
+    sq = np.sqrt(d)
+    if np.linalg.eigvalsh(np.eye(d.size) - sq[:, None] * RW * sq[None, :]).min() <= 0:
+        raise SolverError(f"spin softening: {rpm:g} rpm is at or above a critical speed of the "
+                          "softened rotor (the parts' m ω² exceeds what the shaft and bearings "
+                          "hold); the static co-rotating solution is not stable")
+    ubar = np.linalg.solve(np.eye(d.size) - RW * d[None, :], s * (R @ base.u))
+    mu = d * ubar
+    u = s * base.u + W @ mu
+    lam = [s * lb + sum(m_ * w.lam[k] for m_, w in zip(mu, unit, strict=True))
+           for k, lb in enumerate(base.lam)]
+    soft_N = {sd.name: (float(mu[2 * j]), float(mu[2 * j + 1]))
+              for j, sd in enumerate(model.soft)}
+    return SpeedSolution(rpm, s, u, lam, soft_N, R.T @ mu)
 
 
 def _beam_check(v, rpms: list[float], options: StaticOptions) -> dict:
@@ -394,44 +451,63 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
     v, sm = model.variant, model.shaft_mesh
     m = sm.mesh
     t_model = time.perf_counter() - t0
-    sol = solve_model(model)
-    u = sol.u
+    soft_on = bool(model.soft) and any(r > 0 for r in rpms)
+    if soft_on:
+        R = np.vstack([sd.R for sd in model.soft])
+        sols = solve_model(model, np.column_stack([model.f, R.T]))
+        sol, unit = sols[0], sols[1:]
+    else:
+        sol, unit = solve_model(model), []
+    # with spin softening the response is not ∝ ω²: the reference fields are those of the
+    # first speed, and each speed is solved exactly (``soften``); without it, one solve at
+    # REF_RPM scaled serves every speed
+    ref_rpm = rpms[0] if soft_on else REF_RPM
+    speeds = {r: soften(model, sol, unit, r) for r in dict.fromkeys(rpms)}
+    ref = speeds[ref_rpm] if soft_on else soften(model, sol, unit, REF_RPM)
+    u = ref.u
     rec = _recover(model, u, options)
+    recs = {r: rec for r in speeds} if not soft_on else {
+        r: rec if r == ref_rpm else _recover(model, sp_.u, options) for r, sp_ in speeds.items()}
     xyz = m.doflocs
     stations = _station_list(model)
-    st_u = axis_deflection(v, m, u, [s[1] for s in stations])
     x0, x1 = float(xyz[0].min()), float(xyz[0].max())
     ax_x = np.linspace(x0 + 1e-6, x1 - 1e-6, 121)
-    ax_u = axis_deflection(v, m, u, ax_x)
-    radial = np.hypot(u[1::3], u[2::3])
-    imax = int(np.argmax(radial))
-    reac, load_sum, reac_sum, eq_res = _reactions(model, sol)
     beam_res = _beam_check(v, rpms, options) if beam else {}
 
+    ax_u_ref = axis_deflection(v, m, u, ax_x)
     cases = []
     for r in rpms:
-        s = (r / REF_RPM) ** 2
-        sts = tuple(Station(nm, float(x), float(uu[1] * s), float(uu[2] * s),
-                            float(math.hypot(uu[1], uu[2]) * s))
+        sp_ = speeds[r]
+        ur = sp_.u
+        # without softening the peaks are the reference's × (rpm / REF_RPM)²
+        rc_, f_ = (rec, sp_.scale) if not soft_on else (recs[r], 1.0)
+        st_u = axis_deflection(v, m, ur, [q[1] for q in stations])
+        ax_u = axis_deflection(v, m, ur, ax_x)
+        radial = np.hypot(ur[1::3], ur[2::3])
+        imax = int(np.argmax(radial))
+        f_r = model.f * sp_.scale + (0.0 if sp_.extra is None else sp_.extra)
+        reac, load_sum, reac_sum, eq_res = _reactions(model, sp_.lam, f_r)
+        sts = tuple(Station(nm, float(x), float(uu[1]), float(uu[2]),
+                            float(math.hypot(uu[1], uu[2])))
                     for (nm, x), uu in zip(stations, st_u, strict=True))
-        peaks = tuple(p.scaled(s) for p in rec.peaks)
-        g = rec.shaft.scaled(s)
+        g = rc_.shaft.scaled(f_)
         bm = None
         if "error" in beam_res:
             bm = {"error": beam_res["error"]}
         elif r in beam_res:
             bm = _beam_summary(beam_res[r])
         cases.append(StaticCase(
-            rpm=r, scale=s, bearings=_bearing_rows(model, reac, u, r, s), stations=sts,
-            max_deflection_mm=float(radial[imax] * s),
+            rpm=r, scale=(r / ref_rpm) ** 2, bearings=_bearing_rows(model, reac, ur, r, 1.0),
+            stations=sts, max_deflection_mm=float(radial[imax]),
             max_deflection_xyz_mm=tuple(float(c) for c in xyz[:, imax]),
-            max_axis_deflection_mm=float(np.hypot(ax_u[:, 1], ax_u[:, 2]).max() * s),
-            peaks=peaks, peak_von_mises_MPa=g.von_mises_MPa, peak_von_mises_xyz_mm=g.xyz_mm,
+            max_axis_deflection_mm=float(np.hypot(ax_u[:, 1], ax_u[:, 2]).max()),
+            peaks=tuple(p.scaled(f_) for p in rc_.peaks), peak_von_mises_MPa=g.von_mises_MPa,
+            peak_von_mises_xyz_mm=g.xyz_mm,
             peak_von_mises_unfiltered_MPa=g.von_mises_unfiltered_MPa,
             peak_von_mises_unfiltered_xyz_mm=g.xyz_unfiltered_mm,
-            load_sum_N=tuple(float(c) for c in load_sum * s),
-            reaction_sum_N=tuple(float(c) for c in reac_sum * s),
-            equilibrium_residual=eq_res, beam=bm))
+            load_sum_N=tuple(float(c) for c in load_sum),
+            reaction_sum_N=tuple(float(c) for c in reac_sum),
+            equilibrium_residual=eq_res, beam=bm, spin_softening_N=sp_.soft_N or None))
 
     diag = dict(sol.diagnostics)
     diag.update(min_quality=sm.min_quality, n_excluded_nodes=int(rec.excluded.size),
@@ -444,9 +520,9 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
                assembly_seconds=model.assembly_seconds, model_seconds=t_model,
                recovery_seconds=rec.seconds)
     res = StaticResult(
-        variant=v.name, variant_hash=v.content_hash, options=options, ref_rpm=REF_RPM,
+        variant=v.name, variant_hash=v.content_hash, options=options, ref_rpm=ref_rpm,
         n_nodes=sm.n_nodes, n_elements=sm.n_elements, n_dofs=3 * sm.n_nodes, mesh_key=sm.key,
-        u_ref=u, stress_ref=rec.stress, von_mises_ref=rec.vm, axis_x=ax_x, axis_u_ref=ax_u,
+        u_ref=u, stress_ref=rec.stress, von_mises_ref=rec.vm, axis_x=ax_x, axis_u_ref=ax_u_ref,
         cases=tuple(cases), diagnostics=diag, notes=(), mesh=sm, run=run)
     res.run["total_seconds"] = time.perf_counter() - t_all
     return res

@@ -361,7 +361,6 @@ def test_spin_softening_needs_one_speed(tmp_path):
 
 @pytest.mark.parametrize("argv, needle", [
     (["--model", "axisymmetric", "--spin-softening", "--rpm", "7000,10000"], "one speed"),
-    (["--spin-softening"], "--model axisymmetric"),
 ])
 def test_spin_softening_flag_errors(tmp_path, capsys, argv, needle):
     from shaftfe.cli import main
