@@ -28,10 +28,11 @@ interpreter start and imports included), its peak RSS (``ru_maxrss`` of RUSAGE_S
 child) and the 1-minute load average (``os.getloadavg``, what ``uptime`` prints) before and
 after: the machine is shared, wall time is inflated by other work, CPU time much less.
 
-Reference: the extrapolated value (Richardson) of the two finest P2 levels, or the entry that
-``reports/benchmarks/static_reference.json`` carries when it has one (see
-``_static_json_reference``);
-the report says which. Pareto fronts: (cold wall time, |error|) — the primary one — and, as
+Reference: for the fillet stresses the truth, the axisymmetric path converged by Richardson
+(``reports/benchmarks/truth.json``, written by bench_truth: ``_truth_reference``; issue #12);
+otherwise the entry that ``reports/benchmarks/static_reference.json`` carries when it has one
+(``_static_json_reference``), else the extrapolated value (Richardson) of the two finest P2
+levels; the report says which. Pareto fronts: (cold wall time, |error|) — the primary one — and, as
 flags in the tables, (CPU time, |error|), (warm wall time, |error|) and (cold wall time, peak
 RSS, |error|).
 
@@ -581,6 +582,33 @@ def _static_json_reference() -> dict | None:
     return out
 
 
+TRUTH_JSON = OUT / "truth.json"   # written by bench_truth
+
+
+def _truth_reference() -> dict | None:
+    """x2_57's collar and bearing-seat-gear fillet peaks (von Mises, 10 000 rpm, springs) from
+    the axisymmetric path converged by Richardson (reports/benchmarks/truth.json, written by
+    bench_truth): an independent truth for the stresses (another element, mesh and recovery;
+    issue #12), preferred to any reference extrapolated from the 3D path itself."""
+    if not TRUTH_JSON.exists():
+        return None
+    try:
+        recs = json.loads(TRUTH_JSON.read_text())["records"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+    out = {}
+    for key, region in (("collar", "fillet:collar"), ("bsg", "fillet:bearing_seat_gear")):
+        hit = [r for r in recs if r.get("case") == f"x2_57 {region}"
+               and r.get("quantity") == "von_mises"]
+        if not hit:
+            return None
+        out[key] = float(hit[0]["truth_MPa"])
+        out[f"{key}_bar"] = float(hit[0]["truth_bar_MPa"])
+    out["_mtime"] = _dt.datetime.fromtimestamp(TRUTH_JSON.stat().st_mtime, _dt.UTC) \
+        .strftime("%Y-%m-%d %H:%M UTC")
+    return out
+
+
 def _merge(runs: list[dict]) -> list[dict]:
     """One row per configuration: cold and warm runs side by side."""
     rows: dict[str, dict] = {}
@@ -671,6 +699,9 @@ def _ref_fatigue(rows: list[dict], levels: dict) -> dict:
         return {}
     f, c, r_s, _ = pair
     s_star = richardson(f["sigma_eq"], c["sigma_eq"], r_s, 2)
+    truth = _fatigue_truth(f["region"])
+    if truth is not None:            # the axisymmetric truth of the hot spot's fillet
+        s_star = truth
     life, sf = _fatigue_eval(f["tensor"], s_star / f["sigma_eq"])
     # amplification: d ln(life) / d ln(sigma) at the reference (central difference, ±1 %)
     lp, _ = _fatigue_eval(f["tensor"], 1.01 * s_star / f["sigma_eq"])
@@ -683,7 +714,22 @@ def _ref_fatigue(rows: list[dict], levels: dict) -> dict:
             "sigma_eq": {"fine": f["sigma_eq"], "coarse": c["sigma_eq"], "extrapolated": s_star},
             "life": {"fine": f["life"], "coarse": c["life"], "extrapolated": life},
             "sf": {"fine": f["sf"], "coarse": c["sf"], "extrapolated": sf},
-            "dlnL_dlnS": slope}
+            "dlnL_dlnS": slope, "truth": truth is not None}
+
+
+def _fatigue_truth(region: str) -> float | None:
+    """The von Mises peak of ``region`` (a fillet outside the keyways' zones) at 10 000 rpm
+    from the axisymmetric truth (reports/benchmarks/truth.json), for the load case the fatigue
+    rows ran (``shaftfe fatigue``'s default: every part; or the seed load case), or None."""
+    try:
+        data = json.loads(TRUTH_JSON.read_text())
+        if _fatigue_defaults().seed_load_case:
+            return float(data["x2_57_seed_load_case"][region]["von_mises"])
+        hit = [r for r in data["records"] if r["case"] == f"x2_57 {region}"
+               and r["quantity"] == "von_mises"]
+        return float(hit[0]["truth_MPa"]) if hit else None
+    except (OSError, ValueError, KeyError, TypeError, IndexError):
+        return None
 
 
 def _ref_freq(rows: list[dict]) -> dict:
@@ -742,15 +788,18 @@ def analyse(data: dict) -> dict:
     rows = _merge(data["runs"])
     sref_own = _ref_static(rows, levels)
     sref_json = _static_json_reference()
+    sref_truth = _truth_reference()
     fref = _ref_fatigue(rows, levels)
     qref = _ref_freq(rows)
     dsolver = data.get("default_solver") or _default_solver()
     fdef = data.get("fatigue_default_level", "default")
     sdef = data.get("static_default_level", "default")
-    refs = {"static_own": sref_own, "static_json": sref_json, "fatigue": fref,
-            "frequencies": {k: v for k, v in qref.items()}}
+    refs = {"static_own": sref_own, "static_json": sref_json, "truth": sref_truth,
+            "fatigue": fref, "frequencies": {k: v for k, v in qref.items()}}
 
     def ref_of(k):
+        if sref_truth and k in sref_truth:
+            return sref_truth[k], "truth.json (axisymmetric)"
         if sref_json and k in sref_json:
             return sref_json[k], "static_reference.json"
         if k in sref_own:
@@ -1042,6 +1091,14 @@ def _ref_text(q: str, res: dict) -> str:
                  f"(the fine-to-extrapolated step, {step_c:+.1%} / {step_b:+.1%}, is the "
                  "size of "
                  "the reference's own uncertainty).")
+            st = refs.get("truth")
+            if st:
+                return base + s + (
+                    f" Used instead for the stresses: the TRUTH, the axisymmetric path "
+                    f"converged by Richardson (reports/benchmarks/truth.json, {st['_mtime']}: "
+                    f"collar {st['collar']:.3f} ± {st['collar_bar']:.3f}, bearing-seat-gear "
+                    f"{st['bsg']:.3f} ± {st['bsg_bar']:.3f} MPa; issue #12: the 3D path's own "
+                    "extrapolation shares its recovery's bias, so it is not a truth).")
             if sj:
                 s += (f" Used instead for the stresses: the reference in static_reference.json "
                       f"({sj['_mtime']}: collar {sj['collar']:.1f}, bsg {sj['bsg']:.1f} MPa; "
@@ -1058,6 +1115,19 @@ def _ref_text(q: str, res: dict) -> str:
         if not fr:
             return "Reference: none."
         s = fr["sigma_eq"]
+        if fr.get("truth"):
+            lc = "the seed load case" if _fatigue_defaults().seed_load_case else "every part"
+            return (f"Reference: the TRUTH of the hot spot's fillet ({fr['region']}): its von "
+                    f"Mises peak ({lc}) at 10 000 rpm from the axisymmetric "
+                    f"path converged by Richardson (reports/benchmarks/truth.json), "
+                    f"{s['extrapolated']:.2f} MPa; the reference life "
+                    f"{fr['life']['extrapolated']:.4g} blocks and safety factor "
+                    f"{fr['sf']['extrapolated']:.3f} are the finest level's hot-spot stress "
+                    f"tensor ({fr['fine_level']}, {s['fine']:.1f} MPa) scaled to it and "
+                    f"evaluated with the same fatigue API (finest run itself: "
+                    f"{fr['life']['fine']:.4g} blocks, SF {fr['sf']['fine']:.3f}). The 3D "
+                    "levels' own extrapolation is not used: it shares their recovery's bias "
+                    "(issue #12).")
         return (f"Reference: the hot-spot equivalent stress of the two finest P2 levels "
                 f"({fr['fine_level']} {s['fine']:.1f} MPa, {fr['coarse_level']} "
                 f"{s['coarse']:.1f} MPa at 10 000 rpm, seed load case) extrapolated (p = 2, "

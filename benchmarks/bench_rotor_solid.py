@@ -7,7 +7,8 @@ run each: the parts are seconds long):
 
 * assembly: K, M, G, the attachment tie, the support rows, the labelling map;
 * factorisation of K + σ² M (σ = −2π·50 Hz) and the support capacitance (Woodbury);
-* basis: shift-invert Lanczos for the modes the convergence test asks for (single solves);
+* basis: block shift-invert Lanczos for the modes the convergence test asks for
+  (multi-right-hand-side solves; ``kernels.block_shift_invert``);
 * sweep: everything else of ``campbell`` (projection, 9 state-space eigenproblems of size
   2m, MAC tracking, labels, critical speeds) — the per-speed work;
 * verify: the full-size quadratic eigenproblem at 8000 rpm (one nonsymmetric factorisation
@@ -161,7 +162,8 @@ def _markdown(rep: dict) -> str:
                  f"({c['basis_solves']}, {c['basis_size']}) | {c['sweep_s']:.3f} "
                  f"({c['sweep_cached_s']:.3f}) | {ver} | "
                  f"{c['load_before']} |")
-    L += ["", "basis = shift-invert Lanczos (one factorisation, single-vector solves); sweep = "
+    L += ["", "basis = block shift-invert Lanczos (one factorisation, blocks of right-hand sides; "
+          "solves = vectors solved); sweep = "
           "projection + basis-size check + 9 reduced state-space eigenproblems + tracking + "
           "labels (the speed-dependent part). verify = one nonsymmetric factorisation of "
           "K + σΩG + σ²M and shift-invert Arnoldi on the 2n companion pencil (PARDISO when "

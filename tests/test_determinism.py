@@ -98,7 +98,10 @@ def warm_runs(tmp_path_factory):
     cache = base / "cache"
     ns: dict = {}
     exec(_VARIANT, ns)
-    assert not build_mesh(ns["stepped"](), "coarse", 2, cache_dir=cache).from_cache
+    from shaftfe.beam.planes import mesh_hot_axes
+    v = ns["stepped"]()
+    assert not build_mesh(v, "coarse", 2, cache_dir=cache,
+                          hot_axes=mesh_hot_axes(v)).from_cache
     return run_static(base / "run1", cache), run_static(base / "run2", cache)
 
 

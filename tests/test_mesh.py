@@ -228,13 +228,12 @@ def test_key_depends_on_geometry_not_on_name():
 
 def test_corrupt_cache_is_rebuilt(tmp_path):
     """A truncated / garbage cache file is rebuilt (from_cache False) and replaced."""
-    from shaftfe.solid.mesh import build_mesh, cache_path, mesh_key
-    from shaftfe.solid.plan import prepare
+    from shaftfe.solid.mesh import build_mesh, cache_path, mesh_key, mesh_plan
     v = make_variant(keyway=False, hex_socket=False)
     first = build_mesh(v, "coarse", order=1, cache_dir=tmp_path)
     path = cache_path(first.key, tmp_path)
     assert path.exists()
-    assert first.key == mesh_key(prepare(v), "coarse", 1, gmsh_version())
+    assert first.key == mesh_key(mesh_plan(v, "coarse"), "coarse", 1, gmsh_version())
     for junk in (b"not a zip file", path.read_bytes()[:200]):
         path.write_bytes(junk)
         again = build_mesh(v, "coarse", order=1, cache_dir=tmp_path)

@@ -5,7 +5,7 @@ triangles whose edges on arcs are curved (Gmsh places the mid-side nodes on the 
 solid's faces (``end:left``, ``end:right``, ``fillet:<seg>``, ``shoulder:<seg>``,
 ``bearing:<name>``, ``load:<name>``; a pressed/free half of the 3D model is a θ-range of the
 ``load:`` line here), plus ``axis`` (r = 0) and ``surface`` (the plain cylinder). Keyway seats
-and the hex socket are 3D cuts and are not in the outline (``omitted_features``).
+and the hex socket are 3D cuts and are not in the outline (``shaftfe.solid.plan.cut_features``).
 
 ``mesh_geometry(geometry, level, refine=0)`` meshes it: sizes k_fillet × ρ on every fillet arc
 (and at sharp concave corners, k_fillet × the smaller radius / 10), growing by ``grad`` per mm
@@ -172,26 +172,6 @@ def cylinder_geometry(R: float, L: float) -> MeridianGeometry:
                                     Curve((0, R), (L, R), ("surface",)),
                                     Curve((L, R), (L, 0), ("end:right",)),
                                     Curve((L, 0), (0, 0), ("axis",))), 2 * R)
-
-
-def omitted_features(sol) -> list[dict]:
-    """The 3D features of the solid plan ``sol`` that the outline leaves out, with their
-    axial zone of influence: the feature's
-    extent widened by the local diameter on each side (Saint-Venant: a self-equilibrated
-    disturbance of a bar decays over about one diameter)."""
-    out = []
-    for k in sol.slots:
-        d = 2 * k.r
-        out.append({"feature": f"keyway:{k.segment}:{k.index}", "x_mm": [k.x0, k.x1],
-                    "zone_mm": [k.x0 - d, k.x1 + d]})
-    if sol.hex is not None:
-        h = sol.hex
-        seg = 0 if h.end == "left" else -1
-        d = 2 * sol.radii[seg]
-        x0, x1 = ((sol.x_left, sol.x_left + h.depth) if h.end == "left"
-                  else (sol.x_right - h.depth, sol.x_right))
-        out.append({"feature": "hex_socket", "x_mm": [x0, x1], "zone_mm": [x0 - d, x1 + d]})
-    return out
 
 
 # ------------------------------------------------------------------------------- meshing

@@ -41,13 +41,13 @@ from shaftfe.axisymmetric.mesh import (
     AxiLevel,
     axi_level,
     mesh_geometry,
-    omitted_features,
     shaft_geometry,
 )
 from shaftfe.errors import InputError, SolverError
 from shaftfe.fe.recovery import von_mises
 from shaftfe.fe.supports import HOLD_TWIST
 from shaftfe.model.validate import validate_variant
+from shaftfe.solid.plan import cut_features
 from shaftfe.static.model import DISTRIBUTIONS, REF_RPM, load_case_label
 
 N_MAX = 199
@@ -256,7 +256,7 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, rpm: float = REF
 
         # n ≥ 2: the half-seat pressure patches, until no fillet's peak changes any more
         zones = [] if options.converge_all_fillets else \
-            [f["zone_mm"] for f in omitted_features(plan)]
+            [f["zone_mm"] for f in cut_features(plan)]
         track = _PeakTracker(S, mesh, zones)
         track.add(stresses)
         last: list[float] = []

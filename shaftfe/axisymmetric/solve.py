@@ -20,10 +20,11 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from shaftfe.axisymmetric import recovery as rc
-from shaftfe.axisymmetric.mesh import arc_length_angle, omitted_features
+from shaftfe.axisymmetric.mesh import arc_length_angle
 from shaftfe.axisymmetric.model import AxiOptions, AxiSolution, solve_model
 from shaftfe.fe.recovery import von_mises
 from shaftfe.model.bearing_life import l10h
+from shaftfe.solid.plan import cut_features
 from shaftfe.static.model import REF_RPM
 from shaftfe.static.result import BearingReaction, Station
 
@@ -268,7 +269,7 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
     sol = solve_model(variant, options, rpm=ref_rpm, cache_dir=cache_dir)
     v = sol.variant
     t1 = time.perf_counter()
-    omitted = tuple(omitted_features(sol.plan))
+    omitted = tuple(cut_features(sol.plan))
     peaks = region_peaks(sol, omitted)
     stations = [(f"seat:{ld.name}", v.attachment(ld.name).seat_center_mm) for ld in sol.loads]
     stations += [(f"bearing:{name}", rb.x_mm) for name, rb, _ in sol.bearings]

@@ -46,8 +46,9 @@ def run(args) -> int:
     from shaftfe.util.progress import Progress
     prog = Progress(["mesh"], enabled=False if args.json else None)
     with prog.stage("mesh"):
+        from shaftfe.beam.planes import mesh_hot_axes
         sm = build_mesh(variant, level=args.level, order=args.order, cache_dir=args.cache_dir,
-                        use_cache=not args.no_cache)
+                        use_cache=not args.no_cache, hot_axes=mesh_hot_axes(variant))
     if out is not None:
         write_mesh(sm, out)
     summary = {

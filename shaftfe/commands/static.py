@@ -191,11 +191,20 @@ def _print_tables(res, opts, out) -> None:
                      (c.beam or {}).get("max_deflection_mm", float("nan")) * 1e3
                      if (c.beam or {}).get("max_deflection_mm") is not None else "-"])
         print_table(["station", "x mm", "deflection µm (FE)", "µm (beam)"], rows)
-        rows = [[p.region, p.von_mises_MPa, p.xyz_mm[0], p.von_mises_unfiltered_MPa]
+        bars = res.truth_error_bar_pct
+        rows = [[p.region, p.von_mises_MPa, p.max_principal_MPa, p.xyz_mm[0],
+                 p.von_mises_unfiltered_MPa,
+                 f"{bars[p.region][0]:+.2f} … {bars[p.region][1]:+.2f}"
+                 if p.region in bars else "-"]
                 for p in c.peaks if not p.region.startswith("end:")]
-        rows.append(["whole shaft", c.peak_von_mises_MPa, c.peak_von_mises_xyz_mm[0],
-                     c.peak_von_mises_unfiltered_MPa])
-        print_table(["region", "von Mises MPa", "x mm", "unfiltered MPa"], rows)
+        rows.append(["whole shaft", c.peak_von_mises_MPa, "-", c.peak_von_mises_xyz_mm[0],
+                     c.peak_von_mises_unfiltered_MPa, "-"])
+        print_table(["region", "von Mises MPa", "max principal MPa", "x mm",
+                     "unfiltered MPa", "error vs truth %"], rows)
+    if res.truth_error_bar_pct:
+        print("error vs truth: this level's measured error of fillet peaks (von Mises and max "
+              "principal) against the converged axisymmetric solution "
+              "(reports/benchmarks/truth.md); none for fillets in a keyway's zone")
     if res.error_estimate:
         ee = res.error_estimate
         print(f"\nerror estimate (levels {ee['levels'][0]} vs {ee['levels'][1]}, "

@@ -368,8 +368,10 @@ def build_solid_rotor(variant, options: SolidOptions = SolidOptions(), *, shaft_
     _check_options(options)
     validate_variant(variant, springs=supported and not options.rigid_supports)
     if shaft_mesh is None:
+        from shaftfe.beam.planes import mesh_hot_axes
         from shaftfe.solid.mesh import build_mesh
-        shaft_mesh = build_mesh(variant, options.level, options.order, cache_dir=cache_dir)
+        shaft_mesh = build_mesh(variant, options.level, options.order, cache_dir=cache_dir,
+                                hot_axes=mesh_hot_axes(variant))
     m = shaft_mesh.mesh
     mat = variant.material
     t0 = time.perf_counter()

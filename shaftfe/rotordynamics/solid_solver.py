@@ -17,10 +17,12 @@ class ShiftedSolver:
     """Solves (K_tot + σ D + σ² M) x = b with the hard rows H x = 0 (D = C + Ω G), by one
     sparse factorisation of B = K + σ Ω G + σ² M (+ σ C of nothing: damping is low rank)
     and a Woodbury correction with the support terms. ``K_extra``: a sparse stiffness added
-    to K (the prestress Ω² K_g of ``full_qep``)."""
+    to K (the prestress Ω² K_g of ``full_qep``). ``damped=False``: D = Ω G only, so that at
+    Ω = 0 the solve is exactly (K + σ² M)⁻¹ (the undamped modal basis and its residual
+    vectors)."""
 
     def __init__(self, rotor: SolidRotor, sigma: float, Omega: float = 0.0,
-                 method: str | None = None, K_extra=None):
+                 method: str | None = None, K_extra=None, damped: bool = True):
         from shaftfe.fe import solvers
 
         t0 = time.perf_counter()
@@ -32,7 +34,7 @@ class ShiftedSolver:
             B = (B + (sigma * Omega) * rotor.G_sparse).tocsr()
             self._fac = solvers.factorize_unsymmetric(B, method)
         else:
-            self._fac = solvers.factorize(B, _auto_method(method, B.shape[0]))
+            self._fac = solvers.factorize(B, _auto_method(method))
         self.name = self._fac.name
         self.factor_seconds = time.perf_counter() - t0
         U, Cinv = [], []
@@ -46,7 +48,7 @@ class ShiftedSolver:
             if t.C is None:
                 Cinv.append(np.zeros((r, r)))
             else:
-                Ct = t.C + (sigma * t.Cd if t.Cd is not None else 0.0)
+                Ct = t.C + (sigma * t.Cd if t.Cd is not None and damped else 0.0)
                 Cinv.append(np.linalg.inv(Ct))
         self.n = B.shape[0]
         self.n_solves = 0
@@ -72,11 +74,14 @@ class ShiftedSolver:
         return self._lr.correct(y.reshape(self.n, -1))[0].reshape(y.shape)
 
 
-def _auto_method(method: str, n: int) -> str:
-    """``auto`` for the symmetric factorisation: SuperLU. The basis needs ~3 m single-vector
-    solves after one factorisation, and PARDISO's per-solve cost dominates (measured on x2_57
-    coarse, 70k dofs: PARDISO 3.3 s factorisation + 0.17 s per solve on an idle machine,
-    7.1 s + 1.4 s per solve at load 10; SuperLU 8-15 s + 0.05-0.3 s;
-    reports/benchmarks/rotor_solid.md). The nonsymmetric factorisation of ``verify`` uses
-    PARDISO when installed (159 s vs 274 s at load 10)."""
-    return "superlu" if method == "auto" else method
+def _auto_method(method: str) -> str:
+    """``auto`` for the symmetric factorisation: PARDISO when installed, else SuperLU. The
+    basis is solved in blocks (``kernels.block_shift_invert``), where a multi-right-hand-side
+    solve costs little more than one, so PARDISO's faster factorisation wins (x2_57 coarse,
+    84k dofs: 1.5 s against SuperLU's 4.6 s; reports/benchmarks/rotor_solid.md). A matrix
+    made indefinite by a compressive prestress falls back to PARDISO's symmetric indefinite
+    factorisation (``solvers._Pardiso``)."""
+    if method != "auto":
+        return method
+    from shaftfe.fe import solvers
+    return "pardiso" if solvers.available()["pardiso"] else "superlu"

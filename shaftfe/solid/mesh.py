@@ -59,7 +59,7 @@ from shaftfe.solid.levels import DEFAULT_LEVEL, MeshLevel, mesh_level
 from shaftfe.solid.plan import Solid, prepare
 from shaftfe.util import paths
 
-__all__ = ["ShaftMesh", "build_mesh", "cache_path", "mesh_key"]
+__all__ = ["ShaftMesh", "build_mesh", "cache_path", "mesh_key", "mesh_plan"]
 
 CACHE_FORMAT = 3     # 2: bearing groups = the ring's contact band (chamfers off)
 #                      3: deterministic P2 repair (_untangle) instead of Gmsh's HighOrder
@@ -132,13 +132,18 @@ def gmsh_version() -> str:
 
 
 def build_mesh(variant, level: str | MeshLevel = DEFAULT_LEVEL, order: int = 2, cache_dir=None,
-               use_cache: bool = True) -> ShaftMesh:
+               use_cache: bool = True, hot_axes=None) -> ShaftMesh:
     """Mesh ``variant`` at ``level`` (a name of ``LEVELS`` or a ``MeshLevel``) with P``order``
-    tets; the result's ``level`` is the level's name."""
+    tets; the result's ``level`` is the level's name.
+
+    ``hot_axes``: {segment: angle in rad or None} of each span fillet's bending plane, as
+    computed by a beam pass (``shaftfe.beam.planes.hot_axes``: the pipeline's callers pass
+    it); missing fillets (or None for the argument) take ``hot_axis``, the line of the loads
+    when they all act along one. Rounded to 0.01° into the plan (and so the cache key)."""
     t0 = time.perf_counter()
     level = mesh_level(level)
     _check_order(order)
-    sol = prepare(variant)                       # InputError before gmsh is touched
+    sol = mesh_plan(variant, level, hot_axes)    # InputError before gmsh is touched
     key = mesh_key(sol, level, order, gmsh_version())
     path = cache_path(key, cache_dir)
     if use_cache and path.exists():
@@ -370,6 +375,30 @@ def end_fillet(sol: Solid, fl) -> bool:
     return xb <= lo + TOL_X or xa >= hi - TOL_X
 
 
+def mesh_plan(variant, level: str | MeshLevel, hot_axes=None) -> Solid:
+    """The solid plan ``build_mesh`` meshes (and keys the cache by): ``prepare(variant)`` with
+    the span fillets' bending planes (``with_hot_axes``)."""
+    return with_hot_axes(prepare(variant), mesh_level(level), hot_axes)
+
+
+def with_hot_axes(sol: Solid, level: MeshLevel, hot_axes=None) -> Solid:
+    """``sol`` with ``hot_axes_deg`` set for every span fillet of a hot-spot level: the given
+    angle (rad) of its segment, else ``hot_axis(sol)``; rounded to 0.01° and folded to
+    [0, 180) (a line, both senses), so that equal planes give one mesh key."""
+    if not level.hot_spot:
+        return sol
+    given = dict(hot_axes or {})
+    default = hot_axis(sol)
+    out = []
+    for fl in sol.fillets:
+        if end_fillet(sol, fl):
+            continue
+        a = given.get(fl.segment, default)
+        out.append((fl.segment, None if a is None else
+                    round(math.degrees(a) % 180.0, 2) % 180.0))
+    return dataclasses.replace(sol, hot_axes_deg=tuple(out))
+
+
 def hot_axis(sol: Solid) -> float | None:
     """Angle (rad, 0 = +y) of the line along which the loaded attachments push, when they all
     push along one line (within ``HOT_SPREAD_DEG``, either sense): the bending stress in a
@@ -446,7 +475,7 @@ def _size_fields(gmsh, sol: Solid, level: MeshLevel, cls: dict) -> None:
         return th
 
     local = "k_ring" in cfg             # levels with a local hot-spot field (see LEVELS)
-    axis = hot_axis(sol) if local else None
+    axes = {seg: (None if a is None else math.radians(a)) for seg, a in sol.hot_axes_deg}
     for seg, surfs in tag_of.items():
         fl = fillets[seg]
         end = end_fillet(sol, fl)
@@ -454,7 +483,7 @@ def _size_fields(gmsh, sol: Solid, level: MeshLevel, cls: dict) -> None:
             h_loc = cfg.get("k_fillet_end", cfg["k_fillet"]) * fl.rho
         elif local:
             h_loc = cfg["k_ring"] * fl.rho
-            fields.append(_hot_field(f, fl, cfg, axis, h_max))
+            fields.append(_hot_field(f, fl, cfg, axes.get(seg, hot_axis(sol)), h_max))
         else:
             h_loc = cfg["k_fillet"] * fl.rho
         # distance to the fillet's two boundary circles (1D sampling: cheap to evaluate; on

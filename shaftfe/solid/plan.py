@@ -121,6 +121,10 @@ class Solid:
     seats: tuple[Seat, ...]
     hex: Hex | None
     profile_x: tuple[float, ...]   # extra x-stations (seat interval ends) on the profile
+    # per span fillet (segment name): the angle (deg, 0 = +y, in [0, 180)) of the line along
+    # which its bending stress peaks, or None (the whole ring); set by
+    # ``shaftfe.solid.mesh.build_mesh`` (part of the mesh key), () in a bare plan
+    hot_axes_deg: tuple[tuple[str, float | None], ...] = ()
 
     @property
     def r_max(self) -> float:
@@ -345,3 +349,23 @@ def profile(sol: Solid) -> list[tuple[str, tuple]]:
                 pts.append(("line", (xe, r1 + f.rho)))
             pts.append(("arc", (xe + f.rho, r1, xe + f.rho, r1 + f.rho)))
     return pts
+
+
+def cut_features(sol: Solid) -> list[dict]:
+    """The solid's non-axisymmetric cuts (keyways, the hex socket: what an axisymmetric
+    outline leaves out), with their axial zone of influence: the feature's
+    extent widened by the local diameter on each side (Saint-Venant: a self-equilibrated
+    disturbance of a bar decays over about one diameter)."""
+    out = []
+    for k in sol.slots:
+        d = 2 * k.r
+        out.append({"feature": f"keyway:{k.segment}:{k.index}", "x_mm": [k.x0, k.x1],
+                    "zone_mm": [k.x0 - d, k.x1 + d]})
+    if sol.hex is not None:
+        h = sol.hex
+        seg = 0 if h.end == "left" else -1
+        d = 2 * sol.radii[seg]
+        x0, x1 = ((sol.x_left, sol.x_left + h.depth) if h.end == "left"
+                  else (sol.x_right - h.depth, sol.x_right))
+        out.append({"feature": "hex_socket", "x_mm": [x0, x1], "zone_mm": [x0 - d, x1 + d]})
+    return out

@@ -112,10 +112,11 @@ def code_fingerprint() -> str:
 def predicted_mesh_key(variant, options) -> str:
     """The key ``shaftfe.solid.mesh.build_mesh`` gives the mesh the static solve will use (the seed
     load case meshes the variant reduced to the seed's parts, as ``static.build_model``)."""
+    from shaftfe.beam.planes import mesh_hot_axes
     from shaftfe.solid import mesh as mesh_mod
-    from shaftfe.solid.plan import prepare
     v = variant.with_seed_load_case() if options.seed_load_case else variant
-    return mesh_mod.mesh_key(prepare(v), options.level, options.order, mesh_mod.gmsh_version())
+    plan = mesh_mod.mesh_plan(v, options.level, mesh_hot_axes(v))
+    return mesh_mod.mesh_key(plan, options.level, options.order, mesh_mod.gmsh_version())
 
 
 def static_key(variant, options, mesh_key: str, ref_rpm: float) -> str:

@@ -101,8 +101,10 @@ def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh
         variant = variant.with_seed_load_case()
     validate_variant(variant, springs=not options.rigid_supports)
     if shaft_mesh is None:
+        from shaftfe.beam.planes import mesh_hot_axes
         from shaftfe.solid.mesh import build_mesh
-        shaft_mesh = build_mesh(variant, options.level, options.order, cache_dir=cache_dir)
+        shaft_mesh = build_mesh(variant, options.level, options.order, cache_dir=cache_dir,
+                                hot_axes=mesh_hot_axes(variant))
     m = shaft_mesh.mesh
     mat = variant.material
     t0 = time.perf_counter()

@@ -75,6 +75,9 @@ class StaticResult:
     cases: tuple[StaticCase, ...] = ()
     diagnostics: dict = field(default_factory=dict)    # results only: identical run to run
     error_estimate: dict | None = None
+    # fillet region -> (low, high) %: this level's error against the axisymmetric truth
+    # (shaftfe.static.truth_bars), for the fillets outside every keyway's / the hex's zone
+    truth_error_bar_pct: dict = field(default_factory=dict)
     notes: tuple[str, ...] = ()
     mesh: object = field(default=None, repr=False)
     run: dict = field(default_factory=dict)            # wall-clock seconds, mesh_from_cache
@@ -92,6 +95,7 @@ class StaticResult:
                      "dofs": self.n_dofs},
             "cases": [asdict(c) for c in self.cases],
             "diagnostics": self.diagnostics, "error_estimate": self.error_estimate,
+            "truth_error_bar_pct": self.truth_error_bar_pct,
             "notes": list(self.notes), "run": self.run,
         })
 

@@ -440,6 +440,25 @@ def _check_rpms(rpm) -> list[float]:
     return rpms
 
 
+def truth_bars(variant, options: StaticOptions, peaks) -> dict:
+    """{fillet region: (low, high) %} of the fillet peaks this level's truth bar covers
+    (``shaftfe.static.truth_bars``): a named P2 level used as named, fillets whose peak lies
+    outside every cut feature's zone (keyways, hex socket: ``solid.plan.cut_features``, which
+    the axisymmetric truth leaves out)."""
+    from shaftfe.solid.levels import LEVELS
+    from shaftfe.solid.plan import cut_features, prepare
+    from shaftfe.static.truth_bars import ERROR_BAR_PCT
+    lv = options.level
+    name = lv if isinstance(lv, str) else lv.name
+    if options.order != 2 or name not in ERROR_BAR_PCT or LEVELS.get(name) != (
+            LEVELS[name] if isinstance(lv, str) else lv):
+        return {}
+    zones = [f["zone_mm"] for f in cut_features(prepare(variant))]
+    return {p.region: ERROR_BAR_PCT[name] for p in peaks
+            if p.region.startswith("fillet:")
+            and not any(lo <= p.xyz_mm[0] <= hi for lo, hi in zones)}
+
+
 def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), *,
                  shaft_mesh=None, cache_dir=None, beam: bool = True) -> StaticResult:
     """Solve once at REF_RPM and report every rpm in ``rpm`` (a number or a sequence): the
@@ -523,7 +542,8 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
         variant=v.name, variant_hash=v.content_hash, options=options, ref_rpm=ref_rpm,
         n_nodes=sm.n_nodes, n_elements=sm.n_elements, n_dofs=3 * sm.n_nodes, mesh_key=sm.key,
         u_ref=u, stress_ref=rec.stress, von_mises_ref=rec.vm, axis_x=ax_x, axis_u_ref=ax_u_ref,
-        cases=tuple(cases), diagnostics=diag, notes=(), mesh=sm, run=run)
+        cases=tuple(cases), diagnostics=diag, notes=(), mesh=sm, run=run,
+        truth_error_bar_pct=truth_bars(v, options, rec.peaks))
     res.run["total_seconds"] = time.perf_counter() - t_all
     return res
 

@@ -1,0 +1,62 @@
+"""Bending planes for the 3D mesher: where around each fillet's ring the stress peaks.
+
+The nominal bending stress of a round section under the moment vector (0, M_y, M_z) is
+σ_x(θ) = (M_y sin θ − M_z cos θ) r / I at angle θ from +y (right-handed: a load along +y at
+angle φ gives M_y = −s sin φ, M_z = s cos φ), so it peaks on the line θ* = atan2(M_y, −M_z)
+(both senses: tension on one side, compression on the other). ``hot_axes`` takes M_y, M_z at
+each fillet from one beam solve of the same variant (loads, bearing 2×2 springs, tilt
+stiffness): the 3D mesher refines a sector about θ* instead of a fixed angle.
+
+What moves the plane: several load directions (each fillet sees its own resultant moment);
+bearing tilt stiffness or more than two bearings (the reactions then depend on the
+stiffnesses, K12 included). With two tilt-free bearings the reactions follow from statics
+alone, so K12 cannot rotate the plane (measured on x2_57 with the loads turned by 0/30/45/90°:
+θ* = the load angle to 1e-12°). All loads ∝ ω², so the plane does not depend on the speed
+(spin softening, off here, would turn it by the deflection's share of the load, ~1 %).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+REF_RPM = 10_000.0            # any speed: every load scales with ω²
+MIN_SHARE = 1e-3              # |M| below this share of the largest: no plane (whole ring hot)
+
+
+def hot_axes(variant, fillets) -> dict[str, float | None]:
+    """{segment: θ* in rad (a line: [0, π)) or None} for ``fillets`` (objects with
+    ``segment`` and ``x_shoulder``, e.g. ``shaftfe.solid.plan.Fillet``), from one beam solve of
+    ``variant`` at its own options (bearing springs). None where the moment there is below
+    ``MIN_SHARE`` of the shaft's largest (no bending to follow)."""
+    from shaftfe.beam.solve import analyse
+    from shaftfe.errors import InputError
+    try:
+        res = analyse(variant, REF_RPM)[0]
+    except InputError:              # no valid springs (a rigid-support study): rigid bearings
+        res = analyse(variant, REF_RPM, rigid_supports=True)[0]
+    x, My, Mz = np.asarray(res.x_sec), np.asarray(res.My), np.asarray(res.Mz)
+    top = float(np.max(np.hypot(My, Mz))) if My.size else 0.0
+    out: dict[str, float | None] = {}
+    for fl in fillets:
+        my = float(np.interp(fl.x_shoulder, x, My))
+        mz = float(np.interp(fl.x_shoulder, x, Mz))
+        if not top > 0 or math.hypot(my, mz) < MIN_SHARE * top:
+            out[fl.segment] = None
+        else:
+            out[fl.segment] = math.atan2(my, -mz) % math.pi
+    return out
+
+
+def mesh_hot_axes(variant) -> dict[str, float | None]:
+    """``hot_axes`` of every fillet of ``variant``'s solid plan: what the pipeline passes to
+    ``build_mesh`` (static, rotor, ``shaftfe mesh``, the static cache's key). A variant the
+    beam cannot solve (no axial bearing: a geometry-only study) gets {} and so the mesher's
+    geometric rule; every caller gets the same answer, hence one mesh per variant and level."""
+    from shaftfe.errors import InputError, SolverError
+    from shaftfe.solid.plan import prepare
+    try:
+        return hot_axes(variant, prepare(variant).fillets)
+    except (InputError, SolverError):
+        return {}
