@@ -61,7 +61,22 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _interrupt_hook(previous):
+    """An unraisable-exception hook that re-delivers a Ctrl-C caught where Python cannot
+    raise it (a ``weakref.finalize`` callback, a ``__del__``: it would print "Exception ignored
+    ... Traceback ... KeyboardInterrupt" and be lost): the interrupt is re-sent to the main
+    thread, so ``main`` reports it in one line. Other exceptions go to the previous hook."""
+    def hook(unraisable):
+        if isinstance(unraisable.exc_value, KeyboardInterrupt):
+            import _thread
+            _thread.interrupt_main()
+            return
+        previous(unraisable)
+    return hook
+
+
 def main(argv: list[str] | None = None) -> int:
+    sys.unraisablehook = _interrupt_hook(sys.__unraisablehook__)
     parser = build_parser()
     _ARGV[:] = sys.argv[1:] if argv is None else list(argv)
     args = parser.parse_args(argv)

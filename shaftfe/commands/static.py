@@ -204,7 +204,8 @@ def _print_tables(res, opts, out) -> None:
     if res.truth_error_bar_pct:
         print("error vs truth: this level's measured error of fillet peaks (von Mises and max "
               "principal) against the converged axisymmetric solution "
-              "(reports/benchmarks/truth.md); none for fillets in a keyway's zone")
+              "(reports/benchmarks/truth.md); none where it was not measured (end fillets, "
+              "fillets in a keyway's zone, other options than the measured ones)")
     if res.error_estimate:
         ee = res.error_estimate
         print(f"\nerror estimate (levels {ee['levels'][0]} vs {ee['levels'][1]}, "

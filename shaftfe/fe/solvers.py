@@ -92,8 +92,9 @@ def _explicit_iparm(iparm: np.ndarray, symmetric: bool, indefinite: bool = False
     """Set PARDISO's iparm explicitly (iparm(1) = 1) instead of MKL's defaults (iparm(1) = 0):
     the defaults include iparm(8) = 2, two steps of iterative refinement inside every solve,
     which triples its cost (measured: 20 right-hand sides at 170k dofs 1.42 s → 0.37 s). The
-    callers refine themselves where it matters (``static.solve_model``: one step on the whole
-    bordered system, residual checked; the eigen-solvers check their residuals). The rest are
+    static solve refines itself (``static.solve_model``: one step on the whole bordered system,
+    residual checked), the block eigen-solver checks its residuals, and the full-size check
+    (``full_qep``) is compared with the reduced sweep (1.8e-7 on x2_57). The rest are
     MKL's documented defaults for the matrix type: METIS nested dissection (iparm(2) = 2),
     pivot perturbation 1e-8 (symmetric; with scaling and weighted matching if indefinite) /
     1e-13 with scaling and weighted matching (nonsymmetric), one-based indices. iparm(8) = 0
@@ -121,7 +122,9 @@ class _MKL:
 
         import pypardiso
         self._ct = ctypes
-        lib = pypardiso.PyPardisoSolver(mtype=mtype)     # only to locate mkl_rt
+        # pypardiso only locates mkl_rt (and declares the argument types of ``pardiso``);
+        # its private attribute is why pyproject.toml pins pypardiso < 0.5
+        lib = pypardiso.PyPardisoSolver(mtype=mtype)
         self._fn = lib._mkl_pardiso
         self._pt = np.zeros(64, dtype=np.int64)
         self.iparm = np.zeros(64, dtype=np.int32)
@@ -151,7 +154,9 @@ class _MKL:
                  ct.byref(err))
         if err.value != 0:
             from shaftfe.errors import SolverError
-            raise SolverError(f"PARDISO failed in phase {phase} with error {err.value}")
+            exc = SolverError(f"PARDISO failed in phase {phase} with error {err.value}")
+            exc.code = err.value
+            raise exc
         return x
 
     def solve(self, b):
@@ -179,13 +184,17 @@ class _Pardiso:
         from shaftfe.errors import SolverError
         t0 = time.perf_counter()
         U = upper_triangle(A, diag_add)
+        self.indefinite = False
         try:
             self._m = _MKL(U, mtype=2)                             # real SPD (Cholesky)
-        except SolverError:
-            # not positive definite (error -4: a prestress in compression, a shifted matrix
-            # whose constraints, not the matrix, make the problem definite): real symmetric
-            # indefinite, Bunch-Kaufman pivoting
+        except SolverError as exc:
+            if getattr(exc, "code", None) != -4:
+                raise
+            # zero or negative pivot (error -4): not positive definite (a prestress in
+            # compression, a shifted matrix whose constraints, not the matrix, make the
+            # problem definite): real symmetric indefinite, Bunch-Kaufman pivoting
             self._m = _MKL(U, mtype=-2)
+            self.indefinite = True
         self.seconds = time.perf_counter() - t0
 
     def solve(self, b):

@@ -140,21 +140,25 @@ def modal_basis(K, M, m: int, *, sigma: float = 0.0, opinv=None) -> ModalBasis:
 
 def _m_orthonormal(X, V, MV, M, drop: float = 1e-10):
     """X made M-orthonormal and M-orthogonal to the M-orthonormal V (MV = M V): two passes of
-    block classical Gram-Schmidt, then an eigen-decomposition of the block's Gram matrix
-    (columns whose M-norm collapsed below ``drop`` of their size are dropped: an invariant
-    subspace found). Returns (X, M X)."""
+    block classical Gram-Schmidt, then two passes of normalisation by the eigen-decomposition
+    of the block's Gram matrix (one pass leaves ~ε·g_max/g_min of M-orthonormality; the second
+    brings it to ~ε, as CholeskyQR2 does). Directions whose M-norm² fell below ``drop`` of
+    what they had before the projection are dropped (they were already in span V: an
+    invariant subspace). Returns (X, M X)."""
     MX = M @ X
+    g0 = float(np.max(np.einsum("ij,ij->j", X, MX))) if X.size else 0.0
     for _ in range(2):
         if V.shape[1]:
             C = MV.T @ X
             X = X - V @ C
             MX = MX - MV @ C
-    G = X.T @ MX
-    G = 0.5 * (G + G.T)
-    g, Q = np.linalg.eigh(G)
-    keep = g > drop * max(float(g.max()), 0.0) if g.size else g > 0
-    Q = Q[:, keep] / np.sqrt(g[keep])
-    return X @ Q, MX @ Q
+    for k in range(2):
+        G = X.T @ MX
+        g, Q = np.linalg.eigh(0.5 * (G + G.T))
+        keep = g > (drop * g0 if k == 0 else 0.0)
+        Q = Q[:, keep] / np.sqrt(g[keep])
+        X, MX = X @ Q, MX @ Q
+    return X, MX
 
 
 def block_shift_invert(K, M, solve, m: int, *, shift: float, block: int | None = None,

@@ -139,7 +139,7 @@ def build_mesh(variant, level: str | MeshLevel = DEFAULT_LEVEL, order: int = 2, 
     ``hot_axes``: {segment: angle in rad or None} of each span fillet's bending plane, as
     computed by a beam pass (``shaftfe.beam.planes.hot_axes``: the pipeline's callers pass
     it); missing fillets (or None for the argument) take ``hot_axis``, the line of the loads
-    when they all act along one. Rounded to 0.01° into the plan (and so the cache key)."""
+    when they all act along one. Rounded to 0.1° into the plan (and so the cache key)."""
     t0 = time.perf_counter()
     level = mesh_level(level)
     _check_order(order)
@@ -383,8 +383,10 @@ def mesh_plan(variant, level: str | MeshLevel, hot_axes=None) -> Solid:
 
 def with_hot_axes(sol: Solid, level: MeshLevel, hot_axes=None) -> Solid:
     """``sol`` with ``hot_axes_deg`` set for every span fillet of a hot-spot level: the given
-    angle (rad) of its segment, else ``hot_axis(sol)``; rounded to 0.01° and folded to
-    [0, 180) (a line, both senses), so that equal planes give one mesh key."""
+    angle (rad) of its segment, else ``hot_axis(sol)``; rounded to 0.1° (the refined sector is
+    ±10° wide; the rounding keeps last-bit differences of the beam solve between machines out
+    of the key, unless a plane sits on a rounding boundary) and folded to [0, 180) (a line,
+    both senses), so that equal planes give one mesh key."""
     if not level.hot_spot:
         return sol
     given = dict(hot_axes or {})
@@ -395,7 +397,7 @@ def with_hot_axes(sol: Solid, level: MeshLevel, hot_axes=None) -> Solid:
             continue
         a = given.get(fl.segment, default)
         out.append((fl.segment, None if a is None else
-                    round(math.degrees(a) % 180.0, 2) % 180.0))
+                    round(math.degrees(a) % 180.0, 1) % 180.0))
     return dataclasses.replace(sol, hot_axes_deg=tuple(out))
 
 

@@ -121,8 +121,8 @@ class Solid:
     seats: tuple[Seat, ...]
     hex: Hex | None
     profile_x: tuple[float, ...]   # extra x-stations (seat interval ends) on the profile
-    # per span fillet (segment name): the angle (deg, 0 = +y, in [0, 180)) of the line along
-    # which its bending stress peaks, or None (the whole ring); set by
+    # per span fillet (segment name): the angle (deg, 0 = +y, in [0, 180), 0.1° steps) of the
+    # line along which its bending stress peaks, or None (the whole ring); set by
     # ``shaftfe.solid.mesh.build_mesh`` (part of the mesh key), () in a bare plan
     hot_axes_deg: tuple[tuple[str, float | None], ...] = ()
 

@@ -440,23 +440,38 @@ def _check_rpms(rpm) -> list[float]:
     return rpms
 
 
-def truth_bars(variant, options: StaticOptions, peaks) -> dict:
+# the conditions bench_truth measured the bars under (the rest of StaticOptions may vary:
+# level, solver, rigid or spring supports)
+_BAR_CONDITIONS = {"order": 2, "load_distribution": "uniform", "body_force": False,
+                   "seed_load_case": False, "hold_twist": "all", "exclude_mm": 0.0,
+                   "spin_softening": False}
+
+
+def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> dict:
     """{fillet region: (low, high) %} of the fillet peaks this level's truth bar covers
-    (``shaftfe.static.truth_bars``): a named P2 level used as named, fillets whose peak lies
-    outside every cut feature's zone (keyways, hex socket: ``solid.plan.cut_features``, which
-    the axisymmetric truth leaves out)."""
+    (``shaftfe.static.truth_bars``): a named level used as named, under the options the bars
+    were measured with (``_BAR_CONDITIONS``), on the pipeline's own mesh of the variant (not a
+    mesh the caller built otherwise), for span fillets (not end fillets, meshed apart and not
+    measured) whose peak lies outside every cut feature's zone (keyways, hex socket:
+    ``solid.plan.cut_features``, which the axisymmetric truth leaves out)."""
     from shaftfe.solid.levels import LEVELS
+    from shaftfe.solid.mesh import end_fillet
     from shaftfe.solid.plan import cut_features, prepare
+    from shaftfe.static.cache import predicted_mesh_key
     from shaftfe.static.truth_bars import ERROR_BAR_PCT
     lv = options.level
     name = lv if isinstance(lv, str) else lv.name
-    if options.order != 2 or name not in ERROR_BAR_PCT or LEVELS.get(name) != (
-            LEVELS[name] if isinstance(lv, str) else lv):
+    if name not in ERROR_BAR_PCT or (not isinstance(lv, str) and lv != LEVELS.get(name)):
         return {}
-    zones = [f["zone_mm"] for f in cut_features(prepare(variant))]
+    if any(getattr(options, k) != want for k, want in _BAR_CONDITIONS.items()):
+        return {}
+    if mesh_key != predicted_mesh_key(variant, options):
+        return {}
+    plan = prepare(variant)
+    span = {f"fillet:{fl.segment}" for fl in plan.fillets if not end_fillet(plan, fl)}
+    zones = [f["zone_mm"] for f in cut_features(plan)]
     return {p.region: ERROR_BAR_PCT[name] for p in peaks
-            if p.region.startswith("fillet:")
-            and not any(lo <= p.xyz_mm[0] <= hi for lo, hi in zones)}
+            if p.region in span and not any(lo <= p.xyz_mm[0] <= hi for lo, hi in zones)}
 
 
 def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), *,
@@ -543,7 +558,7 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
         n_nodes=sm.n_nodes, n_elements=sm.n_elements, n_dofs=3 * sm.n_nodes, mesh_key=sm.key,
         u_ref=u, stress_ref=rec.stress, von_mises_ref=rec.vm, axis_x=ax_x, axis_u_ref=ax_u_ref,
         cases=tuple(cases), diagnostics=diag, notes=(), mesh=sm, run=run,
-        truth_error_bar_pct=truth_bars(v, options, rec.peaks))
+        truth_error_bar_pct=truth_bars(v, options, rec.peaks, sm.key))
     res.run["total_seconds"] = time.perf_counter() - t_all
     return res
 

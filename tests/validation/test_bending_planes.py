@@ -56,7 +56,7 @@ def test_no_moment_no_plane():
     assert ax["thread_m10"] is None and ax["cw2_seat"] is None
 
 
-def test_two_load_planes_the_3d_peak_lies_in_each_fillets_refined_sector():
+def test_two_load_planes_the_3d_peak_lies_in_each_fillets_refined_sector(cache):
     """Counterweight 2 (and its key) turned to 60°, the rest at 0°: the loads act in two
     planes, so the old geometric rule (``hot_axis``) has no single line and refines the whole
     ring (coarse: 182 868 dofs against 92 727; default 615 471 against 171 069). The beam pass
@@ -66,13 +66,21 @@ def test_two_load_planes_the_3d_peak_lies_in_each_fillets_refined_sector():
     seat pressure, which move the peak a little; 5° is half the coarse level's refined sector
     (±10°), so the peak sits well inside the refined zone, where σ differs from its value on
     the plane by 1 − cos 5° = 0.4 % at most."""
+    from shaftfe.solid.mesh import gmsh_version, mesh_key, mesh_plan
     from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
 
     v = turned(load_variant("x2_57"), {"counterweight_2", "key_cw2"}, 60.0)
     assert hot_axis(prepare(v)) is None
     ax = mesh_hot_axes(v)
-    res = solve_static(v, 10_000.0, StaticOptions(level="coarse"), beam=False)
+    res = solve_static(v, 10_000.0, StaticOptions(level="coarse"), beam=False, cache_dir=cache)
+    # the mesh the static path used is the one refined about these planes (its key is that of
+    # the plan carrying them), not the whole-ring one of the geometric rule
+    plan = mesh_plan(v, "coarse", ax)
+    assert dict(plan.hot_axes_deg) == {s: round(math.degrees(a), 1)
+                                       for s, a in ax.items() if a is not None}
+    assert res.mesh_key == mesh_key(plan, "coarse", 2, gmsh_version())
+    assert res.mesh_key != mesh_key(mesh_plan(v, "coarse"), "coarse", 2, gmsh_version())
     peaks = {p.region: p for p in res.cases[0].peaks}
     sector = LEVELS["coarse"].sector_deg
     for seg in ("bearing_seat_gear", "collar"):
