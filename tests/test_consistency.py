@@ -102,3 +102,29 @@ def test_readme_truth_bars_are_the_generated_ones():
 
     for level, (lo, hi) in ERROR_BAR_PCT.items():
         assert f"| `{level}` | {pct(lo)} … {pct(hi)} % |" in text, level
+
+
+def test_level_error_comes_from_the_truth_not_the_levels_own_extrapolation(tmp_path):
+    """``static.benchmark.benchmark_errors`` (the report's and ``shaftfe fatigue``'s level
+    correction) takes the fillet errors from the axisymmetric truth file, as value / truth − 1
+    (exact arithmetic on the file's numbers), and the deflection's from the static benchmark's
+    Richardson rule; a level the truth file lacks gives None (no correction)."""
+    import json
+
+    from shaftfe.static.benchmark import benchmark_errors
+    truth = tmp_path / "truth.json"
+    recs = [{"case": f"x2_57 {r}", "level": "default", "quantity": q, "value_MPa": v,
+             "truth_MPa": t, "truth_bar_MPa": 0.01, "dofs": 1000, "seconds": 1.0}
+            for r, q, v, t in (("fillet:collar", "von_mises", 495.0, 500.0),
+                               ("fillet:collar", "max_principal", 1.0, 2.0),
+                               ("fillet:bearing_seat_gear", "von_mises", 404.0, 400.0))]
+    truth.write_text(json.dumps({"records": recs}))
+    static = tmp_path / "static.json"
+    static.write_text(json.dumps([{"level": lv, "order": 2, "defl": d, "collar": 0.0,
+                                   "bsg": 0.0} for lv, d in (("default", 1.0),
+                                                             ("fine", 1.1))]))
+    e = benchmark_errors("default", path=static, truth_path=truth)
+    assert e["collar"]["rel_error"] == 495.0 / 500.0 - 1.0
+    assert e["bsg"]["rel_error"] == 404.0 / 400.0 - 1.0
+    assert e["dofs"] == 1000 and "defl" in e
+    assert benchmark_errors("coarse", path=static, truth_path=truth) is None

@@ -102,7 +102,7 @@ def run(args) -> int:
     e = result.level_error
     if e is not None:
         print(f"mesh level {job.level}: its peak stress reads {100 * e['stress_rel_error']:+.1f} "
-              f"% against the static benchmark's converged reference ({e['source']}); with the "
+              f"% against the axisymmetric truth ({e['source']}); with the "
               f"hot-spot stress corrected by that, the life is {life(e['life_blocks'])} blocks "
               f"({_pct(e['life_blocks'], result.field.hot_spot.life_blocks)}) and the safety "
               f"factor {e['safety_factor']:.3f}")

@@ -21,6 +21,7 @@ SN_FILE = COMMON_DIR / "sn_curves.toml"
 LOADSPECTRA_DIR = REPO_DIR / "loadspectra"
 DEFAULT_SPECTRUM = LOADSPECTRA_DIR / "rpm.dat"
 BENCHMARK_JSON = REPO_DIR / "reports" / "benchmarks" / "static.json"
+TRUTH_JSON = REPO_DIR / "reports" / "benchmarks" / "truth.json"
 CACHE_ENV = "SHAFTFE_CACHE_DIR"
 
 
