@@ -142,9 +142,13 @@ def _m_orthonormal(X, V, MV, M, drop: float = 1e-10):
     """X made M-orthonormal and M-orthogonal to the M-orthonormal V (MV = M V): two passes of
     block classical Gram-Schmidt, then two passes of normalisation by the eigen-decomposition
     of the block's Gram matrix (one pass leaves ~ε·g_max/g_min of M-orthonormality; the second
-    brings it to ~ε, as CholeskyQR2 does). Directions whose M-norm² fell below ``drop`` of
-    what they had before the projection are dropped (they were already in span V: an
-    invariant subspace). Returns (X, M X)."""
+    brings it to ~ε, as CholeskyQR2 does). Dropped: directions whose M-norm² is below ``drop``
+    of the block's largest after the projection (the block is rank-deficient), and all of
+    them when that largest is below (1e-12)² of the block's M-norm² before it (the block was
+    in span V: the space is invariant). Not relative to the norms before the projection
+    direction by direction: a Krylov block loses most of its norm to the converged directions
+    by design (measured: that rule dropped one direction per block on x2_57 and forced a
+    restart). Returns (X, M X)."""
     MX = M @ X
     g0 = float(np.max(np.einsum("ij,ij->j", X, MX))) if X.size else 0.0
     for _ in range(2):
@@ -155,7 +159,10 @@ def _m_orthonormal(X, V, MV, M, drop: float = 1e-10):
     for k in range(2):
         G = X.T @ MX
         g, Q = np.linalg.eigh(0.5 * (G + G.T))
-        keep = g > (drop * g0 if k == 0 else 0.0)
+        top = float(g.max()) if g.size else 0.0
+        if k == 0 and not top > 1e-24 * g0:
+            return X[:, :0], MX[:, :0]
+        keep = g > (drop * top if k == 0 else 0.0)
         Q = Q[:, keep] / np.sqrt(g[keep])
         X, MX = X @ Q, MX @ Q
     return X, MX

@@ -439,16 +439,24 @@ def _tie_rigidly(variant, m, bodies: list[Body], K, M, G):
                       shape=(N3, n_q))
     Tt = T.T.tocsr()
     K = (Tt @ K @ T).tocsr()
-    M = (Tt @ M @ T).tolil()
-    G = (Tt @ G @ T).tolil()
+    # the bodies' own 6 × 6 mass and gyroscopic blocks on their q rows, added as one sparse
+    # matrix each (a LIL round trip of the whole matrix cost 0.8 s at 84k dofs)
+    ri, ci, mv, gv = [], [], [], []
     for k, b in enumerate(bodies):
         idx = keep_dofs.size + 6 * k + np.arange(6)
-        M[np.ix_(idx, idx)] = M[np.ix_(idx, idx)].toarray() + b.M6
-        G[np.ix_(idx, idx)] = G[np.ix_(idx, idx)].toarray() + b.G6
+        ri.append(np.repeat(idx, 6))
+        ci.append(np.tile(idx, 6))
+        mv.append(np.asarray(b.M6, dtype=float).ravel())
+        gv.append(np.asarray(b.G6, dtype=float).ravel())
         Rb = np.zeros((6, n_q))
         Rb[:, idx] = np.eye(6)
         body_rows.append(Rb)
-    M, G = M.tocsr(), G.tocsr()
+    M = (Tt @ M @ T).tocsr()
+    G = (Tt @ G @ T).tocsr()
+    if bodies:
+        r_, c_ = np.concatenate(ri), np.concatenate(ci)
+        M = (M + sp.csr_matrix((np.concatenate(mv), (r_, c_)), shape=M.shape)).tocsr()
+        G = (G + sp.csr_matrix((np.concatenate(gv), (r_, c_)), shape=G.shape)).tocsr()
     return T, K, M, G, body_rows
 
 
