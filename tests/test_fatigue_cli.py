@@ -194,7 +194,7 @@ def test_static_cache_roundtrip_corruption_and_key(tmp_path):
     from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
     v = cylinder()
-    o = StaticOptions(level="coarse")
+    o = StaticOptions(level="coarse", spin_softening=False)      # ∝ rpm² checked below
     a = load_or_solve(v, o, tmp_path)
     assert not a.from_cache and a.notes == ()
     b = load_or_solve(v, o, tmp_path)

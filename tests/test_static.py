@@ -18,6 +18,13 @@ from shaftfe.model.examples import STEEL
 from shaftfe.model.variant import Attachment, Bearing, Segment, Variant
 
 K_ISO = ((35_030.0, 0.0), (0.0, 35_030.0))
+# every check here compares the linear model (loads at the undeformed seats) with statics, beam
+# theory or ∝ rpm² scaling: spin_softening=False (its own tests: test_static_spin_softening.py)
+
+
+def _opts(**kw):
+    from shaftfe.static.model import StaticOptions
+    return StaticOptions(spin_softening=False, **kw)
 
 
 def cylinder(angle=0.0, K_left=K_ISO, K_right=K_ISO, axial=True, mass=0.24) -> Variant:
@@ -34,7 +41,7 @@ def statics_bearing_loads(v, cache, level="default", **opts) -> np.ndarray:
     vector by force and moment equilibrium of a beam on two supports without moment restraint
     (tilt free): the exact statics of the discretised load, independent of the solve."""
     from shaftfe import static
-    model = static.build_model(v, static.StaticOptions(level=level, **opts), cache_dir=cache)
+    model = static.build_model(v, _opts(level=level, **opts), cache_dir=cache)
     f = model.f.reshape(-1, 3)
     x, y, z = model.shaft_mesh.mesh.doflocs
     xl, xr = (b.x_center_mm for b in v.bearings)
@@ -46,9 +53,8 @@ def statics_bearing_loads(v, cache, level="default", **opts) -> np.ndarray:
 
 @pytest.fixture(scope="module")
 def base(cache):
-    from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
-    return solve_static(cylinder(), [5000.0, 10000.0], StaticOptions(level="default"),
+    return solve_static(cylinder(), [5000.0, 10000.0], _opts(level="default"),
                         cache_dir=cache, beam=False)
 
 
@@ -180,8 +186,7 @@ def test_static_cache_keeps_the_relative_residual(base, cache):
     """The static reference that ``shaftfe fatigue`` reuses carries the solve's relative
     residual, through the disk cache too (reference: the solve's own diagnostics)."""
     from shaftfe.static import cache as static_cache
-    from shaftfe.static.model import StaticOptions
-    opts = StaticOptions(level="default")
+    opts = _opts(level="default")
     ref = static_cache.store(cylinder(), opts, base, cache)
     assert ref.relative_residual == base.diagnostics["relative_residual"] <= 1e-8   # contract
     hit = static_cache.load_or_solve(cylinder(), opts, cache)
@@ -238,12 +243,11 @@ def test_rotating_the_load_rotates_the_response(cache):
     """Isotropic springs: turning the eccentricity by 37° turns the reactions (statics of the
     load, to 1e-9) and the deflection vector at the seat (axisymmetric structure; the two
     meshes differ — each is split on its own load plane — so magnitude to 0.5 %, angle 0.3°)."""
-    from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
     v = cylinder(angle=37.0)
-    r0 = solve_static(cylinder(), [10000.0], StaticOptions(level="fine"), cache_dir=cache,
+    r0 = solve_static(cylinder(), [10000.0], _opts(level="fine"), cache_dir=cache,
                       beam=False)
-    r = solve_static(v, [10000.0], StaticOptions(level="fine"), cache_dir=cache, beam=False)
+    r = solve_static(v, [10000.0], _opts(level="fine"), cache_dir=cache, beam=False)
     a, b = r0.case(10000.0), r.case(10000.0)
     P = statics_bearing_loads(v, cache, level="fine")
     for b1, p in zip(b.bearings, P, strict=True):
@@ -266,11 +270,10 @@ def test_coupled_spring_gives_closed_form_remote_displacement(cache):
     """K12 ≠ 0: the remote point (measured from the displacement field through the RBE3 rows)
     moves by K_b⁻¹ P, P the bearing load from statics — including the component across the
     load that K12 creates."""
-    from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
     Kc = ((35_030.0, 8_756.0), (8_756.0, 35_030.0))
     v = cylinder(K_left=Kc, K_right=Kc)
-    r = solve_static(v, [10000.0], StaticOptions(level="default"), cache_dir=cache, beam=False)
+    r = solve_static(v, [10000.0], _opts(level="default"), cache_dir=cache, beam=False)
     P = statics_bearing_loads(v, cache)
     for b, p in zip(r.cases[0].bearings, P, strict=True):
         q = np.linalg.solve(np.array(Kc), p)
@@ -282,9 +285,8 @@ def test_coupled_spring_gives_closed_form_remote_displacement(cache):
 
 def test_rigid_supports_hold_remote_points(cache):
     """--rigid-supports: the remote points do not move; the reactions are the statics."""
-    from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
-    r = solve_static(cylinder(), [10000.0], StaticOptions(level="default", rigid_supports=True),
+    r = solve_static(cylinder(), [10000.0], _opts(level="default", rigid_supports=True),
                      cache_dir=cache, beam=False)
     P = statics_bearing_loads(cylinder(), cache, rigid_supports=True)
     for b, p in zip(r.cases[0].bearings, P, strict=True):
@@ -304,13 +306,12 @@ def test_rigid_supports_hold_remote_points(cache):
 def test_missing_support_is_named(cache, what, expect):
     """A support set that leaves a rigid motion free raises SolverError naming it, before any
     solver can return garbage (FINDINGS pitfall 8)."""
-    from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
-    v, opts = cylinder(), StaticOptions(level="default")
+    v, opts = cylinder(), _opts(level="default")
     if what == "axial":
         v = cylinder(axial=False)
     elif what == "twist":
-        opts = StaticOptions(level="default", hold_twist="none")
+        opts = _opts(level="default", hold_twist="none")
     elif what == "one_bearing":
         v = dataclasses.replace(v, bearings=v.bearings[:1])
     with pytest.raises(SolverError, match=expect):
@@ -326,7 +327,7 @@ def test_single_bearing_with_tilt_spring(cache):
     v = cylinder()
     v = dataclasses.replace(v, bearings=(dataclasses.replace(
         v.bearings[0], tilt_stiffness_Nmm_per_rad=k_t),))
-    model = static.build_model(v, static.StaticOptions(level="default"), cache_dir=cache)
+    model = static.build_model(v, _opts(level="default"), cache_dir=cache)
     sol = static.solve_model(model)
     f = model.f.reshape(-1, 3)
     x, y = model.shaft_mesh.mesh.doflocs[:2]
@@ -361,11 +362,10 @@ def test_exclusion_band(cache):
 
 def test_bad_spring_matrix_is_input_error(cache):
     """A non-positive-definite 2×2 bearing stiffness is rejected as input."""
-    from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
     bad = ((1000.0, 2000.0), (2000.0, 1000.0))
     with pytest.raises(InputError, match="K_N_per_mm"):
-        solve_static(cylinder(K_left=bad), 10000.0, StaticOptions(level="default"),
+        solve_static(cylinder(K_left=bad), 10000.0, _opts(level="default"),
                      cache_dir=cache, beam=False)
 
 
@@ -373,9 +373,8 @@ def test_error_estimate_from_two_levels(cache):
     """--estimate-error: a second level is solved and the Richardson-type numbers are
     consistent: extrapolated = fine + (fine − coarse)/(r^p − 1), error = |that difference|."""
     from shaftfe.static.error import with_error_estimate
-    from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
-    opts = StaticOptions(level="default")
+    opts = _opts(level="default")
     r = with_error_estimate(solve_static(cylinder(), [10000.0], opts, cache_dir=cache,
                                          beam=False), cylinder(), opts, cache)
     ee = r.error_estimate
@@ -397,11 +396,10 @@ def test_body_force_resultant(cache):
     equilibrium and the body force adds stress."""
     from skfem import Basis, ElementTetP2, Functional
 
-    from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
-    a = solve_static(cylinder(), [10000.0], StaticOptions(level="default"), cache_dir=cache,
+    a = solve_static(cylinder(), [10000.0], _opts(level="default"), cache_dir=cache,
                      beam=False)
-    b = solve_static(cylinder(), [10000.0], StaticOptions(level="default", body_force=True),
+    b = solve_static(cylinder(), [10000.0], _opts(level="default", body_force=True),
                      cache_dir=cache, beam=False)
     m = b.mesh.mesh
     basis = Basis(m, ElementTetP2(), intorder=4)

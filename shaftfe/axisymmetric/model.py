@@ -13,8 +13,8 @@ Bearings (``fe.supports``): the RBE3 remote point at the seat-band centre, radia
 it couples through K12/K21; tilt spring if given; u_x held at the axial bearing and θ_x at the
 bearings of ``hold_twist`` (n = 0); ``rigid_supports``: u_y = u_z = 0 at the remote points.
 
-Spin softening (``AxiOptions.spin_softening``, off by default): in the co-rotating frame each
-attachment's centrifugal force is m ω² (e + u), u its seat's rigid translation; the part
+Spin softening (``AxiOptions.spin_softening``, on by default as in 3D): in the co-rotating
+frame each attachment's centrifugal force is m ω² (e + u), u its seat's rigid translation; the part
 m ω² u is a negative spring −m ω² on the seat's remote point (u_y, u_z: both n = 1 parts, the
 same RBE3 rows as a bearing; the tilt of the part is left out). The response is then not ∝ ω²:
 a solve serves one speed only.
@@ -68,7 +68,7 @@ class AxiOptions:
     converge_all_fillets: bool = False
     # the attachments' m ω² u in the co-rotating frame (see the module docstring); a solve
     # then serves one speed
-    spin_softening: bool = False
+    spin_softening: bool = True            # the parts' m ω² u (module docstring)
     n_max: int = N_MAX
     exclude_mm: float = 0.0
 

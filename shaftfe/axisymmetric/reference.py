@@ -120,7 +120,7 @@ def static_reference(res, seconds: float | None = None):
         variant=res.variant, variant_hash=res.variant_hash,
         options={"model": "axisymmetric", "level": o.level_name, "refine": o.refine,
                  "seed_load_case": o.seed_load_case, "exclude_mm": o.exclude_mm,
-                 "harmonics": list(res.harmonics)},
+                 "spin_softening": o.spin_softening, "harmonics": list(res.harmonics)},
         ref_rpm=float(res.ref_rpm), mesh_key="", key="", stress_ref=stress,
         von_mises_ref=vm, xyz=xyz, excluded=np.flatnonzero(excl), regions=reg,
         cells=np.zeros((0, 4), dtype=np.int64), face_cells=tri[ok],

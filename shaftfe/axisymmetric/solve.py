@@ -257,14 +257,19 @@ def _locate(mesh, S, idx, val, theta):
 def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(), *,
                        cache_dir=None) -> AxiResult:
     """Solve once at REF_RPM and report every rpm in ``rpm``: results × (rpm / REF_RPM)².
-    With ``options.spin_softening`` the response is not ∝ rpm²: one speed, solved at it."""
-    from shaftfe.errors import InputError
+    With ``options.spin_softening`` the response is not ∝ rpm²: each speed is solved at it
+    (one solve each, on the same cached mesh), the fields are the first speed's."""
+    from dataclasses import replace
+
     from shaftfe.static.solve import _check_rpms
     t0 = time.perf_counter()
     rpms = _check_rpms(rpm)
-    if options.spin_softening and len(rpms) != 1:
-        raise InputError("--rpm", "rpm", "one speed with spin softening (the response is not "
-                         "∝ rpm²: one solve per speed)", got=rpm)
+    if options.spin_softening and len(rpms) > 1:
+        parts = [solve_axisymmetric(variant, r, options, cache_dir=cache_dir) for r in rpms]
+        cases = tuple(replace(p.cases[0], scale=(r / rpms[0]) ** 2)
+                      for p, r in zip(parts, rpms, strict=True))
+        run = {**parts[0].run, "total_seconds": time.perf_counter() - t0}
+        return replace(parts[0], cases=cases, run=run)
     ref_rpm = rpms[0] if options.spin_softening else REF_RPM
     sol = solve_model(variant, options, rpm=ref_rpm, cache_dir=cache_dir)
     v = sol.variant

@@ -60,6 +60,9 @@ def register(sub) -> None:
                    help="load only the seed's forces F1 (gear + counterweight 1) and Fv2 "
                    "(counterweight 2), as the seed did; default off: every part, as every "
                    "command")
+    p.add_argument("--spin-softening", action=argparse.BooleanOptionalAction, default=True,
+                   help="the parts' m ω² u in the static solution (default on; each node's "
+                   "stress then follows S0 (λ + β λ²) over the history); the seed had none")
     p.add_argument("--cache-dir", default=None,
                    help="cache directory for the mesh and the static solution (default "
                    "$SHAFTFE_CACHE_DIR or ~/.cache/shaftfe)")

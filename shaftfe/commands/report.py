@@ -6,6 +6,8 @@ handler, so ``shaftfe report --help`` stays instant.
 
 from __future__ import annotations
 
+import argparse
+
 
 def register(sub) -> None:
     p = sub.add_parser(
@@ -35,6 +37,8 @@ def register(sub) -> None:
     p.add_argument("--seed-load-case", action="store_true",
                    help="load only the seed's forces F1 (gear + counterweight 1) and Fv2 "
                    "(counterweight 2), as the seed did (default: every part, as every command)")
+    p.add_argument("--spin-softening", action=argparse.BooleanOptionalAction, default=True,
+                   help="the parts' m ω² u in the static solution and fatigue (default on)")
     p.add_argument("--no-pictures", action="store_true",
                    help="skip the PyVista 3D pictures")
     p.add_argument("--cache-dir", default=None,
@@ -56,7 +60,8 @@ def options_from_args(args):
         engine=args.engine, level=args.level, rotor_model=args.rotor_model,
         campbell_step_rpm=args.campbell_step, estimate_error=args.estimate_error,
         cache_dir=args.cache_dir, pictures=not args.no_pictures,
-        seed_load_case=args.seed_load_case, model=args.model)
+        seed_load_case=args.seed_load_case, model=args.model,
+        spin_softening=args.spin_softening)
 
 
 def run(args) -> int:

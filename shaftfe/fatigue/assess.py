@@ -59,6 +59,15 @@ class FatigueResult:
     notes: tuple[str, ...]
     exact_nodes: np.ndarray | None = None   # None: every node exact; else only these (long
                                             # history, the rest of the field on binned classes)
+    beta: np.ndarray | None = None          # spin softening per node (None: proportional)
+
+    def linear_stress(self, i: int) -> tuple[float, float]:
+        """(S0, β) of node ``i``: the stress history there is S0 (λ + β λ²)."""
+        s = float(np.ravel(self.sigma_eq_MPa)[i])
+        if self.beta is None:
+            return s, 0.0
+        b = float(np.ravel(self.beta)[i])
+        return s / (1.0 + b), b
 
     @property
     def infinite_life(self) -> np.ndarray:
@@ -85,11 +94,14 @@ def assess(sigma_ref, history, material: FatigueMaterial, *, equivalent: str = "
            design_life_blocks: float = DEFAULT_DESIGN_LIFE_BLOCKS,
            speed_kmh: float = DEFAULT_SPEED_KMH, n_max: float = kernels.SAFETY_FACTOR_MAX,
            closure: str = "repeated", safety: bool = True, exact_at=None,
-           sigma_eq=None) -> FatigueResult:
+           sigma_eq=None, beta=None) -> FatigueResult:
     """Evaluate every node at once (see the module docstring). ``exact_at``: nodes whose
     damage is evaluated on every cycle class even where a very long history makes the rest of
     the field go to binned classes (``kernels.node_damage``): the hot-spot candidates.
-    ``sigma_eq``: the equivalent stress of ``sigma_ref`` if the caller has it already."""
+    ``sigma_eq``: the equivalent stress of ``sigma_ref`` if the caller has it already.
+    ``beta``: spin softening per node (``shaftfe.fatigue.field.softening_beta``); the stress
+    ``sigma_ref`` is then the softened one at the reference speed, S0 (1 + β), and the node's
+    history S0 (λ + β λ²) (``kernels`` module docstring)."""
     if not (math.isfinite(speed_kmh) and speed_kmh > 0):
         raise InputError("fatigue options", "average speed", "a finite number > 0 (km/h)",
                          got=speed_kmh)
@@ -106,10 +118,15 @@ def assess(sigma_ref, history, material: FatigueMaterial, *, equivalent: str = "
                          "stresses", got=s.shape)
     if not np.all(np.isfinite(s_eq)):
         raise InputError("stress field", "sigma_ref", "finite values", reason="has NaN/inf")
+    b = kernels.check_beta(beta, s_eq.shape)
+    if b is not None:
+        b = b.reshape(s_eq.shape)
+    s_lin = s_eq if b is None else s_eq / (1.0 + b)
     cyc = count_cycles(history.load_factor, closure)
     notes = []
     info: dict = {}
-    d = kernels.node_damage(s_eq, cyc, material, theory, kf, exact_at=exact_at, info=info)
+    d = kernels.node_damage(s_lin, cyc, material, theory, kf, exact_at=exact_at, info=info,
+                            beta=b)
     if cyc.n == 0:
         notes.append("the history has no load cycles (constant speed): no fatigue damage, "
                      "infinite life everywhere")
@@ -125,8 +142,8 @@ def assess(sigma_ref, history, material: FatigueMaterial, *, equivalent: str = "
         blocks = np.where(d > 0, 1.0 / np.where(d > 0, d, 1.0), np.inf)
     hours = life_hours(blocks, history.duration_s)
     if safety:
-        n, status = kernels.safety_factor(s_eq, cyc, material, design_life_blocks, theory, kf,
-                                          n_max=n_max)
+        n, status = kernels.safety_factor(s_lin, cyc, material, design_life_blocks, theory,
+                                          kf, n_max=n_max, beta=b, exact_at=exact_at)
         if np.any(status == kernels.CAPPED):
             notes.append(f"safety factor capped at {n_max:g} at {int(np.sum(status == 1))} "
                          f"node(s) (life at {n_max:g}x the load >= design life)")
@@ -139,4 +156,4 @@ def assess(sigma_ref, history, material: FatigueMaterial, *, equivalent: str = "
     return FatigueResult(s_eq, d, blocks, hours, life_km(hours, speed_kmh), n, status, cyc,
                          float(history.duration_s), float(design_life_blocks), float(speed_kmh),
                          material.name, theory, equivalent, float(kf), tuple(notes),
-                         exact_nodes)
+                         exact_nodes, b)

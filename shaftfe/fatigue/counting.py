@@ -181,9 +181,11 @@ def _matrix(ranges, means, weights, bins, quantity, units="") -> CycleMatrix:
     return CycleMatrix(re, me, vals, quantity, units)
 
 
-def rainflow_matrix(cycles: Cycles, scale: float = 1.0, bins=10) -> CycleMatrix:
+def rainflow_matrix(cycles: Cycles, scale: float = 1.0, bins=10,
+                    units: str | None = None) -> CycleMatrix:
     """Counts in range × mean bins, in stress units when ``scale`` is a node's σ_eq at the
-    reference speed (MPa), in load-factor units for scale = 1."""
-    units = "load factor" if scale == 1.0 else "MPa"
+    reference speed (MPa), in load-factor units for scale = 1 (``units`` overrides: cycles
+    already in MPa, e.g. ``kernels.node_stress_cycles``)."""
+    units = units or ("load factor" if scale == 1.0 else "MPa")
     return _matrix(cycles.range * abs(scale), cycles.mean * scale, cycles.count, bins, "count",
                    units)

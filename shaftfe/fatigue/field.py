@@ -155,13 +155,38 @@ def candidates(s_eq: np.ndarray, excluded: np.ndarray, regions: dict) -> np.ndar
     return np.unique(np.asarray(out, dtype=np.int64))
 
 
+BETA_FLOOR = 1e-3        # nodes below this fraction of the peak |S0| keep β = 0 (no damage)
+
+
+def softening_beta(s_soft, s_lin) -> np.ndarray:
+    """β per node of S(λ) = S0 (λ + β λ²) from the equivalent stress with spin softening
+    (``s_soft``) and without it (``s_lin = S0``), both at the reference speed (λ = 1):
+    β = s_soft / s_lin − 1, exact at λ = 0 (slope) and at λ = 1. The model's error elsewhere is
+    the softened response's cubic term, (ρ λ)² of the stress with ρ = m ω² / k the
+    softening ratio (≈ 1.5 % at 10 000 rpm on x2_57: ≈ 2e-4; tests/validation measures it
+    against an exact solve per speed). Nodes below ``BETA_FLOOR`` of the peak |S0|, or whose
+    equivalent stress changes sign (a signed kind near zero), keep β = 0: their stress is
+    negligible, and a ratio of two near-zero numbers is not a coefficient."""
+    s1 = np.asarray(s_soft, dtype=float)
+    s0 = np.asarray(s_lin, dtype=float)
+    big = np.abs(s0) > BETA_FLOOR * float(np.abs(s0).max(initial=0.0))
+    ok = big & (s0 * s1 > 0)
+    beta = np.zeros(s0.shape)
+    np.divide(s1, s0, out=beta, where=ok)
+    return np.where(ok, beta - 1.0, 0.0)
+
+
 def evaluate_arrays(stress_ref, history, material: FatigueMaterial, *, ref_rpm: float,
                     xyz, regions: dict | None = None, excluded=None,
                     equivalent: str = "von_mises", theory: str = "soderberg", kf: float = 1.0,
                     design_life_blocks: float = DEFAULT_DESIGN_LIFE_BLOCKS,
-                    speed_kmh: float = DEFAULT_SPEED_KMH) -> FatigueField:
+                    speed_kmh: float = DEFAULT_SPEED_KMH,
+                    stress_linear=None) -> FatigueField:
     """The field evaluation on plain arrays: ``stress_ref`` (6, n) MPa at ``ref_rpm``, ``xyz``
-    (3, n), ``regions`` name -> node ids, ``excluded`` node ids (see the module docstring)."""
+    (3, n), ``regions`` name -> node ids, ``excluded`` node ids (see the module docstring).
+    ``stress_linear``: with spin softening, the unsoftened stress at ``ref_rpm`` (``stress_ref``
+    is then the softened one): each node's stress follows S0 (λ + β λ²) (``softening_beta``,
+    ``kernels``)."""
     t0 = time.perf_counter()
     s = np.asarray(stress_ref, dtype=float)
     xyz = np.asarray(xyz, dtype=float)
@@ -173,10 +198,14 @@ def evaluate_arrays(stress_ref, history, material: FatigueMaterial, *, ref_rpm: 
         excl[np.asarray(excluded, dtype=np.int64)] = True
     regions = dict(sorted((regions or {}).items()))
     s_eq = equivalent_stress(s.T, equivalent)
+    beta = None
+    if stress_linear is not None:
+        beta = softening_beta(s_eq, equivalent_stress(np.asarray(stress_linear, float).T,
+                                                      equivalent))
     cand = candidates(s_eq, excl, regions)
     res = assess(s.T, h, material, equivalent=equivalent, theory=theory, kf=kf,
                  design_life_blocks=design_life_blocks, speed_kmh=speed_kmh, exact_at=cand,
-                 sigma_eq=s_eq)
+                 sigma_eq=s_eq, beta=beta)
     vm = res.sigma_eq_MPa if equivalent == "von_mises" else von_mises(s.T)
     member = {}
     for name, nodes in regions.items():
@@ -193,13 +222,16 @@ def evaluate_arrays(stress_ref, history, material: FatigueMaterial, *, ref_rpm: 
     i_u = worst_node(res, exact(np.arange(n)))
     if i_f < 0:                                    # everything excluded: fall back, say so
         i_f = i_u
+    worst = [worst_node(res, exact(np.asarray(nodes, dtype=np.int64)[
+        ~excl[np.asarray(nodes, dtype=np.int64)]])) for nodes in regions.values()]
+    if beta is not None:          # the reported nodes' safety factors on their own β, exactly
+        exact_safety(res, [i for i in (i_f, i_u, *worst) if i >= 0], beta, material,
+                     theory=theory, kf=kf, design_life_blocks=design_life_blocks)
     lab_f, lab_u = _label(i_f, regions, member), _label(i_u, regions, member)
     spot_f = _spot(res, i_f, lab_f[0] if lab_f else "-", lab_f, xyz, vm, excl)
     spot_u = _spot(res, i_u, lab_u[0] if lab_u else "-", lab_u, xyz, vm, excl)
     per_region = []
-    for name, nodes in regions.items():
-        nodes = np.asarray(nodes, dtype=np.int64)
-        i = worst_node(res, exact(nodes[~excl[nodes]]))
+    for name, i in zip(regions, worst, strict=True):
         per_region.append(None if i < 0 else
                           _spot(res, i, name, _label(i, regions, member), xyz, vm, excl))
     return FatigueField(res, h, float(ref_rpm), float(history.rpm_ref), spot_f, spot_u,
@@ -207,10 +239,23 @@ def evaluate_arrays(stress_ref, history, material: FatigueMaterial, *, ref_rpm: 
                         time.perf_counter() - t0, excl)
 
 
+def exact_safety(res: FatigueResult, nodes, beta, material: FatigueMaterial, *, theory: str,
+                 kf: float, design_life_blocks: float) -> None:
+    """Re-solve the safety factor of ``nodes`` each on its own β (the field's are interpolated
+    between β grid roots, ``kernels.safety_factor``) into ``res``'s arrays."""
+    from shaftfe.fatigue import kernels
+    s0 = res.sigma_eq_MPa / (1.0 + beta)
+    for i in dict.fromkeys(int(k) for k in nodes):
+        n, st = kernels.safety_factor(s0[[i]], res.cycles, material, design_life_blocks,
+                                      theory, kf, beta=beta[[i]])
+        res.safety_factor[i], res.safety_status[i] = n[0], st[0]
+
+
 def evaluate(ref, history, material: FatigueMaterial, **settings) -> FatigueField:
     """``evaluate_arrays`` on a ``shaftfe.static.cache.StaticReference``."""
     return evaluate_arrays(ref.stress_ref, history, material, ref_rpm=ref.ref_rpm, xyz=ref.xyz,
-                           regions=ref.regions, excluded=ref.excluded, **settings)
+                           regions=ref.regions, excluded=ref.excluded,
+                           stress_linear=getattr(ref, "stress_linear", None), **settings)
 
 
 def hot_spot_with_factor(ref, ff: FatigueField, history, material: FatigueMaterial,
@@ -219,8 +264,11 @@ def hot_spot_with_factor(ref, ff: FatigueField, history, material: FatigueMateri
     what the life becomes if the peak stress is corrected by a level's measured error."""
     i = ff.hot_spot.node
     s = np.asarray(ref.stress_ref)[:, [i]] * factor
+    lin = getattr(ref, "stress_linear", None)
     f2 = evaluate_arrays(s, history, material, ref_rpm=ref.ref_rpm,
-                         xyz=np.asarray(ref.xyz)[:, [i]], **settings)
+                         xyz=np.asarray(ref.xyz)[:, [i]],
+                         stress_linear=None if lin is None else np.asarray(lin)[:, [i]] * factor,
+                         **settings)
     h = f2.hot_spot
     return {"factor": factor, "life_blocks": h.life_blocks, "life_hours": h.life_hours,
             "life_km": h.life_km, "safety_factor": h.safety_factor}

@@ -14,6 +14,14 @@ Proportional loading with a load factor λ(t) ≥ 0 scales every component, so �
 σ_eq,ref · λ(t) for all three kinds, and a load-factor cycle (range Δλ, mean λ_m) is, at a node,
 the stress cycle with amplitude |σ_eq,ref| Δλ / 2 and mean σ_eq,ref λ_m.
 
+Spin softening (``beta``, per node, optional): in the co-rotating frame the parts' m ω² u makes
+the response slightly nonlinear in λ. Per node the equivalent stress is then modelled as
+S(λ) = σ_eq (λ + β λ²) (σ_eq = the linear part, β from a softened and an unsoftened solution at
+λ = 1: ``shaftfe.fatigue.field.softening_beta``). S is monotone in λ ≥ 0 (β > −1/2), so the
+rainflow cycles of S are those of λ, still counted once, and a cycle (Δλ, λ_m) is exactly the
+stress cycle with amplitude |σ_eq| Δλ (1 + 2 β λ_m) / 2 and mean σ_eq (λ_m + β (λ_m² + Δλ²/4))
+(``stress_cycles``). β = 0 (or None) is the proportional case above.
+
 Mean-stress theories (``MEAN_STRESS_THEORIES``) give the zero-mean amplitude σ_ar that has the
 same life as (σ_a, σ_m) for σ_m ≥ 0:
 
@@ -42,6 +50,12 @@ with n, so the root is bracketed and bisected in log n. Two methods, same root:
   sign of σ_eq (a compressive mean is treated differently). The scalar root x* of
   L · D_unit(x) = 1 is bracketed and bisected to machine precision once, and n = x* / |σ_eq|
   for every node — exact, and O(cycles) instead of O(nodes × cycles × iterations).
+  With spin softening (β per node; n multiplies the stress history S(λ(t))) D_unit depends on
+  β: x*(β) is solved on a grid of β (``BETA_GRID`` quantiles of the nodes' β, plus their
+  extremes) and interpolated linearly in β for the field; x* falls monotonically with β (every
+  class's amplitude and mean grow with β), so the grid neighbours bracket each node's root, and
+  the nodes ``exact_at`` (the hot-spot candidates) are bisected inside that bracket to
+  ``rtol``: exact where the results are reported, interpolated in the VTU field.
 * ``"bisection"``: a bracketed bisection in log n on all nodes at once (per node, vectorised),
   to the relative tolerance ``rtol``; kept as the general method and as the check of the first.
 
@@ -72,6 +86,8 @@ _CHUNK_ELEMENTS = 1 << 20                  # nodes × cycle classes evaluated pe
 FIELD_BUDGET = 2.0e8      # node × class evaluations of a field before its rest is binned (≈ 5 s)
 BIN_MAX = 400             # binned classes: at most BIN_MAX × BIN_MAX range × mean cells
 BAND = 0.99               # binned field: nodes in bands of |σ_eq| from x down to BAND · x
+BETA_GRID = 33            # softening: roots x*(β) at this many quantiles of the nodes' β
+BETA_MIN = -0.4           # softening: S(λ) monotone for λ ≤ 1.25 needs β > −1/(2 · 1.25)
 
 
 # --- equivalent stress -------------------------------------------------------------------
@@ -172,16 +188,45 @@ def miner_damage(sa_eq, count, material: FatigueMaterial, kf: float = 1.0) -> np
     return inv @ np.asarray(count, dtype=float)
 
 
-def _damage(s: np.ndarray, cyc: Cycles, material: FatigueMaterial, theory: str,
-            kf: float) -> np.ndarray:
-    """Damage per block of nodes with equivalent reference stress s (1-D), chunked."""
-    out = np.empty(s.shape[0])
+def check_beta(beta, shape) -> np.ndarray | None:
+    """The softening coefficients per node (None: proportional loading), finite and > BETA_MIN
+    (``S(λ)`` monotone over the speeds a history reaches)."""
+    if beta is None:
+        return None
+    b = np.broadcast_to(np.asarray(beta, dtype=float), shape).ravel()
+    if not np.all(np.isfinite(b)) or (b.size and float(b.min()) <= BETA_MIN):
+        raise InputError("stress field", "softening beta", f"finite numbers > {BETA_MIN}",
+                         got=float(b.min()) if b.size else None)
+    return b
+
+
+def stress_cycles(s, beta, cyc: Cycles) -> tuple[np.ndarray, np.ndarray]:
+    """(amplitude, mean) MPa of every class at nodes of linear stress ``s`` (…, 1) and
+    softening ``beta`` (same shape or None): |s| Δλ (1 + 2 β λ_m)/2, s (λ_m + β (λ_m² + Δλ²/4))
+    (module docstring)."""
     half = cyc.range / 2.0
+    if beta is None:
+        return np.abs(s) * half, s * cyc.mean
+    return (np.abs(s) * half * (1.0 + 2.0 * beta * cyc.mean),
+            s * (cyc.mean + beta * (cyc.mean ** 2 + half ** 2)))
+
+
+def node_stress_cycles(s: float, beta: float, cyc: Cycles) -> Cycles:
+    """The cycles of ONE node in MPa (range = 2 × amplitude, mean), for its plots."""
+    sa, sm = stress_cycles(float(s), float(beta) if beta else None, cyc)
+    return Cycles(2.0 * sa, sm, cyc.count, cyc.closure)
+
+
+def _damage(s: np.ndarray, cyc: Cycles, material: FatigueMaterial, theory: str,
+            kf: float, beta: np.ndarray | None = None) -> np.ndarray:
+    """Damage per block of nodes with equivalent reference stress s (1-D) and softening
+    ``beta`` (1-D or None), chunked."""
+    out = np.empty(s.shape[0])
     step = max(1, _CHUNK_ELEMENTS // max(cyc.n, 1))
     for a in range(0, s.shape[0], step):
-        sc = s[a:a + step, None]
-        sar = mean_stress_correction(np.abs(sc) * half, sc * cyc.mean, theory,
-                                     yield_MPa=material.yield_MPa,
+        sa, sm = stress_cycles(s[a:a + step, None], None if beta is None
+                               else beta[a:a + step, None], cyc)
+        sar = mean_stress_correction(sa, sm, theory, yield_MPa=material.yield_MPa,
                                      ultimate_MPa=material.ultimate_MPa)
         out[a:a + step] = miner_damage(sar, cyc.count, material, kf)
     return out
@@ -189,19 +234,22 @@ def _damage(s: np.ndarray, cyc: Cycles, material: FatigueMaterial, theory: str,
 
 def node_damage(sigma_eq, cycles: Cycles, material: FatigueMaterial,
                 theory: str = "soderberg", kf: float = 1.0, *, exact_at=None,
-                budget: float = FIELD_BUDGET, info: dict | None = None) -> np.ndarray:
+                budget: float = FIELD_BUDGET, info: dict | None = None,
+                beta=None) -> np.ndarray:
     """Miner damage per block at every node; ``sigma_eq`` = σ_eq at the reference speed (MPa),
     any shape; returns the same shape. A history without cycles gives 0 (infinite life).
+    ``beta``: the nodes' spin-softening coefficients (module docstring), None: proportional.
 
     A long log has millions of cycle classes, and nodes × classes is then too much to evaluate
     as it stands. Two steps keep it in seconds:
 
     1. Exact pruning (cutoff S-N curves without "infinite life" damage): σ_ar of a class grows
        with |σ_eq|, so a class below the endurance limit at some node does no damage at any
-       node of the same sign with a smaller |σ_eq|. The nodes are taken in order of decreasing
-       |σ_eq|, the classes that do no damage at the chunk's largest stress are dropped
-       (``active_cycles``), and once none is left the remaining nodes have no damage. Same
-       result as every class at every node.
+       node of the same sign with a smaller |σ_eq| (and a β no larger: σ_ar grows with β too).
+       The nodes are taken in order of decreasing |σ_eq|, the classes that do no damage at the
+       chunk's largest stress and the largest β still to come are dropped (``active_cycles``),
+       and once none is left the remaining nodes have no damage. Same result as every class at
+       every node.
     2. Banded and binned classes, only when the work left would pass ``budget`` node-class
        evaluations (a history whose every cycle is large: white noise over the whole speed
        range): the nodes ``exact_at`` (the hot-spot candidates, flat indices) are still
@@ -211,6 +259,7 @@ def node_damage(sigma_eq, cycles: Cycles, material: FatigueMaterial,
     _check_theory(theory)
     _check_kf(kf)
     s = np.asarray(sigma_eq, dtype=float)
+    b = check_beta(beta, s.shape)
     if cycles.n == 0:
         return np.zeros(s.shape)
     flat = s.ravel()
@@ -220,48 +269,60 @@ def node_damage(sigma_eq, cycles: Cycles, material: FatigueMaterial,
     out = np.zeros(flat.size)
     zero = np.flatnonzero(flat == 0)
     if zero.size and not _prunable(material):     # a finite "infinite life": damage even at 0
-        out[zero] = _damage(flat[zero], cycles, material, theory, kf)
+        out[zero] = _damage(flat[zero], cycles, material, theory, kf,
+                            None if b is None else b[zero])
     work = float(zero.size * cycles.n)
     for sign in (1.0, -1.0):
         sel = np.flatnonzero(flat * sign > 0)
         sel = sel[np.argsort(-np.abs(flat[sel]), kind="stable")]
+        # the largest β from each position on (pruning must hold for every node still to come)
+        b_ahead = (np.maximum.accumulate(b[sel][::-1])[::-1] if b is not None
+                   else np.zeros(sel.size))
         cyc, a, pruned_at = cycles, 0, math.inf
         while a < sel.size:
             x = abs(float(flat[sel[a]]))
             if x < 0.95 * pruned_at:        # prune again once |σ_eq| fell by 5 %
-                cyc, pruned_at = active_cycles(cyc, sign * x, material, theory, kf), x
+                cyc, pruned_at = active_cycles(cyc, sign * x, material, theory, kf,
+                                               beta=float(b_ahead[a])), x
             if cyc.n == 0:
                 break                       # no class does damage here nor at smaller |σ_eq|
             rest = sel[a:]
             if work + rest.size * cyc.n > budget:
                 work += _binned_rest(flat, rest, exact, cyc, budget, material, theory, kf,
-                                     out, info)
+                                     out, info, b)
                 break
             idx = sel[a:a + max(1, _CHUNK_ELEMENTS // cyc.n)]
-            out[idx] = _damage(flat[idx], cyc, material, theory, kf)
+            out[idx] = _damage(flat[idx], cyc, material, theory, kf,
+                               None if b is None else b[idx])
             work += idx.size * cyc.n
             a += idx.size
     return out.reshape(s.shape)
 
 
-def _binned_rest(flat, rest, exact, cyc, budget, material, theory, kf, out, info) -> float:
+def _binned_rest(flat, rest, exact, cyc, budget, material, theory, kf, out, info,
+                 beta=None) -> float:
     """Step 2 of ``node_damage`` for the nodes ``rest`` (one sign, |σ_eq| descending): exact at
     the ``exact`` ones. The others go in bands of |σ_eq| (from x down to ``BAND`` · x); in a
     band, the classes doing no damage anywhere in it are dropped for good (they do none lower
     down either), the classes whose σ_ar crosses the S-N curve's last point inside the band
     (where the damage jumps) and the most damaging ones are summed exactly, and the rest, above
     that point across the whole band where the damage is a smooth power of σ_ar, on binned
-    classes (``binned_cycles``). Returns the node-class evaluations done."""
+    classes (``binned_cycles``). With softening (``beta``) a band's tests take its extreme β
+    (σ_ar grows with β). Returns the node-class evaluations done."""
+    def bsub(idx):
+        return None if beta is None else beta[idx]
     ex, others = rest[exact[rest]], rest[~exact[rest]]
     work = 0.0
     if ex.size:
-        out[ex] = _damage(flat[ex], cyc, material, theory, kf)
+        out[ex] = _damage(flat[ex], cyc, material, theory, kf, bsub(ex))
         work += ex.size * cyc.n
     if others.size == 0:
         return work
     per_node = max(128, int(budget // others.size))
     n_classes = cyc.n
     x_abs = np.abs(flat[others])
+    b_oth = beta[others] if beta is not None else np.zeros(others.size)
+    b_ahead = np.maximum.accumulate(b_oth[::-1])[::-1]
     sign = 1.0 if flat[others[0]] > 0 else -1.0
     cutoff = material.sn.beyond_last == "cutoff"
     n_exact = n_binned = 0
@@ -269,7 +330,8 @@ def _binned_rest(flat, rest, exact, cyc, budget, material, theory, kf, out, info
     while a < others.size and cyc.n:
         b = max(a + 1, a + int(np.searchsorted(-x_abs[a:], -BAND * x_abs[a], "right")))
         band = others[a:b]
-        above_hi = _above_last_point(cyc, sign * x_abs[a], material, theory, kf)
+        above_hi = _above_last_point(cyc, sign * x_abs[a], material, theory, kf,
+                                     beta=float(b_ahead[a]))
         if _prunable(material) and not above_hi.all():      # nothing below the band needs them
             cyc = Cycles(cyc.range[above_hi], cyc.mean[above_hi], cyc.count[above_hi],
                          cyc.closure)
@@ -277,15 +339,15 @@ def _binned_rest(flat, rest, exact, cyc, budget, material, theory, kf, out, info
         if cyc.n == 0:
             break
         smooth = _above_last_point(cyc, sign * x_abs[b - 1], material, theory, kf,
-                                   strict=True) if cutoff else np.ones(cyc.n, dtype=bool)
+                                   strict=True, beta=float(b_oth[a:b].min())) \
+            if cutoff else np.ones(cyc.n, dtype=bool)
         smooth &= above_hi
         exact_idx = np.flatnonzero(~smooth)                 # crossing the last point (or none)
         cand = np.flatnonzero(smooth)
         k = min(per_node // 2, cand.size)
         if k:
-            sar = mean_stress_correction(x_abs[a] * cyc.range[cand] / 2.0,
-                                         sign * x_abs[a] * cyc.mean[cand], theory,
-                                         yield_MPa=material.yield_MPa,
+            sa_, sm_ = stress_cycles(sign * x_abs[a], float(b_oth[a]), _subset(cyc, cand))
+            sar = mean_stress_correction(sa_, sm_, theory, yield_MPa=material.yield_MPa,
                                          ultimate_MPa=material.ultimate_MPa)
             top = cand[np.argpartition(-sar, k - 1)[:k]]
             exact_idx = np.concatenate((exact_idx, top))
@@ -294,7 +356,8 @@ def _binned_rest(flat, rest, exact, cyc, budget, material, theory, kf, out, info
         if smooth.any():
             sub.append(binned_cycles(_subset(cyc, np.flatnonzero(smooth)),
                                      max(16, per_node - sub[0].n)))
-        out[band] = sum(_damage(flat[band], c, material, theory, kf) for c in sub if c.n)
+        out[band] = sum(_damage(flat[band], c, material, theory, kf, bsub(band))
+                        for c in sub if c.n)
         n_exact = max(n_exact, sub[0].n)
         n_binned = max(n_binned, sub[1].n if len(sub) > 1 else 0)
         work += band.size * sum(c.n for c in sub)
@@ -338,23 +401,23 @@ def _prunable(material: FatigueMaterial) -> bool:
 
 
 def active_cycles(cycles: Cycles, sigma_eq: float, material: FatigueMaterial, theory: str,
-                  kf: float) -> Cycles:
-    """The classes that do damage at a node of equivalent stress ``sigma_eq`` (MPa, signed):
-    with a cutoff S-N curve without "infinite life" damage, those at or above the curve's last
-    point (all classes for other curves)."""
+                  kf: float, *, beta: float = 0.0) -> Cycles:
+    """The classes that do damage at a node of equivalent stress ``sigma_eq`` (MPa, signed)
+    and softening ``beta``: with a cutoff S-N curve without "infinite life" damage, those at
+    or above the curve's last point (all classes for other curves)."""
     if not _prunable(material) or cycles.n == 0:
         return cycles
-    keep = _above_last_point(cycles, sigma_eq, material, theory, kf)
+    keep = _above_last_point(cycles, sigma_eq, material, theory, kf, beta=beta)
     return cycles if keep.all() else _subset(cycles, np.flatnonzero(keep))
 
 
 def _above_last_point(cycles: Cycles, sigma_eq: float, material: FatigueMaterial, theory: str,
-                      kf: float, *, strict: bool = False) -> np.ndarray:
+                      kf: float, *, strict: bool = False, beta: float = 0.0) -> np.ndarray:
     """Per class: σ_ar at ``sigma_eq`` reaches the S-N curve's last point (strictly above it
     with ``strict``), by the very expression ``SNCurve.log_inverse_life`` and ``miner_damage``
     use, so that the classes kept are exactly those the full sum gives damage."""
-    sar = mean_stress_correction(abs(sigma_eq) * cycles.range / 2.0, sigma_eq * cycles.mean,
-                                 theory, yield_MPa=material.yield_MPa,
+    sa_, sm_ = stress_cycles(float(sigma_eq), float(beta) if beta else None, cycles)
+    sar = mean_stress_correction(sa_, sm_, theory, yield_MPa=material.yield_MPa,
                                  ultimate_MPa=material.ultimate_MPa)
     sa = sar / kf if kf != 1.0 else sar
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -364,23 +427,24 @@ def _above_last_point(cycles: Cycles, sigma_eq: float, material: FatigueMaterial
 
 
 def cycle_damage(sigma_eq_node: float, cycles: Cycles, material: FatigueMaterial,
-                 theory: str = "soderberg", kf: float = 1.0) -> np.ndarray:
+                 theory: str = "soderberg", kf: float = 1.0, beta: float = 0.0) -> np.ndarray:
     """Damage per block of each cycle class at ONE node (hot-spot breakdown)."""
     _check_theory(theory)
     _check_kf(kf)
     s = float(sigma_eq_node)
-    sar = mean_stress_correction(abs(s) * cycles.range / 2.0, s * cycles.mean, theory,
-                                 yield_MPa=material.yield_MPa,
+    sa_, sm_ = stress_cycles(s, float(beta) if beta else None, cycles)
+    sar = mean_stress_correction(sa_, sm_, theory, yield_MPa=material.yield_MPa,
                                  ultimate_MPa=material.ultimate_MPa)
     return cycles.count * 10.0 ** material.sn.log_inverse_life(sar / kf)
 
 
 def damage_matrix(sigma_eq_node: float, cycles: Cycles, material: FatigueMaterial,
-                  theory: str = "soderberg", kf: float = 1.0, bins=10) -> CycleMatrix:
+                  theory: str = "soderberg", kf: float = 1.0, bins=10,
+                  beta: float = 0.0) -> CycleMatrix:
     """Damage per block of one node in stress range × mean bins (MPa)."""
-    d = cycle_damage(sigma_eq_node, cycles, material, theory, kf)
-    s = float(sigma_eq_node)
-    return _matrix(cycles.range * abs(s), cycles.mean * s, d, bins, "damage", "MPa")
+    d = cycle_damage(sigma_eq_node, cycles, material, theory, kf, beta)
+    sa, sm = stress_cycles(float(sigma_eq_node), float(beta) if beta else None, cycles)
+    return _matrix(2.0 * sa, sm, d, bins, "damage", "MPa")
 
 
 # --- safety factor ----------------------------------------------------------------------------
@@ -388,8 +452,11 @@ def damage_matrix(sigma_eq_node: float, cycles: Cycles, material: FatigueMateria
 def safety_factor(sigma_eq, cycles: Cycles, material: FatigueMaterial, design_life: float,
                   theory: str = "soderberg", kf: float = 1.0, *,
                   n_max: float = SAFETY_FACTOR_MAX, rtol: float = 1e-10,
-                  method: str = "similarity") -> tuple[np.ndarray, np.ndarray]:
+                  method: str = "similarity", beta=None,
+                  exact_at=None) -> tuple[np.ndarray, np.ndarray]:
     """(n, status) per node: design_life · D(n · σ_eq) = 1, n ≤ n_max (see module docstring).
+    ``beta``: spin softening per node (None: proportional); ``exact_at``: with a varying β, the
+    nodes whose root is solved exactly (the rest interpolated between β grid roots).
 
     status: SOLVED, CAPPED (n = n_max: life at n_max ≥ design life, incl. infinite life) or
     FLOORED (n < n_max · 1e-6: reported as that floor; a static failure in practice)."""
@@ -407,6 +474,7 @@ def safety_factor(sigma_eq, cycles: Cycles, material: FatigueMaterial, design_li
                          got=method)
     s = np.asarray(sigma_eq, dtype=float)
     shape = s.shape
+    b = check_beta(beta, shape)
     s = s.ravel()
     n = np.full(s.shape, float(n_max))
     status = np.full(s.shape, CAPPED, dtype=np.int8)
@@ -418,15 +486,17 @@ def safety_factor(sigma_eq, cycles: Cycles, material: FatigueMaterial, design_li
             sel = np.flatnonzero(s > 0) if sign > 0 else np.flatnonzero(s < 0)
             if sel.size == 0:
                 continue
-            x = _unit_root(sign, cycles, material, theory, kf, design_life)
-            with np.errstate(divide="ignore", over="ignore"):
+            x = _beta_roots(sign, cycles, material, theory, kf, design_life,
+                            None if b is None else b[sel], exact_at, sel)
+            with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
                 nn = x / np.abs(s[sel])
             n[sel] = np.clip(nn, floor, n_max)
             status[sel] = np.where(nn >= n_max, CAPPED, np.where(nn < floor, FLOORED, SOLVED))
         return n.reshape(shape), status.reshape(shape)
 
     def fails(idx: np.ndarray, factor: np.ndarray) -> np.ndarray:
-        return design_life * _damage(s[idx] * factor, cycles, material, theory, kf) > 1.0
+        return design_life * _damage(s[idx] * factor, cycles, material, theory, kf,
+                                     None if b is None else b[idx]) > 1.0
 
     idx = np.flatnonzero(fails(np.arange(s.size), n))   # n* < n_max: solve; others capped
     lo = np.full(idx.size, floor)
@@ -446,15 +516,39 @@ def safety_factor(sigma_eq, cycles: Cycles, material: FatigueMaterial, design_li
     return n.reshape(shape), status.reshape(shape)
 
 
+def _beta_roots(sign: float, cycles: Cycles, material: FatigueMaterial, theory: str,
+                kf: float, design_life: float, beta, exact_at, sel) -> np.ndarray | float:
+    """x*(β) of ``_unit_root`` for the nodes ``sel`` of one sign: one root without softening
+    or with one β; else roots at ``BETA_GRID`` quantiles of β (and its extremes), log x*
+    interpolated linearly in β, and the nodes of ``exact_at`` in ``sel`` solved on their own β
+    (module docstring)."""
+    if beta is None or float(beta.min()) == float(beta.max()):
+        b0 = 0.0 if beta is None else float(beta[0])
+        return _unit_root(sign, cycles, material, theory, kf, design_life, b0)
+    grid = np.unique(np.quantile(beta, np.linspace(0.0, 1.0, BETA_GRID)))
+    roots = np.array([_unit_root(sign, cycles, material, theory, kf, design_life, float(g))
+                      for g in grid])
+    with np.errstate(divide="ignore"):
+        lr = np.log(np.clip(roots, 1e-300, 1e300))
+    x = np.exp(np.interp(beta, grid, lr))
+    if exact_at is not None:
+        where = np.flatnonzero(np.isin(sel, np.asarray(exact_at, dtype=np.int64)))
+        for k in where:
+            x[k] = _unit_root(sign, cycles, material, theory, kf, design_life, float(beta[k]))
+    return x
+
+
 def _unit_root(sign: float, cycles: Cycles, material: FatigueMaterial, theory: str,
-               kf: float, design_life: float) -> float:
-    """x > 0 with design_life · D(sign · x) = 1 for a node of unit σ_eq (∞: never fails,
-    0: fails at any stress), bracketed and bisected in log x to machine precision."""
+               kf: float, design_life: float, beta: float = 0.0) -> float:
+    """x > 0 with design_life · D(sign · x) = 1 for a node of unit σ_eq and softening
+    ``beta`` (∞: never fails, 0: fails at any stress), bracketed and bisected in log x to
+    machine precision."""
 
     active = cycles
+    bb = np.array([beta]) if beta else None
 
     def fails(x: float) -> bool:
-        d = _damage(np.array([sign * x]), active, material, theory, kf)[0]
+        d = _damage(np.array([sign * x]), active, material, theory, kf, bb)[0]
         return bool(design_life * d > 1.0)
 
     hi = 1.0
@@ -463,7 +557,7 @@ def _unit_root(sign: float, cycles: Cycles, material: FatigueMaterial, theory: s
         if hi > 1e300:
             return math.inf
     # every x tried from here on is <= hi: the classes without damage at hi can go (exact)
-    active = active_cycles(cycles, sign * hi, material, theory, kf)
+    active = active_cycles(cycles, sign * hi, material, theory, kf, beta=beta)
     lo = hi / 2.0 if hi > 1.0 else 1.0
     while fails(lo):
         lo /= 2.0
@@ -475,7 +569,7 @@ def _unit_root(sign: float, cycles: Cycles, material: FatigueMaterial, theory: s
             break
         if fails(mid):
             hi = mid
-            active = active_cycles(active, sign * hi, material, theory, kf)
+            active = active_cycles(active, sign * hi, material, theory, kf, beta=beta)
         else:
             lo = mid
     return hi

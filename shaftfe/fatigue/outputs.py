@@ -18,18 +18,20 @@ def write_plots(run: FatigueRun, out) -> dict[str, str]:
     from shaftfe.util.atomic import atomic_path
     job, ff = run.job, run.field
     r, hot = ff.result, ff.hot_spot
-    s_hot = hot.sigma_eq_ref_MPa
+    s0, beta = ff.result.linear_stress(hot.node)      # the node's S0 (λ + β λ²)
     lbl = f"{hot.region} x = {hot.xyz_mm[0]:.1f} mm"
     with atomic_path(out / "rainflow_matrix.png") as tmp:
         fatigue_plots.plot_cycle_matrix(
-            rainflow_matrix(r.cycles, scale=s_hot if s_hot != 0 else 1.0), tmp,
+            rainflow_matrix(kernels.node_stress_cycles(s0, beta, r.cycles), units="MPa"), tmp,
             title=f"rainflow matrix per block\nhot spot {lbl}")
     with atomic_path(out / "damage_matrix.png") as tmp:
         fatigue_plots.plot_cycle_matrix(
-            kernels.damage_matrix(s_hot, r.cycles, run.material, job.mean_stress, job.kf), tmp,
+            kernels.damage_matrix(s0, r.cycles, run.material, job.mean_stress, job.kf,
+                                  beta=beta), tmp,
             title=f"damage matrix per block\nhot spot {lbl}")
     with atomic_path(out / "haigh.png") as tmp:
-        fatigue_plots.plot_haigh(s_hot, r.cycles, run.material, tmp, job.mean_stress, job.kf)
+        fatigue_plots.plot_haigh(s0, r.cycles, run.material, tmp, job.mean_stress, job.kf,
+                                 beta)
     return {"rainflow_matrix": "rainflow_matrix.png", "damage_matrix": "damage_matrix.png",
             "haigh": "haigh.png"}
 

@@ -96,13 +96,15 @@ HAIGH_MAX_POINTS = 20_000
 
 
 def plot_haigh(sigma_eq_node: float, cycles: Cycles, material: FatigueMaterial, path,
-               theory: str = "soderberg", kf: float = 1.0) -> Path:
-    """Haigh diagram of one node: its cycles (σ_m, σ_a), marker area ∝ count, and the chosen
-    mean-stress line through the endurance amplitude kf · S_e (the S-N curve's last point)."""
+               theory: str = "soderberg", kf: float = 1.0, beta: float = 0.0) -> Path:
+    """Haigh diagram of one node (linear stress ``sigma_eq_node`` = S0, spin softening
+    ``beta``): its cycles (σ_m, σ_a), marker area ∝ count, and the chosen mean-stress line
+    through the endurance amplitude kf · S_e (the S-N curve's last point)."""
+    from shaftfe.fatigue.kernels import stress_cycles
     plt = _plt()
     s = float(sigma_eq_node)
-    sa = abs(s) * cycles.range / 2.0
-    sm = s * cycles.mean
+    sa, sm = stress_cycles(s, float(beta) if beta else None, cycles)
+    s = s * (1.0 + float(beta))                    # at the reference speed, for the label
     se = kf * material.sn.endurance_MPa
     fig, ax = plt.subplots(figsize=(6, 4.5))
     label = f"cycles at σ_eq,ref = {s:.1f} MPa"

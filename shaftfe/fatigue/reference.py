@@ -33,12 +33,16 @@ def log_life(sa: float, material) -> float:
     return ln[k] + t * (ln[k + 1] - ln[k])
 
 
-def node_damage(sigma: float, cycles, material) -> float:
+def node_damage(sigma: float, cycles, material, beta: float = 0.0) -> float:
     """Miner damage per block of ONE node, a plain loop over the cycles: amplitude σ Δλ/2, mean
-    σ λ_m, Soderberg σ_a / (1 − σ_m / R_e), 1 / N from ``log_life``."""
+    σ λ_m, Soderberg σ_a / (1 − σ_m / R_e), 1 / N from ``log_life``. With spin softening
+    (``beta``) the stress at load factor λ is σ (λ + β λ²), evaluated at the cycle's two
+    extremes λ_m ± Δλ/2 (not by the kernels' closed form)."""
     d = 0.0
     for r, m, c in zip(cycles.range, cycles.mean, cycles.count, strict=True):
-        sa, sm = sigma * r / 2.0, sigma * m
+        hi, lo = m + r / 2.0, m - r / 2.0
+        s_hi, s_lo = sigma * (hi + beta * hi * hi), sigma * (lo + beta * lo * lo)
+        sa, sm = abs(s_hi - s_lo) / 2.0, (s_hi + s_lo) / 2.0
         denom = 1.0 - max(sm, 0.0) / material.yield_MPa
         if sa == 0.0:
             continue
@@ -50,17 +54,18 @@ def node_damage(sigma: float, cycles, material) -> float:
     return d
 
 
-def node_safety(sigma: float, cycles, material, life: float, n_max: float = 15.0) -> float:
+def node_safety(sigma: float, cycles, material, life: float, n_max: float = 15.0,
+                beta: float = 0.0) -> float:
     """n with life · D(n σ) = 1 by a scalar bisection in log n until lo and hi are adjacent
     floats (D is monotone in n)."""
-    if life * node_damage(n_max * sigma, cycles, material) <= 1.0:
+    if life * node_damage(n_max * sigma, cycles, material, beta) <= 1.0:
         return n_max
     lo, hi = n_max * 1e-6, n_max
     while True:
         mid = math.sqrt(lo * hi)
         if not lo < mid < hi:
             return hi
-        if life * node_damage(mid * sigma, cycles, material) > 1.0:
+        if life * node_damage(mid * sigma, cycles, material, beta) > 1.0:
             hi = mid
         else:
             lo = mid

@@ -37,9 +37,10 @@ SEED = {"safety_factor_at_1e7": 0.7, "life_blocks": 25_000.0, "life_hours": 2083
         "hot_spot": "fillet at the heavier counterweight (the collar fillet on the "
                     "counterweight-2 side, x ≈ 64.5 mm)",
         "hot_spot_x_mm": 64.5}
+# the seed's Ansys static had no spin softening (forces at the undeformed seats)
 SEED_SETTINGS = {"mean_stress": "soderberg", "equivalent": "von_mises",
                  "material": "structural_steel", "design_life": 1e7, "kf": 1.0,
-                 "seed_load_case": True}
+                 "seed_load_case": True, "spin_softening": False}
 
 
 @dataclass(frozen=True)
@@ -60,6 +61,7 @@ class FatigueJob:
     seed_load_case: bool = False
     cache_dir: str | None = None
     model: str = "solid"                   # static model: solid | axisymmetric (MODELS)
+    spin_softening: bool = True            # the parts' m ω² u (static model; README)
 
 
 @dataclass(frozen=True, eq=False)
@@ -197,18 +199,27 @@ def static_reference(variant, job: FatigueJob):
     (``shaftfe.axisymmetric.reference``; solved each time from the cached meridian mesh: a
     few seconds, no cache of its own)."""
     if job.model == "axisymmetric":
+        from dataclasses import replace
+
         from shaftfe.axisymmetric.model import AxiOptions
         from shaftfe.axisymmetric.reference import static_reference as axi_reference
         from shaftfe.axisymmetric.solve import solve_axisymmetric
         opts = AxiOptions(level=job.level, seed_load_case=job.seed_load_case,
-                          exclude_mm=job.exclude_mm)
+                          exclude_mm=job.exclude_mm, spin_softening=job.spin_softening)
         t0 = time.perf_counter()
         res = solve_axisymmetric(variant, options=opts, cache_dir=job.cache_dir)
-        return axi_reference(res, time.perf_counter() - t0)
+        ref = axi_reference(res, time.perf_counter() - t0)
+        if job.spin_softening:        # fatigue's S0 (λ + β λ²) needs the unsoftened stress too
+            lin = solve_axisymmetric(variant, options=replace(opts, spin_softening=False),
+                                     cache_dir=job.cache_dir)
+            ref = replace(ref, stress_linear=axi_reference(lin).stress_ref,
+                          seconds=time.perf_counter() - t0)
+        return ref
     from shaftfe.static import cache as static_cache
     from shaftfe.static.model import StaticOptions
     extra = {"exclude_mm": job.exclude_mm} if job.exclude_mm > 0 else {}
-    opts = StaticOptions(level=job.level, seed_load_case=job.seed_load_case, **extra)
+    opts = StaticOptions(level=job.level, seed_load_case=job.seed_load_case,
+                         spin_softening=job.spin_softening, **extra)
     return static_cache.load_or_solve(variant, opts, job.cache_dir)
 
 

@@ -82,14 +82,22 @@ def _static(o: ReportOptions, variant, prog):
         from shaftfe.axisymmetric.reference import static_reference
         from shaftfe.axisymmetric.solve import solve_axisymmetric
         with prog.stage("static (mesh + one solve)"):
-            res = solve_axisymmetric(variant, list(o.design_rpm),
-                                     AxiOptions(level=o.level, seed_load_case=o.seed_load_case),
+            aopts = AxiOptions(level=o.level, seed_load_case=o.seed_load_case,
+                               spin_softening=o.spin_softening)
+            res = solve_axisymmetric(variant, list(o.design_rpm), aopts,
                                      cache_dir=o.cache_dir)
             ref = static_reference(res)                             # the fatigue input
+            if o.spin_softening:      # fatigue's S0 (λ + β λ²): the unsoftened stress too
+                lin = solve_axisymmetric(variant, float(o.design_rpm[0]),
+                                         dataclasses.replace(aopts, spin_softening=False),
+                                         cache_dir=o.cache_dir)
+                ref = dataclasses.replace(ref, stress_linear=static_reference(lin).stress_ref)
         return res, ref
     with prog.stage("static (mesh + one solve)"):
-        sopts = StaticOptions(level=o.level, seed_load_case=o.seed_load_case)
-        res = solve_static(variant, list(o.design_rpm), sopts, cache_dir=o.cache_dir)
+        sopts = StaticOptions(level=o.level, seed_load_case=o.seed_load_case,
+                              spin_softening=o.spin_softening)
+        res = solve_static(variant, list(o.design_rpm), sopts, cache_dir=o.cache_dir,
+                           linear_stress=True)
         ref = static_cache.store(variant, sopts, res, o.cache_dir)   # the fatigue input
     if o.estimate_error:
         with prog.stage(ERROR_STAGE):
@@ -329,7 +337,7 @@ def _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, 
             "damped natural frequencies [Hz] against the speed [rpm], branches by whirl "
             "(forward / backward), engine-order lines k × n/60 and critical speeds (X).")
     hot = ff.hot_spot
-    s_hot = hot.sigma_eq_ref_MPa
+    s0, beta = ff.result.linear_stress(hot.node)      # the node's S0 (λ + β λ²)
     lbl = f"{hot.region} x = {hot.xyz_mm[0]:.1f} mm"
     r = ff.result
     fatigue_plots.plot_load_history(history, fig_dir / "load_history.png")
@@ -337,18 +345,18 @@ def _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, 
             f"{Path(history.source).name}: engine speed [rpm] and load factor (rpm/ref)² [-] "
             "against time [s].")
     fatigue_plots.plot_cycle_matrix(
-        rainflow_matrix(r.cycles, scale=s_hot if s_hot != 0 else 1.0),
+        rainflow_matrix(kernels.node_stress_cycles(s0, beta, r.cycles), units="MPa"),
         fig_dir / "rainflow_matrix.png",
         title=f"rainflow matrix per block, hot spot {lbl}")
     add_fig("rainflow_matrix", "rainflow matrix",
             "cycles per block at the hot spot by stress range and mean [MPa].")
     fatigue_plots.plot_cycle_matrix(
-        kernels.damage_matrix(s_hot, r.cycles, material, o.mean_stress, 1.0),
+        kernels.damage_matrix(s0, r.cycles, material, o.mean_stress, 1.0, beta=beta),
         fig_dir / "damage_matrix.png", title=f"damage matrix per block, hot spot {lbl}")
     add_fig("damage_matrix", "damage matrix",
             "Miner damage per block at the hot spot by stress range and mean [MPa].")
-    fatigue_plots.plot_haigh(s_hot, r.cycles, material, fig_dir / "haigh.png",
-                             o.mean_stress, 1.0)
+    fatigue_plots.plot_haigh(s0, r.cycles, material, fig_dir / "haigh.png",
+                             o.mean_stress, 1.0, beta)
     add_fig("haigh", "Haigh diagram",
             f"the hot spot's cycles (mean, amplitude) [MPa] and the {o.mean_stress} line.")
     fatigue_plots.plot_sn_curve(material, fig_dir / "sn_curve.png")

@@ -42,14 +42,14 @@ import importlib.util
 import json
 import math
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from shaftfe.util import paths
 
-STATIC_CACHE_FORMAT = 1
+STATIC_CACHE_FORMAT = 2          # 2: spin softening's unsoftened stress (stress_linear)
 FINGERPRINT_MODULES = ("shaftfe.static.model", "shaftfe.static.solve", "shaftfe.static.result",
                        "shaftfe.fe.recovery", "shaftfe.fe.assembly", "shaftfe.fe.lowrank",
                        "shaftfe.fe.supports")
@@ -81,10 +81,15 @@ class StaticReference:
     seconds: float                                   # wall time of this call
     notes: tuple[str, ...] = ()
     relative_residual: float | None = None           # of the static solve (≤ 1e-8 checked)
+    # with spin softening: the unsoftened stress at ref_rpm (6, n); ``stress_ref`` is the
+    # softened one, and fatigue models each node as S(λ) = S0 (λ + β λ²) from the two
+    stress_linear: np.ndarray | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         for name in ("stress_ref", "von_mises_ref", "xyz", "excluded", "cells", "face_cells",
-                     "face_group"):
+                     "face_group", "stress_linear"):
+            if getattr(self, name) is None:
+                continue
             a = np.asarray(getattr(self, name))
             if a.flags.writeable:
                 a = a.copy()
@@ -185,9 +190,6 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
     from shaftfe.static.model import REF_RPM, StaticOptions
     t0 = time.perf_counter()
     options = options if options is not None else StaticOptions()
-    # the reference is scaled to every speed (∝ ω²), which spin softening breaks: the fatigue
-    # path does not include it yet (issue #12 item 3, open; README "3D static")
-    options = replace(options, spin_softening=False)
     mkey = predicted_mesh_key(variant, options)
     key = static_key(variant, options, mkey, REF_RPM)
     path = cache_path(key, cache_dir)
@@ -197,7 +199,7 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
             return ref
     from shaftfe.static.solve import solve_static
     res = solve_static(variant, REF_RPM, options, cache_dir=cache_dir, beam=False,
-                       **(solve_kwargs or {}))
+                       linear_stress=True, **(solve_kwargs or {}))
     if use_cache:
         ref = store(variant, options, res, cache_dir)
     else:
@@ -213,8 +215,15 @@ def store(variant, options, res, cache_dir=None) -> StaticReference:
     key = static_key(variant, options, mkey, REF_RPM)
     ref = from_result(res, key)
     notes: list[str] = []
+    soft_incomplete = (bool(getattr(options, "spin_softening", False))
+                       and getattr(res, "stress_linear_ref", None) is None
+                       and bool(res.cases and res.cases[0].spin_softening_N))
     if res.mesh_key != mkey:        # the prediction missed: do not store under a wrong key
         notes.append("static cache: the mesh key could not be predicted; result not cached")
+    elif soft_incomplete or not math.isclose(float(res.ref_rpm), REF_RPM):
+        # fatigue's softening model needs the unsoftened stress at REF_RPM as well
+        notes.append("static cache: a softened result without its unsoftened stress at "
+                     f"{REF_RPM:g} rpm; not cached")
     else:
         try:
             _save(cache_path(key, cache_dir), ref)
@@ -243,7 +252,9 @@ def from_result(res, key: str = "", seconds: float = 0.0) -> StaticReference:
         face_groups=names, n_elements=int(res.n_elements),
         solve_seconds=float(getattr(res, "run", {}).get("total_seconds", seconds)),
         from_cache=False, seconds=seconds, relative_residual=_float_or_none(
-            res.diagnostics.get("relative_residual")))
+            res.diagnostics.get("relative_residual")),
+        stress_linear=(None if getattr(res, "stress_linear_ref", None) is None
+                       else np.asarray(res.stress_linear_ref, dtype=float)))
 
 
 def _float_or_none(v) -> float | None:
@@ -261,6 +272,8 @@ def _save(path: Path, ref: StaticReference) -> None:
     arrays = {"stress_ref": ref.stress_ref, "von_mises_ref": ref.von_mises_ref, "xyz": ref.xyz,
               "excluded": ref.excluded, "cells": ref.cells, "face_cells": ref.face_cells,
               "face_group": ref.face_group}
+    if ref.stress_linear is not None:
+        arrays["stress_linear"] = ref.stress_linear
     for i, n in enumerate(names):
         arrays[f"r{i}"] = ref.regions[n]
     cachefile.save(path, arrays, meta)
@@ -280,9 +293,11 @@ def _load(path: Path, key: str, name: str, t0: float) -> StaticReference | None:
         arr = {k: z[k] for k in ("stress_ref", "von_mises_ref", "xyz", "excluded", "cells",
                                  "face_cells", "face_group")}
         regions = {n: z[f"r{i}"] for i, n in enumerate(meta["regions"])}
+        lin = z["stress_linear"] if "stress_linear" in z else None
         n = arr["xyz"].shape[1] if arr["xyz"].ndim == 2 else -1
         ok = (arr["xyz"].shape == (3, n) and n > 0 and arr["stress_ref"].shape == (6, n)
               and arr["von_mises_ref"].shape == (n,)
+              and (lin is None or (lin.shape == (6, n) and bool(np.all(np.isfinite(lin)))))
               and all(np.all(np.isfinite(arr[k])) for k in ("stress_ref", "von_mises_ref",
                                                               "xyz"))
               and arr["cells"].ndim == 2 and arr["cells"].shape[1] in (4, 10)
@@ -299,7 +314,8 @@ def _load(path: Path, key: str, name: str, t0: float) -> StaticReference | None:
             regions=regions, face_groups=tuple(meta["face_groups"]),
             n_elements=int(meta["n_elements"]), solve_seconds=float(meta["solve_seconds"]),
             from_cache=True, seconds=time.perf_counter() - t0,
-            relative_residual=_float_or_none(meta.get("relative_residual")), **arr)
+            relative_residual=_float_or_none(meta.get("relative_residual")),
+            stress_linear=lin, **arr)
         if not math.isfinite(ref.ref_rpm) or ref.ref_rpm <= 0:
             return None
         return ref

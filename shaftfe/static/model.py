@@ -41,7 +41,7 @@ class StaticOptions:
     solver: str = "auto"                   # see shaftfe.fe.solvers
     hold_twist: str = "all"                # θ_x held at "all" bearings, the "axial" one, "none"
     exclude_mm: float = 0.0                # extra band around patch edges for filtered peaks
-    spin_softening: bool = False           # the parts' m ω² u (see shaftfe.static.solve.soften)
+    spin_softening: bool = True            # the parts' m ω² u (see shaftfe.static.solve.soften)
 
     @property
     def load_case(self) -> str:

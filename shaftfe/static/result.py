@@ -81,6 +81,9 @@ class StaticResult:
     notes: tuple[str, ...] = ()
     mesh: object = field(default=None, repr=False)
     run: dict = field(default_factory=dict)            # wall-clock seconds, mesh_from_cache
+    # with spin softening and ``solve_static(..., linear_stress=True)``: the unsoftened stress
+    # at ref_rpm (6, n_nodes); the softened one is ``stress_ref`` (fatigue's β per node)
+    stress_linear_ref: np.ndarray | None = field(default=None, repr=False)
 
     def case(self, rpm: float) -> StaticCase:
         return next(c for c in self.cases if math.isclose(c.rpm, rpm))

@@ -292,11 +292,10 @@ def free_facets(mesh) -> np.ndarray:
     return np.setdiff1d(mesh.boundary_facets(), np.concatenate(_patches(mesh)))
 
 
-def _recover(model: StaticModel, u: np.ndarray, options: StaticOptions) -> _Recovered:
-    """Nodal averaging everywhere, then the surface recovery (``shaftfe.fe.surface``) on the
-    traction-free faces, whose values replace the averaged ones there."""
+def _stress_field(model: StaticModel, u: np.ndarray):
+    """(stress (6, n), surface recovery or None): nodal averaging everywhere, the surface
+    recovery's values on the traction-free faces."""
     from shaftfe.fe import surface
-    t1 = time.perf_counter()
     m, mat = model.shaft_mesh.mesh, model.variant.material
     stress = recovery.nodal_stress(m, u, mat.E_MPa, mat.nu)
     surf = None
@@ -304,6 +303,15 @@ def _recover(model: StaticModel, u: np.ndarray, options: StaticOptions) -> _Reco
         surf = surface.surface_stress(m, u, mat.E_MPa, mat.nu, free_facets(m))
         ok = np.isfinite(surf.stress[0])
         stress[:, surf.nodes[ok]] = surf.stress[:, ok]
+    return stress, surf
+
+
+def _recover(model: StaticModel, u: np.ndarray, options: StaticOptions) -> _Recovered:
+    """Nodal averaging everywhere, then the surface recovery (``shaftfe.fe.surface``) on the
+    traction-free faces, whose values replace the averaged ones there."""
+    t1 = time.perf_counter()
+    m = model.shaft_mesh.mesh
+    stress, surf = _stress_field(model, u)
     vm = recovery.von_mises(stress)
     excl = recovery.excluded_nodes(m, _patches(m), options.exclude_mm)
     xyz = m.doflocs
@@ -441,10 +449,9 @@ def _check_rpms(rpm) -> list[float]:
 
 
 # the conditions bench_truth measured the bars under (the rest of StaticOptions may vary:
-# level, solver, rigid or spring supports)
+# level, solver, rigid or spring supports, spin softening on or off: both measured)
 _BAR_CONDITIONS = {"order": 2, "load_distribution": "uniform", "body_force": False,
-                   "seed_load_case": False, "hold_twist": "all", "exclude_mm": 0.0,
-                   "spin_softening": False}
+                   "seed_load_case": False, "hold_twist": "all", "exclude_mm": 0.0}
 
 
 def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> dict:
@@ -475,9 +482,13 @@ def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> dict:
 
 
 def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), *,
-                 shaft_mesh=None, cache_dir=None, beam: bool = True) -> StaticResult:
+                 shaft_mesh=None, cache_dir=None, beam: bool = True,
+                 linear_stress: bool = False) -> StaticResult:
     """Solve once at REF_RPM and report every rpm in ``rpm`` (a number or a sequence): the
-    loads scale with ω², so every case is the reference solution × (rpm / REF_RPM)²."""
+    loads scale with ω², so every case is the reference solution × (rpm / REF_RPM)².
+    With spin softening each speed is solved exactly (``soften``) and the reference is the
+    first speed; ``linear_stress`` then also recovers the unsoftened stress at that speed
+    (``StaticResult.stress_linear_ref``: fatigue's per-node softening model)."""
     t_all = time.perf_counter()
     rpms = _check_rpms(rpm)
     t0 = time.perf_counter()
@@ -495,7 +506,7 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
     # with spin softening the response is not ∝ ω²: the reference fields are those of the
     # first speed, and each speed is solved exactly (``soften``); without it, one solve at
     # REF_RPM scaled serves every speed
-    ref_rpm = rpms[0] if soft_on else REF_RPM
+    ref_rpm = next(r for r in rpms if r > 0) if soft_on else REF_RPM
     speeds = {r: soften(model, sol, unit, r) for r in dict.fromkeys(rpms)}
     ref = speeds[ref_rpm] if soft_on else soften(model, sol, unit, REF_RPM)
     u = ref.u
@@ -558,7 +569,9 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
         n_nodes=sm.n_nodes, n_elements=sm.n_elements, n_dofs=3 * sm.n_nodes, mesh_key=sm.key,
         u_ref=u, stress_ref=rec.stress, von_mises_ref=rec.vm, axis_x=ax_x, axis_u_ref=ax_u_ref,
         cases=tuple(cases), diagnostics=diag, notes=(), mesh=sm, run=run,
-        truth_error_bar_pct=truth_bars(v, options, rec.peaks, sm.key))
+        truth_error_bar_pct=truth_bars(v, options, rec.peaks, sm.key),
+        stress_linear_ref=(_stress_field(model, sol.u * ref.scale)[0]
+                           if soft_on and linear_stress else None))
     res.run["total_seconds"] = time.perf_counter() - t_all
     return res
 

@@ -26,8 +26,10 @@ def ref(tmp_path_factory):
     from shaftfe.static.cache import load_or_solve
     from shaftfe.static.model import StaticOptions
     cache = tmp_path_factory.getbasetemp() / "shaftfe-fatigue-cache"
-    return load_or_solve(load_variant("x2_57"), StaticOptions(level="coarse",
-                                                              seed_load_case=True), cache)
+    # the seed's setting: its load case, no spin softening (proportional loading, which the
+    # references below assume; tests/validation/test_fatigue_spin_softening.py has the rest)
+    return load_or_solve(load_variant("x2_57"), StaticOptions(
+        level="coarse", seed_load_case=True, spin_softening=False), cache)
 
 
 @pytest.fixture(scope="module")
