@@ -143,7 +143,7 @@ def assess(sigma_ref, history, material: FatigueMaterial, *, equivalent: str = "
     hours = life_hours(blocks, history.duration_s)
     if safety:
         n, status = kernels.safety_factor(s_lin, cyc, material, design_life_blocks, theory,
-                                          kf, n_max=n_max, beta=b, exact_at=exact_at)
+                                          kf, n_max=n_max, beta=b)
         if np.any(status == kernels.CAPPED):
             notes.append(f"safety factor capped at {n_max:g} at {int(np.sum(status == 1))} "
                          f"node(s) (life at {n_max:g}x the load >= design life)")

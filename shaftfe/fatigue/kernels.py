@@ -53,9 +53,9 @@ with n, so the root is bracketed and bisected in log n. Two methods, same root:
   With spin softening (β per node; n multiplies the stress history S(λ(t))) D_unit depends on
   β: x*(β) is solved on a grid of β (``BETA_GRID`` quantiles of the nodes' β, plus their
   extremes) and interpolated linearly in β for the field; x* falls monotonically with β (every
-  class's amplitude and mean grow with β), so the grid neighbours bracket each node's root, and
-  the nodes ``exact_at`` (the hot-spot candidates) are bisected inside that bracket to
-  ``rtol``: exact where the results are reported, interpolated in the VTU field.
+  class's amplitude and mean grow with β), so the grid neighbours bracket each node's root.
+  A single node is solved on its own β (``shaftfe.fatigue.field.exact_safety`` does so for
+  every reported hot spot): exact where the results are reported, interpolated in the VTU.
 * ``"bisection"``: a bracketed bisection in log n on all nodes at once (per node, vectorised),
   to the relative tolerance ``rtol``; kept as the general method and as the check of the first.
 
@@ -452,11 +452,10 @@ def damage_matrix(sigma_eq_node: float, cycles: Cycles, material: FatigueMateria
 def safety_factor(sigma_eq, cycles: Cycles, material: FatigueMaterial, design_life: float,
                   theory: str = "soderberg", kf: float = 1.0, *,
                   n_max: float = SAFETY_FACTOR_MAX, rtol: float = 1e-10,
-                  method: str = "similarity", beta=None,
-                  exact_at=None) -> tuple[np.ndarray, np.ndarray]:
+                  method: str = "similarity", beta=None) -> tuple[np.ndarray, np.ndarray]:
     """(n, status) per node: design_life · D(n · σ_eq) = 1, n ≤ n_max (see module docstring).
-    ``beta``: spin softening per node (None: proportional); ``exact_at``: with a varying β, the
-    nodes whose root is solved exactly (the rest interpolated between β grid roots).
+    ``beta``: spin softening per node (None: proportional; a varying β: roots interpolated
+    between β grid roots, exact for a single node).
 
     status: SOLVED, CAPPED (n = n_max: life at n_max ≥ design life, incl. infinite life) or
     FLOORED (n < n_max · 1e-6: reported as that floor; a static failure in practice)."""
@@ -487,7 +486,7 @@ def safety_factor(sigma_eq, cycles: Cycles, material: FatigueMaterial, design_li
             if sel.size == 0:
                 continue
             x = _beta_roots(sign, cycles, material, theory, kf, design_life,
-                            None if b is None else b[sel], exact_at, sel)
+                            None if b is None else b[sel])
             with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
                 nn = x / np.abs(s[sel])
             n[sel] = np.clip(nn, floor, n_max)
@@ -517,11 +516,10 @@ def safety_factor(sigma_eq, cycles: Cycles, material: FatigueMaterial, design_li
 
 
 def _beta_roots(sign: float, cycles: Cycles, material: FatigueMaterial, theory: str,
-                kf: float, design_life: float, beta, exact_at, sel) -> np.ndarray | float:
-    """x*(β) of ``_unit_root`` for the nodes ``sel`` of one sign: one root without softening
-    or with one β; else roots at ``BETA_GRID`` quantiles of β (and its extremes), log x*
-    interpolated linearly in β, and the nodes of ``exact_at`` in ``sel`` solved on their own β
-    (module docstring)."""
+                kf: float, design_life: float, beta) -> np.ndarray | float:
+    """x*(β) of ``_unit_root`` for nodes of one sign: one root without softening or with one
+    β; else roots at ``BETA_GRID`` quantiles of β (and its extremes), log x* interpolated
+    linearly in β (module docstring)."""
     if beta is None or float(beta.min()) == float(beta.max()):
         b0 = 0.0 if beta is None else float(beta[0])
         return _unit_root(sign, cycles, material, theory, kf, design_life, b0)
@@ -530,12 +528,7 @@ def _beta_roots(sign: float, cycles: Cycles, material: FatigueMaterial, theory: 
                       for g in grid])
     with np.errstate(divide="ignore"):
         lr = np.log(np.clip(roots, 1e-300, 1e300))
-    x = np.exp(np.interp(beta, grid, lr))
-    if exact_at is not None:
-        where = np.flatnonzero(np.isin(sel, np.asarray(exact_at, dtype=np.int64)))
-        for k in where:
-            x[k] = _unit_root(sign, cycles, material, theory, kf, design_life, float(beta[k]))
-    return x
+    return np.exp(np.interp(beta, grid, lr))
 
 
 def _unit_root(sign: float, cycles: Cycles, material: FatigueMaterial, theory: str,

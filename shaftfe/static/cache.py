@@ -215,13 +215,12 @@ def store(variant, options, res, cache_dir=None) -> StaticReference:
     key = static_key(variant, options, mkey, REF_RPM)
     ref = from_result(res, key)
     notes: list[str] = []
-    soft_incomplete = (bool(getattr(options, "spin_softening", False))
-                       and getattr(res, "stress_linear_ref", None) is None
-                       and bool(res.cases and res.cases[0].spin_softening_N))
+    # a softened result serves fatigue only with its unsoftened stress at REF_RPM as well
+    softened = any(c.spin_softening_N for c in res.cases)
     if res.mesh_key != mkey:        # the prediction missed: do not store under a wrong key
         notes.append("static cache: the mesh key could not be predicted; result not cached")
-    elif soft_incomplete or not math.isclose(float(res.ref_rpm), REF_RPM):
-        # fatigue's softening model needs the unsoftened stress at REF_RPM as well
+    elif softened and (res.stress_linear_ref is None
+                       or not math.isclose(float(res.ref_rpm), REF_RPM)):
         notes.append("static cache: a softened result without its unsoftened stress at "
                      f"{REF_RPM:g} rpm; not cached")
     else:
