@@ -128,3 +128,20 @@ def test_level_error_comes_from_the_truth_not_the_levels_own_extrapolation(tmp_p
     assert e["bsg"]["rel_error"] == 404.0 / 400.0 - 1.0
     assert e["dofs"] == 1000 and "defl" in e
     assert benchmark_errors("coarse", path=static, truth_path=truth) is None
+
+
+def test_readme_speed_figures_are_the_measured_ones():
+    """The README's whole-process times and peak memory quote reports/benchmarks/speed.json
+    (written by benchmarks/bench_speed.py): exact string comparison of the rounded figures."""
+    import json
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parent.parent
+    data = json.loads((root / "reports" / "benchmarks" / "speed.json").read_text())["results"]
+    text = " ".join((root / "README.md").read_text().split())
+    warm, cold = data["static warm"], data["static cold"]
+    assert (f"`shaftfe static` warm {warm['wall_s']:.1f} s, {warm['peak_MiB']:.0f} MiB peak; "
+            f"cold (Gmsh meshing, empty cache) {cold['wall_s']:.1f} s") in text
+    assert (f"`shaftfe campbell 0:8000 --model solid` {data['campbell solid']['wall_s']:.1f} s"
+            in text)
+    assert f"`shaftfe demo` (what `make demo` runs) {data['demo']['wall_s']:.1f} s" in text

@@ -49,3 +49,31 @@ def test_factorize_with_diag_add_solves_the_shifted_system(method):
     # (measured 1.4e-15 SuperLU / 1.2e-15 PARDISO, elementwise ≤ 4e-12 on small entries);
     # 1e-12 leaves ≥ 70× (was 1e-10)
     np.testing.assert_allclose(x, ref, rtol=1e-12, atol=1e-12 * np.abs(ref).max())
+
+
+@pytest.mark.skipif(not solvers.available()["pardiso"], reason="PARDISO (mkl_rt) not installed")
+def test_pardiso_ordering_cache_gives_the_same_solution_bit_for_bit(tmp_path, monkeypatch):
+    """The fill-reducing ordering cached by pattern (solvers._ordering_file) is PARDISO's own:
+    a run that reads it factorises with the same permutation, so the solution is identical to
+    the last bit to one without the cache (exact: the same operations in the same order). A
+    corrupt file is recomputed, and a different pattern gets its own file."""
+    monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(solvers, "ORDERING_MIN_DOFS", 0)
+    A = _spd(n=2000, seed=3)
+    b = np.random.default_rng(2).standard_normal((A.shape[0], 4))
+    monkeypatch.setenv("SHAFTFE_ORDERING_CACHE", "0")
+    x_plain = solvers.factorize(A, "pardiso").solve(b)
+    assert not list(tmp_path.glob("ordering-*.npy"))
+    monkeypatch.delenv("SHAFTFE_ORDERING_CACHE")
+    first = solvers.factorize(A, "pardiso")
+    files = list(tmp_path.glob("ordering-*.npy"))
+    assert len(files) == 1 and not first._m.ordering_cached
+    second = solvers.factorize(A, "pardiso")
+    assert second._m.ordering_cached
+    for f in (first, second):
+        assert np.array_equal(f.solve(b), x_plain)
+    files[0].write_bytes(b"not an ordering")
+    third = solvers.factorize(A, "pardiso")
+    assert not third._m.ordering_cached and np.array_equal(third.solve(b), x_plain)
+    solvers.factorize(_spd(n=2000, seed=4), "pardiso")
+    assert len(list(tmp_path.glob("ordering-*.npy"))) == 2

@@ -96,6 +96,40 @@ def test_rbe3_rows_reproduce_rigid_motions_and_area_means(cache):
     assert (G @ u)[1] == pytest.approx((15**3 - 5**3) / 3 / 10, rel=1e-3)
 
 
+@pytest.mark.parametrize("order", [1, 2])
+def test_facet_quadrature_equals_scikit_fem_facet_basis(cache, order):
+    """``fe.facets.facet_quadrature`` (facet nodes only) against scikit-fem's ``FacetBasis``
+    (the element's inverse isoparametric map, Newton to 1e-12) on a curved seat and a flat end
+    face: the same points, outward normals, area weights and load vectors to round-off."""
+    from skfem import ElementVector, FacetBasis, LinearForm
+
+    from shaftfe.fe import assembly as fem
+    from shaftfe.fe.facets import facet_quadrature
+    from shaftfe.solid.mesh import build_mesh
+    m = build_mesh(cylinder(), "coarse", order=order, cache_dir=cache).mesh
+    ends = m.boundary_facets()[np.abs(m.p[0, m.facets[:, m.boundary_facets()]]).max(axis=0)
+                               < 1e-9]
+    for facets in (m.boundaries["bearing:L"], m.boundaries["load:w:pressed"], ends):
+        fq = facet_quadrature(m, facets)
+        fb = FacetBasis(m, ElementVector(fem.scalar_element(m)), facets=facets,
+                        mapping=fem.robust_mapping(m), intorder=4 if order == 2 else 2)
+        # Newton's 1e-12 stop on the reference coordinates, times |dx/dξ| ≤ 10 mm: ≤ 1e-11 mm
+        np.testing.assert_allclose(fq.x, np.asarray(fb.global_coordinates()), atol=1e-9)
+        # unit normals and area weights: round-off plus the same 1e-12 stop, scaled by the
+        # facets' curvature (≤ 1/R on an R ≥ 5 mm seat): 1e-9 leaves ≥ 100×
+        np.testing.assert_allclose(fq.n, np.asarray(fb.normals), atol=1e-9)
+        np.testing.assert_allclose(fq.dA, fb.dx, rtol=1e-9)
+
+        @LinearForm
+        def form(v, w):
+            return -w.x[2] * v[1] + w.x[1] * v[2] + (w.n[0] + 2.0) * v[0]
+
+        ref = form.assemble(fb)
+        g = np.array([fq.n[0] + 2.0, -fq.x[2], fq.x[1]])
+        # a sum of ≤ 6 × nq products per entry of the quantities above: the same bound
+        np.testing.assert_allclose(fq.vector_load(g), ref, atol=1e-9 * np.abs(ref).max())
+
+
 @pytest.mark.parametrize("dist", ["uniform", "cosine"])
 def test_surface_load_net_force_and_zero_torque(cache, dist):
     """Pressure on the pressed half seat: net force exactly F along e, nothing across it and no

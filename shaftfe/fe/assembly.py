@@ -69,17 +69,36 @@ def physical_gradients(mesh, intorder: int | None = None):
     from skfem.quadrature import get_quadrature
     if intorder is None:
         intorder = 2 if is_quadratic(mesh) else 1
-    e = scalar_element(mesh)
     X, W = get_quadrature(mesh.refdom, intorder)                   # (3, nq), (nq,)
-    dref = np.array([e.lbasis(X, a)[1] for a in range(e.doflocs.shape[0])])  # (nloc, 3, nq)
-    xe = mesh.doflocs[:, element_nodes(mesh)]                       # (3, nloc, ne)
-    J = np.einsum("iae,ajq->eqij", xe, dref)                       # (ne, nq, 3, 3)
-    det = np.linalg.det(J)
+    dN, det = gradients_at(mesh, X)
     if not det.size or not (det.min() > 0):
         _refuse_bad_elements(mesh, det)
-    Jinv = np.linalg.inv(J)
-    dN = np.einsum("eqji,ajq->eqai", Jinv, dref)                   # J⁻ᵀ ∇_ξ φ_a
     return dN, det * W[None, :]
+
+
+def gradients_at(mesh, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Physical gradients (ne, nq, nloc, 3) of the nodal basis functions at the reference
+    points X (3, nq) of every element, and det J (ne, nq) there (unchecked)."""
+    e = scalar_element(mesh)
+    dref = np.array([e.lbasis(X, a)[1] for a in range(e.doflocs.shape[0])])  # (nloc, 3, nq)
+    nloc, nq = dref.shape[0], dref.shape[2]
+    xe = np.ascontiguousarray(mesh.doflocs[:, element_nodes(mesh)].transpose(2, 0, 1))
+    J = (xe @ dref.reshape(nloc, 3 * nq)).reshape(-1, 3, 3, nq)   # J[e, i, j, q] = ∂x_i/∂ξ_j
+    # J⁻¹ by cofactors, component arrays (ne, nq): faster than batched LAPACK on 3 × 3
+    C = np.empty_like(J)                                           # C[e, j, i] = cof(J)[i, j]
+    for i in range(3):
+        i1, i2 = (i + 1) % 3, (i + 2) % 3
+        for j in range(3):
+            j1, j2 = (j + 1) % 3, (j + 2) % 3
+            C[:, j, i] = J[:, i1, j1] * J[:, i2, j2] - J[:, i1, j2] * J[:, i2, j1]
+    det = np.einsum("eiq,eiq->eq", J[:, 0], C[:, :, 0])           # Σ_j J[0, j] cof[0, j]
+    with np.errstate(all="ignore"):
+        Jinv = C / det[:, None, None, :]                           # Jinv[e, j, i, q]
+    # ∇φ_a = J⁻ᵀ ∇_ξ φ_a: dN[e, q, a, i] = Σ_j Jinv[e, j, i, q] dref[a, j, q]
+    dN = np.empty((J.shape[0], nq, nloc, 3))
+    for q in range(nq):                                            # (a, j) @ (e, j, i)
+        np.matmul(dref[:, :, q], Jinv[..., q], out=dN[:, q])
+    return dN, det
 
 
 def _refuse_bad_elements(mesh, det: np.ndarray) -> None:
@@ -213,19 +232,6 @@ def robust_mapping(mesh):
     return _Mapping(mesh, mesh.elem(), mesh.bndelem)
 
 
-def facet_basis(mesh, facets, intorder: int | None = None, scalar: bool = False):
-    """Vector (or scalar) facet basis on the given boundary facets (P2: order 4)."""
-    from skfem import ElementVector, FacetBasis
-    if intorder is None:
-        intorder = 4 if is_quadratic(mesh) else 2
-    e = scalar_element(mesh)
-    fb = FacetBasis(mesh, e if scalar else ElementVector(e), mapping=robust_mapping(mesh),
-                    facets=np.asarray(facets), intorder=intorder)
-    if not np.all(np.isfinite(np.asarray(fb.basis[0][0]))):
-        raise ArithmeticError("inverse isoparametric mapping failed on a boundary facet")
-    return fb
-
-
 def element_nodes(mesh) -> np.ndarray:
     """(nloc, ne) node numbers of every element (10 for P2, 4 for P1) in scikit-fem order."""
     return mesh.dofs.element_dofs if is_quadratic(mesh) else mesh.t
@@ -264,14 +270,10 @@ def rigid_rows(mesh, facets, center) -> np.ndarray:
     centred on the axis the translation rows are the area means (1/A) ∫ u_y dA etc. and the
     twist row is ∫ (y u_z − z u_y) dA / ∫ (y² + z²) dA. A rigid motion of the face is
     reproduced exactly; the coupling adds no stiffness of its own."""
-    from skfem import LinearForm
-    fb = facet_basis(mesh, facets)
+    from shaftfe.fe.facets import facet_quadrature
+    fq = facet_quadrature(mesh, facets)
     center = np.asarray(center, dtype=float)
-    rows = []
-    for k in range(6):
-        form = LinearForm(lambda v, w, k=k: np.einsum("i...,i...->...",
-                                                     _rigid_field(w.x, k, center), v))
-        rows.append(form.assemble(fb))
+    rows = [fq.vector_load(_rigid_field(fq.x, k, center)) for k in range(6)]
     R = np.array(rows)                                  # (6, ndof): ∫ φ_k · v dA
     modes = rigid_body_modes(mesh, center)              # (ndof, 6), exact in the FE space
     M = R @ modes                                       # ∫ φ_k · φ_l dA
@@ -301,33 +303,26 @@ def surface_load(mesh, facets, force, direction, distribution: str = "uniform",
     ``cache``: a dict shared by the calls of ONE model build (same mesh); the facet basis, the
     correction vectors and (uniform) the unscaled pressure vector are reused for a facet set
     seen before (several parts on one seat): the same numbers, bit for bit."""
-    from skfem import LinearForm
+    from shaftfe.fe.facets import facet_quadrature
     e = np.asarray(direction, dtype=float)
     facets = np.asarray(facets)
     key = (facets.dtype.str, facets.tobytes())
     hit = cache.get(key) if cache is not None else None
     if hit is None:
-        hit = {"fb": facet_basis(mesh, facets)}
+        hit = {"fq": facet_quadrature(mesh, facets)}
         if cache is not None:
             cache[key] = hit
-    fb = hit["fb"]
+    fq = hit["fq"]
     if distribution == "uniform":
-        def press(n):
-            return 1.0 + 0.0 * n[0]
+        p = np.ones(fq.dA.shape)
     elif distribution == "cosine":
-        def press(n):
-            return np.maximum(0.0, -np.einsum("i,i...->...", e, n))
+        p = np.maximum(0.0, -np.einsum("i,i...->...", e, fq.n))
     else:  # pragma: no cover - validated by the caller
         raise ValueError(f"unknown load distribution {distribution!r}")
 
-    @LinearForm
-    def pressure(v, w):
-        p = press(w.n)
-        return -p * np.einsum("i...,i...->...", w.n, v)
-
     pkey = "uniform" if distribution == "uniform" else (distribution, e.tobytes())
     if pkey not in hit:
-        hit[pkey] = pressure.assemble(fb)
+        hit[pkey] = fq.vector_load(-p * fq.n)                       # ∫ −p n · v dA
     f = hit[pkey].copy()
     net = f.reshape(-1, 3).sum(axis=0) @ e
     if not net > 0:
@@ -337,22 +332,6 @@ def surface_load(mesh, facets, force, direction, distribution: str = "uniform",
     # The discretised surface leaves a force across e (also along x) and a torque about the axis
     # of order (h/r)² × force. Remove them with a small uniform traction (x, y, z) and a uniform
     # shear (−z, y) on the same face: the net load is exactly ``force`` along e, zero torque.
-    @LinearForm
-    def traction_x(v, w):
-        return v[0]
-
-    @LinearForm
-    def traction_y(v, w):
-        return v[1]
-
-    @LinearForm
-    def traction_z(v, w):
-        return v[2]
-
-    @LinearForm
-    def twist(v, w):
-        return -w.x[2] * v[1] + w.x[1] * v[2]
-
     x = mesh.doflocs
 
     def resultant(g):
@@ -360,7 +339,10 @@ def surface_load(mesh, facets, force, direction, distribution: str = "uniform",
         return np.array([g3[:, 0].sum(), g3[:, 1].sum(), g3[:, 2].sum(),
                          (x[1] * g3[:, 2] - x[2] * g3[:, 1]).sum()])
     if "corr" not in hit:
-        hit["corr"] = [t.assemble(fb) for t in (traction_x, traction_y, traction_z, twist)]
+        one, zero = np.ones(fq.dA.shape), np.zeros(fq.dA.shape)
+        hit["corr"] = [fq.vector_load(np.array(g)) for g in
+                       ((one, zero, zero), (zero, one, zero), (zero, zero, one),
+                        (zero, -fq.x[2], fq.x[1]))]                # traction x, y, z; twist
     corr = hit["corr"]
     M = np.column_stack([resultant(g) for g in corr])
     target = np.array([0.0, force * e[1], force * e[2], 0.0])

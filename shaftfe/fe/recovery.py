@@ -95,19 +95,14 @@ def hooke_plane_stress(eps: np.ndarray, P: np.ndarray, E: float, nu: float) -> n
 def element_node_stress(mesh, u: np.ndarray, E: float, nu: float):
     """Stress (6, nloc, ne) of every element evaluated at its own nodes, and the node numbers
     (nloc, ne)."""
-    from skfem import Basis
-
     from shaftfe.fe import assembly as fem
     e = fem.scalar_element(mesh)
     X = np.asarray(e.doflocs, dtype=float).T                # reference node coordinates
-    sb = Basis(mesh, e, quadrature=(X, np.ones(X.shape[1])))
-    nodes = sb.element_dofs                                  # (nloc, ne)
-    U = u.reshape(-1, 3)[nodes]                              # (nloc, ne, 3)
-    # grad[i, j, e, q] = Σ_a U[a, e, i] ∂_j φ_a(x_q)
-    g = np.zeros((3, 3, *nodes.shape[::-1]))
-    for a in range(sb.Nbfun):
-        dphi = sb.basis[a][0].grad                           # (3, ne, nq)
-        g += U[a].T[:, None, :, None] * dphi[None]
+    dN, _ = fem.gradients_at(mesh, X)                        # (ne, nq, nloc, 3), q = nodes
+    nodes = fem.element_nodes(mesh)                          # (nloc, ne)
+    U = u.reshape(-1, 3)[nodes.T].transpose(0, 2, 1)          # (ne, 3, nloc): U[e, i, a]
+    # grad[e, q, i, j] = Σ_a U[e, i, a] ∂_j φ_a(x_q), as (i, j, e, q) for hooke
+    g = np.matmul(U[:, None], dN).transpose(2, 3, 0, 1)
     s = hooke(g, E, nu)                                      # (6, ne, nloc)
     return np.transpose(s, (0, 2, 1)), nodes
 

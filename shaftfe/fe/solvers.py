@@ -8,10 +8,12 @@ Methods
 -------
 ``"superlu"``  SciPy's SuperLU (always available). Symmetric mode: minimum degree on AᵀA+A
                ordering and diagonal pivoting, which suits an SPD matrix.
-``"pardiso"``  Intel MKL PARDISO through ``pypardiso`` (optional extra ``shaftfe[fast]``).
+``"pardiso"``  Intel MKL PARDISO, called directly in mkl_rt (``pardiso_function``; the ``mkl``
+               wheel that ``pypardiso`` brings from PyPI on x86-64); its fill-reducing
+               ordering is cached on disk by the matrix pattern (``_MKL``).
 ``"amg"``      Conjugate gradients preconditioned with smoothed-aggregation AMG (``pyamg``,
                optional); tolerance 1e-12 relative, so not a direct solve.
-``"auto"``     PARDISO if ``pypardiso`` imports, else SuperLU.
+``"auto"``     PARDISO if mkl_rt is found, else SuperLU.
 
 A requested optional backend that is not installed falls back to SuperLU with a note
 (``.note``), never a crash. No solver is trusted to detect singularity (FINDINGS pitfall 8):
@@ -29,7 +31,7 @@ import numpy as np
 # MKL's conditional numerical reproducibility (PARDISO): without it a solve may differ in the
 # last bits from one process to the next (measured: the refinement solve of
 # ``static.solve_model``), which breaks bit-identical summaries (tests/test_determinism.py).
-# Set before pypardiso loads MKL; a value the user set wins.
+# Set before mkl_rt is loaded (``pardiso_function``); a value the user set wins.
 os.environ.setdefault("MKL_CBWR", "AUTO,STRICT")
 import scipy.sparse as sp
 
@@ -111,21 +113,116 @@ def _explicit_iparm(iparm: np.ndarray, symmetric: bool, indefinite: bool = False
         iparm[12] = 1               # iparm(13): weighted matching
 
 
+_PARDISO_FN: list = []      # the ``pardiso`` entry point of mkl_rt, found once per process
+
+
+def _mkl_rt_candidates() -> list[str]:
+    """Where mkl_rt may be: $PYPARDISO_MKL_RT, the environment's lib/ (the ``mkl`` wheel that
+    the PyPI install brings puts it there), then the system's library path."""
+    import glob
+    import sys
+    from ctypes.util import find_library
+    env = os.environ.get("PYPARDISO_MKL_RT")
+    if env:
+        return [env]
+    found = sorted(glob.glob(os.path.join(sys.prefix, "lib", "libmkl_rt.so*"))
+                   + glob.glob(os.path.join(sys.prefix, "Library", "bin", "mkl_rt*.dll")),
+                   key=len)
+    return found or [x for x in (find_library("mkl_rt"), find_library("mkl_rt.1")) if x]
+
+
+def pardiso_function():
+    """MKL's ``pardiso`` with its argument types, or None when mkl_rt is not installed. Found
+    with our own search (``_mkl_rt_candidates``, the places pypardiso looks first) instead of
+    importing pypardiso, whose SciPy aliases cost 0.2 s of every run's start-up; pypardiso's
+    own locator is the last resort."""
+    if _PARDISO_FN:
+        return _PARDISO_FN[0]
+    import ctypes
+    fn = None
+    for path in _mkl_rt_candidates():
+        try:
+            fn = ctypes.CDLL(path).pardiso
+            break
+        except (OSError, AttributeError):
+            continue
+    if fn is None:
+        try:
+            import pypardiso
+            fn = pypardiso.PyPardisoSolver(mtype=2)._mkl_pardiso
+        except Exception:
+            return None
+    i32 = ctypes.POINTER(ctypes.c_int32)
+    fn.argtypes = [ctypes.POINTER(ctypes.c_int64), i32, i32, i32, i32, i32,
+                   ctypes.POINTER(ctypes.c_double), i32, i32, i32, i32, i32, i32,
+                   ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double), i32]
+    fn.restype = None
+    _PARDISO_FN.append(fn)
+    return fn
+
+
+ORDERING_MIN_DOFS = 20_000  # below this METIS takes < 0.1 s: its ordering is not cached
+
+
+def _ordering_file(ia: np.ndarray, ja: np.ndarray, mtype: int):
+    """The cache file of PARDISO's fill-reducing ordering for this sparsity pattern (the
+    ordering depends on the pattern only, not on the values), or None if no cache is wanted:
+    ``$SHAFTFE_CACHE_DIR`` (or ~/.cache/shaftfe) / ``ordering-<blake2b of n, ia, ja,
+    mtype>.npy``. Set ``SHAFTFE_ORDERING_CACHE=0`` to switch it off."""
+    if ia.size - 1 < ORDERING_MIN_DOFS or os.environ.get("SHAFTFE_ORDERING_CACHE") == "0":
+        return None
+    import hashlib
+
+    from shaftfe.util.paths import cache_dir
+    h = hashlib.blake2b(digest_size=16)
+    for part in (np.array([ia.size - 1, mtype], dtype=np.int64), ia, ja):
+        h.update(np.ascontiguousarray(part).view(np.uint8))
+    return cache_dir() / f"ordering-{h.hexdigest()}.npy"
+
+
+def _load_ordering(path, n: int):
+    if path is None:
+        return None
+    try:
+        perm = np.load(path, allow_pickle=False)
+    except (OSError, ValueError):
+        return None
+    ok = (perm.dtype == np.int32 and perm.shape == (n,)
+          and np.array_equal(np.sort(perm), np.arange(1, n + 1, dtype=np.int32)))
+    return perm if ok else None                # a corrupt file is recomputed, never trusted
+
+
+def _save_ordering(path, perm: np.ndarray) -> None:
+    if path is None:
+        return
+    import io
+
+    from shaftfe.util.atomic import write_atomic
+    buf = io.BytesIO()
+    np.save(buf, perm, allow_pickle=False)
+    try:
+        write_atomic(path, buf.getvalue())
+    except OSError:                            # a read-only cache: recompute next time
+        pass
+
+
 class _MKL:
-    """MKL PARDISO called directly through the library that ``pypardiso`` finds (pypardiso
-    checks and hashes the whole matrix and converts its index arrays on every solve call:
-    ~0.1 s per call at 170k dofs, as much as a 20-column solve). One instance = one
-    factorisation of one CSR matrix (upper triangle for mtype 2), kept until ``release``."""
+    """MKL PARDISO called directly (``pardiso_function``; pypardiso checks and hashes the whole
+    matrix and converts its index arrays on every solve call: ~0.1 s per call at 170k dofs, as
+    much as a 20-column solve). One instance = one factorisation of one CSR matrix (upper
+    triangle for mtype 2), kept until ``release``.
+
+    The fill-reducing ordering (METIS nested dissection: 0.8 s of the 1.35 s analysis at 170k
+    dofs) is cached on disk by the matrix pattern (``_ordering_file``): a later run on the same
+    mesh gives PARDISO the same permutation as its own (iparm(5) = 1 instead of 2 returning
+    it), so the factor and every solution are the same bit for bit (tests/test_solvers.py)."""
 
     def __init__(self, A: sp.csr_matrix, mtype: int):
         import ctypes
-
-        import pypardiso
         self._ct = ctypes
-        # pypardiso only locates mkl_rt (and declares the argument types of ``pardiso``);
-        # its private attribute is why pyproject.toml pins pypardiso < 0.5
-        lib = pypardiso.PyPardisoSolver(mtype=mtype)
-        self._fn = lib._mkl_pardiso
+        self._fn = pardiso_function()
+        if self._fn is None:                                   # pragma: no cover
+            raise ImportError("mkl_rt (PARDISO) not found")
         self._pt = np.zeros(64, dtype=np.int64)
         self.iparm = np.zeros(64, dtype=np.int32)
         _explicit_iparm(self.iparm, symmetric=mtype in (2, -2), indefinite=mtype == -2)
@@ -136,7 +233,19 @@ class _MKL:
         self._data = np.ascontiguousarray(A.data, dtype=np.float64)
         self._ia = (A.indptr + 1).astype(np.int32)
         self._ja = (A.indices + 1).astype(np.int32)
+        where = _ordering_file(self._ia, self._ja, mtype)
+        perm = _load_ordering(where, self.n)
+        self.ordering_cached = perm is not None
+        if perm is None:
+            self._perm = np.zeros(self.n, dtype=np.int32)
+            self.iparm[4] = 2 if where is not None else 0   # iparm(5) = 2: return METIS' perm
+        else:
+            self._perm = perm
+            self.iparm[4] = 1                               # iparm(5) = 1: use this perm
         self._call(12, np.zeros(self.n), 1)
+        if perm is None and where is not None:
+            _save_ordering(where, self._perm.copy())
+        self.iparm[4] = 0
 
     def _call(self, phase: int, b: np.ndarray, nrhs: int) -> np.ndarray:
         ct = self._ct
@@ -148,7 +257,7 @@ class _MKL:
                  ct.byref(ct.c_int32(1)), ct.byref(ct.c_int32(self.mtype)),
                  ct.byref(ct.c_int32(phase)), ct.byref(ct.c_int32(self.n)),
                  self._data.ctypes.data_as(f64), self._ia.ctypes.data_as(i32),
-                 self._ja.ctypes.data_as(i32), np.zeros(0, np.int32).ctypes.data_as(i32),
+                 self._ja.ctypes.data_as(i32), self._perm.ctypes.data_as(i32),
                  ct.byref(ct.c_int32(nrhs)), self.iparm.ctypes.data_as(i32),
                  ct.byref(ct.c_int32(0)), b.ctypes.data_as(f64), x.ctypes.data_as(f64),
                  ct.byref(err))
@@ -267,6 +376,8 @@ _MODULES = {"pardiso": "pypardiso", "amg": "pyamg"}
 def _importable(name: str) -> bool:
     if name == "superlu":
         return True
+    if name == "pardiso":
+        return pardiso_function() is not None
     try:
         __import__(_MODULES[name])
         return True

@@ -122,12 +122,13 @@ def render(path, field: str | None = None, component: str | None = None,
            warp: float | str = 0.0, edges: bool = False, screenshot=None,
            window_size: tuple[int, int] = (1600, 900), camera: str = "iso",
            off_screen: bool | None = None, hot_exclude=None,
-           zoom: float | None = None) -> ViewResult:
+           zoom: float | None = None, grid=None) -> ViewResult:
     """Load ``path``, render ``field`` and either save ``screenshot`` (written atomically) or
     open an interactive window. Input errors are raised before anything is drawn.
     ``hot_exclude``: point/cell ids the hot spot is not searched in (drawn all the same).
     ``zoom``: camera zoom after fitting the model (default 1.35; the yz end view fits the
-    cross-section instead)."""
+    cross-section instead). ``grid``: ``path`` already read by ``view.load`` (several
+    pictures of one file read it once)."""
     import numpy as np
 
     from shaftfe.errors import InputError
@@ -138,7 +139,7 @@ def render(path, field: str | None = None, component: str | None = None,
         off_screen = shot is not None or headless()
     if off_screen:
         use_offscreen_egl()
-    grid = load(path)
+    grid = load(path) if grid is None else grid
     choice = choose_field(grid, field, component, source=str(path))
     vals = values(grid, choice)
     finite = np.isfinite(vals)

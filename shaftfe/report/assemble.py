@@ -272,7 +272,9 @@ def _pictures(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> list[tup
     import numpy as np
 
     from shaftfe.io.render import render
+    from shaftfe.io.view import load
 
+    grid = load(vtu)                         # read once for the three pictures
     excl = np.flatnonzero(ff.excluded_mask)
     size = (1000, 440)
     out = []
@@ -290,7 +292,8 @@ def _pictures(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> list[tup
     )
     for name, fld, warp, title, caption in shots:
         res = render(vtu, field=fld, warp=warp, screenshot=fig_dir / f"{name}.png",
-                     window_size=size, off_screen=True, hot_exclude=excl, zoom=1.9)
+                     window_size=size, off_screen=True, hot_exclude=excl, zoom=1.9,
+                     grid=grid)
         if res.hot is not None:
             unit = f" {res.field.unit}" if res.field.unit not in ("-", "id") else ""
             caption += f" Marked: {res.hot.value:.4g}{unit} at x = {res.hot.xyz[0]:.1f} mm."

@@ -12,9 +12,9 @@ Key (sha256 of a canonical JSON): ``STATIC_CACHE_FORMAT``; the variant's content
 choice does not change the stresses beyond that); the mesh key of ``shaftfe.solid.mesh`` (geometry
 plan, level, order, Gmsh version and options, mesh ``CACHE_FORMAT``); the static reference
 speed; and a fingerprint (sha256) of the source of the modules that compute the stresses
-(``FINGERPRINT_MODULES``: static model, solve and result, fe assembly, supports,
-recovery and the low-rank solve), so a change of the solver code is never
-served a stale result. Bump ``STATIC_CACHE_FORMAT`` when the stored arrays change meaning.
+(``FINGERPRINT_MODULES``: static model, solve and result, fe assembly, facet integrals,
+supports, recovery, surface recovery and the low-rank solve), so a change of the solver code
+is never served a stale result. Bump ``STATIC_CACHE_FORMAT`` when the stored arrays change meaning.
 
 Stored arrays: ``stress_ref`` (6, n) MPa in the order xx yy zz xy yz xz, ``von_mises_ref`` (n,),
 ``xyz`` (3, n) mm, ``excluded`` (node ids of the singular-point rule of
@@ -52,7 +52,7 @@ from shaftfe.util import paths
 STATIC_CACHE_FORMAT = 2          # 2: spin softening's unsoftened stress (stress_linear)
 FINGERPRINT_MODULES = ("shaftfe.static.model", "shaftfe.static.solve", "shaftfe.static.result",
                        "shaftfe.fe.recovery", "shaftfe.fe.assembly", "shaftfe.fe.lowrank",
-                       "shaftfe.fe.supports")
+                       "shaftfe.fe.supports", "shaftfe.fe.facets", "shaftfe.fe.surface")
 _KEY_SKIP_OPTIONS = ("solver",)
 
 

@@ -77,9 +77,10 @@ def _mesh(h_near: float, tmp_path):
 
 def _solve(m):
     from scipy.sparse.linalg import spsolve
-    from skfem import LinearForm, condense
+    from skfem import condense
 
     from shaftfe.fe import assembly as fem
+    from shaftfe.fe.facets import facet_quadrature
     K = fem.elasticity_stiffness(m, E, NU)
     x = m.doflocs
     n = x.shape[1]
@@ -89,13 +90,9 @@ def _solve(m):
                             3 * np.nonzero(np.abs(x[2]) < tol)[0] + 2])
     bnd = m.boundary_facets()
     right = bnd[np.all(np.abs(m.p[0, m.facets[:, bnd]] - W) < tol, axis=0)]
-    fb = fem.facet_basis(m, right)
-
-    @LinearForm
-    def traction(v, w):
-        return SIGMA0 * v[0]
-
-    f = traction.assemble(fb)
+    fq = facet_quadrature(m, right)
+    one = np.ones(fq.dA.shape)
+    f = fq.vector_load(np.array([SIGMA0 * one, 0 * one, 0 * one]))      # traction σ0 e_x
     u = np.zeros(3 * n)
     u[np.setdiff1d(np.arange(3 * n), fixed)] = spsolve(*condense(K, f, D=fixed, expand=False))
     return u
