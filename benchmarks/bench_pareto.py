@@ -185,6 +185,10 @@ def _c_fatigue(spec: dict) -> dict:
             "life": h.life_blocks, "sf": h.safety_factor, "sigma_eq": h.sigma_eq_ref_MPa,
             "region": h.region, "x": h.xyz_mm[0], "infinite": h.infinite_life,
             "tensor": [float(s) for s in ref.stress_ref[:, h.node]],
+            # with spin softening (the default) the unsoftened stress too: the node's
+            # S0 (λ + β λ²) needs both (fatigue.field.softening_beta)
+            "tensor_linear": (None if ref.stress_linear is None else
+                              [float(s) for s in ref.stress_linear[:, h.node]]),
             "cycles_per_block": ff.cycles_per_block}
 
 
@@ -675,9 +679,10 @@ def _ref_static(rows: list[dict], levels: dict) -> dict:
     return ref
 
 
-def _fatigue_eval(tensor, scale: float = 1.0) -> tuple[float, float]:
+def _fatigue_eval(tensor, scale: float = 1.0, tensor_linear=None) -> tuple[float, float]:
     """(life in blocks, safety factor) of one node with stress ``tensor`` × ``scale`` at RPM,
-    through the same API and settings as the children."""
+    through the same API and settings as the children; ``tensor_linear`` (× the same scale):
+    the node's unsoftened stress, which a softened run's fatigue uses too (its β)."""
     import numpy as np
 
     from shaftfe.fatigue.field import evaluate_arrays
@@ -686,9 +691,12 @@ def _fatigue_eval(tensor, scale: float = 1.0) -> tuple[float, float]:
     a = _fatigue_defaults()
     h = read_spectrum(str(SPECTRUM), a.ref_rpm, a.sample_rate)
     s = np.asarray(tensor, dtype=float).reshape(6, 1) * scale
+    lin = None if tensor_linear is None else \
+        np.asarray(tensor_linear, dtype=float).reshape(6, 1) * scale
     ff = evaluate_arrays(s, h, load_material(a.material), ref_rpm=RPM, xyz=np.zeros((3, 1)),
                          equivalent=a.equivalent, theory=a.mean_stress, kf=a.kf,
-                         design_life_blocks=a.design_life, speed_kmh=a.speed_kmh)
+                         design_life_blocks=a.design_life, speed_kmh=a.speed_kmh,
+                         stress_linear=lin)
     return ff.hot_spot.life_blocks, ff.hot_spot.safety_factor
 
 
@@ -702,10 +710,11 @@ def _ref_fatigue(rows: list[dict], levels: dict) -> dict:
     truth = _fatigue_truth(f["region"])
     if truth is not None:            # the axisymmetric truth of the hot spot's fillet
         s_star = truth
-    life, sf = _fatigue_eval(f["tensor"], s_star / f["sigma_eq"])
+    lin = f.get("tensor_linear")
+    life, sf = _fatigue_eval(f["tensor"], s_star / f["sigma_eq"], lin)
     # amplification: d ln(life) / d ln(sigma) at the reference (central difference, ±1 %)
-    lp, _ = _fatigue_eval(f["tensor"], 1.01 * s_star / f["sigma_eq"])
-    lm, _ = _fatigue_eval(f["tensor"], 0.99 * s_star / f["sigma_eq"])
+    lp, _ = _fatigue_eval(f["tensor"], 1.01 * s_star / f["sigma_eq"], lin)
+    lm, _ = _fatigue_eval(f["tensor"], 0.99 * s_star / f["sigma_eq"], lin)
     slope = (math.log(lp) - math.log(lm)) / (math.log(1.01) - math.log(0.99)) \
         if all(math.isfinite(v) and v > 0 for v in (lp, lm)) else float("nan")
     return {"fine_level": f["level"], "coarse_level": c["level"], "fine_dofs": f["dofs"],

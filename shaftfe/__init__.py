@@ -9,6 +9,7 @@ else (examples/ has two short scripts)::
 
     import shaftfe
     v = shaftfe.load_variant("x2_57")                       # model: a frozen Variant
+    v2 = shaftfe.load_variant("x2_57", {"segments.collar.fillet_mm": 0.5})  # = --set
     res = shaftfe.solve_static(v, [7000, 10000], shaftfe.StaticOptions(level="coarse"))
     run = shaftfe.analyse_rotor(v, range(0, 8001, 100))    # Campbell (beam rotor)
     fat = shaftfe.run_fatigue(shaftfe.FatigueJob("loadspectra/rpm.dat"))

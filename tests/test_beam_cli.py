@@ -32,7 +32,7 @@ def _fake_variant(n_bearings: int = 2) -> Variant:
 
 @pytest.fixture
 def fake_loader(monkeypatch):
-    def load(name):
+    def load(name, overrides=()):
         return _fake_variant(1 if name == "one_bearing" else 2)
     monkeypatch.setattr(variant_mod, "load_variant", load, raising=False)
 

@@ -2,6 +2,7 @@
 
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 
@@ -39,6 +40,8 @@ LIGHT_COMMANDS = (
     ["variant", "list"],
     ["variant", "show", "x2_57"],
     ["variant", "check", "geometry/x2_57.toml"],
+    ["variant", "new", "light_probe", "--out",
+     str(Path(tempfile.mkdtemp(prefix="shaftfe-light-")) / "light_probe.toml")],
 )
 
 

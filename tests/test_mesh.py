@@ -337,7 +337,8 @@ def test_cli_mesh_json_and_vtu(monkeypatch, tmp_path, capsys):
 
     import shaftfe.model.loader
     from shaftfe.cli import main
-    monkeypatch.setattr(shaftfe.model.loader, "load_variant", lambda name: make_variant(name=name),
+    monkeypatch.setattr(shaftfe.model.loader, "load_variant",
+                        lambda name, overrides=(): make_variant(name=name),
                         raising=False)
     out = tmp_path / "syn.vtu"
     rc = main(["mesh", "--variant", "syn", "--level", "coarse", "--cache-dir",
@@ -361,7 +362,8 @@ def test_cli_bad_out_suffix_exit_2(monkeypatch, capsys):
     """A wrong --out suffix is one error line and exit code 2 (before any meshing)."""
     import shaftfe.model.loader
     from shaftfe.cli import main
-    monkeypatch.setattr(shaftfe.model.loader, "load_variant", lambda name: make_variant(name=name),
+    monkeypatch.setattr(shaftfe.model.loader, "load_variant",
+                        lambda name, overrides=(): make_variant(name=name),
                         raising=False)
     assert main(["mesh", "--variant", "syn", "--out", "x.stl"]) == 2
     err = capsys.readouterr().err

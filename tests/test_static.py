@@ -461,7 +461,8 @@ def test_cli_writes_vtu_summary_plot(tmp_path, cache, monkeypatch, capsys):
     import shaftfe.model.loader
     from shaftfe.cli import main
     monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(cache))
-    monkeypatch.setattr(shaftfe.model.loader, "load_variant", lambda name: cylinder())
+    monkeypatch.setattr(shaftfe.model.loader, "load_variant",
+                        lambda name, overrides=(): cylinder())
     out = tmp_path / "o"
     rc = main(["static", "--variant", "cyl", "--rpm", "7000,10000", "--level", "default",
                "--out", str(out)])

@@ -297,3 +297,158 @@ def test_variant_is_frozen():
     v = load_variant("x2_57")
     with pytest.raises(dataclasses.FrozenInstanceError):
         v.name = "other"  # type: ignore[misc]
+
+
+# --------------------------------------------------------------------------- --set, variant new
+
+def test_set_equals_editing_the_file_and_is_recorded(tmp_path):
+    """Reference: the same value edited into a copy of the files by hand. --set changes that one
+    key (the same physics, content hash and segment), leaves the files alone and is recorded."""
+    g = _copy_geometry(tmp_path)
+    _edit(g / SHAFT, COLLAR, COLLAR.replace("fillet_mm = 0.6", "fillet_mm = 0.5"))
+    by_hand = load_variant(g / "x2_57.toml")
+    by_set = load_variant("x2_57", {"segments.collar.fillet_mm": 0.5})
+    assert by_set.content_hash == by_hand.content_hash != load_variant("x2_57").content_hash
+    assert by_set.segment("collar").fillet_mm == 0.5
+    assert by_set.overrides == (("segments.collar.fillet_mm", 0.5),)
+    assert load_variant("x2_57").overrides == ()
+    # the CLI form (a TOML value after '='), a keyway by index, a part's table and an integer
+    # typed for a float all reach the same keys
+    v = load_variant("x2_57", ["segments.collar.fillet_mm=0.5",
+                               "segments.gear_seat.keyways.0.depth_mm=2.5",
+                               "parts.gear.mass_kg=0.155", "shaft.material=16220"])
+    assert v.segment("collar").fillet_mm == 0.5
+    assert v.segment("gear_seat").keyways[0].depth_mm == 2.5
+    assert next(a for a in v.attachments if a.name == "gear").mass_kg == 0.155
+    assert v.material.name == "16220"
+    # an overridden value is tagged "set" in the provenance (it no longer is what its list says)
+    tags = dict(v.provenance.source)
+    changed = {k for k, t in tags.items() if t != load_variant("x2_57").provenance.source[k]}
+    assert changed == {"segments.collar.fillet_mm", "segments.gear_seat.keyways[0].depth_mm",
+                       "attachments.gear.mass_kg"} and {tags[k] for k in changed} == {"set"}
+
+
+@pytest.mark.parametrize("path, value, expect", [
+    ("segments.colar.fillet_mm", 0.5, "nearest: collar"),
+    ("segments.collar.filet_mm", 0.5, "nearest: fillet_mm"),
+    ("sgments.collar.fillet_mm", 0.5, "nearest: segments"),
+    ("attachments.counterweight_3.mass_kg", 0.2, "nearest: counterweight_2, counterweight_1"),
+    ("segments.collar", 0.5, "a path to one value"),
+    ("segments.collar.fillet_mm", "wide", "a number (as in the variant file)"),
+    ("segments.collar.seed", 1.0, "a key of segments.collar"),       # provenance: not settable
+])
+def test_set_with_a_wrong_path_or_kind_names_the_set_and_the_nearest_names(path, value, expect):
+    with pytest.raises(InputError) as e:
+        load_variant("x2_57", {path: value})
+    assert str(e.value).startswith(f"--set {path}=") and expect in str(e.value)
+
+
+@pytest.mark.parametrize("path, value, expect", [
+    ("segments.collar.fillet_mm", 9.0, "<= step height 2.5"),
+    ("segments.collar.fillet_mm", 1.0, "r_s min of bearing 'free_side'"),     # ISO 582 abutment
+    ("attachments.counterweight_2.mass_kg", 240.0, "typed in grams?"),
+    ("segments.gear_seat.keyways.0.depth_mm", 12.0, "0 < depth < radius (8.5)"),
+])
+def test_set_out_of_range_is_checked_as_the_file_would_be_and_names_the_set(path, value, expect):
+    """The loader's own range checks apply; the error names the --set, not the include file."""
+    with pytest.raises(InputError) as e:
+        load_variant("x2_57", {path: value})
+    assert str(e.value).startswith(f"--set {path}=") and expect in str(e.value)
+
+
+def test_cli_set_is_recorded_and_a_bad_set_is_one_line_exit_2():
+    out = _cli("beam", "--variant", "x2_57", "--json", "--set", "segments.collar.fillet_mm=0.5")
+    assert out.returncode == 0, out.stderr
+    assert json.loads(out.stdout)["overrides"] == {"segments.collar.fillet_mm": 0.5}
+    for bad in ("segments.colar.fillet_mm=0.5", "segments.collar.fillet_mm", "a.b=1=2"):
+        out = _cli("variant", "check", "x2_57", "--set", bad)
+        assert out.returncode == 2 and "Traceback" not in out.stderr
+        assert len(out.stderr.strip().splitlines()) == 1 and "--set" in out.stderr
+
+
+@pytest.mark.parametrize("name", VARIANTS)
+def test_toml_writer_round_trips_every_resolved_variant(name):
+    """tomllib (the standard library's reader) is the reference: reading the written text gives
+    back the same dictionary, exactly (floats are written by repr, which round-trips)."""
+    import tomllib
+
+    from shaftfe.model.loader import _resolve, resolved_dict
+    from shaftfe.model.tomlwrite import dumps
+    d = resolved_dict(_resolve(name))
+    assert tomllib.loads(dumps(d, "a header\nof two lines")) == d
+
+
+def test_variant_new_writes_a_self_contained_equal_variant(tmp_path):
+    """The new file has no includes, the same physics (content hash) and the same provenance
+    tags as its source; --set values go into it; an existing file is never overwritten."""
+    out = tmp_path / "mine.toml"
+    r = _cli("variant", "new", "mine", "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    assert "include" not in out.read_text(encoding="utf-8").split("\n\n", 1)[1]
+    v, ref = load_variant(out), load_variant("x2_57")
+    assert v.name == "mine" and len(v.source_files) == 1          # no include was read
+    assert v.content_hash == ref.content_hash
+    assert dict(v.provenance.source) == dict(ref.provenance.source)
+    r = _cli("variant", "new", "mine", "--out", str(out))
+    assert r.returncode == 2 and "not overwritten" in r.stderr
+    out2 = tmp_path / "mine2.toml"
+    r = _cli("variant", "new", "mine2", "--out", str(out2), "--set",
+             "segments.collar.fillet_mm=0.5")
+    assert r.returncode == 0, r.stderr
+    assert load_variant(out2).content_hash == load_variant(
+        "x2_57", {"segments.collar.fillet_mm": 0.5}).content_hash
+
+
+def _docs_variants():
+    import importlib.util
+    spec = importlib.util.spec_from_file_location(
+        "docs_variants", GEOMETRY_DIR.parent / "docs" / "variants.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_docs_variants_md_is_the_generated_one_and_its_example_checks():
+    """docs/VARIANTS.md is what docs/variants.py renders now (its ranges come from the loader's
+    bounds), and its minimal example is a complete variant the loader accepts."""
+    doc = _docs_variants()
+    assert doc.OUT.read_text(encoding="utf-8") == doc.render()
+    v = load_variant(doc.EXAMPLE)
+    assert (len(v.segments), len(v.bearings), len(v.attachments)) == (3, 2, 1)
+
+
+@pytest.mark.parametrize("name", VARIANTS)
+def test_every_key_of_every_shipped_variant_is_documented(name):
+    """Each key the files define, as a documented path pattern (names → <…>), has a row in
+    docs/VARIANTS.md's key table."""
+    import re
+
+    from shaftfe.model.fields import PROV_KEYS
+    from shaftfe.model.loader import _resolve, resolved_dict
+    documented = {p for p, *_ in _docs_variants().keys()}
+    generic = {re.sub(r"<[a-z]+>", "<>", p) for p in documented}
+    found = set()
+
+    def walk(d, path):
+        for k, val in d.items():
+            if k in PROV_KEYS:
+                continue
+            if isinstance(val, dict):
+                walk(val, (*path, k))
+            elif isinstance(val, list) and val and all(isinstance(e, dict) for e in val):
+                for e in val:
+                    walk(e, (*path, k, "<>"))
+            else:
+                found.add(".".join((*path, k)))
+    d = resolved_dict(_resolve(name))
+    for table_name in ("materials", "bearing_types", "parts"):
+        for entry in d.pop(table_name, {}).values():
+            walk(entry, ("attachments" if table_name == "parts" else table_name, "<>"))
+    walk(d, ())
+    missing = []
+    for p in sorted(found):
+        q = re.sub(r"^shaft\.(segments|bearings)\.", r"\1.", p)
+        q = re.sub(r"^attachments\.<>\.shape\..*", "attachments.<>.shape.<>", q)
+        if q not in generic:
+            missing.append(p)
+    assert not missing, missing

@@ -65,7 +65,8 @@ def write_outputs(variant_arg: str, variant, opts, res, rpms, out) -> dict:
     summary = {
         "inputs": {"variant": variant_arg, "rpm": rpms, "model": "axisymmetric",
                    "options": opts_d,
-                   "source_files": list(getattr(variant, "source_files", ()))},
+                   "source_files": list(getattr(variant, "source_files", ())),
+                   "overrides": {p: v for p, v in getattr(variant, "overrides", ())}},
         "versions": package_versions(),
         "vtu": {"file": path.name, "rpm": rpm_vtu, "sectors": SECTORS,
                 "note": "the meridian solution revolved to 3D (P1 wedges on the P2 corner "

@@ -10,7 +10,29 @@ import sys
 from shaftfe.errors import InputError
 from shaftfe.util.atomic import write_atomic
 
-__all__ = ["parse_range", "parse_rpm_list", "print_json", "print_table", "write_atomic"]
+__all__ = ["add_set_option", "load_variant_from", "overrides_dict", "parse_range",
+           "parse_rpm_list", "print_json", "print_table", "write_atomic"]
+
+SET_HELP = ("change one variant key for this run by its dotted path, e.g. "
+            "--set segments.collar.fillet_mm=0.5 (repeatable; docs/VARIANTS.md lists the "
+            "paths); recorded in the outputs")
+
+
+def add_set_option(p) -> None:
+    """``--set PATH=VALUE`` (repeatable) on a command that loads a variant."""
+    p.add_argument("--set", action="append", default=[], metavar="PATH=VALUE", dest="set",
+                   help=SET_HELP)
+
+
+def load_variant_from(args, attr: str = "variant"):
+    """The variant named by ``args.<attr>`` with the command line's ``--set`` overrides."""
+    from shaftfe.model.loader import load_variant
+    return load_variant(getattr(args, attr), tuple(getattr(args, "set", None) or ()))
+
+
+def overrides_dict(variant) -> dict:
+    """{path: value} of the overrides a variant was loaded with (for summaries)."""
+    return {p: v for p, v in getattr(variant, "overrides", ())}
 
 
 def parse_range(text: str, option: str, *, lo: float | None = None,

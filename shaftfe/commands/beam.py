@@ -34,6 +34,8 @@ def register(sub) -> None:
                    help="stress-concentration fit for the shoulders (default roark)")
     p.add_argument("--json", action="store_true", help="print JSON instead of tables")
     p.add_argument("--plot", metavar="PATH", help="write a deflection/stress plot (png, pdf, svg)")
+    from shaftfe.commands._common import add_set_option
+    add_set_option(p)
     p.set_defaults(handler=run)
 
 
@@ -55,9 +57,9 @@ def run(args) -> int:
 
     from shaftfe.beam.model import build_model
     from shaftfe.beam.solve import solve
-    from shaftfe.model.loader import load_variant
+    from shaftfe.commands._common import load_variant_from, overrides_dict
 
-    variant = load_variant(args.variant)
+    variant = load_variant_from(args)
     if args.seed_load_case:
         variant = variant.with_seed_load_case()
     model = build_model(variant, rigid_supports=args.rigid_supports,
@@ -69,8 +71,9 @@ def run(args) -> int:
         from shaftfe.beam.plots import plot_results
         write_atomic(args.plot, plot_results(results, plot_fmt))
     if args.json:
-        print_json({"variant": variant.name, "supports": "rigid" if args.rigid_supports
-                    else "springs", "load_case": "seed" if args.seed_load_case else "all parts",
+        print_json({"variant": variant.name, "overrides": overrides_dict(variant),
+                    "supports": "rigid" if args.rigid_supports else "springs",
+                    "load_case": "seed" if args.seed_load_case else "all parts",
                     "shear_deformation": not args.no_shear, "n_nodes": model.n_nodes,
                     "results": [r.to_dict() for r in results]})
         return 0

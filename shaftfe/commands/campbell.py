@@ -27,7 +27,9 @@ _SHORT = {"forward": "F", "backward": "B", "torsional": "T", "axial": "A", "unde
 
 
 def _common_options(p) -> None:
+    from shaftfe.commands._common import add_set_option
     p.add_argument("--variant", default="x2_57", help="variant name (default x2_57)")
+    add_set_option(p)
     p.add_argument("--modes", type=int, default=12, help="number of modes (default 12)")
     p.add_argument("--model", choices=ROTOR_MODELS, default="beam",
                    help="rotor model: beam (Timoshenko beam + rigid disks; default) or solid "
@@ -160,10 +162,10 @@ def _describe(args, model) -> str:
 def _solve(args, rpms, orders, keep_vectors=False):
     """The sweep (shaftfe.rotordynamics.analyse) and, for the solid model, the beam model's
     sweep beside it."""
-    from shaftfe.model.loader import load_variant
+    from shaftfe.commands._common import load_variant_from
     from shaftfe.rotordynamics.analyse import analyse
 
-    variant = load_variant(args.variant)
+    variant = load_variant_from(args)
     run = analyse(variant, rpms, args.modes, orders=orders, options=_options(args),
                   keep_vectors=keep_vectors, verify=args.verify)
     beam_res = None
@@ -173,8 +175,14 @@ def _solve(args, rpms, orders, keep_vectors=False):
     return run, beam_res
 
 
+def _overrides(args) -> dict:
+    from shaftfe.model.overrides import normalise
+    return {o.path: o.value for o in normalise(tuple(getattr(args, "set", None) or ()))}
+
+
 def _payload(args, model, res, ver, beam_res=None) -> dict:
-    d = {"variant": args.variant, "model": args.model, "n_dof": model.n_dof,
+    d = {"variant": args.variant, "overrides": _overrides(args), "model": args.model,
+         "n_dof": model.n_dof,
          "supports": "rigid" if args.rigid_supports else "springs",
          "bearing_damping_Ns_per_mm": args.bearing_damping,
          "stress_stiffening": bool(args.stress_stiffening), "result": res.to_dict()}

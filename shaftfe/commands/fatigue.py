@@ -69,13 +69,17 @@ def register(sub) -> None:
     p.add_argument("--json", action="store_true", help="print the summary JSON instead of text")
     p.add_argument("--out", default=None,
                    help="output directory (default reports/<variant>/fatigue)")
+    from shaftfe.commands._common import add_set_option
+    add_set_option(p)
     p.set_defaults(handler=run)
 
 
 def job_of(args):
     """The command's options as a ``FatigueJob`` (the fields have the options' names)."""
     from shaftfe.fatigue.run import FatigueJob
-    return FatigueJob(**{f.name: getattr(args, f.name) for f in dataclasses.fields(FatigueJob)})
+    kw = {f.name: getattr(args, f.name) for f in dataclasses.fields(FatigueJob)
+          if f.name != "overrides"}
+    return FatigueJob(**kw, overrides=tuple(getattr(args, "set", None) or ()))
 
 
 def run(args) -> int:

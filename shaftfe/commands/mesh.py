@@ -23,6 +23,8 @@ def register(sub) -> None:
     p.add_argument("--cache-dir", default=None, metavar="DIR",
                    help="cache directory (default: $SHAFTFE_CACHE_DIR or ~/.cache/shaftfe)")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    from shaftfe.commands._common import add_set_option
+    add_set_option(p)
     p.set_defaults(handler=run)
 
 
@@ -37,9 +39,9 @@ def run(args) -> int:
         raise InputError("--out", "out", "a path ending in .vtu or .msh", got=args.out)
     from shaftfe.util.atomic import check_output_file
     check_output_file(out, "--out")
-    from shaftfe.model.loader import load_variant
+    from shaftfe.commands._common import load_variant_from, overrides_dict
 
-    variant = load_variant(args.variant)
+    variant = load_variant_from(args)
 
     from shaftfe.io.vtu import write_mesh
     from shaftfe.solid.mesh import build_mesh
@@ -52,7 +54,8 @@ def run(args) -> int:
     if out is not None:
         write_mesh(sm, out)
     summary = {
-        "variant": sm.variant_name, "level": sm.level, "order": sm.order,
+        "variant": sm.variant_name, "overrides": overrides_dict(variant), "level": sm.level,
+        "order": sm.order,
         "nodes": sm.n_nodes, "elements": sm.n_elements, "dofs": sm.n_dofs,
         "min_quality_minSICN": round(sm.min_quality, 4),
         "seconds": round(sm.build_seconds, 3), "mesh_seconds": round(sm.mesh_seconds, 3),

@@ -48,6 +48,8 @@ def register(sub) -> None:
                    help="print summary.json to stdout instead of the text summary (no "
                    "progress display)")
     p.add_argument("--out", default=None, help="output directory (default reports/<variant>)")
+    from shaftfe.commands._common import add_set_option
+    add_set_option(p)
     p.set_defaults(handler=run)
 
 
@@ -61,7 +63,7 @@ def options_from_args(args):
         campbell_step_rpm=args.campbell_step, estimate_error=args.estimate_error,
         cache_dir=args.cache_dir, pictures=not args.no_pictures,
         seed_load_case=args.seed_load_case, model=args.model,
-        spin_softening=args.spin_softening)
+        spin_softening=args.spin_softening, overrides=tuple(getattr(args, "set", None) or ()))
 
 
 def run(args) -> int:

@@ -55,6 +55,8 @@ def register(sub) -> None:
     p.add_argument("--json", action="store_true", help="print the summary JSON instead of tables")
     p.add_argument("--out", default=None,
                    help="output directory (default reports/<variant>/static)")
+    from shaftfe.commands._common import add_set_option
+    add_set_option(p)
     p.set_defaults(handler=run)
 
 
@@ -79,14 +81,14 @@ def run(args) -> int:
         raise InputError("--solver", "--solver", "auto | superlu | pardiso | amg",
                          got=args.solver)
 
-    from shaftfe.model.loader import load_variant
+    from shaftfe.commands._common import load_variant_from
     if args.model == "axisymmetric":
-        return _run_axisymmetric(args, rpms, load_variant(args.variant))
+        return _run_axisymmetric(args, rpms, load_variant_from(args))
     from shaftfe.static import cache as static_cache
     from shaftfe.static.model import REF_RPM, StaticOptions
     from shaftfe.static.solve import solve_static
 
-    variant = load_variant(args.variant)
+    variant = load_variant_from(args)
     opts = StaticOptions(level=args.level, order=args.order, rigid_supports=args.rigid_supports,
                          load_distribution=args.load_distribution, body_force=args.body_force,
                          seed_load_case=args.seed_load_case, solver=args.solver,
@@ -108,7 +110,14 @@ def run(args) -> int:
         with prog.stage("outputs"):
             from shaftfe.static.outputs import write_outputs
             summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
-    return _report(args, summary, lambda: _print_tables(res, opts, out))
+    return _report(args, summary, lambda: (_print_overrides(variant),
+                                           _print_tables(res, opts, out)))
+
+
+def _print_overrides(variant) -> None:
+    """One line naming the --set values of this run (nothing without them)."""
+    if variant.overrides:
+        print("with --set " + ", ".join(f"{p}={v}" for p, v in variant.overrides))
 
 
 def _report(args, summary: dict, show) -> int:
@@ -142,7 +151,8 @@ def _run_axisymmetric(args, rpms, variant) -> int:
     with staged_dir(out) as stage:             # both files or none
         res = solve_axisymmetric(variant, rpms, opts)
         summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
-    return _report(args, summary, lambda: _print_axi(res, opts, out))
+    return _report(args, summary, lambda: (_print_overrides(variant),
+                                           _print_axi(res, opts, out)))
 
 
 def _print_axi(res, opts, out) -> None:

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 
 def register(sub) -> None:
+    from shaftfe.commands._common import add_set_option
     p = sub.add_parser("variant", help="list, show or check balancer-shaft variant files",
                        description="Variant files (geometry/<name>.toml with includes): list "
                        "them, show one (segments, bearings, attachments with provenance, mass "
@@ -24,12 +25,76 @@ def register(sub) -> None:
     ps.add_argument("--rpm", default="7000,10000",
                     help="speeds for the forces, comma-separated (default 7000,10000)")
     ps.add_argument("--json", action="store_true", help="print JSON instead of tables")
+    add_set_option(ps)
     ps.set_defaults(handler=run_show)
     pc = vs.add_parser("check", help="validate a variant file (exit 2 with one line if bad)")
     pc.add_argument("path", help="path to a variant .toml (or a variant name)")
     pc.add_argument("--json", action="store_true", help="print JSON")
+    add_set_option(pc)
     pc.set_defaults(handler=run_check)
+    pn = vs.add_parser("new", help="write a self-contained, editable copy of a variant",
+                       description="Write geometry/NAME.toml (or --out): the --from variant "
+                       "with its includes resolved into one file (materials, bearing types, "
+                       "parts, shaft), renamed, with any --set applied. Checked like any "
+                       "variant before it is written; an existing file is not overwritten.")
+    pn.add_argument("name", help="name of the new variant (letters, digits, _ and -)")
+    pn.add_argument("--from", dest="source", default="x2_57",
+                    help="variant to start from: a name or a path (default x2_57)")
+    pn.add_argument("--out", default=None, help="file to write (default geometry/NAME.toml)")
+    add_set_option(pn)
+    pn.set_defaults(handler=run_new)
     p.set_defaults(handler=lambda args: p.print_help() or 0)
+
+
+def run_new(args) -> int:
+    import re
+    from pathlib import Path
+
+    from shaftfe.errors import InputError
+    from shaftfe.model import overrides as ov
+    from shaftfe.model.loader import _resolve, load_variant, resolved_dict
+    from shaftfe.model.tomlwrite import dumps
+    from shaftfe.util.atomic import check_output_file, write_atomic
+    from shaftfe.util.paths import GEOMETRY_DIR, repo_relative
+
+    if not re.fullmatch(r"[A-Za-z0-9_-]+", args.name):
+        raise InputError("command line", "NAME", "letters, digits, _ and -", got=args.name)
+    out = Path(args.out) if args.out else GEOMETRY_DIR / f"{args.name}.toml"
+    if out.suffix != ".toml":
+        raise InputError("--out", "out", "a path ending in .toml", got=str(out))
+    if out.exists():
+        raise InputError("--out", "out", "a file that does not exist yet (not overwritten)",
+                         got=str(out))
+    check_output_file(out, "--out")
+    src = _resolve(args.source)
+    sets = ov.normalise(tuple(args.set or ()))
+    base = load_variant(src, sets)                  # the source itself must be valid
+    merged = resolved_dict(src)
+    ov.apply(merged, sets)
+    merged["name"] = args.name
+    order = ["name", "description", "use_parts", "balance", "shaft", "materials",
+             "bearing_types", "parts", "attachments"]
+    doc = {k: merged[k] for k in order if k in merged}
+    doc.update({k: v for k, v in merged.items() if k not in doc})
+    changed = "".join(f"\n  --set {o.path}={o.text}" for o in sets)
+    header = (f"Variant {args.name}: written by `shaftfe variant new {args.name} --from "
+              f"{args.source}`\nfrom {', '.join(base.source_files)}{changed}\n"
+              "Self-contained (no includes): edit any value. Units are in the key names; "
+              "every numeric key\nis listed in one provenance list (seed / reconstructed / "
+              "derived / standard). Keys, units,\nranges and paths: docs/VARIANTS.md. Check "
+              f"it with: shaftfe variant check {repo_relative(out)}")
+    text = dumps(doc, header)
+    import tempfile
+    with tempfile.TemporaryDirectory() as tmp:       # check the very text before writing it
+        probe = Path(tmp) / out.name
+        probe.write_text(text, encoding="utf-8")
+        v = load_variant(probe)
+    write_atomic(out, text)
+    print(f"wrote {repo_relative(out)}: {v.name}, {len(v.segments)} segments, "
+          f"{len(v.attachments)} attachments, hash {v.content_hash[:16]} "
+          f"({'same physics as' if v.content_hash == base.content_hash else 'differs from'} "
+          f"{base.name}{' with the --set values' if sets else ''})")
+    return 0
 
 
 
@@ -115,6 +180,7 @@ def _report(v, rpms: list[float]) -> dict:
                                           for x, fy, fz in lumped],
                           "rigid_reactions_N": {n: val for n, val in reac}})
     return {"name": v.name, "description": v.description, "content_hash": v.content_hash,
+            "overrides": {p: val for p, val in v.overrides},
             "source_files": list(v.source_files), "length_mm": v.length_mm,
             "material": v.material.name, "parting_plane_x_mm": v.parting_plane_x_mm,
             "clearance_station_x_mm": v.clearance_station_x_mm,
@@ -130,7 +196,7 @@ def run_show(args) -> int:
     from shaftfe.model.loader import load_variant
 
     rpms = parse_rpm_list(args.rpm)
-    v = load_variant(args.variant)
+    v = load_variant(args.variant, tuple(args.set or ()))
     rep = _report(v, rpms)
     if args.json:
         print_json(rep)
@@ -193,9 +259,10 @@ def run_check(args) -> int:
     from shaftfe.model.loader import load_variant
     from shaftfe.model.mass import mass_properties
 
-    v = load_variant(args.path)
+    v = load_variant(args.path, tuple(args.set or ()))
     mp = mass_properties(v)
     info = {"ok": True, "name": v.name, "files": list(v.source_files),
+            "overrides": {p: val for p, val in v.overrides},
             "content_hash": v.content_hash, "segments": len(v.segments),
             "bearings": len(v.bearings), "attachments": len(v.attachments),
             "mass_kg": mp.mass_kg, "values_with_provenance": len(v.provenance.source)}

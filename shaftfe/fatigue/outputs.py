@@ -36,7 +36,7 @@ def write_plots(run: FatigueRun, out) -> dict[str, str]:
             "haigh": "haigh.png"}
 
 
-def _inputs(job) -> dict:
+def _inputs(job, variant) -> dict:
     from shaftfe.static.model import load_case_label
     return {"spectrum": str(job.spectrum), "variant": job.variant, "ref_rpm": job.ref_rpm,
             "sample_rate_hz": job.sample_rate, "mean_stress": job.mean_stress,
@@ -44,7 +44,8 @@ def _inputs(job) -> dict:
             "design_life_blocks": job.design_life, "speed_kmh": job.speed_kmh, "kf": job.kf,
             "level": job.level, "model": job.model, "seed_load_case": job.seed_load_case,
             "load_case": load_case_label(job.seed_load_case), "exclude_mm": job.exclude_mm,
-            "supports": "bearing springs (2x2 radial stiffness)"}
+            "supports": "bearing springs (2x2 radial stiffness)",
+            "overrides": {p: v for p, v in getattr(variant, "overrides", ())}}
 
 
 def _history(run: FatigueRun) -> dict:
@@ -92,7 +93,7 @@ def summary(run: FatigueRun, vtu_name: str, plots: dict[str, str]) -> dict:
     ff, ref = run.field, run.ref
     r = ff.result
     return {
-        "inputs": _inputs(run.job),
+        "inputs": _inputs(run.job, run.variant),
         "versions": package_versions("matplotlib"),
         "history": _history(run),
         "static": _static(run),

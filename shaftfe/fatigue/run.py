@@ -62,6 +62,7 @@ class FatigueJob:
     cache_dir: str | None = None
     model: str = "solid"                   # static model: solid | axisymmetric (MODELS)
     spin_softening: bool = True            # the parts' m ω² u (static model; README)
+    overrides: tuple[str, ...] = ()        # --set PATH=VALUE on the variant (model.overrides)
 
 
 @dataclass(frozen=True, eq=False)
@@ -190,7 +191,8 @@ def load_inputs(job: FatigueJob) -> FatigueInputs:
     from shaftfe.model.loader import load_variant
     check_job(job)
     history = read_spectrum(job.spectrum, job.ref_rpm, job.sample_rate)
-    return FatigueInputs(history, load_material(job.material), load_variant(job.variant))
+    return FatigueInputs(history, load_material(job.material), load_variant(job.variant,
+                                                                            job.overrides))
 
 
 def static_reference(variant, job: FatigueJob):

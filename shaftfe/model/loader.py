@@ -484,15 +484,46 @@ def _balance_target(merged: dict, ctx: Ctx, top: str) -> BalanceTarget | None:
     return target
 
 
-def load_variant(name_or_path: str | Path) -> Variant:
+def load_variant(name_or_path: str | Path, overrides=()) -> Variant:
     """Read, resolve the includes of, validate and return a variant.
 
     ``name_or_path`` is a variant name (``geometry/<name>.toml``) or a path to a TOML file.
-    Anything impossible raises ``InputError(file, field, allowed, got)``."""
+    ``overrides``: keys changed for this run by their dotted paths (``shaftfe.model.overrides``),
+    a mapping {path: value} or ``--set`` strings "PATH=VALUE"; recorded in
+    ``Variant.overrides``. Anything impossible raises ``InputError(file, field, allowed, got)``
+    (naming the ``--set`` when an overridden value is out of its range)."""
+    from shaftfe.model import overrides as ov
+    sets = ov.normalise(overrides)
     path = _resolve(name_or_path)
     ctx = Ctx()
+    merged = resolved_dict(path, ctx)
+    ov.apply(merged, sets)
+    try:
+        v = _build(path, merged, ctx)
+    except InputError as exc:
+        raise ov.attribute(exc, sets) from None
+    if sets:
+        # an overridden value is no longer what its file's provenance list says: tag it
+        src = dict(v.provenance.source)
+        for o in sets:
+            key = ov.provenance_path(o.path)
+            if key in src:
+                src[key] = ov.PROVENANCE_TAG
+        v = dataclasses.replace(
+            v, overrides=tuple((o.path, o.value) for o in sets),
+            provenance=Provenance(source=MappingProxyType(src), note=v.provenance.note))
+    return v
+
+
+def resolved_dict(path: Path, ctx: Ctx | None = None) -> dict:
+    """The variant file at ``path`` with its includes merged in, as one TOML dictionary (what
+    ``shaftfe variant new`` writes out); ``ctx`` collects which file defined what."""
     merged: dict = {}
-    _merge(path.resolve(), merged, ctx, (path.resolve(),))
+    _merge(path.resolve(), merged, ctx if ctx is not None else Ctx(), (path.resolve(),))
+    return merged
+
+
+def _build(path: Path, merged: dict, ctx: Ctx) -> Variant:
     top = _show(path.resolve())
     allowed_top = {"name", "description", "shaft", "materials", "bearing_types", "parts",
                    "use_parts", "attachments", "balance"}

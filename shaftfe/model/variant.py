@@ -214,6 +214,7 @@ class Variant:
     balance_target: BalanceTarget | None = None
     clearance_mm: float | None = None             # the seed's smallest clearance (1.4 mm)
     stock_diameter_mm: float | None = None        # bar stock of the shaft (Ø25)
+    overrides: tuple[tuple[str, object], ...] = ()  # (path, value) set for this run (--set)
 
     @property
     def length_mm(self) -> float:
@@ -259,7 +260,7 @@ def content_hash(v: Variant) -> str:
     variant, descriptions, provenance and file names are left out, so comments, whitespace,
     notes and the include layout do not change it."""
     skip = {"name", "description", "provenance", "source_files", "content_hash",
-            "balance_target"}
+            "balance_target", "overrides"}
     body = {f.name: _canonical(getattr(v, f.name)) for f in dataclasses.fields(v)
             if f.name not in skip}
     text = json.dumps(body, sort_keys=True, separators=(",", ":"), ensure_ascii=True)

@@ -160,6 +160,8 @@ def _inputs(r) -> str:
     rows = [["variant", f"{i['variant']}: {i['description']}"],
             ["files", ", ".join(i["files"])],
             ["content hash", i["content_hash"][:16] + "…"],
+            ["overrides (--set)", ", ".join(f"{k} = {v}" for k, v in
+                                            i.get("overrides", {}).items()) or "none"],
             ["shaft", f"length {num(i['length_mm'])} mm, {i['material']}, E "
                       f"{num(i['E_MPa'])} MPa, ν {num(i['nu'], 3)}"],
             ["engine", f"{i['engine']} ({i['engine_file']})"],

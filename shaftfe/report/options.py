@@ -33,6 +33,7 @@ def stages(o) -> tuple[str, ...]:
 @dataclass(frozen=True)
 class ReportOptions:
     variant: str = "x2_57"
+    overrides: tuple[str, ...] = ()       # --set PATH=VALUE on the variant (model.overrides)
     spectrum: str = str(DEFAULT_SPECTRUM)
     engine: str = "vm450"
     level: str = "default"

@@ -17,7 +17,7 @@ def read_inputs(o: ReportOptions) -> tuple:
     from shaftfe.fatigue.sn import load_material
     from shaftfe.model.loader import load_variant
 
-    variant = load_variant(o.variant)
+    variant = load_variant(o.variant, o.overrides)
     engine = load_engine(o.engine)
     if engine.max_rpm is None or not engine.max_rpm > 0:
         raise InputError(engine.source, "max_rpm", "> 0 rpm (the Campbell range ends there)",

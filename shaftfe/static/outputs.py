@@ -20,7 +20,8 @@ def write_outputs(variant_arg: str, variant, opts, res, rpms: list[float], out) 
     export.plot_png(res, out / "deflection.png", rpm_vtu)
     summary = {
         "inputs": {"variant": variant_arg, "rpm": rpms, "options": asdict(opts),
-                   "source_files": list(getattr(variant, "source_files", ()))},
+                   "source_files": list(getattr(variant, "source_files", ())),
+                   "overrides": {p: v for p, v in getattr(variant, "overrides", ())}},
         "versions": package_versions("pypardiso"),
         "vtu": {"file": vtu.name, "rpm": rpm_vtu, "regions": regions,
                 "stress_components": ["xx", "yy", "zz", "xy", "yz", "xz"],

@@ -1,0 +1,232 @@
+"""docs/VARIANTS.md, the variant file format, generated so that its ranges cannot go stale.
+
+    python docs/variants.py            # rewrite docs/VARIANTS.md
+    python docs/variants.py --check    # exit 1 if docs/VARIANTS.md differs from a fresh run
+
+The plausibility bounds and the smallest fillet come from ``shaftfe.model.fields`` (what the
+loader checks); the example is ``EXAMPLE`` below, which tests/test_variant.py loads.
+tests/test_variant.py also checks that every key of every shipped variant is in ``KEYS``.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+OUT = ROOT / "docs" / "VARIANTS.md"
+
+
+def _p(kind: str) -> str:
+    from shaftfe.model.fields import PLAUSIBLE
+    lo, hi, unit, _ = PLAUSIBLE[kind]
+    return f"[{lo:g}, {hi:g}] {unit}"
+
+
+def keys() -> list[tuple[str, str, str, str]]:
+    """(``--set`` path, unit, allowed, meaning); ``<seg>``, ``<part>`` … stand for names."""
+    from shaftfe.model.fields import FILLET_MIN_MM
+    from shaftfe.model.loader import BALANCE_MASS_RTOL, BALANCE_X2_TOL_POINTS
+    return [
+        # top level
+        ("name", "—", "non-empty string", "the variant's name (reports, output folders)"),
+        ("description", "—", "string", "one line shown in reports"),
+        ("use_parts", "—", "list of names in [parts.*]",
+         "shared parts (from an include's [parts.*]) mounted on this shaft"),
+        # shaft
+        ("shaft.name", "—", "string", "drawing name of the shaft"),
+        ("shaft.material", "—", "a name in [materials.*]", "shaft material"),
+        ("shaft.stock_diameter_mm", "mm", "≥ every segment diameter (optional)",
+         "bar stock; checked against the diameters"),
+        ("shaft.x_start_mm", "mm", "number (optional, default 0)", "x of the left end face"),
+        ("shaft.parting_plane_x_mm", "mm", "on the shaft",
+         "crankcase parting plane: origin of the balance table's x_T"),
+        ("shaft.clearance_station_x_mm", "mm", "on the shaft (optional)",
+         "station where the deflection is checked against the crankshaft clearance"),
+        ("shaft.clearance_to_crankshaft_mm", "mm", "number (optional)",
+         "smallest clearance to the crankshaft (reported beside that deflection)"),
+        ("segments.<seg>.name", "—", "unique string",
+         "the segment's name: stress regions, attachment seats, --set paths"),
+        ("segments.<seg>.kind", "—", "plain | seat | thread",
+         "seat: a part or bearing sits on it; thread: modelled at the minor diameter"),
+        ("segments.<seg>.length_mm", "mm", _p("length_mm"),
+         "segments follow each other from x_start_mm in file order"),
+        ("segments.<seg>.diameter_mm", "mm", _p("diameter_mm") + ", ≤ stock",
+         "outer diameter"),
+        ("segments.<seg>.fillet_mm", "mm",
+         f"0 (sharp) or ≥ {FILLET_MIN_MM:g}; ≤ the step height and the smaller segment's "
+         "length; ≤ r_s_min_mm of a bearing abutting the shoulder (ISO 582)",
+         "fillet radius at the segment's RIGHT end (the step to the next segment)"),
+        ("segments.<seg>.thread", "—", "string (kind = thread)",
+         "thread designation, e.g. M10x0.75"),
+        ("segments.<seg>.keyways.<i>.width_mm", "mm", "> 0, < diameter", "keyway width"),
+        ("segments.<seg>.keyways.<i>.depth_mm", "mm", "0 < depth < radius",
+         "shaft keyway depth t1"),
+        ("segments.<seg>.keyways.<i>.length_mm", "mm", "≥ width", "keyway length"),
+        ("segments.<seg>.keyways.<i>.x_center_mm", "mm", "slot inside its segment",
+         "axial centre of the keyway"),
+        ("segments.<seg>.keyways.<i>.angle_deg", "deg", "number (default 0)",
+         "angular position; 0 = in line with the loads at 0°"),
+        ("shaft.hex_socket.end", "—", "left | right", "end face with the hexagon socket"),
+        ("shaft.hex_socket.across_flats_mm", "mm", "> 0, corners inside the end segment",
+         "socket size"),
+        ("shaft.hex_socket.depth_mm", "mm", "0 < depth < shaft length", "socket depth"),
+        ("bearings.<brg>.name", "—", "unique string", "the bearing's name (reports, --set)"),
+        ("bearings.<brg>.type", "—", "a name in [bearing_types.*]", "bearing type"),
+        ("bearings.<brg>.x_center_mm", "mm", "ring on the shaft, bearings not overlapping",
+         "axial centre of the bearing"),
+        ("bearings.<brg>.axial", "—", "true | false; exactly one bearing true",
+         "the bearing that takes the axial load"),
+        # shared tables
+        ("materials.<mat>.E_MPa", "MPa", _p("E_MPa"), "Young's modulus"),
+        ("materials.<mat>.nu", "—", "0 < ν < 0.5", "Poisson's ratio"),
+        ("materials.<mat>.density_t_mm3", "t/mm³", "0 < ρ < 1e-7", "density (steel 7.85e-9)"),
+        ("materials.<mat>.yield_MPa", "MPa", _p("strength_MPa"), "yield strength"),
+        ("materials.<mat>.ultimate_MPa", "MPa", "≥ yield_MPa", "ultimate strength"),
+        ("materials.<mat>.description", "—", "string", "what the material is"),
+        ("bearing_types.<type>.designation", "—", "string", "catalogue designation"),
+        ("bearing_types.<type>.bore_mm", "mm", _p("diameter_mm"), "bore d"),
+        ("bearing_types.<type>.outer_diameter_mm", "mm", "number", "outer diameter D"),
+        ("bearing_types.<type>.width_mm", "mm", _p("length_mm"), "width B (the seat patch)"),
+        ("bearing_types.<type>.C_N", "N", _p("C_N"), "basic dynamic load rating (ISO 281)"),
+        ("bearing_types.<type>.C0_N", "N", _p("C_N"), "basic static load rating"),
+        ("bearing_types.<type>.K_N_per_mm", "N/mm", "[[K11, K12], [K21, K22]], symmetric, "
+         "positive definite, eigenvalues in " + _p("K_N_per_mm"),
+         "2×2 radial stiffness (y, z) of the bearing's remote point"),
+        ("bearing_types.<type>.tilt_stiffness_Nmm_per_rad", "N·mm/rad", "≥ 0 (default 0)",
+         "tilting stiffness"),
+        ("bearing_types.<type>.life_exponent", "—", "[1, 10] (default 3)",
+         "ISO 281 exponent p: 3 ball, 10/3 roller"),
+        ("bearing_types.<type>.chamfer_mm", "mm", "≥ r_s_min_mm, < width/4 (default 0)",
+         "ring chamfer (the seat patch is shortened by it)"),
+        ("bearing_types.<type>.r_s_min_mm", "mm", "≥ 0 (default 0)",
+         "smallest ring corner radius (ISO 15): the largest shoulder fillet it seats against"),
+        # parts and attachments (the same keys)
+        ("attachments.<part>.name", "—", "unique string (a part: its [parts.*] key)",
+         "the part's name"),
+        ("attachments.<part>.seat", "—", "a segment name (or seat_x_mm = [a, b])",
+         "the seat the part's force acts on (pressure on its pressed half)"),
+        ("attachments.<part>.seat_x_mm", "mm", "[x_start, x_end] on the shaft",
+         "a seat interval instead of a segment"),
+        ("attachments.<part>.mass_kg", "kg", _p("mass_kg"), "mass m of the part"),
+        ("attachments.<part>.eccentricity_mm", "mm", _p("eccentricity_mm"),
+         "centroid offset e from the axis: force m e ω²"),
+        ("attachments.<part>.angle_deg", "deg", "number (default 0)",
+         "angular position of the centroid (0 = the counterweights' direction)"),
+        ("attachments.<part>.x_centroid_mm", "mm", "within 100 mm of the shaft",
+         "axial position of the centroid (mass properties, rotor)"),
+        ("attachments.<part>.polar_inertia_kg_mm2", "kg·mm²", "≥ 0 (default 0)",
+         "polar moment of inertia about its own centroid"),
+        ("attachments.<part>.diametral_inertia_kg_mm2", "kg·mm²", "≥ 0 (default 0)",
+         "diametral moment of inertia about its own centroid"),
+        ("attachments.<part>.material", "—", "a name in [materials.*]", "part material"),
+        ("attachments.<part>.seed_load_case", "—", "true | false (default false)",
+         "loaded in the seed's own load case (--seed-load-case)"),
+        ("attachments.<part>.description", "—", "string", "what the part is"),
+        ("attachments.<part>.shape.<key>", "mm, deg, —", "numbers ≥ 0; kind a string",
+         "the shape the mass properties were derived from (documentation: the analyses "
+         "read mass_kg, eccentricity_mm and the inertias, not the shape)"),
+        # balance statement
+        ("balance.X2_percent", "%", f"within {BALANCE_X2_TOL_POINTS:g} points of "
+         "Σ m e / (m_pos R) of the parts", "stated balance ratio"),
+        ("balance.mass_kg", "kg", f"within {100 * BALANCE_MASS_RTOL:g} % of the parts' and "
+         "shaft's mass", "stated mass of the whole balancer"),
+        ("balance.gamma2_mm", "mm", "number", "stated eccentricity of the whole balancer"),
+        ("balance.x_T_mm", "mm", "number", "stated axial centroid from the parting plane"),
+        ("balance.m_pos_kg", "kg", "number (default 0: X2 not checked)",
+         "the crank mechanism's reciprocating mass"),
+        ("balance.crank_radius_mm", "mm", "number (default 0: X2 not checked)",
+         "crank radius R"),
+    ]
+
+
+EXAMPLE = (ROOT / "docs" / "examples" / "minimal.toml")
+
+
+def render() -> str:
+    from shaftfe.model.loader import BALANCE_MASS_RTOL, BALANCE_X2_TOL_POINTS
+    rows = "\n".join(f"| `{p}` | {u} | {a} | {m} |" for p, u, a, m in keys())
+    example = EXAMPLE.read_text(encoding="utf-8").rstrip()
+    return f"""# Variant files
+
+(generated by `python docs/variants.py` from the loader's own bounds; do not edit by hand)
+
+A variant is one balancer shaft with its bearings and the parts mounted on it:
+`geometry/<name>.toml`, read by `shaftfe.load_variant(name)` and by every command's
+`--variant NAME` (or `--variant path/to/file.toml`). `shaftfe variant check FILE` validates a
+file: one line naming the file, the key and the allowed range if anything is wrong.
+
+## Writing your own
+
+* **Start from a copy**: `shaftfe variant new my_shaft --from x2_57` writes
+  `geometry/my_shaft.toml`, the variant with its includes resolved into one self-contained file
+  (nothing else to re-point), which you then edit. Add `--set PATH=VALUE` to write the copy with
+  changes, `--out FILE` to write it elsewhere. It never overwrites a file.
+* **Change one key for one run**: every analysis command (`static`, `fatigue`, `report`,
+  `campbell`, `modal`, `beam`, `mesh`, `variant show|check`) takes `--set PATH=VALUE`,
+  repeatable, e.g. `shaftfe static --variant x2_57 --set segments.collar.fillet_mm=0.5`; the
+  API takes `load_variant("x2_57", {{"segments.collar.fillet_mm": 0.5}})`. The value is checked
+  as if the file said it, the error names the `--set`, a wrong path lists the nearest names,
+  and the overrides are recorded in summary.json (`inputs.overrides`) and the report's inputs;
+  an overridden value's provenance tag becomes `set`. A change of a part's mass or eccentricity
+  must keep the file's `[balance]` statement true (within {100 * BALANCE_MASS_RTOL:g} % of mass,
+  {BALANCE_X2_TOL_POINTS:g} points of X2), or
+  be accompanied by `--set balance.mass_kg=…` / `balance.X2_percent=…`.
+* **Or from scratch**: the minimal complete file at the end of this page.
+
+## Units, provenance, includes
+
+* **Units are in the key names**: `_mm`, `_kg`, `_N`, `_MPa`, `_deg`, `_t_mm3`, `_kg_mm2`,
+  `_N_per_mm`, `_Nmm_per_rad`. Inside the solver: mm, N, MPa, t/mm³, s.
+* **Provenance**: every numeric key of a table must be listed in exactly one of the lists
+  `seed` (a figure of the source documents), `reconstructed` (fitted or assumed: say to what in
+  the table's `note`), `derived` (computed from other values) or `standard` (a catalogue or a
+  standard). A key without one, or in two, is an error. The report shows the tags.
+* **Includes**: `include = ["common/materials.toml", …]` (paths relative to the including
+  file) merges other files first. A key may be defined in one file only; the shared tables
+  `[materials.*]`, `[bearing_types.*]` and `[parts.*]` are merged entry by entry (each entry in
+  one file only). Include cycles are an error.
+* **use_parts**: names of `[parts.*]` entries (usually from `common/parts.toml`) mounted on this
+  shaft, in addition to the file's own `[[attachments]]`. A part and an attachment have the same
+  keys; the parts are shared between variants, the attachments are the variant's own.
+* **Order**: segments follow each other along x from the left end face (`shaft.x_start_mm`,
+  default 0) in file order; a segment's `fillet_mm` is the fillet at its right end.
+
+## Every key
+
+`--set` paths name list entries by their `name` (`segments.collar`, `bearings.free_side`,
+`attachments.counterweight_2`) and keyways by their index in their segment (`keyways.0`). The
+parts of `use_parts` are set through `parts.<part>.<key>` (they live in that table); the
+`attachments.<part>.<key>` rows hold for both. `<seg>`, `<brg>`, `<mat>`, `<type>`, `<part>`
+stand for the names in your files. Every table may also carry `note` (a string) and the
+provenance lists; they cannot be `--set`.
+
+| path | unit | allowed | meaning |
+|---|---|---|---|
+{rows}
+
+## A minimal complete file
+
+`shaftfe variant check docs/examples/minimal.toml` accepts it (tests/test_variant.py runs it):
+
+```toml
+{example}
+```
+"""
+
+
+def main() -> int:
+    text = render()
+    if "--check" in sys.argv[1:]:
+        same = OUT.exists() and OUT.read_text(encoding="utf-8") == text
+        print("docs/VARIANTS.md is up to date" if same else
+              "docs/VARIANTS.md differs: run python docs/variants.py")
+        return 0 if same else 1
+    OUT.write_text(text, encoding="utf-8")
+    print(f"wrote {OUT.relative_to(ROOT)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

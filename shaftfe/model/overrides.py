@@ -1,0 +1,219 @@
+"""``--set PATH=VALUE``: change one key of a variant for one run, by its dotted path.
+
+Paths name what a person sees in the files, tables of lists by their ``name``:
+
+* ``segments.<segment>.<key>``                 e.g. ``segments.collar.fillet_mm=1.0``
+* ``segments.<segment>.keyways.<i>.<key>``     (i = 0, 1, … in file order)
+* ``bearings.<bearing>.<key>``                 the [[shaft.bearings]] entries
+* ``attachments.<part>.<key>`` and ``attachments.<part>.shape.<key>`` (the variant's own parts)
+* ``parts.<part>.<key>``, ``materials.<name>.<key>``, ``bearing_types.<type>.<key>``
+  (the shared tables of the includes)
+* ``shaft.<key>``, ``shaft.hex_socket.<key>``, ``balance.<key>``, ``use_parts``, ``description``
+
+A path must name a key that the variant's files already define (so a typo is an error, not a new
+key that nothing reads), and the value must be of the same kind (a number for a number, a
+string for a string, a list for a list); the range is then checked by the loader exactly as if
+the file said it. Provenance lists and notes are not settable. A wrong name lists the nearest
+valid ones. VALUE is read as a TOML value (``1.0``, ``"14220"``, ``[1, 2]``), or as a bare
+string when it is not one (``--set shaft.material=14220``).
+
+Pure functions on the merged TOML dictionary (``shaftfe.model.loader``); the loader applies them
+before it builds the ``Variant`` and records them in ``Variant.overrides``.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import tomllib
+from dataclasses import dataclass
+from typing import Any
+
+from shaftfe.errors import InputError
+from shaftfe.model.fields import PROV_KEYS, is_num
+
+OPTION = "--set"
+PROVENANCE_TAG = "set"     # Variant.provenance tag of an overridden value (was seed, …)
+_LIST_ALIASES = {"segments": ("shaft", "segments"), "bearings": ("shaft", "bearings")}
+
+
+@dataclass(frozen=True)
+class Override:
+    """One ``--set``: the path, the value as typed and the parsed value."""
+    path: str
+    text: str
+    value: Any
+
+    @property
+    def shown(self) -> str:
+        return f"{OPTION} {self.path}={self.text}"
+
+
+def parse(item: str) -> Override:
+    """``PATH=VALUE`` → ``Override`` (InputError naming --set if malformed)."""
+    if "=" not in item:
+        raise InputError(OPTION, item, "PATH=VALUE, e.g. segments.collar.fillet_mm=1.0",
+                         reason="has no '='")
+    path, text = (s.strip() for s in item.split("=", 1))
+    if not path or not text or any(not p for p in path.split(".")):
+        raise InputError(OPTION, item, "PATH=VALUE, e.g. segments.collar.fillet_mm=1.0",
+                         reason="has an empty path or value")
+    try:
+        value = tomllib.loads(f"v = {text}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = text                         # a bare word: a name (material, bearing type)
+    if isinstance(value, float) and not math.isfinite(value):
+        raise InputError(OPTION, path, "a finite number", got=text)
+    return Override(path, text, value)
+
+
+def parse_all(items) -> tuple[Override, ...]:
+    """Every ``--set`` of a command line; a path given twice is an error."""
+    out = tuple(parse(i) for i in (items or ()))
+    seen: set[str] = set()
+    for o in out:
+        if o.path in seen:
+            raise InputError(OPTION, o.path, "each path set once", reason="is set twice")
+        seen.add(o.path)
+    return out
+
+
+def normalise(overrides) -> tuple[Override, ...]:
+    """A mapping {path: value} (the API), or ``--set`` strings / ``Override``s (the CLI)."""
+    if not overrides:
+        return ()
+    if isinstance(overrides, dict):
+        out = []
+        for path, value in overrides.items():
+            text = repr(value) if not isinstance(value, str) else value
+            if isinstance(value, float) and not math.isfinite(value):
+                raise InputError(OPTION, path, "a finite number", got=value)
+            out.append(Override(str(path), text, value))
+        return tuple(out)
+    items = list(overrides)
+    bad = [o for o in items if not isinstance(o, str | Override)]
+    if bad:
+        raise TypeError(f"overrides: a mapping or PATH=VALUE strings, not {bad[0]!r}")
+    return parse_all([o for o in items if isinstance(o, str)]) + tuple(
+        o for o in items if isinstance(o, Override))
+
+
+def _nearest(word: str, names) -> str:
+    names = sorted(str(n) for n in names)
+    near = difflib.get_close_matches(word, names, n=4, cutoff=0.5)
+    shown = near or names[:12]
+    more = "" if near or len(names) <= 12 else f", … ({len(names)} in all)"
+    return ("nearest: " if near else "one of: ") + ", ".join(shown) + more
+
+
+def _kind(v: Any) -> str:
+    if is_num(v):
+        return "a number"
+    if isinstance(v, bool):
+        return "true | false"
+    if isinstance(v, str):
+        return "a string"
+    if isinstance(v, list):
+        return "a list"
+    return type(v).__name__
+
+
+def apply(merged: dict, overrides: tuple[Override, ...]) -> None:
+    """Set every override in ``merged`` (the variant's files merged, includes resolved), in
+    place. InputError naming ``--set`` and the path for a wrong path or kind of value."""
+    for o in overrides:
+        parent, key = _locate(merged, o)
+        old = parent[key]
+        if isinstance(old, str) and not isinstance(o.value, str | list | bool):
+            o = Override(o.path, o.text, o.text)   # a name that reads as a number: "16220"
+        same = (is_num(old) and is_num(o.value)) or type(old) is type(o.value)
+        if not same:
+            raise InputError(o.shown, o.path, _kind(old) + " (as in the variant file)",
+                             got=o.value)
+        parent[key] = float(o.value) if is_num(o.value) and isinstance(old, float) \
+            else o.value
+
+
+def _locate(merged: dict, o: Override) -> tuple[dict, str]:
+    parts = o.path.split(".")
+    head = parts[0]
+    if head in _LIST_ALIASES:
+        node: Any = merged
+        for k in _LIST_ALIASES[head]:
+            node = node.get(k, {}) if isinstance(node, dict) else {}
+        if not isinstance(node, list):
+            node = []
+    elif head in merged:
+        node = merged[head]
+    else:
+        valid = sorted({*merged, *_LIST_ALIASES} - {"include"})
+        raise InputError(o.shown, o.path, "a path into the variant; first name " +
+                         _nearest(head, valid), got=head)
+    if len(parts) == 1:
+        if isinstance(node, (dict, list)) and not (isinstance(node, list) and node and all(
+                not isinstance(e, dict) for e in node)):
+            raise InputError(o.shown, o.path, "a path to one value (a table needs a key)")
+        return merged, head
+    done = [head]
+    for i, p in enumerate(parts[1:], start=1):
+        last = i == len(parts) - 1
+        if isinstance(node, list) and node and all(isinstance(e, dict) for e in node):
+            names = [e.get("name") for e in node]
+            if p in names:
+                node = node[names.index(p)]
+            elif p.isdigit() and int(p) < len(node):
+                node = node[int(p)]
+            else:
+                labels = [n for n in names if n] or [str(k) for k in range(len(node))]
+                raise InputError(o.shown, o.path, f"an entry of {'.'.join(done)}: " +
+                                 _nearest(p, labels), got=p)
+            if last:
+                raise InputError(o.shown, o.path, "a path to one value (a table needs a key)")
+        elif isinstance(node, dict):
+            keys = [k for k in node if k not in PROV_KEYS]
+            if p not in keys:
+                raise InputError(o.shown, o.path, f"a key of {'.'.join(done)}: " +
+                                 _nearest(p, keys), got=p)
+            if last:
+                val = node[p]
+                if isinstance(val, dict) or (isinstance(val, list) and val and all(
+                        isinstance(e, dict) for e in val)):
+                    raise InputError(o.shown, o.path,
+                                     "a path to one value (a table needs a key)")
+                return node, p
+            node = node[p]
+        else:
+            raise InputError(o.shown, o.path, f"{'.'.join(done)} is a value; nothing below it",
+                             got=p)
+        done.append(p)
+    raise InputError(o.shown, o.path, "a path to one value")      # pragma: no cover
+
+
+def provenance_path(path: str) -> str:
+    """The key of ``Variant.provenance.source`` that a --set path changes: a used part's keys
+    are recorded as ``attachments.<part>.<key>``, keyways as ``keyways[i]``."""
+    import re
+    p = re.sub(r"^parts\.", "attachments.", path)
+    return re.sub(r"\.keyways\.(\d+)\.", r".keyways[\1].", p)
+
+
+def attribute(exc: InputError, overrides: tuple[Override, ...]) -> InputError:
+    """The loader's error about a value that an override set, re-worded to name the ``--set``
+    that set it (the loader names the file the key was defined in); other errors unchanged."""
+    for o in overrides:
+        key = o.path.rsplit(".", 1)[-1]
+        if str(exc.field).endswith(key) and _equal(exc.got, o.value):
+            return InputError(o.shown, o.path, exc.allowed, got=o.value)
+    if overrides and str(exc.field).startswith("balance."):
+        # the file's [balance] statement no longer matches the parts the --set changed
+        sets = " ".join(o.shown for o in overrides)
+        return InputError(f"{exc.source} with {sets}", exc.field, exc.allowed +
+                          "; also --set the [balance] statement (balance.mass_kg, "
+                          "balance.X2_percent) to the changed balancer", got=exc.got)
+    return exc
+
+
+def _equal(a: Any, b: Any) -> bool:
+    if is_num(a) and is_num(b):
+        return float(a) == float(b)
+    return a == b
