@@ -2,7 +2,6 @@
 
 import subprocess
 import sys
-import tempfile
 from pathlib import Path
 
 
@@ -40,8 +39,7 @@ LIGHT_COMMANDS = (
     ["variant", "list"],
     ["variant", "show", "x2_57"],
     ["variant", "check", "geometry/x2_57.toml"],
-    ["variant", "new", "light_probe", "--out",
-     str(Path(tempfile.mkdtemp(prefix="shaftfe-light-")) / "light_probe.toml")],
+    ["variant", "new", "light_probe", "--out", "{tmp}/light_probe.toml"],   # {tmp}: tmp_path
 )
 
 
@@ -62,13 +60,13 @@ def test_light_commands_cover_every_balance_and_variant_subcommand():
         assert {c[1] for c in LIGHT_COMMANDS if c[0] == group} == _subcommands(group)
 
 
-def test_balancing_commands_do_not_import_fe_stack():
+def test_balancing_commands_do_not_import_fe_stack(tmp_path):
     """Issue 8 / design card: `shaftfe balance ...` and `shaftfe variant ...` compute only what
     they report and never import the FE stack (gmsh, scikit-fem, meshio, pyvista/vtk,
     scipy.sparse solvers) nor matplotlib."""
     code = (
         "import sys, contextlib, io\nfrom shaftfe.cli import main\n"
-        f"cmds = {[list(c) for c in LIGHT_COMMANDS]!r}\n"
+        f"cmds = {[[a.replace('{tmp}', str(tmp_path)) for a in c] for c in LIGHT_COMMANDS]!r}\n"
         "with contextlib.redirect_stdout(io.StringIO()):\n"
         "    for argv in cmds:\n"
         "        assert main(argv) == 0, argv\n"

@@ -452,3 +452,59 @@ def test_every_key_of_every_shipped_variant_is_documented(name):
         if q not in generic:
             missing.append(p)
     assert not missing, missing
+
+
+@pytest.mark.parametrize("text", [
+    'back\\slash', 'quote " inside', 'three """ quotes', 'ends with a quote"', "tab\there",
+    "line\nbreak", "line\nbreak ending in a quote\"", "cr\r\nlf", "bell\x07", "del\x7f",
+    "\nleading newline", "backslash at end of line\\\nnext", "unicode Ø ω² ≤",
+])
+def test_toml_writer_round_trips_awkward_strings_and_keys(text):
+    """tomllib is the reference: strings with quotes, backslashes and control characters, as
+    values and as keys (which must then be quoted), read back exactly."""
+    import tomllib
+
+    from shaftfe.model.tomlwrite import dumps
+    d = {"note": text, "t": {text: 1.5, "list": [text, 2]}, "rows": [{"name": text}]}
+    assert tomllib.loads(dumps(d)) == d
+
+
+def test_set_paths_are_canonical_tagged_recorded_as_applied_and_set_once():
+    """Index paths and the shaft. prefix reach the same key as the names, are recorded by
+    name, tag the provenance; a name typed as a number is recorded as the name it became; one
+    key set twice (two spellings) is an error."""
+    v = load_variant("x2_57", ["shaft.segments.4.fillet_mm=0.5", "shaft.material=16220",
+                               "shaft.hex_socket.depth_mm=9.0"])
+    assert v.overrides == (("segments.collar.fillet_mm", 0.5), ("shaft.material", "16220"),
+                           ("shaft.hex_socket.depth_mm", 9.0))
+    assert v.provenance.source["segments.collar.fillet_mm"] == "set"
+    assert v.provenance.source["hex_socket.depth_mm"] == "set"
+    with pytest.raises(InputError, match=r"fillet_mm=0\.4.*also set by --set segments\.collar"):
+        load_variant("x2_57", ["segments.collar.fillet_mm=0.5", "segments.4.fillet_mm=0.4"])
+
+
+@pytest.mark.parametrize("item, expect", [
+    ("segments.collar.fillet_mm=0.5\njunk = 1", "one TOML value"),
+    ('description="unclosed', "one TOML value"),
+    ('name="../../tmp/evil"', "a file name"),             # it names output folders
+])
+def test_set_malformed_values_and_unsafe_names_are_refused(item, expect):
+    with pytest.raises(InputError, match=expect) as e:
+        load_variant("x2_57", [item])
+    assert str(e.value).startswith("--set")
+
+
+def test_an_error_that_follows_from_a_set_names_the_file_with_the_set():
+    """A check of ANOTHER key that the --set value breaks (the hex socket moved to the other
+    end no longer fits there) is reported as the file WITH the --set, not the file alone."""
+    with pytest.raises(InputError) as e:
+        load_variant("x2_57", ["shaft.hex_socket.end=left"])
+    assert " with --set shaft.hex_socket.end=left" in str(e.value)
+
+
+def test_default_output_folder_of_a_set_run_is_its_own():
+    from shaftfe.commands._common import out_name
+    assert out_name("x2_57") == "x2_57"
+    a = out_name("x2_57", [("segments.collar.fillet_mm", 0.5)])
+    assert a.startswith("x2_57_set_") and a != out_name("x2_57", [("segments.collar.fillet_mm",
+                                                                     0.4)])

@@ -30,6 +30,17 @@ def load_variant_from(args, attr: str = "variant"):
     return load_variant(getattr(args, attr), tuple(getattr(args, "set", None) or ()))
 
 
+def out_name(name: str, overrides=()) -> str:
+    """The default output folder's name of a run: the variant's name, or with ``--set`` values
+    ``<name>_set_<8 hex of them>`` (a run with overrides never overwrites the plain variant's
+    outputs). ``overrides``: (path, value) pairs or PATH=VALUE strings."""
+    items = sorted(f"{o[0]}={o[1]!r}" if isinstance(o, tuple) else str(o) for o in overrides)
+    if not items:
+        return name
+    import hashlib
+    return f"{name}_set_{hashlib.blake2b(chr(10).join(items).encode(), digest_size=4).hexdigest()}"
+
+
 def overrides_dict(variant) -> dict:
     """{path: value} of the overrides a variant was loaded with (for summaries)."""
     return {p: v for p, v in getattr(variant, "overrides", ())}

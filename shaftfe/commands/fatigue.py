@@ -97,7 +97,9 @@ def run(args) -> int:
                     enabled=False if args.json else None)
     with prog.stage("history"):
         inputs = load_inputs(job)
-    out = Path(args.out) if args.out else Path("reports") / inputs.variant.name / "fatigue"
+    from shaftfe.commands._common import out_name
+    out = Path(args.out) if args.out else \
+        Path("reports") / out_name(inputs.variant.name, inputs.variant.overrides) / "fatigue"
     with staged_dir(out) as stage:             # every file or none
         result = run_fatigue(job, inputs, progress=prog)
         with prog.stage("outputs"):

@@ -84,7 +84,8 @@ def make_report(options, out=None, *, json_out: bool = False, progress=None) -> 
     from shaftfe.util.progress import Progress
 
     check_options(options)
-    variant_name = Path(options.variant).stem
+    from shaftfe.commands._common import out_name
+    variant_name = out_name(Path(options.variant).stem, options.overrides)
     out = Path(out) if out else Path("reports") / variant_name
     prog = progress or Progress(stages(options), enabled=False if json_out else None)
     with staged_dir(out) as stage:              # every file of the report or none

@@ -54,7 +54,8 @@ def register(sub) -> None:
     p.add_argument("--no-beam", action="store_true", help="skip the beam model side by side")
     p.add_argument("--json", action="store_true", help="print the summary JSON instead of tables")
     p.add_argument("--out", default=None,
-                   help="output directory (default reports/<variant>/static)")
+                   help="output directory (default reports/<variant>/static; with --set "
+                   "reports/<variant>_set_<hash>/static)")
     from shaftfe.commands._common import add_set_option
     add_set_option(p)
     p.set_defaults(handler=run)
@@ -81,7 +82,7 @@ def run(args) -> int:
         raise InputError("--solver", "--solver", "auto | superlu | pardiso | amg",
                          got=args.solver)
 
-    from shaftfe.commands._common import load_variant_from
+    from shaftfe.commands._common import load_variant_from, out_name
     if args.model == "axisymmetric":
         return _run_axisymmetric(args, rpms, load_variant_from(args))
     from shaftfe.static import cache as static_cache
@@ -94,7 +95,8 @@ def run(args) -> int:
                          seed_load_case=args.seed_load_case, solver=args.solver,
                          exclude_mm=args.exclude_mm,
                          spin_softening=args.spin_softening)
-    out = Path(args.out) if args.out else Path("reports") / variant.name / "static"
+    out = Path(args.out) if args.out else \
+        Path("reports") / out_name(variant.name, variant.overrides) / "static"
     from shaftfe.util.progress import Progress
     prog = Progress(["mesh + solve", "outputs"], enabled=False if args.json else None)
     with staged_dir(out) as stage:             # all three files or none
@@ -136,6 +138,7 @@ def _run_axisymmetric(args, rpms, variant) -> int:
     from shaftfe.axisymmetric.model import AxiOptions
     from shaftfe.axisymmetric.outputs import write_outputs
     from shaftfe.axisymmetric.solve import solve_axisymmetric
+    from shaftfe.commands._common import out_name
     from shaftfe.util.atomic import staged_dir
     for flag, bad in (("--order", args.order != 2), ("--body-force", args.body_force),
                       ("--estimate-error", args.estimate_error),
@@ -147,7 +150,8 @@ def _run_axisymmetric(args, rpms, variant) -> int:
                       load_distribution=args.load_distribution,
                       seed_load_case=args.seed_load_case, exclude_mm=args.exclude_mm,
                       spin_softening=args.spin_softening)
-    out = Path(args.out) if args.out else Path("reports") / variant.name / "static"
+    out = Path(args.out) if args.out else \
+        Path("reports") / out_name(variant.name, variant.overrides) / "static"
     with staged_dir(out) as stage:             # both files or none
         res = solve_axisymmetric(variant, rpms, opts)
         summary = write_outputs(args.variant, variant, opts, res, rpms, stage)

@@ -46,6 +46,24 @@ def register(sub) -> None:
     p.set_defaults(handler=lambda args: p.print_help() or 0)
 
 
+def _retag(merged: dict, orig: dict, o, ov) -> None:
+    """A value written with --set is no longer what its provenance list said: move its key to
+    ``reconstructed`` and say in the table's note what it was."""
+    from shaftfe.model.fields import is_numeric_value
+    from shaftfe.model.variant import SOURCES
+    table, key, _ = ov.locate(merged, o)
+    was = ov.locate(orig, o)
+    old = was[0][was[1]]
+    if not is_numeric_value(table[key]):
+        return
+    for tag in SOURCES:
+        if key in table.get(tag, []):
+            table[tag] = [k for k in table[tag] if k != key]
+    table.setdefault("reconstructed", []).append(key)
+    line = f"{key} = {table[key]!r}: set by `shaftfe variant new --set` (was {old!r})."
+    table["note"] = (table.get("note", "").rstrip() + "\n" + line).lstrip("\n")
+
+
 def run_new(args) -> int:
     import re
     from pathlib import Path
@@ -70,7 +88,10 @@ def run_new(args) -> int:
     sets = ov.normalise(tuple(args.set or ()))
     base = load_variant(src, sets)                  # the source itself must be valid
     merged = resolved_dict(src)
-    ov.apply(merged, sets)
+    import copy
+    orig = copy.deepcopy(merged)
+    for o in ov.apply(merged, sets):
+        _retag(merged, orig, o, ov)
     merged["name"] = args.name
     order = ["name", "description", "use_parts", "balance", "shaft", "materials",
              "bearing_types", "parts", "attachments"]

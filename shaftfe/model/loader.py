@@ -497,7 +497,9 @@ def load_variant(name_or_path: str | Path, overrides=()) -> Variant:
     path = _resolve(name_or_path)
     ctx = Ctx()
     merged = resolved_dict(path, ctx)
-    ov.apply(merged, sets)
+    sets = ov.apply(merged, sets)
+    if sets and "name" in {o.path for o in sets}:
+        _check_name(merged["name"], sets)
     try:
         v = _build(path, merged, ctx)
     except InputError as exc:
@@ -513,6 +515,14 @@ def load_variant(name_or_path: str | Path, overrides=()) -> Variant:
             v, overrides=tuple((o.path, o.value) for o in sets),
             provenance=Provenance(source=MappingProxyType(src), note=v.provenance.note))
     return v
+
+
+def _check_name(name, sets) -> None:
+    """A variant name set on the command line names output folders: a plain file name."""
+    import re
+    o = next(o for o in sets if o.path == "name")
+    if not isinstance(name, str) or not re.fullmatch(r"[A-Za-z0-9_][A-Za-z0-9_.+-]*", name):
+        raise InputError(o.shown, "name", "letters, digits, _ . + - (a file name)", got=name)
 
 
 def resolved_dict(path: Path, ctx: Ctx | None = None) -> dict:

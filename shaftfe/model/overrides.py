@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import re
 import tomllib
 from dataclasses import dataclass
 from typing import Any
@@ -33,6 +34,7 @@ from shaftfe.errors import InputError
 from shaftfe.model.fields import PROV_KEYS, is_num
 
 OPTION = "--set"
+_BARE_WORD = re.compile(r"[A-Za-z0-9_.+-]+")
 PROVENANCE_TAG = "set"     # Variant.provenance tag of an overridden value (was seed, …)
 _LIST_ALIASES = {"segments": ("shaft", "segments"), "bearings": ("shaft", "bearings")}
 
@@ -59,8 +61,14 @@ def parse(item: str) -> Override:
         raise InputError(OPTION, item, "PATH=VALUE, e.g. segments.collar.fillet_mm=1.0",
                          reason="has an empty path or value")
     try:
-        value = tomllib.loads(f"v = {text}")["v"]
+        doc = tomllib.loads(f"v = {text}")
+        if set(doc) != {"v"}:                # "0.5\njunk = 1": one value only
+            raise tomllib.TOMLDecodeError("more than one value")
+        value = doc["v"]
     except tomllib.TOMLDecodeError:
+        if not _BARE_WORD.fullmatch(text):   # an unclosed quote, a stray '[' …
+            raise InputError(OPTION, path, "one TOML value (1.0, \"text\", [1, 2]) or a "
+                             "bare name of letters, digits, _ . + -", got=text) from None
         value = text                         # a bare word: a name (material, bearing type)
     if isinstance(value, float) and not math.isfinite(value):
         raise InputError(OPTION, path, "a finite number", got=text)
@@ -68,14 +76,9 @@ def parse(item: str) -> Override:
 
 
 def parse_all(items) -> tuple[Override, ...]:
-    """Every ``--set`` of a command line; a path given twice is an error."""
-    out = tuple(parse(i) for i in (items or ()))
-    seen: set[str] = set()
-    for o in out:
-        if o.path in seen:
-            raise InputError(OPTION, o.path, "each path set once", reason="is set twice")
-        seen.add(o.path)
-    return out
+    """Every ``--set`` of a command line (``apply`` refuses one key set twice, however it is
+    spelled)."""
+    return tuple(parse(i) for i in (items or ()))
 
 
 def normalise(overrides) -> tuple[Override, ...]:
@@ -118,24 +121,42 @@ def _kind(v: Any) -> str:
     return type(v).__name__
 
 
-def apply(merged: dict, overrides: tuple[Override, ...]) -> None:
+def apply(merged: dict, overrides: tuple[Override, ...]) -> tuple[Override, ...]:
     """Set every override in ``merged`` (the variant's files merged, includes resolved), in
-    place. InputError naming ``--set`` and the path for a wrong path or kind of value."""
+    place, and return them as applied: the path canonical (list entries by name, segments and
+    bearings without ``shaft.``) and the value as stored (a number typed for a name becomes
+    the name, an integer for a float the float). InputError naming ``--set`` and the path for
+    a wrong path or kind of value, or one key set twice."""
+    done: dict[str, Override] = {}
     for o in overrides:
-        parent, key = _locate(merged, o)
+        parent, key, canon = _locate(merged, o)
         old = parent[key]
-        if isinstance(old, str) and not isinstance(o.value, str | list | bool):
-            o = Override(o.path, o.text, o.text)   # a name that reads as a number: "16220"
-        same = (is_num(old) and is_num(o.value)) or type(old) is type(o.value)
+        value = o.value
+        if isinstance(old, str) and not isinstance(value, str | list | bool | dict):
+            value = o.text                        # a name that reads as a number: "16220"
+        same = (is_num(old) and is_num(value)) or type(old) is type(value)
         if not same:
             raise InputError(o.shown, o.path, _kind(old) + " (as in the variant file)",
-                             got=o.value)
-        parent[key] = float(o.value) if is_num(o.value) and isinstance(old, float) \
-            else o.value
+                             got=value)
+        if canon in done:
+            raise InputError(o.shown, o.path, "each key set once",
+                             reason=f"is also set by {done[canon].shown}")
+        value = float(value) if is_num(value) and isinstance(old, float) else value
+        parent[key] = value
+        done[canon] = Override(canon, o.text, value)
+    return tuple(done.values())
 
 
-def _locate(merged: dict, o: Override) -> tuple[dict, str]:
+def locate(merged: dict, o: Override) -> tuple[dict, str, str]:
+    """(the table holding the key ``o.path`` names, the key, the canonical path)."""
+    return _locate(merged, o)
+
+
+def _locate(merged: dict, o: Override) -> tuple[dict, str, str]:
+    """(the table holding the key, the key, the canonical path)."""
     parts = o.path.split(".")
+    if len(parts) > 1 and parts[0] == "shaft" and parts[1] in _LIST_ALIASES:
+        parts = parts[1:]                         # shaft.segments.… = segments.…
     head = parts[0]
     if head in _LIST_ALIASES:
         node: Any = merged
@@ -153,7 +174,7 @@ def _locate(merged: dict, o: Override) -> tuple[dict, str]:
         if isinstance(node, (dict, list)) and not (isinstance(node, list) and node and all(
                 not isinstance(e, dict) for e in node)):
             raise InputError(o.shown, o.path, "a path to one value (a table needs a key)")
-        return merged, head
+        return merged, head, head
     done = [head]
     for i, p in enumerate(parts[1:], start=1):
         last = i == len(parts) - 1
@@ -163,6 +184,7 @@ def _locate(merged: dict, o: Override) -> tuple[dict, str]:
                 node = node[names.index(p)]
             elif p.isdigit() and int(p) < len(node):
                 node = node[int(p)]
+                p = node.get("name") or p             # canonical: by name where there is one
             else:
                 labels = [n for n in names if n] or [str(k) for k in range(len(node))]
                 raise InputError(o.shown, o.path, f"an entry of {'.'.join(done)}: " +
@@ -180,7 +202,7 @@ def _locate(merged: dict, o: Override) -> tuple[dict, str]:
                         isinstance(e, dict) for e in val)):
                     raise InputError(o.shown, o.path,
                                      "a path to one value (a table needs a key)")
-                return node, p
+                return node, p, ".".join((*done, p))
             node = node[p]
         else:
             raise InputError(o.shown, o.path, f"{'.'.join(done)} is a value; nothing below it",
@@ -190,10 +212,11 @@ def _locate(merged: dict, o: Override) -> tuple[dict, str]:
 
 
 def provenance_path(path: str) -> str:
-    """The key of ``Variant.provenance.source`` that a --set path changes: a used part's keys
-    are recorded as ``attachments.<part>.<key>``, keyways as ``keyways[i]``."""
-    import re
+    """The key of ``Variant.provenance.source`` that a canonical --set path changes: a used
+    part's keys are recorded as ``attachments.<part>.<key>``, keyways as ``keyways[i]``, the
+    hex socket's without ``shaft.``."""
     p = re.sub(r"^parts\.", "attachments.", path)
+    p = re.sub(r"^shaft\.hex_socket\.", "hex_socket.", p)
     return re.sub(r"\.keyways\.(\d+)\.", r".keyways[\1].", p)
 
 
@@ -204,13 +227,14 @@ def attribute(exc: InputError, overrides: tuple[Override, ...]) -> InputError:
         key = o.path.rsplit(".", 1)[-1]
         if str(exc.field).endswith(key) and _equal(exc.got, o.value):
             return InputError(o.shown, o.path, exc.allowed, got=o.value)
-    if overrides and str(exc.field).startswith("balance."):
-        # the file's [balance] statement no longer matches the parts the --set changed
-        sets = " ".join(o.shown for o in overrides)
-        return InputError(f"{exc.source} with {sets}", exc.field, exc.allowed +
-                          "; also --set the [balance] statement (balance.mass_kg, "
-                          "balance.X2_percent) to the changed balancer", got=exc.got)
-    return exc
+    if not overrides:
+        return exc
+    sets = " ".join(o.shown for o in overrides)
+    hint = ("; also --set the [balance] statement (balance.mass_kg, balance.X2_percent) to the "
+            "changed balancer" if str(exc.field).startswith("balance.") else "")
+    # a consequence of the --set values (another key's check, a cross-check): the file is fine
+    # as written, so the error names the file WITH the --set values
+    return InputError(f"{exc.source} with {sets}", exc.field, exc.allowed + hint, got=exc.got)
 
 
 def _equal(a: Any, b: Any) -> bool:

@@ -14,15 +14,36 @@ _BARE = re.compile(r"^[A-Za-z0-9_-]+$")
 
 
 def _key(k: str) -> str:
-    return k if _BARE.match(k) else _string(k)
+    return k if _BARE.match(k) else _basic(k)
+
+
+_ESCAPES = {"\\": "\\\\", '"': '\\"', "\b": "\\b", "\t": "\\t", "\n": "\\n", "\f": "\\f",
+            "\r": "\\r"}
+
+
+def _basic(s: str) -> str:
+    """A one-line basic string: every control character escaped (TOML 1.0 §String)."""
+    out = []
+    for ch in s:
+        if ch in _ESCAPES:
+            out.append(_ESCAPES[ch])
+        elif ord(ch) < 0x20 or ord(ch) == 0x7F:
+            out.append(f"\\u{ord(ch):04X}")
+        else:
+            out.append(ch)
+    return '"' + "".join(out) + '"'
 
 
 def _string(s: str) -> str:
-    if "\n" in s:
+    """Notes with line breaks as multi-line strings (readable in an editor), when they hold no
+    other control character than a tab; anything else as a one-line escaped string."""
+    plain = all(ch in "\n\t" or (ord(ch) >= 0x20 and ord(ch) != 0x7F) for ch in s)
+    if "\n" in s and plain:
         body = s.replace("\\", "\\\\").replace('"""', '\\"\\"\\"')
+        if body.endswith('"'):
+            body = body[:-1] + '\\"'                # a quote right before the closing """
         return '"""\n' + body + '"""'
-    out = s.replace("\\", "\\\\").replace('"', '\\"').replace("\t", "\\t").replace("\r", "\\r")
-    return f'"{out}"'
+    return _basic(s)
 
 
 def _value(v) -> str:
