@@ -42,12 +42,13 @@ TARGETS = {"static warm": (2.0, 1024.0), "static cold": (5.0, None),
 def _run(argv: list[str], env: dict) -> tuple[float, float]:
     """(wall s, peak RSS MiB) of one fresh process running ``argv``."""
     t0 = time.perf_counter()
-    p = subprocess.Popen(argv, env=env, cwd=ROOT, stdout=subprocess.DEVNULL,
-                         stderr=subprocess.PIPE)
-    _, status, ru = os.wait4(p.pid, 0)
-    wall = time.perf_counter() - t0
-    p.returncode = os.waitstatus_to_exitcode(status)
-    err = p.stderr.read().decode(errors="replace") if p.stderr else ""
+    with tempfile.TemporaryFile() as errf:         # a file, not a pipe: no 64 KiB deadlock
+        p = subprocess.Popen(argv, env=env, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=errf)
+        _, status, ru = os.wait4(p.pid, 0)
+        wall = time.perf_counter() - t0
+        p.returncode = os.waitstatus_to_exitcode(status)
+        errf.seek(0)
+        err = errf.read().decode(errors="replace")
     if p.returncode != 0:
         raise SystemExit(f"{' '.join(argv)} failed ({p.returncode}): {err.strip()[-400:]}")
     return wall, ru.ru_maxrss / 1024.0
@@ -55,11 +56,16 @@ def _run(argv: list[str], env: dict) -> tuple[float, float]:
 
 def _median(argv: list[str], env: dict, runs: int = RUNS, fresh_cache: bool = False) -> dict:
     walls, peaks = [], []
+    import shutil
     for _ in range(runs):
         e = dict(env)
         if fresh_cache:
             e["SHAFTFE_CACHE_DIR"] = tempfile.mkdtemp(prefix="shaftfe-cold-")
-        w, m = _run(argv, e)
+        try:
+            w, m = _run(argv, e)
+        finally:
+            if fresh_cache:
+                shutil.rmtree(e["SHAFTFE_CACHE_DIR"], ignore_errors=True)
         walls.append(w)
         peaks.append(m)
     return {"wall_s": statistics.median(walls), "wall_min_s": min(walls),
@@ -87,6 +93,8 @@ def main() -> None:
         res[name] = _median(argv, env, runs=2 if cold else RUNS, fresh_cache=cold)
         print(f"{name}: {res[name]}", flush=True)
     summary = json.loads((tmp / "static" / "summary.json").read_text())
+    import shutil
+    shutil.rmtree(tmp, ignore_errors=True)                # the runs' outputs (~50 MB)
     run = summary.get("run", {})
     dofs = summary["mesh"]["dofs"]
     OUT.mkdir(parents=True, exist_ok=True)

@@ -77,3 +77,11 @@ def test_pardiso_ordering_cache_gives_the_same_solution_bit_for_bit(tmp_path, mo
     assert not third._m.ordering_cached and np.array_equal(third.solve(b), x_plain)
     solvers.factorize(_spd(n=2000, seed=4), "pardiso")
     assert len(list(tmp_path.glob("ordering-*.npy"))) == 2
+    files = sorted(tmp_path.glob("ordering-*.npy"))
+    for f in files:
+        f.write_bytes(b"")                                     # empty files (EOFError)
+    again = solvers.factorize(A, "pardiso")
+    assert not again._m.ordering_cached and np.array_equal(again.solve(b), x_plain)
+    # unsymmetric (weighted matching: the ordering depends on the values): never cached
+    solvers.factorize_unsymmetric(A + sp.triu(A, 1) * 0.5, "pardiso")
+    assert len(list(tmp_path.glob("ordering-*.npy"))) == 2

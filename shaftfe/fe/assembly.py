@@ -16,7 +16,8 @@ Pieces
   ``intorder=2`` integrates it exactly on straight tets (curved P2 tets: the same rule scikit-fem
   uses by default for this element).
 * ``surface_load``: the load vector of a pressure on a named face group, uniform or
-  cosine-distributed about a direction, scaled so that its net force is exactly the given force.
+  cosine-distributed about a direction, scaled so that its net force is exactly the given force
+  (face integrals from the facets' own nodes: ``shaftfe.fe.facets``).
 * ``rigid_rows``: the six rows that give a face's RBE3 remote-point motion (least-squares rigid
   fit to the face displacements with area weighting); see ``shaftfe.fe.supports``.
 * ``body_force_load``: the centrifugal body force ρ ω² (0, y, z) of the shaft itself.
@@ -71,14 +72,13 @@ def physical_gradients(mesh, intorder: int | None = None):
         intorder = 2 if is_quadratic(mesh) else 1
     X, W = get_quadrature(mesh.refdom, intorder)                   # (3, nq), (nq,)
     dN, det = gradients_at(mesh, X)
-    if not det.size or not (det.min() > 0):
-        _refuse_bad_elements(mesh, det)
     return dN, det * W[None, :]
 
 
 def gradients_at(mesh, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Physical gradients (ne, nq, nloc, 3) of the nodal basis functions at the reference
-    points X (3, nq) of every element, and det J (ne, nq) there (unchecked)."""
+    points X (3, nq) of every element, and det J (ne, nq) there; an element with det J ≤ 0 at
+    one of the points (tangled or inverted) is a one-line SolverError naming it."""
     e = scalar_element(mesh)
     dref = np.array([e.lbasis(X, a)[1] for a in range(e.doflocs.shape[0])])  # (nloc, 3, nq)
     nloc, nq = dref.shape[0], dref.shape[2]
@@ -92,6 +92,8 @@ def gradients_at(mesh, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             j1, j2 = (j + 1) % 3, (j + 2) % 3
             C[:, j, i] = J[:, i1, j1] * J[:, i2, j2] - J[:, i1, j2] * J[:, i2, j1]
     det = np.einsum("eiq,eiq->eq", J[:, 0], C[:, :, 0])           # Σ_j J[0, j] cof[0, j]
+    if not det.size or not (det.min() > 0):
+        _refuse_bad_elements(mesh, det)
     with np.errstate(all="ignore"):
         Jinv = C / det[:, None, None, :]                           # Jinv[e, j, i, q]
     # ∇φ_a = J⁻ᵀ ∇_ξ φ_a: dN[e, q, a, i] = Σ_j Jinv[e, j, i, q] dref[a, j, q]

@@ -12,8 +12,9 @@ round-off) through the element's inverse isoparametric map (a Newton iteration p
 the global dof locations of every element; here a face of a few hundred facets costs ~1 ms
 instead of ~0.06 s, which the static model pays ~15 times per build.
 
-Node ordering: the face's corners ``mesh.facets`` then, on P2, its edge nodes in the order of
-``mesh.f2e`` (edges 0-1, 1-2, 0-2), which is the order of scikit-fem's ``ElementTriP2``.
+Node ordering (``facet_nodes``, also used by the surface stress recovery): the face's corners,
+then on P2 the mid-side nodes of the edges 0-1, 1-2, 0-2 (the order of scikit-fem's
+``ElementTriP2``), turned so that the corners' cross product points out of the solid.
 Vector dofs are interleaved (dof 3 n + i), as everywhere in ``shaftfe.fe``.
 """
 
@@ -48,6 +49,40 @@ class FacetQuadrature:
         return out.ravel()
 
 
+_EDGES = ((0, 1), (1, 2), (0, 2))     # mid-side nodes 3, 4, 5 of the 6-node triangle
+
+
+def facet_nodes(mesh, facets) -> np.ndarray:
+    """(3 or 6, nf) nodes of BOUNDARY facets: the 3 corners, then (P2) the mid-side nodes of the
+    edges 01, 12, 02 (matched by their end nodes); ordered so that (x1 − x0) × (x2 − x0)
+    points out of the solid (away from the element behind the facet). A facet between two
+    elements is refused (ValueError): it has no outside."""
+    from shaftfe.fe.assembly import is_quadratic
+    facets = np.asarray(facets)
+    if facets.size and (mesh.f2t[1, facets] != -1).any():
+        raise ValueError("facet_nodes: interior facets have no outward side")
+    c = mesh.facets[:, facets]
+    quad = is_quadratic(mesh)
+    out = np.empty((6 if quad else 3, facets.size), dtype=np.int64)
+    out[:3] = c
+    if quad:
+        E = mesh.f2e[:, facets]
+        mid = mesh.dofs.edge_dofs[0][E]
+        ends = mesh.edges[:, E]
+        for k, (a, b) in enumerate(_EDGES):
+            for j in range(3):
+                hit = (((ends[0, j] == c[a]) & (ends[1, j] == c[b]))
+                       | ((ends[0, j] == c[b]) & (ends[1, j] == c[a])))
+                out[3 + k, hit] = mid[j, hit]
+    p = mesh.p
+    inner = p[:, mesh.t[:, mesh.f2t[0, facets]]].mean(axis=1)       # the element behind
+    c0, c1, c2 = (p[:, out[i]] for i in range(3))
+    flip = np.einsum("cf,cf->f", np.cross(c1 - c0, c2 - c0, axis=0),
+                     c0 + c1 + c2 - 3 * inner) < 0
+    out[:, flip] = out[[0, 2, 1, 5, 4, 3] if quad else [0, 2, 1]][:, flip]
+    return out
+
+
 def facet_quadrature(mesh, facets, intorder: int | None = None) -> FacetQuadrature:
     """``FacetQuadrature`` of the boundary ``facets`` of a ``MeshTet2`` (order 4 by default) or
     ``MeshTet1`` (order 2): order 4 integrates a product of two P2 traces on a straight facet
@@ -67,19 +102,17 @@ def facet_quadrature(mesh, facets, intorder: int | None = None) -> FacetQuadratu
     basis = [el.lbasis(X, a) for a in range(nb)]
     psi = np.array([b[0] for b in basis])                            # (nb, nq)
     dpsi = np.array([b[1] for b in basis])                           # (nb, 2, nq)
-    nodes = mesh.facets[:, facets]
-    if quad:
-        nodes = np.vstack([nodes, mesh.dofs.edge_dofs[0][mesh.f2e[:, facets]]])
+    nodes = facet_nodes(mesh, facets)                                # outward order
     xa = mesh.doflocs[:, nodes]                                      # (3, nb, nf)
     x = np.einsum("iaf,aq->ifq", xa, psi)
     t1 = np.einsum("iaf,aq->ifq", xa, dpsi[:, 0])
     t2 = np.einsum("iaf,aq->ifq", xa, dpsi[:, 1])
-    c = np.cross(t1, t2, axis=0)                                     # (3, nf, nq)
+    c = np.cross(t1, t2, axis=0)                                     # (3, nf, nq), outward
     area = np.linalg.norm(c, axis=0)
-    # outward: away from the corners' centroid of the element behind the facet
-    el_of = mesh.f2t[0, facets]
-    inward = mesh.p[:, mesh.t[:, el_of]].mean(axis=1) - mesh.p[:, mesh.facets[:, facets]].mean(
-        axis=1)                                                      # (3, nf)
-    sign = np.where(np.einsum("if,if->f", c.mean(axis=2), inward) > 0, -1.0, 1.0)
-    n = c / area * sign[None, :, None]
+    if not (area > 0).all():
+        from shaftfe.errors import SolverError
+        f = int(facets[np.argmin(area.min(axis=1))])
+        raise SolverError(f"boundary facet {f} has a zero or undefined area element: a "
+                          "degenerate or tangled facet; remesh")
+    n = c / area
     return FacetQuadrature(nodes, psi, x, n, area * W[None, :], n_nodes(mesh))

@@ -162,20 +162,28 @@ def pardiso_function():
 
 
 ORDERING_MIN_DOFS = 20_000  # below this METIS takes < 0.1 s: its ordering is not cached
+ORDERING_FORMAT = 1         # bump when the way the ordering is asked for changes
 
 
-def _ordering_file(ia: np.ndarray, ja: np.ndarray, mtype: int):
-    """The cache file of PARDISO's fill-reducing ordering for this sparsity pattern (the
-    ordering depends on the pattern only, not on the values), or None if no cache is wanted:
-    ``$SHAFTFE_CACHE_DIR`` (or ~/.cache/shaftfe) / ``ordering-<blake2b of n, ia, ja,
-    mtype>.npy``. Set ``SHAFTFE_ORDERING_CACHE=0`` to switch it off."""
-    if ia.size - 1 < ORDERING_MIN_DOFS or os.environ.get("SHAFTFE_ORDERING_CACHE") == "0":
+def _ordering_file(ia: np.ndarray, ja: np.ndarray, mtype: int, iparm: np.ndarray):
+    """The cache file of PARDISO's fill-reducing ordering for this sparsity pattern, or None
+    if it is not cached: ``$SHAFTFE_CACHE_DIR`` (or ~/.cache/shaftfe) / ``ordering-<blake2b of
+    the format, n, mtype, the other iparm settings, ia, ja>.npy``. Only for the SPD type
+    (mtype 2): there METIS sees the pattern alone, so the ordering is a function of the key;
+    the indefinite and unsymmetric types use weighted matching, whose ordering depends on the
+    values (measured: a reused one cost 40× the factorisation time). Set
+    ``SHAFTFE_ORDERING_CACHE=0`` to switch it off."""
+    if mtype != 2 or ia.size - 1 < ORDERING_MIN_DOFS \
+            or os.environ.get("SHAFTFE_ORDERING_CACHE") == "0":
         return None
     import hashlib
 
     from shaftfe.util.paths import cache_dir
+    settings = iparm.copy()
+    settings[4] = 0                                  # iparm(5): how the ordering is passed
     h = hashlib.blake2b(digest_size=16)
-    for part in (np.array([ia.size - 1, mtype], dtype=np.int64), ia, ja):
+    for part in (np.array([ORDERING_FORMAT, ia.size - 1, mtype], dtype=np.int64), settings,
+                 ia, ja):
         h.update(np.ascontiguousarray(part).view(np.uint8))
     return cache_dir() / f"ordering-{h.hexdigest()}.npy"
 
@@ -185,7 +193,7 @@ def _load_ordering(path, n: int):
         return None
     try:
         perm = np.load(path, allow_pickle=False)
-    except (OSError, ValueError):
+    except Exception:                          # missing, empty (EOFError), truncated, foreign
         return None
     ok = (perm.dtype == np.int32 and perm.shape == (n,)
           and np.array_equal(np.sort(perm), np.arange(1, n + 1, dtype=np.int32)))
@@ -212,10 +220,11 @@ class _MKL:
     much as a 20-column solve). One instance = one factorisation of one CSR matrix (upper
     triangle for mtype 2), kept until ``release``.
 
-    The fill-reducing ordering (METIS nested dissection: 0.8 s of the 1.35 s analysis at 170k
-    dofs) is cached on disk by the matrix pattern (``_ordering_file``): a later run on the same
-    mesh gives PARDISO the same permutation as its own (iparm(5) = 1 instead of 2 returning
-    it), so the factor and every solution are the same bit for bit (tests/test_solvers.py)."""
+    The fill-reducing ordering of an SPD matrix (METIS nested dissection: 0.8 s of the 1.35 s
+    analysis at 170k dofs) is cached on disk by the matrix pattern (``_ordering_file``): a later
+    run on the same mesh gives PARDISO the same permutation as its own (iparm(5) = 1 instead
+    of 2 returning it), so the factor and every solution are the same bit for bit
+    (tests/test_solvers.py)."""
 
     def __init__(self, A: sp.csr_matrix, mtype: int):
         import ctypes
@@ -233,7 +242,7 @@ class _MKL:
         self._data = np.ascontiguousarray(A.data, dtype=np.float64)
         self._ia = (A.indptr + 1).astype(np.int32)
         self._ja = (A.indices + 1).astype(np.int32)
-        where = _ordering_file(self._ia, self._ja, mtype)
+        where = _ordering_file(self._ia, self._ja, mtype, self.iparm)
         perm = _load_ordering(where, self.n)
         self.ordering_cached = perm is not None
         if perm is None:

@@ -44,6 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
+from shaftfe.fe.facets import facet_nodes
 from shaftfe.fe.recovery import hooke_plane_stress as _plane_stress
 
 KINK_DEG = 20.0                       # facets' normals at a node farther apart: a sharp edge
@@ -121,30 +122,6 @@ def weighted_fit(M: np.ndarray, V: np.ndarray, w: np.ndarray) -> np.ndarray:
 
 # --------------------------------------------------------------------------- mesh helpers
 
-def facet_nodes6(mesh, facets: np.ndarray) -> np.ndarray:
-    """(6, nf) nodes of P2 boundary facets: the 3 corners, then the mid-side nodes of the edges
-    01, 12, 02; ordered so that a_1 × a_2 points out of the solid."""
-    facets = np.asarray(facets)
-    c = mesh.facets[:, facets]
-    E = mesh.f2e[:, facets]
-    mid = mesh.dofs.edge_dofs[0][E]
-    ends = mesh.edges[:, E]
-    out = np.empty((6, facets.size), dtype=np.int64)
-    out[:3] = c
-    for k, (a, b) in enumerate(_EDGES):
-        for j in range(3):
-            hit = (((ends[0, j] == c[a]) & (ends[1, j] == c[b]))
-                   | ((ends[0, j] == c[b]) & (ends[1, j] == c[a])))
-            out[3 + k, hit] = mid[j, hit]
-    p = mesh.p
-    inner = p[:, mesh.t[:, mesh.f2t[0, facets]]].mean(axis=1)       # the element behind
-    c0, c1, c2 = (p[:, out[i]] for i in range(3))
-    flip = np.einsum("cf,cf->f", np.cross(c1 - c0, c2 - c0, axis=0),
-                     c0 + c1 + c2 - 3 * inner) < 0
-    out[:, flip] = out[[0, 2, 1, 5, 4, 3]][:, flip]
-    return out
-
-
 @dataclass(frozen=True, eq=False)
 class SurfacePatches:
     """For every recovered node: its patch of facets (padded, ``mask`` marks the real ones),
@@ -159,7 +136,7 @@ class SurfacePatches:
 
 def patches(mesh, facets: np.ndarray) -> SurfacePatches:
     """The recovery patches of every node of the given (free) boundary facets."""
-    tri = facet_nodes6(mesh, facets)
+    tri = facet_nodes(mesh, facets)
     nf = tri.shape[1]
     n = mesh.doflocs.shape[1]
     nodes = np.unique(tri)

@@ -128,7 +128,7 @@ def render(path, field: str | None = None, component: str | None = None,
     ``hot_exclude``: point/cell ids the hot spot is not searched in (drawn all the same).
     ``zoom``: camera zoom after fitting the model (default 1.35; the yz end view fits the
     cross-section instead). ``grid``: ``path`` already read by ``view.load`` (several
-    pictures of one file read it once)."""
+    pictures of one file read it once; each render sets its ``_view`` array on it)."""
     import numpy as np
 
     from shaftfe.errors import InputError
