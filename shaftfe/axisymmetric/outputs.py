@@ -66,7 +66,7 @@ def write_outputs(variant_arg: str, variant, opts, res, rpms, out) -> dict:
         "inputs": {"variant": variant_arg, "rpm": rpms, "model": "axisymmetric",
                    "options": opts_d,
                    "source_files": list(getattr(variant, "source_files", ())),
-                   "overrides": {p: v for p, v in getattr(variant, "overrides", ())}},
+                   "overrides": variant.overrides_map},
         "versions": package_versions(),
         "vtu": {"file": path.name, "rpm": rpm_vtu, "sectors": SECTORS,
                 "note": "the meridian solution revolved to 3D (P1 wedges on the P2 corner "

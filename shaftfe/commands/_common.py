@@ -10,8 +10,8 @@ import sys
 from shaftfe.errors import InputError
 from shaftfe.util.atomic import write_atomic
 
-__all__ = ["add_set_option", "load_variant_from", "overrides_dict", "parse_range",
-           "parse_rpm_list", "print_json", "print_table", "write_atomic"]
+__all__ = ["add_set_option", "load_variant_from", "out_name", "parse_range", "parse_rpm_list",
+           "print_json", "print_table", "write_atomic"]
 
 SET_HELP = ("change one variant key for this run by its dotted path, e.g. "
             "--set segments.collar.fillet_mm=0.5 (repeatable; docs/VARIANTS.md lists the "
@@ -39,11 +39,6 @@ def out_name(name: str, overrides=()) -> str:
         return name
     import hashlib
     return f"{name}_set_{hashlib.blake2b(chr(10).join(items).encode(), digest_size=4).hexdigest()}"
-
-
-def overrides_dict(variant) -> dict:
-    """{path: value} of the overrides a variant was loaded with (for summaries)."""
-    return {p: v for p, v in getattr(variant, "overrides", ())}
 
 
 def parse_range(text: str, option: str, *, lo: float | None = None,

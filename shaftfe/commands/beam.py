@@ -57,7 +57,7 @@ def run(args) -> int:
 
     from shaftfe.beam.model import build_model
     from shaftfe.beam.solve import solve
-    from shaftfe.commands._common import load_variant_from, overrides_dict
+    from shaftfe.commands._common import load_variant_from
 
     variant = load_variant_from(args)
     if args.seed_load_case:
@@ -71,7 +71,7 @@ def run(args) -> int:
         from shaftfe.beam.plots import plot_results
         write_atomic(args.plot, plot_results(results, plot_fmt))
     if args.json:
-        print_json({"variant": variant.name, "overrides": overrides_dict(variant),
+        print_json({"variant": variant.name, "overrides": variant.overrides_map,
                     "supports": "rigid" if args.rigid_supports else "springs",
                     "load_case": "seed" if args.seed_load_case else "all parts",
                     "shear_deformation": not args.no_shear, "n_nodes": model.n_nodes,

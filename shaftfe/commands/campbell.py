@@ -172,16 +172,11 @@ def _solve(args, rpms, orders, keep_vectors=False):
     if args.model == "solid":
         beam_res = analyse(variant, rpms, args.modes, orders=orders,
                            options=_options(args, "beam"), verify=False).result
-    return run, beam_res
+    return run, beam_res, variant
 
 
-def _overrides(args) -> dict:
-    from shaftfe.model.overrides import normalise
-    return {o.path: o.value for o in normalise(tuple(getattr(args, "set", None) or ()))}
-
-
-def _payload(args, model, res, ver, beam_res=None) -> dict:
-    d = {"variant": args.variant, "overrides": _overrides(args), "model": args.model,
+def _payload(args, variant, model, res, ver, beam_res=None) -> dict:
+    d = {"variant": args.variant, "overrides": variant.overrides_map, "model": args.model,
          "n_dof": model.n_dof,
          "supports": "rigid" if args.rigid_supports else "springs",
          "bearing_damping_Ns_per_mm": args.bearing_damping,
@@ -262,7 +257,7 @@ def run_campbell(args) -> int:
     prog = Progress(["model + sweep", "outputs"], enabled=False if args.json else None)
     with _staged(args.out) as out:                   # every file or none
         with prog.stage("model + sweep"):
-            run, beam_res = _solve(args, rpms, orders)
+            run, beam_res, variant = _solve(args, rpms, orders)
             model, res, ver = run.model, run.result, run.verification
         if out is not None:
             import json
@@ -271,7 +266,7 @@ def run_campbell(args) -> int:
 
             title = f"{args.variant}: Campbell diagram ({args.model} model)"
             png = plot_campbell(res, title=title)
-            js = json.dumps(_payload(args, model, res, ver, beam_res), indent=2)
+            js = json.dumps(_payload(args, variant, model, res, ver, beam_res), indent=2)
             csv = res.to_csv()
             for name, data in (("campbell.png", png), ("campbell.csv", csv),
                                ("campbell.json", js + "\n")):
@@ -279,7 +274,7 @@ def run_campbell(args) -> int:
             from shaftfe.rotordynamics.analyse import write_rest_modes
             vtu = "modes.vtu" if write_rest_modes(run, args.modes, out / "modes.vtu") else None
     if args.json:
-        print_json(_payload(args, model, res, ver, beam_res))
+        print_json(_payload(args, variant, model, res, ver, beam_res))
     else:
         _print_tables(args, model, res, ver)
         if beam_res is not None:
@@ -297,10 +292,10 @@ def run_modal(args) -> int:
     _check_common(args)
     files = "modal.csv, modal.json"
     with _staged(args.out) as out:                   # every file or none
-        run, beam_res = _solve(args, [args.rpm], [1.0], keep_vectors=True)
+        run, beam_res, variant = _solve(args, [args.rpm], [1.0], keep_vectors=True)
         model, res, ver = run.model, run.result, run.verification
         share = run.support_energy_share(0)
-        payload = _payload(args, model, res, ver, beam_res)
+        payload = _payload(args, variant, model, res, ver, beam_res)
         payload["bearing_energy_share"] = share.tolist()
         if out is not None:
             import json

@@ -39,7 +39,7 @@ def run(args) -> int:
         raise InputError("--out", "out", "a path ending in .vtu or .msh", got=args.out)
     from shaftfe.util.atomic import check_output_file
     check_output_file(out, "--out")
-    from shaftfe.commands._common import load_variant_from, overrides_dict
+    from shaftfe.commands._common import load_variant_from
 
     variant = load_variant_from(args)
 
@@ -54,7 +54,7 @@ def run(args) -> int:
     if out is not None:
         write_mesh(sm, out)
     summary = {
-        "variant": sm.variant_name, "overrides": overrides_dict(variant), "level": sm.level,
+        "variant": sm.variant_name, "overrides": variant.overrides_map, "level": sm.level,
         "order": sm.order,
         "nodes": sm.n_nodes, "elements": sm.n_elements, "dofs": sm.n_dofs,
         "min_quality_minSICN": round(sm.min_quality, 4),

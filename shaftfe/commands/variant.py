@@ -201,7 +201,7 @@ def _report(v, rpms: list[float]) -> dict:
                                           for x, fy, fz in lumped],
                           "rigid_reactions_N": {n: val for n, val in reac}})
     return {"name": v.name, "description": v.description, "content_hash": v.content_hash,
-            "overrides": {p: val for p, val in v.overrides},
+            "overrides": v.overrides_map,
             "source_files": list(v.source_files), "length_mm": v.length_mm,
             "material": v.material.name, "parting_plane_x_mm": v.parting_plane_x_mm,
             "clearance_station_x_mm": v.clearance_station_x_mm,
@@ -283,7 +283,7 @@ def run_check(args) -> int:
     v = load_variant(args.path, tuple(args.set or ()))
     mp = mass_properties(v)
     info = {"ok": True, "name": v.name, "files": list(v.source_files),
-            "overrides": {p: val for p, val in v.overrides},
+            "overrides": v.overrides_map,
             "content_hash": v.content_hash, "segments": len(v.segments),
             "bearings": len(v.bearings), "attachments": len(v.attachments),
             "mass_kg": mp.mass_kg, "values_with_provenance": len(v.provenance.source)}

@@ -45,7 +45,7 @@ def _inputs(job, variant) -> dict:
             "level": job.level, "model": job.model, "seed_load_case": job.seed_load_case,
             "load_case": load_case_label(job.seed_load_case), "exclude_mm": job.exclude_mm,
             "supports": "bearing springs (2x2 radial stiffness)",
-            "overrides": {p: v for p, v in getattr(variant, "overrides", ())}}
+            "overrides": variant.overrides_map}
 
 
 def _history(run: FatigueRun) -> dict:

@@ -217,6 +217,11 @@ class Variant:
     overrides: tuple[tuple[str, object], ...] = ()  # (path, value) set for this run (--set)
 
     @property
+    def overrides_map(self) -> dict:
+        """{path: value} of the ``--set`` overrides this variant was loaded with."""
+        return dict(self.overrides)
+
+    @property
     def length_mm(self) -> float:
         return self.segments[-1].x_end_mm - self.segments[0].x_start_mm
 

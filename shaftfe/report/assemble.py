@@ -188,7 +188,7 @@ def _inputs_block(o: ReportOptions, variant, engine, fat: dict) -> dict:
     return {
         "variant": variant.name, "description": variant.description,
         "files": list(variant.source_files), "content_hash": variant.content_hash,
-        "overrides": {p: v for p, v in variant.overrides},
+        "overrides": variant.overrides_map,
         "length_mm": variant.length_mm, "material": variant.material.name,
         "E_MPa": variant.material.E_MPa, "nu": variant.material.nu,
         "bearings": [{"name": b.name, "designation": b.designation, "x_mm": b.x_center_mm,

@@ -21,7 +21,7 @@ def write_outputs(variant_arg: str, variant, opts, res, rpms: list[float], out) 
     summary = {
         "inputs": {"variant": variant_arg, "rpm": rpms, "options": asdict(opts),
                    "source_files": list(getattr(variant, "source_files", ())),
-                   "overrides": {p: v for p, v in getattr(variant, "overrides", ())}},
+                   "overrides": variant.overrides_map},
         "versions": package_versions("pypardiso"),
         "vtu": {"file": vtu.name, "rpm": rpm_vtu, "regions": regions,
                 "stress_components": ["xx", "yy", "zz", "xy", "yz", "xz"],
