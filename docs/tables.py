@@ -62,7 +62,71 @@ def fatigue_x2_57() -> str:
     return head + "\n" + "\n".join(rows)
 
 
-TABLES = {"fatigue-x2_57": fatigue_x2_57}
+STUDY_DIR = ROOT / "reports" / "studies" / "x2_tradeoff"
+STUDY_FILE = ROOT / "studies" / "x2_tradeoff.toml"
+
+
+def study_x2_tradeoff() -> str:
+    """The showcase study's recommended design (from its committed result table, re-ranked
+    here by shaftfe.study.results) next to x2_57 evaluated by the same analyses now; the
+    study file's requirements must be x2_57's own values (rounded to 0.1)."""
+    import json
+
+    from shaftfe.study import results
+    from shaftfe.study.evaluate import evaluate_design
+    from shaftfe.study.spec import load_study
+    spec = load_study(STUDY_FILE)
+    df = results.read_table(STUDY_DIR)
+    meta = json.loads((STUDY_DIR / "study.json").read_text())
+    if meta["digest"] != spec.digest:
+        raise SystemExit(f"{STUDY_DIR} was run on another version of {STUDY_FILE}: re-run "
+                         "shaftfe study run studies/x2_tradeoff.toml")
+    objs = results.default_objectives(spec)
+    i = results.recommend(df, objs, spec.requirements)
+    rec = df.iloc[i]
+    base = evaluate_design(spec.base, (), spec.analyses)
+    for col, _, val in spec.requirements:
+        if round(base[col], 1) != val:
+            raise SystemExit(f"{STUDY_FILE}: require {col} >= {val} is not x2_57's own value "
+                             f"({base[col]:.1f}): update the study file")
+    nd = results.non_dominated(df, objs)
+    rows = [("X2 [%]", "X2_percent", "{:.1f}"), ("collar fillet [mm]", None, "{:.1f}"),
+            ("counterweight outer radii [mm]", None, ""), ("balancer mass [kg]", "mass_kg",
+                                                           "{:.3f}"),
+            ("engine max\\|F\\| at 6000 rpm [N]", "engine_max_F_N", "{:.0f}"),
+            ("engine RMS\\|F\\| at 6000 rpm [N]", "engine_rms_F_N", "{:.0f}"),
+            ("collar fillet peak von Mises, 10 000 rpm [MPa]", "stress_fillet:collar_MPa",
+             "{:.0f}"),
+            ("fatigue safety factor (seed method)", "fatigue_sf", "{:.3f}"),
+            ("fatigue life [h]", "life_h", "{:.0f}"), ("fatigue life [km]", "life_km",
+                                                       "{:,.0f}"),
+            ("L10h, free-side 3203 at 7000 rpm [h]", "L10h_min_h", "{:.0f}"),
+            ("first critical speed, beam rotor [rpm]", "critical_rpm", "{:,.0f}")]
+    r1 = "attachments.counterweight_1.shape.outer_radius_mm"
+    r2 = "attachments.counterweight_2.shape.outer_radius_mm"
+    out = ["| | x2_57 (the seed's choice) | recommended: design "
+           f"{int(rec['design'])} | change |", "|---|---|---|---|"]
+    for label, col, fmt in rows:
+        if col is None and "fillet" in label:
+            a, b = 0.6, float(rec["segments.collar.fillet_mm"])
+            out.append(f"| {label} | {a:.1f} | {b:.1f} | |")
+            continue
+        if col is None:
+            out.append(f"| {label} | 34.36 / 39.90 | {rec[r1]:.2f} / {rec[r2]:.2f} | |")
+            continue
+        a, b = float(base[col]), float(rec[col])
+        ch = f"{100 * (b / a - 1):+.1f} %" if a else ""
+        out.append(f"| {label} | {fmt.format(a)} | {fmt.format(b)} | {ch} |")
+    n_ok = int((df["status"] == "ok").sum())
+    out += ["", f"{len(df)} designs: {n_ok} evaluated, "
+            f"{int((df['status'] == 'refused').sum())} refused (collar fillet above the "
+            f"3203's r_s min 0.6 mm, ISO 582), {sum(nd)} non-dominated, "
+            f"{sum(1 for k in range(len(df)) if nd[k] and results.meets(df, spec.requirements)[k])}"
+            " of them meeting both requirements."]
+    return "\n".join(out)
+
+
+TABLES = {"fatigue-x2_57": fatigue_x2_57, "study-x2_tradeoff": study_x2_tradeoff}
 
 
 def render(text: str) -> str:

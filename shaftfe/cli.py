@@ -26,6 +26,7 @@ COMMAND_MODULES = (
     "shaftfe.commands.fatigue",
     "shaftfe.commands.view",
     "shaftfe.commands.report",
+    "shaftfe.commands.study",
     "shaftfe.commands.demo",
 )
 

@@ -101,6 +101,38 @@ ABOVE_HINT = {"mass_kg": "grams", "eccentricity_mm": "µm", "diameter_mm": "µm"
 FILLET_MIN_MM = 0.05
 
 
+# A key's own range, whatever the other keys say (a study's values are checked against it
+# before anything runs): the plausibility kinds above by key name, and the signs the loader
+# asks of the rest. Rules that tie a key to others (a fillet under the bearing corner at its
+# shoulder, a step taller than its fillet, the balance statement) are the design's, checked
+# when the design is loaded.
+_RANGE_OF_KEY = {"diameter_mm": "diameter_mm", "bore_mm": "diameter_mm",
+                 "outer_diameter_mm": "diameter_mm", "length_mm": "length_mm",
+                 "width_mm": "length_mm", "mass_kg": "mass_kg",
+                 "eccentricity_mm": "eccentricity_mm", "E_MPa": "E_MPa",
+                 "yield_MPa": "strength_MPa", "ultimate_MPa": "strength_MPa", "C_N": "C_N",
+                 "C0_N": "C_N", "K_N_per_mm": "K_N_per_mm"}
+
+
+def key_range(path: str) -> tuple[float, float, str] | None:
+    """(low, high, unit) of the number at ``path`` (a ``--set`` path) on its own, or None."""
+    key = path.rsplit(".", 1)[-1]
+    if key in _RANGE_OF_KEY:
+        lo, hi, unit, _ = PLAUSIBLE[_RANGE_OF_KEY[key]]
+        return lo, hi, unit
+    if key == "fillet_mm":
+        return 0.0, PLAUSIBLE["diameter_mm"][1] / 2, "mm (0 = sharp, else >= "\
+            f"{FILLET_MIN_MM:g})"
+    if key == "nu":
+        return 0.0, 0.5, "(Poisson's ratio)"
+    if key == "density_t_mm3":
+        return 1e-10, 1e-7, "t/mm³"
+    if ".shape." in path and key.endswith(("_mm", "_deg")):
+        return 0.0, 180.0 if key.endswith("_deg") else PLAUSIBLE["length_mm"][1], \
+            "deg" if key.endswith("_deg") else "mm"
+    return None
+
+
 def plausible(v: float, kind: str, src: str, fld: str) -> None:
     """``v`` within ``PLAUSIBLE[kind]``; else an error with a hint at the likely unit."""
     lo, hi, unit, below = PLAUSIBLE[kind]

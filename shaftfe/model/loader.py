@@ -517,6 +517,21 @@ def load_variant(name_or_path: str | Path, overrides=()) -> Variant:
     return v
 
 
+def parts_variant(name_or_path: str | Path, overrides=()) -> Variant:
+    """The variant with ``overrides`` applied, its [balance] statement NOT checked against the
+    parts (``shaftfe.model.derive`` computes that statement from them)."""
+    from shaftfe.model import overrides as ov
+    sets = ov.normalise(overrides)
+    path = _resolve(name_or_path)
+    ctx = Ctx()
+    merged = resolved_dict(path, ctx)
+    sets = ov.apply(merged, sets)
+    try:
+        return _build(path, merged, ctx, check_balance=False)
+    except InputError as exc:
+        raise ov.attribute(exc, sets) from None
+
+
 def _check_name(name, sets) -> None:
     """A variant name set on the command line names output folders: a plain file name."""
     import re
@@ -533,7 +548,7 @@ def resolved_dict(path: Path, ctx: Ctx | None = None) -> dict:
     return merged
 
 
-def _build(path: Path, merged: dict, ctx: Ctx) -> Variant:
+def _build(path: Path, merged: dict, ctx: Ctx, *, check_balance: bool = True) -> Variant:
     top = _show(path.resolve())
     allowed_top = {"name", "description", "shaft", "materials", "bearing_types", "parts",
                    "use_parts", "attachments", "balance"}
@@ -592,7 +607,7 @@ def _build(path: Path, merged: dict, ctx: Ctx) -> Variant:
     from shaftfe.solid.plan import prepare
     validate_variant(v)
     prepare(v)       # the solid's own rules (slots, hex socket, contact bands): every command
-    if target is not None:
+    if target is not None and check_balance:
         _check_balance(v, target, ctx.file_of("balance", top))
     return dataclasses.replace(v, content_hash=content_hash(v))
 

@@ -12,7 +12,7 @@ import numpy as np
 
 from shaftfe.errors import InputError
 from shaftfe.fe import assembly as fem
-from shaftfe.fe import supports
+from shaftfe.fe import reuse, supports
 from shaftfe.model.validate import validate_variant
 from shaftfe.solid.levels import MeshLevel
 
@@ -108,7 +108,8 @@ def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh
     m = shaft_mesh.mesh
     mat = variant.material
     t0 = time.perf_counter()
-    K = fem.elasticity_stiffness(m, mat.E_MPa, mat.nu)
+    K = reuse.memo("K", (shaft_mesh.key, mat.E_MPa, mat.nu),
+                   lambda: fem.elasticity_stiffness(m, mat.E_MPa, mat.nu))
     couplings = []
     for b in variant.bearings:
         hold = options.hold_twist == "all" or (options.hold_twist == "axial" and b.axial)

@@ -52,7 +52,7 @@ import numpy as np
 
 from shaftfe.errors import InputError, ShaftfeError, SolverError
 from shaftfe.fe import assembly as fem
-from shaftfe.fe import recovery, supports
+from shaftfe.fe import recovery, reuse, supports
 from shaftfe.fe.lowrank import LowRankSolver
 from shaftfe.model.bearing_life import l10h
 from shaftfe.static.model import (
@@ -143,8 +143,10 @@ def solve_model(model: StaticModel, rhs: np.ndarray | None = None, *,
     if np.linalg.matrix_rank(P.T @ _modes(m), tol=1e-9) < 6:       # pragma: no cover
         raise SolverError("internal: the pin dofs do not remove the rigid modes")
     t0 = time.perf_counter()
-    fac = solvers.factorize(K, model.options.solver, rigid_modes=_modes(m),
-                            diag_add=(pins, np.full(6, kp)))          # B = K + kp Σ e eᵀ
+    mat = model.variant.material
+    fac = reuse.memo("factor", (model.shaft_mesh.key, mat.E_MPa, mat.nu, model.options.solver),
+                     lambda: solvers.factorize(K, model.options.solver, rigid_modes=_modes(m),
+                                               diag_add=(pins, np.full(6, kp))))  # B = K + kp Σ eeᵀ
     t_fac = time.perf_counter() - t0
     U, Cinv = _support_columns(model, P, kp)
     F = model.f if rhs is None else rhs

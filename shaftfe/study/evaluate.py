@@ -1,0 +1,179 @@
+"""One design of a study → one result row (a flat dict of numbers and strings).
+
+Every number comes from the package's own analyses, the ones the commands use:
+
+* balance: the design's mass properties (``model.mass``) and X2 = Σ m e / (m_pos R); the
+  engine's shaking force max|F| and RMS|F| over one revolution at the engine's speed
+  (``balance.single.forces``, crank balance X of the seed's crank C unless given);
+* beam: the Euler-Bernoulli shaft on its bearing springs at ``bearing_rpm``: bearing loads and
+  ISO 281 L10h, the largest Kt × nominal stress;
+* static: the 3D solid (``static.solve.solve_static``) at 10 000 rpm (the fatigue reference)
+  and ``bearing_rpm``: the filtered von Mises peak of every fillet and keyway, L10h from the 3D
+  reactions (replacing the beam's);
+* fatigue: the seed's method on that field (``fatigue.field.evaluate``): the filtered hot spot's
+  safety factor and life in blocks, hours and km;
+* campbell: the beam rotor's first forward 1× critical speed and its margin over the engine's
+  max_rpm.
+
+A design the loader refuses (an impossible combination of values) has status ``refused``; one
+whose analysis fails (a mesh that cannot be built, a solver failure) ``failed``; both with the
+one-line reason in ``error``. Everything the row holds is the same on every run (the wall time
+is in ``seconds``, not part of the cache key).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import time
+from typing import Any
+
+from shaftfe.errors import InputError, ShaftfeError
+from shaftfe.study.spec import Analyses
+
+STATUS = ("ok", "refused", "failed")
+# The Campbell sweep's default top: a stiff balancer shaft's first bending critical lies far
+# above the engine's speeds (x2_57 beam rotor: 39 700 rpm, 4.2 × the VM 450's 9500 rpm), and a
+# beam sweep to 60 000 rpm costs ~0.3 s. A critical above the top is reported as None.
+CAMPBELL_TOP_RPM = 60_000.0
+
+
+def _fin(v) -> float | None:
+    v = float(v)
+    return v if math.isfinite(v) else None
+
+
+@functools.lru_cache(maxsize=4)
+def _engine(name: str):
+    from shaftfe.balance.engines import load_engine
+    return load_engine(name)
+
+
+@functools.lru_cache(maxsize=2)
+def _fatigue_inputs(spectrum: str, material: str):
+    """The history and S-N card, read once per worker process (every design shares them)."""
+    from shaftfe.fatigue.run import read_spectrum
+    from shaftfe.fatigue.sn import load_material
+    return read_spectrum(spectrum, None, None), load_material(material)
+
+
+def load_design(base: str, overrides) -> tuple[Any, dict]:
+    """(Variant, every override incl. the derived ones) of a design; InputError if refused."""
+    from shaftfe.model.derive import design_overrides
+    from shaftfe.model.loader import load_variant
+    full = design_overrides(base, dict(overrides))
+    return load_variant(base, full), full
+
+
+def balance_row(v, an: Analyses) -> dict:
+    from shaftfe.balance.single import forces
+    from shaftfe.model.mass import balance_ratio, mass_properties
+    from shaftfe.report.seed import CRANK_C_X
+    mp = mass_properties(v)
+    x2 = balance_ratio(mp, v.balance_target)
+    if x2 is None:
+        x2 = v.balance_target.X2_percent / 100 if v.balance_target is not None else 0.0
+    eng = _engine(an.engine)
+    rpm = an.engine_rpm or eng.rpm
+    X = an.X_percent / 100 if an.X_percent is not None else CRANK_C_X
+    res = forces(eng, X=X, X2=x2, rpm=rpm)
+    return {"mass_kg": mp.mass_kg, "gamma2_mm": mp.gamma2_mm, "x_T_mm": mp.x_T_mm,
+            "X2_percent": 100 * x2, "engine_rpm": rpm, "engine_max_F_N": res.metrics.max_f,
+            "engine_rms_F_N": res.metrics.rms_f}
+
+
+def _bearing_cols(rows, prefix: str) -> dict:
+    out = {f"L10h_{b.name}_h": _fin(b.L10h) if b.L10h is not None else None for b in rows}
+    out.update({f"{prefix}F_{b.name}_N": float(getattr(b, "F_N", None) or b.F_radial_N)
+                for b in rows})
+    lives = [x for x in (out[f"L10h_{b.name}_h"] for b in rows) if x is not None]
+    out["L10h_min_h"] = min(lives) if lives else None
+    return out
+
+
+def beam_row(v, an: Analyses) -> dict:
+    from shaftfe.beam.solve import analyse
+    br = analyse(v, an.bearing_rpm)[0]
+    out = {"beam_max_peak_MPa": br.max_peak_MPa, "beam_max_deflection_mm": br.max_deflection_mm}
+    out.update(_bearing_cols(br.bearings, "beam_"))
+    return out
+
+
+def static_rows(v, an: Analyses, shaft_mesh=None, cache_dir=None) -> tuple[dict, Any]:
+    from shaftfe.static.model import REF_RPM, StaticOptions
+    from shaftfe.static.solve import solve_static
+    opts = StaticOptions(level=an.level, spin_softening=an.spin_softening)
+    rpms = [REF_RPM] if an.bearing_rpm == REF_RPM else [REF_RPM, an.bearing_rpm]
+    res = solve_static(v, rpms, opts, shaft_mesh=shaft_mesh, cache_dir=cache_dir, beam=False,
+                       linear_stress=an.fatigue)
+    ref = res.cases[0]
+    out: dict[str, Any] = {"n_dofs": res.n_dofs, "mesh_key": res.mesh_key}
+    for p in ref.peaks:
+        if p.region.startswith(("fillet:", "keyway:")):
+            out[f"stress_{p.region}_MPa"] = _fin(p.von_mises_MPa)
+    out["stress_max_MPa"] = _fin(ref.peak_von_mises_MPa)
+    at = next(c for c in res.cases if c.rpm == an.bearing_rpm)
+    out.update(_bearing_cols(at.bearings, "static_"))
+    out["static_max_deflection_mm"] = res.cases[0].max_deflection_mm
+    return out, res
+
+
+def fatigue_row(res, an: Analyses) -> dict:
+    from shaftfe.fatigue.field import evaluate
+    from shaftfe.static.cache import from_result
+    history, material = _fatigue_inputs(an.spectrum, an.material)
+    ff = evaluate(from_result(res), history, material, equivalent=an.equivalent,
+                  theory=an.mean_stress, design_life_blocks=an.design_life,
+                  speed_kmh=an.speed_kmh)
+    h = ff.hot_spot
+    return {"fatigue_hot_spot": h.region, "fatigue_sf": _fin(h.safety_factor),
+            "life_blocks": _fin(h.life_blocks), "life_h": _fin(h.life_hours),
+            "life_km": _fin(h.life_km)}
+
+
+def campbell_row(v, an: Analyses) -> dict:
+    import numpy as np
+
+    from shaftfe.rotordynamics.analyse import analyse
+    from shaftfe.rotordynamics.options import RotorOptions
+    eng = _engine(an.engine)
+    n_max = float(eng.max_rpm or 0.0)
+    top = an.campbell_max_rpm or CAMPBELL_TOP_RPM
+    rpms = np.linspace(0.0, top, max(2, round(top / an.campbell_step_rpm) + 1))
+    run = analyse(v, rpms, 6, orders=(1.0,), options=RotorOptions(model=an.campbell_model),
+                  verify=False)
+    crit = [c for c in run.result.criticals if c.whirl != "backward"]
+    first = min((c.rpm for c in crit), default=None)
+    return {"critical_rpm": first, "critical_margin_percent":
+            (100.0 * (first / n_max - 1.0) if first is not None and n_max > 0 else None),
+            "campbell_top_rpm": float(rpms[-1])}
+
+
+def evaluate_design(base: str, overrides, an: Analyses, *, shaft_mesh=None,
+                    cache_dir=None) -> dict:
+    """The result row of one design (never raises for the design's own faults)."""
+    t0 = time.perf_counter()
+    row: dict[str, Any] = {"status": "ok", "error": ""}
+    try:
+        v, _ = load_design(base, overrides)
+    except InputError as exc:
+        return {"status": "refused", "error": str(exc), "seconds": time.perf_counter() - t0}
+    row["variant_hash"] = v.content_hash
+    try:
+        row.update(balance_row(v, an))
+        if an.beam:
+            row.update(beam_row(v, an))
+        if an.static:
+            cols, res = static_rows(v, an, shaft_mesh, cache_dir)
+            row.update(cols)
+            if an.fatigue:
+                row.update(fatigue_row(res, an))
+            del res
+        if an.campbell:
+            row.update(campbell_row(v, an))
+    except (ShaftfeError, ArithmeticError, RuntimeError, ValueError) as exc:
+        msg = " ".join(str(exc).split()) or type(exc).__name__
+        row.update(status="failed", error=msg if isinstance(exc, ShaftfeError)
+                   else f"{type(exc).__name__}: {msg}")
+    row["seconds"] = time.perf_counter() - t0
+    return row

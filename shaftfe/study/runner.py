@@ -1,0 +1,385 @@
+"""Run a study's designs on Dask.distributed, resumably.
+
+``run_study(spec, out_dir, workers=None, scheduler=None)``:
+
+* **Where.** Without ``scheduler`` a ``dask.distributed.LocalCluster`` of worker processes,
+  1 thread each (the nanny sets OMP/MKL/OpenBLAS to 1 thread), as many as the cores and the
+  free memory allow for the analyses asked (``MEMORY_PER_WORKER``); each worker's memory limit is
+  its share of the free memory, so a runaway worker is restarted by its nanny. With
+  ``scheduler`` (``tcp://host:8786``) an existing cluster (``dask scheduler`` + ``dask worker``,
+  dask-jobqueue, Kubernetes): the workers need shaftfe installed and the study's files.
+* **Sharing.** Designs that need the 3D solid are grouped by their mesh key (the solid alone:
+  part masses, bearing stiffness, the crank do not change it) and shaft material. Each group's
+  mesh is built once (a task of its own; the mesh object goes to the group's tasks), and each
+  worker process keeps its last stiffness matrix and factorisation
+  (``shaftfe.fe.reuse.keep``): a design of the same solid only adds its loads, springs and
+  spin softening (low-rank terms). Groups are scheduled one after the other (task priority),
+  so a worker changes solid about once per group. Each 3D design is a task (its row saved as
+  soon as it is done); beam-level designs go in chunks (``BEAM_CHUNK``) to keep the
+  scheduling overhead per design small.
+* **Resume.** Each design's row is written to ``designs/<key>.json`` as soon as it arrives;
+  key = sha256 of the base variant's content, the design's overrides, the analysis options,
+  the rpm history's content and the package's source. A re-run (after Ctrl-C, a killed worker,
+  a lost node) computes only the designs without a row. ``study.json`` records the study
+  file's digest: a directory refuses a different study.
+* **Failures.** A design the loader refuses, or whose analysis fails, is a row with status and
+  reason (``shaftfe.study.evaluate``). A task whose worker died (out of memory, killed) is
+  retried once, design by design; a second death is recorded as ``failed``.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from shaftfe.errors import InputError
+from shaftfe.study.sampling import Design
+from shaftfe.study.spec import StudySpec
+
+MiB = 1024 ** 2
+# Resident memory one worker needs (measured with farm-bench: the static command's peak RSS
+# at each level, README speed table; the beam pipeline ~250 MiB) plus headroom for the mesh
+# object in transit: a cap, not a limit on what a design may use.
+MEMORY_PER_WORKER = {"beam": 400 * MiB, "coarse": 1200 * MiB, "default": 2000 * MiB,
+                     "fine": 5000 * MiB}
+BEAM_CHUNK = 25                    # beam-level designs per task
+STUDY_FORMAT = 1
+CONNECT_TIMEOUT_S = 10
+
+
+@dataclass(frozen=True)
+class StudyRun:
+    out_dir: Path
+    rows: tuple[dict, ...]                 # every design, in design order
+    computed: int                          # designs evaluated in this run
+    reused: int                            # designs whose row was already on disk
+    failed: int
+    refused: int
+    workers: int
+    wall_seconds: float
+    compute_seconds: float                 # Σ of the designs' own seconds (this run)
+    sharing: dict = field(default_factory=dict)   # meshes built, factorisations made/reused
+
+
+# --------------------------------------------------------------------------- keys and files
+
+# sources that cannot change a design's numbers (scheduling, tables, the page, the CLI)
+_NOT_NUMBERS = ("cli.py", "study/runner.py", "study/results.py", "study/report.py",
+                "study/sampling.py", "study/__init__.py")
+
+
+def source_fingerprint() -> str:
+    """sha256 of the package's analysis sources (a code change invalidates cached rows)."""
+    import shaftfe
+    root = Path(shaftfe.__file__).parent
+    h = hashlib.sha256()
+    for p in sorted(root.rglob("*.py")):
+        rel = p.relative_to(root).as_posix()
+        if rel.startswith(("commands/", "report/", "io/")) or rel in _NOT_NUMBERS:
+            continue
+        h.update(rel.encode())
+        h.update(p.read_bytes())
+    return h.hexdigest()
+
+
+def design_key(base_hash: str, design: Design, options: dict, code: str) -> str:
+    payload = {"format": STUDY_FORMAT, "base": base_hash, "set": list(design.overrides),
+               "analyses": options, "code": code}
+    return hashlib.sha256(json.dumps(payload, sort_keys=True, default=repr).encode()
+                          ).hexdigest()[:32]
+
+
+def _write_json(path: Path, obj) -> None:
+    from shaftfe.util.atomic import atomic_path
+    with atomic_path(path) as tmp:
+        tmp.write_text(json.dumps(obj, indent=1, default=_json_default) + "\n")
+
+
+def _json_default(o):
+    if isinstance(o, float) and not math.isfinite(o):
+        return None
+    return str(o)
+
+
+def check_directory(out_dir: Path, spec: StudySpec) -> None:
+    """A study directory belongs to one study file (its content digest)."""
+    sj = out_dir / "study.json"
+    if not sj.is_file():
+        if out_dir.exists() and any(out_dir.iterdir()):
+            raise InputError(str(out_dir), "--out", "an empty directory or one made by "
+                             "shaftfe study run", reason="holds other files")
+        return
+    try:
+        old = json.loads(sj.read_text()).get("digest")
+    except (OSError, ValueError):
+        old = None
+    if old != spec.digest:
+        raise InputError(str(out_dir), "study.json", f"the study it was made for ("
+                         f"{json.loads(sj.read_text()).get('study_file', '?') if old else '?'})",
+                         got=spec.path, reason="belongs to a different study file")
+
+
+# --------------------------------------------------------------------------- worker tasks
+
+def build_group_mesh(base: str, overrides, level: str):
+    """The mesh of a group's solid (one per group, built on a worker; cached on its disk)."""
+    from shaftfe.beam.planes import mesh_hot_axes
+    from shaftfe.solid.mesh import build_mesh
+    from shaftfe.study.evaluate import load_design
+    v, _ = load_design(base, overrides)
+    return build_mesh(v, level, 2, hot_axes=mesh_hot_axes(v))
+
+
+def evaluate_task(base: str, items, analyses, shaft_mesh=None) -> list[tuple[str, dict]]:
+    """Evaluate (key, overrides) items in order. The worker process keeps its last stiffness
+    matrix and factorisation (``reuse.keep``), so consecutive designs of one solid share them
+    whichever task they arrive in; the counts this task added ride on its first row."""
+    from shaftfe.fe import reuse
+    from shaftfe.study.evaluate import evaluate_design
+    stats = reuse.keep()
+    made0, reused0 = dict(stats["made"]), dict(stats["reused"])
+    out = []
+    for key, overrides in items:
+        out.append((key, evaluate_design(base, overrides, analyses, shaft_mesh=shaft_mesh)))
+    if out:
+        out[0][1]["_sharing"] = {
+            "made": {k: v - made0.get(k, 0) for k, v in stats["made"].items()},
+            "reused": {k: v - reused0.get(k, 0) for k, v in stats["reused"].items()}}
+    return out
+
+
+# --------------------------------------------------------------------------- planning
+
+def _group_key(base: str, design: Design, level: str) -> tuple:
+    """(mesh key, E, ν) of a design's solid, or ("refused",) if it cannot be loaded."""
+    from shaftfe.static.cache import predicted_mesh_key
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.study.evaluate import load_design
+    try:
+        v, _ = load_design(base, design.overrides)
+        return (predicted_mesh_key(v, StaticOptions(level=level)), v.material.E_MPa,
+                v.material.nu)
+    except Exception:                       # the evaluation records why, one design alone
+        return ("refused",)
+
+
+def plan_tasks(spec: StudySpec, todo: list[tuple[str, Design]]):
+    """[(mesh group or None, [(key, overrides), ...]), ...] in group order. A 3D design is a
+    task of its own (its row is saved the moment it is done: an interruption loses at most
+    the designs in progress); beam-level designs go ``BEAM_CHUNK`` to a task."""
+    if not spec.analyses.static:
+        items = [(k, d.overrides) for k, d in todo]
+        return [(None, items[i:i + BEAM_CHUNK]) for i in range(0, len(items), BEAM_CHUNK)]
+    groups: dict[tuple, list] = {}
+    for k, d in todo:
+        groups.setdefault(_group_key(spec.base, d, spec.analyses.level), []).append((k, d))
+    return [(None if g == ("refused",) else g, [(k, d.overrides)])
+            for g, members in groups.items() for k, d in members]
+
+
+# --------------------------------------------------------------------------- cluster
+
+def default_workers(spec: StudySpec) -> tuple[int, int]:
+    """(workers, memory limit per worker in bytes) for a LocalCluster on this machine."""
+    import psutil
+    need = MEMORY_PER_WORKER[spec.analyses.level if spec.analyses.static else "beam"]
+    avail = psutil.virtual_memory().available
+    cores = os.cpu_count() or 1
+    n = max(1, min(cores, avail // need))
+    return int(n), int(avail // n)
+
+
+def connect(scheduler: str | None, workers: int | None, spec: StudySpec):
+    """(client, cluster or None, n_workers)."""
+    import logging
+
+    import dask
+    from distributed import Client, LocalCluster
+    if scheduler:
+        try:
+            client = Client(scheduler, timeout=f"{CONNECT_TIMEOUT_S}s")
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise InputError("--scheduler", "address", "a reachable Dask scheduler, e.g. "
+                             "tcp://host:8786", got=scheduler,
+                             reason=f"is not reachable within {CONNECT_TIMEOUT_S} s "
+                             f"({type(exc).__name__})") from None
+        n = len(client.scheduler_info().get("workers", {}))
+        if n == 0:
+            client.wait_for_workers(1, timeout=60)
+            n = len(client.scheduler_info().get("workers", {}))
+        return client, None, n
+    n_auto, mem = default_workers(spec)
+    n = workers or n_auto
+    # our own retry (once, design by design) replaces the scheduler's
+    dask.config.set({"distributed.scheduler.allowed-failures": 0,
+                     "distributed.worker.daemon": False})
+    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                           memory_limit=mem if workers is None else None,
+                           dashboard_address=None, silence_logs=logging.CRITICAL)
+    return Client(cluster), cluster, n
+
+
+# --------------------------------------------------------------------------- progress
+
+class Bar:
+    """``[#####-----] 12/45 designs  2 failed  ETA 1 min 20 s`` on a terminal (stderr)."""
+
+    def __init__(self, total: int, done: int, stream=None, enabled: bool | None = None):
+        self.stream = stream or sys.stderr
+        self.enabled = (self.stream.isatty() if enabled is None else enabled)
+        self.total, self.done, self.start_done = total, done, done
+        self.failed = 0
+        self.t0 = time.perf_counter()
+
+    def update(self, n: int = 1, failed: int = 0) -> None:
+        self.done += n
+        self.failed += failed
+        if not self.enabled:
+            return
+        width = 30
+        frac = self.done / self.total if self.total else 1.0
+        fill = int(width * frac)
+        rate = (self.done - self.start_done) / max(time.perf_counter() - self.t0, 1e-9)
+        left = (self.total - self.done) / rate if rate > 0 else math.inf
+        eta = "" if not math.isfinite(left) else f"  ETA {_hms(left)}"
+        fail = f"  {self.failed} failed" if self.failed else ""
+        self.stream.write(f"\r\x1b[K[{'#' * fill}{'-' * (width - fill)}] {self.done}/"
+                          f"{self.total} designs{fail}{eta}")
+        self.stream.flush()
+
+    def close(self) -> None:
+        if self.enabled:
+            self.stream.write("\n")
+            self.stream.flush()
+
+
+def _hms(s: float) -> str:
+    s = round(s)
+    if s < 60:
+        return f"{s} s"
+    m, s = divmod(s, 60)
+    if m < 60:
+        return f"{m} min {s:02d} s"
+    h, m = divmod(m, 60)
+    return f"{h} h {m:02d} min"
+
+
+# --------------------------------------------------------------------------- run
+
+def run_study(spec: StudySpec, out_dir, *, workers: int | None = None,
+              scheduler: str | None = None, progress: bool | None = None) -> StudyRun:
+    """Evaluate every design without a row in ``out_dir``; write the result tables."""
+    from shaftfe.model.loader import load_variant
+    from shaftfe.study import results, sampling
+    t_all = time.perf_counter()
+    out = Path(out_dir)
+    check_directory(out, spec)
+    designs = sampling.designs(spec)
+    base_hash = load_variant(spec.base).content_hash
+    options = spec.analyses.options()
+    code = source_fingerprint()
+    keys = [design_key(base_hash, d, options, code) for d in designs]
+    ddir = out / "designs"
+    ddir.mkdir(parents=True, exist_ok=True)
+    _write_json(out / "study.json", {"study_file": str(Path(spec.path).resolve()),
+                                     "digest": spec.digest, "name": spec.name,
+                                     "base": spec.base, "designs": len(designs),
+                                     "description": spec.description,
+                                     "parameters": list(sampling.paths(spec)),
+                                     "objectives": [list(o) for o in
+                                                    results.default_objectives(spec)],
+                                     "requirements": [list(r) for r in spec.requirements],
+                                     "analyses": spec.analyses.options(),
+                                     "format": STUDY_FORMAT})
+    done = {k for k in keys if (ddir / f"{k}.json").is_file()}
+    todo = [(k, d) for k, d in zip(keys, designs, strict=True) if k not in done]
+    todo = list({k: (k, d) for k, d in todo}.values())          # equal designs once
+    computed = compute_s = 0
+    sharing: dict = {"meshes_built": 0, "factor_made": 0, "factor_reused": 0}
+    n_workers = 0
+    if todo:
+        client, cluster, n_workers = connect(scheduler, workers, spec)
+        bar = Bar(len(designs), len(designs) - len(todo), enabled=progress)
+        try:
+            computed, compute_s = _execute(client, spec, todo, n_workers, ddir, bar, sharing)
+        finally:
+            bar.close()
+            client.close()
+            if cluster is not None:
+                cluster.close()
+    rows = []
+    for k, d in zip(keys, designs, strict=True):
+        row = json.loads((ddir / f"{k}.json").read_text())
+        rows.append(results.row_with_inputs(d, k, row))
+    results.write_tables(out, spec, rows)
+    run = StudyRun(out, tuple(rows), computed, len(designs) - len(todo), sum(
+        r["status"] == "failed" for r in rows), sum(r["status"] == "refused" for r in rows),
+        n_workers, time.perf_counter() - t_all, compute_s, sharing)
+    _write_json(out / "run.json", {
+        "designs": len(designs), "computed": run.computed, "reused": run.reused,
+        "failed": run.failed, "refused": run.refused, "workers": run.workers,
+        "wall_seconds": run.wall_seconds, "compute_seconds": run.compute_seconds,
+        "sharing": sharing, "scheduler": scheduler or "LocalCluster"})
+    return run
+
+
+def _execute(client, spec, todo, n_workers, ddir: Path, bar: Bar, sharing: dict,
+             as_completed=None):
+    """Submit the planned tasks, write each row as it arrives, retry a dead task once design
+    by design (``as_completed``: distributed's, or a stand-in with the same protocol)."""
+    if as_completed is None:
+        from distributed import as_completed
+    tasks = plan_tasks(spec, todo)
+    meshes: dict = {}
+    futures = {}
+    for g, items in tasks:
+        mesh_f = None
+        if g is not None:
+            if g not in meshes:
+                meshes[g] = client.submit(build_group_mesh, spec.base, dict(items[0][1]),
+                                          spec.analyses.level, pure=False,
+                                          priority=len(tasks) - len(meshes))
+                sharing["meshes_built"] += 1
+            mesh_f = meshes[g]
+        # one group after the other (dask runs higher priorities first), so that a worker
+        # meets few solids and keeps reusing its factorisation
+        f = client.submit(evaluate_task, spec.base, items, spec.analyses, mesh_f, pure=False,
+                          priority=-len(meshes))
+        futures[f] = (items, mesh_f, 0)
+    computed, compute_s = 0, 0.0
+    ac = as_completed(list(futures))
+    for f in ac:
+        items, mesh_f, tries = futures.pop(f)
+        try:
+            pairs = f.result()
+        except Exception as exc:             # the worker died (memory, killed) or the task
+            mesh_failed = mesh_f is not None and mesh_f.status == "error"
+            if tries == 0 and not mesh_failed:   # raised: once more, one design per task
+                for it in items:
+                    g = client.submit(evaluate_task, spec.base, [it], spec.analyses, mesh_f,
+                                      pure=False)
+                    futures[g] = ([it], mesh_f, 1)
+                    ac.add(g)
+                continue
+            msg = " ".join(str(exc).split())[:300] or type(exc).__name__
+            why = (f"the mesh could not be built: {msg}" if mesh_failed else
+                   f"{type(exc).__name__} twice (the worker died or the task raised): {msg}")
+            pairs = [(k, {"status": "failed", "error": why, "seconds": 0.0})
+                     for k, _ in items]
+        for k, row in pairs:
+            sh = row.pop("_sharing", None)
+            if sh:
+                sharing["factor_made"] += sh["made"].get("factor", 0)
+                sharing["factor_reused"] += sh["reused"].get("factor", 0)
+            _write_json(ddir / f"{k}.json", row)
+            computed += 1
+            compute_s += float(row.get("seconds", 0.0))
+            bar.update(1, failed=int(row["status"] != "ok"))
+        f.release()
+    return computed, compute_s

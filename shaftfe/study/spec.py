@@ -1,0 +1,410 @@
+"""The study file (TOML, docs/STUDIES.md) read into frozen dataclasses.
+
+    [study]      name, base (a variant name or path), description, max_designs
+    [sampling]   method = "grid" | "list" | "lhs"; lhs: samples, seed
+    [[parameters]]  path = "segments.collar.fillet_mm" (or paths = [...] moved together),
+                    values = [...] (grid) or min / max (+ n for a grid), name (the column)
+    [[designs]]  (method = "list") one table per design: {path = value, ...}
+    [analyses]   balance, beam, static, fatigue, campbell, bearings: tables of options
+    [outputs]    columns (default: all), objectives = ["engine_max_F_N:min", ...]
+
+Every path is a ``--set`` path (``shaftfe.model.overrides``); the paths are checked on the base
+variant and every value against its key's own range (``overrides.key_range``) before anything
+runs (InputError: one line, exit 2). A design whose combination of values is impossible (a
+fillet larger than the bearing corner at its shoulder, a hub wider than its sector) is not bad
+input: it is recorded with the loader's one-line reason and the study goes on.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import operator
+import re
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from shaftfe.errors import InputError
+
+METHODS = ("grid", "list", "lhs")
+MAX_DESIGNS_DEFAULT = 500          # a larger study needs --yes (or max_designs in the file)
+_TOP = {"study", "sampling", "parameters", "designs", "analyses", "outputs"}
+ANALYSES = ("balance", "beam", "static", "fatigue", "campbell", "bearings")
+# the result columns (shaftfe.study.evaluate): fixed names and per-notch / per-bearing families
+FIXED = ("mass_kg", "gamma2_mm", "x_T_mm", "X2_percent", "engine_rpm", "engine_max_F_N",
+         "engine_rms_F_N", "beam_max_peak_MPa", "beam_max_deflection_mm", "L10h_min_h",
+         "n_dofs", "mesh_key", "stress_max_MPa", "static_max_deflection_mm",
+         "fatigue_hot_spot", "fatigue_sf", "life_blocks", "life_h", "life_km", "critical_rpm",
+         "critical_margin_percent", "campbell_top_rpm", "variant_hash")
+PREFIXES = ("stress_", "L10h_", "beam_F_", "static_F_")
+OPS = {">=": operator.ge, "<=": operator.le, ">": operator.gt, "<": operator.lt}
+_REQ = re.compile(r"^\s*([A-Za-z0-9_:.\-]+)\s*(>=|<=|>|<)\s*([-+0-9.eE]+)\s*$")
+
+
+def known_column(name: str) -> bool:
+    return name in FIXED or name.startswith(PREFIXES)
+
+
+def parse_requirement(text: str, src: str = "outputs.require") -> tuple[str, str, float]:
+    m = _REQ.match(str(text))
+    if not m or not known_column(m.group(1)):
+        raise InputError(src, "outputs.require", "\"column >= number\" (or <=, >, <) on a "
+                         "result column, e.g. \"life_h >= 2083\"", got=text)
+    try:
+        return m.group(1), m.group(2), float(m.group(3))
+    except ValueError:
+        raise InputError(src, "outputs.require", "a number after the operator",
+                         got=text) from None
+
+
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One axis of the design space: one key, or several keys moved together (``paths``)."""
+    name: str
+    paths: tuple[str, ...]
+    values: tuple[tuple[Any, ...], ...] = ()     # explicit points (grid); one value per path
+    low: tuple[float, ...] = ()                  # a range (lhs; grid with n)
+    high: tuple[float, ...] = ()
+    n: int = 0
+
+    def point(self, u: float) -> tuple[float, ...]:
+        """The point at fraction u ∈ [0, 1] of the range (every path linearly together)."""
+        return tuple(_tidy(lo + u * (hi - lo)) for lo, hi in zip(self.low, self.high,
+                                                                 strict=True))
+
+    def grid(self) -> tuple[tuple[Any, ...], ...]:
+        if self.values:
+            return self.values
+        return tuple(self.point(i / (self.n - 1) if self.n > 1 else 0.0) for i in range(self.n))
+
+
+@dataclass(frozen=True)
+class Analyses:
+    """What each design computes (``shaftfe.study.evaluate``); defaults in docs/STUDIES.md."""
+    engine: str = "vm450"
+    X_percent: float | None = None         # None: the seed's crank C (report.seed.CRANK_C_X)
+    engine_rpm: float | None = None        # None: the engine file's rpm
+    beam: bool = True
+    static: bool = False
+    static_model: str = "solid"            # solid | axisymmetric
+    level: str = "coarse"
+    spin_softening: bool = True
+    fatigue: bool = False
+    spectrum: str = ""                     # rpm history, resolved against the study file
+    material: str = "structural_steel"
+    mean_stress: str = "soderberg"
+    equivalent: str = "von_mises"
+    design_life: float = 1e7
+    speed_kmh: float = 70.0
+    campbell: bool = False
+    campbell_model: str = "beam"
+    campbell_max_rpm: float | None = None  # None: evaluate.CAMPBELL_TOP_RPM
+    campbell_step_rpm: float = 250.0
+    bearing_rpm: float = 7000.0            # L10h at this speed (the seed's 283.4 h point)
+
+    def options(self) -> dict:
+        """The options that change a design's numbers (its cache key), paths as content."""
+        d = {k: getattr(self, k) for k in self.__dataclass_fields__}
+        if self.spectrum:
+            p = Path(self.spectrum)
+            d["spectrum"] = hashlib.sha256(p.read_bytes()).hexdigest() if p.is_file() else ""
+        return d
+
+
+@dataclass(frozen=True)
+class StudySpec:
+    path: str                              # the study file as given
+    name: str
+    base: str                              # variant name or resolved path
+    description: str
+    method: str
+    parameters: tuple[Parameter, ...]
+    samples: int = 0                       # lhs
+    seed: int = 0                          # lhs
+    designs: tuple[tuple[tuple[str, Any], ...], ...] = ()   # list: ((path, value), ...)
+    analyses: Analyses = field(default_factory=Analyses)
+    columns: tuple[str, ...] = ()
+    objectives: tuple[tuple[str, str], ...] = ()
+    requirements: tuple[tuple[str, str, float], ...] = ()
+    max_designs: int = MAX_DESIGNS_DEFAULT
+    digest: str = ""                       # sha256 of the file's content (a study dir's id)
+
+
+def _tidy(v: float) -> float:
+    return float(f"{v:.10g}")
+
+
+def _num(t: dict, key: str, src: str, fld: str, default=None, *, lo=None, hi=None,
+         integer=False):
+    if key not in t:
+        return default
+    v = t[key]
+    ok = isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v) \
+        and (not integer or float(v).is_integer())
+    if ok and lo is not None:
+        ok = v >= lo
+    if ok and hi is not None:
+        ok = v <= hi
+    if not ok:
+        rng = f"[{lo if lo is not None else '-inf'}, {hi if hi is not None else 'inf'}]"
+        raise InputError(src, f"{fld}.{key}", ("an integer" if integer else "a number")
+                         + f" in {rng}", got=v)
+    return int(v) if integer else float(v)
+
+
+def _str(t: dict, key: str, src: str, fld: str, default=None, choices=None):
+    if key not in t:
+        return default
+    v = t[key]
+    if not isinstance(v, str) or not v or (choices and v not in choices):
+        raise InputError(src, f"{fld}.{key}", " | ".join(choices) if choices else
+                         "a non-empty string", got=v)
+    return v
+
+
+def _keys(t: Any, allowed, src: str, fld: str) -> dict:
+    if not isinstance(t, dict):
+        raise InputError(src, fld, "a table", got=t)
+    for k in t:
+        if k not in allowed:
+            import difflib
+            near = difflib.get_close_matches(k, sorted(allowed), n=3, cutoff=0.5)
+            raise InputError(src, f"{fld}.{k}", "one of " + ", ".join(near or sorted(allowed)),
+                             reason="is not a known key")
+    return t
+
+
+def _parameter(i: int, t: dict, src: str, method: str) -> Parameter:
+    fld = f"parameters[{i}]"
+    _keys(t, {"name", "path", "paths", "values", "min", "max", "n"}, src, fld)
+    if ("path" in t) == ("paths" in t):
+        raise InputError(src, f"{fld}.path", "either path = \"a.b.c\" or paths = [...]",
+                         reason="is missing" if "path" not in t else "is given twice")
+    paths = [t["path"]] if "path" in t else t["paths"]
+    if not (isinstance(paths, list) and paths and all(isinstance(p, str) and p for p in paths)):
+        raise InputError(src, f"{fld}.paths", "a non-empty list of key paths", got=paths)
+    k = len(paths)
+    name = _str(t, "name", src, fld, default=paths[0] if k == 1 else "+".join(paths))
+
+    def tup(v, what):
+        v = v if k > 1 else [v]
+        if not (isinstance(v, list) and len(v) == k):
+            raise InputError(src, f"{fld}.{what}", f"{'a list of ' + str(k) if k > 1 else 'one'}"
+                             f" value{'s' if k > 1 else ''} (one per path)", got=v)
+        return tuple(v)
+    if "values" in t:
+        vals = t["values"]
+        if not (isinstance(vals, list) and vals):
+            raise InputError(src, f"{fld}.values", "a non-empty list", got=vals)
+        if "min" in t or "max" in t:
+            raise InputError(src, f"{fld}.values", "values or min/max, not both",
+                             reason="is given with min/max")
+        return Parameter(name, tuple(paths), values=tuple(tup(v, "values") for v in vals))
+    if "min" not in t or "max" not in t:
+        raise InputError(src, f"{fld}.min", "values = [...] or min and max",
+                         reason="is missing")
+    lo, hi = tup(t["min"], "min"), tup(t["max"], "max")
+    for a, what in ((lo, "min"), (hi, "max")):
+        if not all(isinstance(x, int | float) and not isinstance(x, bool) and math.isfinite(x)
+                   for x in a):
+            raise InputError(src, f"{fld}.{what}", "finite numbers", got=list(a))
+    n = _num(t, "n", src, fld, default=0, lo=1, hi=10_000, integer=True)
+    if method == "grid" and not n:
+        raise InputError(src, f"{fld}.n", "an integer >= 1 (grid points on [min, max])",
+                         reason="is missing")
+    return Parameter(name, tuple(paths), low=tuple(map(float, lo)), high=tuple(map(float, hi)),
+                     n=n)
+
+
+def _analyses(t: dict, src: str, base_dir: Path) -> Analyses:
+    from shaftfe.fatigue.kernels import EQUIVALENT_STRESSES, MEAN_STRESS_THEORIES
+    from shaftfe.solid.levels import LEVEL_NAMES
+    from shaftfe.static import MODELS
+    _keys(t, set(ANALYSES), src, "analyses")
+    kw: dict[str, Any] = {}
+
+    def sub(name: str, allowed: set) -> dict | None:
+        v = t.get(name, False)
+        if v is False:
+            return None
+        if v is True:
+            return {}
+        return _keys(v, allowed, src, f"analyses.{name}")
+    if (b := sub("balance", {"engine", "X_percent", "rpm"})) is not None:
+        kw["engine"] = _str(b, "engine", src, "analyses.balance", "vm450")
+        kw["X_percent"] = _num(b, "X_percent", src, "analyses.balance", None, lo=0, hi=200)
+        kw["engine_rpm"] = _num(b, "rpm", src, "analyses.balance", None, lo=1, hi=20_000)
+    kw["beam"] = sub("beam", set()) is not None if "beam" in t else True
+    if (s := sub("static", {"model", "level", "spin_softening"})) is not None:
+        kw.update(static=True, static_model=_str(s, "model", src, "analyses.static", "solid",
+                                                 MODELS),
+                  level=_str(s, "level", src, "analyses.static", "coarse", LEVEL_NAMES))
+        sp = s.get("spin_softening", True)
+        if not isinstance(sp, bool):
+            raise InputError(src, "analyses.static.spin_softening", "true | false", got=sp)
+        kw["spin_softening"] = sp
+    if (f := sub("fatigue", {"spectrum", "material", "mean_stress", "equivalent",
+                             "design_life_blocks", "speed_kmh"})) is not None:
+        if "static" not in kw:
+            raise InputError(src, "analyses.fatigue", "with [analyses.static] (fatigue scales "
+                             "the static stress field)", reason="needs the static analysis")
+        spec = _str(f, "spectrum", src, "analyses.fatigue")
+        if spec is None:
+            raise InputError(src, "analyses.fatigue.spectrum", "an rpm history file",
+                             reason="is missing")
+        p = Path(spec) if Path(spec).is_absolute() else (base_dir / spec)
+        if not p.is_file():
+            raise InputError(src, "analyses.fatigue.spectrum", "an existing file (relative to "
+                             "the study file)", got=spec)
+        kw.update(fatigue=True, spectrum=str(p.resolve()),
+                  material=_str(f, "material", src, "analyses.fatigue", "structural_steel"),
+                  mean_stress=_str(f, "mean_stress", src, "analyses.fatigue", "soderberg",
+                                   MEAN_STRESS_THEORIES),
+                  equivalent=_str(f, "equivalent", src, "analyses.fatigue", "von_mises",
+                                  EQUIVALENT_STRESSES[:2]),
+                  design_life=_num(f, "design_life_blocks", src, "analyses.fatigue", 1e7,
+                                   lo=1, hi=1e12),
+                  speed_kmh=_num(f, "speed_kmh", src, "analyses.fatigue", 70.0, lo=1, hi=400))
+    if (c := sub("campbell", {"model", "max_rpm", "step_rpm"})) is not None:
+        kw.update(campbell=True,
+                  campbell_model=_str(c, "model", src, "analyses.campbell", "beam", ("beam",)),
+                  campbell_max_rpm=_num(c, "max_rpm", src, "analyses.campbell", None, lo=100,
+                                        hi=60_000),
+                  campbell_step_rpm=_num(c, "step_rpm", src, "analyses.campbell", 250.0,
+                                         lo=1, hi=5000))
+    if (br := sub("bearings", {"rpm"})) is not None:
+        kw["bearing_rpm"] = _num(br, "rpm", src, "analyses.bearings", 7000.0, lo=1, hi=20_000)
+    return Analyses(**kw)
+
+
+def load_study(path: str | Path) -> StudySpec:
+    """Read and check a study file (InputError naming the file and the field)."""
+    p = Path(path)
+    src = str(path)
+    try:
+        raw = p.read_bytes()
+        t = tomllib.loads(raw.decode("utf-8"))
+    except FileNotFoundError:
+        raise InputError(src, "file", "an existing study file (TOML)",
+                         reason="does not exist") from None
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+        raise InputError(src, "file", "a readable TOML file",
+                         reason=f"cannot be read ({str(exc).splitlines()[0]})") from None
+    _keys(t, _TOP, src, "top level")
+    st = _keys(t.get("study", {}), {"name", "base", "description", "max_designs"}, src,
+               "study")
+    name = _str(st, "name", src, "study", p.stem)
+    base = _str(st, "base", src, "study")
+    if base is None:
+        raise InputError(src, "study.base", "a variant name or file", reason="is missing")
+    bp = p.parent / base
+    if base.endswith(".toml") and not Path(base).is_absolute() and bp.is_file():
+        base = str(bp.resolve())
+    sm = _keys(t.get("sampling", {}), {"method", "samples", "seed"}, src, "sampling")
+    method = _str(sm, "method", src, "sampling", "grid", METHODS)
+    samples = _num(sm, "samples", src, "sampling", 0, lo=1, hi=1_000_000, integer=True)
+    seed = _num(sm, "seed", src, "sampling", 0, lo=0, hi=2**32 - 1, integer=True)
+    if method == "lhs" and not samples:
+        raise InputError(src, "sampling.samples", "an integer >= 1 (the Latin hypercube's "
+                         "size)", reason="is missing")
+    plist = t.get("parameters", [])
+    if not isinstance(plist, list):
+        raise InputError(src, "parameters", "[[parameters]] tables", got=plist)
+    params = tuple(_parameter(i, _keys(q, {"name", "path", "paths", "values", "min", "max",
+                                           "n"}, src, f"parameters[{i}]"), src, method)
+                   for i, q in enumerate(plist))
+    if method == "lhs" and any(q.values for q in params):
+        raise InputError(src, "parameters", "min/max ranges for a Latin hypercube",
+                         reason="has a parameter with values")
+    designs: tuple = ()
+    if method == "list":
+        dl = t.get("designs")
+        if not (isinstance(dl, list) and dl and all(isinstance(d, dict) and d for d in dl)):
+            raise InputError(src, "designs", "[[designs]] tables of path = value (method = "
+                             "\"list\")", reason="is missing")
+        designs = tuple(tuple(sorted(_flatten(d).items())) for d in dl)
+    elif "designs" in t:
+        raise InputError(src, "designs", "only with sampling.method = \"list\"",
+                         reason="is given")
+    if method != "list" and not params:
+        raise InputError(src, "parameters", "at least one [[parameters]] table",
+                         reason="is missing")
+    names = [q.name for q in params]
+    if len(set(names)) != len(names):
+        raise InputError(src, "parameters", "distinct names", got=names)
+    an = _analyses(t.get("analyses", {}), src, p.parent)
+    out = _keys(t.get("outputs", {}), {"columns", "objectives", "require"}, src, "outputs")
+    cols = out.get("columns", [])
+    if not (isinstance(cols, list) and all(isinstance(c, str) and known_column(c)
+                                           for c in cols)):
+        raise InputError(src, "outputs.columns", "a list of result columns: " + ", ".join(FIXED)
+                         + " or " + ", ".join(p + "…" for p in PREFIXES), got=cols)
+    objs = []
+    for o in out.get("objectives", []):
+        col, _, sense = str(o).partition(":")
+        if sense not in ("min", "max") or not known_column(col):
+            raise InputError(src, "outputs.objectives", "\"column:min\" or \"column:max\" on a "
+                             "result column, e.g. \"engine_max_F_N:min\"", got=o)
+        objs.append((col, sense))
+    reqs = out.get("require", [])
+    if not isinstance(reqs, list):
+        raise InputError(src, "outputs.require", "a list of \"column >= number\"", got=reqs)
+    reqs = tuple(parse_requirement(r, src) for r in reqs)
+    maxd = _num(st, "max_designs", src, "study", MAX_DESIGNS_DEFAULT, lo=1, hi=10_000_000,
+                integer=True)
+    digest = hashlib.sha256(json.dumps(t, sort_keys=True, default=str).encode()).hexdigest()
+    return StudySpec(path=src, name=name, base=base, description=st.get("description", ""),
+                     method=method, parameters=params, samples=samples, seed=seed,
+                     designs=designs, analyses=an, columns=tuple(cols),
+                     objectives=tuple(objs), requirements=reqs, max_designs=maxd, digest=digest)
+
+
+def _flatten(d: dict, prefix: str = "") -> dict:
+    """A [[designs]] table: quoted dotted keys ("a.b" = 1) or nested tables (a.b = 1)."""
+    out = {}
+    for k, v in d.items():
+        key = f"{prefix}{k}"
+        if isinstance(v, dict):
+            out.update(_flatten(v, key + "."))
+        else:
+            out[key] = v
+    return out
+
+
+def check_designs(spec: StudySpec, designs, *, yes: bool = False) -> None:
+    """Bad input before anything runs: too many designs without ``yes``, a path the base
+    variant does not have (nearest names listed), a value of the wrong kind or outside its
+    key's own range (``shaftfe.model.fields.key_range``). InputError naming the study file."""
+    import copy
+
+    from shaftfe.model import overrides as ov
+    from shaftfe.model.fields import is_num, key_range
+    from shaftfe.model.loader import _resolve, resolved_dict
+    n = len(designs)
+    if n > spec.max_designs and not yes:
+        raise InputError(spec.path, "sampling", f"at most {spec.max_designs} designs "
+                         "(study.max_designs) without --yes", got=n,
+                         reason="asks for more designs")
+    merged = resolved_dict(_resolve(spec.base))
+    seen: set[str] = set()
+    for d in designs:
+        for path, value in d.overrides:
+            where = f"parameter {path}"
+            if path not in seen:
+                seen.add(path)
+                try:
+                    ov.apply(copy.deepcopy(merged), ov.normalise({path: value}))
+                except InputError as exc:
+                    raise InputError(spec.path, where, exc.allowed, reason=(
+                        f"does not fit the base variant ({exc.field} = {exc.got!r})")) from None
+            rng = key_range(path)
+            if rng is not None and is_num(value):
+                lo, hi, unit = rng
+                if not (math.isfinite(value) and lo <= value <= hi):
+                    raise InputError(spec.path, where, f"in [{lo:g}, {hi:g}] {unit} (the "
+                                     "key's range, docs/VARIANTS.md)", got=value)

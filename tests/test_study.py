@@ -1,0 +1,341 @@
+"""``shaftfe study``: the study file, the derived designs, the Dask runner (resume, failures,
+retry, a real scheduler and workers), the result tables and the bad-input contract."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from shaftfe.cli import main
+from shaftfe.errors import InputError
+
+ROOT = Path(__file__).resolve().parents[1]
+BEAM_STUDY = """
+[study]
+name = "t"
+base = "x2_57"
+[sampling]
+method = "grid"
+[[parameters]]
+path = "segments.collar.fillet_mm"
+values = [0.4, 0.5, 0.6, 0.8]
+[[parameters]]
+path = "bearing_types.zkl_3203.K_N_per_mm"
+values = [[[2.0e4, 0.0], [0.0, 2.0e4]], [[5.0e4, 0.0], [0.0, 5.0e4]]]
+[analyses]
+beam = true
+campbell = { step_rpm = 2000 }
+"""
+
+
+def write(tmp_path, text=BEAM_STUDY, name="s.toml") -> Path:
+    p = tmp_path / name
+    p.write_text(text)
+    return p
+
+
+def run_cli(args, capsys):
+    rc = main(args)
+    out = capsys.readouterr()
+    return rc, out.out, out.err
+
+
+# --------------------------------------------------------------------------- the file
+
+def test_grid_list_lhs(tmp_path):
+    from shaftfe.study.sampling import count, designs
+    from shaftfe.study.spec import load_study
+    s = load_study(write(tmp_path))
+    ds = designs(s)
+    assert count(s) == len(ds) == 8
+    assert ds[0].overrides == (("segments.collar.fillet_mm", 0.4),
+                               ("bearing_types.zkl_3203.K_N_per_mm", [[2.0e4, 0.0],
+                                                                      [0.0, 2.0e4]]))
+    assert ds[1].overrides[0][1] == 0.4 and ds[2].overrides[0][1] == 0.5   # first slowest
+    lhs = BEAM_STUDY.replace('method = "grid"', 'method = "lhs"\nsamples = 5\nseed = 3') \
+        .replace("values = [0.4, 0.5, 0.6, 0.8]", "min = 0.3\nmax = 0.6") \
+        .replace("values = [[[2.0e4, 0.0], [0.0, 2.0e4]], [[5.0e4, 0.0], [0.0, 5.0e4]]]",
+                 'path = "materials.14220.E_MPa"\nmin = 2.0e5\nmax = 2.1e5') \
+        .replace('path = "bearing_types.zkl_3203.K_N_per_mm"\n', "")
+    s = load_study(write(tmp_path, lhs, "l.toml"))
+    ds = designs(s)
+    assert len(ds) == 5
+    assert all(0.3 <= d.overrides[0][1] <= 0.6 for d in ds)
+    lst = BEAM_STUDY.split("[[parameters]]")[0].replace('"grid"', '"list"') + """
+[[designs]]
+"segments.collar.fillet_mm" = 0.5
+[[designs]]
+segments.collar.fillet_mm = 0.45
+[analyses]
+beam = true
+"""
+    s = load_study(write(tmp_path, lst, "list.toml"))
+    assert [d.overrides for d in designs(s)] == [(("segments.collar.fillet_mm", 0.5),),
+                                                 (("segments.collar.fillet_mm", 0.45),)]
+
+
+def test_linked_parameter_moves_paths_together(tmp_path):
+    from shaftfe.study.sampling import designs
+    from shaftfe.study.spec import load_study
+    text = BEAM_STUDY.split("[[parameters]]")[0] + """
+[[parameters]]
+paths = ["attachments.counterweight_1.shape.outer_radius_mm",
+         "attachments.counterweight_2.shape.outer_radius_mm"]
+min = [30.0, 36.0]
+max = [34.0, 40.0]
+n = 3
+"""
+    ds = designs(load_study(write(tmp_path, text)))
+    assert [d.overrides[0][1] for d in ds] == [30.0, 32.0, 34.0]      # exact: 30 + k·2
+    assert [d.overrides[1][1] for d in ds] == [36.0, 38.0, 40.0]
+
+
+def test_shape_overrides_derive_mass_and_balance():
+    """Consistency: the derived [balance] statement equals the loaded design's own mass
+    properties (to the 9 digits the derivation writes), and the file's own shape reproduces
+    the file's X2 within the loader's tolerance."""
+    from shaftfe.model.derive import design_overrides
+    from shaftfe.model.loader import load_variant
+    from shaftfe.model.mass import balance_ratio, mass_properties
+    o = design_overrides("x2_57", {"attachments.counterweight_2.shape.outer_radius_mm": 37.0})
+    assert o["attachments.counterweight_2.mass_kg"] < 0.24               # a smaller crescent
+    v = load_variant("x2_57", o)
+    mp = mass_properties(v)
+    assert mp.mass_kg == pytest.approx(o["balance.mass_kg"], rel=1e-8)   # 9 digits written
+    assert 100 * balance_ratio(mp, v.balance_target) == pytest.approx(
+        o["balance.X2_percent"], rel=1e-8)
+    assert v.provenance.source["attachments.counterweight_2.mass_kg"] == "set"
+    same = design_overrides("x2_57", {"attachments.counterweight_2.shape.outer_radius_mm":
+                                      39.902})
+    # the file's X2 (seed: 57 %) from the parts: 57.32 %, within the loader's 2.5 points
+    assert abs(same["balance.X2_percent"] - 57.0) < 2.5
+    with pytest.raises(InputError, match="follows from the shape"):
+        design_overrides("x2_57", {"attachments.counterweight_2.shape.outer_radius_mm": 37.0,
+                                   "attachments.counterweight_2.mass_kg": 0.2})
+
+
+# --------------------------------------------------------------------------- bad input
+
+@pytest.mark.parametrize("edit,match", [
+    (("segments.collar.fillet_mm", "segments.colar.fillet_mm"), "nearest: collar"),
+    (("values = [0.4, 0.5, 0.6, 0.8]", "values = [0.4, -1.0]"), r"in \[0, 150\] mm"),
+    (("bearing_types.zkl_3203.K_N_per_mm", "materials.14220.E_MPa"), "a number"),
+    (('method = "grid"', 'method = "grd"'), "grid | list | lhs"),
+    (("beam = true", "beem = true"), "nearest|one of"),
+])
+def test_bad_study_is_one_line_exit_2(tmp_path, capsys, edit, match):
+    p = write(tmp_path, BEAM_STUDY.replace(*edit))
+    rc, _out, err = run_cli(["study", "run", str(p), "--out", str(tmp_path / "o")], capsys)
+    assert rc == 2 and err.count("\n") == 1 and "Traceback" not in err
+    assert str(p) in err
+    import re
+    assert re.search(match, err), err
+    assert not (tmp_path / "o").exists()                   # nothing written
+
+
+def test_too_many_designs_needs_yes(tmp_path, capsys):
+    p = write(tmp_path, BEAM_STUDY.replace('name = "t"', 'name = "t"\nmax_designs = 5'))
+    rc, _, err = run_cli(["study", "run", str(p), "--out", str(tmp_path / "o")], capsys)
+    assert rc == 2 and "at most 5 designs" in err and "--yes" in err
+
+
+def test_unreachable_scheduler_is_one_line(tmp_path, capsys):
+    with socket.socket() as s:                  # a port nobody listens on
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    p = write(tmp_path)
+    t0 = time.perf_counter()
+    rc, _, err = run_cli(["study", "run", str(p), "--out", str(tmp_path / "o"),
+                          "--scheduler", f"tcp://127.0.0.1:{port}"], capsys)
+    # a hang guard, not a speed test: the connect timeout is 10 s (runner.CONNECT_TIMEOUT_S)
+    assert time.perf_counter() - t0 < 60
+    assert rc == 2 and err.count("\n") == 1 and "not reachable within 10 s" in err
+
+
+# --------------------------------------------------------------------------- the runner
+
+@pytest.fixture(scope="module")
+def beam_run(tmp_path_factory):
+    """One local-cluster run of the beam study (2 workers), shared by the tests below."""
+    from shaftfe.study.runner import run_study
+    from shaftfe.study.spec import load_study
+    d = tmp_path_factory.mktemp("study")
+    spec = load_study(write(d))
+    return spec, run_study(spec, d / "out", workers=2, progress=False)
+
+
+def test_rows_tables_and_refusals(beam_run):
+    import pandas as pd
+    _spec, run = beam_run
+    assert run.computed == 8 and run.reused == 0 and run.workers == 2
+    df = pd.read_parquet(run.out_dir / "results.parquet")
+    csv = pd.read_csv(run.out_dir / "results.csv")
+    assert list(df["design"]) == list(range(8)) and list(csv["design"]) == list(range(8))
+    bad = df[df["segments.collar.fillet_mm"] == 0.8]
+    assert set(bad["status"]) == {"refused"}                 # ISO 582: r_s min 0.6 mm
+    assert all("ISO 582" in e for e in bad["error"])
+    ok = df[df["status"] == "ok"]
+    assert len(ok) == 6
+    for c in ("mass_kg", "X2_percent", "engine_max_F_N", "engine_rms_F_N", "L10h_min_h",
+              "critical_rpm", "critical_margin_percent", "seconds"):
+        assert ok[c].notna().all(), c
+    # a softer bearing lowers the first critical speed (Rayleigh: ω² ∝ stiffness)
+    k = ok["bearing_types.zkl_3203.K_N_per_mm"].map(lambda m: m[0][0])
+    soft = ok[k == 2e4]["critical_rpm"].to_numpy()
+    stiff = ok[k == 5e4]["critical_rpm"].to_numpy()
+    assert (soft < stiff).all()
+
+
+def test_row_equals_a_direct_evaluation(beam_run):
+    """The Dask path adds nothing: a design's row is the API's evaluation of it, number for
+    number (same code, same inputs: exact)."""
+    from shaftfe.study.evaluate import evaluate_design
+    spec, run = beam_run
+    row = next(r for r in run.rows if r["design"] == 3)
+    direct = evaluate_design(spec.base, dict(spec_designs(spec)[3].overrides), spec.analyses)
+    for k, v in direct.items():
+        if k != "seconds":
+            assert row[k] == v, k
+
+
+def spec_designs(spec):
+    from shaftfe.study.sampling import designs
+    return designs(spec)
+
+
+def test_resume_computes_only_what_is_missing(beam_run):
+    from shaftfe.study.runner import run_study
+    spec, run = beam_run
+    again = run_study(spec, run.out_dir, workers=1, progress=False)
+    assert again.computed == 0 and again.reused == 8            # nothing recomputed
+    files = sorted((run.out_dir / "designs").glob("*.json"))
+    before = {f.name: f.read_text() for f in files}
+    for f in files[:3]:                                          # an interrupted run
+        f.unlink()
+    third = run_study(spec, run.out_dir, workers=1, progress=False)
+    assert third.computed == 3 and third.reused == 5
+    untouched = {f.name: f.read_text() for f in files[3:]}
+    assert all(before[k] == v for k, v in untouched.items())    # finished rows not rewritten
+
+
+def test_directory_refuses_another_study(beam_run, tmp_path):
+    from shaftfe.study.runner import run_study
+    from shaftfe.study.spec import load_study
+    _, run = beam_run
+    other = load_study(write(tmp_path, BEAM_STUDY.replace("0.8]", "0.7]")))
+    with pytest.raises(InputError, match="different study file"):
+        run_study(other, run.out_dir, workers=1, progress=False)
+
+
+def test_report_page(beam_run):
+    from shaftfe.study.report import write_report
+    _, run = beam_run
+    page = write_report(run.out_dir).read_text()
+    assert "Recommendation" in page and "Sensitivities" in page
+    assert "ISO 582" in page and "data:image/png;base64," in page
+
+
+def test_dead_worker_is_retried_once_then_recorded(tmp_path):
+    """The retry logic with a stand-in for distributed's futures: a task that dies is
+    resubmitted design by design once; a design whose retry dies too is recorded failed."""
+    from shaftfe.study import runner
+    from shaftfe.study.sampling import designs
+    from shaftfe.study.spec import load_study
+    spec = load_study(write(tmp_path))
+    ds = designs(spec)[:3]
+    todo = [(f"k{i}", d) for i, d in enumerate(ds)]
+
+    class Fut:
+        status = "finished"
+
+        def __init__(self, items, dies):
+            self.items, self.dies = items, dies
+
+        def result(self):
+            if self.dies:
+                raise RuntimeError("KilledWorker: worker died")
+            return [(k, {"status": "ok", "error": "", "seconds": 1.0}) for k, _ in self.items]
+
+        def release(self):
+            pass
+
+    calls = []
+
+    class Client:
+        def submit(self, fn, base, items, *a, **k):
+            calls.append([key for key, _ in items])
+            # the first (3-design) task dies; on retry design k1 dies again
+            return Fut(items, dies=len(calls) == 1 or [key for key, _ in items] == ["k1"])
+
+    class Completed:
+        def __init__(self, fs):
+            self.q = list(fs)
+
+        def __iter__(self):
+            while self.q:
+                yield self.q.pop(0)
+
+        def add(self, f):
+            self.q.append(f)
+
+    ddir = tmp_path / "designs"
+    ddir.mkdir()
+    sharing = {"meshes_built": 0, "factor_made": 0, "factor_reused": 0}
+    n, _ = runner._execute(Client(), spec, todo, 1, ddir, runner.Bar(3, 0, enabled=False),
+                           sharing, as_completed=Completed)
+    assert calls == [["k0", "k1", "k2"], ["k0"], ["k1"], ["k2"]]      # once, one by one
+    rows = {k: json.loads((ddir / f"{k}.json").read_text()) for k in ("k0", "k1", "k2")}
+    assert rows["k0"]["status"] == rows["k2"]["status"] == "ok"
+    assert rows["k1"]["status"] == "failed" and "twice" in rows["k1"]["error"]
+    assert n == 3
+
+
+@pytest.mark.slow
+def test_real_scheduler_and_two_workers(tmp_path):
+    """`dask scheduler` and two `dask worker` processes on localhost, the study through the
+    CLI's --scheduler: every design computed by those workers."""
+    dask = shutil.which("dask", path=os.path.dirname(sys.executable))
+    assert dask, "the dask CLI comes with dask[distributed]"
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    addr = f"tcp://127.0.0.1:{port}"
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    log = open(tmp_path / "cluster.log", "w")
+    procs = [subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", str(port),
+                               "--no-dashboard"], stdout=log, stderr=log, env=env)]
+    try:
+        for i in range(2):
+            procs.append(subprocess.Popen(
+                [dask, "worker", addr, "--nthreads", "1", "--nworkers", "1", "--name",
+                 f"w{i}", "--no-dashboard", "--memory-limit", "1GiB"],
+                stdout=log, stderr=log, env=env))
+        from distributed import Client
+        with Client(addr, timeout="30s") as c:
+            c.wait_for_workers(2, timeout=60)
+        p = write(tmp_path)
+        out = tmp_path / "o"
+        r = subprocess.run([sys.executable, "-m", "shaftfe", "study", "run", str(p), "--out",
+                            str(out), "--scheduler", addr], capture_output=True, text=True,
+                           env=env, timeout=600)
+        assert r.returncode == 0, r.stderr
+        run = json.loads((out / "run.json").read_text())
+        assert run["workers"] == 2 and run["computed"] == 8 and run["scheduler"] == addr
+        assert (out / "results.parquet").is_file() and (out / "index.html").is_file()
+    finally:
+        for pr in reversed(procs):
+            pr.terminate()
+        for pr in procs:
+            try:
+                pr.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                pr.kill()
+        log.close()
