@@ -339,3 +339,18 @@ def test_real_scheduler_and_two_workers(tmp_path):
             except subprocess.TimeoutExpired:
                 pr.kill()
         log.close()
+
+
+def test_docs_quote_the_code():
+    """docs/STUDIES.md states the defaults the code has."""
+    from shaftfe.study.evaluate import CAMPBELL_TOP_RPM
+    from shaftfe.study.runner import CONNECT_TIMEOUT_S, MEMORY_PER_WORKER, MiB
+    from shaftfe.study.spec import MAX_DESIGNS_DEFAULT, Analyses
+    text = (ROOT / "docs" / "STUDIES.md").read_text()
+    assert f"(default {MAX_DESIGNS_DEFAULT})" in text
+    assert f"max_rpm (default {CAMPBELL_TOP_RPM:,.0f}".replace(",", " ") in text
+    assert f"step_rpm (default {Analyses().campbell_step_rpm:g})" in text
+    assert f"within {CONNECT_TIMEOUT_S} s" in text
+    gib = {k: v / MiB for k, v in MEMORY_PER_WORKER.items()}
+    assert (f"beam {gib['beam']:.0f} MiB, coarse 3D {gib['coarse'] / 1024:.1f} GiB, default "
+            f"{gib['default'] / 1024:.0f} GiB, fine {gib['fine'] / 1024:.0f} GiB") in text

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import sys
 
+MAX_WITH_YES = 10_000_000          # designs in one study even with --yes (the table's size)
+
 
 def register(sub) -> None:
     p = sub.add_parser("study", help="design studies: sweep variant keys on Dask (run, report)",
@@ -52,12 +54,15 @@ def run_run(args) -> int:
         raise InputError("command line", "--workers with --scheduler", "one of them (an "
                          "existing cluster has its own workers)", reason="is given")
     spec = load_study(args.study)
-    designs = sampling.designs(spec) if sampling.count(spec) <= max(
-        spec.max_designs, 10_000_000 if args.yes else 0) else None
-    if designs is None:
+    n = sampling.count(spec)
+    if n > MAX_WITH_YES:
+        raise InputError(spec.path, "sampling", f"at most {MAX_WITH_YES:,} designs in one "
+                         "study (split it)", got=n, reason="asks for more designs")
+    if n > spec.max_designs and not args.yes:
         raise InputError(spec.path, "sampling", f"at most {spec.max_designs} designs "
-                         "(study.max_designs) without --yes", got=sampling.count(spec),
+                         "(study.max_designs) without --yes", got=n,
                          reason="asks for more designs")
+    designs = sampling.designs(spec)
     check_designs(spec, designs, yes=args.yes)
     out = Path(args.out) if args.out else Path("reports") / "studies" / spec.name
     import signal

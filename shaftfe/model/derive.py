@@ -3,7 +3,7 @@
 * An attachment whose ``shape.*`` is overridden gets ``mass_kg``, ``eccentricity_mm`` and both
   inertias from that shape (``shaftfe.model.shapes``), with its material's density and, for a
   hub ring, the radius of the seat it is keyed on.
-* When a part's mass or eccentricity changed (so derived or set), the variant's ``[balance]``
+* When anything is overridden, the variant's ``[balance]``
   statement (mass, γ2, x_T, X2) becomes what the parts give: the loader's consistency check
   (2 %, 2.5 points) then holds by construction. The crank's m_pos and R stay as stated.
 
@@ -17,7 +17,6 @@ from typing import Any
 
 from shaftfe.errors import InputError
 
-_MASS_KEYS = ("mass_kg", "eccentricity_mm")
 BALANCE_KEYS = ("mass_kg", "gamma2_mm", "x_T_mm", "X2_percent")
 
 
@@ -56,10 +55,10 @@ def design_overrides(base, overrides) -> dict[str, Any]:
                 raise InputError(where, path, "either the shape or the value",
                                  reason="is set too but follows from the shape")
             out[path] = _digits(val)
-    moved = shaped or any(p.startswith(("attachments.", "parts.")) and p.endswith(_MASS_KEYS)
-                          for p in out)
+    # any change can move the balancer's mass properties (a part's mass, eccentricity or
+    # angle, a segment's size, a density): the statement follows unless it is set itself
     bal = merged.get("balance")
-    if moved and isinstance(bal, dict) and not any(f"balance.{k}" in out for k in BALANCE_KEYS):
+    if out and isinstance(bal, dict) and not any(f"balance.{k}" in out for k in BALANCE_KEYS):
         v = parts_variant(base, out)
         mp = mass_properties(v)
         t = v.balance_target

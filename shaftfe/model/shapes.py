@@ -44,12 +44,19 @@ def shape_mass_properties(shape: dict, density_t_mm3: float, seat_radius_mm: flo
     if kind not in SHAPE_KINDS:
         raise InputError(where, "kind", " | ".join(SHAPE_KINDS) + " (a shape whose mass "
                          "properties shaftfe derives)", got=kind)
+    need = ["thickness_mm", "inner_radius_mm", "outer_radius_mm", "half_angle_deg"]
+    if kind == "hub_ring_plus_annular_sector":
+        need.append("hub_outer_radius_mm")
+    for k in need:
+        if not isinstance(shape.get(k), int | float) or isinstance(shape.get(k), bool):
+            raise InputError(where, k, f"a number (a {kind} needs " + ", ".join(need) + ")",
+                             got=shape.get(k), reason="is missing" if k not in shape else None)
     rho = density_t_mm3 * 1e3                     # kg/mm³
     t = float(shape["thickness_mm"])
     ri, R = float(shape["inner_radius_mm"]), float(shape["outer_radius_mm"])
     alpha = float(shape["half_angle_deg"])
     if not (t > 0 and 0 <= ri < R and 0 < alpha <= 180):
-        raise InputError(where, "outer_radius_mm", "thickness > 0, inner_radius < outer_radius, "
+        raise InputError(where, "shape", "thickness > 0, inner_radius < outer_radius, "
                          "0 < half_angle <= 180 deg", got=f"t={t:g}, r={ri:g}..{R:g}, "
                          f"α={alpha:g}")
     m, me, J = _sector(rho, t, ri, R, alpha)

@@ -108,7 +108,7 @@ def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh
     m = shaft_mesh.mesh
     mat = variant.material
     t0 = time.perf_counter()
-    K = reuse.memo("K", (shaft_mesh.key, mat.E_MPa, mat.nu),
+    K = reuse.memo("K", (reuse.mesh_digest(m), mat.E_MPa, mat.nu),
                    lambda: fem.elasticity_stiffness(m, mat.E_MPa, mat.nu))
     couplings = []
     for b in variant.bearings:

@@ -144,7 +144,7 @@ def solve_model(model: StaticModel, rhs: np.ndarray | None = None, *,
         raise SolverError("internal: the pin dofs do not remove the rigid modes")
     t0 = time.perf_counter()
     mat = model.variant.material
-    fac = reuse.memo("factor", (model.shaft_mesh.key, mat.E_MPa, mat.nu, model.options.solver),
+    fac = reuse.memo("factor", (reuse.mesh_digest(m), mat.E_MPa, mat.nu, model.options.solver),
                      lambda: solvers.factorize(K, model.options.solver, rigid_modes=_modes(m),
                                                diag_add=(pins, np.full(6, kp))))  # B = K + kp Σ eeᵀ
     t_fac = time.perf_counter() - t0

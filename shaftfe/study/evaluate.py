@@ -39,8 +39,9 @@ CAMPBELL_TOP_RPM = 60_000.0
 
 
 def _fin(v) -> float | None:
+    """A number for the table: ±inf kept (an infinite life is a result), NaN → None."""
     v = float(v)
-    return v if math.isfinite(v) else None
+    return None if math.isnan(v) else v
 
 
 @functools.lru_cache(maxsize=4)

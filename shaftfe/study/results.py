@@ -39,7 +39,7 @@ def row_with_inputs(design, key: str, row: dict) -> dict:
     out: dict[str, Any] = {"design": design.number, "key": key, "status": row["status"]}
     for path, value in design.overrides:
         out[path] = value
-    out.update({k: v for k, v in row.items() if k not in ("status", *LAST)})
+    out.update({k: v for k, v in row.items() if k not in ("status", "cluster_failure", *LAST)})
     out.update({k: row.get(k) for k in LAST})
     return out
 
@@ -59,7 +59,9 @@ def write_tables(out: Path, spec: StudySpec, rows) -> None:
     if spec.columns:
         inputs = [c for c in df.columns if c not in FIXED and not c.startswith(PREFIXES)
                   and c not in LAST]
-        keep = inputs + [c for c in spec.columns if c in df.columns] + list(LAST)
+        wanted = [*spec.columns, *(c for c, _ in default_objectives(spec)),
+                  *(c for c, _, _ in spec.requirements)]
+        keep = inputs + [c for c in wanted if c in df.columns] + list(LAST)
         df = df[list(dict.fromkeys(keep))]
     # a column that mixes numbers and None (a failed design) is a float column with NaN
     for c in df.columns:
@@ -82,7 +84,8 @@ def read_table(out_dir):
 
 
 def _finite(v) -> bool:
-    return v is not None and isinstance(v, int | float) and math.isfinite(v)
+    """A number that ranks (±inf does: an infinite life is the best life); not None / NaN."""
+    return v is not None and isinstance(v, int | float) and not math.isnan(v)
 
 
 def non_dominated(df, objectives) -> list[bool]:
@@ -142,11 +145,10 @@ def sensitivities(df, parameters, outputs) -> dict[str, dict[str, float | None]]
         for p in parameters:
             if p not in ok.columns or ok[p].dtype.kind not in "iuf":   # numbers only
                 continue
-            x = ok[p].astype(float).rank()
-            y = ok[o].astype(float).rank()
-            good = x.notna() & y.notna()
-            if good.sum() < 3 or x[good].std() == 0 or y[good].std() == 0:
+            xy = ok[[p, o]].astype(float).dropna()          # pairs first, then ranks
+            x, y = xy[p].rank(), xy[o].rank()
+            if len(xy) < 3 or x.std() == 0 or y.std() == 0:
                 res[o][p] = None
             else:
-                res[o][p] = float(x[good].corr(y[good]))
+                res[o][p] = float(x.corr(y))
     return res

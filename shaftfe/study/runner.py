@@ -13,8 +13,9 @@
   mesh is built once (a task of its own; the mesh object goes to the group's tasks), and each
   worker process keeps its last stiffness matrix and factorisation
   (``shaftfe.fe.reuse.keep``): a design of the same solid only adds its loads, springs and
-  spin softening (low-rank terms). Groups are scheduled one after the other (task priority),
-  so a worker changes solid about once per group. Each 3D design is a task (its row saved as
+  spin softening (low-rank terms). The group-ordered designs run in one lane per worker
+  (each task after the previous one of its lane), so a worker changes solid only where its
+  lane crosses from one group to the next. Each 3D design is a task (its row saved as
   soon as it is done); beam-level designs go in chunks (``BEAM_CHUNK``) to keep the
   scheduling overhead per design small.
 * **Resume.** Each design's row is written to ``designs/<key>.json`` as soon as it arrives;
@@ -81,7 +82,8 @@ def source_fingerprint() -> str:
     h = hashlib.sha256()
     for p in sorted(root.rglob("*.py")):
         rel = p.relative_to(root).as_posix()
-        if rel.startswith(("commands/", "report/", "io/")) or rel in _NOT_NUMBERS:
+        if (rel.startswith(("commands/", "report/", "io/")) and rel != "report/seed.py") \
+                or rel in _NOT_NUMBERS:
             continue
         h.update(rel.encode())
         h.update(p.read_bytes())
@@ -105,6 +107,23 @@ def _json_default(o):
     if isinstance(o, float) and not math.isfinite(o):
         return None
     return str(o)
+
+
+def _finished(path: Path) -> bool:
+    """A design row on disk that a resumed run keeps (not a cluster failure)."""
+    if not path.is_file():
+        return False
+    try:
+        return not json.loads(path.read_text()).get("cluster_failure", False)
+    except (OSError, ValueError):
+        return False
+
+
+def _cluster_error(exc: BaseException) -> bool:
+    """A task lost to the cluster (a dead worker, a cancelled future, a lost connection)."""
+    names = {t.__name__ for t in type(exc).__mro__}
+    return bool(names & {"KilledWorker", "CancelledError", "FutureCancelledError",
+                         "CommClosedError", "OSError", "TimeoutError"})
 
 
 def check_directory(out_dir: Path, spec: StudySpec) -> None:
@@ -136,17 +155,30 @@ def build_group_mesh(base: str, overrides, level: str):
     return build_mesh(v, level, 2, hot_axes=mesh_hot_axes(v))
 
 
-def evaluate_task(base: str, items, analyses, shaft_mesh=None) -> list[tuple[str, dict]]:
+def evaluate_task(base: str, items, analyses, shaft_mesh=None,
+                  after=None) -> list[tuple[str, dict]]:
     """Evaluate (key, overrides) items in order. The worker process keeps its last stiffness
     matrix and factorisation (``reuse.keep``), so consecutive designs of one solid share them
-    whichever task they arrive in; the counts this task added ride on its first row."""
+    whichever task they arrive in; the counts this task added ride on its first row.
+    ``after``: the previous task of the same lane (only orders the two)."""
+    from contextlib import nullcontext
+
     from shaftfe.fe import reuse
     from shaftfe.study.evaluate import evaluate_design
-    stats = reuse.keep()
-    made0, reused0 = dict(stats["made"]), dict(stats["reused"])
+    try:
+        from distributed import get_worker
+        single = get_worker().state.nthreads == 1
+    except (ImportError, ValueError, AttributeError):
+        single = False
+    # a worker with several threads runs designs side by side: no shared factorisation there
+    # (one solver handle is not thread-safe), only within this task
+    ctx = nullcontext(reuse.keep()) if single else reuse.shared()
     out = []
-    for key, overrides in items:
-        out.append((key, evaluate_design(base, overrides, analyses, shaft_mesh=shaft_mesh)))
+    with ctx as stats:
+        made0, reused0 = dict(stats["made"]), dict(stats["reused"])
+        for key, overrides in items:
+            out.append((key, evaluate_design(base, overrides, analyses,
+                                             shaft_mesh=shaft_mesh)))
     if out:
         out[0][1]["_sharing"] = {
             "made": {k: v - made0.get(k, 0) for k, v in stats["made"].items()},
@@ -211,7 +243,12 @@ def connect(scheduler: str | None, workers: int | None, spec: StudySpec):
                              f"({type(exc).__name__})") from None
         n = len(client.scheduler_info().get("workers", {}))
         if n == 0:
-            client.wait_for_workers(1, timeout=60)
+            try:
+                client.wait_for_workers(1, timeout=60)
+            except TimeoutError:
+                client.close()
+                raise InputError("--scheduler", "address", "a scheduler with workers",
+                                 got=scheduler, reason="has no workers after 60 s") from None
             n = len(client.scheduler_info().get("workers", {}))
         return client, None, n
     n_auto, mem = default_workers(spec)
@@ -297,7 +334,7 @@ def run_study(spec: StudySpec, out_dir, *, workers: int | None = None,
                                      "requirements": [list(r) for r in spec.requirements],
                                      "analyses": spec.analyses.options(),
                                      "format": STUDY_FORMAT})
-    done = {k for k in keys if (ddir / f"{k}.json").is_file()}
+    done = {k for k in keys if _finished(ddir / f"{k}.json")}
     todo = [(k, d) for k, d in zip(keys, designs, strict=True) if k not in done]
     todo = list({k: (k, d) for k, d in todo}.values())          # equal designs once
     computed = compute_s = 0
@@ -338,19 +375,26 @@ def _execute(client, spec, todo, n_workers, ddir: Path, bar: Bar, sharing: dict,
     tasks = plan_tasks(spec, todo)
     meshes: dict = {}
     futures = {}
-    for g, items in tasks:
+    # 3D designs run in one lane per worker: contiguous runs of the group-ordered tasks, each
+    # task after the previous one of its lane (a dependency, so dask keeps a lane on one
+    # worker, in order): a worker changes solid only where its lane crosses a group boundary,
+    # and keeps reusing its factorisation in between
+    n_lanes = max(1, min(n_workers, len(tasks))) if spec.analyses.static else len(tasks)
+    bounds = [round(i * len(tasks) / n_lanes) for i in range(n_lanes + 1)]
+    lane_start = set(bounds[:-1])
+    prev = None
+    for i, (g, items) in enumerate(tasks):
         mesh_f = None
         if g is not None:
             if g not in meshes:
                 meshes[g] = client.submit(build_group_mesh, spec.base, dict(items[0][1]),
-                                          spec.analyses.level, pure=False,
-                                          priority=len(tasks) - len(meshes))
+                                          spec.analyses.level, pure=False)
                 sharing["meshes_built"] += 1
             mesh_f = meshes[g]
-        # one group after the other (dask runs higher priorities first), so that a worker
-        # meets few solids and keeps reusing its factorisation
-        f = client.submit(evaluate_task, spec.base, items, spec.analyses, mesh_f, pure=False,
-                          priority=-len(meshes))
+        after = None if (i in lane_start or not spec.analyses.static) else prev
+        f = client.submit(evaluate_task, spec.base, items, spec.analyses, mesh_f, after,
+                          pure=False)
+        prev = f
         futures[f] = (items, mesh_f, 0)
     computed, compute_s = 0, 0.0
     ac = as_completed(list(futures))
@@ -363,14 +407,17 @@ def _execute(client, spec, todo, n_workers, ddir: Path, bar: Bar, sharing: dict,
             if tries == 0 and not mesh_failed:   # raised: once more, one design per task
                 for it in items:
                     g = client.submit(evaluate_task, spec.base, [it], spec.analyses, mesh_f,
-                                      pure=False)
+                                      None, pure=False)
                     futures[g] = ([it], mesh_f, 1)
                     ac.add(g)
                 continue
             msg = " ".join(str(exc).split())[:300] or type(exc).__name__
             why = (f"the mesh could not be built: {msg}" if mesh_failed else
                    f"{type(exc).__name__} twice (the worker died or the task raised): {msg}")
-            pairs = [(k, {"status": "failed", "error": why, "seconds": 0.0})
+            # recorded, and computed again by the next run (the cluster failed, not the design;
+            # a mesh that raised is the design's own failure)
+            pairs = [(k, {"status": "failed", "error": why, "seconds": 0.0,
+                          "cluster_failure": not mesh_failed or _cluster_error(exc)})
                      for k, _ in items]
         for k, row in pairs:
             sh = row.pop("_sharing", None)

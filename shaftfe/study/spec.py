@@ -44,6 +44,17 @@ OPS = {">=": operator.ge, "<=": operator.le, ">": operator.gt, "<": operator.lt}
 _REQ = re.compile(r"^\s*([A-Za-z0-9_:.\-]+)\s*(>=|<=|>|<)\s*([-+0-9.eE]+)\s*$")
 
 
+TEXT_COLUMNS = ("mesh_key", "fatigue_hot_spot", "variant_hash")
+_NEEDS = {"life_": "fatigue", "fatigue_": "fatigue", "stress_": "static", "static_": "static",
+          "n_dofs": "static", "critical_": "campbell", "campbell_": "campbell",
+          "beam_": "beam"}
+
+
+def _needs(col: str) -> str | None:
+    """The analysis that produces a result column (None: always there)."""
+    return next((a for p, a in _NEEDS.items() if col.startswith(p)), None)
+
+
 def known_column(name: str) -> bool:
     return name in FIXED or name.startswith(PREFIXES)
 
@@ -91,7 +102,7 @@ class Analyses:
     engine_rpm: float | None = None        # None: the engine file's rpm
     beam: bool = True
     static: bool = False
-    static_model: str = "solid"            # solid | axisymmetric
+    static_model: str = "solid"            # solid (the 3D model)
     level: str = "coarse"
     spin_softening: bool = True
     fatigue: bool = False
@@ -109,10 +120,19 @@ class Analyses:
 
     def options(self) -> dict:
         """The options that change a design's numbers (its cache key), paths as content."""
+        from shaftfe.balance.engines import resolve_engine_path
+        from shaftfe.util.paths import SN_FILE
+
+        def digest(p) -> str:
+            p = Path(p)
+            return hashlib.sha256(p.read_bytes()).hexdigest() if p.is_file() else ""
         d = {k: getattr(self, k) for k in self.__dataclass_fields__}
-        if self.spectrum:
-            p = Path(self.spectrum)
-            d["spectrum"] = hashlib.sha256(p.read_bytes()).hexdigest() if p.is_file() else ""
+        d["spectrum"] = digest(self.spectrum) if self.spectrum else ""
+        try:
+            d["engine_file"] = digest(resolve_engine_path(self.engine))
+        except InputError:
+            d["engine_file"] = ""                 # refused when a design loads it
+        d["sn_curves"] = digest(SN_FILE) if self.fatigue else ""
         return d
 
 
@@ -224,7 +244,6 @@ def _parameter(i: int, t: dict, src: str, method: str) -> Parameter:
 def _analyses(t: dict, src: str, base_dir: Path) -> Analyses:
     from shaftfe.fatigue.kernels import EQUIVALENT_STRESSES, MEAN_STRESS_THEORIES
     from shaftfe.solid.levels import LEVEL_NAMES
-    from shaftfe.static import MODELS
     _keys(t, set(ANALYSES), src, "analyses")
     kw: dict[str, Any] = {}
 
@@ -241,8 +260,10 @@ def _analyses(t: dict, src: str, base_dir: Path) -> Analyses:
         kw["engine_rpm"] = _num(b, "rpm", src, "analyses.balance", None, lo=1, hi=20_000)
     kw["beam"] = sub("beam", set()) is not None if "beam" in t else True
     if (s := sub("static", {"model", "level", "spin_softening"})) is not None:
+        # the 3D solid only: the axisymmetric path has no bearing reactions per bearing
+        # springs in 3D nor the filtered region peaks the row reports
         kw.update(static=True, static_model=_str(s, "model", src, "analyses.static", "solid",
-                                                 MODELS),
+                                                 ("solid",)),
                   level=_str(s, "level", src, "analyses.static", "coarse", LEVEL_NAMES))
         sp = s.get("spin_softening", True)
         if not isinstance(sp, bool):
@@ -299,6 +320,12 @@ def load_study(path: str | Path) -> StudySpec:
     st = _keys(t.get("study", {}), {"name", "base", "description", "max_designs"}, src,
                "study")
     name = _str(st, "name", src, "study", p.stem)
+    if not re.fullmatch(r"[A-Za-z0-9_][A-Za-z0-9_.+-]*", name):
+        raise InputError(src, "study.name", "letters, digits, _ . + - (a folder name)",
+                         got=name)
+    desc = st.get("description", "")
+    if not isinstance(desc, str):
+        raise InputError(src, "study.description", "a string", got=desc)
     base = _str(st, "base", src, "study")
     if base is None:
         raise InputError(src, "study.base", "a variant name or file", reason="is missing")
@@ -355,10 +382,18 @@ def load_study(path: str | Path) -> StudySpec:
     if not isinstance(reqs, list):
         raise InputError(src, "outputs.require", "a list of \"column >= number\"", got=reqs)
     reqs = tuple(parse_requirement(r, src) for r in reqs)
+    for col in [c for c, _ in objs] + [c for c, _, _ in reqs]:
+        need = _needs(col)
+        if col in TEXT_COLUMNS:
+            raise InputError(src, "outputs", "objectives and requirements on a numeric column",
+                             got=col)
+        if need and not getattr(an, need):
+            raise InputError(src, "outputs", f"[analyses.{need}] for the column {col}",
+                             got=col, reason="is not computed")
     maxd = _num(st, "max_designs", src, "study", MAX_DESIGNS_DEFAULT, lo=1, hi=10_000_000,
                 integer=True)
     digest = hashlib.sha256(json.dumps(t, sort_keys=True, default=str).encode()).hexdigest()
-    return StudySpec(path=src, name=name, base=base, description=st.get("description", ""),
+    return StudySpec(path=src, name=name, base=base, description=desc,
                      method=method, parameters=params, samples=samples, seed=seed,
                      designs=designs, analyses=an, columns=tuple(cols),
                      objectives=tuple(objs), requirements=reqs, max_designs=maxd, digest=digest)
@@ -391,12 +426,13 @@ def check_designs(spec: StudySpec, designs, *, yes: bool = False) -> None:
                          "(study.max_designs) without --yes", got=n,
                          reason="asks for more designs")
     merged = resolved_dict(_resolve(spec.base))
-    seen: set[str] = set()
+    seen: set[tuple[str, str]] = set()
     for d in designs:
         for path, value in d.overrides:
             where = f"parameter {path}"
-            if path not in seen:
-                seen.add(path)
+            kind = type(value).__name__ if not is_num(value) else "number"
+            if (path, kind) not in seen:                 # every kind of value once per path
+                seen.add((path, kind))
                 try:
                     ov.apply(copy.deepcopy(merged), ov.normalise({path: value}))
                 except InputError as exc:
