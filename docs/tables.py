@@ -104,15 +104,23 @@ def study_x2_tradeoff() -> str:
             ("first critical speed, beam rotor [rpm]", "critical_rpm", "{:,.0f}")]
     r1 = "attachments.counterweight_1.shape.outer_radius_mm"
     r2 = "attachments.counterweight_2.shape.outer_radius_mm"
+    from shaftfe.model.loader import _resolve, resolved_dict
+    from shaftfe.model.overrides import locate, normalise
+    merged = resolved_dict(_resolve(spec.base))
+
+    def base_value(path):
+        parent, key, _ = locate(merged, normalise({path: 0.0})[0])
+        return float(parent[key])
     out = ["| | x2_57 (the seed's choice) | recommended: design "
            f"{int(rec['design'])} | change |", "|---|---|---|---|"]
     for label, col, fmt in rows:
         if col is None and "fillet" in label:
-            a, b = 0.6, float(rec["segments.collar.fillet_mm"])
+            a, b = base_value("segments.collar.fillet_mm"), float(rec["segments.collar.fillet_mm"])
             out.append(f"| {label} | {a:.1f} | {b:.1f} | |")
             continue
         if col is None:
-            out.append(f"| {label} | 34.36 / 39.90 | {rec[r1]:.2f} / {rec[r2]:.2f} | |")
+            out.append(f"| {label} | {base_value(r1):.2f} / {base_value(r2):.2f} | "
+                       f"{rec[r1]:.2f} / {rec[r2]:.2f} | |")
             continue
         a, b = float(base[col]), float(rec[col])
         ch = f"{100 * (b / a - 1):+.1f} %" if a else ""
@@ -131,7 +139,8 @@ TABLES = {"fatigue-x2_57": fatigue_x2_57, "study-x2_tradeoff": study_x2_tradeoff
 
 def render(text: str) -> str:
     for name, make in TABLES.items():
-        pat = re.compile(rf"(<!-- table:{re.escape(name)} -->\n)(?:.*?\n)?(<!-- /table -->)",
+        # the body up to the FIRST closing marker (an empty block too)
+        pat = re.compile(rf"(<!-- table:{re.escape(name)} -->\n)(?:.*?)(<!-- /table -->)",
                          re.S)
         if not pat.search(text):
             raise SystemExit(f"README.md: marker <!-- table:{name} --> not found")

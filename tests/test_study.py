@@ -155,9 +155,11 @@ def test_unreachable_scheduler_is_one_line(tmp_path, capsys):
     t0 = time.perf_counter()
     rc, _, err = run_cli(["study", "run", str(p), "--out", str(tmp_path / "o"),
                           "--scheduler", f"tcp://127.0.0.1:{port}"], capsys)
-    # a hang guard, not a speed test: the connect timeout is 10 s (runner.CONNECT_TIMEOUT_S)
+    # a hang guard, not a speed test: the connect timeout is runner.CONNECT_TIMEOUT_S
+    from shaftfe.study.runner import CONNECT_TIMEOUT_S
     assert time.perf_counter() - t0 < 60
-    assert rc == 2 and err.count("\n") == 1 and "not reachable within 10 s" in err
+    assert rc == 2 and err.count("\n") == 1
+    assert f"reachable within {CONNECT_TIMEOUT_S} s" in err
 
 
 # --------------------------------------------------------------------------- the runner
@@ -196,13 +198,20 @@ def test_rows_tables_and_refusals(beam_run):
 
 def test_row_equals_a_direct_evaluation(beam_run):
     """The Dask path adds nothing: a design's row is the API's evaluation of it, number for
-    number (same code, same inputs: exact)."""
+    number. Same code and inputs; the worker runs BLAS single-threaded (the nanny's
+    OMP/MKL/OPENBLAS_NUM_THREADS=1) and this process may not, which reorders the sums of the
+    eigen-solve: round-off only (measured 5e-15 relative on the critical speed), bounded by
+    1e-10 relative."""
     from shaftfe.study.evaluate import evaluate_design
     spec, run = beam_run
     row = next(r for r in run.rows if r["design"] == 3)
     direct = evaluate_design(spec.base, dict(spec_designs(spec)[3].overrides), spec.analyses)
     for k, v in direct.items():
-        if k != "seconds":
+        if k == "seconds":
+            continue
+        if isinstance(v, float):
+            assert row[k] == pytest.approx(v, rel=1e-10), k
+        else:
             assert row[k] == v, k
 
 
@@ -354,3 +363,24 @@ def test_docs_quote_the_code():
     gib = {k: v / MiB for k, v in MEMORY_PER_WORKER.items()}
     assert (f"beam {gib['beam']:.0f} MiB, coarse 3D {gib['coarse'] / 1024:.1f} GiB, default "
             f"{gib['default'] / 1024:.0f} GiB, fine {gib['fine'] / 1024:.0f} GiB") in text
+
+
+def test_any_override_rederives_the_balance_statement():
+    """Turning a counterweight moves X2 (|Σ m e| shrinks); the design loads because the
+    statement follows the parts (it was refused when only masses re-derived it)."""
+    from shaftfe.model.derive import design_overrides
+    from shaftfe.model.loader import load_variant
+    o = design_overrides("x2_57", {"attachments.counterweight_1.angle_deg": 90.0})
+    v = load_variant("x2_57", o)
+    assert o["balance.X2_percent"] < 50.0          # 57 % with both counterweights in line
+    assert v.balance_target.X2_percent == o["balance.X2_percent"]
+
+
+def test_infinite_life_ranks_best():
+    import pandas as pd
+
+    from shaftfe.study.results import meets, non_dominated
+    df = pd.DataFrame({"status": ["ok", "ok"], "life_h": [float("inf"), 10.0],
+                       "engine_max_F_N": [100.0, 100.0]})
+    assert non_dominated(df, [("engine_max_F_N", "min"), ("life_h", "max")]) == [True, False]
+    assert meets(df, [("life_h", ">=", 100.0)]) == [True, False]

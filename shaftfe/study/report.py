@@ -38,9 +38,8 @@ def _png(fig, path: Path | None = None) -> str:
     import matplotlib.pyplot as plt
     plt.close(fig)
     if path is not None:
-        from shaftfe.util.atomic import atomic_path
-        with atomic_path(path) as tmp:
-            tmp.write_bytes(buf.getvalue())
+        from shaftfe.util.atomic import write_atomic
+        write_atomic(path, buf.getvalue())
     return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode()
 
 
@@ -52,7 +51,16 @@ def _fmt(v) -> str:
     return html.escape(str(v))
 
 
-def _tradeoff(df, objs, nd, rec, path: Path):
+def _yscale(ax, col, values) -> None:
+    """Lives on a log axis; a life of 0 (failed in the first block) on its linear part."""
+    if col in _LOG and (values > 0).any():
+        if (values > 0).all():
+            ax.set_yscale("log")
+        else:
+            ax.set_yscale("symlog", linthresh=1.0)
+
+
+def _tradeoff(df, objs, nd, rec, path: Path, reqs=()):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -70,8 +78,12 @@ def _tradeoff(df, objs, nd, rec, path: Path):
     if rec is not None:
         r = df.iloc[rec]
         ax.plot([r[cx]], [r[cy]], "*", color="crimson", ms=18, zorder=4, label="recommended")
-    if cy in _LOG and (d[cy] > 0).all():
-        ax.set_yscale("log")
+    for col, op, val in reqs:
+        if col == cy:
+            ax.axhline(val, color="crimson", ls="--", lw=0.8, label=f"required {op} {val:g}")
+        elif col == cx:
+            ax.axvline(val, color="crimson", ls="--", lw=0.8, label=f"required {op} {val:g}")
+    _yscale(ax, cy, d[cy])
     ax.set_xlabel(_label(cx))
     ax.set_ylabel(_label(cy))
     ax.grid(alpha=0.3)
@@ -96,8 +108,7 @@ def _against(df, params, objs, nd):
             ax.plot(df[ok][x], df[ok][y], ".", color="tab:blue")
             m = [bool(a) for a in nd]
             ax.plot(df[m][x], df[m][y], "o", mfc="none", mec="k")
-            if y in _LOG and (df[ok][y] > 0).all():
-                ax.set_yscale("log")
+            _yscale(ax, y, df[ok][y])
             if i == len(ys) - 1:
                 ax.set_xlabel(_label(x.rsplit(".", 2)[-2] + "." + x.rsplit(".", 1)[-1]
                                      if x.count(".") > 1 else _label(x)), fontsize=8)
@@ -111,7 +122,7 @@ def _against(df, params, objs, nd):
 
 def write_report(out_dir) -> Path:
     from shaftfe.study import results
-    from shaftfe.util.atomic import atomic_path
+    from shaftfe.util.atomic import write_atomic
     out = Path(out_dir)
     sj = out / "study.json"
     if not sj.is_file():
@@ -165,7 +176,7 @@ def write_report(out_dir) -> Path:
                         if c in df.columns) + ".</p>")
     if len(objs) >= 2 and n_ok:
         parts.append("<h2>Trade-off</h2>")
-        uri = _tradeoff(df, objs, nd, rec, out / "tradeoff.png")
+        uri = _tradeoff(df, objs, nd, rec, out / "tradeoff.png", reqs)
         parts.append(f'<img src="{uri}" alt="trade-off">')
         img = _against(df, params, objs, nd)
         if img:
@@ -213,7 +224,4 @@ def write_report(out_dir) -> Path:
             "max-width:1100px;margin:auto}}table{{border-collapse:collapse;font-size:12px}}"
             "td,th{{border:1px solid #ccc;padding:2px 6px}}</style></head><body>"
             + "\n".join(parts) + "</body></html>\n")
-    path = out / "index.html"
-    with atomic_path(path) as tmp:
-        tmp.write_text(page, encoding="utf-8")
-    return path
+    return write_atomic(out / "index.html", page)

@@ -51,7 +51,7 @@ MEMORY_PER_WORKER = {"beam": 400 * MiB, "coarse": 1200 * MiB, "default": 2000 * 
                      "fine": 5000 * MiB}
 BEAM_CHUNK = 25                    # beam-level designs per task
 STUDY_FORMAT = 1
-CONNECT_TIMEOUT_S = 10
+CONNECT_TIMEOUT_S = 8     # + the command's start (~1 s): the answer comes within 10 s
 
 
 @dataclass(frozen=True)
@@ -65,6 +65,7 @@ class StudyRun:
     workers: int
     wall_seconds: float
     compute_seconds: float                 # Σ of the designs' own seconds (this run)
+    connect_seconds: float = 0.0           # starting / reaching the cluster
     sharing: dict = field(default_factory=dict)   # meshes built, factorisations made/reused
 
 
@@ -98,15 +99,10 @@ def design_key(base_hash: str, design: Design, options: dict, code: str) -> str:
 
 
 def _write_json(path: Path, obj) -> None:
-    from shaftfe.util.atomic import atomic_path
-    with atomic_path(path) as tmp:
-        tmp.write_text(json.dumps(obj, indent=1, default=_json_default) + "\n")
-
-
-def _json_default(o):
-    if isinstance(o, float) and not math.isfinite(o):
-        return None
-    return str(o)
+    """A row or the study's record (an infinite life stays ``Infinity``: Python's JSON reads
+    it back; these files are the study's own cache, the tables are what others read)."""
+    from shaftfe.util.atomic import write_atomic
+    write_atomic(path, json.dumps(obj, indent=1, default=str) + "\n")
 
 
 def _finished(path: Path) -> bool:
@@ -236,11 +232,13 @@ def connect(scheduler: str | None, workers: int | None, spec: StudySpec):
     if scheduler:
         try:
             client = Client(scheduler, timeout=f"{CONNECT_TIMEOUT_S}s")
-        except (OSError, TimeoutError, ValueError) as exc:
+        except Exception as exc:          # refused, timed out, or not a Dask scheduler at all
+            # (a service on that port answering garbage: distributed raises MemoryError,
+            # TypeError, … while reading its handshake)
             raise InputError("--scheduler", "address", "a reachable Dask scheduler, e.g. "
                              "tcp://host:8786", got=scheduler,
-                             reason=f"is not reachable within {CONNECT_TIMEOUT_S} s "
-                             f"({type(exc).__name__})") from None
+                             reason="is not a Dask scheduler reachable within "
+                             f"{CONNECT_TIMEOUT_S} s ({type(exc).__name__})") from None
         n = len(client.scheduler_info().get("workers", {}))
         if n == 0:
             try:
@@ -340,8 +338,11 @@ def run_study(spec: StudySpec, out_dir, *, workers: int | None = None,
     computed = compute_s = 0
     sharing: dict = {"meshes_built": 0, "factor_made": 0, "factor_reused": 0}
     n_workers = 0
+    t_conn = 0.0
     if todo:
+        t0 = time.perf_counter()
         client, cluster, n_workers = connect(scheduler, workers, spec)
+        t_conn = time.perf_counter() - t0
         bar = Bar(len(designs), len(designs) - len(todo), enabled=progress)
         try:
             computed, compute_s = _execute(client, spec, todo, n_workers, ddir, bar, sharing)
@@ -357,11 +358,13 @@ def run_study(spec: StudySpec, out_dir, *, workers: int | None = None,
     results.write_tables(out, spec, rows)
     run = StudyRun(out, tuple(rows), computed, len(designs) - len(todo), sum(
         r["status"] == "failed" for r in rows), sum(r["status"] == "refused" for r in rows),
-        n_workers, time.perf_counter() - t_all, compute_s, sharing)
+        n_workers, time.perf_counter() - t_all, compute_s, connect_seconds=t_conn,
+        sharing=sharing)
     _write_json(out / "run.json", {
         "designs": len(designs), "computed": run.computed, "reused": run.reused,
         "failed": run.failed, "refused": run.refused, "workers": run.workers,
         "wall_seconds": run.wall_seconds, "compute_seconds": run.compute_seconds,
+        "connect_seconds": run.connect_seconds,
         "sharing": sharing, "scheduler": scheduler or "LocalCluster"})
     return run
 
@@ -379,9 +382,12 @@ def _execute(client, spec, todo, n_workers, ddir: Path, bar: Bar, sharing: dict,
     # task after the previous one of its lane (a dependency, so dask keeps a lane on one
     # worker, in order): a worker changes solid only where its lane crosses a group boundary,
     # and keeps reusing its factorisation in between
-    n_lanes = max(1, min(n_workers, len(tasks))) if spec.analyses.static else len(tasks)
-    bounds = [round(i * len(tasks) / n_lanes) for i in range(n_lanes + 1)]
-    lane_start = set(bounds[:-1])
+    # (designs the loader refuses need no solid: they run unchained, first)
+    tasks = [t for t in tasks if t[0] is None] + [t for t in tasks if t[0] is not None]
+    n_free = sum(t[0] is None for t in tasks)
+    n_3d = len(tasks) - n_free
+    n_lanes = max(1, min(n_workers, n_3d))
+    lane_start = {n_free + round(i * n_3d / n_lanes) for i in range(n_lanes)}
     prev = None
     for i, (g, items) in enumerate(tasks):
         mesh_f = None
@@ -391,7 +397,7 @@ def _execute(client, spec, todo, n_workers, ddir: Path, bar: Bar, sharing: dict,
                                           spec.analyses.level, pure=False)
                 sharing["meshes_built"] += 1
             mesh_f = meshes[g]
-        after = None if (i in lane_start or not spec.analyses.static) else prev
+        after = None if (g is None or i in lane_start) else prev
         f = client.submit(evaluate_task, spec.base, items, spec.analyses, mesh_f, after,
                           pure=False)
         prev = f
