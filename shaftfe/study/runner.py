@@ -389,9 +389,11 @@ def _execute(client, spec, todo, n_workers, ddir: Path, bar: Bar, sharing: dict,
     n_lanes = max(1, min(n_workers, n_3d))
     lane_start = {n_free + round(i * n_3d / n_lanes) for i in range(n_lanes)}
     prev = None
+    pending: dict = {}                   # mesh group → its tasks not yet done
     for i, (g, items) in enumerate(tasks):
         mesh_f = None
         if g is not None:
+            pending[g] = pending.get(g, 0) + 1
             if g not in meshes:
                 meshes[g] = client.submit(build_group_mesh, spec.base, dict(items[0][1]),
                                           spec.analyses.level, pure=False)
@@ -401,21 +403,24 @@ def _execute(client, spec, todo, n_workers, ddir: Path, bar: Bar, sharing: dict,
         f = client.submit(evaluate_task, spec.base, items, spec.analyses, mesh_f, after,
                           pure=False)
         prev = f
-        futures[f] = (items, mesh_f, 0)
+        futures[f] = (items, mesh_f, 0, g)
     computed, compute_s = 0, 0.0
     ac = as_completed(list(futures))
     for f in ac:
-        items, mesh_f, tries = futures.pop(f)
+        items, mesh_f, tries, grp = futures.pop(f)
         try:
             pairs = f.result()
         except Exception as exc:             # the worker died (memory, killed) or the task
             mesh_failed = mesh_f is not None and mesh_f.status == "error"
             if tries == 0 and not mesh_failed:   # raised: once more, one design per task
                 for it in items:
-                    g = client.submit(evaluate_task, spec.base, [it], spec.analyses, mesh_f,
+                    r = client.submit(evaluate_task, spec.base, [it], spec.analyses, mesh_f,
                                       None, pure=False)
-                    futures[g] = ([it], mesh_f, 1)
-                    ac.add(g)
+                    futures[r] = ([it], mesh_f, 1, grp)
+                    if grp is not None:
+                        pending[grp] += 1
+                    ac.add(r)
+                _done_with(grp, pending, meshes)
                 continue
             msg = " ".join(str(exc).split())[:300] or type(exc).__name__
             why = (f"the mesh could not be built: {msg}" if mesh_failed else
@@ -435,4 +440,15 @@ def _execute(client, spec, todo, n_workers, ddir: Path, bar: Bar, sharing: dict,
             compute_s += float(row.get("seconds", 0.0))
             bar.update(1, failed=int(row["status"] != "ok"))
         f.release()
+        _done_with(grp, pending, meshes)
     return computed, compute_s
+
+
+def _done_with(grp, pending: dict, meshes: dict) -> None:
+    """One task of mesh group ``grp`` finished: after its last, let the cluster free the mesh
+    (a study over a fillet radius has as many meshes as designs)."""
+    if grp is None:
+        return
+    pending[grp] -= 1
+    if pending[grp] == 0 and grp in meshes:
+        meshes.pop(grp).release()
