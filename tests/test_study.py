@@ -384,3 +384,27 @@ def test_infinite_life_ranks_best():
                        "engine_max_F_N": [100.0, 100.0]})
     assert non_dominated(df, [("engine_max_F_N", "min"), ("life_h", "max")]) == [True, False]
     assert meets(df, [("life_h", ">=", 100.0)]) == [True, False]
+
+
+@pytest.mark.slow
+def test_reused_factorisation_gives_the_standalone_answer():
+    """Two designs of one solid (counterweight 2's mass differs): the second, solved on the
+    first's K and factorisation (fe.reuse), against its own standalone solve. The same
+    matrix factorised again: equal to round-off (BLAS thread scheduling only, 1e-12)."""
+    from shaftfe.fe import reuse
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
+    from shaftfe.study.evaluate import load_design
+    opts = StaticOptions(level="coarse")
+    v1, _ = load_design("x2_57", {"attachments.counterweight_2.mass_kg": 0.22})
+    v2, _ = load_design("x2_57", {"attachments.counterweight_2.mass_kg": 0.26})
+    with reuse.shared() as stats:
+        solve_static(v1, 10000, opts, beam=False)
+        shared = solve_static(v2, 10000, opts, beam=False)
+    assert stats["made"] == {"K": 1, "factor": 1} and stats["reused"] == {"K": 1, "factor": 1}
+    alone = solve_static(v2, 10000, opts, beam=False)
+    assert shared.mesh_key == alone.mesh_key
+    for a, b in zip(shared.cases[0].peaks, alone.cases[0].peaks, strict=True):
+        assert a.von_mises_MPa == pytest.approx(b.von_mises_MPa, rel=1e-12), a.region
+    assert [x.F_radial_N for x in shared.cases[0].bearings] == pytest.approx(
+        [x.F_radial_N for x in alone.cases[0].bearings], rel=1e-12)
