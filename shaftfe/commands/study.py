@@ -7,8 +7,6 @@ from __future__ import annotations
 
 import sys
 
-MAX_WITH_YES = 10_000_000          # designs in one study even with --yes (the table's size)
-
 
 def register(sub) -> None:
     p = sub.add_parser("study", help="design studies: sweep variant keys on Dask (run, report)",
@@ -45,7 +43,7 @@ def run_run(args) -> int:
     from shaftfe.errors import InputError
     from shaftfe.study import sampling
     from shaftfe.study.runner import run_study
-    from shaftfe.study.spec import check_designs, load_study
+    from shaftfe.study.spec import check_count, check_designs, load_study
 
     if args.workers is not None and not 1 <= args.workers <= 1024:
         raise InputError("command line", "--workers", "an integer in [1, 1024]",
@@ -54,16 +52,9 @@ def run_run(args) -> int:
         raise InputError("command line", "--workers with --scheduler", "one of them (an "
                          "existing cluster has its own workers)", reason="is given")
     spec = load_study(args.study)
-    n = sampling.count(spec)
-    if n > MAX_WITH_YES:
-        raise InputError(spec.path, "sampling", f"at most {MAX_WITH_YES:,} designs in one "
-                         "study (split it)", got=n, reason="asks for more designs")
-    if n > spec.max_designs and not args.yes:
-        raise InputError(spec.path, "sampling", f"at most {spec.max_designs} designs "
-                         "(study.max_designs) without --yes", got=n,
-                         reason="asks for more designs")
+    check_count(spec, sampling.count(spec), yes=args.yes)
     designs = sampling.designs(spec)
-    check_designs(spec, designs, yes=args.yes)
+    check_designs(spec, designs)
     out = Path(args.out) if args.out else Path("reports") / "studies" / spec.name
     import signal
 

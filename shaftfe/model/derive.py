@@ -28,7 +28,7 @@ def design_overrides(base, overrides) -> dict[str, Any]:
     """{path: value}: ``overrides`` (canonical paths, as applied) and the derived keys."""
     from shaftfe.model import overrides as ov
     from shaftfe.model.loader import _resolve, parts_variant, resolved_dict
-    from shaftfe.model.mass import mass_properties
+    from shaftfe.model.mass import balance_ratio, mass_properties
     from shaftfe.model.shapes import shape_mass_properties
 
     sets = ov.normalise(overrides)
@@ -65,7 +65,7 @@ def design_overrides(base, overrides) -> dict[str, Any]:
         out["balance.mass_kg"] = _digits(mp.mass_kg)
         out["balance.gamma2_mm"] = _digits(mp.gamma2_mm)
         out["balance.x_T_mm"] = _digits(mp.x_T_mm)
-        if t is not None and t.m_pos_kg > 0 and t.crank_radius_mm > 0:
-            out["balance.X2_percent"] = _digits(
-                100.0 * mp.mass_kg * mp.gamma2_mm / (t.m_pos_kg * t.crank_radius_mm))
+        ratio = balance_ratio(mp, t)
+        if ratio is not None:
+            out["balance.X2_percent"] = _digits(100.0 * ratio)
     return out

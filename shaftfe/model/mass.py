@@ -131,6 +131,18 @@ def rigid_support_reactions(v: Variant, rpm: float, seed_case: bool = True
     return ((a.name, ra), (b.name, rb_))
 
 
+def variant_x2(v: Variant, mp: MassProperties | None = None,
+               default: float = 0.0) -> float:
+    """The balancer's X2 (a fraction) of a variant: from its parts and the crank's m_pos R in
+    its [balance] table, else the X2 that table states, else ``default`` (no table: e.g. the
+    engine's own balancer)."""
+    tgt = v.balance_target
+    x2 = balance_ratio(mp if mp is not None else mass_properties(v), tgt)
+    if x2 is None:
+        x2 = tgt.X2_percent / 100.0 if tgt is not None else default
+    return x2
+
+
 def balance_ratio(mp: MassProperties, target) -> float | None:
     """The balancer's ratio X2 = Σ m e / (m_pos R) (a fraction) from its mass properties and
     the engine figures of the variant's [balance] table; None without them."""

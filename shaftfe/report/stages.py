@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from shaftfe.errors import InputError
-from shaftfe.model.mass import balance_ratio, mass_properties
+from shaftfe.model.mass import mass_properties, variant_x2
 from shaftfe.report.options import ReportOptions
 from shaftfe.util.paths import repo_relative
 
@@ -66,12 +66,7 @@ def balancing(engine, variant, seedmod) -> tuple[dict, object, object, object]:
     from shaftfe.balance import single, sweep
 
     mp = mass_properties(variant)
-    tgt = variant.balance_target
-    x2 = balance_ratio(mp, tgt)
-    if x2 is None and tgt is not None:
-        x2 = tgt.X2_percent / 100.0
-    elif x2 is None:                          # no balance table: the engine's own balancer
-        x2 = engine.X2 if engine.X2 is not None else 0.0
+    x2 = variant_x2(variant, mp, default=engine.X2 if engine.X2 is not None else 0.0)
     X = seedmod.CRANK_C_X
     res = single.forces(engine, X=X, X2=x2, rpm=engine.rpm)
     sw = sweep.sweep(engine, [X], np.arange(0.0, 1.0001, 0.01), rpm=engine.rpm,

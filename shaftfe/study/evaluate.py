@@ -31,7 +31,6 @@ from typing import Any
 from shaftfe.errors import InputError, ShaftfeError
 from shaftfe.study.spec import Analyses
 
-STATUS = ("ok", "refused", "failed")
 # The Campbell sweep's default top: a stiff balancer shaft's first bending critical lies far
 # above the engine's speeds (x2_57 beam rotor: 39 700 rpm, 4.2 × the VM 450's 9500 rpm), and a
 # beam sweep to 60 000 rpm costs ~0.3 s. A critical above the top is reported as None.
@@ -68,13 +67,11 @@ def load_design(base: str, overrides) -> tuple[Any, dict]:
 
 def balance_row(v, an: Analyses) -> dict:
     from shaftfe.balance.single import forces
-    from shaftfe.model.mass import balance_ratio, mass_properties
+    from shaftfe.model.mass import mass_properties, variant_x2
     from shaftfe.report.seed import CRANK_C_X
     mp = mass_properties(v)
-    x2 = balance_ratio(mp, v.balance_target)
-    if x2 is None:
-        x2 = v.balance_target.X2_percent / 100 if v.balance_target is not None else 0.0
     eng = _engine(an.engine)
+    x2 = variant_x2(v, mp, default=eng.X2 if eng.X2 is not None else 0.0)
     rpm = an.engine_rpm or eng.rpm
     X = an.X_percent / 100 if an.X_percent is not None else CRANK_C_X
     res = forces(eng, X=X, X2=x2, rpm=rpm)

@@ -102,7 +102,6 @@ class Analyses:
     engine_rpm: float | None = None        # None: the engine file's rpm
     beam: bool = True
     static: bool = False
-    static_model: str = "solid"            # solid (the 3D model)
     level: str = "coarse"
     spin_softening: bool = True
     fatigue: bool = False
@@ -262,8 +261,8 @@ def _analyses(t: dict, src: str, base_dir: Path) -> Analyses:
     if (s := sub("static", {"model", "level", "spin_softening"})) is not None:
         # the 3D solid only: the axisymmetric path has no bearing reactions per bearing
         # springs in 3D nor the filtered region peaks the row reports
-        kw.update(static=True, static_model=_str(s, "model", src, "analyses.static", "solid",
-                                                 ("solid",)),
+        _str(s, "model", src, "analyses.static", "solid", ("solid",))
+        kw.update(static=True,
                   level=_str(s, "level", src, "analyses.static", "coarse", LEVEL_NAMES))
         sp = s.get("spin_softening", True)
         if not isinstance(sp, bool):
@@ -411,20 +410,29 @@ def _flatten(d: dict, prefix: str = "") -> dict:
     return out
 
 
-def check_designs(spec: StudySpec, designs, *, yes: bool = False) -> None:
-    """Bad input before anything runs: too many designs without ``yes``, a path the base
-    variant does not have (nearest names listed), a value of the wrong kind or outside its
-    key's own range (``shaftfe.model.fields.key_range``). InputError naming the study file."""
+MAX_WITH_YES = 10_000_000          # designs in one study even with --yes (the table's size)
+
+
+def check_count(spec: StudySpec, n: int, *, yes: bool = False) -> None:
+    """Too many designs (``n``, counted before they are made) without ``yes``, or at all."""
+    if n > MAX_WITH_YES:
+        raise InputError(spec.path, "sampling", f"at most {MAX_WITH_YES:,} designs in one "
+                         "study (split it)", got=n, reason="asks for more designs")
+    if n > spec.max_designs and not yes:
+        raise InputError(spec.path, "sampling", f"at most {spec.max_designs} designs "
+                         "(study.max_designs) without --yes", got=n,
+                         reason="asks for more designs")
+
+
+def check_designs(spec: StudySpec, designs) -> None:
+    """Bad input before anything runs: a path the base variant does not have (nearest names
+    listed), a value of the wrong kind or outside its key's own range
+    (``shaftfe.model.fields.key_range``). InputError naming the study file."""
     import copy
 
     from shaftfe.model import overrides as ov
     from shaftfe.model.fields import is_num, key_range
     from shaftfe.model.loader import _resolve, resolved_dict
-    n = len(designs)
-    if n > spec.max_designs and not yes:
-        raise InputError(spec.path, "sampling", f"at most {spec.max_designs} designs "
-                         "(study.max_designs) without --yes", got=n,
-                         reason="asks for more designs")
     merged = resolved_dict(_resolve(spec.base))
     seen: set[tuple[str, str]] = set()
     for d in designs:
