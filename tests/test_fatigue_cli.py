@@ -28,9 +28,13 @@ def cache(tmp_path_factory):
     return d
 
 
+SEED = ("--method", "seed")     # the seed method's outputs; fkm is the default (#14)
+
+
 def run(capsys, *argv):
     try:
-        rc = main(["fatigue", *map(str, argv)])
+        rc = main(["fatigue", *SEED, *map(str, argv)] if "--method" not in argv
+                  else ["fatigue", *map(str, argv)])
     except SystemExit as exc:          # argparse usage errors
         rc = exc.code
     out = capsys.readouterr()
@@ -48,7 +52,8 @@ def seed_run(cache, tmp_path_factory):
     for _ in range(2):
         buf = io.StringIO()
         with contextlib.redirect_stdout(buf):
-            rc = main(["fatigue", str(RPM_DAT), "--level", "coarse", "--cache-dir", str(cache),
+            rc = main(["fatigue", *SEED, str(RPM_DAT), "--level", "coarse",
+                       "--cache-dir", str(cache),
                        "--seed-load-case", "--out", str(out)])
         assert rc == 0
         texts.append(buf.getvalue())
@@ -232,3 +237,25 @@ def test_static_cache_roundtrip_corruption_and_key(tmp_path):
     # 1e-6 separates a real change from a cache hit with 4 decades either side
     assert not math.isclose(float(d.von_mises_ref.max()), float(a.von_mises_ref.max()),
                             rel_tol=1e-6)
+
+
+@pytest.mark.parametrize("method", ["fkm", "din743"])
+def test_standard_methods_write_their_summary(cache, tmp_path, capsys, method):
+    """fkm / din743 on the coarse mesh: strength.json with the governing result, every region
+    or notch, the bearings' duty cycle and the seed's key check (0.126 mm by its formula)."""
+    out = tmp_path / method
+    rc, text, err = run(capsys, RPM_DAT, "--method", method, "--level", "coarse",
+                        "--cache-dir", cache, "--out", out)
+    assert rc == 0, err
+    s = json.loads((out / "strength.json").read_text())
+    assert s["method"] == method
+    if method == "fkm":
+        assert s["governing"]["region"].startswith("fillet:")
+        assert {r["region"] for r in s["regions"]} >= {"fillet:collar", "keyway:gear_seat:0"}
+        assert 0 < s["governing"]["utilisation"]["modified"] < 10
+    else:
+        assert s["governing"]["S_D"] > 1 and {n["kind"] for n in s["notches"]} == \
+            {"shoulder", "keyway", "press_fit"}
+    k = s["elements"]["keys"][0]
+    assert round(k["length_needed_seed_mm"], 3) == 0.126
+    assert "key gear_seat" in text

@@ -27,6 +27,28 @@ def register(sub) -> None:
         "in blocks / hours / km, the safety factor at the design life and the hot spot "
         "(singular points at the bearing and load-patch edges excluded; the unfiltered minimum "
         "shown too). Writes fatigue.vtu, summary.json and rainflow / damage / Haigh plots.")
+    p.add_argument("--method", default="fkm",
+                   help="fkm (default: FKM guideline, local stresses on the 3D field, the "
+                   "shaft's real material and surface) | din743 (DIN 743, nominal stresses on "
+                   "the beam) | seed (the seed's Ansys-style method: von Mises, Soderberg, "
+                   "Structural Steel S-N; exactly as before)")
+    p.add_argument("--card", default="14220",
+                   help="strength card in geometry/common/strength.toml (fkm, din743; "
+                   "default 14220 = 16MnCr5 case hardened)")
+    p.add_argument("--miner", default="modified",
+                   help="FKM governing Miner rule: elementary | modified (default, Haibach) | "
+                   "consistent; all three are printed")
+    p.add_argument("--consequences", default="severe",
+                   help="FKM j_D: severe (default: a broken balancer shaft wrecks the engine) | "
+                   "moderate")
+    p.add_argument("--inspection", action="store_true",
+                   help="FKM j_D with regular inspections (default none)")
+    p.add_argument("--damage-sum", type=float, default=0.3,
+                   help="FKM effective damage sum D_M (default 0.3, steel)")
+    p.add_argument("--kappa", type=float, default=None,
+                   help="ISO 281 viscosity ratio κ of the bearings (default 1.0)")
+    p.add_argument("--ec", type=float, default=None,
+                   help="ISO 281 contamination factor e_C (default 0.3)")
     p.add_argument("spectrum", help="rpm history: normalised rpm²/ref² (seed rpm.dat), rpm, or "
                    "csv 'time_s,rpm' (see shaftfe.fatigue.history)")
     p.add_argument("--variant", default="x2_57", help="variant name or path (default x2_57)")
@@ -93,6 +115,9 @@ def run(args) -> int:
 
     job = job_of(args)
     check_job(job)
+    if args.method != "seed":
+        from shaftfe.commands.strength import run_standard
+        return run_standard(args, job)
     prog = Progress(["history", "static", "rainflow + life", "outputs"],
                     enabled=False if args.json else None)
     with prog.stage("history"):

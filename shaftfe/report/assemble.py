@@ -245,6 +245,8 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         res, variant)
     with prog.stage("fatigue"):
         fat, ff, scaled, bench = _fatigue(o, res, ref, history, material)
+    with prog.stage("strength by standard"):
+        strength = _strength(o, variant, ref, history)
     with prog.stage("Campbell"):
         camp, cres, rotor_model = campbell(variant, engine, o)
     with prog.stage("VTU"):
@@ -266,7 +268,33 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         inputs=_inputs_block(o, variant, engine, fat), provenance=prov, balancing=bal,
         beam=beam_out, static=st, fatigue=fat, campbell=camp, comparisons=tuple(comps),
         errors=tuple(errs), timings=prog.timings, sub_timings=_sub_timings(res, ff),
-        figures=tuple(figs), files=files, notes=notes, machine=machine)
+        figures=tuple(figs), files=files, notes=notes, machine=machine, strength=strength)
+
+
+def _strength(o: ReportOptions, variant, ref, history) -> dict:
+    """FKM on the same static reference (no second solve; 3D only), DIN 743 on the beam, the
+    bearings over the duty cycle and the seed's key and gear checks, with the defaults of
+    ``shaftfe fatigue --method fkm | din743``."""
+    from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
+    from shaftfe.fatigue import standards as sd
+    from shaftfe.fatigue import standards_out as so
+    from shaftfe.fatigue.cards import load_card, load_surfaces
+    from shaftfe.fatigue.fkm_field import assess_field
+    from shaftfe.fatigue.run import FatigueInputs, FatigueJob
+    opts = sd.StrengthOptions()
+    out = {"default_method": sd.DEFAULT_METHOD}
+    if o.model == "solid":
+        res = assess_field(ref, history, load_card(opts.card), load_surfaces(),
+                           ground_fillets=sd.ground_fillets(variant), rule=opts.rule,
+                           j_D=sd.fkm.J_D[(opts.consequences, opts.inspection)],
+                           damage_sum=opts.damage_sum, design_life_blocks=o.design_life_blocks)
+        out["fkm"] = so.fkm_summary(res)
+    job = FatigueJob(spectrum=str(o.spectrum), variant=o.variant)
+    din = sd.run_din743(job, opts, FatigueInputs(history, None, variant))
+    out["din743"] = so.din_summary(din)
+    out["elements"] = so.compute_elements(variant, history, KAPPA_DEFAULT, EC_DEFAULT,
+                                          o.speed_kmh)
+    return out
 
 
 def _pictures(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> list[tuple]:

@@ -457,9 +457,47 @@ def _notes(r) -> str:
 
 
 SECTIONS = (("summary", "Summary"), ("inputs", "Inputs"), ("balancing", "Balancing"),
-            ("static", "Static"), ("fatigue", "Fatigue"), ("campbell", "Campbell"),
+            ("static", "Static"), ("fatigue", "Fatigue"), ("strength", "Strength by standard"),
+            ("campbell", "Campbell"),
             ("seed", "Seed vs ours"), ("errors", "Errors"), ("timing", "Run time"),
             ("files", "Files"))
+
+
+def _strength(r) -> str:
+    """Three methods side by side, the bearings over the duty cycle, keys and gears."""
+    s = r.strength
+    if not s:
+        return ""
+    fat = r.fatigue["hot_spot"]
+    rows = [("seed (Ansys-style: von Mises, Soderberg, Structural Steel S-N)",
+             num(fat["safety_factor"]), "-", num(fat["life_blocks"], 4, "blocks"))]
+    if "fkm" in s:
+        g = s["fkm"]["governing"]
+        rule = s["fkm"]["rule"]
+        rows.append((f"FKM local, 16MnCr5 case hardened ({_e(g['region'])}, {g['layer']}; "
+                     f"Miner {rule}; j_D {num(s['fkm']['j_D'])})", num(g["safety"][rule]),
+                     num(g["utilisation"][rule]), num(g["life_blocks"][rule], 4, "blocks")))
+    d = s["din743"]["governing"]
+    rows.append((f"DIN 743 nominal, beam ({_e(d['notch'])}; S_min 1.2)", num(d["S_D"]),
+                 num(1.2 / d["S_D"]) if d["S_D"] else "-", "fatigue limit (no life)"))
+    html = ('<h2 id="strength">Strength by standard</h2>'
+            "<p>The default of <code>shaftfe fatigue</code> is <b>FKM</b>: it judges the local "
+            "stress of the 3D field with the shaft's own material (16MnCr5, case hardened), "
+            "surface and stress gradient, as an FE user signs a shaft. The seed method keeps "
+            "Ansys's generic Structural Steel (yield 250 MPa, below the hot spot's stress), so "
+            "its Soderberg correction inflates the amplitudes; DIN 743 judges nominal beam "
+            "stresses with tabulated notch factors at the fatigue limit of one cycle (the "
+            "history's largest), so it gives no life. They differ because they judge different "
+            "materials and different stresses, not because one is wrong.</p>"
+            "<table><tr><th>method</th><th>safety factor</th><th>degree of utilisation</th>"
+            "<th>life</th></tr>"
+            + "".join(f"<tr><td>{a}</td><td>{b}</td><td>{c}</td><td>{e}</td></tr>"
+                      for a, b, c, e in rows) + "</table>")
+    from shaftfe.fatigue.standards_out import elements_lines
+    html += "<h3>Bearings (ISO 281), keys and gear pair (seed 000 §8.2)</h3><ul>" + "".join(
+        f"<li>{_e(line.strip())}</li>" for line in
+        elements_lines(s["elements"], r.fatigue["settings"]["speed_kmh"])) + "</ul>"
+    return html
 
 
 def render(report) -> str:
@@ -471,7 +509,7 @@ def render(report) -> str:
         f'<p class="meta">{_e(r.inputs["description"])} · {_e(r.created_utc)} · shaftfe '
         f"{_e(__version__)} · total run time {sum(t for _, t in r.timings):.1f} s</p>",
         "</header>", f"<nav>{nav}</nav>",
-        _summary(r), _inputs(r), _balancing(r), _static(r), _fatigue(r), _campbell(r),
+        _summary(r), _inputs(r), _balancing(r), _static(r), _fatigue(r), _strength(r), _campbell(r),
         _comparison(r), _errors(r), _timing(r), _files(r), _notes(r)])
     return ("<!DOCTYPE html>\n"
             '<html lang="en" xmlns="http://www.w3.org/1999/xhtml"><head><meta charset="utf-8"/>'

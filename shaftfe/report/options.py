@@ -11,7 +11,7 @@ from shaftfe.solid.levels import ESTIMATE_PAIR_CHEAP
 from shaftfe.util.paths import DEFAULT_SPECTRUM
 
 STAGES = ("inputs", "balancing", "beam check", "static (mesh + one solve)", "fatigue",
-          "Campbell", "VTU", "3D pictures", "plots")
+          "strength by standard", "Campbell", "VTU", "3D pictures", "plots")
 
 
 ERROR_STAGE = "error estimate (second mesh level)"

@@ -64,6 +64,7 @@ class Report:
     files: dict
     notes: tuple[str, ...] = ()
     machine: dict = field(default_factory=dict)
+    strength: dict = field(default_factory=dict)
 
     def figure(self, name: str) -> Figure | None:
         return next((f for f in self.figures if f.name == name), None)
@@ -74,7 +75,7 @@ class Report:
             "options": asdict(self.options), "created_utc": self.created_utc,
             "inputs": self.inputs, "provenance": self.provenance, "balancing": self.balancing,
             "beam": self.beam, "static": self.static, "fatigue": self.fatigue,
-            "campbell": self.campbell,
+            "campbell": self.campbell, "strength": self.strength,
             "comparisons": [dict(asdict(c), diff_percent=c.diff_percent)
                             for c in self.comparisons],
             "error_estimates": [asdict(e) for e in self.errors],

@@ -217,47 +217,17 @@ def solve_model(model: StaticModel, rhs: np.ndarray | None = None, *,
 # --------------------------------------------------------------------------- post-processing
 
 def probe(mesh, u: np.ndarray, pts: np.ndarray, tree=None) -> tuple[np.ndarray, np.ndarray]:
-    """Displacement (n, 3) at points (3, n) and a mask of the points found in the mesh.
-
-    Each point is located by barycentric coordinates in the straight-sided tet of the element's
-    corners (candidates: the 16 nearest element centroids) and the P2 (or P1) field is evaluated
-    with the barycentric shape functions. Exact for straight elements; the axis stations this is
-    used for lie in interior elements, which the mesher leaves straight. Points not found get
-    NaN."""
-    p, t = mesh.p, mesh.t
-    pts = np.asarray(pts, dtype=float)
-    tree = tree if tree is not None else _centroid_tree(mesh)
-    k = min(16, t.shape[1])
-    cand = tree.query(pts.T, k)[1].reshape(pts.shape[1], k)         # (n, k)
-    v = p[:, t[:, cand]]                                               # (3, 4, n, k)
-    T = v[:, 1:] - v[:, :1]                                            # (3, 3, n, k)
-    rhs = pts[:, None, :, None] - v[:, 0:1]                            # (3, 1, n, k)
-    lam123 = np.linalg.solve(np.moveaxis(T, (0, 1), (-2, -1)),
-                             np.moveaxis(rhs, (0, 1), (-2, -1)))[..., 0]   # (n, k, 3)
-    lam = np.concatenate([1 - lam123.sum(-1, keepdims=True), lam123], -1)  # (n, k, 4)
-    worst = lam.min(-1)
-    best = np.argmax(worst, axis=1)
-    found = worst[np.arange(pts.shape[1]), best] >= -1e-9
-    el = cand[np.arange(pts.shape[1]), best]
-    L = lam[np.arange(pts.shape[1]), best]                              # (n, 4)
-    ref = np.asarray(fem.scalar_element(mesh).doflocs, dtype=float)   # (nloc, 3)
-    refv = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
-    N = [L[:, i] * (2 * L[:, i] - 1) if ref.shape[0] == 10 else L[:, i] for i in range(4)]
-    for r in ref[4:]:
-        i = next(a for a in range(4) for b in range(4) if a < b
-                 and np.allclose(0.5 * (refv[a] + refv[b]), r))
-        j = next(b for b in range(4) if b > i and np.allclose(0.5 * (refv[i] + refv[b]), r))
-        N.append(4 * L[:, i] * L[:, j])
-    N = np.array(N)                                                    # (nloc, n)
-    U = u.reshape(-1, 3)[fem.element_nodes(mesh)[:, el]]                       # (nloc, n, 3)
-    out = np.einsum("an,anc->nc", N, U)
-    out[~found] = np.nan
-    return out, found
+    """Displacement (n, 3) at points (3, n) and a mask of the points found in the mesh
+    (``shaftfe.fe.pointeval.interpolate``: exact for straight elements; the axis stations
+    this is used for lie in interior elements, which the mesher leaves straight). Points not
+    found get NaN."""
+    from shaftfe.fe.pointeval import interpolate
+    return interpolate(mesh.p, fem.element_nodes(mesh).T, u.reshape(-1, 3), pts, tree)
 
 
 def _centroid_tree(mesh):
-    from scipy.spatial import cKDTree
-    return cKDTree(mesh.p[:, mesh.t].mean(axis=1).T)
+    from shaftfe.fe.pointeval import centroid_tree
+    return centroid_tree(mesh.p, mesh.t.T)
 
 
 def axis_deflection(variant, mesh, u: np.ndarray, xs) -> np.ndarray:

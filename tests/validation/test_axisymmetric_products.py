@@ -201,7 +201,8 @@ def test_fatigue_cli_axisymmetric(tmp_path, cache, monkeypatch, capsys):
     monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(cache))
     monkeypatch.setenv("MPLBACKEND", "Agg")
     out = tmp_path / "fat"
-    code = main(["fatigue", str(DEFAULT_SPECTRUM), "--model", "axisymmetric", "--level",
+    code = main(["fatigue", "--method", "seed", str(DEFAULT_SPECTRUM),
+                 "--model", "axisymmetric", "--level",
                  "coarse", "--out", str(out), "--json"])
     assert code == 0
     s = json.loads(capsys.readouterr().out)
@@ -209,7 +210,8 @@ def test_fatigue_cli_axisymmetric(tmp_path, cache, monkeypatch, capsys):
     assert s["hot_spot"]["region"] == "fillet:collar"       # the seed's hot spot (§8.3)
     assert abs(s["hot_spot"]["xyz_mm"][0] - 64.5) < 1.0
     assert (out / "fatigue.vtu").stat().st_size > 0
-    code = main(["fatigue", str(DEFAULT_SPECTRUM), "--model", "axisymmetric", "--level",
+    code = main(["fatigue", "--method", "seed", str(DEFAULT_SPECTRUM),
+                 "--model", "axisymmetric", "--level",
                  "medium", "--out", str(tmp_path / "bad")])
     err = capsys.readouterr().err
     assert code == 2 and "--level" in err and len(err.strip().splitlines()) == 1

@@ -1,0 +1,91 @@
+"""``shaftfe fatigue --method fkm | din743``: strength by standard, the bearings' life over the
+duty cycle and the seed's key and gear checks. A thin layer over ``shaftfe.fatigue.standards``
+and ``shaftfe.fatigue.standards_out``; writes strength.json (all or none)."""
+
+from __future__ import annotations
+
+import math
+
+
+def options_of(args):
+    from shaftfe.fatigue.standards import StrengthOptions
+    return StrengthOptions(card=args.card, rule=args.miner, consequences=args.consequences,
+                           inspection=args.inspection, damage_sum=args.damage_sum)
+
+
+def check_element_options(args) -> tuple[float, float]:
+    from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
+    from shaftfe.errors import InputError
+    kappa = KAPPA_DEFAULT if args.kappa is None else args.kappa
+    ec = EC_DEFAULT if args.ec is None else args.ec
+    if not (math.isfinite(kappa) and 0.1 <= kappa <= 4.0):
+        raise InputError("command line", "--kappa", "a number in [0.1, 4] (ISO 281)", got=kappa)
+    if not (math.isfinite(ec) and 0.0 <= ec <= 1.0):
+        raise InputError("command line", "--ec", "a number in [0, 1] (ISO 281 Table 13)",
+                         got=ec)
+    return kappa, ec
+
+
+def run_standard(args, job) -> int:
+    from pathlib import Path
+
+    from shaftfe.commands._common import out_name, print_json, print_table
+    from shaftfe.errors import InputError
+    from shaftfe.fatigue import standards as sd
+    from shaftfe.fatigue import standards_out as so
+    from shaftfe.fatigue.run import load_inputs
+    from shaftfe.util.atomic import staged_dir
+
+    if args.method not in sd.METHODS:
+        raise InputError("command line", "--method", " | ".join(sd.METHODS), got=args.method)
+    opts = options_of(args)
+    sd.check_options(opts)
+    kappa, ec = check_element_options(args)
+    inputs = load_inputs(job)
+    v = inputs.variant
+    out = Path(args.out) if args.out else \
+        Path("reports") / out_name(v.name, v.overrides) / f"fatigue-{args.method}"
+    with staged_dir(out) as stage:
+        if args.method == "fkm":
+            res, _, ref = sd.run_fkm(job, opts, inputs)
+            summary = so.fkm_summary(res)
+        else:
+            res = sd.run_din743(job, opts, inputs)
+            summary = so.din_summary(res)
+        el = so.compute_elements(v, inputs.history, kappa, ec, job.speed_kmh)
+        summary = {"variant": v.name, "spectrum": str(job.spectrum), **summary,
+                   "elements": el}
+        import json
+        (stage / "strength.json").write_text(json.dumps(summary, indent=1) + "\n")
+    if args.json:
+        print_json(summary)
+        return 0
+    h = inputs.history
+    print(f"{v.name} strength by {args.method.upper() if args.method == 'fkm' else 'DIN 743'}:"
+          f" {h.source} ({h.n_samples} samples, rpm {h.rpm.min():.0f}-{h.rpm.max():.0f}), "
+          f"card {opts.card}")
+    if args.method == "fkm":
+        print(f"static: {'from cache' if ref.from_cache else 'solved'} ({ref.ref_rpm:g} rpm, "
+              f"{ref.n_nodes} nodes, P2 {job.level}); design life {job.design_life:g} blocks; "
+              f"j_D {res.j_D:g}; D_M {res.damage_sum:g}; governing rule: {res.rule}")
+        print_table(so.FKM_HEAD, so.fkm_rows(res), title="FKM, local stresses, per region "
+                    "(surface layer and core at the case depth)")
+        g, c = res.governing
+        print(f"governing: {g.region} ({c.layer}), safety {so._f(c.safety[res.rule])} against "
+              f"j_D {res.j_D:g}, degree of utilisation {so._f(c.utilisation[res.rule])} "
+              f"({'passes' if c.utilisation[res.rule] <= 1 else 'FAILS'}); life "
+              f"{so._f(c.life_blocks[res.rule])} blocks = "
+              f"{so._f(c.life_blocks[res.rule] * res.block_seconds / 3600)} h")
+    else:
+        print(f"cycle: the history's largest, {res.rpm_min:.0f}-{res.rpm_max:.0f} rpm (case 2); "
+              f"S_F at {res.rpm_max:.0f} rpm; beam at {res.ref_rpm:g} rpm scaled by rpm²")
+        print_table(so.DIN_HEAD, so.din_rows(res), title="DIN 743, nominal stresses, bending "
+                    "factors per notch")
+        g = res.governing
+        print(f"governing: {g.result.notch.name} at x = {g.x_mm:g} mm: S_D "
+              f"{so._f(g.result.S_D)}, S_F {so._f(g.result.S_F)} (S_min {sd.din743.S_MIN})")
+    print()
+    for line in so.elements_lines(el, job.speed_kmh):
+        print(line)
+    print(f"\nwrote {out / 'strength.json'}")
+    return 0

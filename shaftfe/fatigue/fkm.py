@@ -1,0 +1,223 @@
+"""FKM guideline, linear fatigue assessment with local (elastic) stresses: the factors and the
+variable-amplitude damage as pure functions (no I/O; ``shaftfe.fatigue.standards`` applies them
+to the FE field).
+
+Source: FKM-Richtlinie "Rechnerischer Festigkeitsnachweis für Maschinenbauteile", 6th ed. (VDMA
+2012), chapter 4 (local stresses). Where the guideline text was not at hand the formulas were
+checked against published transcriptions: the PragTic help "Size effect" (FKM 2003 table of
+K_d,m constants) and the FKM implementation and test data of pyLife (boschresearch/pylife,
+``strength/fkm_linear``, "FKM guideline 2012" section numbers); tests/validation reproduces
+their published examples. Every factor is returned so that the report prints it.
+
+Material groups (``GROUPS``): the constants of the guideline's tables for the groups this
+project needs, and grey cast iron GJL for the guideline's own worked example.
+
+  f_W,σ   σ_W,zd = f_W,σ R_m                      (Table 4.2.1)
+  f_W,τ   τ_W,s = f_W,τ σ_W,zd                    (Table 4.2.1)
+  a_d, d_N technological size factor K_d,m        (Table 2.2.? / PragTic: FKM 2003)
+  a_R, R_m,N,min  roughness factor K_R            (section 4.3.1.4)
+  a_G, b_G  support factor n(G)                   (section 4.3.1.3.1)
+  a_M, b_M  mean stress sensitivity M_σ           (section 4.4.2)
+  K_f~    estimated fatigue notch factor of the design factor
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Group:
+    name: str
+    f_w_sigma: float
+    f_w_tau: float
+    a_d: float            # technological size factor constant
+    d_eff_n_mm: float     # its reference diameter
+    a_r: float            # roughness constant
+    rm_n_min_MPa: float
+    a_g: float            # support factor constants
+    b_g_MPa: float
+    a_m: float            # mean stress sensitivity M = a_M 1e-3 R_m + b_M
+    b_m: float
+    kf_estimate: float    # K_f~ of the design factor
+
+
+GROUPS = {
+    # case-hardening steel (16MnCr5): f_W 0.40; K_d,m: d_eff,N 11 mm, a_d 0.5 ("hardened steel")
+    "case_hardening_steel": Group("case-hardening steel", 0.40, 0.577, 0.5, 11.0, 0.22, 400.0,
+                                  0.5, 2700.0, 0.35, -0.1, 2.0),
+    # quenched and tempered steel (C45 +QT): f_W 0.45, K_d,m: 16 mm, 0.3
+    "qt_steel": Group("quenched and tempered steel", 0.45, 0.577, 0.3, 16.0, 0.22, 400.0,
+                      0.5, 2700.0, 0.35, -0.1, 2.0),
+    # structural steel (Ansys "Structural Steel" is taken as one): f_W 0.45; 40 mm, 0.15
+    "structural_steel": Group("structural steel", 0.45, 0.577, 0.15, 40.0, 0.22, 400.0,
+                              0.5, 2700.0, 0.35, -0.1, 2.0),
+    # grey cast iron (the guideline's example 6.2): f_W 0.34, a_R 0.06, R_m,N,min 100,
+    # a_G −0.05, b_G 3200, M = 0.5, K_f~ 1.0; no size law here (d_N → ∞)
+    "gjl": Group("grey cast iron GJL", 0.34, 1.0, 0.0, math.inf, 0.06, 100.0,
+                 -0.05, 3200.0, 0.0, 0.5, 1.0),
+}
+
+# Component S-N curve of steel, normal stress (section 4.4.3): knee and slope
+N_KNEE = 1.0e6
+K_SLOPE = 5.0
+# Safety factor j_D against fatigue, steel, not welded (section 4.5): consequences of failure
+# severe / moderate, with / without regular inspection
+J_D = {("severe", False): 1.5, ("severe", True): 1.35,
+       ("moderate", False): 1.3, ("moderate", True): 1.2}
+MINER = ("elementary", "modified", "consistent")
+
+
+def size_factor(d_eff_mm: float, g: Group) -> float:
+    """Technological size factor K_d,m = (1 − 0.7686 a_d lg(d/7.5)) / (1 − 0.7686 a_d
+    lg(d_N/7.5)) for d_eff > d_eff,N, else 1."""
+    if not d_eff_mm > g.d_eff_n_mm:
+        return 1.0
+    c = 0.7686 * g.a_d
+    return (1.0 - c * math.log10(d_eff_mm / 7.5)) / (1.0 - c * math.log10(g.d_eff_n_mm / 7.5))
+
+
+def support_factor(G_per_mm: float, rm_MPa: float, g: Group) -> float:
+    """n_σ(G) (Stieler form): G ≤ 0.1: 1 + G 10^−(a_G − 0.5 + R_m/b_G); 0.1 < G ≤ 1:
+    1 + √G 10^−(a_G + R_m/b_G); 1 < G ≤ 100: 1 + G^¼ 10^−(a_G + R_m/b_G). G in 1/mm; a
+    negative gradient (stress rising into the material) gives no support (n = 1)."""
+    G = float(G_per_mm)
+    if not G > 0:
+        return 1.0
+    e = g.a_g + rm_MPa / g.b_g_MPa
+    if G <= 0.1:
+        return 1.0 + G * 10.0 ** -(e - 0.5)
+    if G <= 1.0:
+        return 1.0 + math.sqrt(G) * 10.0 ** -e
+    return 1.0 + min(G, 100.0) ** 0.25 * 10.0 ** -e
+
+
+def roughness_factor(rz_um: float, rm_MPa: float, g: Group) -> float:
+    """K_R,σ = 1 − a_R lg(R_z/µm) lg(2 R_m / R_m,N,min); 1 for R_z ≤ 1 µm."""
+    if rz_um <= 1.0:
+        return 1.0
+    return 1.0 - g.a_r * math.log10(rz_um) * math.log10(2.0 * rm_MPa / g.rm_n_min_MPa)
+
+
+def design_factor(n: float, k_r: float, g: Group, k_v: float = 1.0, k_s: float = 1.0,
+                  k_nle: float = 1.0) -> float:
+    """K_WK,σ = 1/n [1 + 1/K_f~ (1/K_R − 1)] 1/(K_V K_S K_NL,E)."""
+    return (1.0 / n) * (1.0 + (1.0 / g.kf_estimate) * (1.0 / k_r - 1.0)) / (k_v * k_s * k_nle)
+
+
+def mean_stress_sensitivity(rm_MPa: float, g: Group) -> float:
+    """M_σ = a_M 1e-3 R_m/MPa + b_M."""
+    return g.a_m * 1e-3 * rm_MPa + g.b_m
+
+
+def mean_stress_factor(sa, sm, M: float) -> np.ndarray:
+    """K_AK of the Haigh diagram for overload case F2 (constant stress ratio R), per cycle:
+    I (R > 1, compression): 1/(1 − M); II (R ≤ 0): 1/(1 + M σm/σa); III (0 < R < 0.5):
+    (1 + M/3)/(1 + M) / (1 + M/3 σm/σa); IV (R ≥ 0.5): (3 + M)/(3 (1 + M)²)."""
+    sa = np.asarray(sa, dtype=float)
+    sm = np.asarray(sm, dtype=float)
+    r = np.divide(sm, sa, out=np.zeros(np.broadcast(sa, sm).shape), where=sa > 0)
+    smax, smin = sm + sa, sm - sa
+    out = np.where(smax <= 0, 1.0 / (1.0 - M), 0.0)                        # I (and R = 1)
+    two = (smax > 0) & (smin <= 0)
+    out = np.where(two, 1.0 / (1.0 + M * r), out)
+    # R = smin/smax in (0, 0.5) ⇔ σm/σa in (1, 3)
+    three = (smin > 0) & (r < 3.0)
+    out = np.where(three, (1.0 + M / 3.0) / (1.0 + M) / (1.0 + M / 3.0 * r), out)
+    four = (smin > 0) & (r >= 3.0)
+    return np.where(four, (3.0 + M) / (3.0 * (1.0 + M) ** 2), out)
+
+
+# --------------------------------------------------------------------------- variable amplitude
+
+def damage_per_block(s, count, rule: str, k: float = K_SLOPE, n_knee: float = N_KNEE) -> float:
+    """Damage of one block of cycles with relative amplitudes s_i = σ_a,i / σ_AK,i (each
+    cycle's amplitude over the component's fatigue strength amplitude at the knee for that
+    cycle's mean stress) and counts n_i, on the component S-N curve N = N_D s^−k above the
+    knee:
+      elementary: the same line below the knee (no endurance limit);
+      modified (Haibach): slope 2k − 1 below the knee, N = N_D s^−(2k−1).
+    (The consistent rule depends on the damage already done: ``blocks_to_failure``.)"""
+    s = np.asarray(s, dtype=float)
+    c = np.asarray(count, dtype=float)
+    if rule == "elementary":
+        return float(np.sum(c * s ** k) / n_knee)
+    if rule == "modified":
+        above = s >= 1.0
+        return float((np.sum(c[above] * s[above] ** k)
+                      + np.sum(c[~above] * s[~above] ** (2 * k - 1))) / n_knee)
+    raise ValueError(f"rule {rule!r}: elementary | modified (consistent: blocks_to_failure)")
+
+
+def blocks_to_failure(s, count, rule: str, damage_sum: float, k: float = K_SLOPE,
+                      n_knee: float = N_KNEE) -> float:
+    """Blocks until the damage reaches the effective damage sum D_M.
+
+    Elementary and modified: D_M / (damage per block).
+    Consistent (Haibach's "konsequente Miner-Regel"): the fatigue limit falls as damage
+    accumulates, σ_D(D) = σ_D (1 − D/D_M)^(1/k), and a cycle damages only while it is above
+    it, by (s^k)/N_D. A cycle of relative amplitude s < 1 becomes damaging once
+    D/D_M ≥ 1 − s^k; the damage rate per block is piecewise constant between those
+    thresholds, so the number of blocks is the exact sum Σ ΔD / rate over the intervals
+    Infinite if no cycle reaches the fatigue limit: the limit then never starts to fall."""
+    s = np.asarray(s, dtype=float)
+    c = np.asarray(count, dtype=float)
+    keep = (s > 0) & (c > 0)
+    s, c = s[keep], c[keep]
+    if s.size == 0:
+        return math.inf
+    if rule in ("elementary", "modified"):
+        d = damage_per_block(s, c, rule, k, n_knee)
+        return damage_sum / d if d > 0 else math.inf
+    if rule != "consistent":
+        raise ValueError(f"rule {rule!r}: one of {MINER}")
+    w = c * s ** k / n_knee                                # damage per block of each class
+    if not np.any(s >= 1.0):
+        return math.inf          # nothing above the fatigue limit: no damage ever starts
+    start = np.where(s >= 1.0, 0.0, 1.0 - s ** k)          # D/D_M at which it starts
+    order = np.argsort(start, kind="stable")
+    start, w = start[order], w[order]
+    rate = np.cumsum(w)                                     # rate once classes 0..j are on
+    edges = np.append(start, 1.0)
+    blocks = 0.0
+    for j in range(start.size):
+        span = edges[j + 1] - max(edges[j], 0.0)
+        if span > 0:
+            if rate[j] <= 0:
+                return math.inf
+            blocks += span * damage_sum / rate[j]
+    return blocks
+
+
+def scale_for_life(s, count, rule: str, damage_sum: float, blocks: float,
+                   k: float = K_SLOPE, n_knee: float = N_KNEE) -> float:
+    """The factor λ on every amplitude (the load; with a constant stress ratio the mean
+    stress factors do not change) at which the life is exactly ``blocks``: elementary
+    λ = (life/blocks)^(1/k) in closed form, the other rules by bisection in log λ (their life
+    falls monotonically with λ). The consistent rule's life is infinite until the largest
+    cycle reaches the knee and finite from there: where that jump already passes the design
+    life, λ* is the jump (the load at which damage starts at all)."""
+    s = np.asarray(s, dtype=float)
+    if not np.any((s > 0) & (np.asarray(count, dtype=float) > 0)):
+        return math.inf
+    life1 = blocks_to_failure(s, count, rule, damage_sum, k, n_knee)
+    if rule == "elementary":
+        return (life1 / blocks) ** (1.0 / k)
+    lo, hi = 1e-6, 1e6
+
+    def f(lam):
+        return blocks_to_failure(lam * s, count, rule, damage_sum, k, n_knee) - blocks
+    if f(hi) > 0:
+        return hi
+    for _ in range(200):
+        mid = math.sqrt(lo * hi)
+        if f(mid) > 0:
+            lo = mid
+        else:
+            hi = mid
+        if hi / lo - 1.0 < 1e-13:
+            break
+    return math.sqrt(lo * hi)

@@ -1,0 +1,189 @@
+"""Strength by standard as an API: ``run_fkm`` (FKM local stresses on the 3D field) and
+``run_din743`` (DIN 743 nominal stresses on the beam model), over the same history and the same
+rainflow count as the seed method (``shaftfe.fatigue.run``). ``shaftfe fatigue --method`` is a
+thin command over these.
+
+DIN 743 is a fatigue-limit check of one stress cycle: the history's largest rainflow cycle
+(the block's lowest to highest speed; all stresses ∝ rpm², so the mean-to-amplitude ratio is
+constant: DIN 743 case 2) for S_D, and the highest speed of the history for S_F.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from shaftfe.errors import InputError
+from shaftfe.fatigue import din743, fkm
+
+METHODS = ("fkm", "din743", "seed")
+DEFAULT_METHOD = "fkm"
+
+
+@dataclass(frozen=True)
+class StrengthOptions:
+    card: str = "14220"             # geometry/common/strength.toml
+    rule: str = "modified"          # governing Miner rule (all three are reported)
+    consequences: str = "severe"    # FKM j_D: severe | moderate
+    inspection: bool = False        # FKM j_D: regular inspections
+    damage_sum: float = 0.3         # FKM effective damage sum D_M, steel
+
+
+def check_options(o: StrengthOptions) -> None:
+    if o.rule not in fkm.MINER:
+        raise InputError("command line", "--miner", " | ".join(fkm.MINER), got=o.rule)
+    if o.consequences not in ("severe", "moderate"):
+        raise InputError("command line", "--consequences", "severe | moderate",
+                         got=o.consequences)
+    if not (math.isfinite(o.damage_sum) and 0.05 <= o.damage_sum <= 1.0):
+        raise InputError("command line", "--damage-sum", "a number in [0.05, 1]",
+                         got=o.damage_sum)
+
+
+def ground_fillets(variant) -> frozenset[str]:
+    """The fillets at the end of a bearing seat or next to one (ground with the seat)."""
+    segs = variant.segments
+    out = set()
+    for i, s in enumerate(segs[:-1]):
+        if s.fillet_mm > 0 and (s.name.startswith("bearing_seat")
+                                or segs[i + 1].name.startswith("bearing_seat")):
+            out.add(f"fillet:{s.name}")
+    return frozenset(out)
+
+
+def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None):
+    """FKM on the static reference of ``job`` (a ``FatigueJob``: variant, history, mesh level,
+    load case); returns (``fkm_field.FkmResult``, inputs, ref)."""
+    from shaftfe.fatigue.cards import load_card, load_surfaces
+    from shaftfe.fatigue.fkm_field import assess_field
+    from shaftfe.fatigue.run import load_inputs, static_reference
+    check_options(opts)
+    if job.model != "solid":
+        raise InputError("command line", "--model", "solid (the FKM gradient is taken on the "
+                         "3D field)", got=job.model)
+    inputs = inputs or load_inputs(job)
+    card = load_card(opts.card)
+    ref = ref or static_reference(inputs.variant, job)
+    res = assess_field(ref, inputs.history, card, load_surfaces(),
+                       ground_fillets=ground_fillets(inputs.variant), rule=opts.rule,
+                       j_D=fkm.J_D[(opts.consequences, opts.inspection)],
+                       damage_sum=opts.damage_sum, design_life_blocks=job.design_life)
+    return res, inputs, ref
+
+
+# --------------------------------------------------------------------------- DIN 743, beam
+
+KT_TABLE = "reports/benchmarks/kt_reference.json"
+
+
+def converged_kt() -> dict:
+    """(D, d, ρ) rounded to 1e-6 mm -> {load: α} from the committed table of converged Kt
+    (``benchmarks/bench_axisymmetric.py``: 3 uniform refinements, Richardson)."""
+    from shaftfe.util.paths import REPO_DIR
+    try:
+        t = json.loads((REPO_DIR / KT_TABLE).read_text())
+    except (OSError, ValueError):
+        return {}
+    return {(round(r["D_mm"], 6), round(r["d_mm"], 6), round(r["rho_mm"], 6)):
+            {ld: r[ld]["kt"] for ld in ("tension", "bending", "torsion")}
+            for r in t.get("fillets", [])}
+
+
+@dataclass(frozen=True)
+class Din743Row:
+    x_mm: float
+    result: din743.Result
+    stresses: din743.Stresses
+
+
+@dataclass(frozen=True)
+class Din743Run:
+    card: object
+    ref_rpm: float
+    rpm_min: float
+    rpm_max: float
+    rows: tuple[Din743Row, ...]
+    notes: tuple[str, ...]
+
+    @property
+    def governing(self) -> Din743Row:
+        return min(self.rows, key=lambda r: min(r.result.S_D, r.result.S_F))
+
+
+def _at(beam, x: float, side: float = 0.0) -> tuple[float, float]:
+    """(M, T) N·mm at x (``side`` ±: just left / right of a node)."""
+    xs = beam.x_sec + side * 1e-9 * (np.arange(beam.x_sec.size) % 2 * 2 - 1)
+    return float(np.interp(x, xs, beam.M)), float(np.interp(x, xs, np.abs(beam.T)))
+
+
+def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
+    """(x, Notch, d for the nominal stress, half-span judged around x) at every shoulder,
+    keyway and bearing seat."""
+    from shaftfe.fatigue.cards import region_rz
+    gf = ground_fillets(variant)
+    out = []
+    for nt in beam.notches:
+        seg = next(s for s in variant.segments if abs(s.x_end_mm - nt.x_mm) < 1e-6)
+        key = (round(nt.D_mm, 6), round(nt.d_mm, 6), round(nt.r_mm, 6))
+        al = table.get(key)
+        src = "converged Kt (reports/benchmarks/kt_reference.json)" if al else \
+            "DIN 743-2 formula (no converged Kt for this geometry)"
+        out.append((nt.x_mm, din743.Notch(f"shoulder {seg.name}", "shoulder", nt.d_mm,
+                                          nt.D_mm, nt.r_mm, al, src,
+                                          region_rz(f"fillet:{seg.name}", surfaces, gf),
+                                          nt.D_mm), nt.d_mm, 0.0))
+    for s in variant.segments:
+        for kw in s.keyways:
+            # a hub's load is spread over its seat: the keyway is judged at its more loaded
+            # end (the beam's point load at the seat centre has no moment there)
+            out.append((kw.x_center_mm, din743.Notch(f"keyway {s.name}", "keyway",
+                                                     s.diameter_mm, d_eff_mm=s.diameter_mm),
+                        s.diameter_mm, 0.5 * kw.length_mm))
+        if s.name.startswith("bearing_seat"):
+            for x in (s.x_start_mm, s.x_end_mm):
+                out.append((x, din743.Notch(f"press fit {s.name} @{x:g}", "press_fit",
+                                            s.diameter_mm, d_eff_mm=s.diameter_mm),
+                            s.diameter_mm, 0.0))
+    return sorted(out, key=lambda r: r[0])
+
+
+def run_din743(job, opts: StrengthOptions, inputs=None) -> Din743Run:
+    from shaftfe.beam.solve import analyse
+    from shaftfe.fatigue.cards import load_card, load_surfaces
+    from shaftfe.fatigue.counting import count_cycles
+    from shaftfe.fatigue.fkm_field import k_v_case_hardening
+    from shaftfe.fatigue.run import load_inputs
+    check_options(opts)
+    inputs = inputs or load_inputs(job)
+    card = load_card(opts.card)
+    if card.group not in ("case_hardening_steel", "qt_steel"):
+        raise InputError("geometry/common/strength.toml", f"cards.{card.name}.group",
+                         "case_hardening_steel | qt_steel for DIN 743", got=card.group)
+    ref_rpm = 10000.0
+    beam = analyse(inputs.variant, ref_rpm)[0]
+    h = inputs.history.with_reference(ref_rpm)
+    cyc = count_cycles(h.load_factor)
+    lo, hi = float(h.load_factor.min()), float(h.load_factor.max())
+    if cyc.n:                              # the largest cycle of the repeated block
+        k = int(np.argmax(cyc.range))
+        lo, hi = float(cyc.minimum[k]), float(cyc.maximum[k])
+    rows, notes = [], []
+    table = converged_kt()
+    scale = float(np.max(np.abs(beam.M))) or 1.0
+    for x, notch, d, span in din743_notches(inputs.variant, beam, card, load_surfaces(), table):
+        at = [_at(beam, xx, side) for xx in (x - span, x + span) for side in (-1, 1)]
+        M, T = max(a[0] for a in at), max(a[1] for a in at)
+        M = M if M > 1e-9 * scale else 0.0            # round-off of an unloaded end
+        sb = 32.0 * M / (math.pi * d ** 3)
+        tt = 16.0 * T / (math.pi * d ** 3) if T > 1e-9 * scale else 0.0
+        st = din743.Stresses(b_a=sb * (hi - lo) / 2, b_m=sb * (hi + lo) / 2,
+                             t_a=tt * (hi - lo) / 2, t_m=tt * (hi + lo) / 2)
+        kv = k_v_case_hardening(notch.d_mm, True) if card.case_hardened else 1.0
+        res = din743.assess(notch, st, card.rm_n_MPa, card.rp_n_MPa, card.group, k_v=kv,
+                            hard_layer=card.case_hardened, case=2)
+        rows.append(Din743Row(x, res, st))
+    rpm = h.rpm_ref * math.sqrt(hi), h.rpm_ref * math.sqrt(lo)
+    return Din743Run(card, ref_rpm, rpm[1], rpm[0], tuple(rows), tuple(notes))

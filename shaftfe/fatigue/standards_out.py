@@ -1,0 +1,154 @@
+"""Text and JSON of the standards' assessments and of the element checks (shared by
+``shaftfe fatigue --method fkm|din743`` and the report's "Strength by standard" section)."""
+
+from __future__ import annotations
+
+import math
+
+from shaftfe.fatigue import din743 as din
+
+
+def _f(v, fmt=".3g"):
+    return "∞" if isinstance(v, float) and math.isinf(v) else format(v, fmt)
+
+
+def _num(v):
+    return float(v) if isinstance(v, (int, float)) and math.isfinite(v) else None
+
+
+def fkm_rows(res) -> list[list]:
+    rows = []
+    for r in res.regions:
+        for c in (r.surface, r.core):
+            if c is None:
+                continue
+            rows.append([r.region, c.layer, f"{r.xyz_mm[0]:.2f}", f"{c.sigma_ref_MPa:.1f}",
+                         f"{c.G_per_mm:.3f}", f"{c.n:.3f}", f"{c.K_d:.3f}", f"{c.R_m_MPa:.0f}",
+                         f"{c.sigma_W_zd_MPa:.0f}", f"{c.Rz_um:g}", f"{c.K_R:.3f}",
+                         f"{c.K_V:g}", f"{c.K_WK:.3f}", f"{c.sigma_WK_MPa:.0f}",
+                         f"{c.M_sigma:.3f}", f"{c.K_AK_largest:.3f}",
+                         *(_f(c.safety[k]) for k in ("elementary", "modified", "consistent")),
+                         _f(c.utilisation[res.rule]), _f(c.life_blocks[res.rule])])
+    return rows
+
+
+FKM_HEAD = ["region", "layer", "x mm", "σ_vM@ref MPa", "G 1/mm", "n_σ", "K_d,m", "R_m",
+            "σ_W,zd", "R_z µm", "K_R", "K_V", "K_WK", "σ_WK", "M_σ", "K_AK",
+            "S elem", "S mod", "S cons", "a (gov.)", "life blocks (gov.)"]
+
+
+def din_rows(run) -> list[list]:
+    rows = []
+    for w in run.rows:
+        r, f = w.result, w.result.factors["bending"]
+        rows.append([r.notch.name, f"{w.x_mm:.2f}", r.notch.kind,
+                     "-" if math.isnan(f["alpha"]) else f"{f['alpha']:.3f}",
+                     "-" if math.isnan(f["n"]) else f"{f['n']:.3f}", f"{f['beta']:.3f}",
+                     f"{f['K2']:.3f}", f"{f['K_F']:.3f}", f"{f['K_V']:g}", f"{f['K']:.3f}",
+                     f"{r.K1_ultimate:.3f}", f"{f['WK']:.0f}", f"{f['psi']:.3f}",
+                     f"{f['ADK']:.0f}", f"{f['FK']:.0f}", f"{w.stresses.b_a:.1f}",
+                     f"{w.stresses.b_m:.1f}", _f(r.S_D), _f(r.S_F)])
+    return rows
+
+
+DIN_HEAD = ["notch", "x mm", "kind", "α_σ", "n", "β_σ", "K2", "K_Fσ", "K_V", "K_σ", "K1",
+            "σ_bWK", "ψ", "σ_bADK", "σ_bFK", "σ_ba", "σ_bm", "S_D", "S_F"]
+
+
+def fkm_summary(res) -> dict:
+    reg, c = res.governing
+    return {"method": "fkm", "card": res.card.name, "rule": res.rule, "j_D": res.j_D,
+            "damage_sum": res.damage_sum, "design_life_blocks": res.design_life_blocks,
+            "governing": {"region": reg.region, "layer": c.layer,
+                          "safety": {k: _num(v) for k, v in c.safety.items()},
+                          "utilisation": {k: _num(v) for k, v in c.utilisation.items()},
+                          "life_blocks": {k: _num(v) for k, v in c.life_blocks.items()},
+                          "life_hours": {k: _num(v * res.block_seconds / 3600.0)
+                                         for k, v in c.life_blocks.items()}},
+            "regions": [{"region": r.region, "node": r.node, "xyz_mm": list(r.xyz_mm),
+                         "h_mm": r.profile.h_mm, "fit_rms": _num(r.profile.fit_residual),
+                         **{c.layer: {k: (_num(v) if not isinstance(v, dict) else
+                                          {a: _num(b) for a, b in v.items()})
+                                      for k, v in vars(c).items() if k != "layer"}
+                            for c in (r.surface, r.core) if c is not None}}
+                        for r in res.regions],
+            "notes": list(res.notes)}
+
+
+def din_summary(run) -> dict:
+    g = run.governing
+    return {"method": "din743", "card": run.card.name, "S_min": din.S_MIN,
+            "cycle_rpm": [run.rpm_min, run.rpm_max],
+            "governing": {"notch": g.result.notch.name, "x_mm": g.x_mm,
+                          "S_D": _num(g.result.S_D), "S_F": _num(g.result.S_F)},
+            "notches": [{"name": w.result.notch.name, "x_mm": w.x_mm,
+                         "kind": w.result.notch.kind, "alpha_source": w.result.notch.alpha_source,
+                         "S_D": _num(w.result.S_D), "S_F": _num(w.result.S_F),
+                         "stresses_MPa": {k: _num(v) for k, v in vars(w.stresses).items()},
+                         "factors": {ld: {k: _num(v) for k, v in f.items()}
+                                     for ld, f in w.result.factors.items()}}
+                        for w in run.rows]}
+
+
+def elements_summary(bearings, keys, gear_chk, kappa: float, e_c: float) -> dict:
+    from shaftfe.elements.bearings import SEED_POINTS
+    from shaftfe.model.bearing_life import l10h
+    seed_rows = []
+    for s in SEED_POINTS:
+        C = s["C_N"] if s["C_N"] else next(b.C_N for b in bearings)
+        seed_rows.append({**s, "C_N": C, "ours_L10h": l10h(C, s["P_N"], s["rpm"])})
+    return {"bearings": {"kappa": kappa, "e_C": e_c,
+                         "duty_cycle": [{k: _num(v) if isinstance(v, float) else v
+                                         for k, v in vars(b).items()} for b in bearings],
+                         "seed_points": seed_rows},
+            "keys": [{k: _num(v) if isinstance(v, float) else v for k, v in vars(k_).items()}
+                     for k_ in keys],
+            "gear": {k: _num(v) for k, v in vars(gear_chk).items()}}
+
+
+def elements_lines(el: dict, speed_kmh: float) -> list[str]:
+    b = el["bearings"]
+    out = [f"bearings, ISO 281 over the rpm history (κ {b['kappa']:g}, e_C {b['e_C']:g}, "
+           "C_u = C0/22, loads ∝ rpm²):"]
+    for d in b["duty_cycle"]:
+        out.append(f"  {d['name']} {d['designation']}: P_eq {d['P_eq_N']:.0f} N at n_eq "
+                   f"{d['n_eq_rpm']:.0f} rpm; L10h {_f(d['L10h'] or math.inf, '.0f')} h; "
+                   f"L_nm {_f(d['Lnm_h'] or math.inf, '.0f')} h = "
+                   f"{_f(d['Lnm_km'] or math.inf, '.0f')} km at {speed_kmh:g} km/h")
+    for s in b["seed_points"]:
+        out.append(f"  seed single point {s['bearing']} (C {s['C_N']:.0f} N, P {s['P_N']:.0f} "
+                   f"N, {s['rpm']:.0f} rpm): L10h {s['ours_L10h']:.1f} h (seed {s['L10h']} h)")
+    for k in el["keys"]:
+        out.append(f"key {k['name']} (Ø{k['d_mm']:g}, M {k['torque_Nmm'] / 1e3:.3f} N·m): "
+                   f"length needed {k['length_needed_seed_mm']:.3f} mm by the seed's formula "
+                   f"(seed 0.126), {k['length_needed_mm']:.3f} mm at σ_d "
+                   f"{k['sigma_d_MPa']:.0f} MPa; 5×5×8: p {k['pressure_MPa']:.2f} MPa, "
+                   f"safety {k['safety']:.1f}")
+    g = el["gear"]
+    out.append(f"gear pair (Merritt as Inventor, 9500 rpm, 1.5× torque {g['torque_Nmm'] / 1e3:.4f} "
+               f"N·m): F_t {g['F_t_N']:.3f} N, F_r {g['F_r_N']:.3f} N, F_n {g['F_n_N']:.3f} N, "
+               f"v {g['v_m_s']:.3f} m/s, safety {g['safety']:.2f} (seed 33.93)")
+    return out
+
+
+def compute_elements(variant, history, kappa: float, e_c: float, speed_kmh: float) -> dict:
+    """Bearings over the duty cycle, both keys and the gear pair of ``variant``."""
+    from shaftfe.elements import bearings, drive, gear, key
+    from shaftfe.model.mass import mass_properties
+    doc = drive.load()
+    dr = drive.drive(doc)
+    mp = mass_properties(variant)
+    M_all = drive.torque_Nmm(mp.polar_inertia_kg_mm2 + dr.pump_inertia_kg_mm2, dr)
+    cw2 = next((a for a in variant.attachments if a.name == "counterweight_2"), None)
+    keys = []
+    for s in variant.segments:
+        if s.keyways:
+            if s.name == "gear_seat" or cw2 is None:
+                M = M_all
+            else:
+                M = drive.torque_Nmm(cw2.polar_inertia_kg_mm2
+                                     + cw2.mass_kg * cw2.eccentricity_mm ** 2, dr)
+            keys.append(key.check(s.name, M, s.diameter_mm, doc["keys"]))
+    g = gear.check(M_all, dr.max_rpm, doc["gear_pair"])
+    return elements_summary(bearings.duty(variant, history, kappa, e_c, speed_kmh=speed_kmh),
+                            keys, g, kappa, e_c)
