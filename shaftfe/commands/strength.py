@@ -49,10 +49,12 @@ def run_standard(args, job) -> int:
         if args.method == "fkm":
             res, _, ref = sd.run_fkm(job, opts, inputs)
             summary = so.fkm_summary(res)
+            beam = None
         else:
-            res = sd.run_din743(job, opts, inputs)
+            beam = sd.beam_at_ref(v)              # one beam solve for DIN 743 and the bearings
+            res = sd.run_din743(job, opts, inputs, beam)
             summary = so.din_summary(res)
-        el = so.compute_elements(v, inputs.history, kappa, ec, job.speed_kmh)
+        el = so.compute_elements(v, inputs.history, kappa, ec, job.speed_kmh, beam)
         summary = {"variant": v.name, "spectrum": str(job.spectrum), **summary,
                    "elements": el}
         import json

@@ -41,10 +41,11 @@ class BearingDuty:
 
 
 def duty(variant, history, kappa: float = KAPPA_DEFAULT, e_c: float = EC_DEFAULT,
-         a1: float = 1.0, speed_kmh: float = 70.0, ref_rpm: float = 10000.0
-         ) -> tuple[BearingDuty, ...]:
-    from shaftfe.beam.solve import analyse
-    beam = analyse(variant, ref_rpm)[0]
+         a1: float = 1.0, speed_kmh: float = 70.0, beam=None) -> tuple[BearingDuty, ...]:
+    """``beam``: the beam solution at ``standards.BEAM_RPM`` if the caller has it."""
+    from shaftfe.fatigue.standards import BEAM_RPM, beam_at_ref
+    ref_rpm = BEAM_RPM
+    beam = beam if beam is not None else beam_at_ref(variant)
     rpm = np.asarray(history.rpm, dtype=float)
     out = []
     for b, res in zip(variant.bearings, beam.bearings, strict=True):

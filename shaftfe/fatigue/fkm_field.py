@@ -190,8 +190,7 @@ def profile(ref, node: int, tree, case_depth_mm: float | None) -> Profile:
 
 def check(layer: str, depth: float, s_cycles: tuple[np.ndarray, np.ndarray], count,
           sigma_ref: float, G: float, d_eff: float, card: StrengthCard, rz: float,
-          k_v: float, *, rules, j_D: float, damage_sum: float, design_life: float,
-          block_seconds: float) -> Check:
+          k_v: float, *, rules, j_D: float, damage_sum: float, design_life: float) -> Check:
     g = fkm.GROUPS[card.group]
     K_d = fkm.size_factor(d_eff, g)
     R_m = K_d * card.rm_n_MPa
@@ -263,7 +262,7 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
             d_eff = 2.0 * float(math.hypot(x[1], x[2]))
             kv = k_v_case_hardening(d_eff, notched) if card.case_hardened else 1.0
             common = dict(rules=rules, j_D=j_D, damage_sum=damage_sum,
-                          design_life=design_life_blocks, block_seconds=h.duration_s)
+                          design_life=design_life_blocks)
             surf = check("surface", 0.0, (sa, sm), cyc.count, s_soft, prof.G_surface, d_eff,
                          card, rz, kv, **common)
             core = None

@@ -113,10 +113,10 @@ class Din743Run:
         return min(self.rows, key=lambda r: min(r.result.S_D, r.result.S_F))
 
 
-def _at(beam, x: float, side: float = 0.0) -> tuple[float, float]:
-    """(M, T) N·mm at x (``side`` ±: just left / right of a node)."""
-    xs = beam.x_sec + side * 1e-9 * (np.arange(beam.x_sec.size) % 2 * 2 - 1)
-    return float(np.interp(x, xs, beam.M)), float(np.interp(x, xs, np.abs(beam.T)))
+def _at(beam, x: float) -> tuple[float, float]:
+    """(M, T) N·mm at x (both continuous along the beam: no point moments or torques)."""
+    return float(np.interp(x, beam.x_sec, beam.M)), float(np.interp(x, beam.x_sec,
+                                                                      np.abs(beam.T)))
 
 
 def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
@@ -150,8 +150,15 @@ def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
     return sorted(out, key=lambda r: r[0])
 
 
-def run_din743(job, opts: StrengthOptions, inputs=None) -> Din743Run:
+BEAM_RPM = 10000.0     # the beam solution's speed; every other speed by rpm²
+
+
+def beam_at_ref(variant):
     from shaftfe.beam.solve import analyse
+    return analyse(variant, BEAM_RPM)[0]
+
+
+def run_din743(job, opts: StrengthOptions, inputs=None, beam=None) -> Din743Run:
     from shaftfe.fatigue.cards import load_card, load_surfaces
     from shaftfe.fatigue.counting import count_cycles
     from shaftfe.fatigue.fkm_field import k_v_case_hardening
@@ -162,8 +169,8 @@ def run_din743(job, opts: StrengthOptions, inputs=None) -> Din743Run:
     if card.group not in ("case_hardening_steel", "qt_steel"):
         raise InputError("geometry/common/strength.toml", f"cards.{card.name}.group",
                          "case_hardening_steel | qt_steel for DIN 743", got=card.group)
-    ref_rpm = 10000.0
-    beam = analyse(inputs.variant, ref_rpm)[0]
+    ref_rpm = BEAM_RPM
+    beam = beam if beam is not None else beam_at_ref(inputs.variant)
     h = inputs.history.with_reference(ref_rpm)
     cyc = count_cycles(h.load_factor)
     lo, hi = float(h.load_factor.min()), float(h.load_factor.max())
@@ -174,7 +181,7 @@ def run_din743(job, opts: StrengthOptions, inputs=None) -> Din743Run:
     table = converged_kt()
     scale = float(np.max(np.abs(beam.M))) or 1.0
     for x, notch, d, span in din743_notches(inputs.variant, beam, card, load_surfaces(), table):
-        at = [_at(beam, xx, side) for xx in (x - span, x + span) for side in (-1, 1)]
+        at = [_at(beam, xx) for xx in (x - span, x + span)]
         M, T = max(a[0] for a in at), max(a[1] for a in at)
         M = M if M > 1e-9 * scale else 0.0            # round-off of an unloaded end
         sb = 32.0 * M / (math.pi * d ** 3)

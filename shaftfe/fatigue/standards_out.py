@@ -131,8 +131,10 @@ def elements_lines(el: dict, speed_kmh: float) -> list[str]:
     return out
 
 
-def compute_elements(variant, history, kappa: float, e_c: float, speed_kmh: float) -> dict:
-    """Bearings over the duty cycle, both keys and the gear pair of ``variant``."""
+def compute_elements(variant, history, kappa: float, e_c: float, speed_kmh: float,
+                     beam=None) -> dict:
+    """Bearings over the duty cycle, both keys and the gear pair of ``variant`` (``beam``: the
+    beam solution at ``standards.BEAM_RPM`` when the caller has one)."""
     from shaftfe.elements import bearings, drive, gear, key
     from shaftfe.model.mass import mass_properties
     doc = drive.load()
@@ -150,5 +152,6 @@ def compute_elements(variant, history, kappa: float, e_c: float, speed_kmh: floa
                                      + cw2.mass_kg * cw2.eccentricity_mm ** 2, dr)
             keys.append(key.check(s.name, M, s.diameter_mm, doc["keys"]))
     g = gear.check(M_all, dr.max_rpm, doc["gear_pair"])
-    return elements_summary(bearings.duty(variant, history, kappa, e_c, speed_kmh=speed_kmh),
+    return elements_summary(bearings.duty(variant, history, kappa, e_c, speed_kmh=speed_kmh,
+                                          beam=beam),
                             keys, g, kappa, e_c)

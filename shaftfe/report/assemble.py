@@ -290,10 +290,11 @@ def _strength(o: ReportOptions, variant, ref, history) -> dict:
                            damage_sum=opts.damage_sum, design_life_blocks=o.design_life_blocks)
         out["fkm"] = so.fkm_summary(res)
     job = FatigueJob(spectrum=str(o.spectrum), variant=o.variant)
-    din = sd.run_din743(job, opts, FatigueInputs(history, None, variant))
+    beam = sd.beam_at_ref(variant)              # one beam solve for DIN 743 and the bearings
+    din = sd.run_din743(job, opts, FatigueInputs(history, None, variant), beam)
     out["din743"] = so.din_summary(din)
     out["elements"] = so.compute_elements(variant, history, KAPPA_DEFAULT, EC_DEFAULT,
-                                          o.speed_kmh)
+                                          o.speed_kmh, beam)
     return out
 
 
