@@ -14,6 +14,7 @@ import sys
 
 from shaftfe import __version__
 from shaftfe.errors import ShaftfeError
+from shaftfe.util.notices import collecting
 
 # Command modules, in the order they appear in --help.
 COMMAND_MODULES = (
@@ -85,7 +86,8 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return 0
     try:
-        return int(args.handler(args) or 0)
+        with collecting():
+            return int(args.handler(args) or 0)
     except ShaftfeError as exc:
         print(f"shaftfe: error: {exc}", file=sys.stderr)
         return 2
