@@ -65,7 +65,7 @@ lint: $(STAMP)
 clean:
 	rm -rf $(VENV) .venv-latest .venv-lock .pytest_cache .ruff_cache build *.egg-info
 
-# The result tables README.md quotes, recomputed through the API (docs/tables.py).
+# The result tables the docs quote (docs/VALIDATION.md, docs/STUDIES.md), recomputed through the API (docs/tables.py).
 tables: $(STAMP)
 	$(BIN)/python docs/tables.py
 

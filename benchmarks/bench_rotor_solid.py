@@ -169,7 +169,7 @@ def _markdown(rep: dict) -> str:
           "K + σΩG + σ²M and shift-invert Arnoldi on the 2n companion pencil (PARDISO when "
           "installed). Target ≤ 3 s for 12 modes × 9 speeds after the mesh: the sweep meets "
           "it; assembly + factorisation + basis do not on this mesh and this shared machine "
-          "(see README, Rotor dynamics).", ""]
+          "(see docs/VALIDATION.md, Rotor dynamics).", ""]
     coarse = cases[0]
     e = rep["coarse_vs_finer_level"]
     L += [f"Mesh error: coarse vs {e['level']} level, largest relative difference of the 12 "

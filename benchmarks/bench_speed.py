@@ -14,9 +14,9 @@ rusage of that child) are reported:
 The static phases come from one more warm run's ``summary.json`` (``run``: assembly,
 factorisation and solve seconds as the solver measured them). The error that goes with these
 times is the truth's (reports/benchmarks/truth.md, pareto.md): the run-time figures here are for
-the default settings, whose error bars README and ``shaftfe static`` quote.
+the default settings, whose error bars docs/VALIDATION.md and ``shaftfe static`` quote.
 
-Writes ``reports/benchmarks/speed.md`` and ``speed.json``; README's speed paragraph quotes
+Writes ``reports/benchmarks/speed.md`` and ``speed.json``; docs/VALIDATION.md's speed paragraph quotes
 ``speed.json`` (tests/test_consistency.py checks it).
 """
 

@@ -1,9 +1,10 @@
-"""The result tables README.md quotes, computed by the project's own API so they cannot go stale.
+"""The result tables the docs quote, computed by the project's own API so they cannot go stale.
 
-    python docs/tables.py            # rewrite the tables in README.md (make tables)
-    python docs/tables.py --check    # exit 1 if README.md's tables differ from a fresh run
+    python docs/tables.py            # rewrite the tables in docs/*.md (make tables)
+    python docs/tables.py --check    # exit 1 if a quoted table differs from a fresh run
 
-Each table sits between ``<!-- table:NAME -->`` and ``<!-- /table -->`` in README.md. The
+Each table sits between ``<!-- table:NAME -->`` and ``<!-- /table -->`` in the file ``TABLES``
+names (docs/VALIDATION.md, docs/STUDIES.md). The
 static solutions come from the cache (``shaftfe.static.cache``) when the model is unchanged, so a
 second run takes seconds; a cold run solves x2_57 twice at the default level (≈ 30 s).
 """
@@ -15,7 +16,7 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-README = ROOT / "README.md"
+DOCS = ROOT / "docs"
 
 
 def fatigue_x2_57() -> str:
@@ -134,37 +135,45 @@ def study_x2_tradeoff() -> str:
     return "\n".join(out)
 
 
-TABLES = {"fatigue-x2_57": fatigue_x2_57, "study-x2_tradeoff": study_x2_tradeoff}
+# table name -> (the file that quotes it, the function that computes it)
+TABLES = {"fatigue-x2_57": (DOCS / "VALIDATION.md", fatigue_x2_57),
+          "study-x2_tradeoff": (DOCS / "STUDIES.md", study_x2_tradeoff)}
 
 
-def render(text: str) -> str:
-    for name, make in TABLES.items():
+def render(path: Path, text: str) -> str:
+    """``text`` (the content of ``path``) with each of its tables recomputed."""
+    for name, (where, make) in TABLES.items():
+        if where != path:
+            continue
         # the body up to the FIRST closing marker (an empty block too)
         pat = re.compile(rf"(<!-- table:{re.escape(name)} -->\n)(?:.*?)(<!-- /table -->)",
                          re.S)
         if not pat.search(text):
-            raise SystemExit(f"README.md: marker <!-- table:{name} --> not found")
+            raise SystemExit(f"{path.name}: marker <!-- table:{name} --> not found")
         body = make()
         text = pat.sub(lambda m, b=body: m.group(1) + b + "\n" + m.group(2), text)
     return text
 
 
 def main(argv: list[str]) -> int:
-    old = README.read_text(encoding="utf-8")
-    new = render(old)
-    if "--check" in argv:
-        if new != old:
-            print("README.md: the result tables are stale; run `make tables`", file=sys.stderr)
-            return 1
-        print("README.md: result tables are current")
-        return 0
-    if new != old:
-        from shaftfe.util.atomic import write_atomic
-        write_atomic(README, new)
-        print("README.md: tables rewritten")
-    else:
-        print("README.md: tables already current")
-    return 0
+    status = 0
+    for path in sorted({where for where, _ in TABLES.values()}):
+        rel = path.relative_to(ROOT)
+        old = path.read_text(encoding="utf-8")
+        new = render(path, old)
+        if "--check" in argv:
+            if new != old:
+                print(f"{rel}: the result tables are stale; run `make tables`", file=sys.stderr)
+                status = 1
+            else:
+                print(f"{rel}: result tables are current")
+        elif new != old:
+            from shaftfe.util.atomic import write_atomic
+            write_atomic(path, new)
+            print(f"{rel}: tables rewritten")
+        else:
+            print(f"{rel}: tables already current")
+    return status
 
 
 if __name__ == "__main__":
