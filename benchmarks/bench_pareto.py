@@ -1172,8 +1172,9 @@ def _family_text(res: dict) -> str:
             "not the mesh (the beam converges to its own answer at h = 20 mm): the beam holds "
             "the twist at one node where the 3D model holds it at both bearings, and its disks "
             "add no seat stiffness where the 3D tie is rigid; the bearing-dominated lateral "
-            "modes agree best (docs/VALIDATION.md, Rotor dynamics). The beam is the fast check; the 3D "
-            "solid (`--model solid`) is the reference for the torsional and higher modes.")
+            "modes agree best (docs/VALIDATION.md, Rotor dynamics). The beam is the fast "
+            "check; the 3D solid (`--model solid`) is the reference for the torsional and "
+            "higher modes.")
 
 
 def write_report(data: dict) -> dict:

@@ -16,8 +16,8 @@ factorisation and solve seconds as the solver measured them). The error that goe
 times is the truth's (reports/benchmarks/truth.md, pareto.md): the run-time figures here are for
 the default settings, whose error bars docs/VALIDATION.md and ``shaftfe static`` quote.
 
-Writes ``reports/benchmarks/speed.md`` and ``speed.json``; docs/VALIDATION.md's speed paragraph quotes
-``speed.json`` (tests/test_consistency.py checks it).
+Writes ``reports/benchmarks/speed.md`` and ``speed.json``; docs/VALIDATION.md's speed paragraph
+quotes ``speed.json`` (tests/test_consistency.py checks it).
 """
 
 from __future__ import annotations
