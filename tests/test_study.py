@@ -201,6 +201,14 @@ def test_every_input_checked_before_the_first_design(tmp_path):
     ok = [Design(0, (("attachments.counterweight_2.eccentricity_mm", 20.23 * 0.8),
                      ("attachments.counterweight_2.mass_kg", 0.24 * 1.25)))]
     _unit_slip(spec, ok)
+    # the showcase's counterweights (derived from their shapes) pass the bound
+    from shaftfe.model.derive import design_overrides
+    show = load_study(ROOT / "studies" / "x2_tradeoff.toml").parameters[0]
+    for u in (0.0, 1.0):
+        o = design_overrides("x2_57", dict(zip(show.paths, show.point(u), strict=True)))
+        _unit_slip(spec, [Design(0, tuple((k, v) for k, v in o.items()
+                                         if k.endswith(("mass_kg", "eccentricity_mm"))
+                                         and k.startswith("attachments.")))])
     for path, v in (("attachments.counterweight_2.eccentricity_mm", 0.02023),
                     ("attachments.counterweight_2.eccentricity_mm", 20.23 * 10),
                     ("attachments.counterweight_2.mass_kg", 0.24 / (UNIT_SLIP * 1.01))):
@@ -466,6 +474,8 @@ def test_docs_quote_the_code():
     assert f"max_rpm (default {CAMPBELL_TOP_RPM:,.0f}".replace(",", " ") in text
     assert f"step_rpm (default {Analyses().campbell_step_rpm:g})" in text
     assert f"within {CONNECT_TIMEOUT_S} s" in text
+    from shaftfe.study.check import UNIT_SLIP
+    assert f"within {UNIT_SLIP:g}× of the base" in text
     gib = {k: v / MiB for k, v in MEMORY_PER_WORKER.items()}
     assert (f"beam {gib['beam']:.0f} MiB, coarse 3D {gib['coarse'] / 1024:.1f} GiB, default "
             f"{gib['default'] / 1024:.0f} GiB, fine {gib['fine'] / 1024:.0f} GiB") in text

@@ -33,7 +33,8 @@ from shaftfe.study.spec import StudySpec, check_designs
 
 # A part's mass or eccentricity set directly may move by at most this factor from the base
 # variant's value: the smallest unit slip (mm typed as cm, ×10) is outside, a real redesign of
-# the same part (the showcase's counterweights move mass by 0.79…1.25×) inside.
+# the same part inside (the showcase's counterweights, derived from their shapes: 0.57…1.18×
+# in mass, 0.76…1.07× in eccentricity; tests/test_study.py checks it).
 UNIT_SLIP = 5.0
 _PART_KEYS = ("mass_kg", "eccentricity_mm")
 

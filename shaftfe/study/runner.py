@@ -74,7 +74,7 @@ class StudyRun:
 
 # sources that cannot change a design's numbers (scheduling, tables, the page, the CLI)
 _NOT_NUMBERS = ("cli.py", "study/runner.py", "study/results.py", "study/report.py",
-                "study/sampling.py", "study/__init__.py")
+                "study/sampling.py", "study/__init__.py", "study/check.py")
 
 
 def source_fingerprint() -> str:
