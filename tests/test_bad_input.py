@@ -323,6 +323,7 @@ STUDY_FILES = {
                          'values = [39.0, 400.0]\n[analyses]\nbeam = true\n'),
     "all_refused.toml": STUDY_HEAD.replace("[0.4, 0.5]", "[0.8, 1.0]")
                         + "[analyses]\nbeam = true\n",
+    "overspeed.toml": STUDY_HEAD + "[analyses]\nbearings = { rpm = 19000 }\n",
 }
 STUDY_CASES: dict[str, tuple[list[str], list[str]]] = {
     "study_spectrum_malformed": (["study", "run", "{W}/badspec.toml", "--out", "{W}/o"],
@@ -335,6 +336,9 @@ STUDY_CASES: dict[str, tuple[list[str], list[str]]] = {
         ["radius_huge.toml", "design 1", "'cw2 radius'", "= 400", "mass_kg", "[1e-05, 20] kg"]),
     "study_every_design_refused": (["study", "run", "{W}/all_refused.toml", "--out", "{W}/o"],
                                    ["all_refused.toml", "all 2 refused", "ISO 582"]),
+    "study_bearing_speed_above_max_rpm": (["study", "run", "{W}/overspeed.toml", "--out",
+                                           "{W}/o"], ["overspeed.toml", "bearings.rpm",
+                                                      "max_rpm"]),
     "study_scheduler_not_a_url": (["study", "run", "{W}/beam.toml", "--out", "{W}/o",
                                    "--scheduler", "not a url"], ["--scheduler", "not a URL"]),
     "study_scheduler_http": (["study", "run", "{W}/beam.toml", "--out", "{W}/o",

@@ -7,7 +7,8 @@ Two kinds of rule, two outcomes (docs/STUDIES.md, "What is checked before anythi
   ``shaftfe variant check`` applies to one key or to a file that cannot be read:
 
   - the files every design reads: the rpm history (``analyses.fatigue.spectrum``, read and
-    checked as ``shaftfe fatigue`` reads it), the S-N card, the engine;
+    checked as ``shaftfe fatigue`` reads it), the S-N card, the engine; the engine speed and
+    the bearings' speed at most the engine's ``max_rpm``;
   - every parameter path and value (``spec.check_designs``: the key exists, its kind, the
     key's own range);
   - a part's mass or eccentricity set directly more than ``UNIT_SLIP`` times away from the
@@ -126,7 +127,13 @@ def _files(spec: StudySpec) -> None:
     """The files every design reads, read once here (their own one-line errors)."""
     from shaftfe.study.evaluate import _engine, _fatigue_inputs
     an = spec.analyses
-    _engine(an.engine)
+    eng = _engine(an.engine)
+    top = float(eng.max_rpm or 0.0)
+    for fld, rpm in (("analyses.balance.rpm", an.engine_rpm),
+                     ("analyses.bearings.rpm", an.bearing_rpm)):
+        if top > 0 and rpm is not None and rpm > top:     # the engine's own speed limit
+            raise InputError(spec.path, fld, f"at most the engine's max_rpm, {top:g} rpm "
+                             f"({eng.name})", got=rpm)
     if an.fatigue:
         _fatigue_inputs(an.spectrum, an.material)
 
