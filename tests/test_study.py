@@ -524,3 +524,21 @@ def test_reused_factorisation_gives_the_standalone_answer():
         assert a.von_mises_MPa == pytest.approx(b.von_mises_MPa, rel=1e-12), a.region
     assert [x.F_radial_N for x in shared.cases[0].bearings] == pytest.approx(
         [x.F_radial_N for x in alone.cases[0].bearings], rel=1e-12)
+
+
+def test_failed_designs_exit_1(tmp_path, capsys, monkeypatch):
+    """A run with failed designs is not a finished study: exit 1 and one line saying how many
+    (the runner itself is the beam_run fixture's; here only the command's ending)."""
+    from shaftfe.study import runner
+    p = write(tmp_path)
+    rows = ({"design": 0, "status": "failed", "error": "SolverError: x"},)
+
+    def fake(spec, out, **kw):
+        kw["announce"](kw["checked"])
+        return runner.StudyRun(Path(out), rows, 1, 0, 1, 0, 1, 0.1, 0.1)
+    monkeypatch.setattr(runner, "run_study", fake)
+    rc, _out, err = run_cli(["study", "run", str(p), "--out", str(tmp_path / "o"),
+                            "--no-report"], capsys)
+    assert rc == 1
+    assert err.splitlines()[0].startswith("shaftfe: 2 designs refused (6, 7)")  # before solving
+    assert "1 of 1 designs failed" in err.splitlines()[-1]
