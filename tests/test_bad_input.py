@@ -301,3 +301,96 @@ def test_the_catalogue_covers_every_command_and_at_least_60_cases():
     assert len(CASES) >= 60
     assert commands >= {"balance", "variant", "beam", "mesh", "static", "fatigue", "campbell",
                         "modal", "report", "demo", "view"}
+
+
+# --------------------------------------------------------------------------- issue 30, slice
+# c-study: `shaftfe study` (every input checked before the first design; the scheduler's
+# address; damaged study folders). Same contract as the catalogue above; no design is solved
+# (each case is refused before the cluster starts) and only loopback addresses are used.
+
+STUDY_HEAD = ('[study]\nname = "t"\nbase = "x2_57"\n[[parameters]]\n'
+              'path = "segments.collar.fillet_mm"\nvalues = [0.4, 0.5]\n')
+STUDY_FILES = {
+    "beam.toml": STUDY_HEAD + "[analyses]\nbeam = true\n",
+    "badspec.toml": STUDY_HEAD + '[analyses]\nstatic = { level = "coarse" }\n'
+                    'fatigue = { spectrum = "bad.dat" }\n',
+    "ecc_metres.toml": ('[study]\nname = "e"\nbase = "x2_57"\n[[parameters]]\n'
+                        'path = "attachments.counterweight_2.eccentricity_mm"\n'
+                        'values = [20.23, 0.02023]\n[analyses]\nbeam = true\n'),
+    "radius_huge.toml": ('[study]\nname = "r"\nbase = "x2_57"\n[[parameters]]\n'
+                         'name = "cw2 radius"\n'
+                         'path = "attachments.counterweight_2.shape.outer_radius_mm"\n'
+                         'values = [39.0, 400.0]\n[analyses]\nbeam = true\n'),
+    "all_refused.toml": STUDY_HEAD.replace("[0.4, 0.5]", "[0.8, 1.0]")
+                        + "[analyses]\nbeam = true\n",
+    "overspeed.toml": STUDY_HEAD + "[analyses]\nbearings = { rpm = 19000 }\n",
+}
+STUDY_CASES: dict[str, tuple[list[str], list[str]]] = {
+    "study_spectrum_malformed": (["study", "run", "{W}/badspec.toml", "--out", "{W}/o"],
+                                 ["bad.dat", "line 3"]),
+    "study_eccentricity_in_metres": (["study", "run", "{W}/ecc_metres.toml", "--out",
+                                      "{W}/o"], ["ecc_metres.toml", "eccentricity_mm",
+                                                 "0.02023", "20.23"]),
+    "study_derived_mass_names_the_parameter": (
+        ["study", "run", "{W}/radius_huge.toml", "--out", "{W}/o"],
+        ["radius_huge.toml", "design 1", "'cw2 radius'", "= 400", "mass_kg", "[1e-05, 20] kg"]),
+    "study_every_design_refused": (["study", "run", "{W}/all_refused.toml", "--out", "{W}/o"],
+                                   ["all_refused.toml", "all 2 refused", "ISO 582"]),
+    "study_bearing_speed_above_max_rpm": (["study", "run", "{W}/overspeed.toml", "--out",
+                                           "{W}/o"], ["overspeed.toml", "bearings.rpm",
+                                                      "max_rpm"]),
+    "study_scheduler_not_a_url": (["study", "run", "{W}/beam.toml", "--out", "{W}/o",
+                                   "--scheduler", "not a url"], ["--scheduler", "not a URL"]),
+    "study_scheduler_http": (["study", "run", "{W}/beam.toml", "--out", "{W}/o",
+                              "--scheduler", "http://127.0.0.1:8787"],
+                             ["--scheduler", "web address", "tcp://"]),
+    "study_scheduler_refused": (["study", "run", "{W}/beam.toml", "--out", "{W}/o",
+                                 "--scheduler", "tcp://127.0.0.1:{PORT}"],
+                                ["--scheduler", "refused the connection"]),
+    "study_out_with_damaged_study_json": (["study", "run", "{W}/beam.toml", "--out",
+                                           "{W}/damaged_meta"], ["study.json", "damaged"]),
+    "study_report_missing_folder": (["study", "report", "{W}/nothing_here"],
+                                    ["nothing_here", "does not exist"]),
+    "study_report_damaged_study_json": (["study", "report", "{W}/damaged_meta"],
+                                        ["study.json", "damaged"]),
+    "study_report_damaged_parquet": (["study", "report", "{W}/damaged_table"],
+                                     ["results.parquet", "cannot be read"]),
+}
+
+
+@pytest.fixture(scope="module")
+def study_space(tmp_path_factory):
+    import socket
+    w = tmp_path_factory.mktemp("bad-study")
+    for name, text in STUDY_FILES.items():
+        (w / name).write_text(text)
+    (w / "bad.dat").write_text("# format = rpm\n# sample_rate_hz = 1\nabc\n3000\n")
+    (w / "damaged_meta").mkdir()
+    (w / "damaged_meta" / "study.json").write_bytes(b"\x00{not json")
+    (w / "damaged_table").mkdir()
+    (w / "damaged_table" / "study.json").write_text('{"digest": "x", "objectives": []}')
+    (w / "damaged_table" / "results.parquet").write_bytes(b"PAR1 not a table")
+    with socket.socket() as s:                 # a loopback port nobody listens on
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    return w, port
+
+
+@pytest.mark.parametrize("case", sorted(STUDY_CASES))
+def test_bad_study_input_is_one_clear_line_exit_2_and_writes_nothing(case, study_space, capsys,
+                                                                     monkeypatch):
+    w, port = study_space
+    argv, expect = STUDY_CASES[case]
+    args = [a.replace("{W}", str(w)).replace("{PORT}", str(port)) for a in argv]
+    monkeypatch.chdir(w)
+    before = _snapshot(w)
+    capsys.readouterr()
+    rc = main(args)
+    out = capsys.readouterr()
+    lines = out.err.strip().splitlines()
+    assert rc == 2, f"exit {rc}; stderr: {out.err!r}"
+    assert len(lines) == 1, f"expected one line on stderr, got {lines!r}"
+    assert "Traceback" not in out.err and "typed in grams" not in out.err
+    for word in expect:
+        assert word in lines[0], f"{word!r} not named in: {lines[0]}"
+    assert _snapshot(w) == before, "the work space (--out) changed"

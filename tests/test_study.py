@@ -156,10 +156,78 @@ def test_unreachable_scheduler_is_one_line(tmp_path, capsys):
     rc, _, err = run_cli(["study", "run", str(p), "--out", str(tmp_path / "o"),
                           "--scheduler", f"tcp://127.0.0.1:{port}"], capsys)
     # a hang guard, not a speed test: the connect timeout is runner.CONNECT_TIMEOUT_S
-    from shaftfe.study.runner import CONNECT_TIMEOUT_S
     assert time.perf_counter() - t0 < 60
     assert rc == 2 and err.count("\n") == 1
-    assert f"reachable within {CONNECT_TIMEOUT_S} s" in err
+    assert "refused the connection" in err and f"port {port}" in err
+    assert not (tmp_path / "o").exists()             # nothing left: a later study may use it
+    other = write(tmp_path, BEAM_STUDY.replace("0.8]", "0.7]"), "other.toml")
+    from shaftfe.study.runner import check_directory
+    from shaftfe.study.spec import load_study
+    check_directory(tmp_path / "o", load_study(other))   # not "a different study file"
+
+
+@pytest.mark.parametrize("address,why", [
+    ("not a url", "is not a URL"), ("", "is not a URL"),
+    ("http://127.0.0.1:8787", "web address"), ("https://127.0.0.1/status", "web address"),
+    ("tcp://127.0.0.1:99999", "port is not a number"), ("tcp://127.0.0.1", "host:port"),
+    ("foo://127.0.0.1:8786", "schemes tcp"),
+])
+def test_scheduler_address_says_what_is_wrong(address, why):
+    """The address's form is checked before anything is loaded or connected."""
+    from shaftfe.study.runner import scheduler_address
+    with pytest.raises(InputError, match=why):
+        scheduler_address(address)
+    assert scheduler_address("127.0.0.1:8786") == ("127.0.0.1", 8786)     # distributed's form
+    assert scheduler_address("tcp://localhost:8786") == ("localhost", 8786)
+
+
+def test_every_input_checked_before_the_first_design(tmp_path):
+    """Design rules (ISO 582 here) refuse a design and are listed before anything is solved,
+    by the parameter and the value the study file gives; an input rule (a unit slip of a
+    part's eccentricity) refuses the whole study."""
+    from shaftfe.study.check import UNIT_SLIP, _unit_slip, check_study
+    from shaftfe.study.sampling import designs
+    from shaftfe.study.spec import load_study
+    spec = load_study(write(tmp_path))
+    checked = check_study(spec, designs(spec))
+    assert sorted(checked.refused) == [6, 7]                       # the 0.8 mm fillet
+    assert checked.refused[6].startswith("parameter segments.collar.fillet_mm = 0.8 is "
+                                         "refused; allowed: <= 0.6 mm")
+    [line] = checked.summary()
+    assert line.startswith("2 designs refused (6, 7): segments.collar.fillet_mm") \
+        and "ISO 582" in line and "--set" not in line
+    # the unit-slip bound: x2_57's counterweight_2 has 20.23 mm and 0.24 kg
+    from shaftfe.study.sampling import Design
+    ok = [Design(0, (("attachments.counterweight_2.eccentricity_mm", 20.23 * 0.8),
+                     ("attachments.counterweight_2.mass_kg", 0.24 * 1.25)))]
+    _unit_slip(spec, ok)
+    # the showcase's counterweights (derived from their shapes) pass the bound
+    from shaftfe.model.derive import design_overrides
+    show = load_study(ROOT / "studies" / "x2_tradeoff.toml").parameters[0]
+    for u in (0.0, 1.0):
+        o = design_overrides("x2_57", dict(zip(show.paths, show.point(u), strict=True)))
+        _unit_slip(spec, [Design(0, tuple((k, v) for k, v in o.items()
+                                         if k.endswith(("mass_kg", "eccentricity_mm"))
+                                         and k.startswith("attachments.")))])
+    for path, v in (("attachments.counterweight_2.eccentricity_mm", 0.02023),
+                    ("attachments.counterweight_2.eccentricity_mm", 20.23 * 10),
+                    ("attachments.counterweight_2.mass_kg", 0.24 / (UNIT_SLIP * 1.01))):
+        with pytest.raises(InputError, match=f"within {UNIT_SLIP:g}×"):
+            _unit_slip(spec, [Design(0, ((path, v),))])
+
+
+def test_refusal_names_the_study_parameter():
+    """A value derived from a parameter (a counterweight's mass from its shape) is named with
+    the parameter that gave it, not as a --set the user never wrote nor 'typed in grams'."""
+    from shaftfe.study.check import refusal
+    from shaftfe.study.evaluate import load_design
+    ov = {"attachments.counterweight_2.shape.outer_radius_mm": 400.0}
+    with pytest.raises(InputError) as e:
+        load_design("x2_57", ov)
+    why, rule = refusal(None, ov, e.value)
+    assert why.startswith("attachments.counterweight_2.mass_kg = 43.343 (derived from "
+                          "parameter attachments.counterweight_2.shape.outer_radius_mm = 400)")
+    assert "--set" not in why and "grams" not in why and "400" not in rule
 
 
 # --------------------------------------------------------------------------- the runner
@@ -250,6 +318,52 @@ def test_report_page(beam_run):
     page = write_report(run.out_dir).read_text()
     assert "Recommendation" in page and "Sensitivities" in page
     assert "ISO 582" in page and "data:image/png;base64," in page
+    # the base variant, evaluated by the same analyses, is marked on the page
+    base = json.loads((run.out_dir / "base.json").read_text())
+    assert base["row"]["status"] == "ok" and "x2_57 (base)" in page
+    # nothing of the machine it ran on: the study file relative to the folder
+    meta = (run.out_dir / "study.json").read_text()
+    assert str(run.out_dir.parent) not in meta and str(run.out_dir.parent) not in page
+    assert json.loads(meta)["study_file"] == "../s.toml"
+
+
+def test_numbers_and_life_axis_on_the_page():
+    """Speeds readable (40,235 rpm, not 4.024e+04); lives on a log axis with 0 and ∞ on
+    marked edges a decade beyond the finite ones (exact: the edges are lo/10 and hi·10)."""
+    from shaftfe.study.report import _fmt, _placed
+    assert _fmt(40235.4) == "40,235" and _fmt(0.49531) == "0.4953" and _fmt(272.5) == "272.5"
+    assert _fmt(float("inf")) == "∞" and _fmt(float("nan")) == "—"
+    assert _fmt(2.68e9) == "2.680·10<sup>9</sup>"
+    v, edges = _placed("life_h", [0.0, 0.8, 50.0, float("inf")])
+    assert list(v) == [0.08, 0.8, 50.0, 500.0] and sorted(edges.values()) == [0.08, 500.0]
+    v, edges = _placed("engine_max_F_N", [1.0, 2.0])
+    assert list(v) == [1.0, 2.0] and edges == {}
+
+
+@pytest.mark.parametrize("sense,word", [("min", "lowest"), ("max", "highest")])
+def test_recommendation_text_is_true_of_the_table(sense, word):
+    """The page's claim about the recommended design holds in the table: among the
+    non-dominated designs that meet the requirements it is the best in the first objective
+    by that objective's sense; a better one that misses a requirement is named with why."""
+    import pandas as pd
+
+    from shaftfe.study import results
+    from shaftfe.study.report import recommendation
+    f = [100.0, 200.0, 300.0, 400.0]
+    life = [5.0, 50.0, 80.0, 120.0] if sense == "min" else [120.0, 80.0, 50.0, 5.0]
+    df = pd.DataFrame({"design": [0, 1, 2, 3], "status": ["ok"] * 4,
+                       "engine_max_F_N": f, "life_h": life})
+    objs = [("engine_max_F_N", sense), ("life_h", "max")]
+    reqs = [("life_h", ">=", 10.0)]
+    nd, meets = results.non_dominated(df, objs), results.meets(df, reqs)
+    rec = results.recommend(df, objs, reqs)
+    cand = [i for i in range(4) if nd[i] and meets[i]]
+    best = (min if sense == "min" else max)(cand, key=lambda i: f[i])
+    assert rec == best
+    text = recommendation(df, objs, reqs, nd, meets, rec, [])
+    assert f"has the {word} engine max|F| [N]: {f[rec]:g}" in text
+    missed = 0 if sense == "min" else 3                # the better design without the life
+    assert f"design {missed}, {f[missed]:g}: fatigue life [h] 5 (required &gt;= 10)" in text
 
 
 def test_dead_worker_is_retried_once_then_recorded(tmp_path):
@@ -360,6 +474,8 @@ def test_docs_quote_the_code():
     assert f"max_rpm (default {CAMPBELL_TOP_RPM:,.0f}".replace(",", " ") in text
     assert f"step_rpm (default {Analyses().campbell_step_rpm:g})" in text
     assert f"within {CONNECT_TIMEOUT_S} s" in text
+    from shaftfe.study.check import UNIT_SLIP
+    assert f"within {UNIT_SLIP:g}× of the base" in text
     gib = {k: v / MiB for k, v in MEMORY_PER_WORKER.items()}
     assert (f"beam {gib['beam']:.0f} MiB, coarse 3D {gib['coarse'] / 1024:.1f} GiB, default "
             f"{gib['default'] / 1024:.0f} GiB, fine {gib['fine'] / 1024:.0f} GiB") in text
@@ -408,3 +524,21 @@ def test_reused_factorisation_gives_the_standalone_answer():
         assert a.von_mises_MPa == pytest.approx(b.von_mises_MPa, rel=1e-12), a.region
     assert [x.F_radial_N for x in shared.cases[0].bearings] == pytest.approx(
         [x.F_radial_N for x in alone.cases[0].bearings], rel=1e-12)
+
+
+def test_failed_designs_exit_1(tmp_path, capsys, monkeypatch):
+    """A run with failed designs is not a finished study: exit 1 and one line saying how many
+    (the runner itself is the beam_run fixture's; here only the command's ending)."""
+    from shaftfe.study import runner
+    p = write(tmp_path)
+    rows = ({"design": 0, "status": "failed", "error": "SolverError: x"},)
+
+    def fake(spec, out, **kw):
+        kw["announce"](kw["checked"])
+        return runner.StudyRun(Path(out), rows, 1, 0, 1, 0, 1, 0.1, 0.1)
+    monkeypatch.setattr(runner, "run_study", fake)
+    rc, _out, err = run_cli(["study", "run", str(p), "--out", str(tmp_path / "o"),
+                            "--no-report"], capsys)
+    assert rc == 1
+    assert err.splitlines()[0].startswith("shaftfe: 2 designs refused (6, 7)")  # before solving
+    assert "1 of 1 designs failed" in err.splitlines()[-1]

@@ -42,8 +42,9 @@ def run_run(args) -> int:
 
     from shaftfe.errors import InputError
     from shaftfe.study import sampling
+    from shaftfe.study.check import check_study
     from shaftfe.study.runner import run_study
-    from shaftfe.study.spec import check_count, check_designs, load_study
+    from shaftfe.study.spec import check_count, load_study
 
     if args.workers is not None and not 1 <= args.workers <= 1024:
         raise InputError("command line", "--workers", "an integer in [1, 1024]",
@@ -54,15 +55,23 @@ def run_run(args) -> int:
     spec = load_study(args.study)
     check_count(spec, sampling.count(spec), yes=args.yes)
     designs = sampling.designs(spec)
-    check_designs(spec, designs)
     out = Path(args.out) if args.out else Path("reports") / "studies" / spec.name
+    if args.scheduler:
+        from shaftfe.study.runner import scheduler_address
+        scheduler_address(args.scheduler)          # its form, before any design is loaded
+    checked = check_study(spec, designs)            # every input, before anything runs
+
+    def announce(checked):                          # the cluster is there: before solving
+        for line in checked.summary():
+            print(f"shaftfe: {line}", file=sys.stderr)
     import signal
 
     def stop(signum, frame):             # a batch system's SIGTERM ends the run as Ctrl-C does
         raise KeyboardInterrupt
     previous = signal.signal(signal.SIGTERM, stop)
     try:
-        run = run_study(spec, out, workers=args.workers, scheduler=args.scheduler)
+        run = run_study(spec, out, workers=args.workers, scheduler=args.scheduler,
+                        checked=checked, announce=announce)
     except KeyboardInterrupt:
         done = len(list((out / "designs").glob("*.json"))) if (out / "designs").is_dir() else 0
         print(f"shaftfe: interrupted: {done} design results are saved in {out}; run the same "
@@ -80,6 +89,11 @@ def run_run(args) -> int:
     print(f"results: {out / 'results.parquet'}, {out / 'results.csv'}")
     if page is not None:
         print(f"report: {page}")
+    if run.failed:                  # an analysis that failed is not a result: say so, exit 1
+        print(f"shaftfe: {run.failed} of {len(run.rows)} designs failed (reasons in "
+              f"{out / 'results.csv'}, column error); run the same command to retry them",
+              file=sys.stderr)
+        return 1
     return 0
 
 

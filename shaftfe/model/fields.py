@@ -133,6 +133,11 @@ def key_range(path: str) -> tuple[float, float, str] | None:
     return None
 
 
+class ImplausibleValue(InputError):
+    """A value outside its key's plausible range (``plausible``): a unit slip, not a design
+    choice (``shaftfe study`` refuses the whole study for it, not one design)."""
+
+
 def plausible(v: float, kind: str, src: str, fld: str) -> None:
     """``v`` within ``PLAUSIBLE[kind]``; else an error with a hint at the likely unit."""
     lo, hi, unit, below = PLAUSIBLE[kind]
@@ -143,7 +148,8 @@ def plausible(v: float, kind: str, src: str, fld: str) -> None:
         hint = f" (typed in {below}?)"
     elif v > hi and kind in ABOVE_HINT:
         hint = f" (typed in {ABOVE_HINT[kind]}?)"
-    raise InputError(src, fld, f"a plausible value in [{lo:g}, {hi:g}] {unit}{hint}", got=v)
+    raise ImplausibleValue(src, fld, f"a plausible value in [{lo:g}, {hi:g}] {unit}{hint}",
+                           got=v)
 
 
 def provenance(t: dict, src: str, fld: str, path: str, ctx: Ctx) -> None:

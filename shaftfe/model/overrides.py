@@ -226,7 +226,7 @@ def attribute(exc: InputError, overrides: tuple[Override, ...]) -> InputError:
     for o in overrides:
         key = o.path.rsplit(".", 1)[-1]
         if str(exc.field).endswith(key) and _equal(exc.got, o.value):
-            return InputError(o.shown, o.path, exc.allowed, got=o.value)
+            return type(exc)(o.shown, o.path, exc.allowed, got=o.value)   # (its kind kept)
     if not overrides:
         return exc
     sets = " ".join(o.shown for o in overrides)
@@ -234,7 +234,7 @@ def attribute(exc: InputError, overrides: tuple[Override, ...]) -> InputError:
             "changed balancer" if str(exc.field).startswith("balance.") else "")
     # a consequence of the --set values (another key's check, a cross-check): the file is fine
     # as written, so the error names the file WITH the --set values
-    return InputError(f"{exc.source} with {sets}", exc.field, exc.allowed + hint, got=exc.got)
+    return type(exc)(f"{exc.source} with {sets}", exc.field, exc.allowed + hint, got=exc.got)
 
 
 def _equal(a: Any, b: Any) -> bool:

@@ -155,7 +155,9 @@ def evaluate_design(base: str, overrides, an: Analyses, *, shaft_mesh=None,
     try:
         v, _ = load_design(base, overrides)
     except InputError as exc:
-        return {"status": "refused", "error": str(exc), "seconds": time.perf_counter() - t0}
+        from shaftfe.study.check import refusal
+        return {"status": "refused", "error": refusal(None, overrides, exc)[0],
+                "seconds": time.perf_counter() - t0}
     row["variant_hash"] = v.content_hash
     try:
         row.update(balance_row(v, an))

@@ -23,7 +23,8 @@ LABELS = {"engine_max_F_N": "engine max|F| [N]", "engine_rms_F_N": "engine RMS|F
           "fatigue_sf": "fatigue safety factor", "mass_kg": "balancer mass [kg]",
           "X2_percent": "X2 [%]", "stress_max_MPa": "peak von Mises [MPa]",
           "beam_max_peak_MPa": "beam Kt·nominal peak [MPa]", "L10h_min_h": "L10h (min) [h]",
-          "critical_rpm": "1st critical speed [rpm]"}
+          "critical_rpm": "1st critical speed [rpm]",
+          "critical_margin_percent": "critical speed margin [%]"}
 _LOG = ("life_h", "life_km", "life_blocks", "L10h_min_h")
 
 
@@ -44,46 +45,100 @@ def _png(fig, path: Path | None = None) -> str:
 
 
 def _fmt(v) -> str:
-    if isinstance(v, float):
-        if not math.isfinite(v):
+    """A table cell: 4 significant digits below 1000, whole numbers with thousands
+    separators up to 10⁹ (40,235 rpm, not 4.024e+04), powers of ten beyond."""
+    if isinstance(v, float | int) and not isinstance(v, bool):
+        v = float(v)
+        if math.isnan(v):
             return "—"
-        return f"{v:.4g}" if abs(v) < 1e5 else f"{v:.3e}"
+        if math.isinf(v):
+            return "∞" if v > 0 else "−∞"
+        if abs(v) >= 1e9:
+            m, e = f"{v:.3e}".split("e")
+            return f"{m}·10<sup>{int(e)}</sup>"
+        return f"{v:,.0f}" if abs(v) >= 1000 else f"{v:.4g}"
     return html.escape(str(v))
 
 
-def _yscale(ax, col, values) -> None:
-    """Lives on a log axis; a life of 0 (failed in the first block) on its linear part."""
-    if col in _LOG and (values > 0).any():
-        if (values > 0).all():
-            ax.set_yscale("log")
-        else:
-            ax.set_yscale("symlog", linthresh=1.0)
+def _short(path: str) -> str:
+    """A parameter path as an axis label: the part and the key, without the table names
+    (attachments.counterweight_1.shape.outer_radius_mm → counterweight_1 outer_radius_mm)."""
+    parts = [p for p in path.split(".") if p not in ("attachments", "segments", "shape",
+                                                     "bearing_types", "materials", "shaft")]
+    return " ".join(parts[-2:]) if len(parts) > 1 else path
 
 
-def _tradeoff(df, objs, nd, rec, path: Path, reqs=()):
+def _placed(col, values):
+    """(values on the axis, edges): a life (positive, on a log axis) of 0 (fails in the first
+    block) is drawn at a marked bottom edge and an infinite one (no finite life) at a marked
+    top edge, a decade beyond the finite values; other columns as they are."""
+    import numpy as np
+    v = np.asarray(values, dtype=float)
+    if col not in _LOG:
+        return v, {}
+    fin = v[np.isfinite(v) & (v > 0)]
+    lo, hi = (fin.min(), fin.max()) if fin.size else (1.0, 1.0)
+    out, edges = v.copy(), {}
+    if (v <= 0).any():
+        edges["life 0 (fails in the first block): drawn on this line"] = lo / 10
+        out[v <= 0] = lo / 10
+    if np.isposinf(v).any():
+        edges["∞ (no finite life): drawn on this line"] = hi * 10
+        out[np.isposinf(v)] = hi * 10
+    return out, edges
+
+
+def _yaxis(ax, col, edges) -> None:
+    """A life on a log axis with plain numbers (0.5, 20, 3,000 h); the edges marked."""
+    from matplotlib.ticker import FuncFormatter, MaxNLocator
+    ax.xaxis.set_major_locator(MaxNLocator(5))
+    if col in _LOG:
+        ax.set_yscale("log")
+        plain = FuncFormatter(lambda y, _: f"{y:,.0f}" if y >= 1 else f"{y:g}")
+        ax.yaxis.set_major_formatter(plain)
+        ax.yaxis.set_minor_formatter(plain if _decades(ax) < 1.5 else FuncFormatter(""
+                                                                                   .format))
+    for text, y in edges.items():
+        ax.axhline(y, color="0.4", ls=":", lw=0.8)
+        ax.annotate(text, (0.005, y), xycoords=("axes fraction", "data"), fontsize=7,
+                    color="0.3", va="bottom")
+
+
+def _decades(ax) -> float:
+    lo, hi = ax.get_ylim()
+    return math.log10(hi / lo) if lo > 0 and hi > lo else 0.0
+
+
+def _tradeoff(df, objs, nd, rec, path: Path, reqs=(), base=None, base_name="base"):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     ok = df["status"] == "ok"
     (cx, _), (cy, _) = objs[0], objs[1]
     cc = objs[2][0] if len(objs) > 2 else None
-    fig, ax = plt.subplots(figsize=(7.2, 4.6))
+    fig, ax = plt.subplots(figsize=(7.6, 4.6), layout="constrained")
     d = df[ok]
-    sc = ax.scatter(d[cx], d[cy], c=d[cc] if cc else None, cmap="viridis", s=36, zorder=2)
+    y_all, edges = _placed(cy, df[cy])
+    sc = ax.scatter(d[cx], y_all[ok.to_numpy()], c=d[cc] if cc else None, cmap="viridis", s=36,
+                    zorder=2)
     if cc:
         fig.colorbar(sc, ax=ax, label=_label(cc))
-    p = df[[bool(m) for m in nd]].sort_values(cx)
-    ax.plot(p[cx], p[cy], "o", mfc="none", mec="k", ms=11, zorder=3,
+    m = [bool(x) for x in nd]
+    ax.plot(df[m][cx], y_all[m], "o", mfc="none", mec="k", ms=11, zorder=3,
             label="non-dominated")
     if rec is not None:
-        r = df.iloc[rec]
-        ax.plot([r[cx]], [r[cy]], "*", color="crimson", ms=18, zorder=4, label="recommended")
+        ax.plot([df.iloc[rec][cx]], [y_all[rec]], "*", color="crimson", ms=18, zorder=4,
+                label="recommended")
+    if base is not None and cx in base and cy in base:
+        by = _placed(cy, [base[cy], *d[cy]])[0][0]
+        ax.plot([base[cx]], [by], "D", color="darkorange", mec="k", ms=9, zorder=5,
+                label=f"{base_name} (the base)")
     for col, op, val in reqs:
         if col == cy:
             ax.axhline(val, color="crimson", ls="--", lw=0.8, label=f"required {op} {val:g}")
         elif col == cx:
             ax.axvline(val, color="crimson", ls="--", lw=0.8, label=f"required {op} {val:g}")
-    _yscale(ax, cy, d[cy])
+    _yaxis(ax, cy, edges)
     ax.set_xlabel(_label(cx))
     ax.set_ylabel(_label(cy))
     ax.grid(alpha=0.3)
@@ -91,94 +146,108 @@ def _tradeoff(df, objs, nd, rec, path: Path, reqs=()):
     return _png(fig, path)
 
 
-def _against(df, params, objs, nd):
+def _against(df, groups, objs, nd, base=None):
+    """Each objective against each parameter (one column per parameter: paths moved
+    together share it, labelled by the first) and against the derived X2."""
     import matplotlib.pyplot as plt
-    xs = [p for p in params if p in df.columns] + (["X2_percent"] if "X2_percent" in df.columns
-                                                    and "X2_percent" not in params else [])
-    xs = [x for x in xs if df[x].dtype.kind in "if"]
+    xs = [(paths[0], f"{name}: {_short(paths[0])}" if name != paths[0] else _short(paths[0]))
+          for name, paths in groups if paths[0] in df.columns]
+    if "X2_percent" in df.columns and all(x != "X2_percent" for x, _ in xs):
+        xs.append(("X2_percent", _label("X2_percent")))
+    xs = [(x, lab) for x, lab in xs if df[x].dtype.kind in "if"]
     if not xs:
         return None
     ys = [c for c, _ in objs]
-    fig, axes = plt.subplots(len(ys), len(xs), figsize=(3.0 * len(xs) + 0.6, 2.5 * len(ys)),
-                             squeeze=False)
-    ok = df["status"] == "ok"
+    fig, axes = plt.subplots(len(ys), len(xs), figsize=(3.1 * len(xs) + 0.8, 2.5 * len(ys)),
+                             squeeze=False, layout="constrained")
+    ok = (df["status"] == "ok").to_numpy()
+    m = [bool(a) for a in nd]
     for i, y in enumerate(ys):
-        for j, x in enumerate(xs):
+        yv, edges = _placed(y, df[y])
+        for j, (x, lab) in enumerate(xs):
             ax = axes[i][j]
-            ax.plot(df[ok][x], df[ok][y], ".", color="tab:blue")
-            m = [bool(a) for a in nd]
-            ax.plot(df[m][x], df[m][y], "o", mfc="none", mec="k")
-            _yscale(ax, y, df[ok][y])
+            ax.plot(df[x][ok], yv[ok], ".", color="tab:blue")
+            ax.plot(df[x][m], yv[m], "o", mfc="none", mec="k")
+            if base is not None and x in base and y in base:
+                ax.plot([base[x]], [_placed(y, [base[y], *list(df[y][ok])])[0][0]], "D",
+                        color="darkorange", mec="k", ms=6)
+            _yaxis(ax, y, edges)
             if i == len(ys) - 1:
-                ax.set_xlabel(_label(x.rsplit(".", 2)[-2] + "." + x.rsplit(".", 1)[-1]
-                                     if x.count(".") > 1 else _label(x)), fontsize=8)
+                ax.set_xlabel(lab, fontsize=8)
             if j == 0:
                 ax.set_ylabel(_label(y), fontsize=8)
             ax.tick_params(labelsize=7)
             ax.grid(alpha=0.3)
-    fig.tight_layout()
     return _png(fig)
+
+
+def read_meta(out: Path) -> dict:
+    """The folder's study.json; InputError (one line) for a folder that is not a study's."""
+    what = "a folder written by shaftfe study run"
+    if not out.is_dir():
+        raise InputError(str(out), "folder", what, reason="does not exist" if not
+                         out.exists() else "is not a folder")
+    sj = out / "study.json"
+    if not sj.is_file():
+        raise InputError(str(out), "study.json", what, reason="is missing: this is not a "
+                         "study folder, or its run was refused before it started")
+    try:
+        meta = json.loads(sj.read_text())
+    except (OSError, ValueError, UnicodeDecodeError):
+        meta = None
+    if not (isinstance(meta, dict) and isinstance(meta.get("objectives", []), list)):
+        raise InputError(str(out), "study.json", "the record shaftfe study run writes (run "
+                         "the study again into a new --out)", reason="is damaged")
+    return meta
 
 
 def write_report(out_dir) -> Path:
     from shaftfe.study import results
     from shaftfe.util.atomic import write_atomic
     out = Path(out_dir)
-    sj = out / "study.json"
-    if not sj.is_file():
-        raise InputError(str(out_dir), "study.json", "a folder written by shaftfe study run",
-                         reason="is missing")
-    meta = json.loads(sj.read_text())
-    run = json.loads((out / "run.json").read_text()) if (out / "run.json").is_file() else {}
+    meta = read_meta(out)
+    try:
+        run = json.loads((out / "run.json").read_text())
+    except (OSError, ValueError):
+        run = {}                               # the last run's counts: optional
+    run = run if isinstance(run, dict) else {}
     df = results.read_table(out)
     objs = [tuple(o) for o in meta.get("objectives", [])]
     objs = [o for o in objs if o[0] in df.columns]
     reqs = [tuple(r) for r in meta.get("requirements", [])]
     params = meta.get("parameters", [])
+    groups = [(g[0], list(g[1])) for g in meta.get("parameter_groups", [])] or \
+        [(p, [p]) for p in params]
     nd = results.non_dominated(df, objs) if objs else [False] * len(df)
     rec = results.recommend(df, objs, reqs) if objs else None
     meets = results.meets(df, reqs)
+    base, base_name = _base(out, meta, params)
     n_ok = int((df["status"] == "ok").sum())
     parts = [f"<h1>Study {html.escape(meta.get('name', ''))}</h1>",
              f"<p>{html.escape(meta.get('description', ''))}</p>",
-             f"<p>Base variant <b>{html.escape(str(meta.get('base')))}</b>; "
+             f"<p>Base variant <b>{html.escape(base_name)}</b>; "
              f"{len(df)} designs: {n_ok} evaluated, "
              f"{int((df['status'] == 'refused').sum())} refused, "
              f"{int((df['status'] == 'failed').sum())} failed. "
-             f"Study file: {html.escape(str(meta.get('study_file')))}.</p>"]
+             f"Study file: {html.escape(str(meta.get('study_file')))} (relative to this "
+             "folder).</p>"]
     if run:
+        sh = run.get("sharing", {})
         parts.append(f"<p>Last run: {run.get('computed')} computed, {run.get('reused')} from "
                      f"earlier runs, {run.get('workers')} workers "
                      f"({html.escape(str(run.get('scheduler')))}), "
                      f"{run.get('wall_seconds', 0):.1f} s wall, "
                      f"{run.get('compute_seconds', 0):.1f} s of design evaluations; meshes "
-                     f"built {run.get('sharing', {}).get('meshes_built', 0)}, "
-                     f"factorisations {run.get('sharing', {}).get('factor_made', 0)} made / "
-                     f"{run.get('sharing', {}).get('factor_reused', 0)} reused.</p>")
+                     f"built {sh.get('meshes_built', 0)}, factorisations "
+                     f"{sh.get('factor_made', 0)} made / {sh.get('factor_reused', 0)} "
+                     "reused.</p>")
     parts.append("<h2>Recommendation</h2>")
-    obj_txt = ", ".join(f"{'minimise' if s == 'min' else 'maximise'} {_label(c)}"
-                        for c, s in objs)
-    req_txt = ", ".join(f"{_label(c)} {op} {v:g}" for c, op, v in reqs) or "none"
-    if rec is None:
-        parts.append(f"<p>No non-dominated design meets the requirements ({html.escape(req_txt)})"
-                     ".</p>")
-    else:
-        r = df.iloc[rec]
-        setting = "; ".join(f"{html.escape(p)} = {_fmt(r[p])}" for p in params if p in df)
-        parts.append(
-            f"<p><b>Design {int(r['design'])}</b>: {setting}.</p><p>Why: of the "
-            f"{sum(nd)} non-dominated designs (objectives: {html.escape(obj_txt)}), "
-            f"{sum(1 for i in range(len(df)) if nd[i] and meets[i])} meet the requirements "
-            f"({html.escape(req_txt)}); this one is best in the first objective. Its numbers: "
-            + ", ".join(f"{_label(c)} {_fmt(r[c])}" for c in
-                        dict.fromkeys([c for c, _ in objs] + ["X2_percent", "fatigue_sf",
-                                                              "L10h_min_h", "critical_rpm"])
-                        if c in df.columns) + ".</p>")
+    parts.append(recommendation(df, objs, reqs, nd, meets, rec, params))
     if len(objs) >= 2 and n_ok:
         parts.append("<h2>Trade-off</h2>")
-        uri = _tradeoff(df, objs, nd, rec, out / "tradeoff.png", reqs)
+        uri = _tradeoff(df, objs, nd, rec, out / "tradeoff.png", reqs, base, base_name)
         parts.append(f'<img src="{uri}" alt="trade-off">')
-        img = _against(df, params, objs, nd)
+        img = _against(df, groups, objs, nd, base)
         if img:
             parts.append("<h2>Objectives against the parameters</h2>")
             parts.append(f'<img src="{img}" alt="objectives against parameters">')
@@ -186,21 +255,32 @@ def write_report(out_dir) -> Path:
                                                              "L10h_min_h", "stress_max_MPa"])
             if c in df.columns]
     sens = results.sensitivities(df, params, outs)
+
+    def head(c):                          # a short header, the full path on hover
+        return (f"<th title='{html.escape(c)}'>"
+                f"{html.escape(_short(c) if c in params else _label(c))}</th>")
     if sens and params:
         parts.append("<h2>Sensitivities (Spearman rank correlation over the evaluated designs)"
-                     "</h2><table><tr><th>output</th>" + "".join(
-                         f"<th>{html.escape(p)}</th>" for p in params) + "</tr>")
+                     "</h2><div class='wide'><table><tr><th>output</th>"
+                     + "".join(head(p) for p in params) + "</tr>")
         for o, row in sens.items():
             cells = "".join(
                 f"<td style='background:rgba({200 if (v or 0) > 0 else 60},{90},"
                 f"{60 if (v or 0) > 0 else 200},{abs(v or 0) * 0.5:.2f})'>{_fmt(v)}</td>"
                 if v is not None else "<td>—</td>" for v in (row.get(p) for p in params))
             parts.append(f"<tr><td>{html.escape(_label(o))}</td>{cells}</tr>")
-        parts.append("</table>")
+        parts.append("</table></div>")
     cols = ["design"] + [p for p in params if p in df.columns] + [
         c for c in [*outs, "life_km", "critical_margin_percent"] if c in df.columns]
-    parts.append("<h2>Designs (evaluated, non-dominated first)</h2><table><tr>" + "".join(
-        f"<th>{html.escape(c)}</th>" for c in cols) + "<th>non-dominated</th><th>meets</th></tr>")
+    parts.append("<h2>Designs (evaluated, non-dominated first)</h2><div class='wide'><table>"
+                 "<tr>" + "".join(head(c) for c in cols)
+                 + "<th>non-dominated</th><th>meets</th></tr>")
+    if base is not None:
+        parts.append(f"<tr class='base'><td>{html.escape(base_name)} (base)</td>" + "".join(
+            f"<td>{_fmt(base.get(c)) if base.get(c) is not None else ''}</td>"
+            for c in cols[1:]) + "<td></td><td>"
+            + ("yes" if all(_ok(base.get(c), op, v) for c, op, v in reqs) else "")
+            + "</td></tr>")
     order = sorted((i for i in range(len(df)) if df.iloc[i]["status"] == "ok"),
                    key=lambda i: (not nd[i], int(df.iloc[i]["design"])))
     for i in order:
@@ -210,7 +290,7 @@ def write_report(out_dir) -> Path:
                                       for c in cols)
                      + f"<td>{'yes' if nd[i] else ''}</td><td>{'yes' if meets[i] else ''}</td>"
                      "</tr>")
-    parts.append("</table>")
+    parts.append("</table></div>")
     bad = df[df["status"] != "ok"]
     if len(bad):
         parts.append("<h2>Refused and failed designs</h2><table><tr><th>status</th><th>reason"
@@ -221,7 +301,81 @@ def write_report(out_dir) -> Path:
         parts.append("</table>")
     page = ("<!doctype html><html><head><meta charset='utf-8'><title>shaftfe study "
             f"{html.escape(meta.get('name', ''))}</title><style>body{{font-family:sans-serif;"
-            "max-width:1100px;margin:auto}}table{{border-collapse:collapse;font-size:12px}}"
-            "td,th{{border:1px solid #ccc;padding:2px 6px}}</style></head><body>"
+            "max-width:1100px;margin:auto;padding:0 8px}}img{{max-width:100%;height:auto}}"
+            ".wide{{overflow-x:auto;max-width:100%}}"
+            "table{{border-collapse:collapse;font-size:12px}}"
+            "td,th{{border:1px solid #ccc;padding:2px 6px}}"
+            "th{{max-width:7.5em;overflow-wrap:anywhere;font-weight:600}}"
+            "tr.base td{{background:#fff1dc}}</style></head><body>"
             + "\n".join(parts) + "</body></html>\n")
     return write_atomic(out / "index.html", page)
+
+
+def _ok(v, op, val) -> bool:
+    from shaftfe.study.spec import OPS
+    return v is not None and not (isinstance(v, float) and math.isnan(v)) and \
+        OPS[op](float(v), val)
+
+
+def _base(out: Path, meta: dict, params) -> tuple[dict | None, str]:
+    """The base variant's row (``base.json``, the same analyses) with its own values of the
+    parameters, and its name; (None, name) if the folder has none."""
+    from shaftfe.study.runner import _base_row
+    name = str(meta.get("base", "base"))
+    name = Path(name).stem if name.endswith(".toml") else name
+    row = _base_row(out, meta.get("base_key"))
+    if row is None or row.get("status") != "ok":
+        return None, name
+    row = dict(row)
+    try:
+        from shaftfe.model.loader import _resolve, resolved_dict
+        from shaftfe.model.overrides import locate, normalise
+        b = str(meta.get("base"))
+        merged = resolved_dict(_resolve(out / b if b.endswith(".toml") else b))
+        for p in params:
+            parent, key, _ = locate(merged, normalise({p: 0.0})[0])
+            row[p] = parent[key]
+    except (InputError, KeyError, TypeError, IndexError):
+        pass                                   # the base's values are not shown then
+    return row, name
+
+
+def recommendation(df, objs, reqs, nd, meets, rec, params) -> str:
+    """The recommendation in words, each claim true of the table: the candidates (the
+    non-dominated designs meeting every requirement), the recommended one's rank in the first
+    objective among them (lowest / highest by its sense), the next candidate, and the designs
+    better in that objective that a requirement rules out."""
+    obj_txt = ", ".join(f"{'minimise' if s == 'min' else 'maximise'} {_label(c)}"
+                        for c, s in objs)
+    req_txt = ", ".join(f"{_label(c)} {op} {v:g}" for c, op, v in reqs) or "none"
+    cand = [i for i in range(len(df)) if nd[i] and meets[i]]
+    if rec is None:
+        return (f"<p>No non-dominated design meets the requirements ({html.escape(req_txt)})"
+                ".</p>")
+    r = df.iloc[rec]
+    c1, s1 = objs[0]
+    sign = 1.0 if s1 == "min" else -1.0
+    word = "lowest" if s1 == "min" else "highest"
+    others = sorted((i for i in cand if i != rec), key=lambda i: sign * float(df.iloc[i][c1]))
+    nxt = (f"; the next: design {int(df.iloc[others[0]]['design'])}, "
+           f"{_fmt(df.iloc[others[0]][c1])}" if others else "")
+    better = [i for i in range(len(df)) if df.iloc[i]["status"] == "ok" and not meets[i]
+              and nd[i] and sign * float(df.iloc[i][c1]) < sign * float(r[c1])]
+    ruled = ""
+    if better:
+        def fails(i):
+            return ", ".join(f"{_label(c)} {_fmt(df.iloc[i][c])} (required {op} {v:g})"
+                             for c, op, v in reqs if not _ok(df.iloc[i][c], op, v))
+        ruled = (" A " + ("lower" if s1 == "min" else "higher") + f" {_label(c1)} is only "
+                 "reached by non-dominated designs that miss a requirement: " + "; ".join(
+                     f"design {int(df.iloc[i]['design'])}, {_fmt(df.iloc[i][c1])}: "
+                     f"{fails(i)}" for i in better[:4]) + ".")
+    setting = "; ".join(f"{html.escape(p)} = {_fmt(r[p])}" for p in params if p in df)
+    return (f"<p><b>Design {int(r['design'])}</b>: {setting}.</p><p>Why: of the {sum(nd)} "
+            f"non-dominated designs (objectives: {html.escape(obj_txt)}), {len(cand)} meet "
+            f"the requirements ({html.escape(req_txt)}). Of these, this one has the {word} "
+            f"{html.escape(_label(c1))}: {_fmt(r[c1])}{nxt}.{html.escape(ruled)} Its numbers: "
+            + ", ".join(f"{_label(c)} {_fmt(r[c])}" for c in
+                        dict.fromkeys([c for c, _ in objs] + ["X2_percent", "fatigue_sf",
+                                                              "L10h_min_h", "critical_rpm"])
+                        if c in df.columns) + ".</p>")

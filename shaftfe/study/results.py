@@ -80,7 +80,16 @@ def read_table(out_dir):
     if not p.is_file():
         raise InputError(str(out_dir), "results.parquet", "a directory written by shaftfe "
                          "study run", reason="is missing")
-    return pd.read_parquet(p)
+    try:
+        df = pd.read_parquet(p)
+    except Exception as exc:                # pyarrow's ArrowInvalid, OSError, …: damaged
+        raise InputError(str(out_dir), "results.parquet", "the table shaftfe study run writes "
+                         "(run the same study again: it rewrites the table from designs/)",
+                         reason=f"cannot be read ({type(exc).__name__}: damaged?)") from None
+    if not {"design", "status", "error"} <= set(df.columns):
+        raise InputError(str(out_dir), "results.parquet", "the table shaftfe study run writes "
+                         "(columns design, status, error)", reason="has other columns")
+    return df
 
 
 def _finite(v) -> bool:

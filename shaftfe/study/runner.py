@@ -50,6 +50,7 @@ MiB = 1024 ** 2
 MEMORY_PER_WORKER = {"beam": 400 * MiB, "coarse": 1200 * MiB, "default": 2000 * MiB,
                      "fine": 5000 * MiB}
 BEAM_CHUNK = 25                    # beam-level designs per task
+BASE = Design(-1, ())              # the base variant, evaluated beside the designs
 STUDY_FORMAT = 1
 CONNECT_TIMEOUT_S = 8     # + the command's start (~1 s): the answer comes within 10 s
 
@@ -73,7 +74,7 @@ class StudyRun:
 
 # sources that cannot change a design's numbers (scheduling, tables, the page, the CLI)
 _NOT_NUMBERS = ("cli.py", "study/runner.py", "study/results.py", "study/report.py",
-                "study/sampling.py", "study/__init__.py")
+                "study/sampling.py", "study/__init__.py", "study/check.py")
 
 
 def source_fingerprint() -> str:
@@ -131,13 +132,18 @@ def check_directory(out_dir: Path, spec: StudySpec) -> None:
                              "shaftfe study run", reason="holds other files")
         return
     try:
-        old = json.loads(sj.read_text()).get("digest")
+        meta = json.loads(sj.read_text())
+        old = meta.get("digest") if isinstance(meta, dict) else None
     except (OSError, ValueError):
-        old = None
+        meta = old = None
+    if not isinstance(old, str):
+        raise InputError(str(out_dir), "study.json", "the record shaftfe study run writes "
+                         "(delete the folder, or choose another --out)",
+                         reason="is damaged (not the JSON record of a study)")
     if old != spec.digest:
         raise InputError(str(out_dir), "study.json", f"the study it was made for ("
-                         f"{json.loads(sj.read_text()).get('study_file', '?') if old else '?'})",
-                         got=spec.path, reason="belongs to a different study file")
+                         f"{meta.get('study_file', '?')}), or another --out", got=spec.path,
+                         reason="belongs to a different study file")
 
 
 # --------------------------------------------------------------------------- worker tasks
@@ -197,16 +203,18 @@ def _group_key(base: str, design: Design, level: str) -> tuple:
         return ("refused",)
 
 
-def plan_tasks(spec: StudySpec, todo: list[tuple[str, Design]]):
+def plan_tasks(spec: StudySpec, todo: list[tuple[str, Design]], known=None):
     """[(mesh group or None, [(key, overrides), ...]), ...] in group order. A 3D design is a
     task of its own (its row is saved the moment it is done: an interruption loses at most
-    the designs in progress); beam-level designs go ``BEAM_CHUNK`` to a task."""
+    the designs in progress); beam-level designs go ``BEAM_CHUNK`` to a task. ``known``:
+    design number → group, as ``shaftfe.study.check`` found them (else loaded here)."""
     if not spec.analyses.static:
         items = [(k, d.overrides) for k, d in todo]
         return [(None, items[i:i + BEAM_CHUNK]) for i in range(0, len(items), BEAM_CHUNK)]
     groups: dict[tuple, list] = {}
     for k, d in todo:
-        groups.setdefault(_group_key(spec.base, d, spec.analyses.level), []).append((k, d))
+        g = (known or {}).get(d.number) or _group_key(spec.base, d, spec.analyses.level)
+        groups.setdefault(g, []).append((k, d))
     return [(None if g == ("refused",) else g, [(k, d.overrides)])
             for g, members in groups.items() for k, d in members]
 
@@ -223,6 +231,66 @@ def default_workers(spec: StudySpec) -> tuple[int, int]:
     return int(n), int(avail // n)
 
 
+SCHEMES = ("tcp", "tls", "ws", "wss", "ucx", "inproc")
+
+
+def scheduler_address(scheduler: str) -> tuple[str, int | None]:
+    """(host, port) of a scheduler address as distributed reads it (``tcp://host:8786`` or
+    ``host:8786``); InputError saying why it is not one."""
+    from urllib.parse import urlsplit
+
+    def bad(why: str):
+        return InputError("--scheduler", "address", "a Dask scheduler address, e.g. "
+                          "tcp://host:8786", got=scheduler, reason=why)
+    s = str(scheduler).strip()
+    if not s or any(c.isspace() for c in s):
+        raise bad("is not a URL")
+    scheme, sep, _ = s.partition("://")
+    if not sep:
+        scheme, s = "tcp", "tcp://" + s
+    if scheme in ("http", "https"):
+        raise bad("is a web address (the dashboard's?), not the scheduler's: a scheduler "
+                  "listens on tcp://host:8786")
+    if scheme not in SCHEMES:
+        raise bad(f"is not a URL with one of the schemes {', '.join(SCHEMES)}")
+    if scheme in ("ucx", "inproc"):
+        return "", None                       # no socket to probe
+    try:
+        u = urlsplit(s)
+        port = u.port
+    except ValueError:
+        raise bad("is not a URL (its port is not a number in [0, 65535])") from None
+    if not u.hostname or port is None or u.path not in ("", "/"):
+        raise bad("is not a URL of the form scheme://host:port")
+    return u.hostname, port
+
+
+def probe(scheduler: str, timeout: float = CONNECT_TIMEOUT_S) -> None:
+    """Reach the scheduler's host and port (one TCP connection, closed at once): InputError
+    saying what happened: not a URL, a refused connection, no answer, no route."""
+    import socket
+    host, port = scheduler_address(scheduler)
+    if port is None:
+        return
+
+    def bad(why: str):
+        return InputError("--scheduler", "address", "a reachable Dask scheduler, e.g. "
+                          "tcp://host:8786", got=scheduler, reason=why)
+    try:
+        with socket.create_connection((host, port), timeout=timeout):
+            pass
+    except ConnectionRefusedError:
+        raise bad(f"refused the connection (nothing listens on port {port} of {host})") \
+            from None
+    except TimeoutError:                      # socket.timeout is TimeoutError (3.10+)
+        raise bad(f"did not answer within {timeout:g} s (unreachable: a wrong address or a "
+                  "firewall)") from None
+    except socket.gaierror as exc:
+        raise bad(f"names a host that cannot be resolved ({exc.strerror})") from None
+    except OSError as exc:                    # no route, network unreachable, …
+        raise bad(f"is unreachable ({exc.strerror or type(exc).__name__})") from None
+
+
 def connect(scheduler: str | None, workers: int | None, spec: StudySpec):
     """(client, cluster or None, n_workers)."""
     import logging
@@ -230,15 +298,16 @@ def connect(scheduler: str | None, workers: int | None, spec: StudySpec):
     import dask
     from distributed import Client, LocalCluster
     if scheduler:
+        probe(scheduler)
         try:
             client = Client(scheduler, timeout=f"{CONNECT_TIMEOUT_S}s")
-        except Exception as exc:          # refused, timed out, or not a Dask scheduler at all
-            # (a service on that port answering garbage: distributed raises MemoryError,
-            # TypeError, … while reading its handshake)
+        except Exception as exc:          # the port answers, but not as a Dask scheduler
+            # (a service answering garbage: distributed raises MemoryError, TypeError, …
+            # while reading its handshake)
             raise InputError("--scheduler", "address", "a reachable Dask scheduler, e.g. "
                              "tcp://host:8786", got=scheduler,
-                             reason="is not a Dask scheduler reachable within "
-                             f"{CONNECT_TIMEOUT_S} s ({type(exc).__name__})") from None
+                             reason="answers but is not a Dask scheduler (no handshake "
+                             f"within {CONNECT_TIMEOUT_S} s: {type(exc).__name__})") from None
         n = len(client.scheduler_info().get("workers", {}))
         if n == 0:
             try:
@@ -308,55 +377,83 @@ def _hms(s: float) -> str:
 # --------------------------------------------------------------------------- run
 
 def run_study(spec: StudySpec, out_dir, *, workers: int | None = None,
-              scheduler: str | None = None, progress: bool | None = None) -> StudyRun:
-    """Evaluate every design without a row in ``out_dir``; write the result tables."""
+              scheduler: str | None = None, progress: bool | None = None,
+              checked=None, announce=None) -> StudyRun:
+    """Evaluate every design without a row in ``out_dir``; write the result tables.
+
+    Every input is checked first (``shaftfe.study.check``; ``checked``: its result if the
+    caller has it) and the cluster is reached before anything is written: a refused study or
+    an unreachable scheduler leaves a fresh ``out_dir`` as it was (not created).
+    ``announce(checked)``: called once the cluster is reached, before the first design runs
+    (the command lists the refused designs there)."""
     from shaftfe.model.loader import load_variant
     from shaftfe.study import results, sampling
+    from shaftfe.study.check import check_study
     t_all = time.perf_counter()
     out = Path(out_dir)
     check_directory(out, spec)
     designs = sampling.designs(spec)
+    if checked is None:
+        checked = check_study(spec, designs)
     base_hash = load_variant(spec.base).content_hash
     options = spec.analyses.options()
     code = source_fingerprint()
     keys = [design_key(base_hash, d, options, code) for d in designs]
     ddir = out / "designs"
-    ddir.mkdir(parents=True, exist_ok=True)
-    _write_json(out / "study.json", {"study_file": str(Path(spec.path).resolve()),
-                                     "digest": spec.digest, "name": spec.name,
-                                     "base": spec.base, "designs": len(designs),
-                                     "description": spec.description,
-                                     "parameters": list(sampling.paths(spec)),
-                                     "objectives": [list(o) for o in
-                                                    results.default_objectives(spec)],
-                                     "requirements": [list(r) for r in spec.requirements],
-                                     "analyses": spec.analyses.options(),
-                                     "format": STUDY_FORMAT})
     done = {k for k in keys if _finished(ddir / f"{k}.json")}
     todo = [(k, d) for k, d in zip(keys, designs, strict=True) if k not in done]
     todo = list({k: (k, d) for k, d in todo}.values())          # equal designs once
+    refused = [(k, d) for k, d in todo if d.number in checked.refused]
+    todo = [(k, d) for k, d in todo if d.number not in checked.refused]
+    reused = len(designs) - len(todo) - len(refused)
+    # the base variant itself, by the same analyses: the reference the page marks
+    base_key = design_key(base_hash, BASE, options, code)
+    base_todo = not _base_row(out, base_key)
+    if base_todo:
+        todo.append((base_key, BASE))
     computed = compute_s = 0
     sharing: dict = {"meshes_built": 0, "factor_made": 0, "factor_reused": 0}
     n_workers = 0
     t_conn = 0.0
-    if todo:
+    client = cluster = None
+    if todo:                                  # reach the cluster before writing anything
         t0 = time.perf_counter()
         client, cluster, n_workers = connect(scheduler, workers, spec)
         t_conn = time.perf_counter() - t0
-        bar = Bar(len(designs), len(designs) - len(todo), enabled=progress)
-        try:
-            computed, compute_s = _execute(client, spec, todo, n_workers, ddir, bar, sharing)
-        finally:
-            bar.close()
+    if announce is not None:
+        announce(checked)
+    try:
+        ddir.mkdir(parents=True, exist_ok=True)
+        _write_json(out / "study.json", study_record(spec, out, len(designs), base_key))
+        for k, d in refused:                  # the loader's refusal, found by the check
+            _write_json(ddir / f"{k}.json", {"status": "refused", "error":
+                                             checked.refused[d.number], "seconds": 0.0})
+            computed += 1
+        if todo:
+            bar = Bar(len(designs) + base_todo, len(designs) + base_todo - len(todo),
+                      enabled=progress)
+            try:
+                c, compute_s = _execute(client, spec, todo, n_workers, ddir, bar, sharing,
+                                        groups=checked.groups)
+                computed += c - base_todo
+            finally:
+                bar.close()
+            b = ddir / f"{base_key}.json"
+            if b.is_file():                   # kept beside the designs, not among them
+                _write_json(out / "base.json", {"key": base_key,
+                                                "row": json.loads(b.read_text())})
+                b.unlink()
+    finally:
+        if client is not None:
             client.close()
-            if cluster is not None:
-                cluster.close()
+        if cluster is not None:
+            cluster.close()
     rows = []
     for k, d in zip(keys, designs, strict=True):
         row = json.loads((ddir / f"{k}.json").read_text())
         rows.append(results.row_with_inputs(d, k, row))
     results.write_tables(out, spec, rows)
-    run = StudyRun(out, tuple(rows), computed, len(designs) - len(todo), sum(
+    run = StudyRun(out, tuple(rows), computed, reused, sum(
         r["status"] == "failed" for r in rows), sum(r["status"] == "refused" for r in rows),
         n_workers, time.perf_counter() - t_all, compute_s, connect_seconds=t_conn,
         sharing=sharing)
@@ -369,13 +466,51 @@ def run_study(spec: StudySpec, out_dir, *, workers: int | None = None,
     return run
 
 
+def study_record(spec: StudySpec, out: Path, n_designs: int, base_key: str) -> dict:
+    """What study.json holds: the study file (relative to the folder) and its digest, the
+    parameters, objectives, requirements and analysis options, the base row's key."""
+    from shaftfe.study import results, sampling
+    return {"study_file": _shown_path(spec.path, out), "digest": spec.digest,
+            "name": spec.name, "base": _shown_path(spec.base, out)
+            if spec.base.endswith(".toml") else spec.base,
+            "designs": n_designs, "base_key": base_key, "description": spec.description,
+            "parameters": list(sampling.paths(spec)),
+            "parameter_groups": [[q.name, list(q.paths)] for q in spec.parameters],
+            "objectives": [list(o) for o in results.default_objectives(spec)],
+            "requirements": [list(r) for r in spec.requirements],
+            "analyses": spec.analyses.options(), "format": STUDY_FORMAT}
+
+
+def _base_row(out: Path, key: str | None = None) -> dict | None:
+    """The base variant's row (``base.json``; of this code and these options if ``key``)."""
+    try:
+        b = json.loads((Path(out) / "base.json").read_text())
+    except (OSError, ValueError):
+        return None
+    if not isinstance(b, dict) or (key is not None and b.get("key") != key):
+        return None
+    row = b.get("row")
+    return row if isinstance(row, dict) and not row.get("cluster_failure") else None
+
+
+def _shown_path(path: str, out: Path) -> str:
+    """A file the study names, as written into the folder: relative to the folder (so a
+    committed study folder holds no path of the machine it ran on), absolute only when it
+    lies on another drive."""
+    p = Path(path).resolve()
+    try:
+        return os.path.relpath(p, out.resolve())
+    except ValueError:
+        return str(p)
+
+
 def _execute(client, spec, todo, n_workers, ddir: Path, bar: Bar, sharing: dict,
-             as_completed=None):
+             as_completed=None, groups=None):
     """Submit the planned tasks, write each row as it arrives, retry a dead task once design
     by design (``as_completed``: distributed's, or a stand-in with the same protocol)."""
     if as_completed is None:
         from distributed import as_completed
-    tasks = plan_tasks(spec, todo)
+    tasks = plan_tasks(spec, todo, groups)
     meshes: dict = {}
     futures = {}
     # 3D designs run in one lane per worker: contiguous runs of the group-ordered tasks, each
