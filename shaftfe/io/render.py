@@ -467,9 +467,11 @@ def _mark_hot_spot(p, surf, hot: HotSpot, choice: FieldChoice, grid, factor: flo
     right = np.cross(up, d)
     radius = 0.03 * surf.length
     t = np.linspace(0.0, 2.0 * np.pi, 73)
-    # in front of everything (half a length towards the eye: same place on the screen in a
-    # parallel projection, nearly so in perspective), so the collar cannot hide part of it
-    ring = xyz + 0.5 * surf.length * d + radius * (np.outer(np.cos(t), right)
+    # in front of the whole shaft (a diameter towards the eye: every point of the shaft is
+    # within a radius of the axis; the same place on the screen in a parallel projection,
+    # nearly so in perspective), so that a collar cannot hide part of it
+    front = max(b[1, 1] - b[1, 0], b[2, 1] - b[2, 0])
+    ring = xyz + front * d + radius * (np.outer(np.cos(t), right)
                                                     + np.outer(np.sin(t), up))
     p.add_mesh(pv.lines_from_points(ring), color="magenta", line_width=4)
     lead = anchor - xyz
