@@ -127,7 +127,7 @@ def _print_summary(rep, page) -> None:
               f"{num(h['utilisation'], 3, strip=False)} "
               f"({'passes' if h['passes'] else 'FAILS'}), safety "
               f"{num(h['safety'], 3, strip=False)}"
-              + (f", life {life(h['life_blocks'], h['life_hours'])}"
+              + (f"; life: {life(h['life_blocks'], h['life_hours'])}"
                  if h["method"] == "FKM" else "") + f"; {h['what']}")
     print(f"fatigue, seed method ({fat['settings']['mean_stress']}, "
           f"{fat['settings']['material']}): life {num(hs['life_blocks'], 4)} blocks = "

@@ -171,7 +171,7 @@ def plot_png(result, path, rpm: float, *, envelope=None, model: str = "3D FE",
     from shaftfe.util.atomic import write_atomic
     s = (rpm / result.ref_rpm) ** 2
     case = result.case(rpm)
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True,
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 7.6), sharex=True,
                                  gridspec_kw={"height_ratios": [1.25, 1]})
     x = np.asarray(result.axis_x, float)
     u = np.asarray(result.axis_u_ref, float) * s
@@ -212,8 +212,6 @@ def plot_png(result, path, rpm: float, *, envelope=None, model: str = "3D FE",
         hi = max(hi, 1.08 * cc * um)
     a1.set_ylim(lo, hi + 0.43 * (hi - lo))           # the top 30 % for the station labels
     a1.set_ylabel(f"deflection in the load plane [µm]\n(n_y, n_z) = ({n[0]:.2f}, {n[1]:.2f})")
-    a1.legend(fontsize=7, loc="lower left", title=f"out of the plane ≤ {off:.2g} µm",
-              title_fontsize=7)
     a1.grid(alpha=0.3)
     if envelope is None:
         bins, env = stress_envelope(result.mesh.mesh, result.von_mises_ref * s)
@@ -221,15 +219,19 @@ def plot_png(result, path, rpm: float, *, envelope=None, model: str = "3D FE",
     else:
         bins, env = envelope[0], np.asarray(envelope[1]) * s
         what = "the surface"
-    a2.step(0.5 * (bins[1:] + bins[:-1]), env, where="mid",
+    a2.step(0.5 * (bins[1:] + bins[:-1]), env, where="mid", color="tab:purple",
             label=f"{model}, max von Mises of {what} in each slice")
     a2.set_xlabel("x along the shaft [mm]")
     a2.set_ylabel("von Mises [MPa]")
     a2.grid(alpha=0.3)
-    a2.legend(fontsize=8)
+    # one legend under both panels, outside the axes: it never covers a curve or a label
+    handles = [h for a in (a1, a2) for h in a.get_legend_handles_labels()[0]]
+    fig.legend(handles=handles, loc="lower center", ncol=2, fontsize=7, frameon=False,
+               title=f"deflection: its component out of the load plane is ≤ {off:.2g} µm",
+               title_fontsize=7)
     fig.suptitle(f"{result.variant} at {rpm:,.0f} rpm: deflection and stress along the shaft"
                  .replace(",", " "))
-    fig.tight_layout()
+    fig.tight_layout(rect=(0.0, 0.1, 1.0, 1.0))
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=110)
     plt.close(fig)

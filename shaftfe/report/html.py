@@ -139,8 +139,10 @@ LIFE_READABLE_BLOCKS = 1e9     # beyond this a life is "no finite life at this l
 def life(blocks, hours=None) -> str:
     """A fatigue life an engineer can read: blocks and hours, or "no finite life at this load"
     for none (beyond the curve's knee) or one beyond 10⁹ blocks."""
-    if blocks is None or not math.isfinite(float(blocks)) or blocks > LIFE_READABLE_BLOCKS:
+    if blocks is None or not math.isfinite(float(blocks)):
         return "no finite life at this load"
+    if blocks > LIFE_READABLE_BLOCKS:
+        return "no finite life at this load (> 10⁹ blocks)"
     return num(blocks, 3, "blocks") + (f" = {num(hours, 3, 'h')}" if hours is not None else "")
 
 
