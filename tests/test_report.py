@@ -242,3 +242,174 @@ def test_progress_shows_stages_on_a_terminal_only():
     with Progress(["a"], stream=forced_off, enabled=False).stage("a"):
         pass
     assert forced_off.getvalue() == ""
+
+
+# --------------------------------------------------------------------------- issue 30 §3, §4:
+# one value per quantity, the headline's method, the warnings banner, the pictures
+
+
+def _section(html: str, start: str, end: str) -> str:
+    return html[html.index(f'id="{start}"'):html.index(f'id="{end}"')]
+
+
+def test_headline_is_the_default_method_named_with_its_verdict(run):
+    """The summary cards show the default method of ``shaftfe fatigue`` (FKM), named, with
+    its pass/fail; the seed method's safety factor is not a headline card (it stays in
+    Strength by standard and the seed comparison)."""
+    from shaftfe.fatigue.standards import DEFAULT_METHOD
+    from shaftfe.report.html import num
+
+    out, _ = run
+    s = json.loads((out / "summary.json").read_text())
+    html = (out / "index.html").read_text(encoding="utf-8")
+    head = _section(html, "summary", "inputs")
+    assert s["strength"]["default_method"] == DEFAULT_METHOD == "fkm"
+    g, rule = s["strength"]["fkm"]["governing"], s["strength"]["fkm"]["rule"]
+    u = g["utilisation"][rule]
+    verdict = "passes" if u <= 1 else "FAILS"
+    assert f"{num(u, 3, strip=False)}: {verdict}" in head
+    assert "FKM degree of utilisation" in head and "FKM safety factor" in head
+    assert num(g["safety"][rule], 3, strip=False) in head
+    seed_sf = num(s["fatigue"]["hot_spot"]["safety_factor"], 3)
+    assert seed_sf not in head                            # the seed method is not the headline
+    assert seed_sf in _section(html, "strength", "campbell")
+
+
+def test_one_peak_value_or_the_difference_named(run):
+    """The static peak (surface fit) and the largest nodal value (3D picture, ``view``,
+    the seed hot spot's stress) are both printed, each named; the load factor's reference
+    speed is the same in the fatigue text and the load-history caption."""
+    import numpy as np
+    import pyvista as pv
+
+    from shaftfe.report.html import PEAK_FIT_LABEL, num
+
+    out, _ = run
+    s = json.loads((out / "summary.json").read_text())
+    html = (out / "index.html").read_text(encoding="utf-8")
+    c0 = s["static"]["cases"][0]
+    fit, node = c0["peak_von_mises_MPa"], c0["peak_von_mises_node_MPa"]
+    # the local fit passes through the largest node's value (test above): never below it
+    # (1e-12: round-off of the same sums)
+    assert node <= fit * (1 + 1e-12)
+    vm = np.asarray(pv.read(out / "x2_57.vtu").point_data["von_mises"])
+    assert node in vm                   # a value of the file (the same float64 written)
+    head = _section(html, "summary", "inputs")
+    assert f"{num(fit, 4)} MPa" in head and PEAK_FIT_LABEL in head
+    assert f"largest nodal value {num(node, 4)} MPa" in head
+    i = html.index('id="fig-von_mises_3d"')
+    cap = html[html.index("<figcaption>", i):html.index("</figure>", i)]
+    assert f"{num(fit, 4)} MPa, is the {PEAK_FIT_LABEL}" in cap
+    assert f"{node:.4g} MPa (nodal value)" in cap
+    ref = s["fatigue"]["history"]["static_ref_rpm"]
+    fat = _section(html, "fatigue", "strength")
+    assert f"(n / {num(ref)})²" in fat and f"load factor (n / {ref:g})²" in fat
+    for label in ("the node of least seed safety (nodal value)",
+                  "the node of highest FKM utilisation"):
+        assert label in _section(html, "strength", "campbell")
+
+
+def test_summary_json_has_the_warnings_of_the_run(run):
+    out, _ = run
+    s = json.loads((out / "summary.json").read_text())
+    assert s["warnings"] == []                 # the bundled variant raises none
+    html = (out / "index.html").read_text(encoding="utf-8")
+    assert 'id="warnings"' not in html
+
+
+def test_warnings_banner_and_summary_key():
+    """``Report.warnings`` (``notices.collected()`` of the run) goes into summary.json under
+    "warnings" and into a banner above the summary, one item per warning, escaped."""
+    import dataclasses
+
+    from shaftfe.report import html
+    from shaftfe.report.options import ReportOptions
+    from shaftfe.report.results import Report
+
+    w = ({"code": "sharp-shoulder", "where": "shoulder:collar", "text": "r = 0 <singular>"},)
+    empty = {f.name: {} for f in dataclasses.fields(Report)
+             if f.type in ("dict", dict) and f.default is dataclasses.MISSING}
+    rep = Report(options=ReportOptions(variant="x2_57", spectrum="rpm.dat"), created_utc="",
+                 comparisons=(), errors=(), timings=(), figures=(), warnings=w, **empty)
+    assert rep.to_dict()["warnings"] == [w[0]]
+    banner = html._banner(rep)
+    assert 'id="warnings"' in banner and "1 warning:" in banner
+    assert "<b>shoulder:collar</b>: r = 0 &lt;singular&gt;" in banner
+    assert html._banner(dataclasses.replace(rep, warnings=())) == ""
+
+
+def test_colour_bar_ticks_are_round_and_one_is_yellow():
+    """safety_factor_3d / von_mises_3d: the colour range widened to round ticks (no 0.4722 /
+    1.104 …); the safety factor's map is yellow exactly at 1, red below, green above."""
+    from matplotlib import colormaps
+
+    from shaftfe.io.render import _tick_format, nice_range, safety_colormap
+
+    assert nice_range(0.101, 497.2) == (0.0, 500.0, 6)
+    lo, hi, n = nice_range(0.4671, 2.9)
+    assert (lo, hi) == (0.0, 3.0) and _tick_format((hi - lo) / (n - 1)) == "%.1f"
+    assert _tick_format(100.0) == "%.0f" and _tick_format(0.25) == "%.2f"
+    cm = safety_colormap(0.0, 3.0, n=301)          # entry k is the colour of 0.01 k
+    # exact: the same RdYlGn lookup at its middle (0.5) as at the value 1.0 (entry 100)
+    assert cm(100 / 300) == colormaps["RdYlGn"](0.5)
+    r, g, _, _ = cm(0.0)
+    assert r > 0.6 > g                                # red below 1
+    r, g, _, _ = cm(1.0)
+    assert g > 0.3 > r                                # green at the top of the scale
+
+
+def test_count_matrix_has_a_discrete_integer_colour_bar(tmp_path):
+    """rainflow_matrix.png: whole-number ticks, one colour per count up to 10, logarithmic
+    whole-number bins beyond; damage_matrix.png: one label format (powers of ten)."""
+    import numpy as np
+
+    from shaftfe.fatigue.counting import CycleMatrix
+    from shaftfe.fatigue.plots import _count_norm, plot_cycle_matrix
+
+    norm, ticks, cmap = _count_norm(np.array([[0.0, 1.0], [3.0, 2.0]]))
+    assert list(ticks) == [1, 2, 3] and cmap.N == 3
+    assert [int(norm(v)) for v in (1, 2, 3)] == [0, 1, 2]      # one colour per count
+    norm, ticks, _ = _count_norm(np.array([[1.0, 37.0], [0.0, 130.0]]))
+    assert list(ticks) == [1, 2, 5, 10, 20, 50, 100, 200]
+    assert all(float(t).is_integer() for t in ticks)
+    norm, ticks, _ = _count_norm(np.array([[0.5, 1.5]]))       # half cycles left
+    assert list(ticks) == [0.5, 1.0, 1.5]
+    e = np.linspace(0.0, 100.0, 3)
+    path = plot_cycle_matrix(CycleMatrix(e, e, np.array([[1.7e-4, 0.0], [7.5e-5, 2e-6]]),
+                                         "damage", "MPa"), tmp_path / "d.png")
+    assert path.read_bytes().startswith(PNG)
+
+
+def test_load_plane_is_signed_and_follows_the_bending():
+    """deflection.png: the deflection is projected on the plane the axis bends in, signed, so
+    a line through zero (a rigid tilt on the springs) is not folded into a kink."""
+    import numpy as np
+
+    from shaftfe.io.vtu import load_plane
+
+    x = np.linspace(-1.0, 1.0, 11)
+    d = np.array([0.6, -0.8])                       # a tilt through zero in that plane
+    n = load_plane(x * d[0], x * d[1])
+    # exact up to the eigen-solver's round-off (unit vectors, O(1e-16))
+    assert abs(abs(n @ d) - 1.0) < 1e-12
+    signed = np.column_stack([x * d[0], x * d[1]]) @ n
+    assert np.all(np.diff(signed) > 0) or np.all(np.diff(signed) < 0)   # no fold at 0
+    n2 = load_plane(-(x ** 2 + 0.1) * d[0], -(x ** 2 + 0.1) * d[1])
+    assert n2 @ d < 0                               # the largest deflection is positive
+
+
+def test_view_names_the_fitted_peak_of_the_sidecar(tmp_path):
+    """``shaftfe view result.vtu`` prints the nodal maximum; the run's summary.json prints the
+    surface-fit peak; view names that value and the difference beside its own."""
+    from shaftfe.io import view
+
+    ch = view.FieldChoice("von_mises", "point", 1, None, "von_mises", "MPa", "max")
+    vtu = tmp_path / "result.vtu"
+    (tmp_path / "summary.json").write_text(json.dumps(
+        {"vtu": {"file": "result.vtu", "rpm": 10000.0},
+         "cases": [{"rpm": 10000.0, "peak_von_mises_MPa": 509.21},
+                   {"rpm": 7000.0, "peak_von_mises_MPa": 249.5}]}))
+    assert view.fitted_peak(vtu, ch) == 509.21
+    assert view.fitted_peak(tmp_path / "other.vtu", ch) is None     # another file's summary
+    sf = view.FieldChoice("safety_factor", "point", 1, None, "safety_factor", "-", "min")
+    assert view.fitted_peak(vtu, sf) is None

@@ -109,18 +109,31 @@ def _short(text: str, width: int = 48) -> str:
 
 def _print_summary(rep, page) -> None:
     from shaftfe.commands._common import print_table
-    from shaftfe.report.html import num, pct
+    from shaftfe.report.html import PEAK_FIT_LABEL, headline, life, num, pct
 
     st, fat = rep.static, rep.fatigue
     hs = fat["hot_spot"]
     c0 = st["cases"][0]
+    node = c0.get("peak_von_mises_node_MPa")
     print(f"{rep.inputs['variant']}: {rep.inputs['description']}")
     print(f"load case: {st['load_case']}")
     print(f"static {st['model_label']} ({num(st['n_dofs'])} dofs): peak von Mises "
-          f"{num(c0['peak_von_mises_MPa'], 4)} MPa at {num(c0['rpm'])} rpm ({c0['peak_region']})")
-    print(f"fatigue: life {num(hs['life_blocks'], 4)} blocks = {num(hs['life_hours'], 4)} h = "
-          f"{num(hs['life_km'], 4)} km; safety factor {num(hs['safety_factor'], 3)} at "
-          f"{num(fat['settings']['design_life_blocks'])} blocks; hot spot {hs['region']}")
+          f"{num(c0['peak_von_mises_MPa'], 4)} MPa at {num(c0['rpm'])} rpm ({c0['peak_region']}; "
+          f"{PEAK_FIT_LABEL}" + (f", largest nodal value {num(node, 4)} MPa" if node else "")
+          + ")")
+    h = headline(rep)
+    if h:
+        print(f"fatigue, {h['method']} (the default method): degree of utilisation "
+              f"{num(h['utilisation'], 3, strip=False)} "
+              f"({'passes' if h['passes'] else 'FAILS'}), safety "
+              f"{num(h['safety'], 3, strip=False)}"
+              + (f"; life: {life(h['life_blocks'], h['life_hours'])}"
+                 if h["method"] == "FKM" else "") + f"; {h['what']}")
+    print(f"fatigue, seed method ({fat['settings']['mean_stress']}, "
+          f"{fat['settings']['material']}): life {num(hs['life_blocks'], 4)} blocks = "
+          f"{num(hs['life_hours'], 4)} h = {num(hs['life_km'], 4)} km; safety factor "
+          f"{num(hs['safety_factor'], 3)} at {num(fat['settings']['design_life_blocks'])} blocks; "
+          f"hot spot {hs['region']}")
     print(f"Campbell: {rep.campbell['statement']}")
     print()
     print_table(["quantity", "unit", "seed", "shaftfe", "diff", "shaftfe model"],

@@ -37,16 +37,21 @@ def _save(fig, path) -> Path:
     return path
 
 
-def plot_load_history(history, path) -> Path:
-    """rpm and load factor against time (seed Obr. 65 / 88)."""
+def plot_load_history(history, path, ref_rpm: float | None = None) -> Path:
+    """rpm and load factor against time (seed Obr. 65 / 88). ``ref_rpm``: the speed of the
+    static solution the load factor (n / ref_rpm)² multiplies (the fatigue run's reference);
+    default the file's own normalising speed."""
     plt = _plt()
+    if ref_rpm is not None:
+        history = history.with_reference(ref_rpm)
     fig, ax = plt.subplots(figsize=(9, 3.5))
     ax.step(history.time_s, history.rpm, where="post", color="tab:blue")
     ax.set_xlabel("time [s]")
     ax.set_ylabel("engine speed [rpm]", color="tab:blue")
     ax2 = ax.twinx()
     ax2.step(history.time_s, history.load_factor, where="post", color="tab:red", alpha=0.4)
-    ax2.set_ylabel(f"load factor (rpm/{history.rpm_ref:g})²", color="tab:red")
+    ax2.set_ylabel(f"load factor (n / {history.rpm_ref:,.0f})²".replace(",", " "),
+                   color="tab:red")
     ax.set_title(f"{Path(history.source).name}: {history.duration_s:g} s block")
     ax.grid(alpha=0.3)
     return _save(fig, path)
@@ -76,20 +81,65 @@ def plot_sn_curve(material: FatigueMaterial, path, kf: float = 1.0) -> Path:
 
 
 def plot_cycle_matrix(matrix: CycleMatrix, path, title: str = "") -> Path:
-    """Rainflow (counts) or damage matrix as a range × mean heat map (seed Obr. 68 / 69)."""
+    """Rainflow (counts) or damage matrix as a range × mean heat map (seed Obr. 68 / 69), each
+    occupied cell outlined. Counts: a discrete colour bar of whole numbers (one colour per
+    count up to 10, logarithmic bins of whole numbers beyond). Damage: a logarithmic colour
+    bar, every label in one format (1e-05, 1e-04 …)."""
+    from matplotlib import colors, ticker
     plt = _plt()
     fig, ax = plt.subplots(figsize=(6, 4.5))
-    v = np.ma.masked_equal(matrix.values, 0.0)
-    mesh = ax.pcolormesh(matrix.mean_edges, matrix.range_edges, v, cmap="viridis",
-                         shading="flat")
+    vals = np.asarray(matrix.values, dtype=float)
+    v = np.ma.masked_less_equal(vals, 0.0)
     count = matrix.quantity == "count"
-    fig.colorbar(mesh, ax=ax, label=("cycles per block" if count else "damage per block [-]"),
-                 format=None if count else "%.2g")
+    if count:
+        norm, ticks, cmap = _count_norm(vals)
+        fmt = ticker.FuncFormatter(lambda x, _: f"{x:,.10g}".replace(",", " "))
+    else:
+        pos = vals[vals > 0]
+        lo = 10.0 ** np.floor(np.log10(pos.min())) if pos.size else 1e-12
+        hi = 10.0 ** np.ceil(np.log10(pos.max())) if pos.size else 1.0
+        if hi <= lo:
+            hi = lo * 10.0
+        norm, cmap = colors.LogNorm(lo, hi), plt.get_cmap("viridis")
+        ticks = 10.0 ** np.arange(np.log10(lo), np.log10(hi) + 0.5)
+        fmt = ticker.FuncFormatter(lambda x, _: f"{x:.0e}")
+    mesh = ax.pcolormesh(matrix.mean_edges, matrix.range_edges, v, cmap=cmap, norm=norm,
+                         shading="flat", edgecolors="0.35", linewidth=0.4)
+    cb = fig.colorbar(mesh, ax=ax, ticks=ticks, format=fmt,
+                      label="cycles per block" if count else "damage per block [-] (log)")
+    cb.minorticks_off()
     unit = f" [{matrix.units}]" if matrix.units else ""
     ax.set_xlabel("mean" + unit)
     ax.set_ylabel("range" + unit)
     ax.set_title(title or f"{matrix.quantity} matrix")
     return _save(fig, path)
+
+
+def _count_norm(vals: np.ndarray):
+    """(norm, ticks, colormap) of a count matrix. Up to ``COUNT_DISCRETE`` cycles per cell:
+    one colour per count (per half count when half cycles are left), the ticks at the counts.
+    Beyond: logarithmic bins from 1, 2, 5 × 10^k to the next, the ticks on those whole-number
+    bounds (a colour then means "from this count up to the next tick")."""
+    from matplotlib import colors
+    plt = _plt()
+    pos = vals[vals > 0]
+    top = max(float(pos.max(initial=1.0)), 0.5)
+    half = bool(np.any(np.abs(pos - np.round(pos)) > 1e-9))
+    if top <= COUNT_DISCRETE:
+        step = 0.5 if half else 1.0
+        ticks = np.arange(step, np.ceil(top / step) * step + 0.5 * step, step)
+        bounds = np.concatenate([ticks - 0.5 * step, [ticks[-1] + 0.5 * step]])
+    else:
+        k = int(np.ceil(np.log10(top))) + 1
+        edges = sorted(m * 10.0 ** e for e in range(k + 1) for m in (1, 2, 5))
+        last = next(i for i, e in enumerate(edges) if e > top)
+        bounds = np.array(([0.5] if half else []) + edges[: last + 1])
+        ticks = bounds
+    cmap = plt.get_cmap("viridis", len(bounds) - 1)
+    return colors.BoundaryNorm(bounds, cmap.N), ticks, cmap
+
+
+COUNT_DISCRETE = 10            # up to this many cycles per cell, one colour per count
 
 
 HAIGH_MAX_POINTS = 20_000

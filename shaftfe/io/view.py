@@ -263,3 +263,24 @@ def group_names(grid, path) -> dict[int, str]:
     except (OSError, ValueError, KeyError, TypeError, AttributeError):
         pass
     return out
+
+
+def fitted_peak(path, choice: FieldChoice) -> float | None:
+    """The whole shaft's von Mises peak that the run which wrote ``path`` printed (``static``
+    or ``report``: the sidecar ``summary.json``'s case at the file's speed), when ``choice`` is
+    ``von_mises``. That peak is the surface fit between the nodes; the file holds nodal
+    values, so ``view``'s hot spot can be a little lower: ``render`` names both."""
+    if choice.name != "von_mises" or choice.n_components != 1:
+        return None
+    side = Path(path).with_name("summary.json")
+    try:
+        d = json.loads(side.read_text())
+        vtu = d["vtu"]
+        if vtu.get("file", Path(path).name) != Path(path).name:
+            return None
+        cases = d["static"]["cases"] if "static" in d else d["cases"]
+        c = next(c for c in cases if abs(float(c["rpm"]) - float(vtu["rpm"])) < 1e-9)
+        v = c["peak_von_mises_MPa"]
+        return float(v) if v is not None else None
+    except (OSError, ValueError, KeyError, TypeError, AttributeError, StopIteration):
+        return None

@@ -128,10 +128,40 @@ def span_envelope(lo, hi, v, x_range: tuple[float, float],
     return bins, env
 
 
-def plot_png(result, path, rpm: float, *, envelope=None, model: str = "3D FE") -> Path:
-    """Deflection line (FE axis and beam) and the von Mises envelope along x: of the elements
-    of ``result.mesh`` unless ``envelope`` = (bins, values at ``result.ref_rpm``) is given (the
-    axisymmetric model's surface); ``model`` labels the curves."""
+def load_plane(uy, uz) -> np.ndarray:
+    """Unit vector (n_y, n_z) of the plane the axis bends in: the direction that carries the
+    most of Σ u² over the axis points (the leading principal direction of the (u_y, u_z)
+    pairs, uncentred); its sign makes the largest deflection positive."""
+    a = np.column_stack([np.asarray(uy, float), np.asarray(uz, float)])
+    w, v = np.linalg.eigh(a.T @ a)
+    n = v[:, int(np.argmax(w))]
+    proj = a @ n
+    if proj.size and proj[int(np.argmax(np.abs(proj)))] < 0:
+        n = -n
+    return n
+
+
+def bearing_line(case, x):
+    """(u_y, u_z) at ``x`` of the straight line through the two bearings' remote points (the
+    shaft's rigid-body motion on its springs), or None unless there are exactly two."""
+    b = sorted(case.bearings, key=lambda b: b.x_mm)
+    if len(b) != 2 or b[1].x_mm == b[0].x_mm:
+        return None
+    t = (np.asarray(x, float) - b[0].x_mm) / (b[1].x_mm - b[0].x_mm)
+    return (b[0].uy_mm + t * (b[1].uy_mm - b[0].uy_mm),
+            b[0].uz_mm + t * (b[1].uz_mm - b[0].uz_mm))
+
+
+def plot_png(result, path, rpm: float, *, envelope=None, model: str = "3D FE",
+             clearance: tuple[float, float] | None = None) -> Path:
+    """Deflection line and the von Mises envelope along x. Top: the axis's signed deflection
+    in its load plane (``load_plane``), in total (bearing springs' rigid-body motion
+    included) and its bending part (relative to the line through the two bearings), the beam
+    model's line in the same plane, the stations as labelled vertical lines and, with
+    ``clearance`` = (x, c) in mm, the clearance ± c at x. Bottom: the von Mises envelope of
+    the elements of ``result.mesh`` unless ``envelope`` = (bins, values at
+    ``result.ref_rpm``) is given (the axisymmetric model's surface); ``model`` labels the
+    curves."""
     import io
 
     import matplotlib
@@ -141,26 +171,47 @@ def plot_png(result, path, rpm: float, *, envelope=None, model: str = "3D FE") -
     from shaftfe.util.atomic import write_atomic
     s = (rpm / result.ref_rpm) ** 2
     case = result.case(rpm)
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
-    u = result.axis_u_ref * s
-    a1.plot(result.axis_x, np.hypot(u[:, 1], u[:, 2]) * 1e3, label=f"{model}, axis |u_yz|")
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 7.6), sharex=True,
+                                 gridspec_kw={"height_ratios": [1.25, 1]})
+    x = np.asarray(result.axis_x, float)
+    u = np.asarray(result.axis_u_ref, float) * s
+    n = load_plane(u[:, 1], u[:, 2])
+    um = 1e3                                                        # mm -> µm
+    a1.axhline(0.0, color="0.6", lw=0.8)
+    a1.plot(x, (u[:, 1:3] @ n) * um, color="tab:blue",
+            label=f"{model}, total (incl. rigid-body motion on the bearing springs)")
+    line = bearing_line(case, x)
+    if line is not None:
+        bend = (u[:, 1] - line[0]) * n[0] + (u[:, 2] - line[1]) * n[1]
+        a1.plot(x, bend * um, color="tab:green",
+                label=f"{model}, bending only (relative to the bearing line)")
     beam = getattr(case, "beam", None)
-    if beam and "x_line_mm" in beam:
-        a1.plot(beam["x_line_mm"], np.asarray(beam["u_line_mm"]) * 1e3, "--",
-                label="beam model")
+    if beam and "uy_line_mm" in beam:
+        bu = np.asarray(beam["uy_line_mm"]) * n[0] + np.asarray(beam["uz_line_mm"]) * n[1]
+        a1.plot(beam["x_line_mm"], bu * um, "--", color="tab:orange",
+                label="beam model, total")
+    off = np.abs(u[:, 1] * -n[1] + u[:, 2] * n[0]).max() * um
     merged: dict[float, list] = {}                 # one label per position (gear + CW1)
     for st in case.stations:
-        merged.setdefault(round(st.x_mm, 6), [st.u_mm, []])[1].append(st.name)
-    x_mid = 0.5 * (float(result.axis_x.min()) + float(result.axis_x.max()))
-    for x, (u_mm, names) in merged.items():
-        a1.plot([x], [u_mm * 1e3], "o", ms=4)
-        right = x > x_mid                       # labels run inwards, never out of the frame
-        a1.annotate(" + ".join(names), (x, u_mm * 1e3), fontsize=7, rotation=20,
-                    xytext=(-3 if right else 3, 4), textcoords="offset points",
-                    ha="right" if right else "left", rotation_mode="anchor")
-    a1.margins(x=0.02, y=0.3)
-    a1.set_ylabel("deflection [µm]")
-    a1.legend(fontsize=8)
+        name = st.name.split(":", 1)[-1]
+        merged.setdefault(round(st.x_mm, 6), []).append(name)
+    for xs, names in merged.items():
+        a1.axvline(xs, color="0.55", lw=0.7, ls=":")
+        a1.text(xs, 0.98, "\n".join(names), transform=a1.get_xaxis_transform(), fontsize=6.5,
+                rotation=90, ha="center", va="top", color="0.25",
+                bbox=dict(facecolor="white", edgecolor="none", alpha=0.8, pad=0.5))
+    lo, hi = a1.get_ylim()
+    if clearance is not None and clearance[1]:
+        # the deflection turns with the shaft, so the clearance counts on every side: drawn
+        # once, on the side of the largest deflection (positive)
+        cx, cc = clearance
+        a1.plot([cx - 4.0, cx + 4.0], [cc * um] * 2, color="tab:red", lw=2)
+        a1.annotate(f"clearance {cc:g} mm (any side)", (cx - 4.0, cc * um), xytext=(-4, 0),
+                    textcoords="offset points", ha="right", va="center", fontsize=7,
+                    color="tab:red")
+        hi = max(hi, 1.08 * cc * um)
+    a1.set_ylim(lo, hi + 0.43 * (hi - lo))           # the top 30 % for the station labels
+    a1.set_ylabel(f"deflection in the load plane [µm]\n(n_y, n_z) = ({n[0]:.2f}, {n[1]:.2f})")
     a1.grid(alpha=0.3)
     if envelope is None:
         bins, env = stress_envelope(result.mesh.mesh, result.von_mises_ref * s)
@@ -168,14 +219,19 @@ def plot_png(result, path, rpm: float, *, envelope=None, model: str = "3D FE") -
     else:
         bins, env = envelope[0], np.asarray(envelope[1]) * s
         what = "the surface"
-    a2.step(0.5 * (bins[1:] + bins[:-1]), env, where="mid",
+    a2.step(0.5 * (bins[1:] + bins[:-1]), env, where="mid", color="tab:purple",
             label=f"{model}, max von Mises of {what} in each slice")
     a2.set_xlabel("x along the shaft [mm]")
     a2.set_ylabel("von Mises [MPa]")
     a2.grid(alpha=0.3)
-    a2.legend(fontsize=8)
-    fig.suptitle(f"{result.variant} at {rpm:g} rpm")
-    fig.tight_layout()
+    # one legend under both panels, outside the axes: it never covers a curve or a label
+    handles = [h for a in (a1, a2) for h in a.get_legend_handles_labels()[0]]
+    fig.legend(handles=handles, loc="lower center", ncol=2, fontsize=7, frameon=False,
+               title=f"deflection: its component out of the load plane is ≤ {off:.2g} µm",
+               title_fontsize=7)
+    fig.suptitle(f"{result.variant} at {rpm:,.0f} rpm: deflection and stress along the shaft"
+                 .replace(",", " "))
+    fig.tight_layout(rect=(0.0, 0.1, 1.0, 1.0))
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=110)
     plt.close(fig)

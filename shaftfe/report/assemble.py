@@ -42,6 +42,7 @@ from shaftfe.report.stages import (
     static_summary_axisymmetric,
 )
 from shaftfe.static.benchmark import benchmark_errors
+from shaftfe.util.notices import collected
 from shaftfe.util.paths import repo_relative
 
 # --------------------------------------------------------------------------- validation
@@ -106,6 +107,21 @@ def _static(o: ReportOptions, variant, prog):
                                 other_level=OTHER_LEVEL[o.level])
             res = dataclasses.replace(res, error_estimate=ee)
     return res, ref
+
+
+def _nodal_peak(st: dict, ref) -> None:
+    """Add ``peak_von_mises_node_MPa`` to the static case at the reference speed: the largest
+    nodal von Mises stress outside the singular points, the value the 3D picture and
+    ``shaftfe view`` show beside the surface-fitted ``peak_von_mises_MPa``."""
+    import numpy as np
+    vm = np.asarray(getattr(ref, "von_mises_ref", ()), dtype=float)
+    if vm.size == 0:
+        return
+    keep = np.ones(vm.size, dtype=bool)
+    keep[np.asarray(getattr(ref, "excluded", ()), dtype=np.int64)] = False
+    for c in st["cases"]:
+        if abs(c["rpm"] - ref.ref_rpm) <= 1e-9 * ref.ref_rpm and keep.any():
+            c["peak_von_mises_node_MPa"] = float(vm[keep & np.isfinite(vm)].max())
 
 
 def _fatigue(o: ReportOptions, res, ref, history, material):
@@ -243,6 +259,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     res, ref = _static(o, variant, prog)
     st = (static_summary_axisymmetric if o.model == "axisymmetric" else static_summary)(
         res, variant)
+    _nodal_peak(st, ref)
     with prog.stage("fatigue"):
         fat, ff, scaled, bench = _fatigue(o, res, ref, history, material)
     with prog.stage("strength by standard"):
@@ -268,7 +285,8 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         inputs=_inputs_block(o, variant, engine, fat), provenance=prov, balancing=bal,
         beam=beam_out, static=st, fatigue=fat, campbell=camp, comparisons=tuple(comps),
         errors=tuple(errs), timings=prog.timings, sub_timings=_sub_timings(res, ff),
-        figures=tuple(figs), files=files, notes=notes, machine=machine, strength=strength)
+        figures=tuple(figs), files=files, notes=notes, machine=machine, strength=strength,
+        warnings=tuple(collected()))
 
 
 def _strength(o: ReportOptions, variant, ref, history) -> dict:
@@ -303,30 +321,45 @@ def _pictures(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> list[tup
 
     from shaftfe.io.render import render
     from shaftfe.io.view import load
+    from shaftfe.report.html import PEAK_FIT_LABEL, num
 
     grid = load(vtu)                         # read once for the three pictures
     excl = np.flatnonzero(ff.excluded_mask)
-    size = (1000, 440)
+    size = (1000, 520)
+    case = next((c for c in st["cases"] if c["rpm"] == rpm), st["cases"][0])
+    head = f"{vtu.stem}, {num(rpm)} rpm"
+    peak = f"peak {num(case['peak_von_mises_MPa'], 4)} MPa ({PEAK_FIT_LABEL})"
+    hot = ff.hot_spot
     out = []
     shots = (
         ("von_mises_3d", "von_mises", 0.0, "von Mises stress",
-         f"von Mises stress at {rpm:g} rpm [MPa]; hot spot = the largest value outside the "
-         f"singular points ({len(excl)} nodes at the bearing-coupling and load-patch edges "
-         "excluded, as the static and fatigue analyses)."),
+         f"{head}: von Mises stress [MPa]\n{peak} at {case['peak_region']}",
+         f"von Mises stress at {rpm:g} rpm [MPa]; the ring marks the largest nodal value "
+         f"outside the singular points ({len(excl)} nodes at the bearing-coupling and "
+         "load-patch edges excluded, as the static and fatigue analyses). The static peak "
+         f"printed everywhere else, {num(case['peak_von_mises_MPa'], 4)} MPa, is the "
+         f"{PEAK_FIT_LABEL} (a local fit of the recovered surface stress), so it can lie a "
+         "little above the largest node."),
         ("displacement_3d", "displacement", "auto", "deflection",
+         f"{head}: displacement [mm] (shape exaggerated)",
          f"displacement magnitude at {rpm:g} rpm [mm] on the shape deformed ×(auto) — bearing "
          "springs included, so the shaft also moves as a body on its springs."),
-        ("safety_factor_3d", "safety_factor", 0.0, "fatigue safety factor",
-         f"fatigue safety factor at {o.design_life_blocks:g} blocks [-]; hot spot = the minimum "
-         "outside the singular points."),
+        ("safety_factor_3d", "safety_factor", 0.0, "fatigue safety factor (seed method)",
+         f"{head}: fatigue safety factor, seed method\nmin {num(hot.safety_factor, 3)} at "
+         f"{num(o.design_life_blocks)} blocks ({hot.region})",
+         f"fatigue safety factor of the seed method (von Mises, {o.mean_stress}, Structural "
+         f"Steel S-N) at {o.design_life_blocks:g} blocks [-]; red below 1, yellow at 1, green "
+         "above; hot spot = the minimum outside the singular points. The default method's "
+         "(FKM) verdict is in Strength by standard."),
     )
-    for name, fld, warp, title, caption in shots:
+    for name, fld, warp, title, picture_title, caption in shots:
         res = render(vtu, field=fld, warp=warp, screenshot=fig_dir / f"{name}.png",
-                     window_size=size, off_screen=True, hot_exclude=excl, zoom=1.9,
-                     grid=grid)
+                     window_size=size, off_screen=True, hot_exclude=excl, zoom="fit",
+                     grid=grid, title=picture_title)
         if res.hot is not None:
             unit = f" {res.field.unit}" if res.field.unit not in ("-", "id") else ""
-            caption += f" Marked: {res.hot.value:.4g}{unit} at x = {res.hot.xyz[0]:.1f} mm."
+            caption += (f" Marked: {res.hot.value:.4g}{unit} (nodal value) at x = "
+                        f"{res.hot.xyz[0]:.1f} mm.")
         out.append((name, title, caption))
     return out
 
@@ -352,17 +385,24 @@ def _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, 
             f"max|Fx|, max|Fy|, RMS|F|, max|F| [N] against the balancer ratio X2 [%] for crank "
             f"C (X = {100 * sw.X[0]:.1f} %), {sw.rpm:g} rpm, cylinder frame (as the seed's "
             "fig. 58: x across, y along the cylinder axis).")
+    from shaftfe.static.outputs import clearance_of
+    clear = clearance_of(variant)
     if o.model == "axisymmetric":
         from shaftfe.axisymmetric.reference import surface_envelope
         export.plot_png(res, fig_dir / "deflection.png", rpm_vtu,
-                        envelope=surface_envelope(ref), model="axisymmetric FE")
+                        envelope=surface_envelope(ref), model="axisymmetric FE",
+                        clearance=clear)
         what = "axisymmetric FE, bearing springs"
     else:
-        export.plot_png(res, fig_dir / "deflection.png", rpm_vtu)
+        export.plot_png(res, fig_dir / "deflection.png", rpm_vtu, clearance=clear)
         what = "3D FE and beam, bearing springs"
     add_fig("deflection", "deflection line and stress envelope",
-            f"{rpm_vtu:g} rpm: deflection of the axis [µm] ({what}) "
-            "and the largest von Mises stress [MPa] in each 1 mm slice along the shaft x [mm].")
+            f"{rpm_vtu:g} rpm: signed deflection of the axis in its load plane [µm] ({what}): "
+            "in total, i.e. with the shaft's rigid-body motion on the bearing springs, and its "
+            "bending part relative to the straight line through the two bearings"
+            + (f"; the clearance ±{clear[1]:g} mm to the crankshaft at x = {clear[0]:g} mm"
+               if clear else "")
+            + "; below, the largest von Mises stress [MPa] in each 1 mm slice along x [mm].")
     camp_png = plot_campbell(cres, title=f"{variant.name}: Campbell diagram "
                              f"({o.rotor_model} model)")
     write_atomic(fig_dir / "campbell.png", camp_png)
@@ -373,10 +413,11 @@ def _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, 
     s0, beta = ff.result.linear_stress(hot.node)      # the node's S0 (λ + β λ²)
     lbl = f"{hot.region} x = {hot.xyz_mm[0]:.1f} mm"
     r = ff.result
-    fatigue_plots.plot_load_history(history, fig_dir / "load_history.png")
+    fatigue_plots.plot_load_history(history, fig_dir / "load_history.png", ref_rpm=ff.ref_rpm)
     add_fig("load_history", "rpm history (one block)",
-            f"{Path(history.source).name}: engine speed [rpm] and load factor (rpm/ref)² [-] "
-            "against time [s].")
+            f"{Path(history.source).name}: engine speed [rpm] and load factor (n / "
+            f"{ff.ref_rpm:g})² [-] against time [s]: the factor on the static stresses at "
+            f"{ff.ref_rpm:g} rpm, the same reference as the fatigue text.")
     fatigue_plots.plot_cycle_matrix(
         rainflow_matrix(kernels.node_stress_cycles(s0, beta, r.cycles), units="MPa"),
         fig_dir / "rainflow_matrix.png",

@@ -34,7 +34,10 @@ td.good{color:#1d6b2f}td.bad{color:#a12b1f;font-weight:600}
 .cards{display:flex;flex-wrap:wrap;gap:10px;margin:10px 0}
 .card{border:1px solid #d5d9de;border-radius:6px;padding:8px 12px;min-width:150px;
  background:#fafbfc}
-.card .v{font-size:20px;font-weight:600}.card .l{font-size:12px;color:#555}
+.card .v{font-size:20px;font-weight:600}.card .l{font-size:12px;color:#555;max-width:260px}
+.card.good .v{color:#1d6b2f}.card.bad .v{color:#a12b1f}
+.warnings{border:2px solid #c77c02;background:#fff6e0;border-radius:6px;padding:8px 14px;
+ margin:10px 0}.warnings ul{margin:4px 0 0 18px;padding:0}
 figure{margin:10px 0 18px}
 figure img{max-width:100%;height:auto;border:1px solid #e1e4e8}
 figure.narrow{max-width:720px}
@@ -124,35 +127,99 @@ def figure(report, name: str, narrow: bool = False) -> str:
             f"(<code>figures/{_e(f.name)}.png</code>)</figcaption></figure>")
 
 
-def card(value: str, label: str) -> str:
-    return (f'<div class="card"><div class="v">{_e(value)}</div>'
+def card(value: str, label: str, cls: str = "") -> str:
+    c = f"card {cls}".strip()
+    return (f'<div class="{c}"><div class="v">{_e(value)}</div>'
             f'<div class="l">{_e(label)}</div></div>')
+
+
+LIFE_READABLE_BLOCKS = 1e9     # beyond this a life is "no finite life at this load" (issue 30)
+
+
+def life(blocks, hours=None) -> str:
+    """A fatigue life an engineer can read: blocks and hours, or "no finite life at this load"
+    for none (beyond the curve's knee) or one beyond 10⁹ blocks."""
+    if blocks is None or not math.isfinite(float(blocks)):
+        return "no finite life at this load"
+    if blocks > LIFE_READABLE_BLOCKS:
+        return "no finite life at this load (> 10⁹ blocks)"
+    return num(blocks, 3, "blocks") + (f" = {num(hours, 3, 'h')}" if hours is not None else "")
+
+
+def headline(r) -> dict:
+    """The verdict of the default fatigue method (``strength.default_method``, FKM; DIN 743 where
+    FKM has no field, i.e. the axisymmetric model): method, safety, utilisation, life, passes."""
+    s = r.strength or {}
+    if "fkm" in s:
+        f = s["fkm"]
+        g, rule = f["governing"], f["rule"]
+        u = g["utilisation"][rule]
+        return {"method": "FKM", "what": f"FKM local stress, card {f['card']}, Miner {rule}, "
+                f"j_D {num(f['j_D'])}, {g['region']} ({g['layer']})",
+                "safety": g["safety"][rule], "utilisation": u,
+                "life_blocks": g["life_blocks"][rule], "life_hours": g["life_hours"][rule],
+                "passes": u is not None and u <= 1.0}
+    if "din743" in s:
+        d = s["din743"]
+        g = d["governing"]
+        u = d["S_min"] / g["S_D"] if g["S_D"] else None
+        return {"method": "DIN 743", "what": f"DIN 743 nominal stress, card {d['card']}, "
+                f"{g['notch']}, S_min {num(d['S_min'])}", "safety": g["S_D"], "utilisation": u,
+                "life_blocks": None, "life_hours": None, "passes": u is not None and u <= 1.0}
+    return {}
+
+
+def _banner(r) -> str:
+    """The run's warnings (``shaftfe.util.notices``) above everything else."""
+    if not r.warnings:
+        return ""
+    items = "".join(f"<li><b>{_e(w['where'])}</b>: {_e(w['text'])}</li>" for w in r.warnings)
+    return (f'<div class="warnings" id="warnings"><b>{len(r.warnings)} warning'
+            f'{"s" if len(r.warnings) != 1 else ""}: results outside the model\'s range</b>'
+            f"<ul>{items}</ul></div>")
 
 
 # --------------------------------------------------------------------------- sections
 
 def _summary(r) -> str:
-    st, fat, camp = r.static, r.fatigue, r.campbell
+    st, camp = r.static, r.campbell
     c0 = st["cases"][0]
-    hs = fat["hot_spot"]
     worst_b = max(st["cases"][-1]["bearings"], key=lambda b: b["F_radial_N"])
-    cards = [
+    h = headline(r)
+    low, i_low = min((min(row), i) for i, row in enumerate(camp["freq_hz"]))
+    cards = []
+    if h:
+        ok = "passes" if h["passes"] else "FAILS"
+        cards += [
+            card(f"{num(h['utilisation'], 3, strip=False)}: {ok}",
+                 f"{h['method']} degree of utilisation (≤ 1 passes), the default method of "
+                 f"shaftfe fatigue; {h['what']}", "good" if h["passes"] else "bad"),
+            card(num(h["safety"], 3, strip=False), f"{h['method']} safety factor"),
+        ]
+        if h["method"] == "FKM":
+            cards.append(card(life(h["life_blocks"], h["life_hours"]),
+                              f"FKM life at {num(r.fatigue['settings']['design_life_blocks'])}"
+                              " blocks design life"))
+    nodal = c0.get("peak_von_mises_node_MPa")
+    cards += [
         card(num(c0["peak_von_mises_MPa"], 4, "MPa"),
-             f"peak von Mises, {num(c0['rpm'])} rpm ({c0['peak_region']})"),
-        card(num(hs["safety_factor"], 3),
-             f"fatigue safety factor at {num(fat['settings']['design_life_blocks'])} blocks"),
-        card(num(hs["life_blocks"], 4, "blocks"), "fatigue life"),
-        card(num(hs["life_hours"], 4, "h"), "fatigue life"),
-        card(num(hs["life_km"], 4, "km"),
-             f"fatigue life at {num(fat['settings']['speed_kmh'])} km/h"),
+             f"peak von Mises, {num(c0['rpm'])} rpm ({c0['peak_region']}), "
+             + PEAK_FIT_LABEL + (f"; largest nodal value {num(nodal, 4)} MPa" if nodal else "")),
         card(num(worst_b["L10h"], 4, "h"),
              f"L10h {worst_b['name'].replace('_', ' ')}, {num(st['cases'][-1]['rpm'])} rpm"),
-        card(num(camp["table"][0]["f0_hz"], 4, "Hz"), "lowest natural frequency at 0 rpm"),
+        card(num(camp["table"][0]["f0_hz"], 4, "Hz"),
+             f"lowest natural frequency at 0 rpm; the lowest over the sweep, "
+             f"{num(low, 4, 'Hz')}, is at {num(camp['rpm'][i_low])} rpm"),
         card(str(len(camp["criticals"])),
              f"critical speeds in {num(camp['rpm'][0])} to {num(camp['rpm'][-1])} rpm"),
     ]
     return ('<h2 id="summary">Summary</h2><div class="cards">' + "".join(cards) + "</div>"
+            '<p class="note">The seed method (Ansys Structural Steel, Soderberg) is in '
+            '<a href="#strength">Strength by standard</a> and the seed comparison.</p>'
             f'<p class="note">{_e(camp["statement"])}.</p>')
+
+
+PEAK_FIT_LABEL = "surface fit between the nodes"
 
 
 def _inputs(r) -> str:
@@ -469,17 +536,29 @@ def _strength(r) -> str:
     if not s:
         return ""
     fat = r.fatigue["hot_spot"]
+    ref = num(r.fatigue["history"]["static_ref_rpm"])
     rows = [("seed (Ansys-style: von Mises, Soderberg, Structural Steel S-N)",
-             num(fat["safety_factor"]), "-", num(fat["life_blocks"], 4, "blocks"))]
+             num(fat["safety_factor"], 3, strip=False), "-",
+             life(fat["life_blocks"], fat["life_hours"]),
+             f"{num(fat['sigma_eq_ref_MPa'], 4)} at x = {num(fat['xyz_mm'][0])} mm: the node of "
+             "least seed safety (nodal value)")]
     if "fkm" in s:
         g = s["fkm"]["governing"]
         rule = s["fkm"]["rule"]
-        rows.append((f"FKM local, 16MnCr5 case hardened ({_e(g['region'])}, {g['layer']}; "
-                     f"Miner {rule}; j_D {num(s['fkm']['j_D'])})", num(g["safety"][rule]),
-                     num(g["utilisation"][rule]), num(g["life_blocks"][rule], 4, "blocks")))
+        gr = next((x for x in s["fkm"]["regions"] if x["region"] == g["region"]), None)
+        hot = (f"{num(gr[g['layer']]['sigma_ref_MPa'], 4)} at x = {num(gr['xyz_mm'][0])} mm: the "
+               "node of highest FKM utilisation (nodal signed von Mises: the stress gradient and a "
+               "tensile mean count, so not always the node of the largest stress)") if gr else "–"
+        rows.append((f"FKM local, card {_e(s['fkm']['card'])} ({_e(g['region'])}, {g['layer']}; "
+                     f"Miner {rule}; j_D {num(s['fkm']['j_D'])}) — the default",
+                     num(g["safety"][rule], 3, strip=False),
+                     num(g["utilisation"][rule], 3, strip=False),
+                     life(g["life_blocks"][rule], g["life_hours"][rule]), hot))
     d = s["din743"]["governing"]
-    rows.append((f"DIN 743 nominal, beam ({_e(d['notch'])}; S_min 1.2)", num(d["S_D"]),
-                 num(1.2 / d["S_D"]) if d["S_D"] else "-", "fatigue limit (no life)"))
+    rows.append((f"DIN 743 nominal, beam ({_e(d['notch'])}; S_min 1.2)", num(d["S_D"], 3),
+                 num(1.2 / d["S_D"], 3) if d["S_D"] else "-", "fatigue limit (no life)",
+                 "nominal beam stress × notch factors"))
+    c0 = r.static["cases"][0]
     html = ('<h2 id="strength">Strength by standard</h2>'
             "<p>The default of <code>shaftfe fatigue</code> is <b>FKM</b>: it judges the local "
             "stress of the 3D field with the shaft's own material (16MnCr5, case hardened), "
@@ -489,10 +568,15 @@ def _strength(r) -> str:
             "stresses with tabulated notch factors at the fatigue limit of one cycle (the "
             "history's largest), so it gives no life. They differ because they judge different "
             "materials and different stresses, not because one is wrong.</p>"
+            f'<p class="note">One stress field, three readings of its peak at {ref} rpm: the '
+            f"static peak {num(c0['peak_von_mises_MPa'], 4)} MPa is the {PEAK_FIT_LABEL} "
+            "(largest nodal value "
+            f"{num(c0.get('peak_von_mises_node_MPa'), 4)} MPa); each method below reads the "
+            "nodal value at its own hot spot. All include spin softening when it is on.</p>"
             "<table><tr><th>method</th><th>safety factor</th><th>degree of utilisation</th>"
-            "<th>life</th></tr>"
-            + "".join(f"<tr><td>{a}</td><td>{b}</td><td>{c}</td><td>{e}</td></tr>"
-                      for a, b, c, e in rows) + "</table>")
+            f"<th>life</th><th>hot-spot stress at {ref} rpm [MPa]</th></tr>"
+            + "".join(f"<tr><td>{a}</td><td>{b}</td><td>{c}</td><td>{e}</td><td>{_e(h)}</td>"
+                      "</tr>" for a, b, c, e, h in rows) + "</table>")
     from shaftfe.fatigue.standards_out import elements_lines
     html += "<h3>Bearings (ISO 281), keys and gear pair (seed 000 §8.2)</h3><ul>" + "".join(
         f"<li>{_e(line.strip())}</li>" for line in
@@ -508,7 +592,7 @@ def render(report) -> str:
         "<header>", f"<h1>{_e(title)}</h1>",
         f'<p class="meta">{_e(r.inputs["description"])} · {_e(r.created_utc)} · shaftfe '
         f"{_e(__version__)} · total run time {sum(t for _, t in r.timings):.1f} s</p>",
-        "</header>", f"<nav>{nav}</nav>",
+        "</header>", _banner(r), f"<nav>{nav}</nav>",
         _summary(r), _inputs(r), _balancing(r), _static(r), _fatigue(r), _strength(r), _campbell(r),
         _comparison(r), _errors(r), _timing(r), _files(r), _notes(r)])
     return ("<!DOCTYPE html>\n"

@@ -65,6 +65,7 @@ class Report:
     notes: tuple[str, ...] = ()
     machine: dict = field(default_factory=dict)
     strength: dict = field(default_factory=dict)
+    warnings: tuple[dict, ...] = ()       # shaftfe.util.notices.collected() of the run
 
     def figure(self, name: str) -> Figure | None:
         return next((f for f in self.figures if f.name == name), None)
@@ -81,6 +82,7 @@ class Report:
             "error_estimates": [asdict(e) for e in self.errors],
             "timings_s": dict(self.timings), "sub_timings_s": self.sub_timings,
             "figures": [f"figures/{f.name}.png" for f in self.figures], "files": self.files,
-            "notes": list(self.notes), "machine": self.machine})
+            "notes": list(self.notes), "machine": self.machine,
+            "warnings": [dict(w) for w in self.warnings]})
 
 

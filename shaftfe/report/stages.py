@@ -169,7 +169,8 @@ def static_summary(res, variant) -> dict:
             "peak_von_mises_unfiltered_MPa": c.peak_von_mises_unfiltered_MPa,
             "peak_von_mises_unfiltered_xyz_mm": c.peak_von_mises_unfiltered_xyz_mm,
             "beam_springs": {k: v for k, v in (c.beam or {}).items()
-                             if k not in ("x_line_mm", "u_line_mm")},
+                             if k not in ("x_line_mm", "u_line_mm", "uy_line_mm",
+                                                  "uz_line_mm")},
         })
     d = res.diagnostics
     return {"model": "solid",

@@ -9,6 +9,12 @@ import json
 from dataclasses import asdict
 
 
+def clearance_of(variant) -> tuple[float, float] | None:
+    """(station x, clearance) in mm from the variant's shaft file, or None without both."""
+    x, c = (getattr(variant, k, None) for k in ("clearance_station_x_mm", "clearance_mm"))
+    return (float(x), float(c)) if x is not None and c is not None else None
+
+
 def write_outputs(variant_arg: str, variant, opts, res, rpms: list[float], out) -> dict:
     """result.vtu, deflection.png and summary.json into the directory ``out``; the summary.
     ``variant_arg``: the variant as the user named it (a name or a path)."""
@@ -17,7 +23,7 @@ def write_outputs(variant_arg: str, variant, opts, res, rpms: list[float], out) 
     from shaftfe.util.versions import package_versions
     rpm_vtu = rpms[0]
     vtu, regions = export.write_vtu(res, out / "result.vtu", rpm_vtu)
-    export.plot_png(res, out / "deflection.png", rpm_vtu)
+    export.plot_png(res, out / "deflection.png", rpm_vtu, clearance=clearance_of(variant))
     summary = {
         "inputs": {"variant": variant_arg, "rpm": rpms, "options": asdict(opts),
                    "source_files": list(getattr(variant, "source_files", ())),

@@ -557,6 +557,7 @@ def _beam_summary(br) -> dict:
             "max_sigma_vm_nominal_MPa": br.max_sigma_vm_MPa,
             "max_sigma_vm_with_kt_MPa": br.max_peak_MPa
             if math.isfinite(br.max_peak_MPa) else None,
-            "x_line_mm": br.x.tolist(), "u_line_mm": br.u.tolist()}
+            "x_line_mm": br.x.tolist(), "u_line_mm": br.u.tolist(),
+            "uy_line_mm": br.uy.tolist(), "uz_line_mm": br.uz.tolist()}
 
 
