@@ -264,6 +264,8 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
     from shaftfe.static.solve import _check_rpms
     t0 = time.perf_counter()
     rpms = _check_rpms(rpm)
+    from shaftfe.solid.plan import warn_sharp_corners
+    warn_sharp_corners(variant)          # a fillet 0 at a loaded shoulder: not a stress there
     if options.spin_softening and len(rpms) > 1:
         parts = [solve_axisymmetric(variant, r, options, cache_dir=cache_dir) for r in rpms]
         cases = tuple(replace(p.cases[0], scale=(r / rpms[0]) ** 2)

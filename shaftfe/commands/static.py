@@ -10,6 +10,7 @@ import math
 
 from shaftfe.errors import InputError
 from shaftfe.solid.levels import LEVEL_NAMES
+from shaftfe.solid.plan import sharp_corners
 from shaftfe.static import MODELS
 
 
@@ -113,7 +114,7 @@ def run(args) -> int:
             from shaftfe.static.outputs import write_outputs
             summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
     return _report(args, summary, lambda: (_print_overrides(variant),
-                                           _print_tables(res, opts, out)))
+                                           _print_tables(res, opts, out, sharp_corners(variant))))
 
 
 def _print_overrides(variant) -> None:
@@ -156,11 +157,12 @@ def _run_axisymmetric(args, rpms, variant) -> int:
         res = solve_axisymmetric(variant, rpms, opts)
         summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
     return _report(args, summary, lambda: (_print_overrides(variant),
-                                           _print_axi(res, opts, out)))
+                                           _print_axi(res, opts, out, sharp_corners(variant))))
 
 
-def _print_axi(res, opts, out) -> None:
+def _print_axi(res, opts, out, corners=()) -> None:
     from shaftfe.commands._common import print_table
+    from shaftfe.solid.plan import sharp_mark
     print(f"variant {res.variant}: axisymmetric (Fourier harmonics n = 0..{res.harmonics[-1]}, "
           f"{len(res.harmonics)} solved), {opts.level}, {res.n_nodes} meridian nodes, "
           f"{'rigid supports' if opts.rigid_supports else 'bearing springs'}, "
@@ -178,17 +180,25 @@ def _print_axi(res, opts, out) -> None:
                     [r[:3] for r in _station_rows(c.stations, {})])
         rows = [[p.region, p.von_mises_MPa, p.max_principal_MPa, p.xyz_mm[0], p.theta_deg,
                  "-" if p.fillet_angle_deg is None else p.fillet_angle_deg,
-                 p.omitted_zone or ""]
+                 p.omitted_zone or "", sharp_mark(corners, p.xyz_mm)]
                 for p in c.peaks if not p.region.startswith(("end:", "seat:"))]
         print_table(["region", "von Mises MPa", "max principal MPa", "x mm", "θ deg",
-                     "on fillet deg", "in the zone of"], rows)
+                     "on fillet deg", "in the zone of", "note"], rows)
     for n in res.notes:
         print(f"note: {n}")
     print(f"\nwrote {out / 'result.vtu'}, {out / 'summary.json'}")
 
 
-def _print_tables(res, opts, out) -> None:
+def _whole_mark(corners) -> str:
+    """The whole-shaft peak's mark: not the shaft's maximum when a corner is singular."""
+    if not corners:
+        return ""
+    return "not bounded: sharp corner " + ", ".join(c.region for c in corners)
+
+
+def _print_tables(res, opts, out, corners=()) -> None:
     from shaftfe.commands._common import print_table
+    from shaftfe.solid.plan import sharp_mark
     d = res.diagnostics
     print(f"variant {res.variant}: P{opts.order} {opts.level}, {res.n_dofs} dofs, "
           f"{'rigid supports' if opts.rigid_supports else 'bearing springs'}, solver "
@@ -216,12 +226,12 @@ def _print_tables(res, opts, out) -> None:
         rows = [[p.region, p.von_mises_MPa, p.max_principal_MPa, p.xyz_mm[0],
                  p.von_mises_unfiltered_MPa,
                  f"{bars[p.region][0]:+.2f} … {bars[p.region][1]:+.2f}"
-                 if p.region in bars else "-"]
+                 if p.region in bars else "-", sharp_mark(corners, p.xyz_mm)]
                 for p in c.peaks if not p.region.startswith("end:")]
         rows.append(["whole shaft", c.peak_von_mises_MPa, "-", c.peak_von_mises_xyz_mm[0],
-                     c.peak_von_mises_unfiltered_MPa, "-"])
+                     c.peak_von_mises_unfiltered_MPa, "-", _whole_mark(corners)])
         print_table(["region", "von Mises MPa", "max principal MPa", "x mm",
-                     "unfiltered MPa", "error vs truth %"], rows)
+                     "unfiltered MPa", "error vs truth %", "note"], rows)
     if res.truth_error_bar_pct:
         print("error vs truth: this level's measured error of fillet peaks (von Mises and max "
               "principal) against the converged axisymmetric solution "
