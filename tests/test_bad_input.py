@@ -301,3 +301,44 @@ def test_the_catalogue_covers_every_command_and_at_least_60_cases():
     assert len(CASES) >= 60
     assert commands >= {"balance", "variant", "beam", "mesh", "static", "fatigue", "campbell",
                         "modal", "report", "demo", "view"}
+
+
+# ---------------------------------------------------------------- issue #30, b-static-variant
+# 0 rpm, a sharp shoulder in a fatigue check, a bearing stiffness off by 1000×, `variant new`
+# names, an empty bearings file
+B_EDITS = {
+    "bearing_stiffness_1000x_soft": (BEAR, K, "K_N_per_mm = [[35.03, 8.756], [8.756, 35.03]]"),
+    "bearing_stiffness_1000x_stiff": (BEAR, K, "K_N_per_mm = [[35030000.0, 8756000.0], "
+                                      "[8756000.0, 35030000.0]]"),
+    "bearings_file_empty": (BEAR, (GEOMETRY_DIR / BEAR).read_text(encoding="utf-8"), ""),
+}
+B_EXPECT = {
+    "bearing_stiffness_1000x_soft": ["bearings.toml", "K_N_per_mm", "estimate 1.34e+05"],
+    "bearing_stiffness_1000x_stiff": ["bearings.toml", "K_N_per_mm", "estimate 1.34e+05"],
+    "bearings_file_empty": ["shaft_c.toml", "bearings[0].type", "[bearing_types.*] (none"],
+}
+VARIANT_EDITS.update(B_EDITS)
+for _k in B_EDITS:
+    CASES[f"variant_check_{_k}"] = (["variant", "check", f"{{V:{_k}}}"], B_EXPECT[_k])
+CASES.update({
+    "static_rpm_zero": (["static", "--variant", "x2_57", "--rpm", "0", "--out", "{W}/o"],
+                        ["--rpm", "> 0", "m·e·ω²"]),
+    "static_axisymmetric_rpm_zero_in_a_list": (
+        ["static", "--variant", "x2_57", "--model", "axisymmetric", "--rpm", "0,7000",
+         "--out", "{W}/o"], ["--rpm", "> 0"]),
+    "beam_stiffness_1000x_soft": (["beam", "--variant", "{V:bearing_stiffness_1000x_soft}"],
+                                  ["K_N_per_mm", "estimate"]),
+    "fatigue_sharp_shoulder": (["fatigue", "{RPM}", "--set", "segments.collar.fillet_mm=0",
+                                "--out", "{W}/o"], ["--set segments.collar.fillet_mm=0",
+                                                    "fillet_mm", "sharp corner"]),
+    "fatigue_din743_sharp_shoulder": (["fatigue", "{RPM}", "--method", "din743", "--set",
+                                       "segments.bearing_seat_gear.fillet_mm=0", "--out",
+                                       "{W}/o"], ["bearing_seat_gear", "sharp corner"]),
+    "fatigue_seed_sharp_shoulder": (["fatigue", "{RPM}", "--method", "seed", "--set",
+                                     "segments.collar.fillet_mm=0", "--out", "{W}/o"],
+                                    ["collar", "sharp corner"]),
+    "variant_new_name_like_an_option": (["variant", "new", "--", "-rf"],
+                                        ["NAME", "starting with a letter or digit"]),
+    "variant_new_existing_name_elsewhere": (["variant", "new", "x2_31", "--out",
+                                             "{W}/other.toml"], ["NAME", "x2_31.toml exists"]),
+})
