@@ -318,9 +318,9 @@ B_EXPECT = {
     "bearings_file_empty": ["shaft_c.toml", "bearings[0].type", "[bearing_types.*] (none"],
 }
 VARIANT_EDITS.update(B_EDITS)
-for _k in B_EDITS:
-    CASES[f"variant_check_{_k}"] = (["variant", "check", f"{{V:{_k}}}"], B_EXPECT[_k])
-CASES.update({
+B_CASES = {f"variant_check_{_k}": (["variant", "check", f"{{V:{_k}}}"], B_EXPECT[_k])
+           for _k in B_EDITS}
+B_CASES.update({
     "static_rpm_zero": (["static", "--variant", "x2_57", "--rpm", "0", "--out", "{W}/o"],
                         ["--rpm", "> 0", "m·e·ω²"]),
     "static_axisymmetric_rpm_zero_in_a_list": (
@@ -337,8 +337,19 @@ CASES.update({
     "fatigue_seed_sharp_shoulder": (["fatigue", "{RPM}", "--method", "seed", "--set",
                                      "segments.collar.fillet_mm=0", "--out", "{W}/o"],
                                     ["collar", "sharp corner"]),
+    "report_sharp_shoulder": (["report", "--no-pictures", "--set",
+                               "segments.collar.fillet_mm=0", "--out", "{W}/o"],
+                              ["collar", "sharp corner"]),
     "variant_new_name_like_an_option": (["variant", "new", "--", "-rf"],
                                         ["NAME", "starting with a letter or digit"]),
     "variant_new_existing_name_elsewhere": (["variant", "new", "x2_31", "--out",
                                              "{W}/other.toml"], ["NAME", "x2_31.toml exists"]),
 })
+CASES.update(B_CASES)          # counted by the catalogue's coverage test
+
+
+@pytest.mark.parametrize("case", sorted(B_CASES))
+def test_bad_input_b_static_variant(case, space, capsys, monkeypatch):
+    """The same contract as the catalogue's test for the cases above (defined after its
+    parametrisation, so run here)."""
+    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
