@@ -289,6 +289,9 @@ def run_show(args) -> int:
         reac = "  ".join(f"{n} {val:.0f}" for n, val in ld["rigid_reactions_N"].items())
         lrows.append([f"{ld['rpm']:g}", ld["case"], forces, reac])
     print_table(["rpm", "case", "seat forces N @ x mm", "rigid-support reactions N"], lrows)
+    if 0.0 in rpms:
+        from shaftfe.beam.solve import AT_REST_NOTE
+        print(f"note: {AT_REST_NOTE}")
     return 0
 
 

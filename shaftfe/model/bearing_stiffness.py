@@ -25,7 +25,7 @@ the load zone (× up to 2), and K ∝ F_r^(1/3) over the loads the shaft sees (0
 × 2.2); their product is ~13, rounded up to 20. Why 3 above: nothing makes a support stiffer
 than its contacts but a preload (at most × 2 at a light-to-medium preload) and a load above 0.1 C
 (0.3 C: × 1.4); 2 × 1.4 = 2.8, rounded to 3. The seed's bushing (35 030 N/mm, eigenvalues
-26 274 and 43 786) is 3.1–5.1 × below the estimate of the ZKL 3203 (134 900 N/mm): inside; a
+26 274 and 43 786) is 3.1–5.1 × below the estimate of the ZKL 3203 (134 500 N/mm): inside; a
 factor 1000 either way is far outside. Only ball bearings are estimated (a roller type: no
 check; no roller bearing is used in geometry/).
 """
