@@ -10,7 +10,6 @@ import math
 
 from shaftfe.errors import InputError
 from shaftfe.solid.levels import LEVEL_NAMES
-from shaftfe.solid.plan import sharp_corners
 from shaftfe.static import MODELS
 
 
@@ -114,7 +113,7 @@ def run(args) -> int:
             from shaftfe.static.outputs import write_outputs
             summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
     return _report(args, summary, lambda: (_print_overrides(variant),
-                                           _print_tables(res, opts, out, sharp_corners(variant))))
+                                           _print_tables(res, opts, out, _corners(variant))))
 
 
 def _print_overrides(variant) -> None:
@@ -157,7 +156,7 @@ def _run_axisymmetric(args, rpms, variant) -> int:
         res = solve_axisymmetric(variant, rpms, opts)
         summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
     return _report(args, summary, lambda: (_print_overrides(variant),
-                                           _print_axi(res, opts, out, sharp_corners(variant))))
+                                           _print_axi(res, opts, out, _corners(variant))))
 
 
 def _print_axi(res, opts, out, corners=()) -> None:
@@ -187,6 +186,11 @@ def _print_axi(res, opts, out, corners=()) -> None:
     for n in res.notes:
         print(f"note: {n}")
     print(f"\nwrote {out / 'result.vtu'}, {out / 'summary.json'}")
+
+
+def _corners(variant) -> tuple:
+    from shaftfe.solid.plan import sharp_corners
+    return sharp_corners(variant)
 
 
 def _whole_mark(corners) -> str:
