@@ -174,6 +174,7 @@ def _print_axi(res, opts, out, corners=()) -> None:
         print_table(["bearing", "x mm", "|F| N", "L10h h"],
                     [[b.name, b.x_mm, b.F_radial_N, _fmt_life(b.L10h)] for b in c.bearings],
                     title=f"{c.rpm:g} rpm, {opts.load_case}: bearing reactions")
+        _at_rest(c.rpm)
         print(f"equilibrium residual {c.equilibrium_residual:.1e}")
         print_table(["station", "x mm", "deflection µm"],
                     [r[:3] for r in _station_rows(c.stations, {})])
@@ -186,6 +187,13 @@ def _print_axi(res, opts, out, corners=()) -> None:
     for n in res.notes:
         print(f"note: {n}")
     print(f"\nwrote {out / 'result.vtu'}, {out / 'summary.json'}")
+
+
+def _at_rest(rpm: float) -> None:
+    """A 0 rpm case is exactly zero: say so once above its tables."""
+    if rpm == 0:
+        from shaftfe.beam.solve import AT_REST_NOTE
+        print(f"note: {AT_REST_NOTE}")
 
 
 def _corners(variant) -> tuple:
@@ -219,6 +227,7 @@ def _print_tables(res, opts, out, corners=()) -> None:
         print_table(["bearing", "x mm", "|F| N (FE)", "|F| N (beam)", "L10h h (FE)",
                      "L10h h (beam)"], rows,
                     title=f"{c.rpm:g} rpm, {opts.load_case}: bearing reactions")
+        _at_rest(c.rpm)
         print(f"equilibrium residual {c.equilibrium_residual:.1e}")
         beam_st = (c.beam or {}).get("stations", {})
         rows = _station_rows(c.stations, beam_st)

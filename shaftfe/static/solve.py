@@ -433,14 +433,16 @@ def _load_cross_force(model: StaticModel) -> dict:
 
 
 def _check_rpms(rpm) -> list[float]:
-    """The speeds of a static solve. Rule (issue #30): every speed > 0. The only load is the
-    parts' m·e·ω², zero at rest: a 0 rpm case has no load, so every stress, deflection and
-    reaction would be 0 and the spin-softened reference (the first speed) would not exist;
-    refused with one line instead of a zero table (``shaftfe beam`` states its zeros)."""
+    """The speeds of a static solve. Rule (issue #30): speeds >= 0, at least one > 0. The only
+    load is the parts' m·e·ω², zero at rest: a 0 rpm case beside a positive speed is exactly
+    zero (stated as such by the commands: ``shaftfe.beam.solve.AT_REST_NOTE``); a run of
+    nothing but 0 rpm has nothing to solve and no reference speed (the spin-softened
+    reference is the first positive speed), and is refused with one line."""
     rpms = [float(rpm)] if isinstance(rpm, int | float) else [float(r) for r in rpm]
-    if not rpms or any(not (math.isfinite(r) and r > 0) for r in rpms):
-        raise InputError("--rpm", "rpm", "speeds > 0 rpm (at 0 rpm the only load, the parts' "
-                         "m·e·ω², is zero: there is nothing to solve)", got=rpm)
+    if (not rpms or any(not (math.isfinite(r) and r >= 0) for r in rpms)
+            or not any(r > 0 for r in rpms)):
+        raise InputError("--rpm", "rpm", "speeds >= 0 rpm, at least one > 0 (at 0 rpm the only "
+                         "load, the parts' m·e·ω², is zero: there is nothing to solve)", got=rpm)
     return rpms
 
 
