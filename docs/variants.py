@@ -28,6 +28,7 @@ def _p(kind: str) -> str:
 
 def keys() -> list[tuple[str, str, str, str]]:
     """(``--set`` path, unit, allowed, meaning); ``<seg>``, ``<part>`` … stand for names."""
+    from shaftfe.model import bearing_stiffness as bs
     from shaftfe.model.fields import FILLET_MIN_MM
     from shaftfe.model.loader import BALANCE_MASS_RTOL, BALANCE_X2_TOL_POINTS
     return [
@@ -94,8 +95,15 @@ def keys() -> list[tuple[str, str, str, str]]:
         ("bearing_types.<type>.C_N", "N", _p("C_N"), "basic dynamic load rating (ISO 281)"),
         ("bearing_types.<type>.C0_N", "N", _p("C_N"), "basic static load rating"),
         ("bearing_types.<type>.K_N_per_mm", "N/mm", "[[K11, K12], [K21, K22]], symmetric, "
-         "positive definite, eigenvalues in " + _p("K_N_per_mm"),
+         "positive definite, eigenvalues in " + _p("K_N_per_mm") + f"; a ball bearing's in "
+         f"1/{bs.BELOW:g} … {bs.ABOVE:g} × the estimate from its d, D, C, rows and contact angle "
+         "(Palmgren / ISO 281, shaftfe.model.bearing_stiffness)",
          "2×2 radial stiffness (y, z) of the bearing's remote point"),
+        ("bearing_types.<type>.rolling_element", "—", " | ".join(bs.KINDS) + " (default ball)",
+         "rolling elements (a roller type has no stiffness estimate)"),
+        ("bearing_types.<type>.rows", "—", "1 … 4 (default 1)", "rows of rolling elements"),
+        ("bearing_types.<type>.contact_angle_deg", "deg", "[0, 45] (default 0)",
+         "nominal contact angle α"),
         ("bearing_types.<type>.tilt_stiffness_Nmm_per_rad", "N·mm/rad", "≥ 0 (default 0)",
          "tilting stiffness"),
         ("bearing_types.<type>.life_exponent", "—", "[1, 10] (default 3)",

@@ -394,3 +394,53 @@ def test_bad_study_input_is_one_clear_line_exit_2_and_writes_nothing(case, study
     for word in expect:
         assert word in lines[0], f"{word!r} not named in: {lines[0]}"
     assert _snapshot(w) == before, "the work space (--out) changed"
+# ---------------------------------------------------------------- issue #30, b-static-variant
+# 0 rpm, a sharp shoulder in a fatigue check, a bearing stiffness off by 1000×, `variant new`
+# names, an empty bearings file
+B_EDITS = {
+    "bearing_stiffness_1000x_soft": (BEAR, K, "K_N_per_mm = [[35.03, 8.756], [8.756, 35.03]]"),
+    "bearing_stiffness_1000x_stiff": (BEAR, K, "K_N_per_mm = [[35030000.0, 8756000.0], "
+                                      "[8756000.0, 35030000.0]]"),
+    "bearings_file_empty": (BEAR, (GEOMETRY_DIR / BEAR).read_text(encoding="utf-8"), ""),
+}
+B_EXPECT = {
+    "bearing_stiffness_1000x_soft": ["bearings.toml", "K_N_per_mm", "estimate 1.34e+05"],
+    "bearing_stiffness_1000x_stiff": ["bearings.toml", "K_N_per_mm", "estimate 1.34e+05"],
+    "bearings_file_empty": ["shaft_c.toml", "bearings[0].type", "[bearing_types.*] (none"],
+}
+VARIANT_EDITS.update(B_EDITS)
+B_CASES = {f"variant_check_{_k}": (["variant", "check", f"{{V:{_k}}}"], B_EXPECT[_k])
+           for _k in B_EDITS}
+B_CASES.update({
+    "static_rpm_zero": (["static", "--variant", "x2_57", "--rpm", "0", "--out", "{W}/o"],
+                        ["--rpm", "at least one > 0", "m·e·ω²"]),
+    "static_axisymmetric_rpm_all_zero": (
+        ["static", "--variant", "x2_57", "--model", "axisymmetric", "--rpm", "0,0",
+         "--out", "{W}/o"], ["--rpm", "at least one > 0"]),
+    "beam_stiffness_1000x_soft": (["beam", "--variant", "{V:bearing_stiffness_1000x_soft}"],
+                                  ["K_N_per_mm", "estimate"]),
+    "fatigue_sharp_shoulder": (["fatigue", "{RPM}", "--set", "segments.collar.fillet_mm=0",
+                                "--out", "{W}/o"], ["--set segments.collar.fillet_mm=0",
+                                                    "fillet_mm", "sharp corner"]),
+    "fatigue_din743_sharp_shoulder": (["fatigue", "{RPM}", "--method", "din743", "--set",
+                                       "segments.bearing_seat_gear.fillet_mm=0", "--out",
+                                       "{W}/o"], ["bearing_seat_gear", "sharp corner"]),
+    "fatigue_seed_sharp_shoulder": (["fatigue", "{RPM}", "--method", "seed", "--set",
+                                     "segments.collar.fillet_mm=0", "--out", "{W}/o"],
+                                    ["collar", "sharp corner"]),
+    "report_sharp_shoulder": (["report", "--no-pictures", "--set",
+                               "segments.collar.fillet_mm=0", "--out", "{W}/o"],
+                              ["collar", "sharp corner"]),
+    "variant_new_name_like_an_option": (["variant", "new", "--", "-rf"],
+                                        ["NAME", "starting with a letter or digit"]),
+    "variant_new_existing_name_elsewhere": (["variant", "new", "x2_31", "--out",
+                                             "{W}/other.toml"], ["NAME", "x2_31.toml exists"]),
+})
+CASES.update(B_CASES)          # counted by the catalogue's coverage test
+
+
+@pytest.mark.parametrize("case", sorted(B_CASES))
+def test_bad_input_b_static_variant(case, space, capsys, monkeypatch):
+    """The same contract as the catalogue's test for the cases above (defined after its
+    parametrisation, so run here)."""
+    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)

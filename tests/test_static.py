@@ -490,3 +490,69 @@ def test_cli_writes_vtu_summary_plot(tmp_path, cache, monkeypatch, capsys):
     assert not bad.exists()
     assert main(["static", "--variant", "cyl", "--level", "huge", "--out", str(bad)]) == 2
     assert not bad.exists()
+
+
+# ---------------------------------------------------------------- issue #30, b-static-variant
+
+def test_zero_rpm_is_refused_before_any_mesh():
+    """At 0 rpm the only load (m e ω²) is zero: a static run of nothing but 0 rpm is refused
+    with one line (it raised a ValueError in the spin-softening step); a 0 rpm case beside a
+    positive speed is exact zeros (tests/test_stability.py), stated by the commands as the beam
+    states its own."""
+    from shaftfe.beam.solve import AT_REST_NOTE, analyse
+    from shaftfe.static.solve import solve_static
+    for rpm in (0.0, [0.0, 0.0]):
+        with pytest.raises(InputError, match=r"at least one > 0"):
+            solve_static(cylinder(), rpm, _opts(level="coarse"))
+    r = analyse(cylinder(), 0.0)[0]
+    assert AT_REST_NOTE in r.notes and r.max_deflection_mm == 0.0 and r.max_peak_MPa == 0.0
+
+
+def test_sharp_corner_rule_one_place():
+    """solid.plan.sharp_corners: a fillet 0 at a shoulder with forces on both sides is a
+    singular corner (warned, marked, refused by fatigue); a step beyond every force carries no
+    moment and is not one."""
+    import warnings
+
+    from shaftfe.model.loader import load_variant
+    from shaftfe.solid.plan import (
+        refuse_sharp_corners,
+        sharp_corners,
+        sharp_mark,
+        warn_sharp_corners,
+    )
+    from shaftfe.util.notices import ShaftfeWarning
+    v = load_variant("x2_57", {"segments.collar.fillet_mm": 0.0})
+    (c,) = sharp_corners(v)
+    assert (c.region, c.x, c.r_small, c.zone_mm) == ("shoulder:collar", 64.5, 8.5, 2.5)
+    assert sharp_mark((c,), (64.5, 0.0, 8.5)) and not sharp_mark((c,), (46.6, 8.5, 0.0))
+    assert sharp_corners(load_variant("x2_57", {"segments.thread_m10.fillet_mm": 0.0})) == ()
+    assert sharp_corners(load_variant("x2_57")) == ()
+    with pytest.warns(ShaftfeWarning, match="stress singularity"):
+        warn_sharp_corners(v)
+    with pytest.raises(InputError, match=r"--set segments\.collar\.fillet_mm=0\.0.*sharp corner"):
+        refuse_sharp_corners(v, "a fatigue check")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        refuse_sharp_corners(load_variant("x2_57"), "a fatigue check")
+
+
+def test_deflection_beyond_the_model_or_the_clearance_is_warned():
+    """A deflection above 2 % of the length (small-deflection model) or above the file's
+    clearance at its station is warned (beam and 3D share check_deflection): x2_57 at the rpm
+    ceiling, 20 000 rpm, moves 1.49 mm at the clearance station (4 × its 0.371 mm at 10 000,
+    loads ∝ rpm²) against the 1.4 mm stated; at 10 000 rpm nothing is warned. The audit's
+    254.6 mm (a stiffness 1000 × too soft, now refused) is 2.2 × the shaft's length."""
+    import warnings
+
+    from shaftfe.beam.solve import analyse, check_deflection
+    from shaftfe.model.loader import load_variant
+    from shaftfe.util.notices import ShaftfeWarning
+    with pytest.warns(ShaftfeWarning, match="small-deflection"):
+        check_deflection("test", 114.0, 254.6, None, None)
+    with pytest.warns(ShaftfeWarning, match="clearance to the crankshaft"):
+        analyse(load_variant("x2_57"), 20000.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        analyse(load_variant("x2_57"), 10000.0)
+        check_deflection("test", 114.0, 0.02 * 114.0, 1.4, 1.4)     # at the bounds: allowed

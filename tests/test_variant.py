@@ -508,3 +508,81 @@ def test_default_output_folder_of_a_set_run_is_its_own():
     a = out_name("x2_57", [("segments.collar.fillet_mm", 0.5)])
     assert a.startswith("x2_57_set_") and a != out_name("x2_57", [("segments.collar.fillet_mm",
                                                                      0.4)])
+
+
+# ---------------------------------------------------------------- issue #30, b-static-variant
+
+def test_ball_bearing_stiffness_estimate_against_a_catalogue_bearing():
+    """The estimate's geometry steps against a bearing whose internals are published: the SKF
+    6203 (17 × 40 mm, C = 9.95 kN, SKF catalogue) has 8 balls of 6.747 mm (17/64 in). Bounds:
+    D_w = 0.3 (D − d) is a proportion of the series (3 %); Z follows from ISO 281 with a
+    tabulated f_c read at a typical D_w/D_pw (±5 % on f_c is ±7.5 % on Z)."""
+    from shaftfe.model.bearing_stiffness import estimate_ball
+    e = estimate_ball(17.0, 40.0, 9950.0)
+    assert e.ball_diameter_mm == pytest.approx(6.747, rel=0.03)
+    assert e.balls_per_row == pytest.approx(8.0, rel=0.075)
+    # the closed forms recomputed by hand for the ZKL 3203 (2 rows, 30°): exact arithmetic
+    import math
+    z = (14418.0 / (1.3 * 60.0 * (2 * math.cos(math.radians(30))) ** 0.7 * 6.9 ** 1.8)) ** 1.5
+    q = 4.37 * 1441.8 / (2 * z * math.cos(math.radians(30)))
+    d_r = 4.36e-4 * q ** (2 / 3) / 6.9 ** (1 / 3) / math.cos(math.radians(30))
+    e2 = estimate_ball(17.0, 40.0, 14418.0, 2, 30.0)
+    assert e2.K_N_per_mm == pytest.approx(1.5 * 1441.8 / d_r, rel=1e-12)
+
+
+def test_every_bearing_type_in_geometry_is_inside_its_stiffness_band():
+    """Each stated matrix of geometry/ within 1/20 … 3 × the estimate (the seed's bushing is
+    3.1–5.1 × softer than the ZKL 3203's contacts); 1000 × either way is refused with the
+    estimate named (the audit's 35.03 N/mm gave a 254.6 mm deflection)."""
+    import math
+    import tomllib
+
+    from shaftfe.model.bearing_stiffness import estimate_ball
+    types = tomllib.loads((GEOMETRY_DIR / "common" / "bearings.toml").read_text())
+    for bt in types["bearing_types"].values():
+        e = estimate_ball(bt["bore_mm"], bt["outer_diameter_mm"], bt["C_N"], bt["rows"],
+                          bt["contact_angle_deg"])
+        (k11, k12), (_, k22) = bt["K_N_per_mm"]
+        h = math.hypot(0.5 * (k11 - k22), k12)
+        lo, hi = e.band
+        assert lo <= 0.5 * (k11 + k22) - h and 0.5 * (k11 + k22) + h <= hi
+    path = "bearing_types.zkl_3203.K_N_per_mm"
+    for f in (1e-3, 1e3):
+        with pytest.raises(InputError, match=r"estimate 1\.34e"):
+            load_variant("x2_57", {path: [[35030.0 * f, 8756.0 * f], [8756.0 * f, 35030.0 * f]]})
+
+
+def test_a_shape_override_rederives_the_part_in_every_command():
+    """`--set attachments.<part>.shape.*` re-derives mass, eccentricity, inertias and the
+    balance statement (shaftfe.model.derive, the study's implementation) in load_variant, so
+    every command sees the new part and the content hash changes; a study design's full set
+    (already derived) loads to the same variant."""
+    from shaftfe.beam.solve import analyse
+    from shaftfe.model.derive import design_overrides
+    from shaftfe.model.shapes import shape_mass_properties
+    path = "attachments.counterweight_2.shape.outer_radius_mm"
+    base, v = load_variant("x2_57"), load_variant("x2_57", {path: 42.0})
+    cw = next(a for a in v.attachments if a.name == "counterweight_2")
+    shape = {"kind": "hub_ring_plus_annular_sector", "thickness_mm": 25.0,
+             "hub_outer_radius_mm": 12.0, "inner_radius_mm": 29.542, "outer_radius_mm": 42.0,
+             "half_angle_deg": 79.4409}
+    ref = shape_mass_properties(shape, v.material.density_t_mm3, 8.5)
+    assert cw.mass_kg == pytest.approx(ref["mass_kg"], rel=1e-8)     # 9 digits kept
+    assert cw.eccentricity_mm == pytest.approx(ref["eccentricity_mm"], rel=1e-8)
+    assert cw.mass_kg > 0.24 and v.content_hash != base.content_hash
+    assert v.balance_target.X2_percent > 60.0                        # restated from the parts
+    study = load_variant("x2_57", design_overrides("x2_57", {path: 42.0}))
+    assert study.content_hash == v.content_hash
+    f = [b.F_N for b in analyse(v, 10000.0)[0].bearings]
+    f0 = [b.F_N for b in analyse(base, 10000.0)[0].bearings]
+    assert f[1] > f0[1] * 1.2                                        # the heavier part loads it
+    with pytest.raises(InputError, match="follows from the shape"):
+        load_variant("x2_57", {path: 42.0, "attachments.counterweight_2.mass_kg": 0.3})
+
+
+def test_an_empty_included_file_is_named_not_an_empty_list(tmp_path):
+    g = _copy_geometry(tmp_path)
+    (g / "common" / "bearings.toml").write_text("", encoding="utf-8")
+    with pytest.raises(InputError) as ei:
+        load_variant(g / "x2_57.toml")
+    assert "one of ;" not in str(ei.value) and "none is" in str(ei.value)

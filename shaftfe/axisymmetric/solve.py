@@ -264,12 +264,20 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
     from shaftfe.static.solve import _check_rpms
     t0 = time.perf_counter()
     rpms = _check_rpms(rpm)
+    from shaftfe.solid.plan import warn_sharp_corners
+    warn_sharp_corners(variant)          # a fillet 0 at a loaded shoulder: not a stress there
     if options.spin_softening and len(rpms) > 1:
-        parts = [solve_axisymmetric(variant, r, options, cache_dir=cache_dir) for r in rpms]
-        cases = tuple(replace(p.cases[0], scale=(r / rpms[0]) ** 2)
+        # the fields are the first positive speed's; a 0 rpm case (no load, no softening) is
+        # the linear solve's exact zero
+        r0 = next(r for r in rpms if r > 0)
+        parts = [solve_axisymmetric(variant, r, options, cache_dir=cache_dir) if r > 0 else
+                 solve_axisymmetric(variant, [r, r0], replace(options, spin_softening=False),
+                                    cache_dir=cache_dir) for r in rpms]
+        cases = tuple(replace(p.case(r), scale=(r / r0) ** 2)
                       for p, r in zip(parts, rpms, strict=True))
-        run = {**parts[0].run, "total_seconds": time.perf_counter() - t0}
-        return replace(parts[0], cases=cases, run=run)
+        first = parts[rpms.index(r0)]
+        run = {**first.run, "total_seconds": time.perf_counter() - t0}
+        return replace(first, cases=cases, run=run)
     ref_rpm = rpms[0] if options.spin_softening else REF_RPM
     sol = solve_model(variant, options, rpm=ref_rpm, cache_dir=cache_dir)
     v = sol.variant

@@ -121,6 +121,7 @@ class BeamModel:
     shoulders: tuple[Shoulder, ...]
     spread_loads: bool
     notes: tuple[str, ...] = ()
+    clearance_mm: float | None = None     # the file's smallest clearance at station "clearance"
 
     @property
     def n_nodes(self) -> int:
@@ -183,7 +184,7 @@ def build_model(variant, *, rigid_supports: bool = False, max_element_mm: float 
         rigid_supports=bool(rigid_supports), torsion_node=torsion_node, load_unit=f_unit,
         load_static=f_static, q_unit=q_unit, stations=MappingProxyType(stations),
         shoulders=shoulders, spread_loads=bool(spread_loads),
-        notes=_notes(variant, shear_deformation))
+        notes=_notes(variant, shear_deformation), clearance_mm=variant.clearance_mm)
 
 
 def _node_positions(variant, max_element_mm: float, extra_loads: Sequence[PointLoad]

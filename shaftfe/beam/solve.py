@@ -279,6 +279,35 @@ def omega(rpm: float) -> float:
     return rpm * 2.0 * math.pi / 60.0
 
 
+AT_REST_NOTE = ("0 rpm: no load (the only load, the parts' m·e·ω², is zero at rest): every "
+                "reaction, deflection and stress is 0 and the bearing life unbounded")
+# small-deflection model: a linear beam (and the linear 3D model) holds while rotations stay
+# small. A deflection u over the length L bends the shaft to slopes θ ≈ 3 u / L; at u = 0.02 L,
+# θ ≈ 0.06 rad and the neglected second-order terms (1 − cos θ ≈ θ²/2, the axial shortening)
+# are 0.2 % of the result: beyond that the linear answer is not the physics
+SMALL_DEFLECTION_FRACTION = 0.02
+
+
+def check_deflection(where: str, length_mm: float, u_max_mm: float,
+                     u_clearance_mm: float | None, clearance_mm: float | None) -> None:
+    """Rules (issue #30), one for the beam and the 3D model: a deflection above
+    SMALL_DEFLECTION_FRACTION × the shaft's length is outside the small-deflection model, and a
+    deflection at the clearance station above the clearance the variant file states
+    (``shaft.clearance_to_crankshaft_mm``) means the shaft touches the crankshaft, which no model
+    here includes: either is a visible warning (the numbers are not a result)."""
+    from shaftfe.util.notices import warn
+    lim = SMALL_DEFLECTION_FRACTION * length_mm
+    if u_max_mm > lim:
+        warn("deflection-large", where, f"max deflection {u_max_mm:.4g} mm exceeds "
+             f"{SMALL_DEFLECTION_FRACTION:g} × the shaft length ({lim:.3g} mm): outside the "
+             "small-deflection (linear) model, the result is not valid (check the bearing "
+             "stiffness and the loads)")
+    if clearance_mm is not None and u_clearance_mm is not None and u_clearance_mm > clearance_mm:
+        warn("deflection-clearance", where, f"deflection {u_clearance_mm:.4g} mm at the "
+             f"clearance station exceeds the {clearance_mm:g} mm clearance to the crankshaft "
+             "stated in the variant file: the shaft would touch it (contact is not modelled)")
+
+
 def result_at(sol: UnitSolution, rpm: float) -> BeamResult:
     """Scale the unit solution to ``rpm`` (centrifugal loads ∝ ω²) and post-process."""
     m = sol.model
@@ -319,6 +348,9 @@ def result_at(sol: UnitSolution, rpm: float) -> BeamResult:
         s_nom = float(vm[k])
         notches.append(NotchResult(sh.x_mm, sh.D_mm, sh.d_mm, sh.r_mm, sh.kt, sh.kt_in_range,
                                    sh.kt_note, s_nom, sh.kt * s_nom))
+    clr = stations.get("clearance")
+    check_deflection(f"beam, {rpm:g} rpm", float(m.x[-1] - m.x[0]), float(umag.max()),
+                     None if clr is None else clr.u_mm, m.clearance_mm)
     peak, xpeak = float(vm[imax]), float(x_sec[imax])
     for nt in notches:
         if nt.sigma_peak_MPa > peak:
@@ -328,7 +360,8 @@ def result_at(sol: UnitSolution, rpm: float) -> BeamResult:
         u=umag, stations=MappingProxyType(stations), bearings=tuple(bearings), x_sec=x_sec,
         d_sec=np.repeat(sec.D, 2), My=My, Mz=Mz, M=M, T=T, sigma=sigma, tau=tau, sigma_vm=vm,
         max_sigma_vm_MPa=float(vm[imax]), x_max_sigma_vm_mm=float(x_sec[imax]),
-        notches=tuple(notches), max_peak_MPa=peak, x_max_peak_mm=xpeak, notes=m.notes,
+        notches=tuple(notches), max_peak_MPa=peak, x_max_peak_mm=xpeak,
+        notes=m.notes + ((AT_REST_NOTE,) if rpm == 0 else ()),
         relative_residual=sol.relative_residual, backward_error=sol.backward_error,
         cond_estimate=sol.cond_estimate)
 

@@ -58,6 +58,7 @@ def run(args) -> int:
     from shaftfe.beam.model import build_model
     from shaftfe.beam.solve import solve
     from shaftfe.commands._common import load_variant_from
+    from shaftfe.util.notices import collected
 
     variant = load_variant_from(args)
     if args.seed_load_case:
@@ -75,7 +76,7 @@ def run(args) -> int:
                     "supports": "rigid" if args.rigid_supports else "springs",
                     "load_case": "seed" if args.seed_load_case else "all parts",
                     "shear_deformation": not args.no_shear, "n_nodes": model.n_nodes,
-                    "results": [r.to_dict() for r in results]})
+                    "results": [r.to_dict() for r in results], "warnings": collected()})
         return 0
     sup = "rigid simple supports" if args.rigid_supports else "bearing springs"
     kind = "Euler-Bernoulli" if args.no_shear else "Timoshenko"
@@ -99,6 +100,9 @@ def run(args) -> int:
                           f"{n.kt:.3f}", f"{n.sigma_nom_MPa:.1f}", f"{n.sigma_peak_MPa:.1f}",
                           n.kt_note] for n in r.notches],
                         title="shoulders (von Mises nominal on the smaller diameter)")
+        for note in r.notes:
+            if note not in model.notes:
+                print(f"note: {note}")
         print(f"max deflection {r.max_deflection_mm:.4g} mm; max nominal von Mises "
               f"{r.max_sigma_vm_MPa:.4g} MPa at x = {r.x_max_sigma_vm_mm:.4g} mm; with Kt "
               f"{r.max_peak_MPa:.4g} MPa at x = {r.x_max_peak_mm:.4g} mm")

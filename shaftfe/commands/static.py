@@ -113,7 +113,7 @@ def run(args) -> int:
             from shaftfe.static.outputs import write_outputs
             summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
     return _report(args, summary, lambda: (_print_overrides(variant),
-                                           _print_tables(res, opts, out)))
+                                           _print_tables(res, opts, out, _corners(variant))))
 
 
 def _print_overrides(variant) -> None:
@@ -156,11 +156,12 @@ def _run_axisymmetric(args, rpms, variant) -> int:
         res = solve_axisymmetric(variant, rpms, opts)
         summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
     return _report(args, summary, lambda: (_print_overrides(variant),
-                                           _print_axi(res, opts, out)))
+                                           _print_axi(res, opts, out, _corners(variant))))
 
 
-def _print_axi(res, opts, out) -> None:
+def _print_axi(res, opts, out, corners=()) -> None:
     from shaftfe.commands._common import print_table
+    from shaftfe.solid.plan import sharp_mark
     print(f"variant {res.variant}: axisymmetric (Fourier harmonics n = 0..{res.harmonics[-1]}, "
           f"{len(res.harmonics)} solved), {opts.level}, {res.n_nodes} meridian nodes, "
           f"{'rigid supports' if opts.rigid_supports else 'bearing springs'}, "
@@ -173,22 +174,43 @@ def _print_axi(res, opts, out) -> None:
         print_table(["bearing", "x mm", "|F| N", "L10h h"],
                     [[b.name, b.x_mm, b.F_radial_N, _fmt_life(b.L10h)] for b in c.bearings],
                     title=f"{c.rpm:g} rpm, {opts.load_case}: bearing reactions")
+        _at_rest(c.rpm)
         print(f"equilibrium residual {c.equilibrium_residual:.1e}")
         print_table(["station", "x mm", "deflection µm"],
                     [r[:3] for r in _station_rows(c.stations, {})])
         rows = [[p.region, p.von_mises_MPa, p.max_principal_MPa, p.xyz_mm[0], p.theta_deg,
                  "-" if p.fillet_angle_deg is None else p.fillet_angle_deg,
-                 p.omitted_zone or ""]
+                 p.omitted_zone or "", sharp_mark(corners, p.xyz_mm)]
                 for p in c.peaks if not p.region.startswith(("end:", "seat:"))]
         print_table(["region", "von Mises MPa", "max principal MPa", "x mm", "θ deg",
-                     "on fillet deg", "in the zone of"], rows)
+                     "on fillet deg", "in the zone of", "note"], rows)
     for n in res.notes:
         print(f"note: {n}")
     print(f"\nwrote {out / 'result.vtu'}, {out / 'summary.json'}")
 
 
-def _print_tables(res, opts, out) -> None:
+def _at_rest(rpm: float) -> None:
+    """A 0 rpm case is exactly zero: say so once above its tables."""
+    if rpm == 0:
+        from shaftfe.beam.solve import AT_REST_NOTE
+        print(f"note: {AT_REST_NOTE}")
+
+
+def _corners(variant) -> tuple:
+    from shaftfe.solid.plan import sharp_corners
+    return sharp_corners(variant)
+
+
+def _whole_mark(corners) -> str:
+    """The whole-shaft peak's mark: not the shaft's maximum when a corner is singular."""
+    if not corners:
+        return ""
+    return "not bounded: sharp corner " + ", ".join(c.region for c in corners)
+
+
+def _print_tables(res, opts, out, corners=()) -> None:
     from shaftfe.commands._common import print_table
+    from shaftfe.solid.plan import sharp_mark
     d = res.diagnostics
     print(f"variant {res.variant}: P{opts.order} {opts.level}, {res.n_dofs} dofs, "
           f"{'rigid supports' if opts.rigid_supports else 'bearing springs'}, solver "
@@ -205,6 +227,7 @@ def _print_tables(res, opts, out) -> None:
         print_table(["bearing", "x mm", "|F| N (FE)", "|F| N (beam)", "L10h h (FE)",
                      "L10h h (beam)"], rows,
                     title=f"{c.rpm:g} rpm, {opts.load_case}: bearing reactions")
+        _at_rest(c.rpm)
         print(f"equilibrium residual {c.equilibrium_residual:.1e}")
         beam_st = (c.beam or {}).get("stations", {})
         rows = _station_rows(c.stations, beam_st)
@@ -216,12 +239,12 @@ def _print_tables(res, opts, out) -> None:
         rows = [[p.region, p.von_mises_MPa, p.max_principal_MPa, p.xyz_mm[0],
                  p.von_mises_unfiltered_MPa,
                  f"{bars[p.region][0]:+.2f} … {bars[p.region][1]:+.2f}"
-                 if p.region in bars else "-"]
+                 if p.region in bars else "-", sharp_mark(corners, p.xyz_mm)]
                 for p in c.peaks if not p.region.startswith("end:")]
         rows.append(["whole shaft", c.peak_von_mises_MPa, "-", c.peak_von_mises_xyz_mm[0],
-                     c.peak_von_mises_unfiltered_MPa, "-"])
+                     c.peak_von_mises_unfiltered_MPa, "-", _whole_mark(corners)])
         print_table(["region", "von Mises MPa", "max principal MPa", "x mm",
-                     "unfiltered MPa", "error vs truth %"], rows)
+                     "unfiltered MPa", "error vs truth %", "note"], rows)
     if res.truth_error_bar_pct:
         print("error vs truth: this level's measured error of fillet peaks (von Mises and max "
               "principal) against the converged axisymmetric solution "

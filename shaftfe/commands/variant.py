@@ -64,8 +64,24 @@ def _retag(merged: dict, orig: dict, o, ov) -> None:
     table["note"] = (table.get("note", "").rstrip() + "\n" + line).lstrip("\n")
 
 
-def run_new(args) -> int:
+def check_new_name(name: str) -> None:
+    """A new variant's name. Rules (issue #30): letters, digits, _ and -, starting with a
+    letter or digit (``-rf`` would be read as an option by every command that takes it); and
+    not the name of a variant already in geometry/ (two files of one name: ``--variant NAME``
+    would pick one of them silently), wherever --out writes it."""
     import re
+
+    from shaftfe.errors import InputError
+    from shaftfe.model.loader import list_variants
+    if not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9_-]*", name):
+        raise InputError("command line", "NAME", "letters, digits, _ and -, starting with a "
+                         "letter or digit", got=name)
+    if name in list_variants():
+        raise InputError("command line", "NAME", "a name no variant in geometry/ has yet "
+                         f"(geometry/{name}.toml exists)", got=name)
+
+
+def run_new(args) -> int:
     from pathlib import Path
 
     from shaftfe.errors import InputError
@@ -75,15 +91,16 @@ def run_new(args) -> int:
     from shaftfe.util.atomic import check_output_file, write_atomic
     from shaftfe.util.paths import GEOMETRY_DIR, repo_relative
 
-    if not re.fullmatch(r"[A-Za-z0-9_-]+", args.name):
-        raise InputError("command line", "NAME", "letters, digits, _ and -", got=args.name)
+    check_new_name(args.name)
     out = Path(args.out) if args.out else GEOMETRY_DIR / f"{args.name}.toml"
+    # the option that chose the file is the one blamed: --out if given, else NAME
+    opt = ("--out", "out") if args.out else ("command line", "NAME")
     if out.suffix != ".toml":
-        raise InputError("--out", "out", "a path ending in .toml", got=str(out))
+        raise InputError(*opt, "a path ending in .toml", got=str(out))
     if out.exists():
-        raise InputError("--out", "out", "a file that does not exist yet (not overwritten)",
-                         got=str(out))
-    check_output_file(out, "--out")
+        raise InputError(*opt, "a file that does not exist yet (not overwritten)"
+                         + ("" if args.out else ": another NAME, or --out"), got=str(out))
+    check_output_file(out, opt[0])
     src = _resolve(args.source)
     sets = ov.normalise(tuple(args.set or ()))
     base = load_variant(src, sets)                  # the source itself must be valid
@@ -272,6 +289,9 @@ def run_show(args) -> int:
         reac = "  ".join(f"{n} {val:.0f}" for n, val in ld["rigid_reactions_N"].items())
         lrows.append([f"{ld['rpm']:g}", ld["case"], forces, reac])
     print_table(["rpm", "case", "seat forces N @ x mm", "rigid-support reactions N"], lrows)
+    if 0.0 in rpms:
+        from shaftfe.beam.solve import AT_REST_NOTE
+        print(f"note: {AT_REST_NOTE}")
     return 0
 
 

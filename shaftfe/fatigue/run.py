@@ -189,10 +189,12 @@ def load_inputs(job: FatigueJob) -> FatigueInputs:
     """The job's history, S-N material and variant (each InputError names its file)."""
     from shaftfe.fatigue.sn import load_material
     from shaftfe.model.loader import load_variant
+    from shaftfe.solid.plan import refuse_sharp_corners
     check_job(job)
+    variant = load_variant(job.variant, job.overrides)
+    refuse_sharp_corners(variant, "a fatigue check")     # every method reads these inputs
     history = read_spectrum(job.spectrum, job.ref_rpm, job.sample_rate)
-    return FatigueInputs(history, load_material(job.material), load_variant(job.variant,
-                                                                            job.overrides))
+    return FatigueInputs(history, load_material(job.material), variant)
 
 
 def static_reference(variant, job: FatigueJob):

@@ -18,6 +18,27 @@ from typing import Any
 from shaftfe.errors import InputError
 
 BALANCE_KEYS = ("mass_kg", "gamma2_mm", "x_T_mm", "X2_percent")
+SHAPE_DERIVED = ("mass_kg", "eccentricity_mm", "polar_inertia_kg_mm2", "diametral_inertia_kg_mm2")
+
+
+def with_shape_derived(base, overrides):
+    """The overrides of a run as every command applies them (``load_variant``): unchanged
+    unless a part's ``shape.*`` is set; then ``design_overrides`` (the one implementation,
+    shared with ``shaftfe study``) adds the part's mass, eccentricity and inertias from the
+    shape and the [balance] statement from the parts, so a changed shape changes the loads,
+    the balance and the content hash of every command alike. A set that already carries the
+    derived keys of every shaped part (a study design, from ``design_overrides``) is returned
+    as it is."""
+    from shaftfe.model import overrides as ov
+    sets = ov.normalise(overrides)
+    shaped = {o.path.split(".")[1] for o in sets
+              if o.path.startswith("attachments.") and ".shape." in o.path}
+    if not shaped:
+        return sets
+    given = {o.path for o in sets}
+    if all(f"attachments.{n}.{k}" in given for n in shaped for k in SHAPE_DERIVED):
+        return sets
+    return ov.normalise(design_overrides(base, sets))
 
 
 def _digits(v: float) -> float:

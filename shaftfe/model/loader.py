@@ -49,6 +49,14 @@ def list_variants(directory: str | Path | None = None) -> list[str]:
     return sorted(p.stem for p in d.glob("*.toml") if p.is_file())
 
 
+def one_of(names, table: str) -> str:
+    """The allowed values of a field naming an entry of ``[table.*]``: never an empty list
+    (an empty or missing included file defines none: say so)."""
+    if names:
+        return "one of " + ", ".join(sorted(names))
+    return f"a name defined in [{table}.*] (none is: is an included file empty or missing?)"
+
+
 def _resolve(name_or_path: str | Path) -> Path:
     text = str(name_or_path)
     p = Path(text)
@@ -244,6 +252,29 @@ def _stiffness_matrix(bt: dict, tsrc: str, tf: str):
     return (k11, k12), (k21, k22)
 
 
+def _stiffness_plausible(bt: dict, tsrc: str, tf: str, bore: float, C: float, K) -> None:
+    """The stated stiffness against the estimate from the bearing's own data (rule and its
+    sources: ``shaftfe.model.bearing_stiffness``): a ball bearing's eigenvalues within
+    1/20 … 3 × the estimate. A roller bearing has no estimate (no check)."""
+    from shaftfe.model import bearing_stiffness as bs
+    kind = text(bt, "rolling_element", tsrc, tf, default="ball")
+    need(kind in bs.KINDS, tsrc, f"{tf}.rolling_element", " | ".join(bs.KINDS), kind)
+    rows = num(bt, "rows", tsrc, tf, default=1.0)
+    need(rows in (1, 2, 3, 4), tsrc, f"{tf}.rows", "1, 2, 3 or 4 rows of rolling elements", rows)
+    alpha = num(bt, "contact_angle_deg", tsrc, tf, default=0.0)
+    need(0.0 <= alpha <= 45.0, tsrc, f"{tf}.contact_angle_deg",
+         "in [0, 45] deg (a radial bearing's nominal contact angle)", alpha)
+    od = num(bt, "outer_diameter_mm", tsrc, tf, default=0.0) or 0.0
+    need(od > bore, tsrc, f"{tf}.outer_diameter_mm", f"> the bore {bore:g} mm", od)
+    if kind != "ball":
+        return
+    (k11, k12), (_, k22) = K
+    half = math.hypot(0.5 * (k11 - k22), k12)
+    eig = (0.5 * (k11 + k22) - half, 0.5 * (k11 + k22) + half)
+    est = bs.estimate_ball(bore, od, C, int(rows), alpha)
+    bs.check_stiffness(eig, est, tsrc, f"{tf}.K_N_per_mm", bt.get("K_N_per_mm"))
+
+
 def _ring(bt: dict, tsrc: str, tf: str):
     """A bearing type's width, bore, C, C0, tilt stiffness, life exponent, chamfer, r_s min."""
     width = num(bt, "width_mm", tsrc, tf)
@@ -285,16 +316,18 @@ def _bearings(shaft: dict, types: dict, segs: tuple[Segment, ...], ctx: Ctx, src
         provenance(t, src, fld, f"bearings.{name}", ctx)
         typ = text(t, "type", src, fld)
         if typ not in types:
-            raise InputError(src, f"{fld}.type", "one of " + ", ".join(sorted(types)), got=typ)
+            raise InputError(src, f"{fld}.type", one_of(types, "bearing_types"), got=typ)
         tsrc = ctx.file_of(f"bearing_types.{typ}", src)
         tf = f"bearing_types.{typ}"
         bt = table(types[typ], tsrc, tf)
         check_keys(bt, {"designation", "bore_mm", "outer_diameter_mm", "width_mm", "C_N",
                          "C0_N", "K_N_per_mm", "life_exponent", "tilt_stiffness_Nmm_per_rad",
-                         "chamfer_mm", "r_s_min_mm"}, tsrc, tf)
+                         "chamfer_mm", "r_s_min_mm", "rolling_element", "rows",
+                         "contact_angle_deg"}, tsrc, tf)
         provenance(bt, tsrc, tf, tf, ctx)
         (k11, k12), (k21, k22) = _stiffness_matrix(bt, tsrc, tf)
         width, bore, C, C0, tilt, p_life, chamfer, r_s_min = _ring(bt, tsrc, tf)
+        _stiffness_plausible(bt, tsrc, tf, bore, C, ((k11, k12), (k21, k22)))
         xc = num(t, "x_center_mm", src, fld)
         lo, hi = xc - 0.5 * width, xc + 0.5 * width
         need(x0 - 1e-9 <= lo and hi <= x1 + 1e-9, src, f"{fld}.x_center_mm",
@@ -403,7 +436,7 @@ def _attachment(t: dict, src: str, fld: str, segs: tuple[Segment, ...], mats: di
     need(jd >= 0, src, f"{fld}.diametral_inertia_kg_mm2", ">= 0", jd)
     mat = text(t, "material", src, fld)
     if mat not in mats:
-        raise InputError(src, f"{fld}.material", "one of " + ", ".join(sorted(mats)), got=mat)
+        raise InputError(src, f"{fld}.material", one_of(mats, "materials"), got=mat)
     slc = t.get("seed_load_case", False)
     need(isinstance(slc, bool), src, f"{fld}.seed_load_case", "true | false", slc)
     return Attachment(
@@ -447,8 +480,7 @@ def _attachments(merged: dict, segs: tuple[Segment, ...], mats: dict, ctx: Ctx, 
           "a list of part names", use)
     for i, pn in enumerate(use):
         if pn not in parts:
-            raise InputError(usrc, f"use_parts[{i}]", "one of " + ", ".join(sorted(parts)),
-                             got=pn)
+            raise InputError(usrc, f"use_parts[{i}]", one_of(parts, "parts"), got=pn)
         psrc = ctx.file_of(f"parts.{pn}", top)
         atts.append(_attachment(table(parts[pn], psrc, f"parts.{pn}"), psrc, f"parts.{pn}",
                                 segs, mats, ctx, pn))
@@ -493,7 +525,8 @@ def load_variant(name_or_path: str | Path, overrides=()) -> Variant:
     ``Variant.overrides``. Anything impossible raises ``InputError(file, field, allowed, got)``
     (naming the ``--set`` when an overridden value is out of its range)."""
     from shaftfe.model import overrides as ov
-    sets = ov.normalise(overrides)
+    from shaftfe.model.derive import with_shape_derived
+    sets = with_shape_derived(name_or_path, ov.normalise(overrides))
     path = _resolve(name_or_path)
     ctx = Ctx()
     merged = resolved_dict(path, ctx)
@@ -578,8 +611,7 @@ def _build(path: Path, merged: dict, ctx: Ctx, *, check_balance: bool = True) ->
     x0, x1 = segs[0].x_start_mm, segs[-1].x_end_mm
     smat = text(shaft, "material", ssrc, "shaft")
     if smat not in mats:
-        raise InputError(ssrc, "shaft.material", "one of " + ", ".join(sorted(mats)) if mats
-                         else "a material defined in [materials.*]", got=smat)
+        raise InputError(ssrc, "shaft.material", one_of(mats, "materials"), got=smat)
     bearings = _bearings(shaft, merged.get("bearing_types", {}), segs, ctx, ssrc)
 
     hs = _hex_socket(shaft, ssrc, segs, ctx)

@@ -18,6 +18,8 @@ def read_inputs(o: ReportOptions) -> tuple:
     from shaftfe.model.loader import load_variant
 
     variant = load_variant(o.variant, o.overrides)
+    from shaftfe.solid.plan import refuse_sharp_corners
+    refuse_sharp_corners(variant, "the report's fatigue check")     # before any solve
     engine = load_engine(o.engine)
     if engine.max_rpm is None or not engine.max_rpm > 0:
         raise InputError(engine.source, "max_rpm", "> 0 rpm (the Campbell range ends there)",

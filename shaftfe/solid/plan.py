@@ -369,3 +369,95 @@ def cut_features(sol: Solid) -> list[dict]:
                   else (sol.x_right - h.depth, sol.x_right))
         out.append({"feature": "hex_socket", "x_mm": [x0, x1], "zone_mm": [x0 - d, x1 + d]})
     return out
+
+
+# --------------------------------------------------------------------------------------
+# sharp corners (issue #30: a sharp shoulder looked safer than a rounded one)
+
+
+@dataclass(frozen=True)
+class SharpCorner:
+    """A shoulder without a fillet (``fillet_mm = 0``) that carries bending: a re-entrant 90°
+    corner, where linear elasticity has no finite stress (Williams 1952: σ ∝ ρ^-0.46 at the
+    corner). The FE value there grows without bound as the mesh is refined: it is not a
+    stress, no peak of the shaft is bounded by it, and no fatigue check can use it."""
+    segment: str        # the segment whose right end is the shoulder
+    x: float            # the shoulder plane
+    r_small: float      # the corner's radius (the re-entrant edge)
+    r_large: float
+
+    @property
+    def region(self) -> str:
+        return f"shoulder:{self.segment}"
+
+    @property
+    def zone_mm(self) -> float:
+        """How near the corner an FE value is the corner's, not the shaft's: the step height,
+        the corner's only length (the singular field dominates at distances small against it;
+        beyond a few step heights the nominal field of the smaller section is recovered)."""
+        return self.r_large - self.r_small
+
+    def near(self, xyz) -> bool:
+        """Is the point (x, y, z) within ``zone_mm`` of the corner's edge (x, r_small)?"""
+        x, y, z = (float(c) for c in xyz)
+        return math.hypot(x - self.x, math.hypot(y, z) - self.r_small) <= self.zone_mm + TOL
+
+    def describe(self) -> str:
+        return (f"fillet 0 at a loaded shoulder (x = {self.x:g} mm, Ø{2 * self.r_small:g}/"
+                f"Ø{2 * self.r_large:g}): a sharp corner is a stress singularity; the FE values "
+                f"within {self.zone_mm:g} mm of it are not stresses (they grow without bound as "
+                "the mesh is refined), so no peak, hot spot or safety factor of this shaft is "
+                "bounded by them; give the drawing's fillet radius")
+
+
+def sharp_corners(variant) -> tuple[SharpCorner, ...]:
+    """The loaded sharp corners of a variant: every diameter step with ``fillet_mm = 0`` that
+    has a force on both sides (a bearing or a part with m e > 0; a step with nothing beyond it
+    carries no moment and is harmless). The one rule static, fatigue (every method) and the
+    report read."""
+    radii, xs = _stations(tuple(variant.segments))
+    forces = [float(b.x_center_mm) for b in variant.bearings]
+    forces += [float(a.seat_center_mm) for a in variant.attachments
+               if float(a.mass_kg) * float(a.eccentricity_mm) != 0.0]
+    out = []
+    for i, s in enumerate(tuple(variant.segments)[:-1]):
+        r0, r1 = radii[i], radii[i + 1]
+        if abs(r0 - r1) <= TOL or float(s.fillet_mm) > 0:
+            continue
+        x = xs[i][1]
+        if any(f < x for f in forces) and any(f > x for f in forces):
+            out.append(SharpCorner(s.name, x, min(r0, r1), max(r0, r1)))
+    return tuple(out)
+
+
+def warn_sharp_corners(variant) -> tuple[SharpCorner, ...]:
+    """``sharp_corners`` with a visible warning for each (``shaftfe.util.notices``)."""
+    from shaftfe.util.notices import warn
+    corners = sharp_corners(variant)
+    for c in corners:
+        warn("sharp-corner", c.region, c.describe())
+    return corners
+
+
+def sharp_mark(corners, xyz) -> str:
+    """The mark of a printed peak at ``xyz``: "" or why it is not a stress."""
+    hit = next((c for c in corners if c.near(xyz)), None)
+    return f"sharp corner {hit.region}: not a stress" if hit is not None else ""
+
+
+def refuse_sharp_corners(variant, what: str) -> None:
+    """A fatigue check (any method) of a shaft with a loaded sharp corner is refused: its
+    utilisation there is not defined, and elsewhere it would pass a shaft whose worst place
+    was never assessed (InputError naming the segment's fillet)."""
+    corners = sharp_corners(variant)
+    if not corners:
+        return
+    c = corners[0]
+    i = [s.name for s in variant.segments].index(c.segment)
+    path = f"segments.{c.segment}.fillet_mm"
+    src = next((f"--set {p}={v}" for p, v in getattr(variant, "overrides", ()) if p == path),
+               source_of(variant))
+    raise InputError(src, f"segments[{i}].fillet_mm ({c.segment!r})",
+                     f"> 0 at a loaded shoulder for {what}: a sharp corner (x = {c.x:g} mm) "
+                     "is a stress singularity, not assessable; give the drawing's fillet "
+                     "radius", got=0.0)

@@ -187,8 +187,10 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
     """The static reference solution of ``variant`` with ``options`` (``StaticOptions``), read
     from the cache when the key matches, else solved (and stored). ``cache_dir`` is used for the
     mesh cache too."""
+    from shaftfe.solid.plan import warn_sharp_corners
     from shaftfe.static.model import REF_RPM, StaticOptions
     t0 = time.perf_counter()
+    warn_sharp_corners(variant)          # a cached solution says it as a fresh one would
     options = options if options is not None else StaticOptions()
     mkey = predicted_mesh_key(variant, options)
     key = static_key(variant, options, mkey, REF_RPM)

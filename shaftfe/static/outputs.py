@@ -20,6 +20,7 @@ def write_outputs(variant_arg: str, variant, opts, res, rpms: list[float], out) 
     ``variant_arg``: the variant as the user named it (a name or a path)."""
     from shaftfe.io import vtu as export
     from shaftfe.util.atomic import write_atomic
+    from shaftfe.util.notices import collected
     from shaftfe.util.versions import package_versions
     rpm_vtu = rpms[0]
     vtu, regions = export.write_vtu(res, out / "result.vtu", rpm_vtu)
@@ -33,6 +34,7 @@ def write_outputs(variant_arg: str, variant, opts, res, rpms: list[float], out) 
                 "stress_components": ["xx", "yy", "zz", "xy", "yz", "xz"],
                 "note": "fields at vtu.rpm; scale by (rpm / vtu.rpm)^2 for another speed"},
         **res.to_dict(),
+        "warnings": collected(),
     }
     text = json.dumps(summary, indent=2, allow_nan=False)
     write_atomic(out / "summary.json", text + "\n")

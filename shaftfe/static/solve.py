@@ -50,11 +50,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from shaftfe.beam.solve import check_deflection
 from shaftfe.errors import InputError, ShaftfeError, SolverError
 from shaftfe.fe import assembly as fem
 from shaftfe.fe import recovery, reuse, supports
 from shaftfe.fe.lowrank import LowRankSolver
 from shaftfe.model.bearing_life import l10h
+from shaftfe.solid.plan import warn_sharp_corners
 from shaftfe.static.model import (
     REF_RPM,
     StaticModel,
@@ -334,6 +336,25 @@ class SpeedSolution:
     extra: np.ndarray | None          # the softening forces as a load vector (ndof) or None
 
 
+def _softening_failure(model: StaticModel, RW: np.ndarray, rpm: float) -> str:
+    """Why the softened system is not positive definite, in numbers the user can check. It
+    fails exactly when ω² λ_max ≥ 1, λ_max the largest eigenvalue of M^½ (R W) M^½ (M the
+    parts' masses): ω_c = λ_max^-½ is the speed this solve implies. A stiffer support lowers
+    the seats' compliance R W and raises ω_c, so a failure with very stiff springs is the solve's
+    conditioning, not the rotor: the message names both the implied speed and the springs."""
+    sm = np.sqrt(np.repeat([sd.mass_t for sd in model.soft], 2))
+    lam = float(np.linalg.eigvalsh(sm[:, None] * RW * sm[None, :]).max())
+    rpm_c = 60.0 / (2.0 * math.pi * math.sqrt(lam)) if lam > 0 else 0.0
+    k_max = max((abs(float(k)) for c in model.couplings for row in c.K for k in row),
+                default=0.0)
+    return (f"spin softening: {rpm:g} rpm is at or above {rpm_c:.0f} rpm, the critical speed "
+            "implied by this solve's seat compliance (the parts' m ω² exceeds what the shaft "
+            "and bearings hold; the co-rotating static solution does not exist). If "
+            f"`shaftfe campbell` finds the rotor's first critical speed far above it, the solve is "
+            f"ill-conditioned instead: check the bearing stiffness (largest entry {k_max:.4g} "
+            "N/mm) or use --rigid-supports")
+
+
 def soften(model: StaticModel, base: UnitSolution, unit: list, rpm: float) -> SpeedSolution:
     """Spin softening at ``rpm`` (exact, by a second Woodbury step on the solved system).
 
@@ -357,9 +378,7 @@ def soften(model: StaticModel, base: UnitSolution, unit: list, rpm: float) -> Sp
     d = np.repeat([sd.mass_t * w2 for sd in model.soft], 2)
     sq = np.sqrt(d)
     if np.linalg.eigvalsh(np.eye(d.size) - sq[:, None] * RW * sq[None, :]).min() <= 0:
-        raise SolverError(f"spin softening: {rpm:g} rpm is at or above a critical speed of the "
-                          "softened rotor (the parts' m ω² exceeds what the shaft and bearings "
-                          "hold); the static co-rotating solution is not stable")
+        raise SolverError(_softening_failure(model, RW, rpm))
     ubar = np.linalg.solve(np.eye(d.size) - RW * d[None, :], s * (R @ base.u))
     mu = d * ubar
     u = s * base.u + W @ mu
@@ -414,9 +433,16 @@ def _load_cross_force(model: StaticModel) -> dict:
 
 
 def _check_rpms(rpm) -> list[float]:
+    """The speeds of a static solve. Rule (issue #30): speeds >= 0, at least one > 0. The only
+    load is the parts' m·e·ω², zero at rest: a 0 rpm case beside a positive speed is exactly
+    zero (stated as such by the commands: ``shaftfe.beam.solve.AT_REST_NOTE``); a run of
+    nothing but 0 rpm has nothing to solve and no reference speed (the spin-softened
+    reference is the first positive speed), and is refused with one line."""
     rpms = [float(rpm)] if isinstance(rpm, int | float) else [float(r) for r in rpm]
-    if not rpms or any(not (math.isfinite(r) and r >= 0) for r in rpms):
-        raise InputError("--rpm", "rpm", "numbers >= 0", got=rpm)
+    if (not rpms or any(not (math.isfinite(r) and r >= 0) for r in rpms)
+            or not any(r > 0 for r in rpms)):
+        raise InputError("--rpm", "rpm", "speeds >= 0 rpm, at least one > 0 (at 0 rpm the only "
+                         "load, the parts' m·e·ω², is zero: there is nothing to solve)", got=rpm)
     return rpms
 
 
@@ -463,6 +489,7 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
     (``StaticResult.stress_linear_ref``: fatigue's per-node softening model)."""
     t_all = time.perf_counter()
     rpms = _check_rpms(rpm)
+    warn_sharp_corners(variant)          # a fillet 0 at a loaded shoulder: not a stress there
     t0 = time.perf_counter()
     model = build_model(variant, options, shaft_mesh=shaft_mesh, cache_dir=cache_dir)
     v, sm = model.variant, model.shaft_mesh
@@ -507,6 +534,9 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
         sts = tuple(Station(nm, float(x), float(uu[1]), float(uu[2]),
                             float(math.hypot(uu[1], uu[2])))
                     for (nm, x), uu in zip(stations, st_u, strict=True))
+        clr = next((st.u_mm for st in sts if st.name == "clearance"), None)
+        check_deflection(f"static, {r:g} rpm", x1 - x0, float(radial[imax]), clr,
+                         v.clearance_mm)
         g = rc_.shaft.scaled(f_)
         bm = None
         if "error" in beam_res:
