@@ -230,6 +230,18 @@ def test_refusal_names_the_study_parameter():
     assert "--set" not in why and "grams" not in why and "400" not in rule
 
 
+def test_sharp_corner_refuses_a_fatigue_design_only():
+    """A zero fillet at the loaded collar shoulder is a stress singularity: a study that
+    assesses fatigue refuses that design (as ``shaftfe fatigue`` refuses the shaft), one that
+    does not (beam, balance) still evaluates it. The rule is solid.plan.refuse_sharp_corners."""
+    from shaftfe.study.evaluate import load_design
+    ov = {"segments.collar.fillet_mm": 0.0}
+    v, _ = load_design("x2_57", ov)                      # no fatigue: the design loads
+    assert v.segments[[s.name for s in v.segments].index("collar")].fillet_mm == 0.0
+    with pytest.raises(InputError, match="sharp corner"):
+        load_design("x2_57", ov, fatigue=True)
+
+
 # --------------------------------------------------------------------------- the runner
 
 @pytest.fixture(scope="module")

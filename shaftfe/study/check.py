@@ -162,7 +162,8 @@ def check_study(spec: StudySpec, designs) -> Checked:
             continue
         seen[key] = d.number
         try:
-            v, _ = load_design(spec.base, d.overrides)
+            v, _ = load_design(spec.base, d.overrides,
+                               spec.analyses.static and spec.analyses.fatigue)
         except ImplausibleValue as exc:      # an input rule: the whole study is refused
             head, allowed = refusal(spec, d.overrides, exc)[0].split(" is refused; allowed: ",
                                                                   1)

@@ -57,12 +57,18 @@ def _fatigue_inputs(spectrum: str, material: str):
     return read_spectrum(spectrum, None, None), load_material(material)
 
 
-def load_design(base: str, overrides) -> tuple[Any, dict]:
-    """(Variant, every override incl. the derived ones) of a design; InputError if refused."""
+def load_design(base: str, overrides, fatigue: bool = False) -> tuple[Any, dict]:
+    """(Variant, every override incl. the derived ones) of a design; InputError if refused.
+    ``fatigue``: the study assesses fatigue, so a loaded sharp corner (a zero fillet) refuses
+    the design, as it refuses ``shaftfe fatigue`` (``solid.plan.refuse_sharp_corners``)."""
     from shaftfe.model.derive import design_overrides
     from shaftfe.model.loader import load_variant
+    from shaftfe.solid.plan import refuse_sharp_corners
     full = design_overrides(base, dict(overrides))
-    return load_variant(base, full), full
+    v = load_variant(base, full)
+    if fatigue:
+        refuse_sharp_corners(v, "the study's fatigue check")
+    return v, full
 
 
 def balance_row(v, an: Analyses) -> dict:
@@ -153,7 +159,7 @@ def evaluate_design(base: str, overrides, an: Analyses, *, shaft_mesh=None,
     t0 = time.perf_counter()
     row: dict[str, Any] = {"status": "ok", "error": ""}
     try:
-        v, _ = load_design(base, overrides)
+        v, _ = load_design(base, overrides, an.static and an.fatigue)
     except InputError as exc:
         from shaftfe.study.check import refusal
         return {"status": "refused", "error": refusal(None, overrides, exc)[0],
