@@ -245,11 +245,14 @@ def _print_tables(res, opts, out, corners=()) -> None:
                      c.peak_von_mises_unfiltered_MPa, "-", _whole_mark(corners)])
         print_table(["region", "von Mises MPa", "max principal MPa", "x mm",
                      "unfiltered MPa", "error vs truth %", "note"], rows)
-    if res.truth_error_bar_pct:
+    if res.truth_error_bar_pct or res.truth_bar_notes:
         print("error vs truth: this level's measured error of fillet peaks (von Mises and max "
-              "principal) against the converged axisymmetric solution "
-              "(reports/benchmarks/truth.md); none where it was not measured (end fillets, "
-              "fillets in a keyway's zone, other options than the measured ones)")
+              "principal) against the converged axisymmetric solution over a grid of "
+              "shoulders (reports/benchmarks/bars_grid.md); none where it was not measured "
+              "(end fillets, fillets in a keyway's zone, other options than the measured ones, "
+              "a fillet's D/d, r/d outside the measured grid)")
+    for region, why in res.truth_bar_notes.items():
+        print(f"  {region}: {why}")
     if res.error_estimate:
         ee = res.error_estimate
         print(f"\nerror estimate (levels {ee['levels'][0]} vs {ee['levels'][1]}, "

@@ -168,7 +168,9 @@ def level_corrected_life(ref, ff, history, material, bench: dict | None, n_dofs:
 
 def _level_correction(job: FatigueJob, ref, ff, history, material) -> dict | None:
     from shaftfe.static.benchmark import benchmark_errors
-    got = level_corrected_life(ref, ff, history, material, benchmark_errors(job.level),
+    # measured on x2_57 as shipped: none for another shaft or a --set geometry
+    bench = benchmark_errors(job.level, variant_hash=ref.variant_hash)
+    got = level_corrected_life(ref, ff, history, material, bench,
                                3 * ref.n_nodes, equivalent=job.equivalent,
                                theory=job.mean_stress, kf=job.kf,
                                design_life_blocks=job.design_life, speed_kmh=job.speed_kmh)

@@ -134,7 +134,9 @@ def _fatigue(o: ReportOptions, res, ref, history, material):
             "speed_kmh": o.speed_kmh}
     # the 3D level's measured error (the axisymmetric levels' errors are in
     # reports/benchmarks/axisymmetric.md; none corrects the life here)
-    bench = benchmark_errors(o.level) if not o.estimate_error and o.model == "solid" else None
+    # measured on x2_57 as shipped: none for another shaft or a --set geometry
+    bench = benchmark_errors(o.level, variant_hash=ref.variant_hash) \
+        if not o.estimate_error and o.model == "solid" else None
     corrected = level_corrected_life(ref, ff, history, material, bench,
                                      getattr(res, "n_dofs", 0), **life)
     scaled = corrected[1] if corrected else None

@@ -69,8 +69,11 @@ def _benchmark_rows(report_static: dict, c0: dict, bench: dict | None) -> list[E
     else:
         out.append(ErrorEstimate("peak von Mises", c0["peak_von_mises_MPa"], "MPa",
                                  "not estimated in this run",
-                                 "no benchmark data; `shaftfe report --estimate-error` adds a "
-                                 "Richardson estimate from a second mesh level"))
+                                 "no measured error for this shaft (the level's fillet errors "
+                                 "were measured on x2_57 as shipped, "
+                                 "reports/benchmarks/truth.md); `shaftfe report "
+                                 "--estimate-error` adds a Richardson estimate from a second "
+                                 "mesh level"))
     return out
 
 

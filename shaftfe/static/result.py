@@ -77,7 +77,9 @@ class StaticResult:
     error_estimate: dict | None = None
     # fillet region -> (low, high) %: this level's error against the axisymmetric truth
     # (shaftfe.static.truth_bars), for the fillets outside every keyway's / the hex's zone
+    # whose D/d, r/d lie in the measured grid's hull; the span fillets outside it: region -> why
     truth_error_bar_pct: dict = field(default_factory=dict)
+    truth_bar_notes: dict = field(default_factory=dict)
     notes: tuple[str, ...] = ()
     mesh: object = field(default=None, repr=False)
     run: dict = field(default_factory=dict)            # wall-clock seconds, mesh_from_cache
@@ -99,6 +101,7 @@ class StaticResult:
             "cases": [asdict(c) for c in self.cases],
             "diagnostics": self.diagnostics, "error_estimate": self.error_estimate,
             "truth_error_bar_pct": self.truth_error_bar_pct,
+            "truth_bar_notes": self.truth_bar_notes,
             "notes": list(self.notes), "run": self.run,
         })
 

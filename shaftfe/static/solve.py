@@ -452,31 +452,46 @@ _BAR_CONDITIONS = {"order": 2, "load_distribution": "uniform", "body_force": Fal
                    "seed_load_case": False, "hold_twist": "all", "exclude_mm": 0.0}
 
 
-def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> dict:
-    """{fillet region: (low, high) %} of the fillet peaks this level's truth bar covers
-    (``shaftfe.static.truth_bars``): a named level used as named, under the options the bars
-    were measured with (``_BAR_CONDITIONS``), on the pipeline's own mesh of the variant (not a
-    mesh the caller built otherwise), for span fillets (not end fillets, meshed apart and not
-    measured) whose peak lies outside every cut feature's zone (keyways, hex socket:
-    ``solid.plan.cut_features``, which the axisymmetric truth leaves out)."""
+def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> tuple[dict, dict]:
+    """({fillet region: (low, high) %}, {fillet region: why it has none}) for the fillet
+    peaks: a fillet gets its level's truth bar (``shaftfe.static.benchmark.fillet_bar``) when
+    its (D/d, r/d) lies in the hull of the shoulders measured at that level
+    (``shaftfe.static.truth_bars``), for a named level used as named, under the options the
+    bars were measured with (``_BAR_CONDITIONS``), on the pipeline's own mesh of the variant
+    (not a mesh the caller built otherwise), for span fillets (not end fillets, meshed apart and
+    not measured) whose peak lies outside every cut feature's zone (keyways, hex socket:
+    ``solid.plan.cut_features``, which the axisymmetric truth leaves out). The reasons name
+    only the geometry: a span fillet outside the measured hull."""
     from shaftfe.solid.levels import LEVELS
     from shaftfe.solid.mesh import end_fillet
     from shaftfe.solid.plan import cut_features, prepare
+    from shaftfe.static.benchmark import fillet_bar, measured_range
     from shaftfe.static.cache import predicted_mesh_key
     from shaftfe.static.truth_bars import ERROR_BAR_PCT
     lv = options.level
     name = lv if isinstance(lv, str) else lv.name
     if name not in ERROR_BAR_PCT or (not isinstance(lv, str) and lv != LEVELS.get(name)):
-        return {}
+        return {}, {}
     if any(getattr(options, k) != want for k, want in _BAR_CONDITIONS.items()):
-        return {}
+        return {}, {}
     if mesh_key != predicted_mesh_key(variant, options):
-        return {}
+        return {}, {}
     plan = prepare(variant)
-    span = {f"fillet:{fl.segment}" for fl in plan.fillets if not end_fillet(plan, fl)}
+    span = {f"fillet:{fl.segment}": fl for fl in plan.fillets if not end_fillet(plan, fl)}
     zones = [f["zone_mm"] for f in cut_features(plan)]
-    return {p.region: ERROR_BAR_PCT[name] for p in peaks
-            if p.region in span and not any(lo <= p.xyz_mm[0] <= hi for lo, hi in zones)}
+    bars, notes = {}, {}
+    for p in peaks:
+        fl = span.get(p.region)
+        if fl is None or any(lo <= p.xyz_mm[0] <= hi for lo, hi in zones):
+            continue
+        dd, rd = fl.r_large / fl.r_small, fl.rho / (2 * fl.r_small)
+        bar = fillet_bar(name, dd, rd)
+        if bar is not None:
+            bars[p.region] = bar
+        else:
+            notes[p.region] = (f"no measured bar for this geometry (D/d {dd:.3g}, r/d {rd:.3g} "
+                               f"outside the {measured_range(name)})")
+    return bars, notes
 
 
 def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), *,
@@ -566,12 +581,13 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
     run.update(mesh_seconds=sm.build_seconds, mesh_from_cache=sm.from_cache,
                assembly_seconds=model.assembly_seconds, model_seconds=t_model,
                recovery_seconds=rec.seconds)
+    bars, bar_notes = truth_bars(v, options, rec.peaks, sm.key)
     res = StaticResult(
         variant=v.name, variant_hash=v.content_hash, options=options, ref_rpm=ref_rpm,
         n_nodes=sm.n_nodes, n_elements=sm.n_elements, n_dofs=3 * sm.n_nodes, mesh_key=sm.key,
         u_ref=u, stress_ref=rec.stress, von_mises_ref=rec.vm, axis_x=ax_x, axis_u_ref=ax_u_ref,
         cases=tuple(cases), diagnostics=diag, notes=(), mesh=sm, run=run,
-        truth_error_bar_pct=truth_bars(v, options, rec.peaks, sm.key),
+        truth_error_bar_pct=bars, truth_bar_notes=bar_notes,
         stress_linear_ref=(_stress_field(model, sol.u * ref.scale)[0]
                            if soft_on and linear_stress else None))
     res.run["total_seconds"] = time.perf_counter() - t_all
