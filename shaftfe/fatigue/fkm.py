@@ -133,6 +133,19 @@ def mean_stress_factor(sa, sm, M: float) -> np.ndarray:
 
 # --------------------------------------------------------------------------- variable amplitude
 
+def class_damage(s, count, rule: str, k: float = K_SLOPE, n_knee: float = N_KNEE) -> np.ndarray:
+    """Damage per block of each class of relative amplitude s and count n on the component S-N
+    curve: n s^k / N_D at and above the knee; below it n s^(2k−1) / N_D (modified) or
+    n s^k / N_D (elementary, and the consistent rule's rate once every class is on). Their sum
+    is ``Spectrum.damage``."""
+    s = np.asarray(s, dtype=float)
+    c = np.asarray(count, dtype=float)
+    if rule not in MINER:
+        raise ValueError(f"rule {rule!r}: one of {MINER}")
+    below = (2 * k - 1) if rule == "modified" else k
+    return c * np.where(s >= 1.0, s ** k, s ** below) / n_knee
+
+
 def blocks_to_failure(s, count, rule: str, damage_sum: float, k: float = K_SLOPE,
                       n_knee: float = N_KNEE) -> float:
     """Blocks until the damage reaches the effective damage sum D_M.

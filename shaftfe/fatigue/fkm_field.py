@@ -102,6 +102,9 @@ class FkmResult:
     regions: tuple[RegionResult, ...]
     notes: tuple[str, ...] = ()
     cycles: object = field(default=None, repr=False, compare=False)   # counting.Cycles
+    # every node assessed (each region's candidates): (node, utilisation, safety) under the
+    # governing rule, the worse layer of each (fatigue.vtu's fkm_utilisation, fkm_safety)
+    assessed: tuple[tuple[int, float, float], ...] = ()
 
     @property
     def governing(self) -> tuple[RegionResult, Check]:
@@ -250,7 +253,7 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
     excluded[np.asarray(ref.excluded, dtype=np.int64)] = True
     tree = centroid_tree(ref.xyz, ref.cells)
     rules = fkm.MINER
-    out, notes, hints = [], [], {}      # hints: the last spectrum's order per sign
+    out, notes, hints, assessed = [], [], {}, []   # hints: the last spectrum's order, per sign
     for name in sorted(ref.regions):
         if not name.startswith(REGION_PREFIXES):
             continue
@@ -294,8 +297,27 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
             res = RegionResult(name, int(i), tuple(float(c) for c in x), notched, prof, surf,
                                core, s_lin, beta)
             u = max(surf.utilisation[rule], core.utilisation[rule] if core else 0.0)
+            assessed.append((int(i), u, min(surf.safety[rule],
+                                            core.safety[rule] if core else math.inf)))
             if best is None or u > best[0]:
                 best = (u, res)
         out.append(best[1])
     return FkmResult(card, rule, j_D, damage_sum, float(design_life_blocks), float(h.duration_s),
-                     tuple(out), tuple(notes), cyc)
+                     tuple(out), tuple(notes), cyc, tuple(assessed))
+
+
+def governing_cycles(res: FkmResult) -> dict:
+    """The governing check's stress cycles and strengths, for its plots: amplitude and mean
+    (MPa, the layer's: the core's are the surface's × r), count, K_AK per cycle, σ_WK, M and
+    the relative amplitudes s = σ_a / (K_AK σ_WK)."""
+    from shaftfe.fatigue.kernels import stress_cycles
+    reg, c = res.governing
+    cyc = res.cycles
+    sa, sm = stress_cycles(reg.s_lin_MPa, reg.beta if reg.beta else None, cyc)
+    if c.layer == "core":
+        r = reg.profile.case_ratio
+        sa, sm = r * sa, r * sm
+    k_ak = fkm.mean_stress_factor(sa, sm, c.M_sigma)
+    return {"region": reg.region, "layer": c.layer, "x_mm": reg.xyz_mm[0], "amplitude": sa,
+            "mean": sm, "count": cyc.count, "K_AK": k_ak, "sigma_WK": c.sigma_WK_MPa,
+            "M": c.M_sigma, "s": sa / (k_ak * c.sigma_WK_MPa)}
