@@ -71,6 +71,9 @@ def test_seed_run_outputs_and_cache(seed_run):
     assert "static: from cache" in second
     s = json.loads((out / "summary.json").read_text())
     assert s["static"]["notes"] == []                      # the mesh key was predicted: cached
+    from shaftfe.fatigue.standards_out import OUTPUT_FILES
+    assert sorted(p.name for p in out.iterdir()) == sorted(OUTPUT_FILES["seed"])
+    assert s["warnings"] == []
     res = s["result"]
     # exact arithmetic (round-off only): unit conversions of the same number
     assert res["life_hours"] == pytest.approx(res["life_blocks"] * 300 / 3600, rel=1e-12)
@@ -272,3 +275,19 @@ def test_standard_methods_write_their_summary(cache, tmp_path, capsys, method):
     k = s["elements"]["keys"][0]
     assert round(k["length_needed_seed_mm"], 3) == 0.126
     assert "key gear_seat" in text
+
+
+def test_help_names_every_file_of_each_method(capsys):
+    """`fatigue --help` tells the truth per method: every file a method writes
+    (``standards_out.OUTPUT_FILES``, which the runs above check against the folder) is named
+    in the method's clause of the description."""
+    from shaftfe.fatigue.standards_out import OUTPUT_FILES
+    with pytest.raises(SystemExit):
+        main(["fatigue", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    clause = text.split("Writes into --out, per method:")[1]
+    parts = {m: clause.split(f"{m}:")[1] for m in OUTPUT_FILES}
+    for method, files in OUTPUT_FILES.items():
+        own = parts[method].split(";")[0]
+        for f in files:
+            assert f in own, (method, f)

@@ -158,10 +158,13 @@ def compute_elements(variant, history, kappa: float, e_c: float, speed_kmh: floa
 
 
 FKM_FIELDS = ("fkm_utilisation", "fkm_safety", "von_mises_ref")
-# the files each standard writes (``write_outputs``; `shaftfe fatigue --help` names them)
+# the files each method writes (fkm, din743: ``write_outputs``; seed:
+# ``fatigue.outputs.write_outputs``); `shaftfe fatigue --help` names them
 OUTPUT_FILES = {"fkm": ("fatigue.vtu", "haigh.png", "rainflow_matrix.png", "damage_matrix.png",
                         "summary.json"),
-                "din743": ("din743_safety.png", "summary.json")}
+                "din743": ("din743_safety.png", "summary.json"),
+                "seed": ("fatigue.vtu", "haigh.png", "rainflow_matrix.png", "damage_matrix.png",
+                         "summary.json")}
 
 
 def write_fkm_files(res, ref, out) -> tuple[dict, dict]:
