@@ -153,7 +153,7 @@ def plot_fkm_haigh(gc: dict, path, title: str = "") -> Path:
     fig, ax = plt.subplots(figsize=(7, 4.8))
     ax.plot(mean, amp, "r-", lw=1.8,
             label=f"σ_AK (F2): σ_WK = {s_wk:.0f} MPa, M_σ = {M:.3f}")
-    label = f"cycles of one block ({cnt.sum():.0f})"
+    label = f"{cnt.sum():g} cycles per block" + ("" if cnt.size else " (constant speed)")
     big = int(np.argmax(sa)) if sa.size else -1
     m_ak = 0.0
     if big >= 0 and sa[big] > 0:        # the largest cycle's ray to its σ_AK: the margin F2 assumes
