@@ -71,6 +71,9 @@ def test_seed_run_outputs_and_cache(seed_run):
     assert "static: from cache" in second
     s = json.loads((out / "summary.json").read_text())
     assert s["static"]["notes"] == []                      # the mesh key was predicted: cached
+    from shaftfe.fatigue.standards_out import OUTPUT_FILES
+    assert sorted(p.name for p in out.iterdir()) == sorted(OUTPUT_FILES["seed"])
+    assert s["warnings"] == []
     res = s["result"]
     # exact arithmetic (round-off only): unit conversions of the same number
     assert res["life_hours"] == pytest.approx(res["life_blocks"] * 300 / 3600, rel=1e-12)
@@ -241,21 +244,50 @@ def test_static_cache_roundtrip_corruption_and_key(tmp_path):
 
 @pytest.mark.parametrize("method", ["fkm", "din743"])
 def test_standard_methods_write_their_summary(cache, tmp_path, capsys, method):
-    """fkm / din743 on the coarse mesh: strength.json with the governing result, every region
-    or notch, the bearings' duty cycle and the seed's key check (0.126 mm by its formula)."""
+    """fkm / din743 on the coarse mesh: summary.json (with "warnings") with the governing
+    result, every region or notch, the bearings' duty cycle and the seed's key check (0.126 mm
+    by its formula); every file `fatigue --help` names for the method, and nothing else.
+    FKM's fatigue.vtu holds the governing utilisation at the governing node (one value)."""
     out = tmp_path / method
     rc, text, err = run(capsys, RPM_DAT, "--method", method, "--level", "coarse",
                         "--cache-dir", cache, "--out", out)
     assert rc == 0, err
-    s = json.loads((out / "strength.json").read_text())
-    assert s["method"] == method
+    s = json.loads((out / "summary.json").read_text())
+    assert s["method"] == method and s["warnings"] == []
+    from shaftfe.fatigue.standards_out import OUTPUT_FILES
+    assert sorted(p.name for p in out.iterdir()) == sorted(OUTPUT_FILES[method])
+    assert all(f"{out / f}" in text for f in OUTPUT_FILES[method])
     if method == "fkm":
         assert s["governing"]["region"].startswith("fillet:")
         assert {r["region"] for r in s["regions"]} >= {"fillet:collar", "keyway:gear_seat:0"}
         assert 0 < s["governing"]["utilisation"]["modified"] < 10
+        import meshio
+        import numpy as np
+        m = meshio.read(out / "fatigue.vtu")
+        u = m.point_data["fkm_utilisation"]
+        node = next(r["node"] for r in s["regions"] if r["region"] == s["governing"]["region"])
+        # the same float64 written and read back: exact
+        assert u[node] == s["governing"]["utilisation"]["modified"] == np.nanmax(u)
+        assert np.isfinite(u).sum() == s["vtu"]["assessed_nodes"]
     else:
         assert s["governing"]["S_D"] > 1 and {n["kind"] for n in s["notches"]} == \
             {"shoulder", "keyway", "press_fit"}
     k = s["elements"]["keys"][0]
     assert round(k["length_needed_seed_mm"], 3) == 0.126
     assert "key gear_seat" in text
+
+
+def test_help_names_every_file_of_each_method(capsys):
+    """`fatigue --help` tells the truth per method: every file a method writes
+    (``standards_out.OUTPUT_FILES``, which the runs above check against the folder) is named
+    in the method's clause of the description."""
+    from shaftfe.fatigue.standards_out import OUTPUT_FILES
+    with pytest.raises(SystemExit):
+        main(["fatigue", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    clause = text.split("Writes into --out, per method:")[1]
+    parts = {m: clause.split(f"{m}:")[1] for m in OUTPUT_FILES}
+    for method, files in OUTPUT_FILES.items():
+        own = parts[method].split(";")[0]
+        for f in files:
+            assert f in own, (method, f)

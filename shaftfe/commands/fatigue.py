@@ -26,7 +26,12 @@ def register(sub) -> None:
         "mean-stress correction, the S-N curve and Miner's rule at every node. Prints the life "
         "in blocks / hours / km, the safety factor at the design life and the hot spot "
         "(singular points at the bearing and load-patch edges excluded; the unfiltered minimum "
-        "shown too). Writes fatigue.vtu, summary.json and rainflow / damage / Haigh plots.")
+        "shown too). Writes into --out, per method: fkm: fatigue.vtu (fkm_utilisation, "
+        "fkm_safety at the assessed surface nodes), haigh.png (F2, the governing spot's "
+        "cycles), rainflow_matrix.png, damage_matrix.png, summary.json; din743: "
+        "din743_safety.png (S_D, S_F per notch), summary.json; seed: fatigue.vtu (life, "
+        "damage, safety factor at every node), haigh.png, rainflow_matrix.png, "
+        "damage_matrix.png, summary.json.")
     p.add_argument("--method", default="fkm",
                    help="fkm (default: FKM guideline, local stresses on the 3D field, the "
                    "shaft's real material and surface) | din743 (DIN 743, nominal stresses on "
@@ -90,7 +95,8 @@ def register(sub) -> None:
                    "$SHAFTFE_CACHE_DIR or ~/.cache/shaftfe)")
     p.add_argument("--json", action="store_true", help="print the summary JSON instead of text")
     p.add_argument("--out", default=None,
-                   help="output directory (default reports/<variant>/fatigue)")
+                   help="output directory (default reports/<variant>/fatigue for seed, "
+                   "reports/<variant>/fatigue-<method> for fkm, din743)")
     from shaftfe.commands._common import add_set_option
     add_set_option(p)
     p.set_defaults(handler=run)

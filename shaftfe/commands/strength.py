@@ -1,6 +1,7 @@
 """``shaftfe fatigue --method fkm | din743``: strength by standard, the bearings' life over the
 duty cycle and the seed's key and gear checks. A thin layer over ``shaftfe.fatigue.standards``
-and ``shaftfe.fatigue.standards_out``; writes strength.json (all or none)."""
+and ``shaftfe.fatigue.standards_out``; writes summary.json, its field and plots
+(``standards_out.write_outputs``; all or none)."""
 
 from __future__ import annotations
 
@@ -57,8 +58,8 @@ def run_standard(args, job) -> int:
         el = so.compute_elements(v, inputs.history, kappa, ec, job.speed_kmh, beam)
         summary = {"variant": v.name, "spectrum": str(job.spectrum), **summary,
                    "elements": el}
-        import json
-        (stage / "strength.json").write_text(json.dumps(summary, indent=1) + "\n")
+        summary, files = so.write_outputs(args.method, res, ref if beam is None else None,
+                                          stage, summary)
     if args.json:
         print_json(summary)
         return 0
@@ -89,5 +90,5 @@ def run_standard(args, job) -> int:
     print()
     for line in so.elements_lines(el, job.speed_kmh):
         print(line)
-    print(f"\nwrote {out / 'strength.json'}")
+    print("\nwrote " + ", ".join(str(out / f) for f in files))
     return 0

@@ -279,9 +279,19 @@ def write_vtu(ref, ff: FatigueField, path) -> object:
     ``damage_per_block``, ``safety_factor`` and ``von_mises_ref`` (MPa at ``ref.ref_rpm``) and
     cell data ``region`` (0 = volume, k ≥ 1 = face group ``ref.face_groups[k − 1]``), as in
     docs/FIELDS.md. Written atomically."""
-    import meshio
+    r = ff.result
+    return write_ref_vtu(ref, path, {
+        "life_blocks": np.asarray(r.life_blocks, dtype=float),
+        "damage_per_block": np.asarray(r.damage_per_block, dtype=float),
+        "safety_factor": np.asarray(r.safety_factor, dtype=float),
+        "von_mises_ref": np.asarray(ref.von_mises_ref, dtype=float)})
 
-    from shaftfe.util.atomic import atomic_path
+
+def write_ref_vtu(ref, path, point_data: dict) -> object:
+    """The mesh of the static reference ``ref`` (volume cells, then the face groups' triangles,
+    cell data ``region``) with ``point_data``, written atomically (every fatigue method's
+    fatigue.vtu)."""
+    from shaftfe.io.vtu import write_point_fields
     quad = ref.cells.shape[1] == 10
     cells, region = [], []
     if ref.cells.shape[0]:             # none for a surface-only field (axisymmetric model)
@@ -291,15 +301,5 @@ def write_vtu(ref, ff: FatigueField, path) -> object:
         cells.append(("triangle6" if quad else "triangle",
                       np.asarray(ref.face_cells, dtype=np.int64)))
         region.append(np.asarray(ref.face_group, dtype=np.int32) + 1)
-    r = ff.result
-    mesh = meshio.Mesh(np.ascontiguousarray(ref.xyz.T), cells,
-                       point_data={"life_blocks": np.asarray(r.life_blocks, dtype=float),
-                                   "damage_per_block": np.asarray(r.damage_per_block,
-                                                                  dtype=float),
-                                   "safety_factor": np.asarray(r.safety_factor, dtype=float),
-                                   "von_mises_ref": np.asarray(ref.von_mises_ref,
-                                                               dtype=float)},
-                       cell_data={"region": region})
-    with atomic_path(path) as tmp:
-        meshio.write(tmp, mesh, file_format="vtu")
+    write_point_fields(np.asarray(ref.xyz).T, cells, region, path, point_data)
     return path

@@ -133,23 +133,17 @@ def mean_stress_factor(sa, sm, M: float) -> np.ndarray:
 
 # --------------------------------------------------------------------------- variable amplitude
 
-def damage_per_block(s, count, rule: str, k: float = K_SLOPE, n_knee: float = N_KNEE) -> float:
-    """Damage of one block of cycles with relative amplitudes s_i = σ_a,i / σ_AK,i (each
-    cycle's amplitude over the component's fatigue strength amplitude at the knee for that
-    cycle's mean stress) and counts n_i, on the component S-N curve N = N_D s^−k above the
-    knee:
-      elementary: the same line below the knee (no endurance limit);
-      modified (Haibach): slope 2k − 1 below the knee, N = N_D s^−(2k−1).
-    (The consistent rule depends on the damage already done: ``blocks_to_failure``.)"""
+def class_damage(s, count, rule: str, k: float = K_SLOPE, n_knee: float = N_KNEE) -> np.ndarray:
+    """Damage per block of each class of relative amplitude s and count n on the component S-N
+    curve: n s^k / N_D at and above the knee; below it n s^(2k−1) / N_D (modified) or
+    n s^k / N_D (elementary, and the consistent rule's rate once every class is on). Their sum
+    is ``Spectrum.damage``."""
     s = np.asarray(s, dtype=float)
     c = np.asarray(count, dtype=float)
-    if rule == "elementary":
-        return float(np.sum(c * s ** k) / n_knee)
-    if rule == "modified":
-        above = s >= 1.0
-        return float((np.sum(c[above] * s[above] ** k)
-                      + np.sum(c[~above] * s[~above] ** (2 * k - 1))) / n_knee)
-    raise ValueError(f"rule {rule!r}: elementary | modified (consistent: blocks_to_failure)")
+    if rule not in MINER:
+        raise ValueError(f"rule {rule!r}: one of {MINER}")
+    below = (2 * k - 1) if rule == "modified" else k
+    return c * np.where(s >= 1.0, s ** k, s ** below) / n_knee
 
 
 def blocks_to_failure(s, count, rule: str, damage_sum: float, k: float = K_SLOPE,
@@ -162,62 +156,130 @@ def blocks_to_failure(s, count, rule: str, damage_sum: float, k: float = K_SLOPE
     it, by (s^k)/N_D. A cycle of relative amplitude s < 1 becomes damaging once
     D/D_M ≥ 1 − s^k; the damage rate per block is piecewise constant between those
     thresholds, so the number of blocks is the exact sum Σ ΔD / rate over the intervals
-    Infinite if no cycle reaches the fatigue limit: the limit then never starts to fall."""
-    s = np.asarray(s, dtype=float)
-    c = np.asarray(count, dtype=float)
-    keep = (s > 0) & (c > 0)
-    s, c = s[keep], c[keep]
-    if s.size == 0:
-        return math.inf
-    if rule in ("elementary", "modified"):
-        d = damage_per_block(s, c, rule, k, n_knee)
-        return damage_sum / d if d > 0 else math.inf
-    if rule != "consistent":
+    (``Spectrum.life``). Infinite if no cycle reaches the fatigue limit: the limit then never
+    starts to fall."""
+    if rule not in MINER:
         raise ValueError(f"rule {rule!r}: one of {MINER}")
-    w = c * s ** k / n_knee                                # damage per block of each class
-    if not np.any(s >= 1.0):
-        return math.inf          # nothing above the fatigue limit: no damage ever starts
-    start = np.where(s >= 1.0, 0.0, 1.0 - s ** k)          # D/D_M at which it starts
-    order = np.argsort(start, kind="stable")
-    start, w = start[order], w[order]
-    rate = np.cumsum(w)                                     # rate once classes 0..j are on
-    edges = np.append(start, 1.0)
-    blocks = 0.0
-    for j in range(start.size):
-        span = edges[j + 1] - max(edges[j], 0.0)
-        if span > 0:
-            if rate[j] <= 0:
-                return math.inf
-            blocks += span * damage_sum / rate[j]
-    return blocks
+    return Spectrum(s, count, k, n_knee).life(rule, damage_sum)
 
 
 def scale_for_life(s, count, rule: str, damage_sum: float, blocks: float,
                    k: float = K_SLOPE, n_knee: float = N_KNEE) -> float:
     """The factor λ on every amplitude (the load; with a constant stress ratio the mean
-    stress factors do not change) at which the life is exactly ``blocks``: elementary
-    λ = (life/blocks)^(1/k) in closed form, the other rules by bisection in log λ (their life
-    falls monotonically with λ). The consistent rule's life is infinite until the largest
-    cycle reaches the knee and finite from there: where that jump already passes the design
-    life, λ* is the jump (the load at which damage starts at all)."""
-    s = np.asarray(s, dtype=float)
-    if not np.any((s > 0) & (np.asarray(count, dtype=float) > 0)):
-        return math.inf
-    life1 = blocks_to_failure(s, count, rule, damage_sum, k, n_knee)
-    if rule == "elementary":
-        return (life1 / blocks) ** (1.0 / k)
-    lo, hi = 1e-6, 1e6
+    stress factors do not change) at which the life is exactly ``blocks``
+    (``Spectrum.scale_for_life``)."""
+    return Spectrum(s, count, k, n_knee).scale_for_life(rule, damage_sum, blocks)
 
-    def f(lam):
-        return blocks_to_failure(lam * s, count, rule, damage_sum, k, n_knee) - blocks
-    if f(hi) > 0:
-        return hi
-    for _ in range(200):
-        mid = math.sqrt(lo * hi)
-        if f(mid) > 0:
-            lo = mid
-        else:
-            hi = mid
-        if hi / lo - 1.0 < 1e-13:
-            break
-    return math.sqrt(lo * hi)
+
+class Spectrum:
+    """One block of cycles as relative amplitudes s_i = σ_a,i / σ_AK,i with counts n_i,
+    sorted by s descending once, with prefix sums, so that the life under every Miner rule at
+    any load factor λ (amplitudes λ s_i) costs a binary search, not a pass over the classes:
+    a long log has a million classes and the safety factor needs ~50 lives per check.
+
+    With m(λ) = #{λ s_i ≥ 1} (the classes at or above the knee), A_j = Σ_{i≤j} n_i s_i^k
+    (prefix) and B_j = Σ_{i≥j} n_i s_i^(2k−1) (suffix):
+      elementary: D(λ) = λ^k A_{n−1} / N_D;
+      modified:   D(λ) = (λ^k A_{m−1} + λ^(2k−1) B_m) / N_D;
+      consistent: classes switch on in the order of s (class j at D/D_M = 1 − (λ s_j)^k), the
+        rate once 0..j are on is λ^k A_j / N_D, so the sum Σ ΔD / rate over the intervals is
+        blocks = D_M N_D [(λ^−k − s_m^k) / A_{m−1} + T_m], T_m = Σ_{j≥m} (s_j^k − s_{j+1}^k) / A_j
+        (s_n = 0), infinite for m = 0.
+    The same sums as the class-by-class evaluation, in another order (round-off only:
+    tests/validation/test_fkm.py checks the two). ``factor`` scales every s (a check whose
+    cycles are this one's times a constant: the core under its surface) without a new sort;
+    ``hint``: an order that nearly sorts s (another node's), which the stable sort exploits."""
+
+    def __init__(self, s, count, k: float = K_SLOPE, n_knee: float = N_KNEE, hint=None,
+                 factor: float = 1.0):
+        s = np.asarray(s, dtype=float).ravel()
+        c = np.asarray(count, dtype=float).ravel()
+        keep = (s > 0) & (c > 0)
+        o = np.flatnonzero(keep) if hint is None else hint[keep[hint]]
+        o = o[np.argsort(-s[o], kind="stable")]
+        self.order, self.k, self.n_knee = o, float(k), float(n_knee)
+        self.s = s[o]
+        self._neg = -self.s
+        c = c[o]
+        sk = self.s ** k
+        self.A = np.cumsum(c * sk)
+        self.B = np.append(np.cumsum((c * self.s ** (2 * k - 1))[::-1])[::-1], 0.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            d = (sk - np.append(sk[1:], 0.0)) / self.A
+        self.T = np.append(np.cumsum(d[::-1])[::-1], 0.0)
+        self.sk = np.append(sk, 0.0)
+        self.factor = float(factor)
+        if not (math.isfinite(self.factor) and self.factor >= 0):
+            raise ValueError(f"factor {factor!r}: a finite number >= 0")
+
+    def scaled(self, factor: float) -> Spectrum:
+        """The same classes with every s × ``factor`` (shares the arrays)."""
+        out = object.__new__(Spectrum)
+        out.__dict__.update(self.__dict__)
+        out.factor = self.factor * float(factor)
+        return out
+
+    @property
+    def n(self) -> int:
+        """Number of classes that do damage at some load (0: none, or every s scaled to 0)."""
+        return int(self.s.size) if self.factor > 0 else 0
+
+    def damage(self, rule: str, lam: float = 1.0) -> float:
+        """Damage per block at load factor ``lam`` (elementary, modified)."""
+        lam = lam * self.factor
+        if self.n == 0:
+            return 0.0
+        if rule == "elementary":
+            return float(lam ** self.k * self.A[-1] / self.n_knee)
+        if rule == "modified":
+            m = self._m(lam)
+            top = lam ** self.k * self.A[m - 1] if m else 0.0
+            return float((top + lam ** (2 * self.k - 1) * self.B[m]) / self.n_knee)
+        raise ValueError(f"rule {rule!r}: elementary | modified (consistent: life)")
+
+    def _m(self, lam: float) -> int:
+        """#{s_i ≥ 1/lam} (at or above the knee): a binary search, s being descending."""
+        return int(np.searchsorted(self._neg, -1.0 / lam, side="right")) if lam > 0 else 0
+
+    def life(self, rule: str, damage_sum: float, lam: float = 1.0) -> float:
+        """Blocks until the damage reaches D_M at load factor ``lam`` (class docstring)."""
+        if self.n == 0:
+            return math.inf
+        if rule in ("elementary", "modified"):
+            d = self.damage(rule, lam)
+            return damage_sum / d if d > 0 else math.inf
+        if rule != "consistent":
+            raise ValueError(f"rule {rule!r}: one of {MINER}")
+        lam = lam * self.factor
+        m = self._m(lam)
+        if m == 0:
+            return math.inf      # nothing above the fatigue limit: no damage ever starts
+        first = (lam ** -self.k - self.sk[m]) / self.A[m - 1]
+        return float(damage_sum * self.n_knee * (first + self.T[m]))
+
+    def scale_for_life(self, rule: str, damage_sum: float, blocks: float) -> float:
+        """The load factor λ at which the life is exactly ``blocks``: elementary
+        λ = (life/blocks)^(1/k) in closed form, the other rules by bisection in log λ (their
+        life falls monotonically with λ). The consistent rule's life is infinite until the
+        largest cycle reaches the knee and finite from there: where that jump already passes
+        the design life, λ* is the jump (the load at which damage starts at all)."""
+        if self.n == 0:
+            return math.inf
+        life1 = self.life(rule, damage_sum)
+        if rule == "elementary":
+            return (life1 / blocks) ** (1.0 / self.k)
+        lo, hi = 1e-6, 1e6
+
+        def f(lam):
+            return self.life(rule, damage_sum, lam) - blocks
+        if f(hi) > 0:
+            return hi
+        for _ in range(200):
+            mid = math.sqrt(lo * hi)
+            if f(mid) > 0:
+                lo = mid
+            else:
+                hi = mid
+            if hi / lo - 1.0 < 1e-13:
+                break
+        return math.sqrt(lo * hi)

@@ -87,6 +87,8 @@ class RegionResult:
     profile: Profile
     surface: Check
     core: Check | None
+    s_lin_MPa: float = 0.0       # the node's S0 of S0 (λ + β λ²) (signed von Mises, no softening)
+    beta: float = 0.0            # its spin-softening coefficient
 
 
 @dataclass(frozen=True)
@@ -99,6 +101,10 @@ class FkmResult:
     block_seconds: float
     regions: tuple[RegionResult, ...]
     notes: tuple[str, ...] = ()
+    cycles: object = field(default=None, repr=False, compare=False)   # counting.Cycles
+    # every node assessed (each region's candidates): (node, utilisation, safety) under the
+    # governing rule, the worse layer of each (fatigue.vtu's fkm_utilisation, fkm_safety)
+    assessed: tuple[tuple[int, float, float], ...] = ()
 
     @property
     def governing(self) -> tuple[RegionResult, Check]:
@@ -190,7 +196,13 @@ def profile(ref, node: int, tree, case_depth_mm: float | None) -> Profile:
 
 def check(layer: str, depth: float, s_cycles: tuple[np.ndarray, np.ndarray], count,
           sigma_ref: float, G: float, d_eff: float, card: StrengthCard, rz: float,
-          k_v: float, *, rules, j_D: float, damage_sum: float, design_life: float) -> Check:
+          k_v: float, *, rules, j_D: float, damage_sum: float, design_life: float,
+          hint=None, under: tuple | None = None) -> tuple[Check, fkm.Spectrum]:
+    """One layer's check and its spectrum of relative amplitudes σ_a / (K_AK σ_WK) (sorted
+    once, ``fkm.Spectrum``; ``hint``: another node's order). ``under`` = (the surface's
+    spectrum, its σ_WK, r): the core's cycles are the surface's × r (K_AK and M unchanged:
+    the same ratio σ_m/σ_a and the same d_eff), so its spectrum is the surface's scaled by
+    r σ_WK,surface / σ_WK,core, without a second pass over the classes."""
     g = fkm.GROUPS[card.group]
     K_d = fkm.size_factor(d_eff, g)
     R_m = K_d * card.rm_n_MPa
@@ -201,37 +213,47 @@ def check(layer: str, depth: float, s_cycles: tuple[np.ndarray, np.ndarray], cou
     s_wk = s_wzd / K_WK
     M = fkm.mean_stress_sensitivity(R_m, g)
     sa, sm = s_cycles
-    k_ak = fkm.mean_stress_factor(sa, sm, M)
-    rel = sa / (k_ak * s_wk)
+    if under is None:
+        k_ak = fkm.mean_stress_factor(sa, sm, M)
+        spec = fkm.Spectrum(sa / (k_ak * s_wk), count, hint=hint)
+    else:
+        base, s_wk_base, r = under
+        spec = base.scaled(r * s_wk_base / s_wk)
     life, safety, util = {}, {}, {}
     for rule in rules:
-        life[rule] = fkm.blocks_to_failure(rel, count, rule, damage_sum)
-        safety[rule] = fkm.scale_for_life(rel, count, rule, damage_sum, design_life)
+        life[rule] = spec.life(rule, damage_sum)
+        safety[rule] = spec.scale_for_life(rule, damage_sum, design_life)
         util[rule] = j_D / safety[rule] if safety[rule] > 0 else math.inf
     i = int(np.argmax(sa)) if sa.size else 0
-    return Check(layer, depth, sigma_ref, G, d_eff, K_d, R_m, s_wzd, rz, K_R, n, k_v, K_WK,
-                 s_wk, M, float(k_ak[i]) if sa.size else math.nan,
-                 float(sa[i]) if sa.size else 0.0, float(sm[i]) if sa.size else 0.0,
-                 life, safety, util)
+    k_ak_i = float(fkm.mean_stress_factor(sa[i], sm[i], M)) if sa.size else math.nan
+    return (Check(layer, depth, sigma_ref, G, d_eff, K_d, R_m, s_wzd, rz, K_R, n, k_v, K_WK,
+                  s_wk, M, k_ak_i, float(sa[i]) if sa.size else 0.0,
+                  float(sm[i]) if sa.size else 0.0, life, safety, util), spec)
 
 
 def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
                  ground_fillets: frozenset[str], rule: str = "modified", j_D: float = 1.5,
-                 damage_sum: float = 0.3, design_life_blocks: float = 1e7) -> FkmResult:
-    """Every region of ``REGION_PREFIXES`` of the static reference ``ref`` under ``history``."""
+                 damage_sum: float = 0.3, design_life_blocks: float = 1e7,
+                 cycles=None) -> FkmResult:
+    """Every region of ``REGION_PREFIXES`` of the static reference ``ref`` under ``history``.
+    ``cycles``: the rainflow count of ``history`` re-referenced to ``ref.ref_rpm`` where the
+    caller has it (the seed method's, ``FatigueField.result.cycles``): counted once."""
     from shaftfe.fatigue.counting import count_cycles
     from shaftfe.fatigue.field import softening_beta
     from shaftfe.fatigue.kernels import signed_von_mises, stress_cycles
     from shaftfe.fe.pointeval import centroid_tree
     h = history.with_reference(ref.ref_rpm)
-    cyc = count_cycles(h.load_factor)
+    if cycles is None:
+        cyc = count_cycles(h.load_factor)
+    else:
+        cyc = cycles
     S = np.asarray(ref.stress_ref, dtype=float)
     signed = signed_von_mises(S.T)
     excluded = np.zeros(signed.size, dtype=bool)
     excluded[np.asarray(ref.excluded, dtype=np.int64)] = True
     tree = centroid_tree(ref.xyz, ref.cells)
     rules = fkm.MINER
-    out, notes = [], []
+    out, notes, hints, assessed = [], [], {}, []   # hints: the last spectrum's order, per sign
     for name in sorted(ref.regions):
         if not name.startswith(REGION_PREFIXES):
             continue
@@ -255,26 +277,47 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
                 s_lin = s_lin_v
             else:
                 s_lin = s_soft
-            sa, sm = stress_cycles(np.full(cyc.n, s_lin), np.full(cyc.n, beta) if beta else None,
-                                   cyc)
+            sa, sm = stress_cycles(s_lin, beta if beta else None, cyc)
             prof = profile(ref, int(i), tree, card.case_depth_mm)
             x = np.asarray(ref.xyz, float)[:, i]
             d_eff = 2.0 * float(math.hypot(x[1], x[2]))
             kv = k_v_case_hardening(d_eff, notched) if card.case_hardened else 1.0
             common = dict(rules=rules, j_D=j_D, damage_sum=damage_sum,
                           design_life=design_life_blocks)
-            surf = check("surface", 0.0, (sa, sm), cyc.count, s_soft, prof.G_surface, d_eff,
-                         card, rz, kv, **common)
+            sign = s_lin >= 0
+            surf, spec = check("surface", 0.0, (sa, sm), cyc.count, s_soft, prof.G_surface,
+                               d_eff, card, rz, kv, hint=hints.get(sign), **common)
+            hints[sign] = spec.order
             core = None
             if card.case_hardened:
                 r = prof.case_ratio
-                core = check("core", card.case_depth_mm, (r * sa, r * sm), cyc.count,
-                             r * s_soft, prof.G_case, d_eff, card, 1.0, 1.0, **common)
+                core, _ = check("core", card.case_depth_mm, (r * sa, r * sm), cyc.count,
+                                r * s_soft, prof.G_case, d_eff, card, 1.0, 1.0,
+                                under=(spec, surf.sigma_WK_MPa, r), **common)
             res = RegionResult(name, int(i), tuple(float(c) for c in x), notched, prof, surf,
-                               core)
+                               core, s_lin, beta)
             u = max(surf.utilisation[rule], core.utilisation[rule] if core else 0.0)
+            assessed.append((int(i), u, min(surf.safety[rule],
+                                            core.safety[rule] if core else math.inf)))
             if best is None or u > best[0]:
                 best = (u, res)
         out.append(best[1])
     return FkmResult(card, rule, j_D, damage_sum, float(design_life_blocks), float(h.duration_s),
-                     tuple(out), tuple(notes))
+                     tuple(out), tuple(notes), cyc, tuple(assessed))
+
+
+def governing_cycles(res: FkmResult) -> dict:
+    """The governing check's stress cycles and strengths, for its plots: amplitude and mean
+    (MPa, the layer's: the core's are the surface's × r), count, K_AK per cycle, σ_WK, M and
+    the relative amplitudes s = σ_a / (K_AK σ_WK)."""
+    from shaftfe.fatigue.kernels import stress_cycles
+    reg, c = res.governing
+    cyc = res.cycles
+    sa, sm = stress_cycles(reg.s_lin_MPa, reg.beta if reg.beta else None, cyc)
+    if c.layer == "core":
+        r = reg.profile.case_ratio
+        sa, sm = r * sa, r * sm
+    k_ak = fkm.mean_stress_factor(sa, sm, c.M_sigma)
+    return {"region": reg.region, "layer": c.layer, "x_mm": reg.xyz_mm[0], "amplitude": sa,
+            "mean": sm, "count": cyc.count, "K_AK": k_ak, "sigma_WK": c.sigma_WK_MPa,
+            "M": c.M_sigma, "s": sa / (k_ak * c.sigma_WK_MPa)}

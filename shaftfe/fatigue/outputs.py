@@ -89,6 +89,7 @@ def _result(run: FatigueRun) -> dict:
 
 def summary(run: FatigueRun, vtu_name: str, plots: dict[str, str]) -> dict:
     """The summary.json content (every number the command prints, and more)."""
+    from shaftfe.util.notices import collected
     from shaftfe.util.versions import package_versions
     ff, ref = run.field, run.ref
     r = ff.result
@@ -114,6 +115,7 @@ def summary(run: FatigueRun, vtu_name: str, plots: dict[str, str]) -> dict:
         "plots": plots,
         "timing": {"fatigue_seconds": run.eval_seconds},
         "level_error": run.level_error,
+        "warnings": collected(),
     }
 
 

@@ -183,3 +183,83 @@ def plot_haigh(sigma_eq_node: float, cycles: Cycles, material: FatigueMaterial, 
     ax.grid(alpha=0.3)
     ax.legend()
     return _save(fig, path)
+
+
+def plot_fkm_haigh(gc: dict, path, title: str = "") -> Path:
+    """FKM Haigh diagram, overload case F2 (constant stress ratio), of the governing check
+    (``fkm_field.governing_cycles``): the component fatigue strength amplitude σ_AK against
+    the mean stress, traced ray by ray from ``fkm.mean_stress_factor`` (σ_AK = K_AK σ_WK at
+    each ratio σ_m/σ_a: the very factor the assessment divides by), and the assessed cycles
+    (σ_m, σ_a) as points (area ∝ count; a long log: its largest amplitudes)."""
+    from shaftfe.fatigue.fkm import mean_stress_factor
+    plt = _plt()
+    s_wk, M = float(gc["sigma_WK"]), float(gc["M"])
+    sa, sm, cnt = (np.asarray(gc[k], dtype=float) for k in ("amplitude", "mean", "count"))
+    # rays σ_m/σ_a = cot φ, φ from almost pure tension (mean ≫ amplitude) to pure compression
+    phi = np.linspace(0.02, np.pi - 0.02, 2000)
+    k_ak = mean_stress_factor(np.sin(phi), np.cos(phi), M)
+    amp = k_ak * s_wk
+    mean = amp * np.cos(phi) / np.sin(phi)
+    fig, ax = plt.subplots(figsize=(7, 4.8))
+    ax.plot(mean, amp, "r-", lw=1.8,
+            label=f"σ_AK (F2): σ_WK = {s_wk:.0f} MPa, M_σ = {M:.3f}")
+    label = f"{cnt.sum():g} cycles per block" + ("" if cnt.size else " (constant speed)")
+    big = int(np.argmax(sa)) if sa.size else -1
+    m_ak = 0.0
+    if big >= 0 and sa[big] > 0:        # the largest cycle's ray to its σ_AK: the margin F2 assumes
+        a_ak = float(mean_stress_factor(sa[big], sm[big], M)) * s_wk
+        m_ak = a_ak * sm[big] / sa[big]
+        ax.plot([0.0, m_ak], [0.0, a_ak], ":", color="tab:blue", lw=1,
+                label=f"largest cycle's ray (F2) to σ_AK = {a_ak:.0f} MPa")
+        ax.plot([m_ak], [a_ak], "x", color="tab:blue", ms=8)
+    if sa.size > HAIGH_MAX_POINTS:
+        keep = np.argpartition(sa, sa.size - HAIGH_MAX_POINTS)[-HAIGH_MAX_POINTS:]
+        label = f"the {HAIGH_MAX_POINTS} largest of {sa.size} cycle classes"
+        sa, sm, cnt = sa[keep], sm[keep], cnt[keep]
+    ax.scatter(sm, sa, s=12 + 30 * cnt / max(cnt.max(initial=1.0), 1.0), alpha=0.6,
+               color="tab:blue", label=label, zorder=3)
+    hi_m = max(float(sm.max(initial=0.0)), s_wk, m_ak) * 1.3
+    lo_m = min(float(sm.min(initial=0.0)), -0.5 * s_wk) * 1.6
+    ax.set_xlim(lo_m, hi_m)
+    ax.set_ylim(0.0, max(float(sa.max(initial=0.0)), s_wk / (1.0 - M) if M < 1 else s_wk)
+                * 1.2)
+    ax.axvline(0.0, color="0.6", lw=0.8)
+    ax.set_xlabel("mean stress σ_m [MPa]")
+    ax.set_ylabel("amplitude σ_a [MPa]")
+    ax.set_title(title or "FKM Haigh diagram (F2)")
+    ax.grid(alpha=0.3)
+    ax.legend(loc="upper right", fontsize=8)
+    return _save(fig, path)
+
+
+def plot_din743_safeties(rows: list[dict], s_min: float, path, title: str = "") -> Path:
+    """DIN 743 per notch: the fatigue safety S_D and the yield safety S_F (bars, log scale;
+    an infinite value drawn at the axis end and marked ∞) against the minimum S_min."""
+    plt = _plt()
+    names = [r["name"] if "@" in r["name"] else f"{r['name']} @{r['x_mm']:g}" for r in rows]
+    vals = {k: np.array([np.inf if r[k] is None else r[k] for r in rows], dtype=float)
+            for k in ("S_D", "S_F")}
+    finite = np.concatenate([v[np.isfinite(v)] for v in vals.values()] + [[s_min]])
+    top = float(finite.max()) * 3.0
+    fig, ax = plt.subplots(figsize=(8, 0.45 * len(rows) + 1.6))
+    y = np.arange(len(rows))
+    for off, (k, color) in zip((-0.2, 0.2), (("S_D", "tab:blue"), ("S_F", "tab:orange")),
+                               strict=True):
+        v = vals[k]
+        ax.barh(y + off, np.where(np.isfinite(v), v, top), height=0.38, color=color,
+                label={"S_D": "S_D (fatigue)", "S_F": "S_F (yield)"}[k])
+        for yy, vv in zip(y + off, v, strict=True):
+            ax.text(min(vv, top) * 1.05, yy, "∞" if not np.isfinite(vv) else f"{vv:.2f}",
+                    va="center", fontsize=7)
+    ax.axvline(s_min, color="r", lw=1.5, label=f"S_min = {s_min:g}")
+    ax.set_xscale("log")
+    ax.set_xlim(min(0.5, float(finite.min()) * 0.8), top * 2.0)
+    ax.set_yticks(y, names, fontsize=8)
+    worst = int(np.argmin(np.minimum(vals["S_D"], vals["S_F"])))
+    ax.get_yticklabels()[worst].set_fontweight("bold")        # the governing notch
+    ax.invert_yaxis()
+    ax.set_xlabel("safety [-] (log scale); bold: the governing notch")
+    ax.set_title(title or "DIN 743 safeties per notch")
+    ax.grid(axis="x", which="both", alpha=0.3)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3, fontsize=8)
+    return _save(fig, path)

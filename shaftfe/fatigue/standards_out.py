@@ -155,3 +155,83 @@ def compute_elements(variant, history, kappa: float, e_c: float, speed_kmh: floa
     return elements_summary(bearings.duty(variant, history, kappa, e_c, speed_kmh=speed_kmh,
                                           beam=beam),
                             keys, g, kappa, e_c)
+
+
+FKM_FIELDS = ("fkm_utilisation", "fkm_safety", "von_mises_ref")
+# the files each method writes (fkm, din743: ``write_outputs``; seed:
+# ``fatigue.outputs.write_outputs``); `shaftfe fatigue --help` names them
+OUTPUT_FILES = {"fkm": ("fatigue.vtu", "haigh.png", "rainflow_matrix.png", "damage_matrix.png",
+                        "summary.json"),
+                "din743": ("din743_safety.png", "summary.json"),
+                "seed": ("fatigue.vtu", "haigh.png", "rainflow_matrix.png", "damage_matrix.png",
+                         "summary.json")}
+
+
+def write_fkm_files(res, ref, out) -> tuple[dict, dict]:
+    """FKM's files into ``out``: fatigue.vtu (``FKM_FIELDS``: the degree of utilisation and the
+    achieved safety under the governing rule, the worse layer, at every surface node it
+    assessed, NaN elsewhere; docs/FIELDS.md) and, of the governing check, the Haigh diagram
+    (F2) with its cycles, the rainflow matrix and the damage matrix. Returns (the summary's
+    "vtu" block, plot name -> file)."""
+    import numpy as np
+
+    from shaftfe.fatigue import fkm
+    from shaftfe.fatigue import plots as fp
+    from shaftfe.fatigue.counting import Cycles, _matrix, rainflow_matrix
+    from shaftfe.fatigue.field import write_ref_vtu
+    from shaftfe.fatigue.fkm_field import governing_cycles
+    n = int(ref.n_nodes)
+    util, safety = np.full(n, np.nan), np.full(n, np.nan)
+    for node, u, s in res.assessed:
+        util[node], safety[node] = u, s
+    write_ref_vtu(ref, out / "fatigue.vtu", {"fkm_utilisation": util, "fkm_safety": safety,
+                                             "von_mises_ref": ref.von_mises_ref})
+    gc = governing_cycles(res)
+    where = f"{gc['region']} ({gc['layer']}), x = {gc['x_mm']:.1f} mm"
+    fp.plot_fkm_haigh(gc, out / "haigh.png",
+                      title=f"FKM Haigh diagram (F2), governing spot\n{where}")
+    cyc = Cycles(2.0 * gc["amplitude"], gc["mean"], gc["count"], res.cycles.closure)
+    fp.plot_cycle_matrix(rainflow_matrix(cyc, units="MPa"), out / "rainflow_matrix.png",
+                         title=f"rainflow matrix per block\n{where}")
+    rule = res.rule if res.rule != "consistent" else "elementary"
+    d = fkm.class_damage(gc["s"], gc["count"], rule)
+    fp.plot_cycle_matrix(_matrix(cyc.range, cyc.mean, d / res.damage_sum, 10, "damage", "MPa"),
+                         out / "damage_matrix.png",
+                         title=f"FKM damage per block / D_M ({rule} Miner)\n{where}")
+    vtu = {"file": "fatigue.vtu", "regions": list(ref.face_groups),
+           "point_data": list(FKM_FIELDS), "von_mises_ref_rpm": ref.ref_rpm,
+           "assessed_nodes": len(res.assessed),
+           "note": f"fkm_utilisation and fkm_safety ({res.rule} Miner, the worse of surface "
+                   "and core) at the surface nodes FKM assessed (each region's highest "
+                   "tensile and compressive nodes outside the singular-point exclusion), NaN "
+                   "elsewhere"}
+    return vtu, {"haigh": "haigh.png", "rainflow_matrix": "rainflow_matrix.png",
+                 "damage_matrix": "damage_matrix.png"}
+
+
+def write_din_files(summary: dict, out) -> dict:
+    """DIN 743's plot into ``out``: S_D and S_F per notch against S_min."""
+    from shaftfe.fatigue import plots as fp
+    fp.plot_din743_safeties(summary["notches"], summary["S_min"], out / "din743_safety.png",
+                            title=f"DIN 743 safeties per notch, card {summary['card']}")
+    return {"din743_safety": "din743_safety.png"}
+
+
+def write_outputs(method: str, res, ref, out, summary: dict) -> tuple[dict, list[str]]:
+    """Every file of ``shaftfe fatigue --method fkm | din743`` into the (staged) directory
+    ``out``, summary.json last with the run's warnings (``util.notices.collected``). Returns
+    the summary written and the file names."""
+    import json
+
+    from shaftfe.util.atomic import write_atomic
+    from shaftfe.util.notices import collected
+    if method == "fkm":
+        vtu, plots = write_fkm_files(res, ref, out)
+        summary = {**summary, "vtu": vtu, "plots": plots}
+    else:
+        summary = {**summary, "plots": write_din_files(summary, out)}
+    summary["warnings"] = collected()
+    write_atomic(out / "summary.json", json.dumps(summary, indent=1, allow_nan=False) + "\n")
+    files = ([summary["vtu"]["file"]] if "vtu" in summary else []) + \
+        list(summary["plots"].values()) + ["summary.json"]
+    return summary, files

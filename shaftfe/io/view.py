@@ -26,6 +26,8 @@ FIELDS: dict[str, tuple[str, str, str]] = {
     "safety_factor": ("-", "min", "fatigue safety factor at the design life"),
     "life_blocks": ("blocks", "min", "fatigue life in passes of the load block"),
     "damage_per_block": ("-", "max", "Miner damage of one pass of the load block"),
+    "fkm_utilisation": ("-", "max", "FKM degree of utilisation at the assessed surface nodes"),
+    "fkm_safety": ("-", "min", "FKM achieved safety factor at the assessed surface nodes"),
     "region": ("id", "none", "face group id: 0 volume, k = regions[k - 1]"),
     "group": ("id", "none", "mesh face group id: 0 volume, k = groups[k - 1]"),
 }

@@ -60,7 +60,11 @@ def modified_life_spectrum(C_N: float, Cu_N: float, rpm, load_N, kappa: float, e
     n = np.asarray(rpm, dtype=float)
     P = np.asarray(load_N, dtype=float)
     u = n / n.sum()
-    a = np.array([a_iso_ball(kappa, e_c * Cu_N / Pi) if Pi > 0 else A_ISO_MAX for Pi in P])
+    # a_ISO depends on the load alone here: once per distinct load (a logger's integer rpm
+    # repeat: 5 million samples have < 10 000 speeds), the same numbers as per sample
+    uP, inv = np.unique(P, return_inverse=True)
+    ua = np.array([a_iso_ball(kappa, e_c * Cu_N / Pi) if Pi > 0 else A_ISO_MAX for Pi in uP])
+    a = ua[inv.ravel()]
     with np.errstate(divide="ignore"):
         L_rev = np.where(P > 0, a1 * a * (C_N / np.where(P > 0, P, 1.0)) ** p * 1e6, np.inf)
     inv = float(np.sum(u / L_rev))

@@ -8,6 +8,7 @@ figures, so a value rounded to the printed digits is compared with half a unit o
 """
 
 import math
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -117,3 +118,58 @@ def test_scale_for_life_inverts_the_life():
         lam = fkm.scale_for_life(s, c, rule, 0.3, 300.0)
         assert lam * 1.2 > 1.0
         assert fkm.blocks_to_failure(lam * s, c, rule, 0.3) == pytest.approx(300.0, rel=1e-9)
+
+
+def _exact_lives(s, c, lam, k=5, n_d=10 ** 6, d_m=Fraction(3, 10)):
+    """The three Miner rules in exact rational arithmetic, class by class (FKM ch. 4.4 written
+    out): elementary Σ n (λs)^k / N_D, modified (λs)^(2k−1) below the knee, consistent the
+    interval sum Σ ΔD / rate with class j switching on at D/D_M = 1 − (λ s_j)^k."""
+    x = [lam * v for v in s]
+    el = sum(n * v ** k for v, n in zip(x, c, strict=True)) / n_d
+    mod = sum(n * (v ** k if v >= 1 else v ** (2 * k - 1)) for v, n in zip(x, c, strict=True))
+    out = {"elementary": d_m / el, "modified": d_m / (mod / n_d)}
+    if not any(v >= 1 for v in x):
+        out["consistent"] = math.inf
+        return out
+    start = sorted((max(Fraction(0), 1 - v ** k), n * v ** k / n_d)
+                   for v, n in zip(x, c, strict=True))
+    edges = [st for st, _ in start] + [Fraction(1)]
+    blocks, rate = Fraction(0), Fraction(0)
+    for j, (_, w) in enumerate(start):
+        rate += w
+        blocks += (edges[j + 1] - edges[j]) * d_m / rate
+    out["consistent"] = blocks
+    return out
+
+
+def test_sorted_spectrum_against_exact_class_sums():
+    """``fkm.Spectrum`` (sorted once, prefix sums, a binary search per life) against the
+    class-by-class sums in exact rational arithmetic (``_exact_lives``), 40 classes s = p/64
+    (p distinct in 3..140: below and above the knee), at λ = 1/2, 1, 3/2 (the bisection of
+    the safety factor evaluates such scaled lives). Tolerance 1e-12 relative: the float sums
+    have n = 40 positive terms (≤ n eps each way), and a consistent-rule term s_j^k − s_{j+1}^k
+    loses at most s/(k Δs) ≤ 140/5 = 28 ulps to cancellation (neighbours ≥ 1/64 apart):
+    ≤ 40 · 30 · 1.1e-16 ≈ 1.3e-13."""
+    rng = np.random.default_rng(30)
+    p = rng.choice(np.arange(3, 141), size=40, replace=False)
+    counts = rng.integers(1, 500, size=40)
+    s_exact = [Fraction(int(v), 64) for v in p]
+    c_exact = [int(n) for n in counts]
+    spec = fkm.Spectrum(p / 64.0, counts.astype(float))
+    for lam in (Fraction(1, 2), Fraction(1), Fraction(3, 2)):
+        want = _exact_lives(s_exact, c_exact, lam)
+        for rule in fkm.MINER:
+            got = spec.life(rule, 0.3, float(lam))
+            if want[rule] == math.inf:
+                assert got == math.inf
+            else:
+                assert got == pytest.approx(float(want[rule]), rel=1e-12), (rule, lam)
+        # the per-class damages (the damage matrix) sum to the spectrum's damage
+        for rule in ("elementary", "modified"):
+            d = fkm.class_damage(float(lam) * p / 64.0, counts, rule).sum()
+            assert d == pytest.approx(0.3 / float(want[rule]), rel=1e-12)
+    # the core's spectrum: the surface's scaled, no new sort, the same lives
+    half = spec.scaled(0.5)
+    for rule in fkm.MINER:
+        assert half.life(rule, 0.3, 3.0) == spec.life(rule, 0.3, 1.5)
+    assert fkm.Spectrum(p / 64.0, counts).scaled(0.0).life("modified", 0.3) == math.inf
