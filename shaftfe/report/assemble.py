@@ -265,7 +265,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     with prog.stage("fatigue"):
         fat, ff, scaled, bench = _fatigue(o, res, ref, history, material)
     with prog.stage("strength by standard"):
-        strength = _strength(o, variant, ref, history)
+        strength = _strength(o, variant, ref, history, ff.result.cycles)
     with prog.stage("Campbell"):
         camp, cres, rotor_model = campbell(variant, engine, o)
     with prog.stage("VTU"):
@@ -291,9 +291,10 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         warnings=tuple(collected()))
 
 
-def _strength(o: ReportOptions, variant, ref, history) -> dict:
-    """FKM on the same static reference (no second solve; 3D only), DIN 743 on the beam, the
-    bearings over the duty cycle and the seed's key and gear checks, with the defaults of
+def _strength(o: ReportOptions, variant, ref, history, cycles) -> dict:
+    """FKM on the same static reference (no second solve; 3D only) and the same rainflow count
+    ``cycles`` (the fatigue stage's: counted once), DIN 743 on the beam, the bearings over the
+    duty cycle and the seed's key and gear checks, with the defaults of
     ``shaftfe fatigue --method fkm | din743``."""
     from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
     from shaftfe.fatigue import standards as sd
@@ -307,7 +308,8 @@ def _strength(o: ReportOptions, variant, ref, history) -> dict:
         res = assess_field(ref, history, load_card(opts.card), load_surfaces(),
                            ground_fillets=sd.ground_fillets(variant), rule=opts.rule,
                            j_D=sd.fkm.J_D[(opts.consequences, opts.inspection)],
-                           damage_sum=opts.damage_sum, design_life_blocks=o.design_life_blocks)
+                           damage_sum=opts.damage_sum, design_life_blocks=o.design_life_blocks,
+                           cycles=cycles)
         out["fkm"] = so.fkm_summary(res)
     job = FatigueJob(spectrum=str(o.spectrum), variant=o.variant)
     beam = sd.beam_at_ref(variant)              # one beam solve for DIN 743 and the bearings
