@@ -17,6 +17,8 @@ def register(sub) -> None:
     p.add_argument("--variant", required=True, help="variant name, e.g. x2_57")
     p.add_argument("--rpm", default="10000", help="speed(s) in rpm, comma-separated "
                    "(default 10000), e.g. 10000,7000")
+    from shaftfe.commands._common import add_engine_option
+    add_engine_option(p)
     p.add_argument("--rigid-supports", action="store_true",
                    help="simple supports at the bearing centres (Inventor shaft module) "
                    "instead of the bearing spring matrices")
@@ -44,6 +46,8 @@ def run(args) -> int:
     from shaftfe.commands._common import parse_rpm_list, print_json, print_table, write_atomic
 
     rpms = parse_rpm_list(args.rpm)
+    from shaftfe.commands._common import check_speeds
+    check_speeds(rpms, args)
     from shaftfe.util.limits import check_max_element
     check_max_element(args.max_element)
     plot_fmt = None

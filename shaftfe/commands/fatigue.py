@@ -27,64 +27,65 @@ def register(sub) -> None:
         "in blocks / hours / km, the safety factor at the design life and the hot spot "
         "(singular points at the bearing and load-patch edges excluded; the unfiltered minimum "
         "shown too). Writes fatigue.vtu, summary.json and rainflow / damage / Haigh plots.")
+    from shaftfe.fatigue.method_options import applies_to, help_epilog
+    p.epilog = help_epilog()
+
+    def opt(name, help, **kw):               # an option of some methods: default None (given?)
+        p.add_argument(name, default=None, help=f"{help} {applies_to(name)}", **kw)
     p.add_argument("--method", default="fkm",
                    help="fkm (default: FKM guideline, local stresses on the 3D field, the "
                    "shaft's real material and surface) | din743 (DIN 743, nominal stresses on "
                    "the beam) | seed (the seed's Ansys-style method: von Mises, Soderberg, "
                    "Structural Steel S-N; exactly as before)")
-    p.add_argument("--card", default="14220",
-                   help="strength card in geometry/common/strength.toml (fkm, din743; "
-                   "default 14220 = 16MnCr5 case hardened)")
-    p.add_argument("--miner", default="modified",
-                   help="FKM governing Miner rule: elementary | modified (default, Haibach) | "
-                   "consistent; all three are printed")
-    p.add_argument("--consequences", default="severe",
-                   help="FKM j_D: severe (default: a broken balancer shaft wrecks the engine) | "
-                   "moderate")
-    p.add_argument("--inspection", action="store_true",
-                   help="FKM j_D with regular inspections (default none)")
-    p.add_argument("--damage-sum", type=float, default=0.3,
-                   help="FKM effective damage sum D_M (default 0.3, steel)")
-    p.add_argument("--kappa", type=float, default=None,
-                   help="ISO 281 viscosity ratio κ of the bearings (default 1.0)")
-    p.add_argument("--ec", type=float, default=None,
-                   help="ISO 281 contamination factor e_C (default 0.3)")
+    opt("--card", "strength card in geometry/common/strength.toml (default 14220 = 16MnCr5 "
+        "case hardened)")
+    opt("--miner", "FKM governing Miner rule: elementary | modified (default, Haibach) | "
+        "consistent; all three are printed")
+    opt("--consequences", "FKM j_D: severe (default: a broken balancer shaft wrecks the "
+        "engine) | moderate")
+    opt("--inspection", "FKM j_D with regular inspections (default none)",
+        action="store_true")
+    opt("--damage-sum", "FKM effective damage sum D_M (default 0.3, steel)", type=float)
+    opt("--kappa", "ISO 281 viscosity ratio κ of the bearings (default 1.0)", type=float)
+    opt("--ec", "ISO 281 contamination factor e_C (default 0.3)", type=float)
     p.add_argument("spectrum", help="rpm history: normalised rpm²/ref² (seed rpm.dat), rpm, or "
                    "csv 'time_s,rpm' (see shaftfe.fatigue.history)")
     p.add_argument("--variant", default="x2_57", help="variant name or path (default x2_57)")
+    p.add_argument("--engine", default="vm450",
+                   help="engine file whose max_rpm is the highest speed the history may reach "
+                   "(default vm450: the engine of the x2_* balancer shafts)")
+    p.add_argument("--allow-overspeed", action="store_true",
+                   help="assess a history above the engine's max_rpm (with a warning)")
     p.add_argument("--ref-rpm", type=float, default=None,
                    help="speed a normalised history is normalised by (default: the file's "
                    "'# reference_rpm' header, else 7000 as the seed)")
     p.add_argument("--sample-rate", type=float, default=None,
                    help="sample rate in Hz of an rpm / normalised file without a header")
-    p.add_argument("--mean-stress", default="soderberg",
-                   help="soderberg | goodman | gerber | none (default soderberg, as the seed)")
-    p.add_argument("--equivalent", default="von_mises",
-                   help="von_mises | signed_von_mises (default von_mises, as the seed)")
-    p.add_argument("--material", default="structural_steel",
-                   help="S-N card in geometry/common/sn_curves.toml: structural_steel (default, "
-                   "the seed's Ansys Structural Steel) | 14220")
-    p.add_argument("--design-life", type=float, default=1e7,
-                   help="design life in blocks (passes of the history), default 1e7")
+    opt("--mean-stress", "soderberg | goodman | gerber | none (default soderberg, as the seed)")
+    opt("--equivalent", "von_mises | signed_von_mises (default von_mises, as the seed)")
+    opt("--material", "S-N card in geometry/common/sn_curves.toml: structural_steel (default, "
+        "the seed's Ansys Structural Steel) | 14220")
+    opt("--design-life-h", "design life in hours of riding (default: 1e7 blocks, the seed's; "
+        "1e7 blocks of the seed's 300 s block = 833 333 h)", type=float)
+    opt("--design-life", "design life in blocks (passes of the history), the seed's form; "
+        "not together with --design-life-h", type=float)
     p.add_argument("--speed-kmh", type=float, default=70.0,
                    help="average riding speed for the life in km (default 70)")
-    p.add_argument("--kf", type=float, default=1.0,
-                   help="fatigue strength factor in (0, 1] multiplying the S-N curve (default 1)")
-    p.add_argument("--model", default="solid",
-                   help="static model: solid (3D P2 tets, default) | axisymmetric (Fourier "
-                   "harmonics on the revolved surface; keyways and the hex socket left out)")
-    p.add_argument("--level", default="default", help="mesh level: " + " | ".join(LEVEL_NAMES)
-                   + " (axisymmetric: coarse | default | fine)")
-    p.add_argument("--exclude-mm", type=float, default=0.0,
-                   help="exclude also nodes closer than this to a bearing / load patch edge "
-                   "from the filtered hot spot (default 0: one element layer, as shaftfe static)")
-    p.add_argument("--seed-load-case", action=argparse.BooleanOptionalAction, default=False,
-                   help="load only the seed's forces F1 (gear + counterweight 1) and Fv2 "
-                   "(counterweight 2), as the seed did; default off: every part, as every "
-                   "command")
-    p.add_argument("--spin-softening", action=argparse.BooleanOptionalAction, default=True,
-                   help="the parts' m ω² u in the static solution (default on; each node's "
-                   "stress then follows S0 (λ + β λ²) over the history); the seed had none")
+    opt("--kf", "fatigue strength factor in (0, 1] multiplying the S-N curve (default 1)",
+        type=float)
+    opt("--model", "static model: solid (3D P2 tets, default) | axisymmetric (Fourier "
+        "harmonics on the revolved surface; keyways and the hex socket left out; not FKM)")
+    opt("--level", "mesh level: " + " | ".join(LEVEL_NAMES)
+        + " (axisymmetric: coarse | default | fine; default: default)")
+    opt("--exclude-mm", "exclude also nodes closer than this to a bearing / load patch edge "
+        "from the filtered hot spot (default 0: one element layer, as shaftfe static)",
+        type=float)
+    opt("--seed-load-case", "load only the seed's forces F1 (gear + counterweight 1) and Fv2 "
+        "(counterweight 2), as the seed did; default off: every part, as every command",
+        action=argparse.BooleanOptionalAction)
+    opt("--spin-softening", "the parts' m ω² u in the static solution (default on; each "
+        "node's stress then follows S0 (λ + β λ²) over the history); the seed had none",
+        action=argparse.BooleanOptionalAction)
     p.add_argument("--cache-dir", default=None,
                    help="cache directory for the mesh and the static solution (default "
                    "$SHAFTFE_CACHE_DIR or ~/.cache/shaftfe)")
@@ -108,11 +109,12 @@ def run(args) -> int:
     from pathlib import Path
 
     from shaftfe.commands._common import print_json
+    from shaftfe.fatigue.method_options import with_defaults
     from shaftfe.fatigue.outputs import write_outputs
     from shaftfe.fatigue.run import check_job, load_inputs, run_fatigue
     from shaftfe.util.atomic import staged_dir
     from shaftfe.util.progress import Progress
-
+    with_defaults(args)                 # an option the method does not use: refused
     job = job_of(args)
     check_job(job)
     if args.method != "seed":

@@ -33,8 +33,9 @@ def run_standard(args, job) -> int:
     from shaftfe.errors import InputError
     from shaftfe.fatigue import standards as sd
     from shaftfe.fatigue import standards_out as so
-    from shaftfe.fatigue.run import load_inputs
+    from shaftfe.fatigue.run import load_inputs, resolve_design_life
     from shaftfe.util.atomic import staged_dir
+    from shaftfe.util.notices import collected
 
     if args.method not in sd.METHODS:
         raise InputError("command line", "--method", " | ".join(sd.METHODS), got=args.method)
@@ -42,6 +43,7 @@ def run_standard(args, job) -> int:
     sd.check_options(opts)
     kappa, ec = check_element_options(args)
     inputs = load_inputs(job)
+    job = resolve_design_life(job, inputs.history)
     v = inputs.variant
     out = Path(args.out) if args.out else \
         Path("reports") / out_name(v.name, v.overrides) / f"fatigue-{args.method}"
@@ -56,7 +58,7 @@ def run_standard(args, job) -> int:
             summary = so.din_summary(res)
         el = so.compute_elements(v, inputs.history, kappa, ec, job.speed_kmh, beam)
         summary = {"variant": v.name, "spectrum": str(job.spectrum), **summary,
-                   "elements": el}
+                   "elements": el, "warnings": collected()}
         import json
         (stage / "strength.json").write_text(json.dumps(summary, indent=1) + "\n")
     if args.json:
