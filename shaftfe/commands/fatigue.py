@@ -15,7 +15,7 @@ import dataclasses
 import math
 
 from shaftfe.solid.levels import LEVEL_NAMES
-from shaftfe.util.fmt import big, life
+from shaftfe.util.fmt import life, lives
 
 
 def register(sub) -> None:
@@ -139,10 +139,15 @@ def run(args) -> int:
     if e is not None:
         print(f"mesh level {job.level}: its peak stress reads {100 * e['stress_rel_error']:+.1f} "
               f"% against the axisymmetric truth ({e['source']}); with the "
-              f"hot-spot stress corrected by that, the life is {life(e['life_blocks'])} blocks "
+              f"hot-spot stress corrected by that, the life is {_lives_of(e, result)} "
               f"({_pct(e['life_blocks'], result.field.hot_spot.life_blocks)}) and the safety "
               f"factor {e['safety_factor']:.3f}")
     return 0
+
+
+def _lives_of(e: dict, result) -> str:
+    b = e["life_blocks"]
+    return lives(b, None if b is None else b * result.history.duration_s / 3600.0)
 
 
 def _pct(new: float | None, old: float) -> str:
@@ -191,11 +196,10 @@ def _print_result(run, out, plots) -> None:
         print(f"life: 0 blocks (static failure: a cycle's mean stress reaches the "
               f"{'yield' if args.mean_stress == 'soderberg' else 'ultimate'} strength)")
     else:
-        print(f"life: {big(hot.life_blocks)} blocks = {big(hot.life_hours)} h = "
-              f"{big(hot.life_km)} km at {args.speed_kmh:g} km/h")
+        print(f"life: {lives(hot.life_blocks, hot.life_hours, hot.life_km, args.speed_kmh)}")
     cap = " (capped: life at this load factor >= design life)" \
         if hot.safety_status == "capped" else ""
-    print(f"safety factor at {args.design_life:g} blocks: {hot.safety_factor:.3f}{cap}")
+    print(f"safety factor at {_design_life(args, history)}: {hot.safety_factor:.3f}{cap}")
     print(f"hot spot: {hot.region} at x y z = {_xyz(hot.xyz_mm)} mm, "
           f"sigma_eq = {s_hot:.1f} MPa at {ref.ref_rpm:g} rpm"
           + (f" = {s_hot * (history.rpm_ref / ref.ref_rpm) ** 2:.1f} MPa at "
@@ -203,7 +207,7 @@ def _print_result(run, out, plots) -> None:
           + " "
           f"(singular points excluded: {ff.n_excluded} nodes)")
     print(f"unfiltered minimum: {raw.region} at x y z = {_xyz(raw.xyz_mm)} mm, life "
-          f"{life(raw.life_blocks)} blocks, safety factor {raw.safety_factor:.3g}"
+          f"{lives(raw.life_blocks, raw.life_hours)}, safety factor {raw.safety_factor:.3g}"
           f"{' (a singular point, excluded)' if raw.excluded else ''}")
     print()
     rows = [[h.region, h.xyz_mm[0], h.sigma_eq_ref_MPa, life(h.life_blocks), h.safety_factor]
@@ -219,6 +223,13 @@ def _print_result(run, out, plots) -> None:
         print(f"note: {n}")
     print(f"\nwrote {vtu}, {out / 'summary.json'}, "
           + ", ".join(str(out / v) for v in plots.values()))
+
+
+def _design_life(job, history) -> str:
+    """'1e+07 blocks (= 833 333 h = 58 333 333 km)': the design life in every unit."""
+    from shaftfe.util.fmt import big
+    h = job.design_life * history.duration_s / 3600.0
+    return f"{job.design_life:g} blocks (= {big(h)} h = {big(h * job.speed_kmh)} km)"
 
 
 def _xyz(p) -> str:

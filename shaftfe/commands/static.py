@@ -258,9 +258,8 @@ def _station_rows(stations, beam_st: dict) -> list[list]:
 
 
 def _fmt_life(v) -> object:
-    if v is None or (isinstance(v, float) and not math.isfinite(v)):
-        return "inf"
-    return float(v)
+    from shaftfe.util.fmt import life
+    return life(v)              # above 1e9 h or infinite: "no finite life at this load"
 
 
 def _beam_station(st: dict, name: str) -> object:
