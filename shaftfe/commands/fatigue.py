@@ -15,7 +15,7 @@ import dataclasses
 import math
 
 from shaftfe.solid.levels import LEVEL_NAMES
-from shaftfe.util.fmt import life, lives
+from shaftfe.util.fmt import design_life, life, lives
 
 
 def register(sub) -> None:
@@ -199,7 +199,8 @@ def _print_result(run, out, plots) -> None:
         print(f"life: {lives(hot.life_blocks, hot.life_hours, hot.life_km, args.speed_kmh)}")
     cap = " (capped: life at this load factor >= design life)" \
         if hot.safety_status == "capped" else ""
-    print(f"safety factor at {_design_life(args, history)}: {hot.safety_factor:.3f}{cap}")
+    print(f"safety factor at {design_life(args.design_life, history.duration_s, args.speed_kmh)}"
+          f": {hot.safety_factor:.3f}{cap}")
     print(f"hot spot: {hot.region} at x y z = {_xyz(hot.xyz_mm)} mm, "
           f"sigma_eq = {s_hot:.1f} MPa at {ref.ref_rpm:g} rpm"
           + (f" = {s_hot * (history.rpm_ref / ref.ref_rpm) ** 2:.1f} MPa at "
@@ -223,13 +224,6 @@ def _print_result(run, out, plots) -> None:
         print(f"note: {n}")
     print(f"\nwrote {vtu}, {out / 'summary.json'}, "
           + ", ".join(str(out / v) for v in plots.values()))
-
-
-def _design_life(job, history) -> str:
-    """'1e+07 blocks (= 833 333 h = 58 333 333 km)': the design life in every unit."""
-    from shaftfe.util.fmt import big
-    h = job.design_life * history.duration_s / 3600.0
-    return f"{job.design_life:g} blocks (= {big(h)} h = {big(h * job.speed_kmh)} km)"
 
 
 def _xyz(p) -> str:

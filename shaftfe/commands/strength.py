@@ -41,7 +41,7 @@ def run_standard(args, job) -> int:
     from shaftfe.fatigue import standards_out as so
     from shaftfe.fatigue.run import load_inputs, resolve_design_life
     from shaftfe.util.atomic import staged_dir
-    from shaftfe.util.fmt import json_clean, life_reason
+    from shaftfe.util.fmt import design_life, json_clean, life_reason
     from shaftfe.util.notices import collected
 
     if args.method not in sd.METHODS:
@@ -82,9 +82,9 @@ def run_standard(args, job) -> int:
           f" {h.source} ({h.n_samples} samples, rpm {h.rpm.min():.0f}-{h.rpm.max():.0f}), "
           f"card {opts.card}")
     if args.method == "fkm":
-        from shaftfe.commands.fatigue import _design_life
         print(f"static: {'from cache' if ref.from_cache else 'solved'} ({ref.ref_rpm:g} rpm, "
-              f"{ref.n_nodes} nodes, P2 {job.level}); design life {_design_life(job, h)}; "
+              f"{ref.n_nodes} nodes, P2 {job.level}); design life "
+              f"{design_life(job.design_life, h.duration_s, job.speed_kmh)}; "
               f"j_D {res.j_D:g}; D_M {res.damage_sum:g}; governing rule: {res.rule}")
         print_table(so.FKM_HEAD, so.fkm_rows(res), title="FKM, local stresses, per region "
                     "(surface layer and core at the case depth)")

@@ -47,6 +47,12 @@ def lives(blocks: float | None, hours: float | None, km: float | None = None,
     return out
 
 
+def design_life(blocks: float, block_seconds: float, speed_kmh: float) -> str:
+    """'1e+07 blocks (= 833 333 h = 58 333 333 km)': a design life in every unit."""
+    h = blocks * block_seconds / 3600.0
+    return f"{blocks:g} blocks (= {big(h)} h = {big(h * speed_kmh)} km)"
+
+
 def json_clean(o):
     """``o`` made JSON-safe, recursively: non-finite floats → None (JSON has no inf/nan),
     tuples → lists, keys → str, numpy scalars → float or int, anything else not JSON → str."""
