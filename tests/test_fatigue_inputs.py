@@ -30,7 +30,7 @@ def test_a_history_at_the_limit_passes_above_it_is_refused_or_warned():
     at = hist.from_rpm([3000.0, 9500.0, 3000.0], source="at.dat")
     check_history(at, "vm450", False)                           # exactly max_rpm: allowed
     above = hist.from_rpm([3000.0, 9500.5, 3000.0], source="above.dat")
-    with pytest.raises(InputError, match=r"above.dat: highest speed .* = 9500.5 .*9500 rpm"):
+    with pytest.raises(InputError, match=r"above.dat: highest rpm = 9500.5 .*9500 rpm"):
         check_history(above, "vm450", False)
     with pytest.warns(UserWarning, match="9500.5 rpm is above 9500 rpm"):
         check_history(above, "vm450", True)

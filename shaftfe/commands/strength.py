@@ -91,7 +91,7 @@ def run_standard(args, job) -> int:
         g, c = res.governing
         print(f"governing: {g.region} ({c.layer}), safety {so._f(c.safety[res.rule])} against "
               f"j_D {res.j_D:g}, degree of utilisation {so._f(c.utilisation[res.rule])} "
-              f"({'passes' if c.utilisation[res.rule] <= 1 else 'FAILS'}); life "
+              f"({'passes' if c.utilisation[res.rule] <= 1 else 'FAILS'}); life: "
               f"{_fkm_lives(c.life_blocks[res.rule], res.block_seconds, job.speed_kmh)}")
     else:
         print(f"cycle: the history's largest, {res.rpm_min:.0f}-{res.rpm_max:.0f} rpm (case 2); "

@@ -147,7 +147,7 @@ def check_history(history, engine: str, allow_overspeed: bool):
                          "sample above 0 rpm)", reason="is 0 in every sample (the engine at "
                          "rest): no load in this history: no damage, no bearing wear")
     check_operating_speed(top, engine, allow_overspeed, history.source,
-                          "highest speed of the history in rpm")
+                          "highest rpm")
 
 
 def check_model_level(model: str, level: str) -> None:
