@@ -129,9 +129,14 @@ def _best_of(fn, repeat: int = 5, budget_s: float = 3.0) -> dict:
 def _fatigue_defaults():
     """The argparse defaults of ``shaftfe fatigue`` (so the benchmark follows the command)."""
     from shaftfe.commands import fatigue as fcmd
+    from shaftfe.fatigue.method_options import with_defaults
+    from shaftfe.fatigue.run import DEFAULT_DESIGN_LIFE_BLOCKS
     p = argparse.ArgumentParser()
     fcmd.register(p.add_subparsers())
-    return p.parse_args(["fatigue", str(SPECTRUM)])
+    a = p.parse_args(["fatigue", str(SPECTRUM), "--method", "seed"])
+    with_defaults(a)                   # the method options are filled in after parsing
+    a.design_life = DEFAULT_DESIGN_LIFE_BLOCKS     # neither --design-life nor -h given
+    return a
 
 
 def _c_static(spec: dict) -> dict:

@@ -444,3 +444,80 @@ def test_bad_input_b_static_variant(case, space, capsys, monkeypatch):
     """The same contract as the catalogue's test for the cases above (defined after its
     parametrisation, so run here)."""
     test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
+# --- issue #30 §1-2, slice a1 (the fatigue command's inputs) ---------------------------------
+# The engine's speed limit (util.limits: max_rpm of geometry/engines/vm450.toml, 9500 rpm; a
+# static/beam proof check up to 1.2 × = 11 400 rpm), absurd sample rates and design lives
+# (history.SAMPLE_RATE_HZ, run.DESIGN_LIFE_*), options the chosen method does not use
+# (fatigue.method_options), an engine at rest, and endless or binary streams (history.MAX_*).
+A1_FILES = {
+    "over.dat": "# format = rpm\n# sample_rate_hz = 1\n3000\n19999\n3000\n8000\n",
+    "rate_huge.dat": "# format = rpm\n# sample_rate_hz = 1e300\n3000\n8000\n3000\n",
+    "rate_tiny.dat": "# format = rpm\n# sample_rate_hz = 1e-300\n3000\n8000\n3000\n",
+    "steps_tiny.csv": "time_s,rpm\n0,3000\n1e-300,8000\n2e-300,3000\n",
+    "at_rest.dat": "# format = rpm\n# sample_rate_hz = 1\n0\n0\n0\n0\n",
+}
+A1_SPEED = ["19999", "9500", "vm450.toml", "--allow-overspeed"]
+A1_CASES: dict[str, tuple[list[str], list[str]]] = {
+    "fatigue_history_above_max_rpm": (["fatigue", "{W}/over.dat", "--out", "{W}/o"],
+                                      ["over.dat", *A1_SPEED]),
+    "fatigue_din743_history_above_max_rpm": (["fatigue", "{W}/over.dat", "--method", "din743",
+                                              "--out", "{W}/o"], ["over.dat", *A1_SPEED]),
+    "fatigue_seed_history_above_max_rpm": (["fatigue", "{W}/over.dat", "--method", "seed",
+                                            "--out", "{W}/o"], ["over.dat", *A1_SPEED]),
+    "report_spectrum_above_max_rpm": (["report", "--spectrum", "{W}/over.dat", "--no-pictures",
+                                       "--out", "{W}/o"], ["over.dat", *A1_SPEED]),
+    "static_rpm_above_proof_speed": (["static", "--variant", "x2_57", "--rpm", "7000,12000",
+                                      "--out", "{W}/o"],
+                                     ["--rpm", "12000", "11400", "vm450.toml", "1.2"]),
+    "beam_rpm_above_proof_speed": (["beam", "--variant", "x2_57", "--rpm", "12000"],
+                                   ["--rpm", "12000", "11400", "vm450.toml"]),
+    "fatigue_sample_rate_1e300": (["fatigue", "{W}/rate_huge.dat", "--out", "{W}/o"],
+                                  ["rate_huge.dat", "sample_rate_hz", "100000"]),
+    "fatigue_sample_rate_1e-300": (["fatigue", "{W}/rate_tiny.dat", "--out", "{W}/o"],
+                                   ["rate_tiny.dat", "sample_rate_hz", "0.001"]),
+    "fatigue_sample_rate_option_1e300": (["fatigue", "{RPM}", "--sample-rate", "1e300", "--out",
+                                          "{W}/o"], ["sample_rate_hz", "100000"]),
+    "fatigue_csv_steps_1e-300_s": (["fatigue", "{W}/steps_tiny.csv", "--out", "{W}/o"],
+                                   ["steps_tiny.csv", "line 3: time_s", "1e-05"]),
+    "fatigue_design_life_1e300": (["fatigue", "{RPM}", "--design-life", "1e300", "--out",
+                                   "{W}/o"], ["--design-life", "1e+09"]),
+    "fatigue_design_life_h_1e300": (["fatigue", "{RPM}", "--design-life-h", "1e300", "--out",
+                                     "{W}/o"], ["--design-life-h", "1e+06"]),
+    "fatigue_design_life_in_blocks_and_hours": (["fatigue", "{RPM}", "--design-life", "1e7",
+                                                 "--design-life-h", "5000", "--out", "{W}/o"],
+                                                ["--design-life", "--design-life-h", "not both"]),
+    "fatigue_speed_kmh_1e300": (["fatigue", "{RPM}", "--speed-kmh", "1e300", "--out", "{W}/o"],
+                                ["--speed-kmh", "400"]),
+    "fatigue_card_with_seed": (["fatigue", "{RPM}", "--card", "14220", "--method", "seed",
+                                "--out", "{W}/o"], ["--card", "fkm | din743", "seed"]),
+    "fatigue_miner_with_seed": (["fatigue", "{RPM}", "--miner", "elementary", "--method", "seed",
+                                 "--out", "{W}/o"], ["--miner", "only with --method fkm"]),
+    "fatigue_model_with_din743": (["fatigue", "{RPM}", "--model", "axisymmetric", "--method",
+                                   "din743", "--out", "{W}/o"], ["--model", "seed | fkm"]),
+    "fatigue_material_with_fkm": (["fatigue", "{RPM}", "--material", "14220", "--out", "{W}/o"],
+                                  ["--material", "only with --method seed", "fkm"]),
+    "fatigue_design_life_with_din743": (["fatigue", "{RPM}", "--design-life-h", "5000",
+                                         "--method", "din743", "--out", "{W}/o"],
+                                        ["--design-life-h", "din743"]),
+    "fatigue_engine_at_rest": (["fatigue", "{W}/at_rest.dat", "--out", "{W}/o"],
+                               ["at_rest.dat", "no load", "no damage", "no bearing wear"]),
+    "fatigue_din743_engine_at_rest": (["fatigue", "{W}/at_rest.dat", "--method", "din743",
+                                       "--out", "{W}/o"], ["at_rest.dat", "no load"]),
+    "fatigue_seed_engine_at_rest": (["fatigue", "{W}/at_rest.dat", "--method", "seed", "--out",
+                                     "{W}/o"], ["at_rest.dat", "no load"]),
+    "report_engine_at_rest": (["report", "--spectrum", "{W}/at_rest.dat", "--no-pictures",
+                               "--out", "{W}/o"], ["at_rest.dat", "no load"]),
+    "fatigue_dev_zero": (["fatigue", "/dev/zero", "--out", "{W}/o"], ["/dev/zero", "NUL", "MB"]),
+    "fatigue_dev_urandom": (["fatigue", "/dev/urandom", "--out", "{W}/o"],
+                            ["/dev/urandom", "binary"]),
+}
+CASES.update(A1_CASES)        # after the catalogue's own parametrisation: run by the test below
+
+
+@pytest.mark.parametrize("case", sorted(A1_CASES))
+def test_a1_fatigue_inputs_are_one_clear_line_exit_2(case, space, capsys, monkeypatch):
+    _, w = space
+    for name, text in A1_FILES.items():
+        (w / name).write_text(text)
+    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys,
+                                                               monkeypatch)

@@ -83,7 +83,8 @@ def test_seed_run_outputs_and_cache(seed_run):
     # rpm.dat gives (7500/7000)² to 12 significant digits (1.14795918367): ≤ 4.4e-12 relative
     # (measured 3.0e-12); 1e-11 = 2× that (was 1e-9)
     assert s["history"]["load_factor_max"] == pytest.approx((7500 / 10_000) ** 2, rel=1e-11)
-    for line in ("life:", "safety factor at 1e+07 blocks:", "hot spot:", "unfiltered minimum:",
+    for line in ("life:", "safety factor at 1e+07 blocks (= 833 333 h = 58 333 333 km):",
+                 "hot spot:", "unfiltered minimum:",
                  "cycles per block:"):
         assert line in second
     m = meshio.read(out / "fatigue.vtu")
@@ -249,10 +250,14 @@ def test_standard_methods_write_their_summary(cache, tmp_path, capsys, method):
     by its formula); every file `fatigue --help` names for the method, and nothing else.
     FKM's fatigue.vtu holds the governing utilisation at the governing node (one value)."""
     out = tmp_path / method
-    rc, text, err = run(capsys, RPM_DAT, "--method", method, "--level", "coarse",
+    level = ("--level", "coarse") if method == "fkm" else ()     # DIN 743 has no mesh
+    rc, text, err = run(capsys, RPM_DAT, "--method", method, *level,
                         "--cache-dir", cache, "--out", out)
     assert rc == 0, err
-    s = json.loads((out / "summary.json").read_text())
+
+    def no_inf_nan(c):                   # summary files are strict JSON (allow_nan=False)
+        raise AssertionError(f"{c} in summary.json")
+    s = json.loads((out / "summary.json").read_text(), parse_constant=no_inf_nan)
     assert s["method"] == method and s["warnings"] == []
     from shaftfe.fatigue.standards_out import OUTPUT_FILES
     assert sorted(p.name for p in out.iterdir()) == sorted(OUTPUT_FILES[method])
@@ -291,3 +296,22 @@ def test_help_names_every_file_of_each_method(capsys):
         own = parts[method].split(";")[0]
         for f in files:
             assert f in own, (method, f)
+
+
+def test_overspeed_allowed_is_assessed_with_a_warning_and_the_design_life_in_hours(
+        cache, tmp_path, capsys):
+    """A history reaching 19 999 rpm (above the VM 450's max_rpm 9500) is refused without
+    --allow-overspeed (tests/test_bad_input.py); with it, it is assessed, the warning is printed
+    on stderr and written into summary.json. The design life given in hours becomes blocks of
+    the history: 1000 h of a 4 s block = 900 000 blocks (3.6e6 / 4: exact in binary)."""
+    spec = tmp_path / "over.dat"
+    spec.write_text("# format = rpm\n# sample_rate_hz = 1\n3000\n19999\n3000\n8000\n")
+    out = tmp_path / "o"
+    rc, text, err = run(capsys, spec, "--level", "coarse", "--cache-dir", cache,
+                        "--allow-overspeed", "--design-life-h", "1000", "--out", out)
+    assert rc == 0, err
+    assert "shaftfe: warning:" in err and "19999" in err and "9500" in err
+    s = json.loads((out / "summary.json").read_text())
+    assert [w["code"] for w in s["warnings"]] == ["overspeed"]
+    assert s["result"]["design_life_blocks"] == 900_000.0
+    assert "safety factor at 900000 blocks (= 1 000 h = 70 000 km):" in text

@@ -70,6 +70,24 @@ def parse_range(text: str, option: str, *, lo: float | None = None,
     return start, stop, step
 
 
+def add_engine_option(p) -> None:
+    """``--engine`` of a command that takes checking speeds (static, beam): its max_rpm is the
+    engine's limit (``util.limits.engine_speed_limit``)."""
+    p.add_argument("--engine", default="vm450",
+                   help="engine file whose max_rpm bounds --rpm (default vm450: the engine of "
+                   "the x2_* balancer shafts): up to 1.2 × max_rpm, an overspeed proof check "
+                   "(the seed's 10 000 rpm is 1.05 × 9500)")
+    p.add_argument("--allow-overspeed", action="store_true",
+                   help="a --rpm above 1.2 × the engine's max_rpm (with a warning)")
+
+
+def check_speeds(rpms, args) -> None:
+    """The checking speeds against the engine's limit for a proof check (util.limits)."""
+    from shaftfe.util.limits import PROOF_FACTOR, check_operating_speed
+    check_operating_speed(max(rpms), args.engine, args.allow_overspeed, "command line",
+                          "--rpm", factor=PROOF_FACTOR)
+
+
 def parse_rpm_list(text: str, option: str = "--rpm") -> list[float]:
     """Parse a comma-separated list of speeds in rpm (``7000,10000``); each finite, in
     [0, limits.RPM_CEILING]; an empty item (``10000,,7000``) is an error."""

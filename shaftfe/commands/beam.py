@@ -17,6 +17,8 @@ def register(sub) -> None:
     p.add_argument("--variant", required=True, help="variant name, e.g. x2_57")
     p.add_argument("--rpm", default="10000", help="speed(s) in rpm, comma-separated "
                    "(default 10000), e.g. 10000,7000")
+    from shaftfe.commands._common import add_engine_option
+    add_engine_option(p)
     p.add_argument("--rigid-supports", action="store_true",
                    help="simple supports at the bearing centres (Inventor shaft module) "
                    "instead of the bearing spring matrices")
@@ -42,8 +44,11 @@ def register(sub) -> None:
 
 def run(args) -> int:
     from shaftfe.commands._common import parse_rpm_list, print_json, print_table, write_atomic
+    from shaftfe.util.fmt import life
 
     rpms = parse_rpm_list(args.rpm)
+    from shaftfe.commands._common import check_speeds
+    check_speeds(rpms, args)
     from shaftfe.util.limits import check_max_element
     check_max_element(args.max_element)
     plot_fmt = None
@@ -87,7 +92,7 @@ def run(args) -> int:
         print()
         print_table(["bearing", "x mm", "Fy N", "Fz N", "|F| N", "L10h h"],
                     [[b.name, f"{b.x_mm:.2f}", f"{b.Fy_N:.1f}", f"{b.Fz_N:.1f}", f"{b.F_N:.1f}",
-                      f"{b.L10h:.1f}"] for b in r.bearings],
+                      life(b.L10h)] for b in r.bearings],
                     title=f"-- {r.rpm:g} rpm: reactions on the shaft")
         print_table(["station", "x mm", "uy mm", "uz mm", "|u| mm"],
                     [[k, f"{s.x_mm:.2f}", f"{s.uy_mm:.5f}", f"{s.uz_mm:.5f}", f"{s.u_mm:.5f}"]

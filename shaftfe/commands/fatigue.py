@@ -15,7 +15,7 @@ import dataclasses
 import math
 
 from shaftfe.solid.levels import LEVEL_NAMES
-from shaftfe.util.fmt import big, life
+from shaftfe.util.fmt import design_life, life, lives
 
 
 def register(sub) -> None:
@@ -32,64 +32,65 @@ def register(sub) -> None:
         "din743_safety.png (S_D, S_F per notch), summary.json; seed: fatigue.vtu (life, "
         "damage, safety factor at every node), haigh.png, rainflow_matrix.png, "
         "damage_matrix.png, summary.json.")
+    from shaftfe.fatigue.method_options import applies_to, help_epilog
+    p.epilog = help_epilog()
+
+    def opt(name, help, **kw):               # an option of some methods: default None (given?)
+        p.add_argument(name, default=None, help=f"{help} {applies_to(name)}", **kw)
     p.add_argument("--method", default="fkm",
                    help="fkm (default: FKM guideline, local stresses on the 3D field, the "
                    "shaft's real material and surface) | din743 (DIN 743, nominal stresses on "
                    "the beam) | seed (the seed's Ansys-style method: von Mises, Soderberg, "
                    "Structural Steel S-N; exactly as before)")
-    p.add_argument("--card", default="14220",
-                   help="strength card in geometry/common/strength.toml (fkm, din743; "
-                   "default 14220 = 16MnCr5 case hardened)")
-    p.add_argument("--miner", default="modified",
-                   help="FKM governing Miner rule: elementary | modified (default, Haibach) | "
-                   "consistent; all three are printed")
-    p.add_argument("--consequences", default="severe",
-                   help="FKM j_D: severe (default: a broken balancer shaft wrecks the engine) | "
-                   "moderate")
-    p.add_argument("--inspection", action="store_true",
-                   help="FKM j_D with regular inspections (default none)")
-    p.add_argument("--damage-sum", type=float, default=0.3,
-                   help="FKM effective damage sum D_M (default 0.3, steel)")
-    p.add_argument("--kappa", type=float, default=None,
-                   help="ISO 281 viscosity ratio κ of the bearings (default 1.0)")
-    p.add_argument("--ec", type=float, default=None,
-                   help="ISO 281 contamination factor e_C (default 0.3)")
+    opt("--card", "strength card in geometry/common/strength.toml (default 14220 = 16MnCr5 "
+        "case hardened)")
+    opt("--miner", "FKM governing Miner rule: elementary | modified (default, Haibach) | "
+        "consistent; all three are printed")
+    opt("--consequences", "FKM j_D: severe (default: a broken balancer shaft wrecks the "
+        "engine) | moderate")
+    opt("--inspection", "FKM j_D with regular inspections (default none)",
+        action="store_true")
+    opt("--damage-sum", "FKM effective damage sum D_M (default 0.3, steel)", type=float)
+    opt("--kappa", "ISO 281 viscosity ratio κ of the bearings (default 1.0)", type=float)
+    opt("--ec", "ISO 281 contamination factor e_C (default 0.3)", type=float)
     p.add_argument("spectrum", help="rpm history: normalised rpm²/ref² (seed rpm.dat), rpm, or "
                    "csv 'time_s,rpm' (see shaftfe.fatigue.history)")
     p.add_argument("--variant", default="x2_57", help="variant name or path (default x2_57)")
+    p.add_argument("--engine", default="vm450",
+                   help="engine file whose max_rpm is the highest speed the history may reach "
+                   "(default vm450: the engine of the x2_* balancer shafts)")
+    p.add_argument("--allow-overspeed", action="store_true",
+                   help="assess a history above the engine's max_rpm (with a warning)")
     p.add_argument("--ref-rpm", type=float, default=None,
                    help="speed a normalised history is normalised by (default: the file's "
                    "'# reference_rpm' header, else 7000 as the seed)")
     p.add_argument("--sample-rate", type=float, default=None,
                    help="sample rate in Hz of an rpm / normalised file without a header")
-    p.add_argument("--mean-stress", default="soderberg",
-                   help="soderberg | goodman | gerber | none (default soderberg, as the seed)")
-    p.add_argument("--equivalent", default="von_mises",
-                   help="von_mises | signed_von_mises (default von_mises, as the seed)")
-    p.add_argument("--material", default="structural_steel",
-                   help="S-N card in geometry/common/sn_curves.toml: structural_steel (default, "
-                   "the seed's Ansys Structural Steel) | 14220")
-    p.add_argument("--design-life", type=float, default=1e7,
-                   help="design life in blocks (passes of the history), default 1e7")
+    opt("--mean-stress", "soderberg | goodman | gerber | none (default soderberg, as the seed)")
+    opt("--equivalent", "von_mises | signed_von_mises (default von_mises, as the seed)")
+    opt("--material", "S-N card in geometry/common/sn_curves.toml: structural_steel (default, "
+        "the seed's Ansys Structural Steel) | 14220")
+    opt("--design-life-h", "design life in hours of riding (default: 1e7 blocks, the seed's; "
+        "1e7 blocks of the seed's 300 s block = 833 333 h)", type=float)
+    opt("--design-life", "design life in blocks (passes of the history), the seed's form; "
+        "not together with --design-life-h", type=float)
     p.add_argument("--speed-kmh", type=float, default=70.0,
                    help="average riding speed for the life in km (default 70)")
-    p.add_argument("--kf", type=float, default=1.0,
-                   help="fatigue strength factor in (0, 1] multiplying the S-N curve (default 1)")
-    p.add_argument("--model", default="solid",
-                   help="static model: solid (3D P2 tets, default) | axisymmetric (Fourier "
-                   "harmonics on the revolved surface; keyways and the hex socket left out)")
-    p.add_argument("--level", default="default", help="mesh level: " + " | ".join(LEVEL_NAMES)
-                   + " (axisymmetric: coarse | default | fine)")
-    p.add_argument("--exclude-mm", type=float, default=0.0,
-                   help="exclude also nodes closer than this to a bearing / load patch edge "
-                   "from the filtered hot spot (default 0: one element layer, as shaftfe static)")
-    p.add_argument("--seed-load-case", action=argparse.BooleanOptionalAction, default=False,
-                   help="load only the seed's forces F1 (gear + counterweight 1) and Fv2 "
-                   "(counterweight 2), as the seed did; default off: every part, as every "
-                   "command")
-    p.add_argument("--spin-softening", action=argparse.BooleanOptionalAction, default=True,
-                   help="the parts' m ω² u in the static solution (default on; each node's "
-                   "stress then follows S0 (λ + β λ²) over the history); the seed had none")
+    opt("--kf", "fatigue strength factor in (0, 1] multiplying the S-N curve (default 1)",
+        type=float)
+    opt("--model", "static model: solid (3D P2 tets, default) | axisymmetric (Fourier "
+        "harmonics on the revolved surface; keyways and the hex socket left out; not FKM)")
+    opt("--level", "mesh level: " + " | ".join(LEVEL_NAMES)
+        + " (axisymmetric: coarse | default | fine; default: default)")
+    opt("--exclude-mm", "exclude also nodes closer than this to a bearing / load patch edge "
+        "from the filtered hot spot (default 0: one element layer, as shaftfe static)",
+        type=float)
+    opt("--seed-load-case", "load only the seed's forces F1 (gear + counterweight 1) and Fv2 "
+        "(counterweight 2), as the seed did; default off: every part, as every command",
+        action=argparse.BooleanOptionalAction)
+    opt("--spin-softening", "the parts' m ω² u in the static solution (default on; each "
+        "node's stress then follows S0 (λ + β λ²) over the history); the seed had none",
+        action=argparse.BooleanOptionalAction)
     p.add_argument("--cache-dir", default=None,
                    help="cache directory for the mesh and the static solution (default "
                    "$SHAFTFE_CACHE_DIR or ~/.cache/shaftfe)")
@@ -114,11 +115,12 @@ def run(args) -> int:
     from pathlib import Path
 
     from shaftfe.commands._common import print_json
+    from shaftfe.fatigue.method_options import with_defaults
     from shaftfe.fatigue.outputs import write_outputs
     from shaftfe.fatigue.run import check_job, load_inputs, run_fatigue
     from shaftfe.util.atomic import staged_dir
     from shaftfe.util.progress import Progress
-
+    with_defaults(args)                 # an option the method does not use: refused
     job = job_of(args)
     check_job(job)
     if args.method != "seed":
@@ -143,7 +145,7 @@ def run(args) -> int:
     if e is not None:
         print(f"mesh level {job.level}: its peak stress reads {100 * e['stress_rel_error']:+.1f} "
               f"% against the axisymmetric truth ({e['source']}); with the "
-              f"hot-spot stress corrected by that, the life is {life(e['life_blocks'])} blocks "
+              f"hot-spot stress corrected by that, the life is {_lives_of(e, result)} "
               f"({_pct(e['life_blocks'], result.field.hot_spot.life_blocks)}) and the safety "
               f"factor {e['safety_factor']:.3f}")
     elif job.model == "solid":
@@ -151,6 +153,11 @@ def run(args) -> int:
               "mesh (measured on x2_57 as shipped: reports/benchmarks/truth.md); no level "
               "correction of the life")
     return 0
+
+
+def _lives_of(e: dict, result) -> str:
+    b = e["life_blocks"]
+    return lives(b, None if b is None else b * result.history.duration_s / 3600.0)
 
 
 def _pct(new: float | None, old: float) -> str:
@@ -199,11 +206,11 @@ def _print_result(run, out, plots) -> None:
         print(f"life: 0 blocks (static failure: a cycle's mean stress reaches the "
               f"{'yield' if args.mean_stress == 'soderberg' else 'ultimate'} strength)")
     else:
-        print(f"life: {big(hot.life_blocks)} blocks = {big(hot.life_hours)} h = "
-              f"{big(hot.life_km)} km at {args.speed_kmh:g} km/h")
+        print(f"life: {lives(hot.life_blocks, hot.life_hours, hot.life_km, args.speed_kmh)}")
     cap = " (capped: life at this load factor >= design life)" \
         if hot.safety_status == "capped" else ""
-    print(f"safety factor at {args.design_life:g} blocks: {hot.safety_factor:.3f}{cap}")
+    print(f"safety factor at {design_life(args.design_life, history.duration_s, args.speed_kmh)}"
+          f": {hot.safety_factor:.3f}{cap}")
     print(f"hot spot: {hot.region} at x y z = {_xyz(hot.xyz_mm)} mm, "
           f"sigma_eq = {s_hot:.1f} MPa at {ref.ref_rpm:g} rpm"
           + (f" = {s_hot * (history.rpm_ref / ref.ref_rpm) ** 2:.1f} MPa at "
@@ -211,7 +218,7 @@ def _print_result(run, out, plots) -> None:
           + " "
           f"(singular points excluded: {ff.n_excluded} nodes)")
     print(f"unfiltered minimum: {raw.region} at x y z = {_xyz(raw.xyz_mm)} mm, life "
-          f"{life(raw.life_blocks)} blocks, safety factor {raw.safety_factor:.3g}"
+          f"{lives(raw.life_blocks, raw.life_hours)}, safety factor {raw.safety_factor:.3g}"
           f"{' (a singular point, excluded)' if raw.excluded else ''}")
     print()
     rows = [[h.region, h.xyz_mm[0], h.sigma_eq_ref_MPa, life(h.life_blocks), h.safety_factor]

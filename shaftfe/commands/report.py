@@ -21,7 +21,10 @@ def register(sub) -> None:
     p.add_argument("--variant", default="x2_57", help="variant name or path (default x2_57)")
     p.add_argument("--spectrum", default=None,
                    help="rpm history (default: the bundled loadspectra/rpm.dat)")
-    p.add_argument("--engine", default="vm450", help="engine file (default vm450)")
+    p.add_argument("--engine", default="vm450", help="engine file (default vm450); its max_rpm "
+                   "ends the Campbell range and bounds the rpm history")
+    p.add_argument("--allow-overspeed", action="store_true",
+                   help="assess an rpm history above the engine's max_rpm (with a warning)")
     p.add_argument("--level", default="default", help="mesh level: coarse | default | fine")
     p.add_argument("--model", default="solid",
                    help="static model: solid (3D P2 tets, default) | axisymmetric (Fourier "
@@ -63,7 +66,8 @@ def options_from_args(args):
         campbell_step_rpm=args.campbell_step, estimate_error=args.estimate_error,
         cache_dir=args.cache_dir, pictures=not args.no_pictures,
         seed_load_case=args.seed_load_case, model=args.model,
-        spin_softening=args.spin_softening, overrides=tuple(getattr(args, "set", None) or ()))
+        spin_softening=args.spin_softening, allow_overspeed=args.allow_overspeed,
+        overrides=tuple(getattr(args, "set", None) or ()))
 
 
 def run(args) -> int:

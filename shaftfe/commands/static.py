@@ -25,6 +25,8 @@ def register(sub) -> None:
     p.add_argument("--variant", required=True, help="variant name (geometry/<name>.toml) or path")
     p.add_argument("--rpm", default="10000",
                    help="speed(s) in rpm, comma-separated (default 10000), e.g. 7000,10000")
+    from shaftfe.commands._common import add_engine_option
+    add_engine_option(p)
     p.add_argument("--model", default="solid", choices=MODELS,
                    help="solid: 3D P2 tets (default); axisymmetric: the body of revolution in "
                    "Fourier harmonics on a 2D meridian mesh (keyways and the hex socket left "
@@ -69,6 +71,8 @@ def run(args) -> int:
     from shaftfe.util.atomic import staged_dir
 
     rpms = parse_rpm_list(args.rpm)
+    from shaftfe.commands._common import check_speeds
+    check_speeds(rpms, args)
     if args.order not in (1, 2):
         raise InputError("--order", "--order", "1 | 2", got=args.order)
     if args.level not in LEVEL_NAMES:
@@ -280,9 +284,8 @@ def _station_rows(stations, beam_st: dict) -> list[list]:
 
 
 def _fmt_life(v) -> object:
-    if v is None or (isinstance(v, float) and not math.isfinite(v)):
-        return "inf"
-    return float(v)
+    from shaftfe.util.fmt import life
+    return life(v)              # above 1e9 h or infinite: "no finite life at this load"
 
 
 def _beam_station(st: dict, name: str) -> object:

@@ -35,6 +35,21 @@ length converts a life in blocks into hours.
 Bad input (empty file, non-numeric value, NaN/inf, negative rpm or load factor, speed above
 ``RPM_CEILING``, non-increasing time, missing header) raises ``InputError`` naming the file, the
 line and the allowed range; the CLI prints it as one line and exits with code 2.
+
+Bounds on what a history may be (each refused with one line naming the file):
+
+``MAX_BYTES`` (256 MB) and ``MAX_LINES`` (10 000 000 lines)
+    what is read of a file. The longest real log the project has met is the 5-million-sample
+    benchmark (100 Hz for 13.9 h, about 40 MB as text); a whole day of riding logged at 100 Hz
+    is 8.6 million samples. Reading stops at the cap, so ``/dev/zero`` or ``/dev/urandom``
+    (endless streams) are refused at once instead of filling the memory; a NUL byte in the
+    first MiB marks a binary file and is refused before more is read.
+``SAMPLE_RATE_HZ`` ([1e-3, 1e5] Hz), also the interval of a csv log ([1e-5, 1e3] s)
+    a sample every 1000 s (17 min) is already too coarse to follow any change of speed on a
+    ride; 100 kHz is ten times the fastest engine-speed loggers (10 kHz), and the speed itself
+    cannot change faster than one ignition (79 Hz at 9500 rpm for a four-stroke single). The
+    block length n / rate turns a life in blocks into hours, so 1e300 Hz would print a life of
+    1e-292 h and 1e-300 Hz an infinite one.
 """
 
 from __future__ import annotations
@@ -53,6 +68,10 @@ DEFAULT_RPM_REF = 7000.0        # reference speed of the seed's static load case
 SEED_SAMPLE_RATE_HZ = 1.0       # seed 000 appendix 5: one sample per second
 FORMATS = ("normalised", "rpm", "csv")
 _AUTO_NORMALISED_MAX = 50.0
+MAX_BYTES = 256 * 2 ** 20      # see the module docstring: ~6× the 5-million-sample log
+MAX_LINES = 10_000_000         # a day at 100 Hz is 8.6 million samples
+SAMPLE_RATE_HZ = (1e-3, 1e5)   # see the module docstring; a csv's intervals: 1/hi .. 1/lo s
+_BINARY_PROBE = 2 ** 20        # a NUL byte in the first MiB: a binary file
 _HEADER_RE = re.compile(r"^#\s*([A-Za-z_][A-Za-z0-9_]*)\s*[=:]\s*(\S.*?)\s*$")
 
 
@@ -117,6 +136,9 @@ def from_rpm(rpm, *, sample_rate_hz: float = SEED_SAMPLE_RATE_HZ,
     _check_ref(rpm_ref, source, "rpm_ref")
     if rpm.size == 0:
         raise InputError(source, "rpm", "at least one sample", reason="is empty")
+    if rpm.size > MAX_LINES:
+        raise InputError(source, "rpm", f"at most {MAX_LINES:,} samples".replace(",", " "),
+                         got=rpm.size, reason="has too many samples")
     bad = ~(np.isfinite(rpm) & (rpm >= 0) & (rpm <= RPM_CEILING))
     if bad.any():
         i = int(np.argmax(bad))
@@ -143,17 +165,42 @@ def read_history(path: str | Path, *, fmt: str | None = None, rpm_ref: float | N
         _check_ref(rpm_ref, "command line", "rpm_ref")
     if sample_rate_hz is not None:
         _check_rate(sample_rate_hz, "command line", "sample_rate_hz")
-    try:
-        text = path.read_text(encoding="utf-8-sig")   # tolerate a BOM from spreadsheet exports
-    except FileNotFoundError:
-        raise InputError(src, "file", "an existing, readable file", reason="does not exist")\
-            from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(src, "file", "a readable UTF-8 text file",
-                         reason=f"cannot be read ({exc.__class__.__name__})") from None
+    text = _read_capped(path, src)
 
     fast = _read_fast(src, text, fmt, rpm_ref, sample_rate_hz)
     return fast if fast is not None else _read_lines(src, text, fmt, rpm_ref, sample_rate_hz)
+
+
+def _read_capped(path: Path, src: str) -> str:
+    """The file's text, at most ``MAX_BYTES`` and ``MAX_LINES`` (see the module docstring):
+    an endless or binary stream is refused after at most ``MAX_BYTES`` bytes read."""
+    allowed = (f"a UTF-8 text file of at most {MAX_BYTES // 2 ** 20} MB and "
+               f"{MAX_LINES:,} lines".replace(",", " "))
+    try:
+        with open(path, "rb") as fh:
+            data = fh.read(_BINARY_PROBE)
+            if b"\0" not in data:
+                data += fh.read(MAX_BYTES + 1 - len(data))
+    except FileNotFoundError:
+        raise InputError(src, "file", "an existing, readable file", reason="does not exist")\
+            from None
+    except OSError as exc:
+        raise InputError(src, "file", "a readable UTF-8 text file",
+                         reason=f"cannot be read ({exc.__class__.__name__})") from None
+    if b"\0" in data:
+        raise InputError(src, "file", allowed, reason="is binary (NUL bytes), not text")
+    if len(data) > MAX_BYTES:
+        raise InputError(src, "file", allowed, reason=f"is larger than "
+                         f"{MAX_BYTES // 2 ** 20} MB (far longer than any real rpm log)")
+    if data.count(b"\n") > MAX_LINES:
+        raise InputError(src, "file", allowed, reason=f"has more than {MAX_LINES:,} lines "
+                         "(far longer than any real rpm log)".replace(",", " "))
+    try:
+        text = data.decode("utf-8-sig")       # tolerate a BOM from spreadsheet exports
+    except UnicodeDecodeError as exc:
+        raise InputError(src, "file", "a readable UTF-8 text file",
+                         reason=f"cannot be read ({exc.__class__.__name__})") from None
+    return text.replace("\r\n", "\n").replace("\r", "\n")    # as text mode's newlines
 
 
 def _read_lines(src: str, text: str, fmt: str | None, rpm_ref, sample_rate_hz) -> LoadHistory:
@@ -227,6 +274,9 @@ def _read_fast(src: str, text: str, fmt: str | None, rpm_ref, sample_rate_hz):
         t, rpm = data[:, 0], data[:, 1]
         if not (np.all(np.diff(t) > 0) and np.all((rpm >= 0) & (rpm <= RPM_CEILING))):
             return None
+        dt = np.diff(t)
+        if not np.all((dt >= 1.0 / SAMPLE_RATE_HZ[1]) & (dt <= 1.0 / SAMPLE_RATE_HZ[0])):
+            return None                  # the line reader names the line
         ref = DEFAULT_RPM_REF if rpm_ref is None else float(rpm_ref)
         return LoadHistory(t, rpm, (rpm / ref) ** 2, ref, float(t[-1] - t[0] + (t[-1] - t[-2])),
                            src, "csv")
@@ -307,8 +357,24 @@ def _check_ref(v: float, src: str, field: str) -> None:
 
 
 def _check_rate(v: float, src: str, field: str) -> None:
-    if not (math.isfinite(v) and v > 0):
-        raise InputError(src, field, "a finite number > 0 (Hz)", got=v)
+    lo, hi = SAMPLE_RATE_HZ
+    if not (math.isfinite(v) and lo <= v <= hi):
+        raise InputError(src, field, f"a sample rate in [{lo:g}, {hi:g}] Hz (one sample per "
+                         f"{1 / lo:g} s at most; 10× the fastest engine-speed logger at most)",
+                         got=v)
+
+
+def _check_intervals(src: str, t: np.ndarray, lines=None) -> None:
+    """A csv log's sample intervals within 1/SAMPLE_RATE_HZ (the same bound as a rate)."""
+    lo, hi = 1.0 / SAMPLE_RATE_HZ[1], 1.0 / SAMPLE_RATE_HZ[0]
+    dt = np.diff(t)
+    bad = (dt < lo) | (dt > hi)
+    if bad.any():
+        i = int(np.argmax(bad)) + 1
+        where = f"line {lines[i]}: time_s" if lines is not None else f"time_s[{i}]"
+        raise InputError(src, where, f"a step of [{lo:g}, {hi:g}] s after the previous "
+                         f"sample (a sample rate in [{SAMPLE_RATE_HZ[0]:g}, "
+                         f"{SAMPLE_RATE_HZ[1]:g}] Hz)", got=float(t[i]))
 
 
 _ASCII_NUMBER = re.compile(r"[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?|[+-]?(inf|nan)",
@@ -408,5 +474,6 @@ def _read_csv(src, header, rows, rpm_ref) -> LoadHistory:
         if i and not t[i] > t[i - 1]:
             raise InputError(src, f"line {line}: time_s",
                              f"> {t[i - 1]:g} (strictly increasing)", got=float(t[i]))
+    _check_intervals(src, t, [line for line, _ in data])
     duration = float(t[-1] - t[0] + (t[-1] - t[-2]))
     return LoadHistory(t, rpm, (rpm / ref) ** 2, ref, duration, src, "csv")

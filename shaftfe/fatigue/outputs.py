@@ -45,7 +45,8 @@ def _inputs(job, variant) -> dict:
             "level": job.level, "model": job.model, "seed_load_case": job.seed_load_case,
             "load_case": load_case_label(job.seed_load_case), "exclude_mm": job.exclude_mm,
             "supports": "bearing springs (2x2 radial stiffness)",
-            "overrides": variant.overrides_map}
+            "overrides": variant.overrides_map,
+            "design_life_h": job.design_life_h, "allow_overspeed": job.allow_overspeed}
 
 
 def _history(run: FatigueRun) -> dict:
@@ -72,12 +73,14 @@ def _static(run: FatigueRun) -> dict:
 
 def _result(run: FatigueRun) -> dict:
     from shaftfe.fatigue import kernels
+    from shaftfe.util.fmt import life_reason
     ff = run.field
     r, hot = ff.result, ff.hot_spot
     filtered = ~ff.excluded_mask
     return {"life_blocks": finite_or_none(hot.life_blocks),
             "life_hours": finite_or_none(hot.life_hours),
             "life_km": finite_or_none(hot.life_km), "infinite_life": hot.infinite_life,
+            "life_reason": life_reason(hot.life_blocks, hot.life_hours),   # printed as none
             "damage_per_block": finite_or_none(hot.damage_per_block),
             "safety_factor": hot.safety_factor, "safety_status": hot.safety_status,
             "design_life_blocks": run.job.design_life,
@@ -115,7 +118,7 @@ def summary(run: FatigueRun, vtu_name: str, plots: dict[str, str]) -> dict:
         "plots": plots,
         "timing": {"fatigue_seconds": run.eval_seconds},
         "level_error": run.level_error,
-        "warnings": collected(),
+        "warnings": collected(),             # shaftfe.util.notices (e.g. an allowed overspeed)
     }
 
 

@@ -31,6 +31,21 @@ MEAN_STRESS = MEAN_STRESS_THEORIES
 EQUIVALENT = EQUIVALENT_STRESSES[:2]
 SEED_RPM_REF = 7000.0     # a normalised history without a stated reference: the seed's
 
+# The design life. The seed's is 1e7 blocks (passes of the history; 833 333 h of its 300 s
+# block); a user states it in hours of riding (--design-life-h). Bounds, each physical:
+# * blocks in [1, 1e9]: less than one pass of the history is no design life; S-N data end by
+#   1e9 cycles (the very-high-cycle range), and every block holds at least one load cycle, so a
+#   longer life is an extrapolation of a curve with no data (1e300 printed a utilisation of 1.5e6);
+# * hours in [1, 1e6]: one hour is a single ride; 1e6 h is 114 years of running without a stop,
+#   far above the life of any vehicle engine (a motorcycle's: 1e3-1e4 h); the seed's 833 333 h
+#   lies inside.
+DEFAULT_DESIGN_LIFE_BLOCKS = 1e7
+DESIGN_LIFE_BLOCKS = (1.0, 1e9)
+DESIGN_LIFE_H = (1.0, 1e6)
+# --speed-kmh, the average riding speed that turns hours into km: (0, 400] km/h (the fastest
+# production motorcycles top out near 300 km/h; an average is far below)
+SPEED_KMH_MAX = 400.0
+
 # The seed's result (seed 000 §8.3) for the side-by-side comparison.
 SEED = {"safety_factor_at_1e7": 0.7, "life_blocks": 25_000.0, "life_hours": 2083.0,
         "life_km": 145_810.0,
@@ -53,7 +68,7 @@ class FatigueJob:
     mean_stress: str = "soderberg"
     equivalent: str = "von_mises"
     material: str = "structural_steel"     # S-N card in geometry/common/sn_curves.toml
-    design_life: float = 1e7               # blocks
+    design_life: float | None = None       # blocks; None: design_life_h, else 1e7 (the seed's)
     speed_kmh: float = 70.0
     kf: float = 1.0                        # fatigue strength factor in (0, 1]
     level: str = "default"                 # mesh level
@@ -63,6 +78,9 @@ class FatigueJob:
     model: str = "solid"                   # static model: solid | axisymmetric (MODELS)
     spin_softening: bool = True            # the parts' m ω² u (static model; README)
     overrides: tuple[str, ...] = ()        # --set PATH=VALUE on the variant (model.overrides)
+    design_life_h: float | None = None     # hours of riding; with design_life=None
+    engine: str = "vm450"                  # whose max_rpm bounds the history (check_history)
+    allow_overspeed: bool = False          # assess a history above max_rpm (with a warning)
 
 
 @dataclass(frozen=True, eq=False)
@@ -78,15 +96,58 @@ class FatigueRun:
     level_error: dict | None               # the level-corrected hot spot (see module doc)
 
 
-def check_life_settings(design_life: float, speed_kmh: float) -> None:
-    """The design life (blocks) and the speed that turns hours into km: finite and > 0
-    (shared by ``shaftfe fatigue`` and ``shaftfe report``)."""
-    if not (math.isfinite(design_life) and design_life > 0):
-        raise InputError("command line", "--design-life", "a finite number > 0 (blocks)",
-                         got=design_life)
-    if not (math.isfinite(speed_kmh) and speed_kmh > 0):
-        raise InputError("command line", "--speed-kmh", "a finite number > 0 (km/h)",
-                         got=speed_kmh)
+def check_life_settings(design_life: float | None, speed_kmh: float,
+                        design_life_h: float | None = None) -> None:
+    """The design life (blocks, or hours) and the speed that turns hours into km, each within
+    its bounds (``DESIGN_LIFE_BLOCKS``, ``DESIGN_LIFE_H``, ``SPEED_KMH_MAX``; shared by
+    ``shaftfe fatigue`` and ``shaftfe report``)."""
+    if design_life is not None and design_life_h is not None:
+        raise InputError("command line", "--design-life", "either --design-life (blocks) or "
+                         "--design-life-h (hours), not both", got=design_life)
+    lo, hi = DESIGN_LIFE_BLOCKS
+    if design_life is not None and not (math.isfinite(design_life) and lo <= design_life <= hi):
+        raise InputError("command line", "--design-life", f"a number of blocks in [{lo:g}, "
+                         f"{hi:g}] (S-N data end by 1e9 cycles)", got=design_life)
+    lo, hi = DESIGN_LIFE_H
+    if design_life_h is not None and not (math.isfinite(design_life_h)
+                                          and lo <= design_life_h <= hi):
+        raise InputError("command line", "--design-life-h", f"hours of riding in [{lo:g}, "
+                         f"{hi:g}] (1e6 h = 114 years without a stop)", got=design_life_h)
+    if not (math.isfinite(speed_kmh) and 0 < speed_kmh <= SPEED_KMH_MAX):
+        raise InputError("command line", "--speed-kmh",
+                         f"an average riding speed in (0, {SPEED_KMH_MAX:g}] km/h", got=speed_kmh)
+
+
+def resolve_design_life(job: FatigueJob, history) -> FatigueJob:
+    """The job with its design life in blocks: ``design_life_h`` over the history's block
+    length, or the seed's 1e7 blocks when neither is given."""
+    from dataclasses import replace
+    if job.design_life is not None:
+        return job
+    if job.design_life_h is None:
+        return replace(job, design_life=DEFAULT_DESIGN_LIFE_BLOCKS)
+    blocks = job.design_life_h * 3600.0 / history.duration_s
+    lo, hi = DESIGN_LIFE_BLOCKS
+    if not lo <= blocks <= hi:
+        raise InputError("command line", "--design-life-h", f"a life of [{lo:g}, {hi:g}] "
+                         f"passes of the {history.duration_s:g} s history", got=job.design_life_h,
+                         reason=f"is {blocks:.3g} blocks")
+    return replace(job, design_life=blocks)
+
+
+def check_history(history, engine: str, allow_overspeed: bool):
+    """The speeds of a history for a stress or life assessment: some above 0 rpm (an engine
+    at rest has no load: no damage, no bearing wear: nothing to assess) and none above the
+    engine's max_rpm (``util.limits.engine_speed_limit``) unless ``allow_overspeed``, then with
+    a warning. Shared by ``shaftfe fatigue`` (every method) and ``shaftfe report``."""
+    from shaftfe.util.limits import check_operating_speed
+    top = float(history.rpm.max())
+    if not top > 0:
+        raise InputError(history.source, "rpm", "a history with the engine turning (some "
+                         "sample above 0 rpm)", reason="is 0 in every sample (the engine at "
+                         "rest): no load in this history: no damage, no bearing wear")
+    check_operating_speed(top, engine, allow_overspeed, history.source,
+                          "highest rpm")
 
 
 def check_model_level(model: str, level: str) -> None:
@@ -111,7 +172,7 @@ def check_job(job: FatigueJob) -> None:
         raise InputError("command line", "--equivalent", " | ".join(EQUIVALENT),
                          got=job.equivalent)
     check_model_level(job.model, job.level)
-    check_life_settings(job.design_life, job.speed_kmh)
+    check_life_settings(job.design_life, job.speed_kmh, job.design_life_h)
     if not (math.isfinite(job.kf) and 0 < job.kf <= 1):
         raise InputError("command line", "--kf", "a number in (0, 1]", got=job.kf)
     check_exclude_mm(job.exclude_mm)
@@ -196,6 +257,7 @@ def load_inputs(job: FatigueJob) -> FatigueInputs:
     variant = load_variant(job.variant, job.overrides)
     refuse_sharp_corners(variant, "a fatigue check")     # every method reads these inputs
     history = read_spectrum(job.spectrum, job.ref_rpm, job.sample_rate)
+    check_history(history, job.engine, job.allow_overspeed)
     return FatigueInputs(history, load_material(job.material), variant)
 
 
@@ -244,6 +306,7 @@ def run_fatigue(job: FatigueJob, inputs: FatigueInputs | None = None,
         with stage("history"):
             inputs = load_inputs(job)
     history, material, variant = inputs.history, inputs.material, inputs.variant
+    job = resolve_design_life(job, history)
     with stage("static"):
         ref = static_reference(variant, job)
     with stage("rainflow + life"):

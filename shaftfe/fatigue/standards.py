@@ -18,9 +18,7 @@ import numpy as np
 
 from shaftfe.errors import InputError
 from shaftfe.fatigue import din743, fkm
-
-METHODS = ("fkm", "din743", "seed")
-DEFAULT_METHOD = "fkm"
+from shaftfe.fatigue.method_options import DEFAULT_METHOD, METHODS  # noqa: F401 (the table's)
 
 
 @dataclass(frozen=True)
@@ -59,12 +57,13 @@ def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None):
     load case); returns (``fkm_field.FkmResult``, inputs, ref)."""
     from shaftfe.fatigue.cards import load_card, load_surfaces
     from shaftfe.fatigue.fkm_field import assess_field
-    from shaftfe.fatigue.run import load_inputs, static_reference
+    from shaftfe.fatigue.run import load_inputs, resolve_design_life, static_reference
     check_options(opts)
     if job.model != "solid":
         raise InputError("command line", "--model", "solid (the FKM gradient is taken on the "
                          "3D field)", got=job.model)
     inputs = inputs or load_inputs(job)
+    job = resolve_design_life(job, inputs.history)
     card = load_card(opts.card)
     ref = ref or static_reference(inputs.variant, job)
     res = assess_field(ref, inputs.history, card, load_surfaces(),

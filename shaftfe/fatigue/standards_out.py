@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 
 from shaftfe.fatigue import din743 as din
+from shaftfe.util.fmt import NO_FINITE_LIFE, big, life, life_reason
 
 
 def _f(v, fmt=".3g"):
@@ -28,7 +29,7 @@ def fkm_rows(res) -> list[list]:
                          f"{c.K_V:g}", f"{c.K_WK:.3f}", f"{c.sigma_WK_MPa:.0f}",
                          f"{c.M_sigma:.3f}", f"{c.K_AK_largest:.3f}",
                          *(_f(c.safety[k]) for k in ("elementary", "modified", "consistent")),
-                         _f(c.utilisation[res.rule]), _f(c.life_blocks[res.rule])])
+                         _f(c.utilisation[res.rule]), life(c.life_blocks[res.rule])])
     return rows
 
 
@@ -106,15 +107,20 @@ def elements_summary(bearings, keys, gear_chk, kappa: float, e_c: float) -> dict
             "gear": {k: _num(v) for k, v in vars(gear_chk).items()}}
 
 
+def _h(v) -> str:
+    """A bearing life in hours: '1 251 h', or no finite life above 1e9 h (util.fmt)."""
+    return NO_FINITE_LIFE if life_reason(v) else f"{big(v)} h"
+
+
 def elements_lines(el: dict, speed_kmh: float) -> list[str]:
     b = el["bearings"]
     out = [f"bearings, ISO 281 over the rpm history (κ {b['kappa']:g}, e_C {b['e_C']:g}, "
            "C_u = C0/22, loads ∝ rpm²):"]
     for d in b["duty_cycle"]:
         out.append(f"  {d['name']} {d['designation']}: P_eq {d['P_eq_N']:.0f} N at n_eq "
-                   f"{d['n_eq_rpm']:.0f} rpm; L10h {_f(d['L10h'] or math.inf, '.0f')} h; "
-                   f"L_nm {_f(d['Lnm_h'] or math.inf, '.0f')} h = "
-                   f"{_f(d['Lnm_km'] or math.inf, '.0f')} km at {speed_kmh:g} km/h")
+                   f"{d['n_eq_rpm']:.0f} rpm; L10h {_h(d['L10h'])}; L_nm {_h(d['Lnm_h'])}"
+                   + (f" = {big(d['Lnm_km'])} km at {speed_kmh:g} km/h"
+                      if not life_reason(d['Lnm_h']) else ""))
     for s in b["seed_points"]:
         out.append(f"  seed single point {s['bearing']} (C {s['C_N']:.0f} N, P {s['P_N']:.0f} "
                    f"N, {s['rpm']:.0f} rpm): L10h {s['ours_L10h']:.1f} h (seed {s['L10h']} h)")

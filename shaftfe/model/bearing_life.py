@@ -41,13 +41,17 @@ def a_iso_ball(kappa: float, ec_cu_over_p: float) -> float:
 
 def duty_cycle(rpm, load_N, weights=None, p: float = 3.0) -> tuple[float, float]:
     """Equivalent (load, speed) over operating conditions i (time fractions ``weights``,
-    equal if None): n_m = Σ q_i n_i, P = (Σ q_i n_i P_i^p / Σ q_i n_i)^(1/p)."""
+    equal if None): n_m = Σ q_i n_i, P = (Σ q_i n_i P_i^p / Σ q_i n_i)^(1/p). A cycle without
+    a revolution (the engine at rest throughout) has no equivalent load: (0, 0), whose
+    ``l10h`` is infinite (no revolutions, no wear)."""
     import numpy as np
     n = np.asarray(rpm, dtype=float)
     P = np.asarray(load_N, dtype=float)
     q = np.full(n.shape, 1.0 / n.size) if weights is None else \
         np.asarray(weights, float) / np.sum(weights)
     nm = float(np.sum(q * n))
+    if not nm > 0:
+        return 0.0, 0.0
     return float((np.sum(q * n * P ** p) / nm) ** (1.0 / p)), nm
 
 
@@ -55,10 +59,13 @@ def modified_life_spectrum(C_N: float, Cu_N: float, rpm, load_N, kappa: float, e
                            a1: float = 1.0, p: float = 3.0) -> float:
     """L_nm in hours over the conditions i (equal time each): Palmgren-Miner over the
     revolutions, 1/L = Σ U_i / L_nm,i with U_i the share of revolutions and
-    L_nm,i = a1 a_ISO,i (C/P_i)^p 10⁶ revolutions; κ and e_C the same in every condition."""
+    L_nm,i = a1 a_ISO,i (C/P_i)^p 10⁶ revolutions; κ and e_C the same in every condition.
+    No revolution at all (the engine at rest): infinite (no wear)."""
     import numpy as np
     n = np.asarray(rpm, dtype=float)
     P = np.asarray(load_N, dtype=float)
+    if not n.sum() > 0:
+        return math.inf
     u = n / n.sum()
     # a_ISO depends on the load alone here: once per distinct load (a logger's integer rpm
     # repeat: 5 million samples have < 10 000 speeds), the same numbers as per sample

@@ -52,6 +52,7 @@ class ReportOptions:
     seed_load_case: bool = False          # every part (as every command); True: the seed's F1+Fv2
     model: str = "solid"                  # static model: solid | axisymmetric (static.MODELS)
     spin_softening: bool = True           # the parts' m ω² u (the seed's study had none)
+    allow_overspeed: bool = False         # a spectrum above the engine's max_rpm (warned)
 
 
 CAMPBELL_STEP_MIN_RPM = 10.0     # ≤ 2000 speeds up to the rpm ceiling: seconds, not GiB

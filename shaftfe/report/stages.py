@@ -13,7 +13,7 @@ from shaftfe.util.paths import repo_relative
 
 def read_inputs(o: ReportOptions) -> tuple:
     from shaftfe.balance.engines import load_engine
-    from shaftfe.fatigue.run import read_spectrum
+    from shaftfe.fatigue.run import check_history, read_spectrum
     from shaftfe.fatigue.sn import load_material
     from shaftfe.model.loader import load_variant
 
@@ -25,6 +25,7 @@ def read_inputs(o: ReportOptions) -> tuple:
         raise InputError(engine.source, "max_rpm", "> 0 rpm (the Campbell range ends there)",
                          got=engine.max_rpm, reason="is missing")
     history = read_spectrum(o.spectrum, None, None)
+    check_history(history, o.engine, o.allow_overspeed)     # at rest, or above max_rpm
     material = load_material(o.material)
     return variant, engine, history, material
 

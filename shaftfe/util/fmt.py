@@ -10,9 +10,47 @@ def big(v: float) -> str:
     return f"{v:,.0f}".replace(",", " ") if abs(v) >= 1000 else f"{v:.3g}"
 
 
+# A life (in blocks of the history or in hours) above LIFE_MAX is not a number anyone can
+# use: 1e9 h is 114 000 years, 1e9 blocks are 1e9 or more load cycles, past the end of every
+# S-N data set (and a life below a cutoff endurance limit is already infinite). It is printed
+# as NO_FINITE_LIFE; summary.json keeps the number (or null when infinite) with a reason
+# (``life_reason``).
+LIFE_MAX = 1e9
+NO_FINITE_LIFE = "no finite life at this load"
+
+
+def life_reason(*lives: float | None) -> str | None:
+    """Why the lives (blocks, hours, ...) are "no finite life at this load", or None."""
+    if any(v is None or not math.isfinite(v) for v in lives):
+        return "infinite: no damaging cycle"
+    if any(v > LIFE_MAX for v in lives):
+        return "more than 1e9 blocks or hours"
+    return None
+
+
 def life(v: float | None) -> str:
-    """A life in blocks: 4 significant digits, ``inf`` for none or infinite."""
-    return "inf" if v is None or not math.isfinite(v) else f"{v:.4g}"
+    """A life in blocks or hours for a table: 4 significant digits; infinite or above
+    ``LIFE_MAX``: ``NO_FINITE_LIFE``."""
+    return NO_FINITE_LIFE if life_reason(v) else f"{v:.4g}"
+
+
+def lives(blocks: float | None, hours: float | None, km: float | None = None,
+          speed_kmh: float | None = None) -> str:
+    """'25 000 blocks = 2083 h = 145 810 km at 70 km/h', or ``NO_FINITE_LIFE`` when either
+    the blocks or the hours are infinite or above ``LIFE_MAX``."""
+    why = life_reason(blocks, hours)
+    if why:
+        return f"{NO_FINITE_LIFE} ({why})"
+    out = f"{big(blocks)} blocks = {big(hours)} h"
+    if km is not None and speed_kmh is not None:
+        out += f" = {big(km)} km at {speed_kmh:g} km/h"
+    return out
+
+
+def design_life(blocks: float, block_seconds: float, speed_kmh: float) -> str:
+    """'1e+07 blocks (= 833 333 h = 58 333 333 km)': a design life in every unit."""
+    h = blocks * block_seconds / 3600.0
+    return f"{blocks:g} blocks (= {big(h)} h = {big(h * speed_kmh)} km)"
 
 
 def json_clean(o):
