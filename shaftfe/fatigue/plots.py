@@ -95,18 +95,23 @@ def plot_cycle_matrix(matrix: CycleMatrix, path, title: str = "") -> Path:
         norm, ticks, cmap = _count_norm(vals)
         fmt = ticker.FuncFormatter(lambda x, _: f"{x:,.10g}".replace(",", " "))
     else:
-        pos = vals[vals > 0]
+        # an infinite damage (a cycle above the static strength: failure in that cycle) is
+        # drawn in the colour bar's "over" colour, not put on the scale
+        pos = vals[(vals > 0) & np.isfinite(vals)]
         lo = 10.0 ** np.floor(np.log10(pos.min())) if pos.size else 1e-12
         hi = 10.0 ** np.ceil(np.log10(pos.max())) if pos.size else 1.0
         if hi <= lo:
             hi = lo * 10.0
-        norm, cmap = colors.LogNorm(lo, hi), plt.get_cmap("viridis")
+        norm, cmap = colors.LogNorm(lo, hi), plt.get_cmap("viridis").with_extremes(over="red")
         ticks = 10.0 ** np.arange(np.log10(lo), np.log10(hi) + 0.5)
         fmt = ticker.FuncFormatter(lambda x, _: f"{x:.0e}")
     mesh = ax.pcolormesh(matrix.mean_edges, matrix.range_edges, v, cmap=cmap, norm=norm,
                          shading="flat", edgecolors="0.35", linewidth=0.4)
-    cb = fig.colorbar(mesh, ax=ax, ticks=ticks, format=fmt,
-                      label="cycles per block" if count else "damage per block [-] (log)")
+    infinite = not count and bool(np.isinf(vals).any())
+    cb = fig.colorbar(mesh, ax=ax, ticks=ticks, format=fmt, extend="max" if infinite else "neither",
+                      label="cycles per block" if count else
+                      "damage per block [-] (log)" + ("; red: failure in one cycle" if infinite
+                                                      else ""))
     cb.minorticks_off()
     unit = f" [{matrix.units}]" if matrix.units else ""
     ax.set_xlabel("mean" + unit)
