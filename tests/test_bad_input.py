@@ -324,6 +324,8 @@ STUDY_FILES = {
     "all_refused.toml": STUDY_HEAD.replace("[0.4, 0.5]", "[0.8, 1.0]")
                         + "[analyses]\nbeam = true\n",
     "overspeed.toml": STUDY_HEAD + "[analyses]\nbearings = { rpm = 19000 }\n",
+    "overspeed_spectrum.toml": STUDY_HEAD + '[analyses]\nstatic = { level = "coarse" }\n'
+                               'fatigue = { spectrum = "over.dat" }\n',
 }
 STUDY_CASES: dict[str, tuple[list[str], list[str]]] = {
     "study_spectrum_malformed": (["study", "run", "{W}/badspec.toml", "--out", "{W}/o"],
@@ -339,6 +341,8 @@ STUDY_CASES: dict[str, tuple[list[str], list[str]]] = {
     "study_bearing_speed_above_max_rpm": (["study", "run", "{W}/overspeed.toml", "--out",
                                            "{W}/o"], ["overspeed.toml", "bearings.rpm",
                                                       "max_rpm"]),
+    "study_spectrum_above_max_rpm": (["study", "run", "{W}/overspeed_spectrum.toml", "--out",
+                                      "{W}/o"], ["over.dat", "highest rpm", "9500", "max_rpm"]),
     "study_scheduler_not_a_url": (["study", "run", "{W}/beam.toml", "--out", "{W}/o",
                                    "--scheduler", "not a url"], ["--scheduler", "not a URL"]),
     "study_scheduler_http": (["study", "run", "{W}/beam.toml", "--out", "{W}/o",
@@ -365,6 +369,7 @@ def study_space(tmp_path_factory):
     for name, text in STUDY_FILES.items():
         (w / name).write_text(text)
     (w / "bad.dat").write_text("# format = rpm\n# sample_rate_hz = 1\nabc\n3000\n")
+    (w / "over.dat").write_text("# format = rpm\n# sample_rate_hz = 1\n3000\n19999\n3000\n")
     (w / "damaged_meta").mkdir()
     (w / "damaged_meta" / "study.json").write_bytes(b"\x00{not json")
     (w / "damaged_table").mkdir()

@@ -124,18 +124,22 @@ def _unit_slip(spec: StudySpec, designs) -> None:
 
 
 def _files(spec: StudySpec) -> None:
-    """The files every design reads, read once here (their own one-line errors)."""
+    """The files every design reads, read once here (their own one-line errors), and the
+    speeds against the engine's own limit by the rule of ``shaftfe fatigue``
+    (``util.limits.check_operating_speed``, ``fatigue.run.check_history``; a study has no
+    --allow-overspeed)."""
+    from shaftfe.fatigue.run import check_history
     from shaftfe.study.evaluate import _engine, _fatigue_inputs
+    from shaftfe.util.limits import check_operating_speed
     an = spec.analyses
-    eng = _engine(an.engine)
-    top = float(eng.max_rpm or 0.0)
+    _engine(an.engine)
     for fld, rpm in (("analyses.balance.rpm", an.engine_rpm),
                      ("analyses.bearings.rpm", an.bearing_rpm)):
-        if top > 0 and rpm is not None and rpm > top:     # the engine's own speed limit
-            raise InputError(spec.path, fld, f"at most the engine's max_rpm, {top:g} rpm "
-                             f"({eng.name})", got=rpm)
+        if rpm is not None:
+            check_operating_speed(rpm, an.engine, False, spec.path, fld)
     if an.fatigue:
-        _fatigue_inputs(an.spectrum, an.material)
+        history, _ = _fatigue_inputs(an.spectrum, an.material)
+        check_history(history, an.engine, False)
 
 
 def check_study(spec: StudySpec, designs) -> Checked:
