@@ -215,6 +215,7 @@ def _whole_mark(corners) -> str:
 def _print_tables(res, opts, out, corners=()) -> None:
     from shaftfe.commands._common import print_table
     from shaftfe.solid.plan import sharp_mark
+    from shaftfe.static.result import PEAK_FIT_LABEL
     d = res.diagnostics
     print(f"variant {res.variant}: P{opts.order} {opts.level}, {res.n_dofs} dofs, "
           f"{'rigid supports' if opts.rigid_supports else 'bearing springs'}, solver "
@@ -249,6 +250,8 @@ def _print_tables(res, opts, out, corners=()) -> None:
                      c.peak_von_mises_unfiltered_MPa, "-", _whole_mark(corners)])
         print_table(["region", "von Mises MPa", "max principal MPa", "x mm",
                      "unfiltered MPa", "error vs truth %", "note"], rows)
+        print(f"peaks: the {PEAK_FIT_LABEL} (result.vtu, `shaftfe view` and the pictures hold "
+              "nodal values, which can read slightly lower)")
     if res.truth_error_bar_pct or res.truth_bar_notes:
         print("error vs truth: this level's measured error of fillet peaks (von Mises and max "
               "principal) against the converged axisymmetric solution over a grid of "

@@ -13,6 +13,7 @@ import math
 from html import escape
 
 from shaftfe import __version__
+from shaftfe.static.result import PEAK_FIT_LABEL  # what a static peak is (one definition)
 
 CSS = """
 body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,Arial,sans-serif;margin:0;
@@ -219,7 +220,6 @@ def _summary(r) -> str:
             f'<p class="note">{_e(camp["statement"])}.</p>')
 
 
-PEAK_FIT_LABEL = "surface fit between the nodes"
 
 
 def _inputs(r) -> str:
@@ -459,8 +459,8 @@ def _comparison(r) -> str:
               "the variant's own balance table are compared.</p>")
     s += ('<p class="note">Green: within 5 %; red: more. Why the large ones differ (stress '
           "with and without the notch, the reconstructed fillet radius, the invented part of "
-          "the rpm history, the beam rotor model against the seed's 3D Ansys model): README.md "
-          "(What is verified against what).</p>")
+          "the rpm history, the beam rotor model against the seed's 3D Ansys model): "
+          "docs/VALIDATION.md.</p>")
     return s
 
 

@@ -10,6 +10,11 @@ import numpy as np
 
 from shaftfe.static.model import StaticOptions
 
+# A peak stress of the 3D path is the maximum of the fitted surface stress (fe.surface), which
+# can lie between the nodes and above the largest nodal value that a VTU, `shaftfe view` and the
+# pictures show: every place that prints a peak names it so.
+PEAK_FIT_LABEL = "surface fit between the nodes"
+
 
 @dataclass(frozen=True)
 class BearingReaction:
