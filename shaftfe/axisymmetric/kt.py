@@ -7,7 +7,9 @@ a shear τ_xθ = g r (torsion), equal and opposite on the two ends, so the far f
 Saint-Venant (verified: ``tests/validation/test_axisymmetric_exact.py``). Three minimal
 point conditions remove the rigid motions without any reaction. Nominal stresses on d:
 4P/(πd²), 32M/(πd³), 16T/(πd³) (as Peterson). Kt = the largest principal stress on the fillet
-over the nominal stress (for torsion the surface state is pure shear, σ1 = τ_max).
+(of the 3D state synthesised over θ, each component with its own trig factor: in bending the
+θ-shears are sin θ terms, zero in the bending plane) over the nominal stress (for torsion the
+surface state is pure shear, σ1 = τ_max).
 
 Convergence: ``converged`` meshes the bar at one level and refines it uniformly ``levels`` − 1
 times (every triangle into four, the fillet kept exact); Richardson extrapolation of the last
@@ -99,11 +101,23 @@ def kt_once(D: float, d: float, rho: float, refine: int = 0, level: AxiLevel = L
     out = {}
     for load in LOADS:
         n, s_nom, u = cases[load][0], cases[load][3], disp[load]
-        s = S.stress(u, n, E, nu)[:, on]
-        s1 = rc.principal_max_local(s)            # θ = 0 is the extreme for n = 0 and n = 1
+        s1 = _principal_over_theta(S.stress(u, n, E, nu)[:, on], n)
         kt_val, ang_val = _arc_peak(geo.curves[fil[0]], mesh.xr[:, S.nodes[on]], s1)
         out[load] = KtValue(load, kt_val / s_nom, ang_val)
     return out, mesh.n_nodes
+
+
+def _principal_over_theta(amp: np.ndarray, n: int) -> np.ndarray:
+    """Largest principal stress over θ at each node of the harmonic-n surface amplitudes
+    ``amp`` (6, k), LOCAL order: the 3D state synthesised on ``recovery.theta_grid`` with each
+    component's trig factor (``recovery.synthesize``, as the product path does), then the
+    maximum over θ. The θ-shear amplitudes (tθ, nθ) carry sin nθ: in bending (n = 1) they vanish
+    in the bending plane θ = 0, where the peak is (the symmetry plane; measured: the maximum over
+    the grid is at θ = 0 on every shoulder of kt_reference). Taking the principal stress of the
+    raw amplitudes instead adds the tθ amplitude (up to 7 % of the nominal stress on the fillet)
+    as if it acted at θ = 0: +0.04…+0.25 % on Kt in bending (issue #30 §5)."""
+    th = rc.theta_grid()[:1] if n == 0 else rc.theta_grid()
+    return rc.principal_max_local(rc.synthesize([(n, amp, None)], th, rc.LOCAL_SHEAR)).max(axis=-1)
 
 
 def _arc_peak(c: Curve, xr: np.ndarray, val: np.ndarray) -> tuple[float, float]:
