@@ -32,9 +32,10 @@ def register(sub) -> None:
                    "shaft's real material and surface) | din743 (DIN 743, nominal stresses on "
                    "the beam) | seed (the seed's Ansys-style method: von Mises, Soderberg, "
                    "Structural Steel S-N; exactly as before)")
-    p.add_argument("--card", default="14220",
-                   help="strength card in geometry/common/strength.toml (fkm, din743; "
-                   "default 14220 = 16MnCr5 case hardened)")
+    p.add_argument("--card", default=None,
+                   help="material record in geometry/common/materials.toml whose strengths "
+                   "the standards use (fkm, din743; default: the variant's shaft material, "
+                   "e.g. 14220 = 16MnCr5 case hardened)")
     p.add_argument("--miner", default="modified",
                    help="FKM governing Miner rule: elementary | modified (default, Haibach) | "
                    "consistent; all three are printed")

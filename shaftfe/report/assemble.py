@@ -278,13 +278,13 @@ def _strength(o: ReportOptions, variant, ref, history) -> dict:
     from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
     from shaftfe.fatigue import standards as sd
     from shaftfe.fatigue import standards_out as so
-    from shaftfe.fatigue.cards import load_card, load_surfaces
+    from shaftfe.fatigue.cards import load_surfaces
     from shaftfe.fatigue.fkm_field import assess_field
     from shaftfe.fatigue.run import FatigueInputs, FatigueJob
     opts = sd.StrengthOptions()
     out = {"default_method": sd.DEFAULT_METHOD}
     if o.model == "solid":
-        res = assess_field(ref, history, load_card(opts.card), load_surfaces(),
+        res = assess_field(ref, history, sd.strength_card(variant, opts), load_surfaces(),
                            ground_fillets=sd.ground_fillets(variant), rule=opts.rule,
                            j_D=sd.fkm.J_D[(opts.consequences, opts.inspection)],
                            damage_sum=opts.damage_sum, design_life_blocks=o.design_life_blocks)
