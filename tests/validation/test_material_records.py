@@ -62,3 +62,14 @@ def test_an_sn_card_naming_a_record_may_not_repeat_its_strengths(tmp_path):
                  'knee_cycles = 1e6\nslope_k = 5.0\n', encoding="utf-8")
     with pytest.raises(InputError, match=r"sn_curves\.x\.ultimate_MPa"):
         load_material("x", p)
+
+
+def test_the_report_leaves_the_standards_out_with_a_warning_for_such_a_shaft():
+    """A shaft of a record the standards cannot assess (no group): the report's "strength by
+    standard" is left out with a visible warning (before: judged as 14220 whatever the shaft)."""
+    from shaftfe.report.assemble import _strength
+    from shaftfe.report.options import ReportOptions
+    from shaftfe.util.notices import ShaftfeWarning
+    v = dataclasses.replace(load_variant("x2_57"), material=material_record("11600"))
+    with pytest.warns(ShaftfeWarning, match=r"strength by standard left out.*materials\.11600"):
+        assert _strength(ReportOptions(), v, None, None) == {}
