@@ -526,3 +526,18 @@ def test_a1_fatigue_inputs_are_one_clear_line_exit_2(case, space, capsys, monkey
         (w / name).write_text(text)
     test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys,
                                                                monkeypatch)
+# --- slice d-kt-materials (issue #30 §5): the material record the standards read ------------
+# --card names a record of geometry/common/materials.toml; one without a standard material
+# group (a key steel) or an unknown name is refused before any solve
+MATERIAL_CASES = {
+    "card_without_standard_group": (["fatigue", "{RPM}", "--method", "din743", "--card",
+                                     "11600", "--out", "{W}/o"], ["materials.11600.group"]),
+    "card_unknown_record": (["fatigue", "{RPM}", "--method", "fkm", "--card", "nosuch",
+                             "--out", "{W}/o"], ["materials.toml", "nosuch"]),
+}
+CASES.update(MATERIAL_CASES)
+
+
+@pytest.mark.parametrize("case", sorted(MATERIAL_CASES))
+def test_material_record_bad_input(case, space, capsys, monkeypatch):
+    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)

@@ -7,7 +7,9 @@ a shear τ_xθ = g r (torsion), equal and opposite on the two ends, so the far f
 Saint-Venant (verified: ``tests/validation/test_axisymmetric_exact.py``). Three minimal
 point conditions remove the rigid motions without any reaction. Nominal stresses on d:
 4P/(πd²), 32M/(πd³), 16T/(πd³) (as Peterson). Kt = the largest principal stress on the fillet
-over the nominal stress (for torsion the surface state is pure shear, σ1 = τ_max).
+(of the 3D state synthesised over θ, each component with its own trig factor: in bending the
+θ-shears are sin θ terms, zero in the bending plane) over the nominal stress (for torsion the
+surface state is pure shear, σ1 = τ_max).
 
 Convergence: ``converged`` meshes the bar at one level and refines it uniformly ``levels`` − 1
 times (every triangle into four, the fillet kept exact); Richardson extrapolation of the last
@@ -64,9 +66,30 @@ class KtValue:
     angle_deg: float          # along the fillet arc from the small-diameter tangent point
 
 
-def kt_once(D: float, d: float, rho: float, refine: int = 0, level: AxiLevel = LEVEL,
-            E: float = 210000.0, nu: float = 0.3, cache_dir=None):
-    """Kt in tension, bending and torsion on one mesh: ({load: KtValue}, nodes)."""
+@dataclass(frozen=True, eq=False)
+class BarSolution:
+    """The stepped bar solved once for the three unit loads on one mesh."""
+    geometry: MeridianGeometry
+    mesh: object
+    surface: rc.Surface
+    fillet: np.ndarray        # indices into ``surface.nodes`` on the fillet arc, kinks excluded
+    harmonic: dict            # load -> n
+    nominal: dict             # load -> nominal stress on d of the unit load
+    disp: dict                # load -> displacement vector
+    E: float
+    nu: float
+
+    def amplitudes(self, load: str, where: np.ndarray | None = None) -> np.ndarray:
+        """(6, k) surface-local stress amplitudes (``recovery.LOCAL``) of ``load`` at the
+        surface nodes ``where`` (default: the fillet)."""
+        idx = self.fillet if where is None else where
+        return self.surface.stress(self.disp[load], self.harmonic[load], self.E,
+                                   self.nu)[:, idx]
+
+
+def solve_bar(D: float, d: float, rho: float, refine: int = 0, level: AxiLevel = LEVEL,
+              E: float = 210000.0, nu: float = 0.3, cache_dir=None) -> BarSolution:
+    """The bar of ``stepped_bar`` under the three end loads of the module docstring."""
     geo = stepped_bar(D, d, rho)
     mesh = mesh_geometry(geo, level, refine, cache_dir=cache_dir)
     h = hm.assemble(mesh, E, nu, cache_dir=cache_dir)
@@ -96,14 +119,39 @@ def kt_once(D: float, d: float, rho: float, refine: int = 0, level: AxiLevel = L
         H[[0, 1], pins[n]] = 1.0
         u = hm.solve(h.K(n), f, h.reduction(n), hard=H).u
         disp.update({ld: u[:, j] for j, ld in enumerate(loads)})
+    return BarSolution(geo, mesh, S, on, {ld: c[0] for ld, c in cases.items()},
+                       {ld: c[3] for ld, c in cases.items()}, disp, E, nu)
+
+
+def fillet_peak(bar: BarSolution, values: np.ndarray) -> tuple[float, float]:
+    """(peak, angle along the arc °) of ``values`` at the fillet nodes (``_arc_peak``)."""
+    c = next(c for c in bar.geometry.curves if "fillet:step" in c.groups)
+    return _arc_peak(c, bar.mesh.xr[:, bar.surface.nodes[bar.fillet]], values)
+
+
+def kt_once(D: float, d: float, rho: float, refine: int = 0, level: AxiLevel = LEVEL,
+            E: float = 210000.0, nu: float = 0.3, cache_dir=None):
+    """Kt in tension, bending and torsion on one mesh: ({load: KtValue}, nodes)."""
+    bar = solve_bar(D, d, rho, refine, level, E, nu, cache_dir)
     out = {}
     for load in LOADS:
-        n, s_nom, u = cases[load][0], cases[load][3], disp[load]
-        s = S.stress(u, n, E, nu)[:, on]
-        s1 = rc.principal_max_local(s)            # θ = 0 is the extreme for n = 0 and n = 1
-        kt_val, ang_val = _arc_peak(geo.curves[fil[0]], mesh.xr[:, S.nodes[on]], s1)
-        out[load] = KtValue(load, kt_val / s_nom, ang_val)
-    return out, mesh.n_nodes
+        s1 = _principal_over_theta(bar.amplitudes(load), bar.harmonic[load])
+        kt_val, ang_val = fillet_peak(bar, s1)
+        out[load] = KtValue(load, kt_val / bar.nominal[load], ang_val)
+    return out, bar.mesh.n_nodes
+
+
+def _principal_over_theta(amp: np.ndarray, n: int) -> np.ndarray:
+    """Largest principal stress over θ at each node of the harmonic-n surface amplitudes
+    ``amp`` (6, k), LOCAL order: the 3D state synthesised on ``recovery.theta_grid`` with each
+    component's trig factor (``recovery.synthesize``, as the product path does), then the
+    maximum over θ. The θ-shear amplitudes (tθ, nθ) carry sin nθ: in bending (n = 1) they vanish
+    in the bending plane θ = 0, where the peak is (the symmetry plane; measured: the maximum over
+    the grid is at θ = 0 on every shoulder of kt_reference). Taking the principal stress of the
+    raw amplitudes instead adds the tθ amplitude (up to 7 % of the nominal stress on the fillet)
+    as if it acted at θ = 0: +0.04…+0.25 % on Kt in bending (issue #30 §5)."""
+    th = rc.theta_grid()[:1] if n == 0 else rc.theta_grid()
+    return rc.principal_max_local(rc.synthesize([(n, amp, None)], th, rc.LOCAL_SHEAR)).max(axis=-1)
 
 
 def _arc_peak(c: Curve, xr: np.ndarray, val: np.ndarray) -> tuple[float, float]:

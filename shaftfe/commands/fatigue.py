@@ -42,8 +42,9 @@ def register(sub) -> None:
                    "shaft's real material and surface) | din743 (DIN 743, nominal stresses on "
                    "the beam) | seed (the seed's Ansys-style method: von Mises, Soderberg, "
                    "Structural Steel S-N; exactly as before)")
-    opt("--card", "strength card in geometry/common/strength.toml (default 14220 = 16MnCr5 "
-        "case hardened)")
+    opt("--card", "material record in geometry/common/materials.toml whose strengths the "
+        "standards use (default: the variant's shaft material, e.g. 14220 = 16MnCr5 case "
+        "hardened)")
     opt("--miner", "FKM governing Miner rule: elementary | modified (default, Haibach) | "
         "consistent; all three are printed")
     opt("--consequences", "FKM j_D: severe (default: a broken balancer shaft wrecks the "

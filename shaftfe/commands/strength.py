@@ -79,7 +79,8 @@ def run_standard(args, job) -> int:
     h = inputs.history
     print(f"{v.name} strength by {args.method.upper() if args.method == 'fkm' else 'DIN 743'}:"
           f" {h.source} ({h.n_samples} samples, rpm {h.rpm.min():.0f}-{h.rpm.max():.0f}), "
-          f"card {opts.card}")
+          f"material {res.card.name} ({'--card' if opts.card else 'the shaft material'}, "
+          "geometry/common/materials.toml)")
     if args.method == "fkm":
         print(f"static: {'from cache' if ref.from_cache else 'solved'} ({ref.ref_rpm:g} rpm, "
               f"{ref.n_nodes} nodes, P2 {job.level}); design life "
@@ -92,6 +93,8 @@ def run_standard(args, job) -> int:
               f"j_D {res.j_D:g}, degree of utilisation {so._f(c.utilisation[res.rule])} "
               f"({'passes' if c.utilisation[res.rule] <= 1 else 'FAILS'}); life: "
               f"{_fkm_lives(c.life_blocks[res.rule], res.block_seconds, job.speed_kmh)}")
+        print(f"size factor: K_d,m at d_eff {c.d_eff_mm:.2f} mm, the round section through the "
+              "hot spot (FKM; DIN 743 takes its K1 at a shoulder's larger diameter)")
     else:
         print(f"cycle: the history's largest, {res.rpm_min:.0f}-{res.rpm_max:.0f} rpm (case 2); "
               f"S_F at {res.rpm_max:.0f} rpm; beam at {res.ref_rpm:g} rpm scaled by rpm²")
@@ -100,6 +103,8 @@ def run_standard(args, job) -> int:
         g = res.governing
         print(f"governing: {g.result.notch.name} at x = {g.x_mm:g} mm: S_D "
               f"{so._f(g.result.S_D)}, S_F {so._f(g.result.S_F)} (S_min {sd.din743.S_MIN})")
+        for note in res.notes:
+            print(f"note: {note}")
     print()
     for line in so.elements_lines(el, job.speed_kmh):
         print(line)

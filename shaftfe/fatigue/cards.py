@@ -1,6 +1,11 @@
-"""Strength cards and surface roughness for the standards' assessments
-(``geometry/common/strength.toml``), read into frozen dataclasses; every bad value is one
-``InputError`` naming the file and the field."""
+"""Strength cards and surface roughness for the standards' assessments, read into frozen
+dataclasses; every bad value is one ``InputError`` naming the file and the field.
+
+A card is a view of ONE material record (``geometry/common/materials.toml``, ``[materials.NAME]``:
+the same record that gives the FE model its E, ν and density and the seed method's S-N card its
+strengths): ``card_of(variant.material)`` for the shaft's own material, ``load_card(NAME)`` for
+a record named on the command line. The surfaces' roughness stays in
+``geometry/common/strength.toml``."""
 
 from __future__ import annotations
 
@@ -11,10 +16,11 @@ from pathlib import Path
 
 from shaftfe.errors import InputError
 from shaftfe.fatigue import fkm
+from shaftfe.model.loader import material_record
 from shaftfe.util.paths import COMMON_DIR
 
-CARDS_FILE = COMMON_DIR / "strength.toml"
-_TAGS = ("seed", "standard", "reconstructed", "derived")
+CARDS_FILE = COMMON_DIR / "strength.toml"        # the surfaces
+MATERIALS_FILE = COMMON_DIR / "materials.toml"   # the material records
 
 
 @dataclass(frozen=True)
@@ -62,24 +68,21 @@ def _num(t: dict, key: str, src: str, fld: str, lo: float, hi: float,
     return float(v)
 
 
-def load_card(name: str, path: str | Path = CARDS_FILE) -> StrengthCard:
-    path = Path(path)
-    src = str(path)
-    cards = _read(path).get("cards", {})
-    if name not in cards:
-        raise InputError(src, "cards", " | ".join(sorted(cards)) or "a [cards.NAME] table",
-                         got=name)
-    t, fld = cards[name], f"cards.{name}"
-    group = t.get("group")
-    if group not in fkm.GROUPS:
-        raise InputError(src, f"{fld}.group", " | ".join(k for k in fkm.GROUPS if k != "gjl"),
-                         got=group)
-    rm = _num(t, "Rm_N_MPa", src, fld, 200.0, 2500.0)
-    rp = _num(t, "Rp_N_MPa", src, fld, 100.0, rm)
-    hrc = _num(t, "case_hardness_HRC", src, fld, 20.0, 70.0, optional=True)
-    depth = _num(t, "case_depth_mm", src, fld, 0.05, 5.0, optional=True)
-    tags = tuple((k, tag) for tag in _TAGS for k in t.get(tag, []))
-    return StrengthCard(name, str(t.get("description", "")), group, rm, rp, hrc, depth, tags)
+def card_of(material, source: str = "the variant's materials") -> StrengthCard:
+    """The strength card of a material record (``model.variant.Material``); a record without a
+    standard material group is refused (it cannot be assessed by FKM or DIN 743)."""
+    if material.group not in fkm.GROUPS:
+        raise InputError(source, f"materials.{material.name}.group",
+                         " | ".join(k for k in fkm.GROUPS if k != "gjl")
+                         + " (a material the standards can assess)", got=material.group or None)
+    return StrengthCard(material.name, material.description, material.group,
+                        material.ultimate_MPa, material.yield_MPa, material.case_hardness_HRC,
+                        material.case_depth_mm, ())
+
+
+def load_card(name: str, path: str | Path = MATERIALS_FILE) -> StrengthCard:
+    """The card of record ``[materials.NAME]`` in ``path``."""
+    return card_of(material_record(name, path), str(path))
 
 
 def load_surfaces(path: str | Path = CARDS_FILE) -> Surfaces:

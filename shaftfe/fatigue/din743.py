@@ -7,9 +7,16 @@ their comments) and reproduces a published exam solution (tests/validation/test_
 
   K1(d_eff)   technological size factor (part 2): case-hardening steel 1 − 0.41 lg(d/16),
               0.6 beyond 150 mm; quenched & tempered σ_B: 1 − 0.26 lg(d/16) (0.67),
-              σ_S: 1 − 0.34 lg(d/16) (0.57); 1 up to d_B = 16 mm
-  K2(d)       geometric size factor, bending and torsion: 1 − 0.2 lg(d/7.5)/lg 20 (0.8 ≥ 150)
-  K3(d)       size conversion of tabulated β: 1 − 0.2 lg β(d_BK) lg(d/7.5)/lg 20
+              σ_S: 1 − 0.34 lg(d/16) (0.57); 1 up to d_B = 16 mm. d_eff is the diameter that
+              governs the heat treatment (DIN 743-2, technological size factor K1; the
+              material values of DIN 743-3 hold at d_B): at a shoulder the larger diameter D,
+              the section the notch's material was hardened in; at a keyway or a press fit the
+              shaft's diameter there (``heat_treatment_diameter``)
+  K2(d)       geometric size factor, bending and torsion: 1 − 0.2 lg(d/7.5)/lg 20 (0.8 ≥ 150),
+              at the notch's diameter d (the nominal stress's section; DIN 743-2, geometric
+              size factor K2): a different diameter from K1's at a shoulder
+  K3(d)       size conversion of tabulated β (keyway, press fit): 1 − 0.2 lg β(d_BK)
+              lg(d/7.5)/lg 20, at the notch's diameter d
   n           support number 1 + √(G'·mm) 10^−(0.33 + σ_S(d)/712 MPa); hard surface layer
               1 + √(G'·mm) 10^−0.7
   G'          shoulder: 2.3 (1 + φ)/r (tension, bending), 1.15/r (torsion); φ = 1/(4√(t/r) + 2)
@@ -158,7 +165,8 @@ class Notch:
     alpha: dict | None = None           # load -> α (tension, bending, torsion)
     alpha_source: str = ""
     rz_um: float = 1.0
-    d_eff_mm: float = 0.0               # heat-treatment diameter for K1 (default D or d)
+    d_eff_mm: float = 0.0               # heat-treatment diameter for K1 (0: the default,
+    #                                     ``heat_treatment_diameter``)
 
 
 @dataclass(frozen=True)
@@ -189,9 +197,15 @@ class Result:
     S_F: float
 
 
+def heat_treatment_diameter(notch: Notch) -> float:
+    """d_eff of K1 (see the module docstring): the notch's own ``d_eff_mm`` if set, else D at
+    a shoulder and d elsewhere."""
+    return notch.d_eff_mm or (notch.D_mm or notch.d_mm)
+
+
 def assess(notch: Notch, st: Stresses, rm_n: float, rp_n: float, group: str, *,
            k_v: float = 1.0, hard_layer: bool = False, case: int = 2) -> Result:
-    d_eff = notch.d_eff_mm or (notch.D_mm or notch.d_mm)
+    d_eff = heat_treatment_diameter(notch)
     K1B, K1S = k1(d_eff, group, "ultimate"), k1(d_eff, group, "yield")
     sB, sS = K1B * rm_n, K1S * rp_n
     W = {"tension": 0.4 * rm_n, "bending": 0.5 * rm_n, "torsion": 0.3 * rm_n}

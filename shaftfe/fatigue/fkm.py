@@ -71,6 +71,19 @@ J_D = {("severe", False): 1.5, ("severe", True): 1.35,
 MINER = ("elementary", "modified", "consistent")
 
 
+def effective_diameter(y_mm: float, z_mm: float) -> float:
+    """d_eff of the technological size factor K_d,m at a surface point of a shaft (local
+    stresses): the guideline's table of effective diameters by cross-section form (FKM 2012,
+    technological size factor; the 2003 table quoted by PragTic), solid round section:
+    d_eff = d in both of its cases (case 1, d_eff = 4V/O, and case 2), with d the diameter of
+    the round section through the assessed point, i.e. twice its distance from the axis. On a
+    cylinder that is the segment's diameter; on a shoulder fillet the section through the hot
+    spot (the collar's at 19° along the 0.6 mm arc: 17.06 mm, the small diameter plus the arc's
+    rise). DIN 743 takes its K1 at the shoulder's larger diameter instead
+    (``din743.heat_treatment_diameter``): the standards' rules differ, and both are reported."""
+    return 2.0 * math.hypot(float(y_mm), float(z_mm))
+
+
 def size_factor(d_eff_mm: float, g: Group) -> float:
     """Technological size factor K_d,m = (1 − 0.7686 a_d lg(d/7.5)) / (1 − 0.7686 a_d
     lg(d_N/7.5)) for d_eff > d_eff,N, else 1."""

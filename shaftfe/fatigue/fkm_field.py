@@ -280,7 +280,7 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
             sa, sm = stress_cycles(s_lin, beta if beta else None, cyc)
             prof = profile(ref, int(i), tree, card.case_depth_mm)
             x = np.asarray(ref.xyz, float)[:, i]
-            d_eff = 2.0 * float(math.hypot(x[1], x[2]))
+            d_eff = fkm.effective_diameter(x[1], x[2])
             kv = k_v_case_hardening(d_eff, notched) if card.case_hardened else 1.0
             common = dict(rules=rules, j_D=j_D, damage_sum=damage_sum,
                           design_life=design_life_blocks)

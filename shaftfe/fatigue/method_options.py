@@ -7,8 +7,8 @@ works on the beam), so a result would look as if the option had been applied. Th
 option given on the command line that the chosen method does not use is refused, in one line
 naming the methods it applies to (``check_method_options``). The command registers these
 options with ``default=None`` so that "given" can be told from "left at its default" (even
-``--card 14220``, the default card, is refused with ``--method seed``), then fills the defaults
-from this table (``with_defaults``).
+``--card 14220``, the shaft's own material, is refused with ``--method seed``), then fills the
+defaults from this table (``with_defaults``).
 
 Why each option belongs where:
 
@@ -39,7 +39,7 @@ STANDARDS = ("fkm", "din743")
 
 # option -> (argparse dest, default, the methods that use it)
 METHOD_OPTIONS: dict[str, tuple[str, object, tuple[str, ...]]] = {
-    "--card": ("card", "14220", STANDARDS),
+    "--card": ("card", None, STANDARDS),            # None: the variant's shaft material
     "--miner": ("miner", "modified", FKM),
     "--consequences": ("consequences", "severe", FKM),
     "--inspection": ("inspection", False, FKM),

@@ -33,6 +33,8 @@ from pathlib import Path
 import numpy as np
 
 from shaftfe.errors import InputError
+from shaftfe.fatigue.fkm import GROUPS
+from shaftfe.model.loader import material_record
 from shaftfe.util.paths import SN_FILE
 
 BEYOND_LAST = ("cutoff", "extrapolate")
@@ -129,7 +131,7 @@ class FatigueMaterial:
     source: str = ""
 
 
-_CARD_KEYS = {"description", "source", "yield_MPa", "ultimate_MPa", "mean_stress_MPa",
+_CARD_KEYS = {"description", "source", "material", "yield_MPa", "ultimate_MPa", "mean_stress_MPa",
               "beyond_last", "infinite_life_cycles", "cycles", "alternating_MPa", "knee_cycles",
               "knee_alternating_MPa", "slope_k", "note"}
 
@@ -165,8 +167,19 @@ def load_material(name: str, path: str | Path = SN_FILE, *,
             raise InputError(src, f"{where}.{key}", allowed, got=v)
         return float(v)
 
-    sy = num("yield_MPa", "> 0", lambda v: v > 0)
-    su = num("ultimate_MPa", ">= yield_MPa", lambda v: v >= sy)
+    rec = None
+    if "material" in card:
+        # the strengths come from the material record (one record per material and heat
+        # treatment, geometry/common/materials.toml), not from a second copy here
+        for key in ("yield_MPa", "ultimate_MPa", "knee_alternating_MPa"):
+            if key in card:
+                raise InputError(src, f"{where}.{key}", "absent: the card names a material "
+                                 f"record ({card['material']!r}) that gives it")
+        rec = material_record(str(card["material"]))
+        sy, su = rec.yield_MPa, rec.ultimate_MPa
+    else:
+        sy = num("yield_MPa", "> 0", lambda v: v > 0)
+        su = num("ultimate_MPa", ">= yield_MPa", lambda v: v >= sy)
     num("mean_stress_MPa", "0 (a zero-mean S-N curve)", lambda v: v == 0.0, default=0.0)
     if "cycles" in card or "alternating_MPa" in card:
         lists = []
@@ -179,7 +192,8 @@ def load_material(name: str, path: str | Path = SN_FILE, *,
         cycles, amps = lists
     else:
         nd = num("knee_cycles", "> 1000", lambda v: v > 1000)
-        sd = num("knee_alternating_MPa", "> 0", lambda v: v > 0)
+        sd = (material_knee(rec) if rec is not None
+              else num("knee_alternating_MPa", "> 0", lambda v: v > 0))
         k = num("slope_k", "in (1, 100]", lambda v: 1 < v <= 100)
         cycles, amps = (nd / 1000.0, nd), (sd * 1000.0 ** (1.0 / k), sd)
     bl = beyond_last if beyond_last is not None else card.get("beyond_last", "cutoff")
@@ -191,6 +205,17 @@ def load_material(name: str, path: str | Path = SN_FILE, *,
         raise InputError(src, f"{where}.{exc.field}", exc.allowed, got=exc.got) from None
     return FatigueMaterial(name, sy, su, sn, str(card.get("description", "")),
                            str(card.get("source", "")))
+
+
+def material_knee(rec) -> float:
+    """The S-N knee amplitude of a material record: the FKM material fatigue strength
+    σ_W,zd = f_W,σ R_m of its group (``fkm.GROUPS``; the guideline's Table 4.2.1), at the record's
+    strength reference diameter (no size, surface or notch factor: the seed method's kf)."""
+    if rec.group not in GROUPS:
+        raise InputError("geometry/common/materials.toml", f"materials.{rec.name}.group",
+                         " | ".join(k for k in GROUPS if k != "gjl") + " (for the S-N knee)",
+                         got=rec.group or None)
+    return GROUPS[rec.group].f_w_sigma * rec.ultimate_MPa
 
 
 def _read(path: Path) -> dict:

@@ -23,7 +23,8 @@ from shaftfe.fatigue.method_options import DEFAULT_METHOD, METHODS  # noqa: F401
 
 @dataclass(frozen=True)
 class StrengthOptions:
-    card: str = "14220"             # geometry/common/strength.toml
+    card: str | None = None         # a record of geometry/common/materials.toml; None = the
+    #                                 variant's shaft material (the drawing's): ``strength_card``
     rule: str = "modified"          # governing Miner rule (all three are reported)
     consequences: str = "severe"    # FKM j_D: severe | moderate
     inspection: bool = False        # FKM j_D: regular inspections
@@ -41,6 +42,16 @@ def check_options(o: StrengthOptions) -> None:
                          got=o.damage_sum)
 
 
+def strength_card(variant, opts: StrengthOptions):
+    """The strength card an assessment uses: the record named by ``opts.card`` (``--card``) if
+    given, else the variant's own shaft material (the drawing's), the same record its FE model
+    takes E, ν and density from."""
+    from shaftfe.fatigue.cards import card_of, load_card
+    if opts.card is not None:
+        return load_card(opts.card)
+    return card_of(variant.material, f"variant {variant.name}")
+
+
 def ground_fillets(variant) -> frozenset[str]:
     """The fillets at the end of a bearing seat or next to one (ground with the seat)."""
     segs = variant.segments
@@ -55,7 +66,7 @@ def ground_fillets(variant) -> frozenset[str]:
 def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None):
     """FKM on the static reference of ``job`` (a ``FatigueJob``: variant, history, mesh level,
     load case); returns (``fkm_field.FkmResult``, inputs, ref)."""
-    from shaftfe.fatigue.cards import load_card, load_surfaces
+    from shaftfe.fatigue.cards import load_surfaces
     from shaftfe.fatigue.fkm_field import assess_field
     from shaftfe.fatigue.run import load_inputs, resolve_design_life, static_reference
     check_options(opts)
@@ -64,7 +75,7 @@ def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None):
                          "3D field)", got=job.model)
     inputs = inputs or load_inputs(job)
     job = resolve_design_life(job, inputs.history)
-    card = load_card(opts.card)
+    card = strength_card(inputs.variant, opts)
     ref = ref or static_reference(inputs.variant, job)
     res = assess_field(ref, inputs.history, card, load_surfaces(),
                        ground_fillets=ground_fillets(inputs.variant), rule=opts.rule,
@@ -152,21 +163,32 @@ def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
 BEAM_RPM = 10000.0     # the beam solution's speed; every other speed by rpm²
 
 
+def size_diameters_note(rows) -> str:
+    """The diameters DIN 743's size factors take at each shoulder, against FKM's rule."""
+    sh = [(r.result.notch.name, din743.heat_treatment_diameter(r.result.notch),
+           r.result.notch.d_mm) for r in rows if r.result.notch.kind == "shoulder"]
+    each = "; ".join(f"{n}: K1 at {D:g} mm, K2 at {d:g} mm" for n, D, d in sh)
+    return ("size factors: DIN 743-2 takes the technological K1 at the heat-treatment diameter "
+            "(the larger diameter D at a shoulder) and the geometric K2 (and K3) at the notch "
+            f"diameter d ({each}); FKM takes its K_d,m at the diameter of the round section "
+            "through its hot spot (about d on a fillet): the two standards' rules differ")
+
+
 def beam_at_ref(variant):
     from shaftfe.beam.solve import analyse
     return analyse(variant, BEAM_RPM)[0]
 
 
 def run_din743(job, opts: StrengthOptions, inputs=None, beam=None) -> Din743Run:
-    from shaftfe.fatigue.cards import load_card, load_surfaces
+    from shaftfe.fatigue.cards import load_surfaces
     from shaftfe.fatigue.counting import count_cycles
     from shaftfe.fatigue.fkm_field import k_v_case_hardening
     from shaftfe.fatigue.run import load_inputs
     check_options(opts)
     inputs = inputs or load_inputs(job)
-    card = load_card(opts.card)
+    card = strength_card(inputs.variant, opts)
     if card.group not in ("case_hardening_steel", "qt_steel"):
-        raise InputError("geometry/common/strength.toml", f"cards.{card.name}.group",
+        raise InputError("geometry/common/materials.toml", f"materials.{card.name}.group",
                          "case_hardening_steel | qt_steel for DIN 743", got=card.group)
     ref_rpm = BEAM_RPM
     beam = beam if beam is not None else beam_at_ref(inputs.variant)
@@ -191,5 +213,6 @@ def run_din743(job, opts: StrengthOptions, inputs=None, beam=None) -> Din743Run:
         res = din743.assess(notch, st, card.rm_n_MPa, card.rp_n_MPa, card.group, k_v=kv,
                             hard_layer=card.case_hardened, case=2)
         rows.append(Din743Row(x, res, st))
+    notes.append(size_diameters_note(rows))
     rpm = h.rpm_ref * math.sqrt(hi), h.rpm_ref * math.sqrt(lo)
     return Din743Run(card, ref_rpm, rpm[1], rpm[0], tuple(rows), tuple(notes))

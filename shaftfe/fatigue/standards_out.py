@@ -84,11 +84,14 @@ def din_summary(run) -> dict:
                           "S_D": _num(g.result.S_D), "S_F": _num(g.result.S_F)},
             "notches": [{"name": w.result.notch.name, "x_mm": w.x_mm,
                          "kind": w.result.notch.kind, "alpha_source": w.result.notch.alpha_source,
+                         "d_eff_K1_mm": din.heat_treatment_diameter(w.result.notch),
+                         "d_K2_mm": w.result.notch.d_mm,
                          "S_D": _num(w.result.S_D), "S_F": _num(w.result.S_F),
                          "stresses_MPa": {k: _num(v) for k, v in vars(w.stresses).items()},
                          "factors": {ld: {k: _num(v) for k, v in f.items()}
                                      for ld, f in w.result.factors.items()}}
-                        for w in run.rows]}
+                        for w in run.rows],
+            "notes": list(run.notes)}
 
 
 def elements_summary(bearings, keys, gear_chk, kappa: float, e_c: float) -> dict:

@@ -40,7 +40,7 @@ from shaftfe.model.variant import (
     Variant,
     content_hash,
 )
-from shaftfe.util.paths import GEOMETRY_DIR  # the variant files (geometry/)
+from shaftfe.util.paths import COMMON_DIR, GEOMETRY_DIR  # the variant files (geometry/)
 
 _TABLE_KINDS = {"materials", "bearing_types", "parts"}       # merged across files by sub-key
 def list_variants(directory: str | Path | None = None) -> list[str]:
@@ -134,7 +134,8 @@ def _material(name: str, t: dict, src: str, ctx: Ctx) -> Material:
     fld = f"materials.{name}"
     t = table(t, src, fld)
     check_keys(t, {"description", "E_MPa", "nu", "density_t_mm3", "yield_MPa",
-                    "ultimate_MPa"}, src, fld)
+                    "ultimate_MPa", "group", "heat_treatment", "strength_reference_diameter_mm",
+                    "case_hardness_HRC", "case_depth_mm"}, src, fld)
     provenance(t, src, fld, fld, ctx)
     E = num(t, "E_MPa", src, fld)
     nu = num(t, "nu", src, fld)
@@ -146,8 +147,43 @@ def _material(name: str, t: dict, src: str, ctx: Ctx) -> Material:
     need(0 < rho < 1e-7, src, f"{fld}.density_t_mm3", "0 < value < 1e-7 t/mm³", rho)
     plausible(fy, "strength_MPa", src, f"{fld}.yield_MPa")
     need(fu >= fy, src, f"{fld}.ultimate_MPa", f">= yield_MPa ({fy})", fu)
+    group = text(t, "group", src, fld, default="")
+    need(group in MATERIAL_GROUPS or group == "", src, f"{fld}.group",
+         " | ".join(MATERIAL_GROUPS), group)
+    d_ref = num(t, "strength_reference_diameter_mm", src, fld, required=False)
+    need(d_ref is None or 1.0 <= d_ref <= 1000.0, src, f"{fld}.strength_reference_diameter_mm",
+         "a diameter in [1, 1000] mm", d_ref)
+    hrc = num(t, "case_hardness_HRC", src, fld, required=False)
+    need(hrc is None or 20.0 <= hrc <= 70.0, src, f"{fld}.case_hardness_HRC", "in [20, 70]", hrc)
+    depth = num(t, "case_depth_mm", src, fld, required=False)
+    need(depth is None or 0.05 <= depth <= 5.0, src, f"{fld}.case_depth_mm",
+         "a depth in [0.05, 5] mm", depth)
     return Material(name=name, E_MPa=E, nu=nu, density_t_mm3=rho, yield_MPa=fy,
-                    ultimate_MPa=fu, description=str(t.get("description", "")))
+                    ultimate_MPa=fu, description=str(t.get("description", "")), group=group,
+                    heat_treatment=str(t.get("heat_treatment", "")),
+                    strength_reference_diameter_mm=d_ref, case_hardness_HRC=hrc,
+                    case_depth_mm=depth)
+
+
+# the standards' material groups a record may name (shaftfe.fatigue.fkm.GROUPS, without the
+# guideline example's grey cast iron)
+MATERIAL_GROUPS = ("case_hardening_steel", "qt_steel", "structural_steel")
+
+
+def material_record(name: str, path=None) -> Material:
+    """The record ``[materials.NAME]`` of a materials file (default: geometry/common/
+    materials.toml), outside any variant (``--card NAME``, the S-N cards' ``material``)."""
+    p = Path(path) if path is not None else COMMON_DIR / "materials.toml"
+    try:
+        mats = tomllib.loads(p.read_text(encoding="utf-8")).get("materials", {})
+    except OSError as exc:
+        raise InputError(str(p), "file", "a readable TOML file", reason=str(exc)) from None
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(str(p), "file", "valid TOML", reason=str(exc)) from None
+    if name not in mats:
+        raise InputError(str(p), "materials", " | ".join(sorted(mats)) or "a [materials.NAME]",
+                         got=name)
+    return _material(name, mats[name], str(p), Ctx())
 
 
 def _segments(shaft: dict, src: str, ctx: Ctx, stock: float | None) -> tuple[Segment, ...]:

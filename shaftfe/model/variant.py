@@ -36,9 +36,15 @@ class Material:
     E_MPa: float
     nu: float
     density_t_mm3: float      # t/mm³ (7.85e-9 for steel)
-    yield_MPa: float
+    yield_MPa: float          # R_p, R_m: at strength_reference_diameter_mm where given
     ultimate_MPa: float
     description: str = ""
+    # what the standards' assessments (FKM, DIN 743) read from the same record
+    group: str = ""                              # "" = no standard material group
+    heat_treatment: str = ""
+    strength_reference_diameter_mm: float | None = None
+    case_hardness_HRC: float | None = None
+    case_depth_mm: float | None = None           # None = not case hardened
 
 
 @dataclass(frozen=True)

@@ -297,15 +297,25 @@ def _strength(o: ReportOptions, variant, ref, history, cycles) -> dict:
     duty cycle and the seed's key and gear checks, with the defaults of
     ``shaftfe fatigue --method fkm | din743``."""
     from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
+    from shaftfe.errors import InputError
     from shaftfe.fatigue import standards as sd
     from shaftfe.fatigue import standards_out as so
-    from shaftfe.fatigue.cards import load_card, load_surfaces
+    from shaftfe.fatigue.cards import load_surfaces
     from shaftfe.fatigue.fkm_field import assess_field
     from shaftfe.fatigue.run import FatigueInputs, FatigueJob
+    from shaftfe.util.notices import warn
     opts = sd.StrengthOptions()
     out = {"default_method": sd.DEFAULT_METHOD}
+    try:                    # the shaft's own material decides; not every record is assessable
+        card = sd.strength_card(variant, opts)
+        if card.group not in ("case_hardening_steel", "qt_steel"):
+            raise InputError(f"variant {variant.name}", f"materials.{card.name}.group",
+                             "case_hardening_steel | qt_steel for DIN 743", got=card.group)
+    except InputError as exc:
+        warn("strength-material", "report", f"strength by standard left out: {exc}")
+        return {}
     if o.model == "solid":
-        res = assess_field(ref, history, load_card(opts.card), load_surfaces(),
+        res = assess_field(ref, history, card, load_surfaces(),
                            ground_fillets=sd.ground_fillets(variant), rule=opts.rule,
                            j_D=sd.fkm.J_D[(opts.consequences, opts.inspection)],
                            damage_sum=opts.damage_sum, design_life_blocks=o.design_life_blocks,

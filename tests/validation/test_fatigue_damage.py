@@ -27,6 +27,7 @@ from shaftfe.fatigue.kernels import (
     safety_factor,
 )
 from shaftfe.fatigue.sn import FatigueMaterial, SNCurve, load_material
+from shaftfe.model.loader import load_variant
 
 RPM_DAT = Path(__file__).resolve().parents[2] / "loadspectra" / "rpm.dat"
 STEEL = load_material("structural_steel")
@@ -129,15 +130,19 @@ def test_structural_steel_sn_lookup_hand_values():
 
 
 def test_basquin_card_14220():
-    """16MnCr5 card: FKM σ_W = 0.40 · 740 = 296 MPa at N_D = 1e6, k = 5: N(592) = 1e6/2⁵ =
-    31 250; the S-N line value at 1e7 (extrapolated) 296·10^(−1/5) = 186.763 MPa."""
+    """16MnCr5 card (its strengths from the material record [materials.14220], R_m 1000 MPa):
+    FKM σ_W = 0.40 · 1000 = 400 MPa at N_D = 1e6, k = 5: N(800) = 1e6/2⁵ = 31 250; the S-N
+    line value at 1e7 (extrapolated) 400·10^(−1/5) = 252.383 MPa."""
     m = load_material("14220")
+    # one record: the S-N card's strengths are the variant's (and FKM's / DIN 743's) material
+    rec = load_variant("x2_57").material
+    assert (m.yield_MPa, m.ultimate_MPa) == (rec.yield_MPa, rec.ultimate_MPa) == (695.0, 1000.0)
     # exact arithmetic (round-off only; passes at 1e-13)
-    assert m.sn.cycles_to_failure(592.0) == pytest.approx(31250.0, rel=1e-12)
-    assert m.sn.cycles_to_failure(290.0) == math.inf
+    assert m.sn.cycles_to_failure(800.0) == pytest.approx(31250.0, rel=1e-12)
+    assert m.sn.cycles_to_failure(390.0) == math.inf
     ext = load_material("14220", beyond_last="extrapolate")
     # exact arithmetic (round-off only; passes at 1e-13)
-    assert ext.sn.amplitude_at(1e7) == pytest.approx(186.7633739661372, rel=1e-12)
+    assert ext.sn.amplitude_at(1e7) == pytest.approx(252.3829377920773, rel=1e-12)
 
 
 # --- Miner, life, seed chain -----------------------------------------------------------------
