@@ -38,7 +38,8 @@ VARIANT_EDITS = {
     "boss_diameter_in_metres": (SHAFT, BOSS, BOSS.replace("17.0", "0.017")),
     "mass_in_grams": ("x2_57.toml", CW2, CW2.replace("0.24", "240.0")),
     "eccentricity_in_metres": ("x2_57.toml", CW2, CW2.replace("20.23", "0.02023")),
-    "E_in_GPa": (MATS, '58 ± 2 HRC"\nE_MPa = 210000.0', '58 ± 2 HRC"\nE_MPa = 210.0'),
+    "E_in_GPa": (MATS, 'blank-hardened"\ngroup = "case_hardening_steel"\nE_MPa = 210000.0',
+                 'blank-hardened"\ngroup = "case_hardening_steel"\nE_MPa = 210.0'),
     "C_in_kN": (BEAR, "C_N = 14418.0", "C_N = 14.418"),
     "balance_table_contradicts_parts": ("x2_57.toml", "mass_kg = 0.761", "mass_kg = 7.61"),
     "X2_contradicts_parts": ("x2_57.toml", "X2_percent = 57.0", "X2_percent = 23.0"),
@@ -66,9 +67,10 @@ VARIANT_EDITS = {
                                    "x_centroid_mm = 94500.0"),
     "fillet_in_metres": (SHAFT, 'diameter_mm = 22.0\nfillet_mm = 0.6',
                          'diameter_mm = 22.0\nfillet_mm = 0.0006'),
-    "density_in_kg_per_mm3": (MATS, '58 ± 2 HRC"\nE_MPa = 210000.0\nnu = 0.3\n'
-                              'density_t_mm3 = 7.85e-9', '58 ± 2 HRC"\nE_MPa = 210000.0\n'
-                              'nu = 0.3\ndensity_t_mm3 = 7.85e-6'),
+    "density_in_kg_per_mm3": (MATS, 'blank-hardened"\ngroup = "case_hardening_steel"\n'
+                              'E_MPa = 210000.0\nnu = 0.3\ndensity_t_mm3 = 7.85e-9',
+                              'blank-hardened"\ngroup = "case_hardening_steel"\n'
+                              'E_MPa = 210000.0\nnu = 0.3\ndensity_t_mm3 = 7.85e-6'),
 }
 # id -> what the one stderr line must name (file and field)
 VARIANT_EXPECT = {
