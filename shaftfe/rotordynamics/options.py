@@ -9,6 +9,11 @@ from shaftfe.errors import InputError
 
 ROTOR_MODELS = ("beam", "solid")
 COUPLINGS = ("rigid", "distributing")     # solid model: RBE2-like (bonded) | RBE3-like
+# The excitation (engine) orders of a Campbell diagram's lines k × n/60, n the shaft's speed:
+# 1× (the shaft's own unbalance: the counterweights' m e ω², the only load modelled) and 2×
+# (its second harmonic). ONE default for the API (``analyse``, ``campbell.sweep``), the
+# ``campbell`` command, the report and the demo.
+DEFAULT_ORDERS: tuple[float, ...] = (1.0, 2.0)
 
 
 @dataclass(frozen=True)
