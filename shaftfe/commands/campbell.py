@@ -272,7 +272,7 @@ def run_campbell(args) -> int:
 
             from shaftfe.rotordynamics.plots import plot_campbell
 
-            title = f"{args.variant}: Campbell diagram ({args.model} model)"
+            title = f"{variant.name}: Campbell diagram ({args.model} model)"
             png = plot_campbell(res, title=title)
             js = json.dumps(_payload(args, variant, model, res, ver, beam_res), indent=2)
             csv = res.to_csv()
