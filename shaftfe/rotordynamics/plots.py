@@ -45,6 +45,24 @@ def _merged_labels(ax, x: float, ys: np.ndarray, min_px: float = 9.0) -> list[tu
             for g in groups]
 
 
+def _critical_labels(ax, criticals, dx_px: float = 70.0, dy_px: float = 18.0) -> list:
+    """One label per cluster of critical-speed markers (closer than ``dx_px`` × ``dy_px`` on
+    the screen, in speed order): [((rpm, Hz) of the cluster's first, "41022, 44391 rpm")]."""
+    if not criticals:
+        return []
+    pts = sorted(criticals, key=lambda c: c.rpm)
+    pix = ax.transData.transform([(c.rpm, c.freq_hz) for c in pts])
+    groups: list[list[int]] = [[0]]
+    for k in range(1, len(pts)):
+        a = pix[groups[-1][0]]
+        if abs(pix[k, 0] - a[0]) < dx_px and abs(pix[k, 1] - a[1]) < dy_px:
+            groups[-1].append(k)
+        else:
+            groups.append([k])
+    return [((pts[g[0]].rpm, max(pts[k].freq_hz for k in g)),
+             ", ".join(f"{pts[k].rpm:.0f}" for k in g) + " rpm") for g in groups]
+
+
 def plot_campbell(res: CampbellResult, title: str = "", fmt: str = "png") -> bytes:
     """Campbell diagram: every computed branch (frequency [Hz], log axis, against speed [rpm]),
     styled by whirl, the excitation lines k·n/60 with the ±``SEPARATION_MARGIN`` band around
@@ -77,16 +95,25 @@ def plot_campbell(res: CampbellResult, title: str = "", fmt: str = "png") -> byt
         ax.fill_between(n_line, f_line * (1 - SEPARATION_MARGIN),
                         f_line * (1 + SEPARATION_MARGIN), color="0.5", alpha=0.18, lw=0)
         ax.plot(n_line, f_line, color="k", lw=0.9)
-        ax.annotate(f"{k:g}×", (n_line[-1], f_line[-1]), fontsize=8, xytext=(3, -3),
-                    textcoords="offset points", va="top")
+        # the order's name on its line inside the plot (the right edge holds the branch
+        # numbers), on a white box
+        i = int(0.8 * (n_line.size - 1))
+        ax.annotate(f"{k:g}×", (n_line[i], f_line[i]), fontsize=8, ha="right", va="bottom",
+                    xytext=(-3, 3), textcoords="offset points",
+                    bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none",
+                          "alpha": 0.8})
     fig.canvas.draw()                      # the limits are final: label positions in pixels
     for y, text in _merged_labels(ax, x_max, res.freq_hz[-1]):
         ax.annotate(text, (x_max, y), fontsize=7, xytext=(4, 0), textcoords="offset points",
                     va="center")
-    for i, c in enumerate(res.criticals):
+    for c in res.criticals:
         ax.plot([c.rpm], [c.freq_hz], "kX", ms=8)
-        ax.annotate(f"{c.rpm:.0f} rpm", (c.rpm, c.freq_hz), fontsize=7,
-                    xytext=(5, 6 if i % 2 == 0 else -12), textcoords="offset points")
+    for (x, y), text in _critical_labels(ax, res.criticals):
+        right = x > 0.7 * x_max                    # keep clear of the branch numbers
+        ax.annotate(text, (x, y), fontsize=7, xytext=(-30 if right else -4, 7),
+                    textcoords="offset points", ha="right" if right else "left",
+                    bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none",
+                          "alpha": 0.8})
     handles = [Line2D([], [], color=_WHIRL_STYLE[w][0], ls=_WHIRL_STYLE[w][1], label=w)
                for w in WHIRL_LABELS if w in used]
     handles.append(Line2D([], [], color="k", lw=0.9, label="excitation k×n/60"))
