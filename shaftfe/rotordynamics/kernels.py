@@ -206,7 +206,9 @@ def block_shift_invert(K, M, solve, m: int, *, shift: float, block: int | None =
     Returns (ω² ascending (m,), Φ M-orthonormal (n, m), number of vectors solved)."""
     n = K.shape[0]
     b = block or max(4, min(16, math.ceil(m / 4)))
-    d_max = max_dim or (2 * m + b)
+    # a restart keeps m + b vectors and must add a block of b: a smaller max_dim would
+    # overflow the buffers (measured: m 36, b 9, max_dim 44 stopped with a broadcast error)
+    d_max = max(max_dim or (2 * m + b), m + 2 * b)
     cap = d_max + b
     nc = m if n_converged is None else min(m, n_converged)
     V, MV, SV, KV = (np.empty((n, cap)) for _ in range(4))   # filled column by column

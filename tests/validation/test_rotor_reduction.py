@@ -287,3 +287,8 @@ def test_block_shift_invert_keeps_basis_in_constrained_space_over_restarts():
     assert np.abs(h.T @ Phi).max() < 1e-13
     exact = 2.0 - 2.0 * np.cos(np.arange(1, 25) * np.pi / n)
     assert np.max(np.abs(w2[:24] - exact) / exact) < 1e-10
+    # a Krylov space smaller than a restart needs (m + 2b = 54 for b = 9) is widened to it,
+    # not a buffer overflow (was: "could not broadcast … (400,9) into … (400,8)")
+    w2s, _, _ = campbell.block_shift_invert(K, M, solve, 36, shift=shift, n_converged=24,
+                                            max_dim=44, project=lambda X: X - h @ (h.T @ X))
+    assert np.max(np.abs(w2s[:24] - exact) / exact) < 1e-10        # as above
