@@ -126,6 +126,54 @@ def test_plot_campbell_png():
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+
+def _two_branch_result(f, whirl, family, orders=(1.0,)):
+    rpm = np.arange(0.0, 1000.0 * f.shape[0], 1000.0)
+    return campbell.CampbellResult(
+        rpm=rpm, freq_hz=f, zeta=np.zeros_like(f), whirl=whirl, family=family,
+        whirl_ratio=np.zeros_like(f), mac_min=np.ones(rpm.size), branch_whirl=whirl[-1],
+        orders=orders, criticals=(), basis_size=2, basis_change=0.0, n_rigid=0, n_dof=4)
+
+
+def test_lowest_frequency_named_at_rest_and_where_it_is_lowest():
+    """Issue 30 §3 ("481.1 Hz" on the card vs "477 Hz" in the statement): the statement gives
+    the lowest frequency at the first speed and, when a backward branch falls below it, the
+    lowest over the sweep with its speed, whirl and mode, both at 4 significant digits."""
+    f = np.array([[481.1, 600.0], [479.0, 602.0], [477.0, 604.0]])
+    lab = (("lateral", "lateral"),) * 3
+    wl = (("undetermined", "undetermined"), ("backward", "forward"), ("backward", "forward"))
+    text = _two_branch_result(f, wl, lab).statement()
+    assert "lowest natural frequency 481.1 Hz at 0 rpm, 477 Hz at 2000 rpm (backward " \
+           "whirl, mode 1)" in text
+    flat = _two_branch_result(np.array([[500.0, 600.0], [500.0, 601.0]]), wl[:2], lab[:2])
+    assert "lowest natural frequency 500 Hz at 0 rpm;" in flat.statement()
+
+
+def test_whirl_ratio_only_for_bending_modes():
+    """Issue 30 §3: a whirl ratio is shown for lateral (bending) modes only; torsional and
+    axial modes show "—" with their kind."""
+    assert campbell.whirl_ratio_text(0.98765, "lateral") == "+0.988"
+    assert campbell.whirl_ratio_text(0.0, "torsional") == "— (torsional)"
+    assert campbell.whirl_ratio_text(-0.3, "axial") == "— (axial)"
+
+
+def test_one_default_of_the_excitation_orders():
+    """Issue 30 §3: the campbell command, the report and the API share one default."""
+    import inspect
+
+    from shaftfe.cli import build_parser
+    from shaftfe.report.options import ReportOptions
+    from shaftfe.rotordynamics import analyse
+    from shaftfe.rotordynamics.options import DEFAULT_ORDERS
+
+    args = build_parser().parse_args(["campbell", "0:8000"])
+    from shaftfe.commands.campbell import parse_orders
+    assert tuple(parse_orders(args.orders)) == DEFAULT_ORDERS
+    assert ReportOptions().orders == DEFAULT_ORDERS
+    for fn in (analyse.analyse, campbell.sweep):
+        assert inspect.signature(fn).parameters["orders"].default == DEFAULT_ORDERS
+
+
 # ----------------------------------------------------------------------------- CLI
 
 def test_cli_campbell_x2_57_table_files_and_verify(tmp_path, capsys):

@@ -64,16 +64,19 @@ def test_stress_envelope_has_no_empty_slice():
     assert env[-1] == pytest.approx(101.0, rel=1e-12)
 
 
-def test_campbell_axis_shows_the_excitation_region_and_the_first_pair():
+def test_campbell_axis_shows_every_branch_and_the_excitation_region():
+    """Issue 30 §4: every computed branch is drawn (the 11 kHz mode too, on a log axis), and
+    the excitation lines enter the plot below the lowest branch (the region that matters)."""
     from types import SimpleNamespace
 
-    from shaftfe.rotordynamics.plots import campbell_top_hz
+    from shaftfe.rotordynamics.plots import campbell_limits_hz
     rpm = np.linspace(0, 9500, 5)
     freq = np.tile([480.0, 600.0, 1100.0, 11_000.0], (5, 1))
     res = SimpleNamespace(freq_hz=freq, rpm=rpm, orders=(1.0, 2.0))
-    top = campbell_top_hz(res)
-    assert top == pytest.approx(1.1 * 600.0)        # the whirl pair, not the 11 kHz mode
-    assert top > 2 * 9500 / 60                       # and the whole 2x excitation line
+    lo, hi = campbell_limits_hz(res)
+    assert hi > 11_000.0 and lo < 480.0                  # every branch inside
+    # the 2x line from a tenth of its top (below half the lowest branch): exact arithmetic
+    assert lo == pytest.approx(0.1 * 2 * 9500 / 60, rel=1e-12)
 
 
 def test_a_solver_failure_names_the_bearings():

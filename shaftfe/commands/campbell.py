@@ -18,7 +18,13 @@ from __future__ import annotations
 import math
 
 from shaftfe.errors import InputError
-from shaftfe.rotordynamics.options import COUPLINGS, ROTOR_MODELS, RotorOptions, check_options
+from shaftfe.rotordynamics.options import (
+    COUPLINGS,
+    DEFAULT_ORDERS,
+    ROTOR_MODELS,
+    RotorOptions,
+    check_options,
+)
 from shaftfe.solid.levels import LEVEL_NAMES
 
 _MAX_SPEEDS = 2001
@@ -71,8 +77,10 @@ def register(sub) -> None:
                    help="speed range in rpm: a:b or a:b:step (e.g. 0:8000)")
     p.add_argument("--step", type=float, default=1000.0, help="speed step in rpm "
                    "(default 1000; a step given in RANGE wins)")
-    p.add_argument("--orders", default="1", help="engine orders for the excitation lines, "
-                   "comma-separated (default 1), e.g. 1,2")
+    default_orders = ",".join(f"{k:g}" for k in DEFAULT_ORDERS)
+    p.add_argument("--orders", default=default_orders, help="engine orders for the "
+                   f"excitation lines, comma-separated (default {default_orders}, as the "
+                   "report and the demo), e.g. 1")
     _common_options(p)
     p.set_defaults(handler=run_campbell)
 
@@ -264,7 +272,7 @@ def run_campbell(args) -> int:
 
             from shaftfe.rotordynamics.plots import plot_campbell
 
-            title = f"{args.variant}: Campbell diagram ({args.model} model)"
+            title = f"{variant.name}: Campbell diagram ({args.model} model)"
             png = plot_campbell(res, title=title)
             js = json.dumps(_payload(args, variant, model, res, ver, beam_res), indent=2)
             csv = res.to_csv()
@@ -287,6 +295,7 @@ def run_campbell(args) -> int:
 
 def run_modal(args) -> int:
     from shaftfe.commands._common import print_json, print_table, write_atomic
+    from shaftfe.rotordynamics.campbell import whirl_ratio_text
     from shaftfe.util.limits import check_rpm
     check_rpm(args.rpm, "--rpm")
     _check_common(args)
@@ -314,7 +323,8 @@ def run_modal(args) -> int:
     print_table(["mode", "f Hz", "f·60 rpm", "family", "whirl", "whirl ratio", "zeta",
                  "bearing energy"],
                 [[j + 1, f"{res.freq_hz[0, j]:.2f}", f"{res.freq_hz[0, j] * 60:.0f}",
-                  res.family[0][j], res.whirl[0][j], f"{res.whirl_ratio[0, j]:+.3f}",
+                  res.family[0][j], res.whirl[0][j],
+                  whirl_ratio_text(res.whirl_ratio[0, j], res.family[0][j]),
                   f"{res.zeta[0, j]:.3g}", f"{share[j]:.2f}"]
                  for j in range(res.freq_hz.shape[1])],
                 title=f"modes at {args.rpm:g} rpm (bearing energy: share of the mode's strain "

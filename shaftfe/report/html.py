@@ -13,6 +13,7 @@ import math
 from html import escape
 
 from shaftfe import __version__
+from shaftfe.rotordynamics.campbell import whirl_ratio_text
 from shaftfe.static.result import PEAK_FIT_LABEL  # what a static peak is (one definition)
 
 CSS = """
@@ -414,7 +415,7 @@ def _campbell(r) -> str:
     s += table(["mode", "f at 0 rpm [Hz]", f"f at {top} rpm [Hz]", "whirl", "family",
                 f"whirl ratio at {top} rpm [-]", "bearing strain-energy share at 0 rpm [-]"],
                [[t["mode"], num(t["f0_hz"], 5), num(t["f_top_hz"], 5), t["whirl"], t["family"],
-                 f"{t['whirl_ratio_top']:+.3f}",
+                 whirl_ratio_text(t["whirl_ratio_top"], t["family"]),
                  num(t["bearing_energy_share"], 3) if t["bearing_energy_share"] >= 1e-3
                  else "< 0.001"]
                 for t in c["table"]], numeric={0, 1, 2, 5, 6})

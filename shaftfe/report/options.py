@@ -6,7 +6,7 @@ import math
 from dataclasses import dataclass
 
 from shaftfe.errors import InputError
-from shaftfe.rotordynamics.options import ROTOR_MODELS
+from shaftfe.rotordynamics.options import DEFAULT_ORDERS, ROTOR_MODELS
 from shaftfe.solid.levels import ESTIMATE_PAIR_CHEAP
 from shaftfe.util.paths import DEFAULT_SPECTRUM
 
@@ -40,7 +40,7 @@ class ReportOptions:
     design_rpm: tuple[float, ...] = (10_000.0, 7_000.0)   # seed §8.2.2 static check, §8.3 ref
     campbell_step_rpm: float = 500.0
     modes: int = 12
-    orders: tuple[float, ...] = (1.0, 2.0)
+    orders: tuple[float, ...] = DEFAULT_ORDERS
     rotor_model: str = "beam"
     estimate_error: bool = False          # solve a second mesh level (OTHER_LEVEL)
     mean_stress: str = "soderberg"

@@ -14,7 +14,12 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol
 
 from shaftfe.errors import InputError
-from shaftfe.rotordynamics.options import ROTOR_MODELS, RotorOptions, check_options
+from shaftfe.rotordynamics.options import (
+    DEFAULT_ORDERS,
+    ROTOR_MODELS,
+    RotorOptions,
+    check_options,
+)
 
 if TYPE_CHECKING:
     import numpy as np
@@ -101,7 +106,7 @@ def build_rotor(variant, options: RotorOptions = RotorOptions()):
     return rotor_kind(options.model).build(variant, options)
 
 
-def analyse(variant, rpms, n_modes: int = 12, *, orders=(1.0,),
+def analyse(variant, rpms, n_modes: int = 12, *, orders=DEFAULT_ORDERS,
             options: RotorOptions = RotorOptions(), keep_vectors: bool = False,
             verify: bool = True, model=None) -> RotorAnalysis:
     """Build (or take ``model``), sweep ``rpms``, and verify the reduced sweep at the top speed.

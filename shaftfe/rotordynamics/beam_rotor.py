@@ -60,6 +60,7 @@ from shaftfe.beam.elements import NDOF, RX, RY, RZ, UX, UY, UZ
 from shaftfe.errors import InputError
 from shaftfe.rotordynamics.campbell import CampbellResult, sweep
 from shaftfe.rotordynamics.kernels import TWO_PI, Labelling, full_qep, rpm_to_rad_s
+from shaftfe.rotordynamics.options import DEFAULT_ORDERS
 
 _S = np.array([1.0, -1.0, 1.0, -1.0])
 _XY = np.array([UY, RZ, NDOF + UY, NDOF + RZ])
@@ -283,7 +284,7 @@ def rotor_from_variant(variant, *, max_element_mm: float = 5.0, rigid_supports: 
 # --------------------------------------------------------------------------- analyses
 
 def campbell(rotor: RotorModel, rpms: Sequence[float], n_modes: int = 12, *,
-             orders: Sequence[float] = (1.0,), tol: float = 1e-6,
+             orders: Sequence[float] = DEFAULT_ORDERS, tol: float = 1e-6,
              keep_vectors: bool = False) -> CampbellResult:
     """Campbell sweep of the rotor (reduced basis, MAC tracking, whirl labels, criticals)."""
     res = sweep(rotor.K, rotor.M, rotor.G, rpms, n_modes, rotor.labelling, C=rotor.C,

@@ -23,6 +23,7 @@ from shaftfe.rotordynamics.kernels import (
     reduced_eig,
     rpm_to_rad_s,
 )
+from shaftfe.rotordynamics.options import DEFAULT_ORDERS
 
 
 @dataclass(frozen=True)
@@ -54,6 +55,18 @@ class CampbellResult:
     notes: tuple = field(default_factory=tuple)
     vectors: np.ndarray | None = None   # (ns, n_dof, nb) complex, if kept
 
+    def lowest_frequency_text(self) -> str:
+        """The lowest natural frequency at the first speed and, where it differs (a backward
+        branch falls with speed), the lowest over the sweep with its speed and whirl: the
+        two values side by side, never one for the other."""
+        f0 = float(np.min(self.freq_hz[0]))
+        i, j = np.unravel_index(int(np.argmin(self.freq_hz)), self.freq_hz.shape)
+        out = f"lowest natural frequency {f0:.4g} Hz at {self.rpm[0]:g} rpm"
+        if f"{self.freq_hz[i, j]:.4g}" != f"{f0:.4g}":
+            out += (f", {self.freq_hz[i, j]:.4g} Hz at {self.rpm[i]:g} rpm "
+                    f"({self.whirl[i][j]} whirl, mode {j + 1})")
+        return out
+
     def statement(self) -> str:
         lo, hi = float(self.rpm.min()), float(self.rpm.max())
         orders = ", ".join(f"{k:g}×" for k in self.orders)
@@ -61,8 +74,8 @@ class CampbellResult:
             kmax = max(self.orders)
             return (f"no critical speed in {lo:g}-{hi:g} rpm: no branch of the first "
                     f"{self.freq_hz.shape[1]} modes crosses the {orders} excitation line(s) "
-                    f"(lowest natural frequency {np.min(self.freq_hz):.4g} Hz; highest "
-                    f"excitation {kmax:g} × {hi:g}/60 = {kmax * hi / 60:.4g} Hz)")
+                    f"({self.lowest_frequency_text()}; highest excitation {kmax:g} × "
+                    f"{hi:g}/60 = {kmax * hi / 60:.4g} Hz)")
         items = "; ".join(f"{c.rpm:.0f} rpm ({c.order:g}×, mode {c.branch + 1}, {c.whirl}, "
                           f"{c.freq_hz:.4g} Hz)" for c in self.criticals)
         return f"critical speeds in {lo:g}-{hi:g} rpm: {items}"
@@ -99,8 +112,16 @@ class CampbellResult:
         return "\n".join(lines) + "\n"
 
 
+def whirl_ratio_text(ratio: float, family: str) -> str:
+    """A whirl ratio as shown in tables: signed for a bending (lateral) mode; "—" with the
+    mode's kind otherwise (forward/backward whirl has no meaning for torsion or axial
+    motion, whose (u_y, u_z) ratio is an artefact)."""
+    return f"{ratio:+.3f}" if family == "lateral" else f"— ({family})"
+
+
 def sweep(K, M, G, rpms: Sequence[float], n_modes: int, lab: Labelling, *, C=None,
-          orders: Sequence[float] = (1.0,), tol: float = 1e-6, sigma: float = 0.0, opinv=None,
+          orders: Sequence[float] = DEFAULT_ORDERS, tol: float = 1e-6, sigma: float = 0.0,
+          opinv=None,
           keep_vectors: bool = False, n_extra: int = 6, basis_fn=None,
           residuals=None, Kg=None) -> CampbellResult:
     """Campbell sweep of M q̈ + (C + Ω G) q̇ + (K + Ω² Kg) q = 0 over ``rpms`` (the n lowest

@@ -138,7 +138,7 @@ def modal_basis(K, M, m: int, *, sigma: float = 0.0, opinv=None) -> ModalBasis:
     return ModalBasis(Phi=Phi, omega=omega)
 
 
-def _m_orthonormal(X, V, MV, M, drop: float = 1e-10):
+def _m_orthonormal(X, V, MV, M, drop: float = 1e-10, project=None):
     """X made M-orthonormal and M-orthogonal to the M-orthonormal V (MV = M V): two passes of
     block classical Gram-Schmidt, then two passes of normalisation by the eigen-decomposition
     of the block's Gram matrix (one pass leaves ~ε·g_max/g_min of M-orthonormality; the second
@@ -148,7 +148,8 @@ def _m_orthonormal(X, V, MV, M, drop: float = 1e-10):
     in span V: the space is invariant). Not relative to the norms before the projection
     direction by direction: a Krylov block loses most of its norm to the converged directions
     by design (measured: that rule dropped one direction per block on x2_57 and forced a
-    restart). Returns (X, M X)."""
+    restart). ``project``: a map onto the constrained space (``block_shift_invert``), applied
+    after each Gram-Schmidt pass (then M X is recomputed). Returns (X, M X)."""
     MX = M @ X
     g0 = float(np.max(np.einsum("ij,ij->j", X, MX))) if X.size else 0.0
     for _ in range(2):
@@ -156,6 +157,10 @@ def _m_orthonormal(X, V, MV, M, drop: float = 1e-10):
             C = MV.T @ X
             X = X - V @ C
             MX = MX - MV @ C
+        if project is not None:
+            X = project(X)
+    if project is not None:
+        MX = M @ X
     for k in range(2):
         G = X.T @ MX
         g, Q = np.linalg.eigh(0.5 * (G + G.T))
@@ -170,13 +175,24 @@ def _m_orthonormal(X, V, MV, M, drop: float = 1e-10):
 
 def block_shift_invert(K, M, solve, m: int, *, shift: float, block: int | None = None,
                        tol: float = 1e-6, max_dim: int | None = None, seed: int = 0,
-                       max_restarts: int = 20, n_converged: int | None = None):
+                       max_restarts: int = 20, n_converged: int | None = None,
+                       project=None):
     """The ``m`` lowest eigenpairs of K φ = ω² M φ by block shift-invert Lanczos with full
     M-reorthogonalisation and thick restarts: the Krylov space of S = (K + shift M)⁻¹ M grows
     by blocks, each block one multi-right-hand-side call ``solve(B)`` (B of shape (n, b)), so
     that a direct solver streams its factor once per block, not once per vector (ARPACK's
-    ``eigsh`` asks for one vector at a time). ``solve`` may carry constraints (its results
-    then span the constrained space, and so does every basis vector).
+    ``eigsh`` asks for one vector at a time). ``solve`` may carry constraints (hard rows
+    H q = 0): its results then span the constrained space, and so does every basis vector in
+    exact arithmetic. Not in floating point: a new direction is the small remainder of a
+    block after the Gram-Schmidt against V (a restart's residual S φ − θ φ is ~tol·θ of its
+    terms), so normalising it multiplies the rounding of V's own constraint violation by
+    1/remainder at every step. K (the Rayleigh-Ritz matrix) does not hold the hard rows, so a
+    violating direction (e.g. a rigid twist the bearings hold) has no stiffness: it comes out
+    as a spurious ω² ≈ 0 Ritz value and pollutes the restarts (measured on a two-disc solid
+    rotor: |H V| grew ×3 per restart, 7e-7 → 350, and 36 modes never converged). Pass
+    ``project`` (a map of a block onto the constrained space, e.g. the Euclidean projector
+    on null H) to remove it after every Gram-Schmidt pass: the violation then stays at
+    rounding level.
 
     Rayleigh-Ritz on K in the M-orthonormal basis V gives ω² and φ (so Φᵀ K Φ = diag ω² and
     Φᵀ M Φ = I hold to rounding whatever the convergence: a reduced model on Φ is a
@@ -190,7 +206,9 @@ def block_shift_invert(K, M, solve, m: int, *, shift: float, block: int | None =
     Returns (ω² ascending (m,), Φ M-orthonormal (n, m), number of vectors solved)."""
     n = K.shape[0]
     b = block or max(4, min(16, math.ceil(m / 4)))
-    d_max = max_dim or (2 * m + b)
+    # a restart keeps m + b vectors and must add a block of b: a smaller max_dim would
+    # overflow the buffers (measured: m 36, b 9, max_dim 44 stopped with a broadcast error)
+    d_max = max(max_dim or (2 * m + b), m + 2 * b)
     cap = d_max + b
     nc = m if n_converged is None else min(m, n_converged)
     V, MV, SV, KV = (np.empty((n, cap)) for _ in range(4))   # filled column by column
@@ -198,7 +216,7 @@ def block_shift_invert(K, M, solve, m: int, *, shift: float, block: int | None =
     X = solve(M @ rng.standard_normal((n, b)))          # in the constrained space
     n_solved = b
     d = 0
-    X, MX = _m_orthonormal(X, V[:, :0], MV[:, :0], M)
+    X, MX = _m_orthonormal(X, V[:, :0], MV[:, :0], M, project=project)
     res = np.full(m, np.inf)
     for _restart in range(max_restarts + 1):
         while True:
@@ -210,7 +228,7 @@ def block_shift_invert(K, M, solve, m: int, *, shift: float, block: int | None =
             d += k
             if d >= d_max:
                 break
-            X, MX = _m_orthonormal(SX, V[:, :d], MV[:, :d], M)
+            X, MX = _m_orthonormal(SX, V[:, :d], MV[:, :d], M, project=project)
             if X.shape[1] == 0:                           # the space is invariant
                 break
         A = V[:, :d].T @ KV[:, :d]
@@ -229,7 +247,7 @@ def block_shift_invert(K, M, solve, m: int, *, shift: float, block: int | None =
             buf[:, :p] = buf[:, :d] @ Y[:, :p]
         d = p
         bad = np.argsort(-res[:nc])[:b]
-        X, MX = _m_orthonormal(R[:, bad], V[:, :d], MV[:, :d], M)
+        X, MX = _m_orthonormal(R[:, bad], V[:, :d], MV[:, :d], M, project=project)
         if X.shape[1] == 0:
             raise SolverError("block Lanczos: no new direction to restart with")
     raise SolverError(f"block Lanczos: {m} modes not converged to {tol:g} after "

@@ -9,6 +9,17 @@ from shaftfe.errors import InputError
 
 ROTOR_MODELS = ("beam", "solid")
 COUPLINGS = ("rigid", "distributing")     # solid model: RBE2-like (bonded) | RBE3-like
+# The excitation (engine) orders of a Campbell diagram's lines k × n/60, n the shaft's speed:
+# 1× (the shaft's own unbalance: the counterweights' m e ω², the only load modelled) and 2×
+# (its second harmonic). ONE default for the API (``analyse``, ``campbell.sweep``), the
+# ``campbell`` command, the report and the demo.
+DEFAULT_ORDERS: tuple[float, ...] = (1.0, 2.0)
+# The separation margin drawn around each excitation line of the Campbell diagram, ±10 % of
+# the excitation frequency: a design-practice parameter, not a standard's requirement. API 684
+# / API 617 derive the required margin from the amplification factor of a damped unbalance
+# response, which this undamped sweep does not compute; a branch inside the band is a critical
+# speed close enough to the excitation to need that response analysis.
+SEPARATION_MARGIN = 0.10
 
 
 @dataclass(frozen=True)

@@ -15,6 +15,7 @@ import numpy as np
 
 from shaftfe.rotordynamics.campbell import CampbellResult, sweep
 from shaftfe.rotordynamics.kernels import TWO_PI, ModalBasis, block_shift_invert
+from shaftfe.rotordynamics.options import DEFAULT_ORDERS
 from shaftfe.rotordynamics.prestress import Prestress, centrifugal_prestress
 from shaftfe.rotordynamics.solid_rotor import SolidRotor
 from shaftfe.rotordynamics.solid_solver import ShiftedSolver
@@ -60,7 +61,8 @@ class BasisProvider:
         # with fully converged ones to 3e-8, the rest to 4e-6 (benchmarks/bench_rotor_solid.py)
         w2, Phi, _ = block_shift_invert(r.K, r.M, self.solver.solve, m,
                                         shift=self.sigma**2,
-                                        n_converged=math.ceil(2 * m / 3))
+                                        n_converged=math.ceil(2 * m / 3),
+                                        project=self.solver.project)
         mm = np.einsum("ij,ij->j", Phi, np.asarray(r.M @ Phi))
         Phi = Phi / np.sqrt(mm)
         self._basis = ModalBasis(Phi=Phi, omega=np.sqrt(np.clip(w2, 0.0, None)))
@@ -76,7 +78,8 @@ class BasisProvider:
 
 
 def campbell(rotor: SolidRotor, rpms: Sequence[float], n_modes: int = 12, *,
-             orders: Sequence[float] = (1.0,), tol: float = 1e-6, keep_vectors: bool = False,
+             orders: Sequence[float] = DEFAULT_ORDERS, tol: float = 1e-6,
+             keep_vectors: bool = False,
              provider: BasisProvider | None = None) -> CampbellResult:
     """Campbell sweep of the solid rotor (reduced basis, MAC tracking, labels, criticals);
     with ``options.stress_stiffening`` the reduced stiffness at Ω is diag ω² + Ω² Φᵀ K_g Φ

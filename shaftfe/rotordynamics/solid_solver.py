@@ -61,7 +61,18 @@ class ShiftedSolver:
         else:
             self._lr = None
             self.cond_S = 1.0
+        hard = [t.R for t in rotor.terms if t.C is None]
+        self._hard_Q = np.linalg.qr(np.vstack(hard).T)[0] if hard else None
         self.seconds = time.perf_counter() - t0
+
+    def project(self, X):
+        """X projected (Euclidean) on the null space of the hard rows H: X − Q Qᵀ X, Q an
+        orthonormal basis of range Hᵀ. Every solve's result lies there already; this removes
+        the rounding a Gram-Schmidt remainder carries out of it (``kernels.block_shift_invert``)."""
+        if self._hard_Q is None:
+            return X
+        Q = self._hard_Q
+        return X - Q @ (Q.T @ X)
 
     def solve(self, b):
         b = np.asarray(b)
