@@ -291,7 +291,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         warnings=tuple(collected()))
 
 
-def _strength(o: ReportOptions, variant, ref, history, cycles) -> dict:
+def _strength(o: ReportOptions, variant, ref, history, cycles=None) -> dict:
     """FKM on the same static reference (no second solve; 3D only) and the same rainflow count
     ``cycles`` (the fatigue stage's: counted once), DIN 743 on the beam, the bearings over the
     duty cycle and the seed's key and gear checks, with the defaults of
