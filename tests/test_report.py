@@ -413,3 +413,19 @@ def test_view_names_the_fitted_peak_of_the_sidecar(tmp_path):
     assert view.fitted_peak(tmp_path / "other.vtu", ch) is None     # another file's summary
     sf = view.FieldChoice("safety_factor", "point", 1, None, "safety_factor", "-", "min")
     assert view.fitted_peak(vtu, sf) is None
+
+
+def test_life_error_row_when_the_hot_spot_fails_in_the_first_block():
+    """An allowed overspeed can put a cycle above the static strength: the hot spot's life is
+    0 blocks. The error table's life row then says so instead of dividing by zero (the report
+    crashed with ZeroDivisionError: issue #30 review)."""
+    from shaftfe.report.comparisons import _check_rows
+    static = {"cases": [{"rpm": 10000.0, "bearings": [], "beam_springs": {}}],
+              "relative_residual": 1e-12, "solver": "pardiso"}
+    rows = _check_rows(static, static["cases"][0], {"hot_spot": {"life_blocks": 0.0}},
+                       {"life_blocks": 0.0, "safety_factor": 0.06, "factor": 1.01},
+                       {"table": [{"f0_hz": 481.1}], "verify": {"max_rel_diff": 1e-9,
+                                                                 "rpm": 0.0},
+                        "basis_change": 1e-9, "description": "beam rotor"})
+    life = next(r for r in rows if r.quantity == "fatigue life at the hot spot")
+    assert "fails in the first block" in life.error

@@ -106,7 +106,9 @@ def _check_rows(report_static: dict, c0: dict, ff_out: dict, scaled: dict | None
             f"({100 * (lb / hs['life_blocks'] - 1):+.0f} %), safety factor "
             f"{scaled['safety_factor']:.3f}, if the hot-spot stress is corrected by "
             f"×{scaled['factor']:.4f}"
-            if _m.isfinite(lb) else "infinite after correction",
+            if _m.isfinite(lb) and hs["life_blocks"] > 0
+            else ("infinite after correction" if not _m.isfinite(lb)
+                  else "0 blocks: fails in the first block, corrected or not"),
             "the same S-N evaluation at the hot spot with the stress corrected by the estimated "
             "error of the peak above (life ∝ σ^-k: a few % of stress is tens of % of life)"))
     out.append(ErrorEstimate(
