@@ -215,7 +215,7 @@ def _whole_mark(corners) -> str:
 def _print_tables(res, opts, out, corners=()) -> None:
     from shaftfe.commands._common import print_table
     from shaftfe.solid.plan import sharp_mark
-    from shaftfe.static.result import PEAK_FIT_LABEL
+    from shaftfe.static.result import PEAK_FIT_LABEL, unresolved_fillets
     d = res.diagnostics
     print(f"variant {res.variant}: P{opts.order} {opts.level}, {res.n_dofs} dofs, "
           f"{'rigid supports' if opts.rigid_supports else 'bearing springs'}, solver "
@@ -241,13 +241,19 @@ def _print_tables(res, opts, out, corners=()) -> None:
                      if (c.beam or {}).get("max_deflection_mm") is not None else "-"])
         print_table(["station", "x mm", "deflection µm (FE)", "µm (beam)"], rows)
         bars = res.truth_error_bar_pct
+        unresolved = unresolved_fillets({p.region: p.von_mises_MPa for p in c.peaks})
+        unresolved.update({"shoulder:" + r.split(":", 1)[1]: "" for r in list(unresolved)})
         rows = [[p.region, p.von_mises_MPa, p.max_principal_MPa, p.xyz_mm[0],
                  p.von_mises_unfiltered_MPa,
                  f"{bars[p.region][0]:+.2f} … {bars[p.region][1]:+.2f}"
-                 if p.region in bars else "-", sharp_mark(corners, p.xyz_mm)]
+                 if p.region in bars else "-",
+                 "fillet not resolved: not a stress" if p.region in unresolved
+                 else sharp_mark(corners, p.xyz_mm)]
                 for p in c.peaks if not p.region.startswith("end:")]
         rows.append(["whole shaft", c.peak_von_mises_MPa, "-", c.peak_von_mises_xyz_mm[0],
-                     c.peak_von_mises_unfiltered_MPa, "-", _whole_mark(corners)])
+                     c.peak_von_mises_unfiltered_MPa, "-",
+                     _whole_mark(corners) or ("not bounded: a fillet not resolved"
+                                              if unresolved else "")])
         print_table(["region", "von Mises MPa", "max principal MPa", "x mm",
                      "unfiltered MPa", "error vs truth %", "note"], rows)
         print(f"peaks: the {PEAK_FIT_LABEL} (result.vtu, `shaftfe view` and the pictures hold "

@@ -47,6 +47,7 @@ from pathlib import Path
 
 import numpy as np
 
+from shaftfe.static.result import warn_unresolved_fillets
 from shaftfe.util import paths
 
 STATIC_CACHE_FORMAT = 2          # 2: spin softening's unsoftened stress (stress_linear)
@@ -198,6 +199,7 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
     if use_cache and path.exists():
         ref = _load(path, key, variant.name, t0)
         if ref is not None:
+            warn_unresolved_fillets(region_peaks(ref))   # as a fresh solve would say it
             return ref
     from shaftfe.static.solve import solve_static
     res = solve_static(variant, REF_RPM, options, cache_dir=cache_dir, beam=False,
@@ -207,6 +209,18 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
     else:
         ref = from_result(res, key)
     return dataclasses.replace(ref, seconds=time.perf_counter() - t0)
+
+
+def region_peaks(ref: StaticReference) -> dict[str, float]:
+    """Each region's largest nodal von Mises of the reference, the singular-point rule applied
+    (the excluded nodes left out)."""
+    excluded = set(np.asarray(ref.excluded).tolist())
+    out = {}
+    for name, ids in ref.regions.items():
+        keep = [i for i in np.asarray(ids).tolist() if i not in excluded]
+        if keep:
+            out[name] = float(np.max(ref.von_mises_ref[keep]))
+    return out
 
 
 def store(variant, options, res, cache_dir=None) -> StaticReference:

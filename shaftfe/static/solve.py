@@ -65,7 +65,13 @@ from shaftfe.static.model import (
     build_model,
     region_nodes,
 )
-from shaftfe.static.result import BearingReaction, StaticCase, StaticResult, Station
+from shaftfe.static.result import (
+    BearingReaction,
+    StaticCase,
+    StaticResult,
+    Station,
+    warn_unresolved_fillets,
+)
 
 RESIDUAL_TOL = 1e-8
 
@@ -582,6 +588,7 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
                assembly_seconds=model.assembly_seconds, model_seconds=t_model,
                recovery_seconds=rec.seconds)
     bars, bar_notes = truth_bars(v, options, rec.peaks, sm.key)
+    warn_unresolved_fillets({pk.region: pk.von_mises_MPa for pk in rec.peaks})
     res = StaticResult(
         variant=v.name, variant_hash=v.content_hash, options=options, ref_rpm=ref_rpm,
         n_nodes=sm.n_nodes, n_elements=sm.n_elements, n_dofs=3 * sm.n_nodes, mesh_key=sm.key,
