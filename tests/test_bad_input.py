@@ -442,6 +442,9 @@ B_CASES.update({
                                         ["NAME", "starting with a letter or digit"]),
     "variant_new_existing_name_elsewhere": (["variant", "new", "x2_31", "--out",
                                              "{W}/other.toml"], ["NAME", "x2_31.toml exists"]),
+    "variant_new_existing_name_other_case": (["variant", "new", "X2_31", "--out",
+                                              "{W}/other.toml"], ["NAME", "any letter case",
+                                                                  "x2_31.toml exists"]),
 })
 CASES.update(B_CASES)          # counted by the catalogue's coverage test
 

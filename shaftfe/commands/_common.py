@@ -92,7 +92,8 @@ def parse_rpm_list(text: str, option: str = "--rpm") -> list[float]:
     """Parse a comma-separated list of speeds in rpm (``7000,10000``); each finite, in
     [0, limits.RPM_CEILING]; an empty item (``10000,,7000``) is an error."""
     from shaftfe.util.limits import RPM_CEILING
-    allowed = f"comma-separated speeds in rpm, each in [0, {RPM_CEILING:g}]"
+    allowed = (f"comma-separated speeds in rpm, each in [0, {RPM_CEILING:g}] (then at most the "
+               "engine's own limit: util.limits.check_operating_speed)")
     items = [t.strip() for t in text.split(",")]
     try:
         vals = [float(t) for t in items]

@@ -76,9 +76,12 @@ def check_new_name(name: str) -> None:
     if not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9_-]*", name):
         raise InputError("command line", "NAME", "letters, digits, _ and -, starting with a "
                          "letter or digit", got=name)
-    if name in list_variants():
-        raise InputError("command line", "NAME", "a name no variant in geometry/ has yet "
-                         f"(geometry/{name}.toml exists)", got=name)
+    # case-insensitive: X2_31 beside x2_31 is one file on a case-insensitive file system
+    # (macOS, Windows) and two look-alike names elsewhere
+    same = next((v for v in list_variants() if v.casefold() == name.casefold()), None)
+    if same is not None:
+        raise InputError("command line", "NAME", "a name no variant in geometry/ has yet, "
+                         f"in any letter case (geometry/{same}.toml exists)", got=name)
 
 
 def run_new(args) -> int:
