@@ -13,6 +13,7 @@ in a work space with a copy of the geometry whose files each case edits; nothing
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 from pathlib import Path
@@ -375,7 +376,7 @@ def study_space(tmp_path_factory):
     (w / "damaged_meta").mkdir()
     (w / "damaged_meta" / "study.json").write_bytes(b"\x00{not json")
     (w / "damaged_table").mkdir()
-    (w / "damaged_table" / "study.json").write_text('{"digest": "x", "objectives": []}')
+    (w / "damaged_table" / "study.json").write_text(json.dumps(S2_META))  # a whole record
     (w / "damaged_table" / "results.parquet").write_bytes(b"PAR1 not a table")
     with socket.socket() as s:                 # a loopback port nobody listens on
         s.bind(("127.0.0.1", 0))
@@ -546,3 +547,39 @@ CASES.update(MATERIAL_CASES)
 @pytest.mark.parametrize("case", sorted(MATERIAL_CASES))
 def test_material_record_bad_input(case, space, capsys, monkeypatch):
     test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
+
+
+# --- issue #30, slice s2-study-fixes: study folders and addresses ---------------------------
+# a study.json without its keys (`{}` beside a finished study's table), `study report` on a
+# file, an empty --scheduler, a fatigue spectrum of the engine at rest
+S2_META = {"study_file": "../t.toml", "digest": "x", "name": "t", "base": "x2_57",
+           "parameters": [], "objectives": [], "requirements": [], "analyses": {}}
+S2_CASES: dict[str, tuple[list[str], list[str]]] = {
+    "study_report_study_json_without_keys": (
+        ["study", "report", "{W}/empty_meta"], ["empty_meta", "study.json", "damaged",
+                                                "study_file", "analyses"]),
+    "study_report_on_a_file": (["study", "report", "{W}/beam.toml"],
+                               ["beam.toml", "is a file, not a study folder"]),
+    "study_scheduler_empty": (["study", "run", "{W}/beam.toml", "--out", "{W}/o",
+                               "--scheduler", ""], ["--scheduler", "''", "not a URL"]),
+    "study_spectrum_all_zero": (["study", "run", "{W}/zero_spectrum.toml", "--out", "{W}/o"],
+                                ["zero.dat", "0 in every sample", "engine at rest"]),
+}
+STUDY_CASES.update(S2_CASES)
+
+
+@pytest.mark.parametrize("case", sorted(S2_CASES))
+def test_s2_study_folders_and_addresses(case, study_space, capsys, monkeypatch):
+    """As the c-study catalogue; the `{}` study.json sits beside the showcase's real table
+    (which `study report` read and overwrote index.html from, exit 0, before the fix)."""
+    w, _ = study_space
+    (w / "zero.dat").write_text("# format = rpm\n# sample_rate_hz = 1\n0\n0\n0\n")
+    (w / "zero_spectrum.toml").write_text(STUDY_HEAD + '[analyses]\nstatic = { level = '
+                                          '"coarse" }\nfatigue = { spectrum = "zero.dat" }\n')
+    (w / "empty_meta").mkdir(exist_ok=True)
+    (w / "empty_meta" / "study.json").write_text("{}")
+    shown = Path(__file__).resolve().parents[1] / "reports" / "studies" / "x2_tradeoff"
+    for name in ("results.parquet", "base.json"):
+        (w / "empty_meta" / name).write_bytes((shown / name).read_bytes())
+    test_bad_study_input_is_one_clear_line_exit_2_and_writes_nothing(case, study_space, capsys,
+                                                                     monkeypatch)

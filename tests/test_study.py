@@ -375,7 +375,8 @@ def test_recommendation_text_is_true_of_the_table(sense, word):
     text = recommendation(df, objs, reqs, nd, meets, rec, [])
     assert f"has the {word} engine max|F| [N]: {f[rec]:g}" in text
     missed = 0 if sense == "min" else 3                # the better design without the life
-    assert f"design {missed}, {f[missed]:g}: fatigue life [h] 5 (required &gt;= 10)" in text
+    assert (f"design {missed}, {f[missed]:g}: fatigue life (seed method, S-N card "
+            "structural_steel) [h] 5 (required &gt;= 10)") in text
 
 
 def test_dead_worker_is_retried_once_then_recorded(tmp_path):
@@ -554,3 +555,57 @@ def test_failed_designs_exit_1(tmp_path, capsys, monkeypatch):
     assert rc == 1
     assert err.splitlines()[0].startswith("shaftfe: 2 designs refused (6, 7)")  # before solving
     assert "1 of 1 designs failed" in err.splitlines()[-1]
+
+
+# --------------------------------------------------------------------------- issue #30, s2
+SHOWCASE = ROOT / "reports" / "studies" / "x2_tradeoff"
+
+
+@pytest.mark.parametrize("drop", ["all", "study_file", "analyses"])
+def test_study_json_without_its_keys_is_damaged(tmp_path, drop):
+    """A study.json that is valid JSON but lacks a key the study run writes is refused as
+    damaged, naming the key, before anything is read or written (it gave "Base variant base
+    ... Study file: None" and overwrote index.html)."""
+    from shaftfe.study.report import META_KEYS, read_meta, write_report
+    out = tmp_path / "s"
+    shutil.copytree(SHOWCASE, out, ignore=shutil.ignore_patterns("designs"))
+    meta = json.loads((out / "study.json").read_text())
+    assert set(META_KEYS) <= set(meta) and read_meta(out) == meta   # the showcase is whole
+    meta = {} if drop == "all" else {k: v for k, v in meta.items() if k != drop}
+    (out / "study.json").write_text(json.dumps(meta))
+    page = (out / "index.html").read_bytes()
+    with pytest.raises(InputError, match="study.json is damaged .no valid .*"
+                       + ("study_file" if drop != "analyses" else "analyses")):
+        write_report(out)
+    assert (out / "index.html").read_bytes() == page
+
+
+def test_report_on_a_file_says_it_is_a_file(tmp_path):
+    from shaftfe.study.report import read_meta
+    f = write(tmp_path)
+    with pytest.raises(InputError, match="is a file, not a study folder"):
+        read_meta(f)
+    with pytest.raises(InputError, match="does not exist"):
+        read_meta(tmp_path / "nothing")
+
+
+def test_fatigue_numbers_name_their_method_and_card(tmp_path):
+    """The study's fatigue numbers are the seed method's on the study's S-N card (not
+    `shaftfe fatigue`'s FKM default): every label on the page says so, the page says how they
+    differ, and the numbers in the table are the committed table's, unchanged."""
+    import pandas as pd
+
+    from shaftfe.study.report import labels, write_report
+    lab = labels({"material": "14220"})
+    assert lab["fatigue_sf"] == "fatigue safety factor (seed method, S-N card 14220)"
+    assert lab["life_h"] == "fatigue life (seed method, S-N card 14220) [h]"
+    out = tmp_path / "s"
+    shutil.copytree(SHOWCASE, out, ignore=shutil.ignore_patterns("designs"))
+    page = write_report(out).read_text()
+    basis = "(seed method, S-N card structural_steel)"
+    assert f"fatigue safety factor {basis}" in page and f"fatigue life {basis} [h]" in page
+    assert "fatigue safety factor</th>" not in page and "fatigue life [h]" not in page
+    assert "shaftfe fatigue --method seed --material structural_steel" in page
+    assert "default method (FKM" in page
+    shown = pd.read_csv(SHOWCASE / "results.csv")
+    assert pd.read_csv(out / "results.csv").equals(shown)

@@ -49,14 +49,14 @@ def run_run(args) -> int:
     if args.workers is not None and not 1 <= args.workers <= 1024:
         raise InputError("command line", "--workers", "an integer in [1, 1024]",
                          got=args.workers)
-    if args.workers is not None and args.scheduler:
+    if args.workers is not None and args.scheduler is not None:
         raise InputError("command line", "--workers with --scheduler", "one of them (an "
                          "existing cluster has its own workers)", reason="is given")
     spec = load_study(args.study)
     check_count(spec, sampling.count(spec), yes=args.yes)
     designs = sampling.designs(spec)
     out = Path(args.out) if args.out else Path("reports") / "studies" / spec.name
-    if args.scheduler:
+    if args.scheduler is not None:                 # '' is an address given, and refused
         from shaftfe.study.runner import scheduler_address
         scheduler_address(args.scheduler)          # its form, before any design is loaded
     checked = check_study(spec, designs)            # every input, before anything runs

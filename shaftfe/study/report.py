@@ -19,8 +19,7 @@ from pathlib import Path
 from shaftfe.errors import InputError
 
 LABELS = {"engine_max_F_N": "engine max|F| [N]", "engine_rms_F_N": "engine RMS|F| [N]",
-          "life_h": "fatigue life [h]", "life_km": "fatigue life [km]",
-          "fatigue_sf": "fatigue safety factor", "mass_kg": "balancer mass [kg]",
+          "mass_kg": "balancer mass [kg]",
           "X2_percent": "X2 [%]", "stress_max_MPa": "peak von Mises [MPa]",
           "beam_max_peak_MPa": "beam Kt·nominal peak [MPa]", "L10h_min_h": "L10h (min) [h]",
           "critical_rpm": "1st critical speed [rpm]",
@@ -28,8 +27,49 @@ LABELS = {"engine_max_F_N": "engine max|F| [N]", "engine_rms_F_N": "engine RMS|F
 _LOG = ("life_h", "life_km", "life_blocks", "L10h_min_h")
 
 
-def _label(c: str) -> str:
-    return LABELS.get(c, c)
+FATIGUE_COLUMNS = {"fatigue_sf": "fatigue safety factor{b}", "life_blocks": "fatigue life{b} "
+                   "[blocks]", "life_h": "fatigue life{b} [h]", "life_km": "fatigue life{b} [km]",
+                   "fatigue_hot_spot": "fatigue hot spot{b}"}
+# the required keys of study.json (runner.study_record writes them all): a record without them
+# is not a study's, whatever else it holds
+META_KEYS = {"study_file": str, "digest": str, "name": str, "base": str, "parameters": list,
+             "objectives": list, "requirements": list, "analyses": dict}
+
+
+def fatigue_basis(analyses: dict | None) -> str:
+    """What a study's fatigue numbers are: always the seed method (``evaluate.fatigue_row``,
+    ``fatigue.field.evaluate``) on the study's S-N card, not the FKM default of
+    ``shaftfe fatigue``; the two differ (a safety factor of 0.47 against 2.5 on x2_57)."""
+    card = (analyses or {}).get("material") or "structural_steel"
+    return f"seed method, S-N card {card}"
+
+
+def fatigue_note(analyses: dict | None) -> str:
+    """The sentence that names the study's fatigue numbers and how they differ from the
+    fatigue command's default (one quantity, two values: the difference named)."""
+    an = analyses or {}
+    card = an.get("material") or "structural_steel"
+    how = f"{an.get('equivalent') or 'von_mises'}, {an.get('mean_stress') or 'soderberg'}"
+    return (f"Fatigue numbers (safety factor, life): the seed method ({how}) on the S-N card "
+            f"{card}, as shaftfe fatigue --method seed --material {card} computes them; shaftfe "
+            "fatigue's default method (FKM, the shaft's own material) gives other values for "
+            "the same shaft.")
+
+
+def labels(analyses: dict | None = None) -> dict[str, str]:
+    """Column → label; the fatigue columns name their method and material card."""
+    b = f" ({fatigue_basis(analyses)})"
+    return {**LABELS, **{c: t.format(b=b) for c, t in FATIGUE_COLUMNS.items()}}
+
+
+def _label(c: str, lab: dict | None = None) -> str:
+    return (lab or labels()).get(c, c)
+
+
+def _axis(c: str, lab: dict | None = None) -> str:
+    """A label on a plot axis: the basis in parentheses on its own line (a long one would
+    run past the axis)."""
+    return _label(c, lab).replace(" (", "\n(", 1)
 
 
 def _png(fig, path: Path | None = None) -> str:
@@ -109,7 +149,7 @@ def _decades(ax) -> float:
     return math.log10(hi / lo) if lo > 0 and hi > lo else 0.0
 
 
-def _tradeoff(df, objs, nd, rec, path: Path, reqs=(), base=None, base_name="base"):
+def _tradeoff(df, objs, nd, rec, path: Path, reqs=(), base=None, base_name="base", lab=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -122,7 +162,7 @@ def _tradeoff(df, objs, nd, rec, path: Path, reqs=(), base=None, base_name="base
     sc = ax.scatter(d[cx], y_all[ok.to_numpy()], c=d[cc] if cc else None, cmap="viridis", s=36,
                     zorder=2)
     if cc:
-        fig.colorbar(sc, ax=ax, label=_label(cc))
+        fig.colorbar(sc, ax=ax, label=_axis(cc, lab))
     m = [bool(x) for x in nd]
     ax.plot(df[m][cx], y_all[m], "o", mfc="none", mec="k", ms=11, zorder=3,
             label="non-dominated")
@@ -139,22 +179,22 @@ def _tradeoff(df, objs, nd, rec, path: Path, reqs=(), base=None, base_name="base
         elif col == cx:
             ax.axvline(val, color="crimson", ls="--", lw=0.8, label=f"required {op} {val:g}")
     _yaxis(ax, cy, edges)
-    ax.set_xlabel(_label(cx))
-    ax.set_ylabel(_label(cy))
+    ax.set_xlabel(_axis(cx, lab))
+    ax.set_ylabel(_axis(cy, lab))
     ax.grid(alpha=0.3)
     ax.legend(loc="best", fontsize=8)
     return _png(fig, path)
 
 
-def _against(df, groups, objs, nd, base=None):
+def _against(df, groups, objs, nd, base=None, lab=None):
     """Each objective against each parameter (one column per parameter: paths moved
     together share it, labelled by the first) and against the derived X2."""
     import matplotlib.pyplot as plt
     xs = [(paths[0], f"{name}: {_short(paths[0])}" if name != paths[0] else _short(paths[0]))
           for name, paths in groups if paths[0] in df.columns]
     if "X2_percent" in df.columns and all(x != "X2_percent" for x, _ in xs):
-        xs.append(("X2_percent", _label("X2_percent")))
-    xs = [(x, lab) for x, lab in xs if df[x].dtype.kind in "if"]
+        xs.append(("X2_percent", _label("X2_percent", lab)))
+    xs = [(x, xl) for x, xl in xs if df[x].dtype.kind in "if"]
     if not xs:
         return None
     ys = [c for c, _ in objs]
@@ -164,7 +204,7 @@ def _against(df, groups, objs, nd, base=None):
     m = [bool(a) for a in nd]
     for i, y in enumerate(ys):
         yv, edges = _placed(y, df[y])
-        for j, (x, lab) in enumerate(xs):
+        for j, (x, xl) in enumerate(xs):
             ax = axes[i][j]
             ax.plot(df[x][ok], yv[ok], ".", color="tab:blue")
             ax.plot(df[x][m], yv[m], "o", mfc="none", mec="k")
@@ -173,9 +213,9 @@ def _against(df, groups, objs, nd, base=None):
                         color="darkorange", mec="k", ms=6)
             _yaxis(ax, y, edges)
             if i == len(ys) - 1:
-                ax.set_xlabel(lab, fontsize=8)
+                ax.set_xlabel(xl, fontsize=8)
             if j == 0:
-                ax.set_ylabel(_label(y), fontsize=8)
+                ax.set_ylabel(_axis(y, lab), fontsize=8)
             ax.tick_params(labelsize=7)
             ax.grid(alpha=0.3)
     return _png(fig)
@@ -185,8 +225,9 @@ def read_meta(out: Path) -> dict:
     """The folder's study.json; InputError (one line) for a folder that is not a study's."""
     what = "a folder written by shaftfe study run"
     if not out.is_dir():
-        raise InputError(str(out), "folder", what, reason="does not exist" if not
-                         out.exists() else "is not a folder")
+        raise InputError(str(out), "folder", what, reason="is a file, not a study folder"
+                         if out.is_file() else "does not exist" if not out.exists() else
+                         "is not a folder")
     sj = out / "study.json"
     if not sj.is_file():
         raise InputError(str(out), "study.json", what, reason="is missing: this is not a "
@@ -195,9 +236,15 @@ def read_meta(out: Path) -> dict:
         meta = json.loads(sj.read_text())
     except (OSError, ValueError, UnicodeDecodeError):
         meta = None
-    if not (isinstance(meta, dict) and isinstance(meta.get("objectives", []), list)):
-        raise InputError(str(out), "study.json", "the record shaftfe study run writes (run "
-                         "the study again into a new --out)", reason="is damaged")
+    fix = "(run the study again into a new --out)"
+    if not isinstance(meta, dict):
+        raise InputError(str(out), "study.json", f"the record shaftfe study run writes {fix}",
+                         reason="is damaged")
+    lacking = [k for k, t in META_KEYS.items() if not isinstance(meta.get(k), t)]
+    if lacking:
+        raise InputError(str(out), "study.json", f"the record shaftfe study run writes, with "
+                         f"{', '.join(META_KEYS)} {fix}", reason="is damaged (no valid "
+                         f"{', '.join(lacking)})")
     return meta
 
 
@@ -222,6 +269,7 @@ def write_report(out_dir) -> Path:
     rec = results.recommend(df, objs, reqs) if objs else None
     meets = results.meets(df, reqs)
     base, base_name = _base(out, meta, params)
+    lab = labels(meta.get("analyses"))
     n_ok = int((df["status"] == "ok").sum())
     parts = [f"<h1>Study {html.escape(meta.get('name', ''))}</h1>",
              f"<p>{html.escape(meta.get('description', ''))}</p>",
@@ -241,13 +289,15 @@ def write_report(out_dir) -> Path:
                      f"built {sh.get('meshes_built', 0)}, factorisations "
                      f"{sh.get('factor_made', 0)} made / {sh.get('factor_reused', 0)} "
                      "reused.</p>")
+    if any(c in df.columns for c in FATIGUE_COLUMNS):
+        parts.append(f"<p>{html.escape(fatigue_note(meta.get('analyses')))}</p>")
     parts.append("<h2>Recommendation</h2>")
-    parts.append(recommendation(df, objs, reqs, nd, meets, rec, params))
+    parts.append(recommendation(df, objs, reqs, nd, meets, rec, params, lab))
     if len(objs) >= 2 and n_ok:
         parts.append("<h2>Trade-off</h2>")
-        uri = _tradeoff(df, objs, nd, rec, out / "tradeoff.png", reqs, base, base_name)
+        uri = _tradeoff(df, objs, nd, rec, out / "tradeoff.png", reqs, base, base_name, lab)
         parts.append(f'<img src="{uri}" alt="trade-off">')
-        img = _against(df, groups, objs, nd, base)
+        img = _against(df, groups, objs, nd, base, lab)
         if img:
             parts.append("<h2>Objectives against the parameters</h2>")
             parts.append(f'<img src="{img}" alt="objectives against parameters">')
@@ -258,7 +308,7 @@ def write_report(out_dir) -> Path:
 
     def head(c):                          # a short header, the full path on hover
         return (f"<th title='{html.escape(c)}'>"
-                f"{html.escape(_short(c) if c in params else _label(c))}</th>")
+                f"{html.escape(_short(c) if c in params else _label(c, lab))}</th>")
     if sens and params:
         parts.append("<h2>Sensitivities (Spearman rank correlation over the evaluated designs)"
                      "</h2><div class='wide'><table><tr><th>output</th>"
@@ -268,7 +318,7 @@ def write_report(out_dir) -> Path:
                 f"<td style='background:rgba({200 if (v or 0) > 0 else 60},{90},"
                 f"{60 if (v or 0) > 0 else 200},{abs(v or 0) * 0.5:.2f})'>{_fmt(v)}</td>"
                 if v is not None else "<td>—</td>" for v in (row.get(p) for p in params))
-            parts.append(f"<tr><td>{html.escape(_label(o))}</td>{cells}</tr>")
+            parts.append(f"<tr><td>{html.escape(_label(o, lab))}</td>{cells}</tr>")
         parts.append("</table></div>")
     cols = ["design"] + [p for p in params if p in df.columns] + [
         c for c in [*outs, "life_km", "critical_margin_percent"] if c in df.columns]
@@ -340,14 +390,14 @@ def _base(out: Path, meta: dict, params) -> tuple[dict | None, str]:
     return row, name
 
 
-def recommendation(df, objs, reqs, nd, meets, rec, params) -> str:
+def recommendation(df, objs, reqs, nd, meets, rec, params, lab=None) -> str:
     """The recommendation in words, each claim true of the table: the candidates (the
     non-dominated designs meeting every requirement), the recommended one's rank in the first
     objective among them (lowest / highest by its sense), the next candidate, and the designs
     better in that objective that a requirement rules out."""
-    obj_txt = ", ".join(f"{'minimise' if s == 'min' else 'maximise'} {_label(c)}"
+    obj_txt = ", ".join(f"{'minimise' if s == 'min' else 'maximise'} {_label(c, lab)}"
                         for c, s in objs)
-    req_txt = ", ".join(f"{_label(c)} {op} {v:g}" for c, op, v in reqs) or "none"
+    req_txt = ", ".join(f"{_label(c, lab)} {op} {v:g}" for c, op, v in reqs) or "none"
     cand = [i for i in range(len(df)) if nd[i] and meets[i]]
     if rec is None:
         return (f"<p>No non-dominated design meets the requirements ({html.escape(req_txt)})"
@@ -364,9 +414,9 @@ def recommendation(df, objs, reqs, nd, meets, rec, params) -> str:
     ruled = ""
     if better:
         def fails(i):
-            return ", ".join(f"{_label(c)} {_fmt(df.iloc[i][c])} (required {op} {v:g})"
+            return ", ".join(f"{_label(c, lab)} {_fmt(df.iloc[i][c])} (required {op} {v:g})"
                              for c, op, v in reqs if not _ok(df.iloc[i][c], op, v))
-        ruled = (" A " + ("lower" if s1 == "min" else "higher") + f" {_label(c1)} is only "
+        ruled = (" A " + ("lower" if s1 == "min" else "higher") + f" {_label(c1, lab)} is only "
                  "reached by non-dominated designs that miss a requirement: " + "; ".join(
                      f"design {int(df.iloc[i]['design'])}, {_fmt(df.iloc[i][c1])}: "
                      f"{fails(i)}" for i in better[:4]) + ".")
@@ -374,8 +424,8 @@ def recommendation(df, objs, reqs, nd, meets, rec, params) -> str:
     return (f"<p><b>Design {int(r['design'])}</b>: {setting}.</p><p>Why: of the {sum(nd)} "
             f"non-dominated designs (objectives: {html.escape(obj_txt)}), {len(cand)} meet "
             f"the requirements ({html.escape(req_txt)}). Of these, this one has the {word} "
-            f"{html.escape(_label(c1))}: {_fmt(r[c1])}{nxt}.{html.escape(ruled)} Its numbers: "
-            + ", ".join(f"{_label(c)} {_fmt(r[c])}" for c in
+            f"{html.escape(_label(c1, lab))}: {_fmt(r[c1])}{nxt}.{html.escape(ruled)} Its numbers: "
+            + ", ".join(f"{_label(c, lab)} {_fmt(r[c])}" for c in
                         dict.fromkeys([c for c, _ in objs] + ["X2_percent", "fatigue_sf",
                                                               "L10h_min_h", "critical_rpm"])
                         if c in df.columns) + ".</p>")

@@ -297,7 +297,7 @@ def connect(scheduler: str | None, workers: int | None, spec: StudySpec):
 
     import dask
     from distributed import Client, LocalCluster
-    if scheduler:
+    if scheduler is not None:             # an empty address is refused, not a local cluster
         probe(scheduler)
         try:
             client = Client(scheduler, timeout=f"{CONNECT_TIMEOUT_S}s")
