@@ -487,13 +487,13 @@ A1_CASES: dict[str, tuple[list[str], list[str]]] = {
     "fatigue_sample_rate_1e-300": (["fatigue", "{W}/rate_tiny.dat", "--out", "{W}/o"],
                                    ["rate_tiny.dat", "sample_rate_hz", "0.001"]),
     "fatigue_sample_rate_option_1e300": (["fatigue", "{RPM}", "--sample-rate", "1e300", "--out",
-                                          "{W}/o"], ["sample_rate_hz", "100000"]),
+                                          "{W}/o"], ["--sample-rate", "100000"]),
     "fatigue_csv_steps_1e-300_s": (["fatigue", "{W}/steps_tiny.csv", "--out", "{W}/o"],
                                    ["steps_tiny.csv", "line 3: time_s", "1e-05"]),
     "fatigue_design_life_1e300": (["fatigue", "{RPM}", "--design-life", "1e300", "--out",
                                    "{W}/o"], ["--design-life", "1e+09"]),
     "fatigue_design_life_h_1e300": (["fatigue", "{RPM}", "--design-life-h", "1e300", "--out",
-                                     "{W}/o"], ["--design-life-h", "1e+06"]),
+                                     "{W}/o"], ["--design-life-h", "1e+09"]),
     "fatigue_design_life_in_blocks_and_hours": (["fatigue", "{RPM}", "--design-life", "1e7",
                                                  "--design-life-h", "5000", "--out", "{W}/o"],
                                                 ["--design-life", "--design-life-h", "not both"]),
@@ -583,3 +583,29 @@ def test_s2_study_folders_and_addresses(case, study_space, capsys, monkeypatch):
         (w / "empty_meta" / name).write_bytes((shown / name).read_bytes())
     test_bad_study_input_is_one_clear_line_exit_2_and_writes_nothing(case, study_space, capsys,
                                                                      monkeypatch)
+# --- slice f2-fatigue-fixes (issue #30 review of `shaftfe fatigue`) ---------------------------
+# one design-life rule in blocks and hours (one pass .. 1e9 blocks and 1e9 h, named in the unit
+# of the option typed); FKM's --model refusal as its help says; the sample rate by its option
+F2_CASES = {
+    "fatigue_design_life_h_past_1e9_blocks": (["fatigue", "{RPM}", "--design-life-h", "1e8",
+                                               "--out", "{W}/o"],
+                                              ["--design-life-h", "1.2e+09 blocks",
+                                               "300 s history"]),
+    "fatigue_design_life_h_under_one_block": (["fatigue", "{RPM}", "--design-life-h", "0.01",
+                                               "--out", "{W}/o"],
+                                              ["--design-life-h", "0.08333"]),
+    "fatigue_design_life_past_1e9": (["fatigue", "{RPM}", "--design-life", "2e9", "--out",
+                                      "{W}/o"], ["--design-life", "1e+09"]),
+    "fatigue_fkm_model_axisymmetric": (["fatigue", "{RPM}", "--model", "axisymmetric",
+                                        "--out", "{W}/o"],
+                                       ["--model", "solid with --method fkm", "--method seed"]),
+    "fatigue_seed_sample_rate_option": (["fatigue", "{RPM}", "--method", "seed",
+                                         "--sample-rate", "0", "--out", "{W}/o"],
+                                        ["command line: --sample-rate", "0.001"]),
+}
+CASES.update(F2_CASES)
+
+
+@pytest.mark.parametrize("case", sorted(F2_CASES))
+def test_f2_fatigue_bad_input(case, space, capsys, monkeypatch):
+    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)

@@ -315,3 +315,31 @@ def test_overspeed_allowed_is_assessed_with_a_warning_and_the_design_life_in_hou
     assert [w["code"] for w in s["warnings"]] == ["overspeed"]
     assert s["result"]["design_life_blocks"] == 900_000.0
     assert "safety factor at 900000 blocks (= 1 000 h = 70 000 km):" in text
+
+
+# --- slice f2-fatigue-fixes (issue #30 review of `shaftfe fatigue`) ---------------------------
+
+def test_fkm_on_a_constant_speed_says_no_load_cycles_at_the_loaded_hot_spots(cache, tmp_path,
+                                                                              capsys):
+    """Reference: a constant speed has no load reversal, and the repeated-block closure adds
+    no start-stop cycle: rainflow counts nothing, FKM's damage is 0. The table printed 'nan'
+    (K_AK) and '∞' (safeties) and moved the hot spots (every utilisation 0: the first
+    candidate won); now it prints '—', says so once, and each region's hot spot is the node
+    the rpm.dat history governs by (same node, same signed stress)."""
+    f = tmp_path / "const.dat"
+    f.write_text("# format = rpm\n# sample_rate_hz = 10\n" + "3000\n" * 100)
+    rc, text, err = run(capsys, f, "--method", "fkm", "--level", "coarse", "--cache-dir", cache,
+                        "--out", tmp_path / "c")
+    assert rc == 0, err
+    assert "nan" not in text and "governing: none: no load cycles in this history" in text
+    assert "∞" not in text.split("governing:")[0]
+    const = json.loads((tmp_path / "c" / "summary.json").read_text())
+    assert const["no_load_cycles"] is True
+    rc, _, err = run(capsys, RPM_DAT, "--method", "fkm", "--level", "coarse", "--cache-dir",
+                     cache, "--out", tmp_path / "r")
+    assert rc == 0, err
+    loaded = json.loads((tmp_path / "r" / "summary.json").read_text())
+    assert loaded["no_load_cycles"] is False
+    # the choice among a region's candidates is discrete: the same node, exactly
+    assert {r["region"]: r["node"] for r in const["regions"]} == \
+        {r["region"]: r["node"] for r in loaded["regions"]}

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 import pytest
 
 from shaftfe.cli import build_parser
@@ -140,8 +139,8 @@ def test_an_option_is_refused_only_with_a_method_that_does_not_use_it():
 @pytest.mark.parametrize("blocks, hours, text", [
     (25_000.0, 2083.0, "25 000 blocks = 2 083 h"),
     (1e9, 1e9, "1 000 000 000 blocks = 1 000 000 000 h"),        # the bound itself: a number
-    (3.22e10, 2.68e9, "no finite life at this load (more than 1e9 blocks or hours)"),
-    (4.0e8, 1.2e9, "no finite life at this load (more than 1e9 blocks or hours)"),
+    (3.22e10, 2.68e9, "no finite life at this load (more than 1e9 blocks, hours or km)"),
+    (4.0e8, 1.2e9, "no finite life at this load (more than 1e9 blocks, hours or km)"),
     (math.inf, math.inf, "no finite life at this load (infinite: no damaging cycle)"),
     (None, None, "no finite life at this load (infinite: no damaging cycle)"),
 ])
@@ -149,13 +148,114 @@ def test_a_life_past_1e9_is_no_finite_life(blocks, hours, text):
     assert fmt.lives(blocks, hours) == text
 
 
-def test_the_bearing_lines_print_no_finite_life_for_a_huge_l10h():
+def _bearing_line(L10h: float, Lnm_h: float, Lnm_km: float) -> str:
+    """The printed line of one bearing with these lives (70 km/h)."""
     from shaftfe.fatigue.standards_out import elements_lines
     duty = {"name": "gear_side", "designation": "ZKL 3303", "P_eq_N": 1.0, "n_eq_rpm": 3000.0,
-            "L10h": 5.5e11, "Lnm_h": 1250.0, "Lnm_km": 87_500.0}
+            "L10h": L10h, "Lnm_h": Lnm_h, "Lnm_km": Lnm_km}
     el = {"bearings": {"kappa": 1.0, "e_C": 0.3, "duty_cycle": [duty], "seed_points": []},
           "keys": [], "gear": {"torque_Nmm": 1.0, "F_t_N": 1.0, "F_r_N": 1.0, "F_n_N": 1.0,
                                "v_m_s": 1.0, "safety": 1.0}}
-    line = elements_lines(el, 70.0)[1]
+    return elements_lines(el, 70.0)[1]
+
+
+def test_the_bearing_lines_print_no_finite_life_for_a_huge_l10h():
+    line = _bearing_line(5.5e11, 1250.0, 87_500.0)
     assert "L10h no finite life at this load; L_nm 1 250 h = 87 500 km at 70 km/h" in line
-    assert np.isfinite(duty["Lnm_h"])
+
+
+# --- slice f2-fatigue-fixes (issue #30 review of `shaftfe fatigue`) ---------------------------
+
+def test_one_design_life_rule_in_blocks_and_in_hours():
+    """One rule for --design-life and --design-life-h: one pass of the history up to 1e9 blocks
+    and 1e9 h (util.fmt.LIFE_MAX, where a life prints as no finite life). Before, 1e9 blocks
+    of a 300 s block (8.3e7 h) passed as blocks while 2e6 h was refused as hours."""
+    from shaftfe.fatigue.run import design_life_range
+    h300 = _history(300.0)
+    # 2e6 h of a 300 s block = 2.4e7 blocks: inside (refused before by a 1e6 h bound);
+    # 7.2e9 / 300 is exact in binary
+    assert resolve_design_life(FatigueJob("x", design_life_h=2e6), h300).design_life == 2.4e7
+    assert resolve_design_life(FatigueJob("x", design_life=1e9), h300).design_life == 1e9
+    # the same life typed both ways: 8e7 h = 9.6e8 blocks of 300 s, both inside
+    assert resolve_design_life(FatigueJob("x", design_life_h=8e7), h300).design_life == 9.6e8
+    with pytest.raises(InputError, match=r"--design-life-h = .* is 1.2e\+09 blocks.*"
+                       r"\[1, 1e\+09\] blocks of the 300 s history"):
+        resolve_design_life(FatigueJob("x", design_life_h=1e8), h300)
+    # a day-long block: 1e9 blocks would be 2.4e10 h, past 1e9 h: the bound is 1e9 h both ways
+    day = _history(86_400.0)
+    assert design_life_range(86_400.0) == (1.0, 1e9 * 3600.0 / 86_400.0)
+    with pytest.raises(InputError, match=r"--design-life = .* is 2.4e\+10 h"):
+        resolve_design_life(FatigueJob("x", design_life=1e9), day)
+    assert resolve_design_life(FatigueJob("x", design_life_h=1e9), day).design_life == \
+        1e9 * 3600.0 / 86_400.0
+    # less than one pass of the history, in either form
+    with pytest.raises(InputError, match="--design-life-h"):
+        resolve_design_life(FatigueJob("x", design_life_h=0.01), h300)
+
+
+def test_the_sample_rate_error_names_the_option_typed():
+    from shaftfe.fatigue.run import check_job
+    with pytest.raises(InputError, match=r"^command line: --sample-rate = 1e\+300"):
+        check_job(FatigueJob("x", sample_rate=1e300))
+    check_job(FatigueJob("x", sample_rate=100.0))
+
+
+def test_model_help_and_fkm_refusal_agree():
+    """--model is tagged [seed, fkm: solid only] and FKM refuses axisymmetric with the same
+    words; the seed method takes either."""
+    assert mo.applies_to("--model") == "[seed, fkm: solid only]"
+    assert "--model (solid only)" in mo.help_epilog().split("din743:")[0]
+    mo.check_method_options("fkm", {"--model": "solid"})
+    mo.check_method_options("seed", {"--model": "axisymmetric"})
+    with pytest.raises(InputError, match=r"--model = 'axisymmetric'.*solid with --method fkm"
+                       r".*axisymmetric with --method seed"):
+        mo.check_method_options("fkm", {"--model": "axisymmetric"})
+
+
+def test_a_life_in_km_past_1e9_is_no_finite_life_too():
+    # 2e7 h at 70 km/h = 1.4e9 km: past the bound in km although the hours are not
+    assert fmt.lives(2e5, 2e7, 1.4e9, 70.0) == \
+        "no finite life at this load (more than 1e9 blocks, hours or km)"
+    assert fmt.lives(25_000.0, 2083.0, 145_810.0, 70.0) == \
+        "25 000 blocks = 2 083 h = 145 810 km at 70 km/h"
+    assert fmt.life_h_km(1250.0, 87_500.0, 70.0) == "1 250 h = 87 500 km at 70 km/h"
+    assert fmt.life_h_km(3.8e8, 2.66e10, 70.0) == fmt.NO_FINITE_LIFE
+
+
+def test_the_bearing_lines_print_no_finite_life_for_a_huge_lnm_km():
+    """One non-zero sample printed 'L_nm … = 26 625 302 415 km'."""
+    line = _bearing_line(1.2e5, 3.8e8, 2.66e10)
+    assert line.endswith("L10h 120 000 h; L_nm no finite life at this load"), line
+
+
+def _fkm_stub(n_cycles: int, G: float):
+    """An FKM result of one region with one layer (only what the table reads)."""
+    from types import SimpleNamespace
+    rules = ("elementary", "modified", "consistent")
+    c = SimpleNamespace(layer="surface", sigma_ref_MPa=-463.9, G_per_mm=G, n=1.0, K_d=0.921,
+                        R_m_MPa=921.0, sigma_W_zd_MPa=369.0, Rz_um=4.0, K_R=0.912, K_V=1.5,
+                        K_WK=0.583, sigma_WK_MPa=632.0, M_sigma=0.223, K_AK_largest=math.nan,
+                        safety=dict.fromkeys(rules, math.inf),
+                        utilisation=dict.fromkeys(rules, 0.0),
+                        life_blocks=dict.fromkeys(rules, math.inf))
+    r = SimpleNamespace(region="keyway:cw2_seat:0", xyz_mm=(90.81, 0.0, 0.0), surface=c,
+                        core=None)
+    cyc = SimpleNamespace(n=n_cycles)
+    return SimpleNamespace(regions=(r,), rule="modified", cycles=cyc)
+
+
+def test_the_fkm_table_of_a_constant_speed_has_no_nan_and_says_no_load_cycles():
+    from shaftfe.fatigue import standards_out as so
+    res = _fkm_stub(0, -0.886)
+    (row,) = so.fkm_rows(res)
+    assert "nan" not in " ".join(map(str, row)) and "∞" not in row
+    assert row[len(so.FKM_HEAD) - 6:] == [so.NONE] * 6          # K_AK, S ×3, a, life
+    assert row[3] == "-463.9" and so.FKM_HEAD[3].startswith("±σ_vM")
+    assert row[4] == "-0.886*"                                   # a negative G is marked
+    notes = so.fkm_notes(res)
+    assert notes[0] == so.FKM_SIGN_NOTE and so.FKM_G_NOTE in notes and "n_σ = 1" in so.FKM_G_NOTE
+    assert so.no_load_cycles(res) and "no fatigue damage" in so.NO_LOAD_CYCLES
+    # with cycles: the columns are filled, a nan still prints as '—'
+    (row,) = so.fkm_rows(_fkm_stub(3, 0.5))
+    assert row[15] == so.NONE and row[16] == "∞" and row[4] == "0.500"
+    assert so.FKM_G_NOTE not in so.fkm_notes(_fkm_stub(3, 0.5))

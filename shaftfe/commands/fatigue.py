@@ -72,9 +72,10 @@ def register(sub) -> None:
     opt("--material", "S-N card in geometry/common/sn_curves.toml: structural_steel (default, "
         "the seed's Ansys Structural Steel) | 14220")
     opt("--design-life-h", "design life in hours of riding (default: 1e7 blocks, the seed's; "
-        "1e7 blocks of the seed's 300 s block = 833 333 h)", type=float)
+        "1e7 blocks of the seed's 300 s block = 833 333 h); either form from one pass of the "
+        "history to 1e9 blocks and 1e9 h", type=float)
     opt("--design-life", "design life in blocks (passes of the history), the seed's form; "
-        "not together with --design-life-h", type=float)
+        "not together with --design-life-h; the same bounds", type=float)
     p.add_argument("--speed-kmh", type=float, default=70.0,
                    help="average riding speed for the life in km (default 70)")
     opt("--kf", "fatigue strength factor in (0, 1] multiplying the S-N curve (default 1)",

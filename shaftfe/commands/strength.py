@@ -88,13 +88,19 @@ def run_standard(args, job) -> int:
               f"j_D {res.j_D:g}; D_M {res.damage_sum:g}; governing rule: {res.rule}")
         print_table(so.FKM_HEAD, so.fkm_rows(res), title="FKM, local stresses, per region "
                     "(surface layer and core at the case depth)")
+        for note in so.fkm_notes(res):
+            print(note)
         g, c = res.governing
-        print(f"governing: {g.region} ({c.layer}), safety {so._f(c.safety[res.rule])} against "
-              f"j_D {res.j_D:g}, degree of utilisation {so._f(c.utilisation[res.rule])} "
-              f"({'passes' if c.utilisation[res.rule] <= 1 else 'FAILS'}); life: "
-              f"{_fkm_lives(c.life_blocks[res.rule], res.block_seconds, job.speed_kmh)}")
-        print(f"size factor: K_d,m at d_eff {c.d_eff_mm:.2f} mm, the round section through the "
-              "hot spot (FKM; DIN 743 takes its K1 at a shoulder's larger diameter)")
+        if so.no_load_cycles(res):
+            print(f"governing: none: {so.NO_LOAD_CYCLES}")
+        else:
+            print(f"governing: {g.region} ({c.layer}), safety {so._f(c.safety[res.rule])} "
+                  f"against j_D {res.j_D:g}, degree of utilisation "
+                  f"{so._f(c.utilisation[res.rule])} "
+                  f"({'passes' if c.utilisation[res.rule] <= 1 else 'FAILS'}); life: "
+                  f"{_fkm_lives(c.life_blocks[res.rule], res.block_seconds, job.speed_kmh)}")
+            print(f"size factor: K_d,m at d_eff {c.d_eff_mm:.2f} mm, the round section through "
+                  "the hot spot (FKM; DIN 743 takes its K1 at a shoulder's larger diameter)")
     else:
         print(f"cycle: the history's largest, {res.rpm_min:.0f}-{res.rpm_max:.0f} rpm (case 2); "
               f"S_F at {res.rpm_max:.0f} rpm; beam at {res.ref_rpm:g} rpm scaled by rpm²")

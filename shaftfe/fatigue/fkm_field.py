@@ -231,6 +231,13 @@ def check(layer: str, depth: float, s_cycles: tuple[np.ndarray, np.ndarray], cou
                   float(sm[i]) if sa.size else 0.0, life, safety, util), spec)
 
 
+def _start_stop(sigma: float, c: Check) -> float:
+    """Relative amplitude σ_a / (K_AK σ_WK) of the cycle 0 → ``sigma`` (σ_a = |σ|/2, σ_m = σ/2)
+    in the check ``c``'s strengths: a history-free measure of how hard a node would be loaded."""
+    sa, sm = 0.5 * abs(sigma), 0.5 * sigma
+    return float(sa / (fkm.mean_stress_factor(sa, sm, c.M_sigma) * c.sigma_WK_MPa))
+
+
 def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
                  ground_fillets: frozenset[str], rule: str = "modified", j_D: float = 1.5,
                  damage_sum: float = 0.3, design_life_blocks: float = 1e7,
@@ -299,8 +306,13 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
             u = max(surf.utilisation[rule], core.utilisation[rule] if core else 0.0)
             assessed.append((int(i), u, min(surf.safety[rule],
                                             core.safety[rule] if core else math.inf)))
-            if best is None or u > best[0]:
-                best = (u, res)
+            # the worst node; among equal utilisations (a history without load cycles: all 0)
+            # the one a start-stop cycle 0 → its reference stress would load most (relative
+            # amplitude, F2 Haigh: tension counts more than compression), so that the hot spot
+            # stays where a load cycle would put it
+            key = (u, _start_stop(s_soft, surf))
+            if best is None or key > best[0]:
+                best = (key, res)
         out.append(best[1])
     return FkmResult(card, rule, j_D, damage_sum, float(design_life_blocks), float(h.duration_s),
                      tuple(out), tuple(notes), cyc, tuple(assessed))

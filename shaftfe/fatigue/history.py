@@ -132,7 +132,7 @@ def from_rpm(rpm, *, sample_rate_hz: float = SEED_SAMPLE_RATE_HZ,
              rpm_ref: float = DEFAULT_RPM_REF, source: str = "array") -> LoadHistory:
     """A history from an rpm array sampled at ``sample_rate_hz`` (same checks as the files)."""
     rpm = np.asarray(rpm, dtype=float).ravel()
-    _check_rate(sample_rate_hz, source, "sample_rate_hz")
+    check_sample_rate(sample_rate_hz, source, "sample_rate_hz")
     _check_ref(rpm_ref, source, "rpm_ref")
     if rpm.size == 0:
         raise InputError(source, "rpm", "at least one sample", reason="is empty")
@@ -164,7 +164,7 @@ def read_history(path: str | Path, *, fmt: str | None = None, rpm_ref: float | N
     if rpm_ref is not None:
         _check_ref(rpm_ref, "command line", "rpm_ref")
     if sample_rate_hz is not None:
-        _check_rate(sample_rate_hz, "command line", "sample_rate_hz")
+        check_sample_rate(sample_rate_hz, "argument", "sample_rate_hz")
     text = _read_capped(path, src)
 
     fast = _read_fast(src, text, fmt, rpm_ref, sample_rate_hz)
@@ -281,7 +281,7 @@ def _read_fast(src: str, text: str, fmt: str | None, rpm_ref, sample_rate_hz):
         return LoadHistory(t, rpm, (rpm / ref) ** 2, ref, float(t[-1] - t[0] + (t[-1] - t[-2])),
                            src, "csv")
     try:
-        rate = _header_or_option(src, header, "sample_rate_hz", sample_rate_hz, _check_rate)
+        rate = _header_or_option(src, header, "sample_rate_hz", sample_rate_hz, check_sample_rate)
         ref = (_header_or_option(src, header, "reference_rpm", rpm_ref, _check_ref)
                if fmt == "normalised" else rpm_ref)
     except InputError:
@@ -356,7 +356,8 @@ def _check_ref(v: float, src: str, field: str) -> None:
         raise InputError(src, field, f"in (0, {RPM_CEILING:g}] rpm", got=v)
 
 
-def _check_rate(v: float, src: str, field: str) -> None:
+def check_sample_rate(v: float, src: str, field: str) -> None:
+    """A sample rate within ``SAMPLE_RATE_HZ`` (``field``: the header line or the option)."""
     lo, hi = SAMPLE_RATE_HZ
     if not (math.isfinite(v) and lo <= v <= hi):
         raise InputError(src, field, f"a sample rate in [{lo:g}, {hi:g}] Hz (one sample per "
@@ -422,7 +423,7 @@ def _header_or_option(src: str, header, key: str, option: float | None, check) -
 def _read_sampled(src, fmt, header, rows, rpm_ref, sample_rate_hz) -> LoadHistory:
     if not rows:
         raise InputError(src, "data", "at least one data line", reason="is empty")
-    rate = _header_or_option(src, header, "sample_rate_hz", sample_rate_hz, _check_rate)
+    rate = _header_or_option(src, header, "sample_rate_hz", sample_rate_hz, check_sample_rate)
     if rate is None:
         if fmt == "rpm":
             raise InputError(src, "sample_rate_hz", "a header '# sample_rate_hz = ...' or the "

@@ -59,15 +59,28 @@ METHOD_OPTIONS: dict[str, tuple[str, object, tuple[str, ...]]] = {
     "--design-life-h": ("design_life_h", None, FIELD),
 }
 
+# option -> method -> (the values that method takes, why): where a method takes only part of an
+# option's values (FKM's stress gradient is taken along the normal of the 3D field: the
+# axisymmetric model's revolved surface has no element layer to take it in)
+METHOD_VALUES: dict[str, dict[str, tuple[tuple[str, ...], str]]] = {
+    "--model": {"fkm": (("solid",), "the FKM stress gradient is taken on the 3D field")},
+}
+
 
 def applies_to(option: str) -> str:
-    """'[fkm, din743]': the methods of ``option``, for its help text."""
-    return "[" + ", ".join(METHOD_OPTIONS[option][2]) + "]"
+    """'[fkm, din743]': the methods of ``option``, for its help text; a method that takes only
+    some of its values names them: '[seed, fkm: solid only]'."""
+    narrow = METHOD_VALUES.get(option, {})
+    return "[" + ", ".join(m + (f": {' | '.join(narrow[m][0])} only" if m in narrow else "")
+                           for m in METHOD_OPTIONS[option][2]) + "]"
 
 
 def help_epilog() -> str:
     """The table as the help's closing paragraph: each method and its options."""
-    per = [f"{m}: " + " ".join(o for o, (_, _, ms) in METHOD_OPTIONS.items() if m in ms)
+    def name(o, m):
+        narrow = METHOD_VALUES.get(o, {}).get(m)
+        return f"{o} ({' | '.join(narrow[0])} only)" if narrow else o
+    per = [f"{m}: " + " ".join(name(o, m) for o, (_, _, ms) in METHOD_OPTIONS.items() if m in ms)
            for m in METHODS]
     return ("Options by method: " + "; ".join(per) + ". Any other option applies to every "
             "method; an option given that the chosen method does not use is refused.")
@@ -85,6 +98,13 @@ def check_method_options(method: str, given: dict[str, object]) -> None:
         if method not in methods:
             raise InputError("command line", option, f"only with --method {' | '.join(methods)}",
                              got=value, reason=f"is not used by --method {method}")
+        if method in METHOD_VALUES.get(option, {}):
+            values, why = METHOD_VALUES[option][method]
+            if value not in values:
+                others = [m for m in methods if m != method]
+                raise InputError("command line", option, f"{' | '.join(values)} with --method "
+                                 f"{method} ({why}); {value} with --method "
+                                 f"{' | '.join(others)}", got=value)
 
 
 def with_defaults(args) -> None:

@@ -23,6 +23,7 @@ from shaftfe.errors import InputError
 from shaftfe.fatigue.kernels import EQUIVALENT_STRESSES, MEAN_STRESS_THEORIES
 from shaftfe.solid.levels import LEVEL_NAMES
 from shaftfe.static import MODELS
+from shaftfe.util.fmt import LIFE_MAX
 from shaftfe.util.limits import check_exclude_mm
 
 MEAN_STRESS = MEAN_STRESS_THEORIES
@@ -32,16 +33,17 @@ EQUIVALENT = EQUIVALENT_STRESSES[:2]
 SEED_RPM_REF = 7000.0     # a normalised history without a stated reference: the seed's
 
 # The design life. The seed's is 1e7 blocks (passes of the history; 833 333 h of its 300 s
-# block); a user states it in hours of riding (--design-life-h). Bounds, each physical:
-# * blocks in [1, 1e9]: less than one pass of the history is no design life; S-N data end by
-#   1e9 cycles (the very-high-cycle range), and every block holds at least one load cycle, so a
-#   longer life is an extrapolation of a curve with no data (1e300 printed a utilisation of 1.5e6);
-# * hours in [1, 1e6]: one hour is a single ride; 1e6 h is 114 years of running without a stop,
-#   far above the life of any vehicle engine (a motorcycle's: 1e3-1e4 h); the seed's 833 333 h
-#   lies inside.
+# block); a user states it in blocks (--design-life) or in hours of riding (--design-life-h).
+# ONE rule for both forms, checked once the history (its block duration) is known
+# (``design_life_range``): at least one pass of the history (less is no design life), and at
+# most ``util.fmt.LIFE_MAX`` = 1e9 in blocks AND in hours, the bound past which every life is
+# printed as "no finite life at this load": S-N data end by 1e9 cycles and every block holds at
+# least one load cycle, so a longer design life is an extrapolation of a curve with no data
+# (1e300 printed a utilisation of 1.5e6). Of the seed's 300 s block: [1, 1e9] blocks =
+# [0.0833, 8.33e7] h. Before the history is read each form is checked against the part of the
+# rule that needs no block duration (``check_life_settings``).
 DEFAULT_DESIGN_LIFE_BLOCKS = 1e7
-DESIGN_LIFE_BLOCKS = (1.0, 1e9)
-DESIGN_LIFE_H = (1.0, 1e6)
+DESIGN_LIFE_BLOCKS = (1.0, LIFE_MAX)
 # --speed-kmh, the average riding speed that turns hours into km: (0, 400] km/h (the fastest
 # production motorcycles top out near 300 km/h; an average is far below)
 SPEED_KMH_MAX = 400.0
@@ -96,42 +98,69 @@ class FatigueRun:
     level_error: dict | None               # the level-corrected hot spot (see module doc)
 
 
+def design_life_range(block_seconds: float) -> tuple[float, float]:
+    """The design life's bounds in blocks of a history whose block lasts ``block_seconds``:
+    one pass of the history up to ``LIFE_MAX`` blocks and ``LIFE_MAX`` hours, whichever is less
+    (the rule above ``DEFAULT_DESIGN_LIFE_BLOCKS``)."""
+    lo, hi = DESIGN_LIFE_BLOCKS
+    return lo, min(hi, LIFE_MAX * 3600.0 / block_seconds)
+
+
+def _refuse_design_life(option: str, got: float, block_seconds: float | None,
+                        reason: str | None = None):
+    """The one message of the design-life rule, in the unit of the option typed."""
+    if block_seconds is None:
+        allowed = (f"a number of blocks in [{DESIGN_LIFE_BLOCKS[0]:g}, {LIFE_MAX:g}]"
+                   if option == "--design-life" else f"hours of riding in (0, {LIFE_MAX:g}]")
+    else:
+        lo, hi = design_life_range(block_seconds)
+        h = block_seconds / 3600.0
+        allowed = (f"[{lo:g}, {hi:.4g}] blocks = [{lo * h:.4g}, {hi * h:.4g}] h"
+                   if option == "--design-life" else
+                   f"[{lo * h:.4g}, {hi * h:.4g}] h = [{lo:g}, {hi:.4g}] blocks")
+        allowed += f" of the {block_seconds:g} s history"
+    allowed += (" (one pass of the history up to 1e9 blocks and 1e9 h: S-N data end by 1e9 "
+                "cycles; a longer life is printed as no finite life)")
+    return InputError("command line", option, allowed, got=got, reason=reason)
+
+
 def check_life_settings(design_life: float | None, speed_kmh: float,
                         design_life_h: float | None = None) -> None:
-    """The design life (blocks, or hours) and the speed that turns hours into km, each within
-    its bounds (``DESIGN_LIFE_BLOCKS``, ``DESIGN_LIFE_H``, ``SPEED_KMH_MAX``; shared by
-    ``shaftfe fatigue`` and ``shaftfe report``)."""
+    """The design life (blocks, or hours) and the speed that turns hours into km: what of the
+    design-life rule needs no history (``resolve_design_life`` applies the rest), and
+    ``SPEED_KMH_MAX`` (shared by ``shaftfe fatigue`` and ``shaftfe report``)."""
     if design_life is not None and design_life_h is not None:
         raise InputError("command line", "--design-life", "either --design-life (blocks) or "
                          "--design-life-h (hours), not both", got=design_life)
     lo, hi = DESIGN_LIFE_BLOCKS
     if design_life is not None and not (math.isfinite(design_life) and lo <= design_life <= hi):
-        raise InputError("command line", "--design-life", f"a number of blocks in [{lo:g}, "
-                         f"{hi:g}] (S-N data end by 1e9 cycles)", got=design_life)
-    lo, hi = DESIGN_LIFE_H
+        raise _refuse_design_life("--design-life", design_life, None)
     if design_life_h is not None and not (math.isfinite(design_life_h)
-                                          and lo <= design_life_h <= hi):
-        raise InputError("command line", "--design-life-h", f"hours of riding in [{lo:g}, "
-                         f"{hi:g}] (1e6 h = 114 years without a stop)", got=design_life_h)
+                                          and 0 < design_life_h <= LIFE_MAX):
+        raise _refuse_design_life("--design-life-h", design_life_h, None)
     if not (math.isfinite(speed_kmh) and 0 < speed_kmh <= SPEED_KMH_MAX):
         raise InputError("command line", "--speed-kmh",
                          f"an average riding speed in (0, {SPEED_KMH_MAX:g}] km/h", got=speed_kmh)
 
 
 def resolve_design_life(job: FatigueJob, history) -> FatigueJob:
-    """The job with its design life in blocks: ``design_life_h`` over the history's block
-    length, or the seed's 1e7 blocks when neither is given."""
+    """The job with its design life in blocks: ``design_life`` or ``design_life_h`` over the
+    history's block length, each within ``design_life_range`` of this history, or the seed's
+    1e7 blocks when neither is given."""
     from dataclasses import replace
+    block = history.duration_s
+    lo, hi = design_life_range(block)
     if job.design_life is not None:
+        if not lo <= job.design_life <= hi:
+            raise _refuse_design_life("--design-life", job.design_life, block,
+                                      f"is {job.design_life * block / 3600.0:.3g} h")
         return job
     if job.design_life_h is None:
         return replace(job, design_life=DEFAULT_DESIGN_LIFE_BLOCKS)
-    blocks = job.design_life_h * 3600.0 / history.duration_s
-    lo, hi = DESIGN_LIFE_BLOCKS
+    blocks = job.design_life_h * 3600.0 / block
     if not lo <= blocks <= hi:
-        raise InputError("command line", "--design-life-h", f"a life of [{lo:g}, {hi:g}] "
-                         f"passes of the {history.duration_s:g} s history", got=job.design_life_h,
-                         reason=f"is {blocks:.3g} blocks")
+        raise _refuse_design_life("--design-life-h", job.design_life_h, block,
+                                  f"is {blocks:.3g} blocks")
     return replace(job, design_life=blocks)
 
 
@@ -176,6 +205,9 @@ def check_job(job: FatigueJob) -> None:
     if not (math.isfinite(job.kf) and 0 < job.kf <= 1):
         raise InputError("command line", "--kf", "a number in (0, 1]", got=job.kf)
     check_exclude_mm(job.exclude_mm)
+    if job.sample_rate is not None:         # named by its option (the file's is "line N")
+        from shaftfe.fatigue.history import check_sample_rate
+        check_sample_rate(job.sample_rate, "command line", "--sample-rate")
     if job.ref_rpm is not None and not (math.isfinite(job.ref_rpm) and job.ref_rpm > 0):
         raise InputError("command line", "--ref-rpm", "a finite speed > 0 (rpm)",
                          got=job.ref_rpm)

@@ -6,10 +6,14 @@ from __future__ import annotations
 import math
 
 from shaftfe.fatigue import din743 as din
-from shaftfe.util.fmt import NO_FINITE_LIFE, big, life, life_reason
+from shaftfe.util.fmt import NO_FINITE_LIFE, big, life, life_h_km, life_reason
+
+NONE = "—"        # a value the assessment has not got (nan): printed as this, never as "nan"
 
 
 def _f(v, fmt=".3g"):
+    if isinstance(v, float) and math.isnan(v):
+        return NONE
     return "∞" if isinstance(v, float) and math.isinf(v) else format(v, fmt)
 
 
@@ -17,25 +21,61 @@ def _num(v):
     return float(v) if isinstance(v, (int, float)) and math.isfinite(v) else None
 
 
+def no_load_cycles(res) -> bool:
+    """The history has no load cycles: a constant speed. The rainflow count closes the block as
+    one period of a repeating history (``counting``, closure "repeated"), so a constant speed
+    counts no cycle at all, not even a start-up/shut-down one (that one is counted only where
+    the history holds the start and the stop)."""
+    return res.cycles is not None and res.cycles.n == 0
+
+
+NO_LOAD_CYCLES = ("no load cycles in this history (constant speed; the block is repeated, so "
+                  "no start-up/shut-down cycle either): no fatigue damage")
+
+
+def _g(G: float) -> str:
+    """A stress gradient, marked '*' where it is negative (``FKM_G_NOTE``)."""
+    return f"{G:.3f}" + ("*" if G < 0 else "")
+
+
 def fkm_rows(res) -> list[list]:
+    """The FKM table's rows; with no load cycles the columns of the cycles (K_AK of the largest
+    cycle, the safeties, the utilisation, the life) are ``NONE``."""
+    quiet = no_load_cycles(res)
     rows = []
     for r in res.regions:
         for c in (r.surface, r.core):
             if c is None:
                 continue
-            rows.append([r.region, c.layer, f"{r.xyz_mm[0]:.2f}", f"{c.sigma_ref_MPa:.1f}",
-                         f"{c.G_per_mm:.3f}", f"{c.n:.3f}", f"{c.K_d:.3f}", f"{c.R_m_MPa:.0f}",
+            cyc = ([NONE] * 6 if quiet else
+                   [_f(c.K_AK_largest, ".3f"), *(_f(c.safety[k]) for k in
+                                          ("elementary", "modified", "consistent")),
+                    _f(c.utilisation[res.rule]), life(c.life_blocks[res.rule])])
+            rows.append([r.region, c.layer, f"{r.xyz_mm[0]:.2f}", f"{c.sigma_ref_MPa:+.1f}",
+                         _g(c.G_per_mm), f"{c.n:.3f}", f"{c.K_d:.3f}", f"{c.R_m_MPa:.0f}",
                          f"{c.sigma_W_zd_MPa:.0f}", f"{c.Rz_um:g}", f"{c.K_R:.3f}",
                          f"{c.K_V:g}", f"{c.K_WK:.3f}", f"{c.sigma_WK_MPa:.0f}",
-                         f"{c.M_sigma:.3f}", f"{c.K_AK_largest:.3f}",
-                         *(_f(c.safety[k]) for k in ("elementary", "modified", "consistent")),
-                         _f(c.utilisation[res.rule]), life(c.life_blocks[res.rule])])
+                         f"{c.M_sigma:.3f}", *cyc])
     return rows
 
 
-FKM_HEAD = ["region", "layer", "x mm", "σ_vM@ref MPa", "G 1/mm", "n_σ", "K_d,m", "R_m",
+FKM_HEAD = ["region", "layer", "x mm", "±σ_vM@ref MPa", "G 1/mm", "n_σ", "K_d,m", "R_m",
             "σ_W,zd", "R_z µm", "K_R", "K_V", "K_WK", "σ_WK", "M_σ", "K_AK",
             "S elem", "S mod", "S cons", "a (gov.)", "life blocks (gov.)"]
+FKM_SIGN_NOTE = ("±σ_vM@ref: signed von Mises stress at the reference speed: the von Mises "
+                 "magnitude with the sign of the principal stress of largest magnitude (+ "
+                 "tension, − compression; the sign decides the Haigh range of the mean stress)")
+FKM_G_NOTE = ("G* < 0: the von Mises stress rises inward from the surface (the node is not the "
+              "peak along its normal); the support factor n_σ(G) gives no credit for it: "
+              "n_σ = 1 (FKM: n_σ ≥ 1 only for a stress falling inward)")
+
+
+def fkm_notes(res) -> list[str]:
+    """The lines under the FKM table: the sign convention and what a negative gradient does."""
+    out = [FKM_SIGN_NOTE]
+    if any(c is not None and c.G_per_mm < 0 for r in res.regions for c in (r.surface, r.core)):
+        out.append(FKM_G_NOTE)
+    return out
 
 
 def din_rows(run) -> list[list]:
@@ -73,7 +113,8 @@ def fkm_summary(res) -> dict:
                                       for k, v in vars(c).items() if k != "layer"}
                             for c in (r.surface, r.core) if c is not None}}
                         for r in res.regions],
-            "notes": list(res.notes)}
+            "no_load_cycles": no_load_cycles(res),
+            "notes": list(res.notes) + ([NO_LOAD_CYCLES] if no_load_cycles(res) else [])}
 
 
 def din_summary(run) -> dict:
@@ -121,9 +162,8 @@ def elements_lines(el: dict, speed_kmh: float) -> list[str]:
            "C_u = C0/22, loads ∝ rpm²):"]
     for d in b["duty_cycle"]:
         out.append(f"  {d['name']} {d['designation']}: P_eq {d['P_eq_N']:.0f} N at n_eq "
-                   f"{d['n_eq_rpm']:.0f} rpm; L10h {_h(d['L10h'])}; L_nm {_h(d['Lnm_h'])}"
-                   + (f" = {big(d['Lnm_km'])} km at {speed_kmh:g} km/h"
-                      if not life_reason(d['Lnm_h']) else ""))
+                   f"{d['n_eq_rpm']:.0f} rpm; L10h {_h(d['L10h'])}; L_nm "
+                   f"{life_h_km(d['Lnm_h'], d['Lnm_km'], speed_kmh)}")
     for s in b["seed_points"]:
         out.append(f"  seed single point {s['bearing']} (C {s['C_N']:.0f} N, P {s['P_N']:.0f} "
                    f"N, {s['rpm']:.0f} rpm): L10h {s['ours_L10h']:.1f} h (seed {s['L10h']} h)")

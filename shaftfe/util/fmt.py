@@ -10,9 +10,10 @@ def big(v: float) -> str:
     return f"{v:,.0f}".replace(",", " ") if abs(v) >= 1000 else f"{v:.3g}"
 
 
-# A life (in blocks of the history or in hours) above LIFE_MAX is not a number anyone can
-# use: 1e9 h is 114 000 years, 1e9 blocks are 1e9 or more load cycles, past the end of every
-# S-N data set (and a life below a cutoff endurance limit is already infinite). It is printed
+# A life (in blocks of the history, in hours or in km) above LIFE_MAX is not a number anyone
+# can use: 1e9 h is 114 000 years, 1e9 blocks are 1e9 or more load cycles, past the end of every
+# S-N data set (and a life below a cutoff endurance limit is already infinite), 1e9 km are
+# 25 000 times round the earth. It is printed
 # as NO_FINITE_LIFE; summary.json keeps the number (or null when infinite) with a reason
 # (``life_reason``).
 LIFE_MAX = 1e9
@@ -20,11 +21,11 @@ NO_FINITE_LIFE = "no finite life at this load"
 
 
 def life_reason(*lives: float | None) -> str | None:
-    """Why the lives (blocks, hours, ...) are "no finite life at this load", or None."""
+    """Why the lives (blocks, hours, km) are "no finite life at this load", or None."""
     if any(v is None or not math.isfinite(v) for v in lives):
         return "infinite: no damaging cycle"
     if any(v > LIFE_MAX for v in lives):
-        return "more than 1e9 blocks or hours"
+        return "more than 1e9 blocks, hours or km"
     return None
 
 
@@ -36,15 +37,23 @@ def life(v: float | None) -> str:
 
 def lives(blocks: float | None, hours: float | None, km: float | None = None,
           speed_kmh: float | None = None) -> str:
-    """'25 000 blocks = 2083 h = 145 810 km at 70 km/h', or ``NO_FINITE_LIFE`` when either
-    the blocks or the hours are infinite or above ``LIFE_MAX``."""
-    why = life_reason(blocks, hours)
+    """'25 000 blocks = 2083 h = 145 810 km at 70 km/h', or ``NO_FINITE_LIFE`` when the
+    blocks, the hours or the km are infinite or above ``LIFE_MAX``."""
+    why = life_reason(blocks, hours, *(() if km is None else (km,)))
     if why:
         return f"{NO_FINITE_LIFE} ({why})"
     out = f"{big(blocks)} blocks = {big(hours)} h"
     if km is not None and speed_kmh is not None:
         out += f" = {big(km)} km at {speed_kmh:g} km/h"
     return out
+
+
+def life_h_km(hours: float | None, km: float | None, speed_kmh: float) -> str:
+    """A life in hours and km (a bearing's): '1 251 h = 87 570 km at 70 km/h', or
+    ``NO_FINITE_LIFE`` when either is infinite or above ``LIFE_MAX``."""
+    if life_reason(hours, km):
+        return NO_FINITE_LIFE
+    return f"{big(hours)} h = {big(km)} km at {speed_kmh:g} km/h"
 
 
 def design_life(blocks: float, block_seconds: float, speed_kmh: float) -> str:
