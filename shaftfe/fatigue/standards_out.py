@@ -64,7 +64,10 @@ FKM_HEAD = ["region", "layer", "x mm", "±σ_vM@ref MPa", "G 1/mm", "n_σ", "K_d
             "S elem", "S mod", "S cons", "a (gov.)", "life blocks (gov.)"]
 FKM_SIGN_NOTE = ("±σ_vM@ref: signed von Mises stress at the reference speed: the von Mises "
                  "magnitude with the sign of the principal stress of largest magnitude (+ "
-                 "tension, − compression; the sign decides the Haigh range of the mean stress)")
+                 "tension, − compression; the sign decides the Haigh range of the mean stress), "
+                 "at the node FKM assesses (the one of highest utilisation, where the gradient "
+                 "and a tensile mean count): a nodal value, so it can differ from `shaftfe "
+                 "static`'s peak, the surface fit between the nodes at the most stressed point")
 FKM_G_NOTE = ("G* < 0: the von Mises stress rises inward from the surface (the node is not the "
               "peak along its normal); the support factor n_σ(G) gives no credit for it: "
               "n_σ = 1 (FKM: n_σ ≥ 1 only for a stress falling inward)")
