@@ -8,6 +8,16 @@ from __future__ import annotations
 import argparse
 import math
 
+from shaftfe.commands._common import (
+    add_engine_option,
+    add_set_option,
+    check_speeds,
+    load_variant_from,
+    out_name,
+    parse_rpm_list,
+    print_json,
+    print_table,
+)
 from shaftfe.errors import InputError
 from shaftfe.solid.levels import LEVEL_NAMES
 from shaftfe.static import MODELS
@@ -25,7 +35,6 @@ def register(sub) -> None:
     p.add_argument("--variant", required=True, help="variant name (geometry/<name>.toml) or path")
     p.add_argument("--rpm", default="10000",
                    help="speed(s) in rpm, comma-separated (default 10000), e.g. 7000,10000")
-    from shaftfe.commands._common import add_engine_option
     add_engine_option(p)
     p.add_argument("--model", default="solid", choices=MODELS,
                    help="solid: 3D P2 tets (default); axisymmetric: the body of revolution in "
@@ -58,7 +67,6 @@ def register(sub) -> None:
     p.add_argument("--out", default=None,
                    help="output directory (default reports/<variant>/static; with --set "
                    "reports/<variant>_set_<hash>/static)")
-    from shaftfe.commands._common import add_set_option
     add_set_option(p)
     p.set_defaults(handler=run)
 
@@ -67,11 +75,9 @@ def register(sub) -> None:
 def run(args) -> int:
     from pathlib import Path
 
-    from shaftfe.commands._common import parse_rpm_list
     from shaftfe.util.atomic import staged_dir
 
     rpms = parse_rpm_list(args.rpm)
-    from shaftfe.commands._common import check_speeds
     check_speeds(rpms, args)
     if args.order not in (1, 2):
         raise InputError("--order", "--order", "1 | 2", got=args.order)
@@ -85,8 +91,6 @@ def run(args) -> int:
     if args.solver not in ("auto", "superlu", "pardiso", "amg"):
         raise InputError("--solver", "--solver", "auto | superlu | pardiso | amg",
                          got=args.solver)
-
-    from shaftfe.commands._common import load_variant_from, out_name
     if args.model == "axisymmetric":
         return _run_axisymmetric(args, rpms, load_variant_from(args))
     from shaftfe.static import cache as static_cache
@@ -129,7 +133,6 @@ def _print_overrides(variant) -> None:
 def _report(args, summary: dict, show) -> int:
     """The command's output: summary.json on stdout with --json, else the text tables."""
     if args.json:
-        from shaftfe.commands._common import print_json
         print_json(summary)
     else:
         show()
@@ -142,7 +145,6 @@ def _run_axisymmetric(args, rpms, variant) -> int:
     from shaftfe.axisymmetric.model import AxiOptions
     from shaftfe.axisymmetric.outputs import write_outputs
     from shaftfe.axisymmetric.solve import solve_axisymmetric
-    from shaftfe.commands._common import out_name
     from shaftfe.util.atomic import staged_dir
     for flag, bad in (("--order", args.order != 2), ("--body-force", args.body_force),
                       ("--estimate-error", args.estimate_error),
@@ -164,7 +166,6 @@ def _run_axisymmetric(args, rpms, variant) -> int:
 
 
 def _print_axi(res, opts, out, corners=()) -> None:
-    from shaftfe.commands._common import print_table
     from shaftfe.solid.plan import sharp_mark
     print(f"variant {res.variant}: axisymmetric (Fourier harmonics n = 0..{res.harmonics[-1]}, "
           f"{len(res.harmonics)} solved), {opts.level}, {res.n_nodes} meridian nodes, "
@@ -213,9 +214,8 @@ def _whole_mark(corners) -> str:
 
 
 def _print_tables(res, opts, out, corners=()) -> None:
-    from shaftfe.commands._common import print_table
     from shaftfe.solid.plan import sharp_mark
-    from shaftfe.static.result import PEAK_FIT_LABEL, unresolved_fillets
+    from shaftfe.static.result import PEAK_FIT_LABEL
     d = res.diagnostics
     print(f"variant {res.variant}: P{opts.order} {opts.level}, {res.n_dofs} dofs, "
           f"{'rigid supports' if opts.rigid_supports else 'bearing springs'}, solver "
@@ -241,8 +241,8 @@ def _print_tables(res, opts, out, corners=()) -> None:
                      if (c.beam or {}).get("max_deflection_mm") is not None else "-"])
         print_table(["station", "x mm", "deflection µm (FE)", "µm (beam)"], rows)
         bars = res.truth_error_bar_pct
-        unresolved = unresolved_fillets({p.region: p.von_mises_MPa for p in c.peaks})
-        unresolved.update({"shoulder:" + r.split(":", 1)[1]: "" for r in list(unresolved)})
+        unresolved = {*res.unresolved_fillets,
+                      *("shoulder:" + r.split(":", 1)[1] for r in res.unresolved_fillets)}
         rows = [[p.region, p.von_mises_MPa, p.max_principal_MPa, p.xyz_mm[0],
                  p.von_mises_unfiltered_MPa,
                  f"{bars[p.region][0]:+.2f} … {bars[p.region][1]:+.2f}"

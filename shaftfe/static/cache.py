@@ -214,12 +214,14 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
 def region_peaks(ref: StaticReference) -> dict[str, float]:
     """Each region's largest nodal von Mises of the reference, the singular-point rule applied
     (the excluded nodes left out)."""
-    excluded = set(np.asarray(ref.excluded).tolist())
+    keep = np.ones(ref.von_mises_ref.size, dtype=bool)
+    keep[np.asarray(ref.excluded, dtype=np.int64)] = False
     out = {}
     for name, ids in ref.regions.items():
-        keep = [i for i in np.asarray(ids).tolist() if i not in excluded]
-        if keep:
-            out[name] = float(np.max(ref.von_mises_ref[keep]))
+        ids = np.asarray(ids, dtype=np.int64)
+        ids = ids[keep[ids]]
+        if ids.size:
+            out[name] = float(ref.von_mises_ref[ids].max())
     return out
 
 

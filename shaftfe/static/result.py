@@ -122,6 +122,9 @@ class StaticResult:
     # whose D/d, r/d lie in the measured grid's hull; the span fillets outside it: region -> why
     truth_error_bar_pct: dict = field(default_factory=dict)
     truth_bar_notes: dict = field(default_factory=dict)
+    # fillet region -> why the mesh does not resolve it (``unresolved_fillets``; the same at
+    # every speed, the cases being the reference × a factor)
+    unresolved_fillets: dict = field(default_factory=dict)
     notes: tuple[str, ...] = ()
     mesh: object = field(default=None, repr=False)
     run: dict = field(default_factory=dict)            # wall-clock seconds, mesh_from_cache
@@ -144,6 +147,7 @@ class StaticResult:
             "diagnostics": self.diagnostics, "error_estimate": self.error_estimate,
             "truth_error_bar_pct": self.truth_error_bar_pct,
             "truth_bar_notes": self.truth_bar_notes,
+            "unresolved_fillets": self.unresolved_fillets,
             "notes": list(self.notes), "run": self.run,
         })
 

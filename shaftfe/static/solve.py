@@ -588,13 +588,13 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
                assembly_seconds=model.assembly_seconds, model_seconds=t_model,
                recovery_seconds=rec.seconds)
     bars, bar_notes = truth_bars(v, options, rec.peaks, sm.key)
-    warn_unresolved_fillets({pk.region: pk.von_mises_MPa for pk in rec.peaks})
+    unresolved = warn_unresolved_fillets({pk.region: pk.von_mises_MPa for pk in rec.peaks})
     res = StaticResult(
         variant=v.name, variant_hash=v.content_hash, options=options, ref_rpm=ref_rpm,
         n_nodes=sm.n_nodes, n_elements=sm.n_elements, n_dofs=3 * sm.n_nodes, mesh_key=sm.key,
         u_ref=u, stress_ref=rec.stress, von_mises_ref=rec.vm, axis_x=ax_x, axis_u_ref=ax_u_ref,
         cases=tuple(cases), diagnostics=diag, notes=(), mesh=sm, run=run,
-        truth_error_bar_pct=bars, truth_bar_notes=bar_notes,
+        truth_error_bar_pct=bars, truth_bar_notes=bar_notes, unresolved_fillets=unresolved,
         stress_linear_ref=(_stress_field(model, sol.u * ref.scale)[0]
                            if soft_on and linear_stress else None))
     res.run["total_seconds"] = time.perf_counter() - t_all
