@@ -256,7 +256,7 @@ def test_headline_is_the_default_method_named_with_its_verdict(run):
     """The summary cards show the default method of ``shaftfe fatigue`` (FKM), named, with
     its pass/fail; the seed method's safety factor is not a headline card (it stays in
     Strength by standard and the seed comparison)."""
-    from shaftfe.fatigue.standards import DEFAULT_METHOD
+    from shaftfe.fatigue.method_options import DEFAULT_METHOD
     from shaftfe.report.html import num
 
     out, _ = run

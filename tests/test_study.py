@@ -546,8 +546,10 @@ def test_failed_designs_exit_1(tmp_path, capsys, monkeypatch):
     p = write(tmp_path)
     rows = ({"design": 0, "status": "failed", "error": "SolverError: x"},)
 
-    def fake(spec, out, **kw):
-        kw["announce"](kw["checked"])
+    def fake(spec, out, **kw):                # the runner checks the study, then announces
+        from shaftfe.study import sampling
+        from shaftfe.study.check import check_study
+        kw["announce"](check_study(spec, sampling.designs(spec)))
         return runner.StudyRun(Path(out), rows, 1, 0, 1, 0, 1, 0.1, 0.1)
     monkeypatch.setattr(runner, "run_study", fake)
     rc, _out, err = run_cli(["study", "run", str(p), "--out", str(tmp_path / "o"),

@@ -158,8 +158,9 @@ def run(args) -> int:
 
 
 def _lives_of(e: dict, result) -> str:
+    from shaftfe.fatigue.assess import life_hours
     b = e["life_blocks"]
-    return lives(b, None if b is None else b * result.history.duration_s / 3600.0)
+    return lives(b, None if b is None else float(life_hours(b, result.history.duration_s)))
 
 
 def _pct(new: float | None, old: float) -> str:

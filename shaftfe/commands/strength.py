@@ -27,30 +27,21 @@ def check_element_options(args) -> tuple[float, float]:
     return kappa, ec
 
 
-def _fkm_lives(blocks: float, block_seconds: float, speed_kmh: float) -> str:
-    from shaftfe.util.fmt import lives
-    h = blocks * block_seconds / 3600.0
-    return lives(blocks, h, h * speed_kmh, speed_kmh)
-
-
 def run_standard(args, job) -> int:
     from pathlib import Path
 
     from shaftfe.commands._common import out_name, print_json, print_table
-    from shaftfe.errors import InputError
     from shaftfe.fatigue import standards as sd
     from shaftfe.fatigue import standards_out as so
-    from shaftfe.fatigue.run import load_inputs, resolve_design_life
+    from shaftfe.fatigue.assess import life_hours, life_km
+    from shaftfe.fatigue.run import load_inputs
     from shaftfe.util.atomic import staged_dir
-    from shaftfe.util.fmt import design_life, json_clean, life_reason
+    from shaftfe.util.fmt import design_life, lives
 
-    if args.method not in sd.METHODS:
-        raise InputError("command line", "--method", " | ".join(sd.METHODS), got=args.method)
     opts = options_of(args)
     sd.check_options(opts)
     kappa, ec = check_element_options(args)
     inputs = load_inputs(job)
-    job = resolve_design_life(job, inputs.history)
     v = inputs.variant
     out = Path(args.out) if args.out else \
         Path("reports") / out_name(v.name, v.overrides) / f"fatigue-{args.method}"
@@ -66,11 +57,6 @@ def run_standard(args, job) -> int:
         el = so.compute_elements(v, inputs.history, kappa, ec, job.speed_kmh, beam)
         summary = {"variant": v.name, "spectrum": str(job.spectrum), **summary,
                    "elements": el}
-        if args.method == "fkm":              # why a life is printed as no finite life
-            gov = summary["governing"]
-            gov["life_reason"] = life_reason(gov["life_blocks"][res.rule],
-                                             gov["life_hours"][res.rule])
-        summary = json_clean(summary)         # JSON has no inf: null with the reason beside
         summary, files = so.write_outputs(args.method, res, ref if beam is None else None,
                                           stage, summary)
     if args.json:
@@ -84,13 +70,15 @@ def run_standard(args, job) -> int:
     if args.method == "fkm":
         print(f"static: {'from cache' if ref.from_cache else 'solved'} ({ref.ref_rpm:g} rpm, "
               f"{ref.n_nodes} nodes, P2 {job.level}); design life "
-              f"{design_life(job.design_life, h.duration_s, job.speed_kmh)}; "
+              f"{design_life(res.design_life_blocks, res.block_seconds, job.speed_kmh)}; "
               f"j_D {res.j_D:g}; D_M {res.damage_sum:g}; governing rule: {res.rule}")
         print_table(so.FKM_HEAD, so.fkm_rows(res), title="FKM, local stresses, per region "
                     "(surface layer and core at the case depth)")
         for note in so.fkm_notes(res):
             print(note)
         g, c = res.governing
+        b = c.life_blocks[res.rule]
+        h = float(life_hours(b, res.block_seconds))
         if so.no_load_cycles(res):
             print(f"governing: none: {so.NO_LOAD_CYCLES}")
         else:
@@ -98,7 +86,7 @@ def run_standard(args, job) -> int:
                   f"against j_D {res.j_D:g}, degree of utilisation "
                   f"{so._f(c.utilisation[res.rule])} "
                   f"({'passes' if c.utilisation[res.rule] <= 1 else 'FAILS'}); life: "
-                  f"{_fkm_lives(c.life_blocks[res.rule], res.block_seconds, job.speed_kmh)}")
+                  f"{lives(b, h, float(life_km(h, job.speed_kmh)), job.speed_kmh)}")
             print(f"size factor: K_d,m at d_eff {c.d_eff_mm:.2f} mm, the round section through "
                   "the hot spot (FKM; DIN 743 takes its K1 at a shoulder's larger diameter)")
     else:

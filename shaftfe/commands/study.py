@@ -42,7 +42,6 @@ def run_run(args) -> int:
 
     from shaftfe.errors import InputError
     from shaftfe.study import sampling
-    from shaftfe.study.check import check_study
     from shaftfe.study.runner import run_study
     from shaftfe.study.spec import check_count, load_study
 
@@ -54,12 +53,7 @@ def run_run(args) -> int:
                          "existing cluster has its own workers)", reason="is given")
     spec = load_study(args.study)
     check_count(spec, sampling.count(spec), yes=args.yes)
-    designs = sampling.designs(spec)
     out = Path(args.out) if args.out else Path("reports") / "studies" / spec.name
-    if args.scheduler is not None:                 # '' is an address given, and refused
-        from shaftfe.study.runner import scheduler_address
-        scheduler_address(args.scheduler)          # its form, before any design is loaded
-    checked = check_study(spec, designs)            # every input, before anything runs
 
     def announce(checked):                          # the cluster is there: before solving
         for line in checked.summary():
@@ -71,7 +65,7 @@ def run_run(args) -> int:
     previous = signal.signal(signal.SIGTERM, stop)
     try:
         run = run_study(spec, out, workers=args.workers, scheduler=args.scheduler,
-                        checked=checked, announce=announce)
+                        announce=announce)
     except KeyboardInterrupt:
         done = len(list((out / "designs").glob("*.json"))) if (out / "designs").is_dir() else 0
         print(f"shaftfe: interrupted: {done} design results are saved in {out}; run the same "

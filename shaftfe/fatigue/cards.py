@@ -32,7 +32,6 @@ class StrengthCard:
     rp_n_MPa: float
     case_hardness_HRC: float | None
     case_depth_mm: float | None
-    tags: tuple[tuple[str, str], ...]      # (key, provenance)
 
     @property
     def case_hardened(self) -> bool:
@@ -77,7 +76,7 @@ def card_of(material, source: str = "the variant's materials") -> StrengthCard:
                          + " (a material the standards can assess)", got=material.group or None)
     return StrengthCard(material.name, material.description, material.group,
                         material.ultimate_MPa, material.yield_MPa, material.case_hardness_HRC,
-                        material.case_depth_mm, ())
+                        material.case_depth_mm)
 
 
 def load_card(name: str, path: str | Path = MATERIALS_FILE) -> StrengthCard:

@@ -37,13 +37,11 @@ def _save(fig, path) -> Path:
     return path
 
 
-def plot_load_history(history, path, ref_rpm: float | None = None) -> Path:
-    """rpm and load factor against time (seed Obr. 65 / 88). ``ref_rpm``: the speed of the
-    static solution the load factor (n / ref_rpm)² multiplies (the fatigue run's reference);
-    default the file's own normalising speed."""
+def plot_load_history(history, path) -> Path:
+    """rpm and load factor against time (seed Obr. 65 / 88), the load factor (n / ref)² at the
+    history's reference speed (pass the fatigue run's history, ``FatigueField.history``, which
+    is re-referenced to the static solution's speed)."""
     plt = _plt()
-    if ref_rpm is not None:
-        history = history.with_reference(ref_rpm)
     fig, ax = plt.subplots(figsize=(9, 3.5))
     ax.step(history.time_s, history.rpm, where="post", color="tab:blue")
     ax.set_xlabel("time [s]")

@@ -20,11 +20,12 @@ import time
 from dataclasses import dataclass
 
 from shaftfe.errors import InputError
+from shaftfe.fatigue.assess import DEFAULT_DESIGN_LIFE_BLOCKS
 from shaftfe.fatigue.kernels import EQUIVALENT_STRESSES, MEAN_STRESS_THEORIES
 from shaftfe.solid.levels import LEVEL_NAMES
 from shaftfe.static import MODELS
 from shaftfe.util.fmt import LIFE_MAX
-from shaftfe.util.limits import check_exclude_mm
+from shaftfe.util.limits import OVERSPEED_HINT, check_exclude_mm
 
 MEAN_STRESS = MEAN_STRESS_THEORIES
 # the seed's von Mises and its signed variant; the hydrostatic-signed kind is for studies
@@ -42,7 +43,6 @@ SEED_RPM_REF = 7000.0     # a normalised history without a stated reference: the
 # (1e300 printed a utilisation of 1.5e6). Of the seed's 300 s block: [1, 1e9] blocks =
 # [0.0833, 8.33e7] h. Before the history is read each form is checked against the part of the
 # rule that needs no block duration (``check_life_settings``).
-DEFAULT_DESIGN_LIFE_BLOCKS = 1e7
 DESIGN_LIFE_BLOCKS = (1.0, LIFE_MAX)
 # --speed-kmh, the average riding speed that turns hours into km: (0, 400] km/h (the fastest
 # production motorcycles top out near 300 km/h; an average is far below)
@@ -164,7 +164,7 @@ def resolve_design_life(job: FatigueJob, history) -> FatigueJob:
     return replace(job, design_life=blocks)
 
 
-def check_history(history, engine: str, allow_overspeed: bool):
+def check_history(history, engine: str, allow_overspeed: bool, hint: str = OVERSPEED_HINT):
     """The speeds of a history for a stress or life assessment: some above 0 rpm (an engine
     at rest has no load: no damage, no bearing wear: nothing to assess) and none above the
     engine's max_rpm (``util.limits.engine_speed_limit``) unless ``allow_overspeed``, then with
@@ -175,8 +175,8 @@ def check_history(history, engine: str, allow_overspeed: bool):
         raise InputError(history.source, "rpm", "a history with the engine turning (some "
                          "sample above 0 rpm)", reason="is 0 in every sample (the engine at "
                          "rest): no load in this history: no damage, no bearing wear")
-    check_operating_speed(top, engine, allow_overspeed, history.source,
-                          "highest rpm")
+    check_operating_speed(top, engine, allow_overspeed, history.source, "highest rpm",
+                          hint=hint)
 
 
 def check_model_level(model: str, level: str) -> None:

@@ -33,6 +33,7 @@ from pathlib import Path
 import numpy as np
 
 from shaftfe.errors import InputError
+from shaftfe.fatigue.cards import card_of
 from shaftfe.fatigue.fkm import GROUPS
 from shaftfe.model.loader import material_record
 from shaftfe.util.paths import SN_FILE
@@ -211,11 +212,8 @@ def material_knee(rec) -> float:
     """The S-N knee amplitude of a material record: the FKM material fatigue strength
     σ_W,zd = f_W,σ R_m of its group (``fkm.GROUPS``; the guideline's Table 4.2.1), at the record's
     strength reference diameter (no size, surface or notch factor: the seed method's kf)."""
-    if rec.group not in GROUPS:
-        raise InputError("geometry/common/materials.toml", f"materials.{rec.name}.group",
-                         " | ".join(k for k in GROUPS if k != "gjl") + " (for the S-N knee)",
-                         got=rec.group or None)
-    return GROUPS[rec.group].f_w_sigma * rec.ultimate_MPa
+    card = card_of(rec, "geometry/common/materials.toml")     # the one group rule
+    return GROUPS[card.group].f_w_sigma * card.rm_n_MPa
 
 
 def _read(path: Path) -> dict:

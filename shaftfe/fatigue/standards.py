@@ -18,7 +18,6 @@ import numpy as np
 
 from shaftfe.errors import InputError
 from shaftfe.fatigue import din743, fkm
-from shaftfe.fatigue.method_options import DEFAULT_METHOD, METHODS  # noqa: F401 (the table's)
 
 
 @dataclass(frozen=True)

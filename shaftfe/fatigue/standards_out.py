@@ -6,7 +6,8 @@ from __future__ import annotations
 import math
 
 from shaftfe.fatigue import din743 as din
-from shaftfe.util.fmt import NO_FINITE_LIFE, big, life, life_h_km, life_reason
+from shaftfe.fatigue.assess import life_hours
+from shaftfe.util.fmt import NO_FINITE_LIFE, big, json_clean, life, life_h_km, life_reason
 
 NONE = "—"        # a value the assessment has not got (nan): printed as this, never as "nan"
 
@@ -107,8 +108,12 @@ def fkm_summary(res) -> dict:
                           "safety": {k: _num(v) for k, v in c.safety.items()},
                           "utilisation": {k: _num(v) for k, v in c.utilisation.items()},
                           "life_blocks": {k: _num(v) for k, v in c.life_blocks.items()},
-                          "life_hours": {k: _num(v * res.block_seconds / 3600.0)
-                                         for k, v in c.life_blocks.items()}},
+                          "life_hours": {k: _num(float(life_hours(v, res.block_seconds)))
+                                         for k, v in c.life_blocks.items()},
+                          # why a life prints as no finite life (util.fmt), or None
+                          "life_reason": life_reason(c.life_blocks[res.rule],
+                                                     float(life_hours(c.life_blocks[res.rule],
+                                                                      res.block_seconds)))},
             "regions": [{"region": r.region, "node": r.node, "xyz_mm": list(r.xyz_mm),
                          "h_mm": r.profile.h_mm, "fit_rms": _num(r.profile.fit_residual),
                          **{c.layer: {k: (_num(v) if not isinstance(v, dict) else
@@ -283,6 +288,7 @@ def write_outputs(method: str, res, ref, out, summary: dict) -> tuple[dict, list
     else:
         summary = {**summary, "plots": write_din_files(summary, out)}
     summary["warnings"] = collected()
+    summary = json_clean(summary)         # JSON has no inf: null with the reason beside
     write_atomic(out / "summary.json", json.dumps(summary, indent=1, allow_nan=False) + "\n")
     files = ([summary["vtu"]["file"]] if "vtu" in summary else []) + \
         list(summary["plots"].values()) + ["summary.json"]

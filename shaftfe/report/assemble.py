@@ -26,6 +26,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from shaftfe.fatigue.method_options import DEFAULT_METHOD
 from shaftfe.report.comparisons import comparisons, error_estimates
 from shaftfe.report.options import ERROR_STAGE, OTHER_LEVEL, ReportOptions, check_options, stages
 from shaftfe.report.results import Figure, Report
@@ -114,11 +115,12 @@ def _nodal_peak(st: dict, ref) -> None:
     nodal von Mises stress outside the singular points, the value the 3D picture and
     ``shaftfe view`` show beside the surface-fitted ``peak_von_mises_MPa``."""
     import numpy as np
-    vm = np.asarray(getattr(ref, "von_mises_ref", ()), dtype=float)
+
+    from shaftfe.static.cache import kept_nodes
+    vm = np.asarray(ref.von_mises_ref, dtype=float)
     if vm.size == 0:
         return
-    keep = np.ones(vm.size, dtype=bool)
-    keep[np.asarray(getattr(ref, "excluded", ()), dtype=np.int64)] = False
+    keep = kept_nodes(ref)
     for c in st["cases"]:
         if abs(c["rpm"] - ref.ref_rpm) <= 1e-9 * ref.ref_rpm and keep.any():
             c["peak_von_mises_node_MPa"] = float(vm[keep & np.isfinite(vm)].max())
@@ -305,7 +307,7 @@ def _strength(o: ReportOptions, variant, ref, history, cycles=None) -> dict:
     from shaftfe.fatigue.run import FatigueInputs, FatigueJob
     from shaftfe.util.notices import warn
     opts = sd.StrengthOptions()
-    out = {"default_method": sd.DEFAULT_METHOD}
+    out = {"default_method": DEFAULT_METHOD}
     try:                    # the shaft's own material decides; not every record is assessable
         card = sd.strength_card(variant, opts)
         if card.group not in ("case_hardening_steel", "qt_steel"):
@@ -427,7 +429,7 @@ def _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, 
     s0, beta = ff.result.linear_stress(hot.node)      # the node's S0 (λ + β λ²)
     lbl = f"{hot.region} x = {hot.xyz_mm[0]:.1f} mm"
     r = ff.result
-    fatigue_plots.plot_load_history(history, fig_dir / "load_history.png", ref_rpm=ff.ref_rpm)
+    fatigue_plots.plot_load_history(ff.history, fig_dir / "load_history.png")
     add_fig("load_history", "rpm history (one block)",
             f"{Path(history.source).name}: engine speed [rpm] and load factor (n / "
             f"{ff.ref_rpm:g})² [-] against time [s]: the factor on the static stresses at "

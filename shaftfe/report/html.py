@@ -15,6 +15,7 @@ from html import escape
 from shaftfe import __version__
 from shaftfe.rotordynamics.campbell import whirl_ratio_text
 from shaftfe.static.result import PEAK_FIT_LABEL  # what a static peak is (one definition)
+from shaftfe.util.fmt import NO_FINITE_LIFE, life_reason
 
 CSS = """
 body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,Arial,sans-serif;margin:0;
@@ -135,16 +136,12 @@ def card(value: str, label: str, cls: str = "") -> str:
             f'<div class="l">{_e(label)}</div></div>')
 
 
-LIFE_READABLE_BLOCKS = 1e9     # beyond this a life is "no finite life at this load" (issue 30)
-
-
 def life(blocks, hours=None) -> str:
     """A fatigue life an engineer can read: blocks and hours, or "no finite life at this load"
-    for none (beyond the curve's knee) or one beyond 10⁹ blocks."""
-    if blocks is None or not math.isfinite(float(blocks)):
-        return "no finite life at this load"
-    if blocks > LIFE_READABLE_BLOCKS:
-        return "no finite life at this load (> 10⁹ blocks)"
+    with its reason (``util.fmt``: infinite, or beyond 10⁹ blocks or hours)."""
+    why = life_reason(blocks, *(() if hours is None else (hours,)))
+    if why:
+        return f"{NO_FINITE_LIFE} ({why})"
     return num(blocks, 3, "blocks") + (f" = {num(hours, 3, 'h')}" if hours is not None else "")
 
 
@@ -555,9 +552,9 @@ def _strength(r) -> str:
                      num(g["safety"][rule], 3, strip=False),
                      num(g["utilisation"][rule], 3, strip=False),
                      life(g["life_blocks"][rule], g["life_hours"][rule]), hot))
-    d = s["din743"]["governing"]
-    rows.append((f"DIN 743 nominal, beam ({_e(d['notch'])}; S_min 1.2)", num(d["S_D"], 3),
-                 num(1.2 / d["S_D"], 3) if d["S_D"] else "-", "fatigue limit (no life)",
+    d, s_min = s["din743"]["governing"], s["din743"]["S_min"]
+    rows.append((f"DIN 743 nominal, beam ({_e(d['notch'])}; S_min {num(s_min)})", num(d["S_D"], 3),
+                 num(s_min / d["S_D"], 3) if d["S_D"] else "-", "fatigue limit (no life)",
                  "nominal beam stress × notch factors"))
     c0 = r.static["cases"][0]
     html = ('<h2 id="strength">Strength by standard</h2>'

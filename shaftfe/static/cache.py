@@ -199,7 +199,8 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
     if use_cache and path.exists():
         ref = _load(path, key, variant.name, t0)
         if ref is not None:
-            warn_unresolved_fillets(region_peaks(ref))   # as a fresh solve would say it
+            # as a fresh solve would say it (on the nodal values the cache holds)
+            warn_unresolved_fillets(region_peaks(ref), "largest nodal values")
             return ref
     from shaftfe.static.solve import solve_static
     res = solve_static(variant, REF_RPM, options, cache_dir=cache_dir, beam=False,
@@ -211,11 +212,17 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
     return dataclasses.replace(ref, seconds=time.perf_counter() - t0)
 
 
+def kept_nodes(ref) -> np.ndarray:
+    """The mask of the reference's nodes outside the singular-point exclusion (``excluded``)."""
+    keep = np.ones(np.asarray(ref.von_mises_ref).size, dtype=bool)
+    keep[np.asarray(ref.excluded, dtype=np.int64)] = False
+    return keep
+
+
 def region_peaks(ref: StaticReference) -> dict[str, float]:
     """Each region's largest nodal von Mises of the reference, the singular-point rule applied
-    (the excluded nodes left out)."""
-    keep = np.ones(ref.von_mises_ref.size, dtype=bool)
-    keep[np.asarray(ref.excluded, dtype=np.int64)] = False
+    (``kept_nodes``)."""
+    keep = kept_nodes(ref)
     out = {}
     for name, ids in ref.regions.items():
         ids = np.asarray(ids, dtype=np.int64)

@@ -25,9 +25,11 @@ PEAK_FIT_LABEL = "surface fit between the nodes"
 UNRESOLVED_FACE_OVER_FILLET = 2.0
 
 
-def unresolved_fillets(peak_of: dict[str, float]) -> dict[str, str]:
+def unresolved_fillets(peak_of: dict[str, float],
+                       basis: str = PEAK_FIT_LABEL) -> dict[str, str]:
     """{fillet region: why it is not resolved} from each region's filtered peak von Mises
-    (``peak_of``: region -> MPa): a ``shoulder:<seg>`` face reading more than
+    (``peak_of``: region -> MPa; ``basis`` names which peak: the fitted one of a fresh solve, or
+    the largest nodal value of a cached reference): a ``shoulder:<seg>`` face reading more than
     ``UNRESOLVED_FACE_OVER_FILLET`` × its ``fillet:<seg>``."""
     out = {}
     for region, face in peak_of.items():
@@ -37,17 +39,19 @@ def unresolved_fillets(peak_of: dict[str, float]) -> dict[str, str]:
         f = peak_of.get(fillet)
         if f is not None and f > 0 and face > UNRESOLVED_FACE_OVER_FILLET * f:
             out[fillet] = (f"the mesh does not resolve this fillet: the shoulder face beside "
-                           f"it reads {face:.4g} MPa, {face / f:.3g} × the fillet's {f:.4g} MPa, "
+                           f"it reads {face:.4g} MPa, {face / f:.3g} × the fillet's {f:.4g} MPa "
+                           f"({basis}), "
                            "which a resolved fillet does not allow; neither is a stress to "
                            "assess (a finer level, or the axisymmetric model --model "
                            "axisymmetric)")
     return out
 
 
-def warn_unresolved_fillets(peak_of: dict[str, float]) -> dict[str, str]:
+def warn_unresolved_fillets(peak_of: dict[str, float],
+                            basis: str = PEAK_FIT_LABEL) -> dict[str, str]:
     """``unresolved_fillets`` with a visible warning for each (``shaftfe.util.notices``)."""
     from shaftfe.util.notices import warn
-    out = unresolved_fillets(peak_of)
+    out = unresolved_fillets(peak_of, basis)
     for region, why in out.items():
         warn("unresolved-fillet", region, why)
     return out

@@ -391,10 +391,12 @@ def run_study(spec: StudySpec, out_dir, *, workers: int | None = None,
     from shaftfe.study.check import check_study
     t_all = time.perf_counter()
     out = Path(out_dir)
-    check_directory(out, spec)
+    if scheduler is not None:                      # '' is an address given, and refused
+        scheduler_address(scheduler)               # its form, before any design is loaded
     designs = sampling.designs(spec)
     if checked is None:
-        checked = check_study(spec, designs)
+        checked = check_study(spec, designs)       # every input, before anything runs
+    check_directory(out, spec)
     base_hash = load_variant(spec.base).content_hash
     options = spec.analyses.options()
     code = source_fingerprint()

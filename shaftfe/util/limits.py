@@ -77,11 +77,15 @@ def engine_speed_limit(engine: str = DEFAULT_ENGINE) -> tuple[float, str]:
     return float(e.max_rpm), f"max_rpm of {e.name} in {repo_relative(e.source)}"
 
 
+OVERSPEED_HINT = "; --allow-overspeed to assess it anyway"
+
+
 def check_operating_speed(rpm: float, engine: str, allow_overspeed: bool, source: str,
-                          what: str, *, factor: float = 1.0) -> None:
+                          what: str, *, factor: float = 1.0, hint: str = OVERSPEED_HINT) -> None:
     """``rpm``, the highest speed of an assessment, against ``factor`` × the engine's max_rpm
     (1: an operating history; ``PROOF_FACTOR``: a proof check): above it, refused unless
-    ``allow_overspeed``, then assessed with a visible warning."""
+    ``allow_overspeed``, then assessed with a visible warning. ``hint``: how the caller's user
+    goes past it (the commands' option; a caller without one says so)."""
     from shaftfe.util.notices import warn
     max_rpm, where = engine_speed_limit(engine)
     limit = min(factor * max_rpm, RPM_CEILING)
@@ -90,8 +94,8 @@ def check_operating_speed(rpm: float, engine: str, allow_overspeed: bool, source
     bound = f"{limit:g} rpm, the {where}" if factor == 1 else \
         f"{limit:g} rpm = {factor:g} × the {where} ({max_rpm:g} rpm: an overspeed proof check)"
     if not allow_overspeed:
-        raise InputError(source, what, f"at most {bound}; --allow-overspeed to assess it "
-                         "anyway", got=float(rpm), reason="is above the engine's maximum speed")
+        raise InputError(source, what, f"at most {bound}{hint}", got=float(rpm),
+                         reason="is above the engine's maximum speed")
     warn("overspeed", source, f"{what} = {rpm:g} rpm is above {bound}: assessed as asked "
          "(--allow-overspeed); the engine does not run there, so a life at it is not an "
          "operating life")
