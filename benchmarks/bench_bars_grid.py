@@ -76,11 +76,6 @@ def _key(dd: float, rd: float) -> str:
     return f"{dd:g}/{rd:g}"
 
 
-def _points_of(level: str) -> list[tuple[float, float]]:
-    """The points measured at ``level``: every level measures the whole grid."""
-    return grid()
-
-
 def _truth(v) -> dict:
     from shaftfe.axisymmetric.kt import converged_peaks
     t0 = time.perf_counter()
@@ -112,7 +107,7 @@ def measure(levels, budget: float) -> bool:
     t_start = time.perf_counter()
     data = _load()
     todo = [(p, None) for p in grid()]
-    todo += [(p, lv) for lv in levels for p in _points_of(lv)]
+    todo += [(p, lv) for lv in levels for p in grid()]     # every level: the whole grid
     for (dd, rd), lv in todo:
         rec = data["points"].setdefault(_key(dd, rd), {"D/d": dd, "r/d": rd, "load": LOAD})
         what = "truth" if lv is None else lv
@@ -151,7 +146,7 @@ def _outwards(errs) -> tuple[float, float]:
 
 
 def grid_errors(data: dict, level: str) -> list[tuple[float, float, float]]:
-    return [e for p in _points_of(level)
+    return [e for p in grid()
             for e in errors(data["points"][_key(*p)], level).values()]
 
 
@@ -197,7 +192,7 @@ def write(data: dict, levels) -> dict:
         D, d, r = rec["D_d_r_mm"]
         t = rec["truth"]
         for lv in levels:
-            if lv not in rec or (dd, rd) not in _points_of(lv):
+            if lv not in rec:
                 continue
             e = errors(rec, lv)
             lines.append(
@@ -226,7 +221,7 @@ def write(data: dict, levels) -> dict:
               "| level | grid points | grid envelope | bar (grid and x2_57) | 3D seconds (sum) |",
               "|---|---|---|---|---|"]
     for lv, (lo, hi) in bars.items():
-        pts = _points_of(lv)
+        pts = grid()
         secs = sum(data["points"][_key(*p)][lv]["seconds"] for p in pts)
         g_lo, g_hi = grid_only[lv]
         lines.append(f"| {lv} | {len(pts)} | {g_lo:+.2f} … {g_hi:+.2f} % | "

@@ -70,15 +70,18 @@ def parse_range(text: str, option: str, *, lo: float | None = None,
     return start, stop, step
 
 
-def add_engine_option(p) -> None:
-    """``--engine`` of a command that takes checking speeds (static, beam): its max_rpm is the
-    engine's limit (``util.limits.engine_speed_limit``)."""
-    p.add_argument("--engine", default="vm450",
-                   help="engine file whose max_rpm bounds --rpm (default vm450: the engine of "
-                   "the x2_* balancer shafts): up to 1.2 × max_rpm, an overspeed proof check "
-                   "(the seed's 10 000 rpm is 1.05 × 9500)")
-    p.add_argument("--allow-overspeed", action="store_true",
-                   help="a --rpm above 1.2 × the engine's max_rpm (with a warning)")
+def add_engine_option(p, engine_help: str | None = None,
+                      overspeed_help: str | None = None) -> None:
+    """``--engine`` and ``--allow-overspeed`` of a command that assesses operating speeds: the
+    engine's max_rpm is the limit (``util.limits.engine_speed_limit``). Without help texts: a
+    command of checking speeds (static, beam), up to ``PROOF_FACTOR`` × max_rpm."""
+    from shaftfe.util.limits import DEFAULT_ENGINE, PROOF_FACTOR
+    p.add_argument("--engine", default=DEFAULT_ENGINE, help=engine_help or (
+        f"engine file whose max_rpm bounds --rpm (default {DEFAULT_ENGINE}: the engine of the "
+        f"x2_* balancer shafts): up to {PROOF_FACTOR:g} × max_rpm, an overspeed proof check "
+        "(the seed's 10 000 rpm is 1.05 × 9500)"))
+    p.add_argument("--allow-overspeed", action="store_true", help=overspeed_help or (
+        f"a --rpm above {PROOF_FACTOR:g} × the engine's max_rpm (with a warning)"))
 
 
 def check_speeds(rpms, args) -> None:

@@ -14,6 +14,7 @@ import argparse
 import dataclasses
 import math
 
+from shaftfe.commands._common import add_engine_option
 from shaftfe.solid.levels import LEVEL_NAMES
 from shaftfe.util.fmt import design_life, life, lives
 
@@ -57,11 +58,9 @@ def register(sub) -> None:
     p.add_argument("spectrum", help="rpm history: normalised rpm²/ref² (seed rpm.dat), rpm, or "
                    "csv 'time_s,rpm' (see shaftfe.fatigue.history)")
     p.add_argument("--variant", default="x2_57", help="variant name or path (default x2_57)")
-    p.add_argument("--engine", default="vm450",
-                   help="engine file whose max_rpm is the highest speed the history may reach "
-                   "(default vm450: the engine of the x2_* balancer shafts)")
-    p.add_argument("--allow-overspeed", action="store_true",
-                   help="assess a history above the engine's max_rpm (with a warning)")
+    add_engine_option(p, "engine file whose max_rpm is the highest speed the history may "
+                      "reach (default vm450: the engine of the x2_* balancer shafts)",
+                      "assess a history above the engine's max_rpm (with a warning)")
     p.add_argument("--ref-rpm", type=float, default=None,
                    help="speed a normalised history is normalised by (default: the file's "
                    "'# reference_rpm' header, else 7000 as the seed)")

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import argparse
 
+from shaftfe.commands._common import add_engine_option
+
 
 def register(sub) -> None:
     p = sub.add_parser(
@@ -21,10 +23,9 @@ def register(sub) -> None:
     p.add_argument("--variant", default="x2_57", help="variant name or path (default x2_57)")
     p.add_argument("--spectrum", default=None,
                    help="rpm history (default: the bundled loadspectra/rpm.dat)")
-    p.add_argument("--engine", default="vm450", help="engine file (default vm450); its max_rpm "
-                   "ends the Campbell range and bounds the rpm history")
-    p.add_argument("--allow-overspeed", action="store_true",
-                   help="assess an rpm history above the engine's max_rpm (with a warning)")
+    add_engine_option(p, "engine file (default vm450); its max_rpm ends the Campbell range "
+                      "and bounds the rpm history",
+                      "assess an rpm history above the engine's max_rpm (with a warning)")
     p.add_argument("--level", default="default", help="mesh level: coarse | default | fine")
     p.add_argument("--model", default="solid",
                    help="static model: solid (3D P2 tets, default) | axisymmetric (Fourier "

@@ -21,6 +21,7 @@ from shaftfe.commands._common import (
 from shaftfe.errors import InputError
 from shaftfe.solid.levels import LEVEL_NAMES
 from shaftfe.static import MODELS
+from shaftfe.util.fmt import life
 
 
 def register(sub) -> None:
@@ -177,7 +178,7 @@ def _print_axi(res, opts, out, corners=()) -> None:
     for c in res.cases:
         print()
         print_table(["bearing", "x mm", "|F| N", "L10h h"],
-                    [[b.name, b.x_mm, b.F_radial_N, _fmt_life(b.L10h)] for b in c.bearings],
+                    [[b.name, b.x_mm, b.F_radial_N, life(b.L10h)] for b in c.bearings],
                     title=f"{c.rpm:g} rpm, {opts.load_case}: bearing reactions")
         _at_rest(c.rpm)
         print(f"equilibrium residual {c.equilibrium_residual:.1e}")
@@ -228,7 +229,7 @@ def _print_tables(res, opts, out, corners=()) -> None:
         for b in c.bearings:
             bb = beam_b.get(b.name, {})
             rows.append([b.name, b.x_mm, b.F_radial_N, bb.get("F_N", "-"),
-                         _fmt_life(b.L10h), _fmt_life(bb.get("L10h"))])
+                         life(b.L10h), life(bb.get("L10h"))])
         print_table(["bearing", "x mm", "|F| N (FE)", "|F| N (beam)", "L10h h (FE)",
                      "L10h h (beam)"], rows,
                     title=f"{c.rpm:g} rpm, {opts.load_case}: bearing reactions")
@@ -290,11 +291,6 @@ def _station_rows(stations, beam_st: dict) -> list[list]:
         else:
             rows[key] = [s.name, s.x_mm, s.u_mm * 1e3, _beam_station(beam_st, s.name)]
     return list(rows.values())
-
-
-def _fmt_life(v) -> object:
-    from shaftfe.util.fmt import life
-    return life(v)              # above 1e9 h or infinite: "no finite life at this load"
 
 
 def _beam_station(st: dict, name: str) -> object:

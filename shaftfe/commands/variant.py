@@ -64,36 +64,15 @@ def _retag(merged: dict, orig: dict, o, ov) -> None:
     table["note"] = (table.get("note", "").rstrip() + "\n" + line).lstrip("\n")
 
 
-def check_new_name(name: str) -> None:
-    """A new variant's name. Rules (issue #30): letters, digits, _ and -, starting with a
-    letter or digit (``-rf`` would be read as an option by every command that takes it); and
-    not the name of a variant already in geometry/ (two files of one name: ``--variant NAME``
-    would pick one of them silently), wherever --out writes it."""
-    import re
-
-    from shaftfe.errors import InputError
-    from shaftfe.model.loader import list_variants
-    if not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9_-]*", name):
-        raise InputError("command line", "NAME", "letters, digits, _ and -, starting with a "
-                         "letter or digit", got=name)
-    # case-insensitive: X2_31 beside x2_31 is one file on a case-insensitive file system
-    # (macOS, Windows) and two look-alike names elsewhere
-    same = next((v for v in list_variants() if v.casefold() == name.casefold()), None)
-    if same is not None:
-        raise InputError("command line", "NAME", "a name no variant in geometry/ has yet, "
-                         f"in any letter case (geometry/{same}.toml exists)", got=name)
-
-
 def run_new(args) -> int:
     from pathlib import Path
 
     from shaftfe.errors import InputError
     from shaftfe.model import overrides as ov
-    from shaftfe.model.loader import _resolve, load_variant, resolved_dict
+    from shaftfe.model.loader import _resolve, check_new_name, load_variant, resolved_dict
     from shaftfe.model.tomlwrite import dumps
     from shaftfe.util.atomic import check_output_file, write_atomic
     from shaftfe.util.paths import GEOMETRY_DIR, repo_relative
-
     check_new_name(args.name)
     out = Path(args.out) if args.out else GEOMETRY_DIR / f"{args.name}.toml"
     # the option that chose the file is the one blamed: --out if given, else NAME

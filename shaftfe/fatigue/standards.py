@@ -178,6 +178,16 @@ def beam_at_ref(variant):
     return analyse(variant, BEAM_RPM)[0]
 
 
+def din743_card(variant, opts: StrengthOptions):
+    """``strength_card``, refused unless DIN 743 has a law for its group (case-hardening and
+    quenched-and-tempered steels here)."""
+    card = strength_card(variant, opts)
+    if card.group not in ("case_hardening_steel", "qt_steel"):
+        raise InputError("geometry/common/materials.toml", f"materials.{card.name}.group",
+                         "case_hardening_steel | qt_steel for DIN 743", got=card.group)
+    return card
+
+
 def run_din743(job, opts: StrengthOptions, inputs=None, beam=None) -> Din743Run:
     from shaftfe.fatigue.cards import load_surfaces
     from shaftfe.fatigue.counting import count_cycles
@@ -185,10 +195,7 @@ def run_din743(job, opts: StrengthOptions, inputs=None, beam=None) -> Din743Run:
     from shaftfe.fatigue.run import load_inputs
     check_options(opts)
     inputs = inputs or load_inputs(job)
-    card = strength_card(inputs.variant, opts)
-    if card.group not in ("case_hardening_steel", "qt_steel"):
-        raise InputError("geometry/common/materials.toml", f"materials.{card.name}.group",
-                         "case_hardening_steel | qt_steel for DIN 743", got=card.group)
+    card = din743_card(inputs.variant, opts)
     ref_rpm = BEAM_RPM
     beam = beam if beam is not None else beam_at_ref(inputs.variant)
     h = inputs.history.with_reference(ref_rpm)

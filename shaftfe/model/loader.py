@@ -57,6 +57,24 @@ def one_of(names, table: str) -> str:
     return f"a name defined in [{table}.*] (none is: is an included file empty or missing?)"
 
 
+def check_new_name(name: str) -> None:
+    """A new variant's name. Rules (issue #30): letters, digits, _ and -, starting with a
+    letter or digit (``-rf`` would be read as an option by every command that takes it); and
+    not the name of a variant already in geometry/ (two files of one name: ``--variant NAME``
+    would pick one of them silently), wherever --out writes it."""
+    import re
+
+    if not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9_-]*", name):
+        raise InputError("command line", "NAME", "letters, digits, _ and -, starting with a "
+                         "letter or digit", got=name)
+    # case-insensitive: X2_31 beside x2_31 is one file on a case-insensitive file system
+    # (macOS, Windows) and two look-alike names elsewhere
+    same = next((v for v in list_variants() if v.casefold() == name.casefold()), None)
+    if same is not None:
+        raise InputError("command line", "NAME", "a name no variant in geometry/ has yet, "
+                         f"in any letter case (geometry/{same}.toml exists)", got=name)
+
+
 def _resolve(name_or_path: str | Path) -> Path:
     text = str(name_or_path)
     p = Path(text)
@@ -174,15 +192,9 @@ def material_record(name: str, path=None) -> Material:
     """The record ``[materials.NAME]`` of a materials file (default: geometry/common/
     materials.toml), outside any variant (``--card NAME``, the S-N cards' ``material``)."""
     p = Path(path) if path is not None else COMMON_DIR / "materials.toml"
-    try:
-        mats = tomllib.loads(p.read_text(encoding="utf-8")).get("materials", {})
-    except OSError as exc:
-        raise InputError(str(p), "file", "a readable TOML file", reason=str(exc)) from None
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError(str(p), "file", "valid TOML", reason=str(exc)) from None
+    mats = _read_toml(p, str(p)).get("materials", {})      # UTF-8, valid TOML, readable
     if name not in mats:
-        raise InputError(str(p), "materials", " | ".join(sorted(mats)) or "a [materials.NAME]",
-                         got=name)
+        raise InputError(str(p), "materials", one_of(mats, "materials"), got=name)
     return _material(name, mats[name], str(p), Ctx())
 
 

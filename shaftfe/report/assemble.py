@@ -309,10 +309,7 @@ def _strength(o: ReportOptions, variant, ref, history, cycles=None) -> dict:
     opts = sd.StrengthOptions()
     out = {"default_method": DEFAULT_METHOD}
     try:                    # the shaft's own material decides; not every record is assessable
-        card = sd.strength_card(variant, opts)
-        if card.group not in ("case_hardening_steel", "qt_steel"):
-            raise InputError(f"variant {variant.name}", f"materials.{card.name}.group",
-                             "case_hardening_steel | qt_steel for DIN 743", got=card.group)
+        card = sd.din743_card(variant, opts)
     except InputError as exc:
         warn("strength-material", "report", f"strength by standard left out: {exc}")
         return {}

@@ -127,14 +127,12 @@ def _relative_deflection(case, x_mm: float) -> float:
     """|u| of the axis at ``x_mm`` relative to the straight line through the two bearings'
     remote points (the shaft's own bending; equals the rigid-support deflection for two
     supports with free tilt, where the reactions are statically determinate)."""
-    b = sorted(case.bearings, key=lambda b: b.x_mm)
+    from shaftfe.io.vtu import bearing_line
     st = min(case.stations, key=lambda s: abs(s.x_mm - x_mm))
-    if len(b) != 2:
+    line = bearing_line(case, st.x_mm)
+    if line is None:
         return st.u_mm
-    t = (st.x_mm - b[0].x_mm) / (b[1].x_mm - b[0].x_mm)
-    uy = st.uy_mm - (b[0].uy_mm + t * (b[1].uy_mm - b[0].uy_mm))
-    uz = st.uz_mm - (b[0].uz_mm + t * (b[1].uz_mm - b[0].uz_mm))
-    return math.hypot(uy, uz)
+    return math.hypot(st.uy_mm - float(line[0]), st.uz_mm - float(line[1]))
 
 
 def _relative_deflections(case, variant) -> dict:

@@ -147,15 +147,13 @@ def check_study(spec: StudySpec, designs) -> Checked:
     """Check every input of the study (see the module docstring); InputError if the study is
     refused, else the designs the loader refuses and the 3D designs' mesh groups."""
     from shaftfe.model.fields import ImplausibleValue
-    from shaftfe.static.cache import predicted_mesh_key
-    from shaftfe.static.model import StaticOptions
     from shaftfe.study.evaluate import load_design
+    from shaftfe.study.runner import group_of
     check_designs(spec, designs)
     _unit_slip(spec, designs)
     _files(spec)
     refused, groups, rules = {}, {}, {}
     seen: dict = {}
-    opts = StaticOptions(level=spec.analyses.level)
     for d in designs:
         key = repr(d.overrides)
         if key in seen:                      # equal designs (a grid with repeated points)
@@ -179,7 +177,7 @@ def check_study(spec: StudySpec, designs) -> Checked:
             refused[d.number], rules[d.number] = refusal(spec, d.overrides, exc)
             continue
         if spec.analyses.static:
-            groups[d.number] = (predicted_mesh_key(v, opts), v.material.E_MPa, v.material.nu)
+            groups[d.number] = group_of(v, spec.analyses.level)
     if refused and len(refused) == len(designs):
         # nothing to evaluate: a study whose every design is refused is the input's fault
         first = min(refused)

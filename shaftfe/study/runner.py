@@ -190,15 +190,20 @@ def evaluate_task(base: str, items, analyses, shaft_mesh=None,
 
 # --------------------------------------------------------------------------- planning
 
-def _group_key(base: str, design: Design, level: str) -> tuple:
-    """(mesh key, E, ν) of a design's solid, or ("refused",) if it cannot be loaded."""
+def group_of(v, level: str) -> tuple:
+    """(mesh key, E, ν) of a loaded design's solid: the designs that share one mesh and one
+    factorisation."""
     from shaftfe.static.cache import predicted_mesh_key
     from shaftfe.static.model import StaticOptions
+    return (predicted_mesh_key(v, StaticOptions(level=level)), v.material.E_MPa, v.material.nu)
+
+
+def _group_key(base: str, design: Design, level: str) -> tuple:
+    """``group_of`` a design, or ("refused",) if it cannot be loaded."""
     from shaftfe.study.evaluate import load_design
     try:
         v, _ = load_design(base, design.overrides)
-        return (predicted_mesh_key(v, StaticOptions(level=level)), v.material.E_MPa,
-                v.material.nu)
+        return group_of(v, level)
     except Exception:                       # the evaluation records why, one design alone
         return ("refused",)
 
