@@ -48,7 +48,8 @@ from shaftfe.fe.recovery import von_mises
 from shaftfe.fe.supports import HOLD_TWIST
 from shaftfe.model.validate import validate_variant
 from shaftfe.solid.plan import cut_features
-from shaftfe.static.model import DISTRIBUTIONS, REF_RPM, load_case_label
+from shaftfe.static.model import DISTRIBUTIONS, load_case_label
+from shaftfe.util.units import REF_RPM, omega
 
 N_MAX = 199
 
@@ -209,7 +210,7 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, rpm: float = REF
     E, nu = float(mat.E_MPa), float(mat.nu)
     h = hm.assemble(mesh, E, nu, cache_dir=cache_dir)
     loads = pressure_loads(variant, plan, options.load_distribution, rpm)
-    omega2 = (rpm * 2.0 * math.pi / 60.0) ** 2
+    omega2 = omega(rpm) ** 2
     soft = [(a.name, hm.rbe3(h, mesh.group_edges(f"load:{a.name}"), a.seat_center_mm).uy,
              a.mass_kg * omega2 * 1e-3)                       # kg/s² = N/m → N/mm
             for a in variant.attachments if options.spin_softening and a.mass_kg > 0]

@@ -25,8 +25,8 @@ from shaftfe.axisymmetric.model import AxiOptions, AxiSolution, solve_model
 from shaftfe.fe.recovery import von_mises
 from shaftfe.model.bearing_life import l10h
 from shaftfe.solid.plan import cut_features
-from shaftfe.static.model import REF_RPM
 from shaftfe.static.result import BearingReaction, Station
+from shaftfe.util.units import REF_RPM, rpm2_scale
 
 SEAT_EDGE_BAND_DEG = 10.0
 
@@ -303,7 +303,7 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
     eq = float(np.linalg.norm(load_sum + reac_sum) / scale_f)
     cases = []
     for r in rpms:
-        s = 1.0 if options.spin_softening else (r / ref_rpm) ** 2   # softening: one speed
+        s = 1.0 if options.spin_softening else rpm2_scale(r, ref_rpm)   # softening: one speed
         brs = []
         for name, rb, b in sol.bearings:
             Fx, Fy, Fz, qy, qz = sol.reactions[name]

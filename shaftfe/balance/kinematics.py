@@ -21,11 +21,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from shaftfe.errors import InputError
+from shaftfe.util.units import omega
 
 
 def rad_per_s(rpm: ArrayLike) -> NDArray[np.float64]:
     """Angular speed in rad/s from rpm."""
-    return np.asarray(rpm, dtype=float) * (2.0 * np.pi / 60.0)
+    return np.asarray(omega(rpm), dtype=float)
 
 
 def piston_position(alpha: ArrayLike, R: float, T1: float) -> NDArray[np.float64]:

@@ -21,7 +21,8 @@ import math
 
 import numpy as np
 
-REF_RPM = 10_000.0            # any speed: every load scales with ω²
+from shaftfe.util.units import REF_RPM
+
 MIN_SHARE = 1e-3              # |M| below this share of the largest: no plane (whole ring hot)
 
 

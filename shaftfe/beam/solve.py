@@ -41,6 +41,7 @@ from shaftfe.beam.model import (
 )
 from shaftfe.errors import InputError, SolverError
 from shaftfe.model.bearing_life import l10h
+from shaftfe.util.units import omega
 
 # --------------------------------------------------------------------------- solve
 
@@ -275,8 +276,6 @@ class BeamResult:
         return d
 
 
-def omega(rpm: float) -> float:
-    return rpm * 2.0 * math.pi / 60.0
 
 
 AT_REST_NOTE = ("0 rpm: no load (the only load, the parts' m·e·ω², is zero at rest): every "

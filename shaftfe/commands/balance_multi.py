@@ -15,6 +15,7 @@ import math
 
 from shaftfe.commands._common import print_json, print_table, write_atomic
 from shaftfe.errors import InputError
+from shaftfe.util import units
 
 _PLOT_SUFFIXES = (".png", ".pdf", ".svg")
 
@@ -132,7 +133,7 @@ def _setup(args):
         raise InputError("--rod-mm/--radius-mm", "rod length", f"> crank radius {R:g} mm",
                          got=T1)
     mech = Mechanism(R=R / 1000.0, T1=T1 / 1000.0, m_pos=m_pos)
-    omega = rpm * 2.0 * math.pi / 60.0
+    omega = units.omega(rpm)
     return mech, omega, rpm, label, orders
 
 

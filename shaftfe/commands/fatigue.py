@@ -17,6 +17,7 @@ import math
 from shaftfe.commands._common import add_engine_option
 from shaftfe.solid.levels import LEVEL_NAMES
 from shaftfe.util.fmt import design_life, life, lives
+from shaftfe.util.units import rpm2_scale
 
 
 def register(sub) -> None:
@@ -215,7 +216,7 @@ def _print_result(run, out, plots) -> None:
           f": {hot.safety_factor:.3f}{cap}")
     print(f"hot spot: {hot.region} at x y z = {_xyz(hot.xyz_mm)} mm, "
           f"sigma_eq = {s_hot:.1f} MPa at {ref.ref_rpm:g} rpm"
-          + (f" = {s_hot * (history.rpm_ref / ref.ref_rpm) ** 2:.1f} MPa at "
+          + (f" = {s_hot * rpm2_scale(history.rpm_ref, ref.ref_rpm):.1f} MPa at "
              f"{history.rpm_ref:g} rpm" if history.rpm_ref != ref.ref_rpm else "")
           + " "
           f"(singular points excluded: {ff.n_excluded} nodes)")

@@ -95,8 +95,9 @@ def run(args) -> int:
     if args.model == "axisymmetric":
         return _run_axisymmetric(args, rpms, load_variant_from(args))
     from shaftfe.static import cache as static_cache
-    from shaftfe.static.model import REF_RPM, StaticOptions
+    from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
+    from shaftfe.util.units import REF_RPM
 
     variant = load_variant_from(args)
     opts = StaticOptions(level=args.level, order=args.order, rigid_supports=args.rigid_supports,

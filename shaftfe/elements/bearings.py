@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from shaftfe.model import bearing_life as bl
+from shaftfe.util.units import REF_RPM, rpm2_scale
 
 KAPPA_DEFAULT = 1.0    # engine oil ≈ 10 mm²/s at ≈ 100 °C over ν1 ≈ 10 mm²/s (ISO 281, 7000 rpm,
 #                        d_m 28.5 mm): κ ≈ 1
@@ -42,14 +43,14 @@ class BearingDuty:
 
 def duty(variant, history, kappa: float = KAPPA_DEFAULT, e_c: float = EC_DEFAULT,
          a1: float = 1.0, speed_kmh: float = 70.0, beam=None) -> tuple[BearingDuty, ...]:
-    """``beam``: the beam solution at ``standards.BEAM_RPM`` if the caller has it."""
-    from shaftfe.fatigue.standards import BEAM_RPM, beam_at_ref
-    ref_rpm = BEAM_RPM
+    """``beam``: the beam solution at ``util.units.REF_RPM`` if the caller has it."""
+    from shaftfe.fatigue.standards import beam_at_ref
+    ref_rpm = REF_RPM
     beam = beam if beam is not None else beam_at_ref(variant)
     rpm = np.asarray(history.rpm, dtype=float)
     out = []
     for b, res in zip(variant.bearings, beam.bearings, strict=True):
-        P = res.F_N * (rpm / ref_rpm) ** 2
+        P = res.F_N * rpm2_scale(rpm, ref_rpm)
         Peq, neq = bl.duty_cycle(rpm, P, p=b.life_exponent)
         cu = CU_OVER_C0 * b.C0_N
         L10 = bl.l10h(b.C_N, Peq, neq, b.life_exponent)

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 from shaftfe.errors import InputError
 from shaftfe.util.paths import COMMON_DIR
+from shaftfe.util.units import omega
 
 ELEMENTS_FILE = COMMON_DIR / "elements.toml"
 
@@ -22,7 +23,7 @@ class Drive:
     @property
     def alpha_rad_s2(self) -> float:
         """Angular acceleration from idle to the maximum speed in the run-up time."""
-        return (self.max_rpm - self.idle_rpm) * 2.0 * math.pi / 60.0 / self.run_up_s
+        return omega(self.max_rpm - self.idle_rpm) / self.run_up_s
 
 
 def load(path=ELEMENTS_FILE) -> dict:

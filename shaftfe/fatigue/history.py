@@ -63,6 +63,7 @@ import numpy as np
 
 from shaftfe.errors import InputError
 from shaftfe.util.limits import RPM_CEILING
+from shaftfe.util.units import rpm2_scale
 
 DEFAULT_RPM_REF = 7000.0        # reference speed of the seed's static load case (seed 000 §8.3)
 SEED_SAMPLE_RATE_HZ = 1.0       # seed 000 appendix 5: one sample per second
@@ -116,7 +117,7 @@ class LoadHistory:
         speed at which the static solution was computed (e.g. a static case at 10 000 rpm and
         the seed's rpm.dat normalised to 7000 rpm: load factor × (7000/10 000)²)."""
         _check_ref(rpm_ref, self.source, "rpm_ref")
-        return LoadHistory(self.time_s, self.rpm, (self.rpm / rpm_ref) ** 2, float(rpm_ref),
+        return LoadHistory(self.time_s, self.rpm, rpm2_scale(self.rpm, rpm_ref), float(rpm_ref),
                            self.duration_s, self.source, self.format)
 
     def scaled(self, factor: float) -> LoadHistory:
@@ -124,7 +125,7 @@ class LoadHistory:
         if not (math.isfinite(factor) and factor > 0):
             raise InputError(self.source, "scale", "a finite number > 0", got=factor)
         rpm = self.rpm * factor
-        return LoadHistory(self.time_s, rpm, (rpm / self.rpm_ref) ** 2, self.rpm_ref,
+        return LoadHistory(self.time_s, rpm, rpm2_scale(rpm, self.rpm_ref), self.rpm_ref,
                            self.duration_s, self.source, self.format)
 
 
@@ -145,7 +146,7 @@ def from_rpm(rpm, *, sample_rate_hz: float = SEED_SAMPLE_RATE_HZ,
         raise InputError(source, f"rpm[{i}]", f"finite, in [0, {RPM_CEILING:g}] rpm",
                          got=float(rpm[i]))
     n = rpm.size
-    return LoadHistory(np.arange(n) / sample_rate_hz, rpm, (rpm / rpm_ref) ** 2, float(rpm_ref),
+    return LoadHistory(np.arange(n) / sample_rate_hz, rpm, rpm2_scale(rpm, rpm_ref), float(rpm_ref),
                        n / sample_rate_hz, source, "array")
 
 
@@ -278,7 +279,7 @@ def _read_fast(src: str, text: str, fmt: str | None, rpm_ref, sample_rate_hz):
         if not np.all((dt >= 1.0 / SAMPLE_RATE_HZ[1]) & (dt <= 1.0 / SAMPLE_RATE_HZ[0])):
             return None                  # the line reader names the line
         ref = DEFAULT_RPM_REF if rpm_ref is None else float(rpm_ref)
-        return LoadHistory(t, rpm, (rpm / ref) ** 2, ref, float(t[-1] - t[0] + (t[-1] - t[-2])),
+        return LoadHistory(t, rpm, rpm2_scale(rpm, ref), ref, float(t[-1] - t[0] + (t[-1] - t[-2])),
                            src, "csv")
     try:
         rate = _header_or_option(src, header, "sample_rate_hz", sample_rate_hz, check_sample_rate)
@@ -290,14 +291,14 @@ def _read_fast(src: str, text: str, fmt: str | None, rpm_ref, sample_rate_hz):
         return None
     rate = SEED_SAMPLE_RATE_HZ if rate is None else rate
     if fmt == "normalised":
-        if not np.all((data >= 0) & (data <= (RPM_CEILING / ref) ** 2)):
+        if not np.all((data >= 0) & (data <= rpm2_scale(RPM_CEILING, ref))):
             return None
         lf, rpm = data, ref * np.sqrt(data)
     else:
         if not np.all((data >= 0) & (data <= RPM_CEILING)):
             return None
         ref = DEFAULT_RPM_REF if ref is None else float(ref)
-        rpm, lf = data, (data / ref) ** 2
+        rpm, lf = data, rpm2_scale(data, ref)
     n = data.size
     return LoadHistory(np.arange(n) / rate, rpm, lf, float(ref), n / rate, src, fmt)
 
@@ -435,7 +436,7 @@ def _read_sampled(src, fmt, header, rows, rpm_ref, sample_rate_hz) -> LoadHistor
         if ref is None:
             raise InputError(src, "reference_rpm", "a header '# reference_rpm = ...' or the "
                              "--rpm-ref option", reason="is missing")
-        cap = (RPM_CEILING / ref) ** 2
+        cap = rpm2_scale(RPM_CEILING, ref)
         allowed = f"a finite number in [0, {cap:.6g}] (= ({RPM_CEILING:g}/{ref:g})²)"
         lf = _bounded_values(src, rows, "load factor", cap, allowed)
         rpm = ref * np.sqrt(lf)
@@ -443,7 +444,7 @@ def _read_sampled(src, fmt, header, rows, rpm_ref, sample_rate_hz) -> LoadHistor
         ref = DEFAULT_RPM_REF if rpm_ref is None else float(rpm_ref)
         allowed = f"a finite number in [0, {RPM_CEILING:g}] rpm"
         rpm = _bounded_values(src, rows, "rpm", RPM_CEILING, allowed)
-        lf = (rpm / ref) ** 2
+        lf = rpm2_scale(rpm, ref)
     n = len(rows)
     return LoadHistory(np.arange(n) / rate, rpm, lf, float(ref), n / rate, src, fmt)
 
@@ -477,4 +478,4 @@ def _read_csv(src, header, rows, rpm_ref) -> LoadHistory:
                              f"> {t[i - 1]:g} (strictly increasing)", got=float(t[i]))
     _check_intervals(src, t, [line for line, _ in data])
     duration = float(t[-1] - t[0] + (t[-1] - t[-2]))
-    return LoadHistory(t, rpm, (rpm / ref) ** 2, ref, duration, src, "csv")
+    return LoadHistory(t, rpm, rpm2_scale(rpm, ref), ref, duration, src, "csv")

@@ -75,6 +75,7 @@ import numpy as np
 from shaftfe.errors import InputError
 from shaftfe.fatigue.counting import CycleMatrix, Cycles, _matrix
 from shaftfe.fatigue.sn import FatigueMaterial
+from shaftfe.util import units
 
 VOIGT = ("xx", "yy", "zz", "xy", "yz", "xz")
 EQUIVALENT_STRESSES = ("von_mises", "signed_von_mises", "signed_von_mises_hydrostatic")
@@ -101,10 +102,8 @@ def _components(sigma) -> np.ndarray:
 
 
 def von_mises(sigma) -> np.ndarray:
-    s = _components(sigma)
-    xx, yy, zz, xy, yz, xz = (s[..., i] for i in range(6))
-    return np.sqrt(0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2)
-                   + 3.0 * (xy ** 2 + yz ** 2 + xz ** 2))
+    """von Mises of stresses (..., 6) (``shaftfe.util.units.von_mises``, components last)."""
+    return units.von_mises(np.moveaxis(_components(sigma), -1, 0))
 
 
 def principal_stresses(sigma) -> np.ndarray:

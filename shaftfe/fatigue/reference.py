@@ -8,11 +8,13 @@ from __future__ import annotations
 import bisect
 import math
 
+import numpy as np
+
+from shaftfe.util import units
+
 
 def von_mises(s) -> float:
-    xx, yy, zz, xy, yz, xz = (float(c) for c in s)
-    return math.sqrt(0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2)
-                     + 3.0 * (xy * xy + yz * yz + xz * xz))
+    return float(units.von_mises(np.asarray(s, dtype=float)))
 
 
 def log_life(sa: float, material) -> float:

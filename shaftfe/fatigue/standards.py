@@ -18,6 +18,7 @@ import numpy as np
 
 from shaftfe.errors import InputError
 from shaftfe.fatigue import din743, fkm
+from shaftfe.util.units import REF_RPM
 
 
 @dataclass(frozen=True)
@@ -159,7 +160,6 @@ def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
     return sorted(out, key=lambda r: r[0])
 
 
-BEAM_RPM = 10000.0     # the beam solution's speed; every other speed by rpm²
 
 
 def size_diameters_note(rows) -> str:
@@ -175,7 +175,7 @@ def size_diameters_note(rows) -> str:
 
 def beam_at_ref(variant):
     from shaftfe.beam.solve import analyse
-    return analyse(variant, BEAM_RPM)[0]
+    return analyse(variant, REF_RPM)[0]
 
 
 def din743_card(variant, opts: StrengthOptions):
@@ -196,7 +196,7 @@ def run_din743(job, opts: StrengthOptions, inputs=None, beam=None) -> Din743Run:
     check_options(opts)
     inputs = inputs or load_inputs(job)
     card = din743_card(inputs.variant, opts)
-    ref_rpm = BEAM_RPM
+    ref_rpm = REF_RPM
     beam = beam if beam is not None else beam_at_ref(inputs.variant)
     h = inputs.history.with_reference(ref_rpm)
     cyc = count_cycles(h.load_factor)

@@ -191,7 +191,7 @@ def elements_lines(el: dict, speed_kmh: float) -> list[str]:
 def compute_elements(variant, history, kappa: float, e_c: float, speed_kmh: float,
                      beam=None) -> dict:
     """Bearings over the duty cycle, both keys and the gear pair of ``variant`` (``beam``: the
-    beam solution at ``standards.BEAM_RPM`` when the caller has one)."""
+    beam solution at ``standards.REF_RPM`` when the caller has one)."""
     from shaftfe.elements import bearings, drive, gear, key
     from shaftfe.model.mass import mass_properties
     doc = drive.load()

@@ -48,16 +48,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from shaftfe.util.units import von_mises
+
 STRESS_COMPONENTS = ("xx", "yy", "zz", "xy", "yz", "xz")
 
 
 # --------------------------------------------------------------------------- pure kernels
 
-def von_mises(s: np.ndarray) -> np.ndarray:
-    """von Mises stress of Voigt stresses s (6, ...) in the order xx, yy, zz, xy, yz, xz."""
-    xx, yy, zz, xy, yz, xz = s
-    return np.sqrt(0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2)
-                   + 3.0 * (xy ** 2 + yz ** 2 + xz ** 2))
 
 
 def tensor(s: np.ndarray) -> np.ndarray:

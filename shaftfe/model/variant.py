@@ -21,10 +21,11 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import json
-import math
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any, Literal
+
+from shaftfe.util.units import omega
 
 Source = Literal["seed", "reconstructed", "derived", "standard"]
 SOURCES: tuple[str, ...] = ("seed", "reconstructed", "derived", "standard")
@@ -157,8 +158,7 @@ class Attachment:
 
     def force_N(self, rpm: float) -> float:
         """Centrifugal force m e ω² in N at ``rpm``."""
-        omega = rpm * 2.0 * math.pi / 60.0
-        return self.mass_kg * self.eccentricity_mm * 1e-3 * omega**2
+        return self.mass_kg * self.eccentricity_mm * 1e-3 * omega(rpm) ** 2
 
 
 @dataclass(frozen=True)

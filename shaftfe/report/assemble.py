@@ -45,6 +45,7 @@ from shaftfe.report.stages import (
 from shaftfe.static.benchmark import benchmark_errors
 from shaftfe.util.notices import collected
 from shaftfe.util.paths import repo_relative
+from shaftfe.util.units import rpm2_scale
 
 # --------------------------------------------------------------------------- validation
 
@@ -159,7 +160,7 @@ def _axi_vtu(res, ref, ff, vtu: Path, rpm: float) -> list[str]:
 
     from shaftfe.axisymmetric.recovery import principal_max_local
     from shaftfe.axisymmetric.reference import surface_displacement, write_surface_vtu
-    s = (rpm / ref.ref_rpm) ** 2
+    s = rpm2_scale(rpm, ref.ref_rpm)
     stress = np.asarray(ref.stress_ref) * s
     r = ff.result
     write_surface_vtu(ref, vtu, {

@@ -9,6 +9,7 @@ from shaftfe.errors import InputError
 from shaftfe.model.mass import mass_properties, variant_x2
 from shaftfe.report.options import ReportOptions
 from shaftfe.util.paths import repo_relative
+from shaftfe.util.units import omega
 
 
 def read_inputs(o: ReportOptions) -> tuple:
@@ -79,8 +80,8 @@ def balancing(engine, variant, seedmod) -> tuple[dict, object, object, object]:
     sw2 = sweep.sweep(engine, [sb["X"]], np.arange(0.0, 1.0001, 0.01), rpm=sb["rpm"],
                       tilt_deg=0.0)
     mins2 = {k: (float(v[0][0]), 100.0 * float(v[1][0])) for k, v in sw2.minima().items()}
-    omega = 2 * math.pi * sb["rpm"] / 60.0
-    bal_force = engine.balancer_mass_kg * engine.balancer_radius_mm * 1e-3 * omega ** 2 \
+    w = omega(sb["rpm"])
+    bal_force = engine.balancer_mass_kg * engine.balancer_radius_mm * 1e-3 * w ** 2 \
         if engine.balancer_mass_kg and engine.balancer_radius_mm else None
     out = {
         "engine": engine.name, "engine_file": repo_relative(engine.source), "rpm": engine.rpm,

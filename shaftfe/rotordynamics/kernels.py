@@ -75,6 +75,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from shaftfe.errors import InputError, SolverError
+from shaftfe.util.units import omega
 
 TWO_PI = 2.0 * math.pi
 WHIRL_LABELS = ("forward", "backward", "torsional", "axial", "undetermined")
@@ -83,7 +84,7 @@ _DENSE_QEP_LIMIT = 300       # dofs: dense QZ for the full-size check below, shi
 
 
 def rpm_to_rad_s(rpm):
-    return np.asarray(rpm, dtype=float) * TWO_PI / 60.0
+    return np.asarray(omega(rpm), dtype=float)
 
 
 def _is_sparse(A) -> bool:

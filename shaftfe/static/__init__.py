@@ -16,7 +16,7 @@ import importlib
 MODELS = ("solid", "axisymmetric")
 
 _HOME = {
-    "REF_RPM": "model", "StaticOptions": "model", "StaticModel": "model",
+    "StaticOptions": "model", "StaticModel": "model",
     "build_model": "model", "load_case_label": "model", "region_nodes": "model",
     "StaticResult": "result", "StaticCase": "result",
     "RESIDUAL_TOL": "solve", "solve_model": "solve", "solve_static": "solve",

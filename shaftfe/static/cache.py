@@ -189,7 +189,8 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
     from the cache when the key matches, else solved (and stored). ``cache_dir`` is used for the
     mesh cache too."""
     from shaftfe.solid.plan import warn_sharp_corners
-    from shaftfe.static.model import REF_RPM, StaticOptions
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.util.units import REF_RPM
     t0 = time.perf_counter()
     warn_sharp_corners(variant)          # a cached solution says it as a fresh one would
     options = options if options is not None else StaticOptions()
@@ -235,7 +236,7 @@ def region_peaks(ref: StaticReference) -> dict[str, float]:
 def store(variant, options, res, cache_dir=None) -> StaticReference:
     """Put a ``StaticResult`` solved elsewhere (``shaftfe static``) into the cache, so that a
     later ``shaftfe fatigue`` on the same model reuses it instead of solving again."""
-    from shaftfe.static.model import REF_RPM
+    from shaftfe.util.units import REF_RPM
     mkey = predicted_mesh_key(variant, options)
     key = static_key(variant, options, mkey, REF_RPM)
     ref = from_result(res, key)

@@ -15,8 +15,8 @@ from shaftfe.fe import assembly as fem
 from shaftfe.fe import reuse, supports
 from shaftfe.model.validate import validate_variant
 from shaftfe.solid.levels import MeshLevel
+from shaftfe.util.units import REF_RPM, omega
 
-REF_RPM = 10_000.0
 DISTRIBUTIONS = ("uniform", "cosine")
 
 
@@ -127,7 +127,7 @@ def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh
                                          options.load_distribution, cache=face_cache)
         forces[a.name] = tuple(float(c) for c in F * e)
     if options.body_force:
-        w2 = (REF_RPM * 2 * math.pi / 60) ** 2
+        w2 = omega(REF_RPM) ** 2
         fb = fem.body_force_load(m, mat.density_t_mm3, w2)
         loads["shaft_body"] = fb
         forces["shaft_body"] = tuple(float(c) for c in fb.reshape(-1, 3).sum(axis=0))

@@ -72,6 +72,7 @@ from shaftfe.static.result import (
     Station,
     warn_unresolved_fillets,
 )
+from shaftfe.util.units import omega, rpm2_scale
 
 RESIDUAL_TOL = 1e-8
 
@@ -373,14 +374,14 @@ def soften(model: StaticModel, base: UnitSolution, unit: list, rpm: float) -> Sp
     I − D^½ (R W) D^½ is (R W is the seats' compliance, symmetric positive definite): else the
     speed is at or above a critical speed of the softened rotor and the static co-rotating
     solution does not exist (SolverError). The same combination gives the multipliers."""
-    s = (rpm / REF_RPM) ** 2
+    s = rpm2_scale(rpm)
     if not model.soft or rpm == 0:
         return SpeedSolution(rpm, s, base.u * s, [lb * s for lb in base.lam], {}, None)
     R = np.vstack([sd.R for sd in model.soft])
     W = np.column_stack([w.u for w in unit])
     RW = R @ W
     RW = 0.5 * (RW + RW.T)
-    w2 = (rpm * 2.0 * math.pi / 60.0) ** 2
+    w2 = omega(rpm) ** 2
     d = np.repeat([sd.mass_t * w2 for sd in model.soft], 2)
     sq = np.sqrt(d)
     if np.linalg.eigvalsh(np.eye(d.size) - sq[:, None] * RW * sq[None, :]).min() <= 0:
@@ -565,7 +566,7 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
         elif r in beam_res:
             bm = _beam_summary(beam_res[r])
         cases.append(StaticCase(
-            rpm=r, scale=(r / ref_rpm) ** 2, bearings=_bearing_rows(model, reac, ur, r, 1.0),
+            rpm=r, scale=rpm2_scale(r, ref_rpm), bearings=_bearing_rows(model, reac, ur, r, 1.0),
             stations=sts, max_deflection_mm=float(radial[imax]),
             max_deflection_xyz_mm=tuple(float(c) for c in xyz[:, imax]),
             max_axis_deflection_mm=float(np.hypot(ax_u[:, 1], ax_u[:, 2]).max()),

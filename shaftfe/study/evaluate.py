@@ -104,8 +104,9 @@ def beam_row(v, an: Analyses) -> dict:
 
 
 def static_rows(v, an: Analyses, shaft_mesh=None, cache_dir=None) -> tuple[dict, Any]:
-    from shaftfe.static.model import REF_RPM, StaticOptions
+    from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
+    from shaftfe.util.units import REF_RPM
     opts = StaticOptions(level=an.level, spin_softening=an.spin_softening)
     rpms = [REF_RPM] if an.bearing_rpm == REF_RPM else [REF_RPM, an.bearing_rpm]
     res = solve_static(v, rpms, opts, shaft_mesh=shaft_mesh, cache_dir=cache_dir, beam=False,
