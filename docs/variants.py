@@ -29,8 +29,10 @@ def _p(kind: str) -> str:
 def keys() -> list[tuple[str, str, str, str]]:
     """(``--set`` path, unit, allowed, meaning); ``<seg>``, ``<part>`` … stand for names."""
     from shaftfe.model import bearing_stiffness as bs
+    from shaftfe.model import loads as ld
     from shaftfe.model.fields import FILLET_MIN_MM
     from shaftfe.model.loader import BALANCE_MASS_RTOL, BALANCE_X2_TOL_POINTS
+    from shaftfe.util.units import REF_RPM
     return [
         # top level
         ("name", "—", "non-empty string", "the variant's name (reports, output folders)"),
@@ -149,6 +151,52 @@ def keys() -> list[tuple[str, str, str, str]]:
         ("attachments.<part>.shape.<key>", "mm, deg, —", "numbers ≥ 0; kind a string",
          "the shape the mass properties were derived from (documentation: the analyses "
          "read mass_kg, eccentricity_mm and the inertias, not the shape)"),
+        # loads
+        ("loads.<load>.name", "—", "unique string (not a part's name)",
+         "the load's name: load-case factors, tables, --set paths"),
+        ("loads.<load>.kind", "—", " | ".join(ld.KINDS), "what the load is (see Loads)"),
+        ("loads.<load>.x_mm", "mm", "on the shaft (on the seat with seat)",
+         "axial position of the resultant"),
+        ("loads.<load>.seat", "—", "a segment name (instead of x_mm)",
+         "the load is spread over this segment as a remote load (x_mm: default its centre)"),
+        ("loads.<load>.width_mm", "mm", f"(0, shaft length] (default {ld.DEFAULT_BAND_MM:g}; "
+         "not with seat)", "the band of surface a load at x_mm is spread over in 3D"),
+        ("loads.<load>.F_N", "N", f"|F| ≤ {ld.F_MAX_N:.0e}",
+         "force (kind force: radial along angle_deg; axial_force: along +x)"),
+        ("loads.<load>.M_Nmm", "N·mm", f"|M| ≤ {ld.M_MAX_NMM:.0e}",
+         "bending moment; its vector along angle_deg in the y-z plane"),
+        ("loads.<load>.T_Nmm", "N·mm", f"|T| ≤ {ld.M_MAX_NMM:.0e}",
+         "torque about +x (torque), or the torque the mesh puts on this shaft (gear_mesh)"),
+        ("loads.<load>.angle_deg", "deg", "number (default 0; not for torque, axial_force)",
+         "direction in the y-z plane: 0 = +y, 90 = +z; gear_mesh: towards the contact"),
+        ("loads.<load>.scales_with", "—", "constant | rpm2 | a channel name (default constant)",
+         "speed law: as written; × (rpm/ref_rpm)²; × channel/channel_ref"),
+        ("loads.<load>.ref_rpm", "rpm", f"(0, 1e5] (default {REF_RPM:g}; only rpm2)",
+         "the speed the magnitude is written at"),
+        ("loads.<load>.channel_ref", "channel unit", "≠ 0 (default 1; only a channel law)",
+         "the channel value the magnitude is written for"),
+        ("loads.<load>.module_mm", "mm", f"{ld.GEAR_MODULE_MM[0]:g} … "
+         f"{ld.GEAR_MODULE_MM[1]:g} (gear_mesh)", "normal module m_n"),
+        ("loads.<load>.teeth", "—", f"whole number ≥ {ld.GEAR_MIN_TEETH} (gear_mesh)",
+         "number of teeth z"),
+        ("loads.<load>.pressure_angle_deg", "deg", f"{ld.GEAR_PRESSURE_DEG[0]:g} … "
+         f"{ld.GEAR_PRESSURE_DEG[1]:g} (default 20)", "normal pressure angle α_n"),
+        ("loads.<load>.helix_angle_deg", "deg", f"|β| < {ld.GEAR_HELIX_MAX_DEG:g} (default 0)",
+         "helix angle; its sign sets the axial force's direction (F_a = F_t tan β along +x)"),
+        ("loads.<load>.pitch_diameter_mm", "mm", "within 2 m_n of m_n z / cos β; root "
+         "d − 2.5 m_n above the seat (default m_n z / cos β)", "the diameter the forces act at"),
+        ("loads.<load>.g_mm_s2", "mm/s²", "|g| ≤ 1e6 (default 9810; gravity)",
+         "acceleration on the shaft's and every part's mass"),
+        ("bearings.<brg>.holds_torsion", "—", "true | false (default false)",
+         "the support reacts torque about the axis (else the torques must sum to zero)"),
+        ("load_cases.<case>.name", "—", "unique string", "the case's name"),
+        ("load_cases.<case>.rpm", "rpm", "[0, 20000]", "the speed of the case"),
+        ("load_cases.<case>.factors", "—", "{load = factor 0 … 100}; \"parts\" = every part",
+         "a factor per load (default 1)"),
+        ("load_cases.<case>.channels", "channel unit", "{channel = value}",
+         "the value of each channel in the case (default: the loads' channel_ref)"),
+        ("load_cases.<case>.check", "—", "\"static\" or absent",
+         "the case of the static-strength check (FKM static, DIN 743 S_F)"),
         # balance statement
         ("balance.X2_percent", "%", f"within {BALANCE_X2_TOL_POINTS:g} points of "
          "Σ m e / (m_pos R) of the parts", "stated balance ratio"),
@@ -228,6 +276,51 @@ provenance lists; they cannot be `--set`.
 | path | unit | allowed | meaning |
 |---|---|---|---|
 {rows}
+
+## Loads
+
+Every part's centrifugal force m e ω² is a load of the `rpm2` law: it acts at the part's
+centroid (`x_centroid_mm`) and enters the shaft through its seat as a force and the moment of
+that force about the seat centre (`--seed-load-case` keeps the seed's placement: the force at
+the seat centre as a pressure on the half seat the part presses on). Other loads are
+`[[loads]]` tables:
+
+```toml
+[[loads]]                          # the driven gear's mesh with the crankshaft gear
+name = "gear_mesh"
+kind = "gear_mesh"
+seat = "gear_seat"                 # spread over this segment (or x_mm = … for a station)
+module_mm = 2.0
+teeth = 33
+pressure_angle_deg = 20.0
+T_Nmm = 376.0                      # the torque the mesh puts on this shaft, about +x
+angle_deg = 180.0                  # the direction from this axis to the contact
+scales_with = "torque_Nm"          # a channel of the load history (or constant | rpm2)
+channel_ref = 0.376                # T_Nmm is written for torque_Nm = 0.376
+
+[[loads]]                          # the water pump's drag through the hex socket
+name = "pump"
+kind = "torque"
+x_mm = 110.0
+T_Nmm = -376.0
+scales_with = "torque_Nm"
+channel_ref = 0.376
+
+[[load_cases]]
+name = "overload"
+rpm = 9500.0
+factors = {{ gear_mesh = 1.5, pump = 1.5 }}
+check = "static"
+```
+
+Kinds: `force` (`F_N` along `angle_deg`), `moment` (`M_Nmm`, its vector along `angle_deg`),
+`torque` (`T_Nmm` about +x), `axial_force` (`F_N` along +x), `gear_mesh` (the nominal forces
+of ISO 6336-1 at the pitch circle: F_t = 2T/d, F_r = |F_t| tan α_n / cos β towards the axis,
+F_a = F_t tan β, and the moment F_a d/2 of the axial force), `gravity` (`g_mm_s2` along
+`angle_deg` on the shaft's and every part's mass). Torques must form a path: per speed law
+they sum to zero, or a bearing says `holds_torsion = true`; a torque with nothing to react it
+is refused. A load case sets the speed, a factor per load (`parts` for every part's m e ω²)
+and the value of each channel.
 
 ## A minimal complete file
 

@@ -17,6 +17,7 @@ class InputError(ShaftfeError, ValueError):
     def __init__(self, source: str, field: str, allowed: str, got: object = None,
                  reason: str | None = None):
         self.source, self.field, self.allowed, self.got = source, field, allowed, got
+        self.reason = reason
         what = f"{field} = {got!r}" if got is not None else field
         detail = reason if reason else "is invalid"
         super().__init__(f"{source}: {what} {detail}; allowed: {allowed}")

@@ -609,3 +609,49 @@ CASES.update(F2_CASES)
 @pytest.mark.parametrize("case", sorted(F2_CASES))
 def test_f2_fatigue_bad_input(case, space, capsys, monkeypatch):
     test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
+# --- issue #31, loads as data (model.loads): a load outside the shaft, a torque with nothing to
+# react it, a magnitude in the wrong unit, a gear that cannot exist, an unknown kind or law
+_BAL = "[balance]\nX2_percent = 57.0"
+
+
+def _with_load(body: str) -> tuple[str, str, str]:
+    return ("x2_57.toml", _BAL, "[[loads]]\n" + body + "\n\n" + _BAL)
+
+
+LOAD_EDITS = {
+    "load_outside_shaft": _with_load('name = "f"\nkind = "force"\nx_mm = 500.0\nF_N = 100.0'),
+    "load_torque_unreacted": _with_load('name = "t"\nkind = "torque"\nx_mm = 50.0\n'
+                                        'T_Nmm = 376.0'),
+    "load_force_in_wrong_unit": _with_load('name = "f"\nkind = "force"\nx_mm = 50.0\n'
+                                           'F_N = 5e7'),
+    "load_gear_inside_shaft": _with_load('name = "g"\nkind = "gear_mesh"\nseat = "gear_seat"\n'
+                                         'module_mm = 2.0\nteeth = 7\nT_Nmm = 376.0\n'
+                                         'scales_with = "torque_Nm"\nchannel_ref = 0.376\n'
+                                         '[[loads]]\nname = "p"\nkind = "torque"\nx_mm = 110.0\n'
+                                         'T_Nmm = -376.0\nscales_with = "torque_Nm"\n'
+                                         'channel_ref = 0.376'),
+    "load_unknown_kind": _with_load('name = "f"\nkind = "pressure"\nx_mm = 50.0\nF_N = 1.0'),
+    "load_bad_law": _with_load('name = "f"\nkind = "force"\nx_mm = 50.0\nF_N = 1.0\n'
+                               'scales_with = "rpm 2"'),
+}
+LOAD_EXPECT = {
+    "load_outside_shaft": ["x2_57.toml", "loads[0].x_mm", "on the shaft"],
+    "load_torque_unreacted": ["x2_57.toml", "loads", "rotation about the shaft axis free",
+                              "holds_torsion"],
+    "load_force_in_wrong_unit": ["x2_57.toml", "loads[0].F_N", "N (not kN)"],
+    "load_gear_inside_shaft": ["x2_57.toml", "loads[0]", "root diameter", "inside the shaft"],
+    "load_unknown_kind": ["x2_57.toml", "loads[0].kind", "gear_mesh"],
+    "load_bad_law": ["x2_57.toml", "loads[0].scales_with", "channel"],
+}
+VARIANT_EDITS.update(LOAD_EDITS)
+LOAD_CASES = {f"variant_check_{_k}": (["variant", "check", f"{{V:{_k}}}"], LOAD_EXPECT[_k])
+              for _k in LOAD_EDITS}
+LOAD_CASES["static_set_load_outside"] = (
+    ["variant", "check", "{V:load_force_in_wrong_unit}", "--set", "loads.f.F_N=100.0",
+     "--set", "loads.f.x_mm=-3.0"], ["--set loads.f.x_mm=-3.0", "x_mm", "on the shaft"])
+CASES.update(LOAD_CASES)
+
+
+@pytest.mark.parametrize("case", sorted(LOAD_CASES))
+def test_bad_load_input(case, space, capsys, monkeypatch):
+    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)

@@ -26,6 +26,7 @@ from shaftfe.model.fields import (
     table,
     text,
 )
+from shaftfe.model.loads import read_load_cases, read_loads
 from shaftfe.model.mass import balance_ratio, mass_properties
 from shaftfe.model.validate import validate_variant
 from shaftfe.model.variant import (
@@ -359,7 +360,7 @@ def _bearings(shaft: dict, types: dict, segs: tuple[Segment, ...], ctx: Ctx, src
     for i, t in enumerate(raw):
         fld = f"bearings[{i}]"
         t = table(t, src, fld)
-        check_keys(t, {"name", "type", "x_center_mm", "axial"}, src, fld)
+        check_keys(t, {"name", "type", "x_center_mm", "axial", "holds_torsion"}, src, fld)
         name = text(t, "name", src, fld)
         provenance(t, src, fld, f"bearings.{name}", ctx)
         typ = text(t, "type", src, fld)
@@ -387,13 +388,15 @@ def _bearings(shaft: dict, types: dict, segs: tuple[Segment, ...], ctx: Ctx, src
               f"{xc:g} (over {', '.join(bad)})")
         axial = t.get("axial", False)
         need(isinstance(axial, bool), src, f"{fld}.axial", "true | false", axial)
+        torsion = t.get("holds_torsion", False)
+        need(isinstance(torsion, bool), src, f"{fld}.holds_torsion", "true | false", torsion)
         out.append(Bearing(
             name=name, designation=text(bt, "designation", tsrc, tf), x_center_mm=xc,
             width_mm=width, C_N=C, C0_N=C0, K_N_per_mm=((k11, k12), (k21, k22)), axial=axial,
             tilt_stiffness_Nmm_per_rad=tilt, life_exponent=p_life,
             bore_mm=bore, outer_diameter_mm=num(bt, "outer_diameter_mm", tsrc, tf,
                                                  default=0.0) or 0.0, chamfer_mm=chamfer,
-            r_s_min_mm=r_s_min))
+            r_s_min_mm=r_s_min, holds_torsion=torsion))
     need(sum(b.axial for b in out) == 1, src, "bearings[*].axial",
           "exactly one bearing with axial = true", sum(b.axial for b in out))
     names = [b.name for b in out]
@@ -632,7 +635,7 @@ def resolved_dict(path: Path, ctx: Ctx | None = None) -> dict:
 def _build(path: Path, merged: dict, ctx: Ctx, *, check_balance: bool = True) -> Variant:
     top = _show(path.resolve())
     allowed_top = {"name", "description", "shaft", "materials", "bearing_types", "parts",
-                   "use_parts", "attachments", "balance"}
+                   "use_parts", "attachments", "balance", "loads", "load_cases"}
     for k in merged:
         if k not in allowed_top:
             raise InputError(ctx.file_of(k, top), k, "one of " + ", ".join(sorted(allowed_top)),
@@ -673,6 +676,9 @@ def _build(path: Path, merged: dict, ctx: Ctx, *, check_balance: bool = True) ->
 
     atts = _attachments(merged, segs, mats, ctx, top)
     target = _balance_target(merged, ctx, top)
+    lsrc = ctx.file_of("loads", top)
+    loads = read_loads(merged.get("loads", []), lsrc, segs, [a.name for a in atts])
+    cases = read_load_cases(merged.get("load_cases", []), ctx.file_of("load_cases", top), loads)
 
     v = Variant(
         name=name, description=str(desc), segments=segs, bearings=bearings,
@@ -683,7 +689,7 @@ def _build(path: Path, merged: dict, ctx: Ctx, *, check_balance: bool = True) ->
         source_files=tuple(ctx.files), materials=tuple(mats[k] for k in sorted(mats)),
         balance_target=target,
         clearance_mm=num(shaft, "clearance_to_crankshaft_mm", ssrc, "shaft", required=False),
-        stock_diameter_mm=stock)
+        stock_diameter_mm=stock, loads=loads, load_cases=cases)
     from shaftfe.solid.plan import prepare
     validate_variant(v)
     prepare(v)       # the solid's own rules (slots, hex socket, contact bands): every command

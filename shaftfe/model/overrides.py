@@ -36,7 +36,8 @@ from shaftfe.model.fields import PROV_KEYS, is_num
 OPTION = "--set"
 _BARE_WORD = re.compile(r"[A-Za-z0-9_.+-]+")
 PROVENANCE_TAG = "set"     # Variant.provenance tag of an overridden value (was seed, …)
-_LIST_ALIASES = {"segments": ("shaft", "segments"), "bearings": ("shaft", "bearings")}
+_LIST_ALIASES = {"segments": ("shaft", "segments"), "bearings": ("shaft", "bearings"),
+                 "loads": ("loads",), "load_cases": ("load_cases",)}
 
 
 @dataclass(frozen=True)
@@ -226,7 +227,8 @@ def attribute(exc: InputError, overrides: tuple[Override, ...]) -> InputError:
     for o in overrides:
         key = o.path.rsplit(".", 1)[-1]
         if str(exc.field).endswith(key) and _equal(exc.got, o.value):
-            return type(exc)(o.shown, o.path, exc.allowed, got=o.value)   # (its kind kept)
+            return type(exc)(o.shown, o.path, exc.allowed, got=o.value,   # (its kind kept)
+                             reason=getattr(exc, "reason", None))
     if not overrides:
         return exc
     sets = " ".join(o.shown for o in overrides)
@@ -234,7 +236,8 @@ def attribute(exc: InputError, overrides: tuple[Override, ...]) -> InputError:
             "changed balancer" if str(exc.field).startswith("balance.") else "")
     # a consequence of the --set values (another key's check, a cross-check): the file is fine
     # as written, so the error names the file WITH the --set values
-    return type(exc)(f"{exc.source} with {sets}", exc.field, exc.allowed + hint, got=exc.got)
+    return type(exc)(f"{exc.source} with {sets}", exc.field, exc.allowed + hint, got=exc.got,
+                     reason=getattr(exc, "reason", None))
 
 
 def _equal(a: Any, b: Any) -> bool:

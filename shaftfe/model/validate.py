@@ -23,6 +23,7 @@ import math
 import numpy as np
 
 from shaftfe.errors import InputError
+from shaftfe.model.loads import check_torque_path
 
 TOL_X_MM = 1e-6       # mm: segment ends closer than this are the same station
 
@@ -134,6 +135,20 @@ def _attachments(v, src: str, x0: float, x1: float) -> None:
         _nonneg(src, f"{f}.eccentricity_mm", a.eccentricity_mm)
 
 
+def _loads(v, src: str, x0: float, x1: float) -> None:
+    """The loads' positions on the shaft, and the torque path (``model.loads``)."""
+    _unique(src, "loads", [ld.name for ld in v.loads] + [a.name for a in v.attachments])
+    for i, ld in enumerate(v.loads):
+        f = f"loads[{i}]"
+        lo, hi = ld.band_mm
+        if not (_finite(ld.x_mm) and x0 - 1e-9 <= lo <= ld.x_mm <= hi <= x1 + 1e-9):
+            raise InputError(src, f"{f}.x_mm (load {ld.name!r})", f"on the shaft [{x0:g}, "
+                             f"{x1:g}] mm, inside its band", got=ld.x_mm)
+        if not _finite(ld.value):
+            raise InputError(src, f"{f} (load {ld.name!r})", "a finite magnitude", got=ld.value)
+    check_torque_path(v, src)
+
+
 def _hex_socket(v, src: str, x0: float, x1: float) -> None:
     h = v.hex_socket
     if h is None:
@@ -154,6 +169,7 @@ def validate_variant(variant, *, springs: bool = True) -> None:
     _material(variant, src)
     _bearings(variant, src, x0, x1, springs)
     _attachments(variant, src, x0, x1)
+    _loads(variant, src, x0, x1)
     _hex_socket(variant, src, x0, x1)
     cs = variant.clearance_station_x_mm
     if cs is not None and not (x0 - 1e-9 <= cs <= x1 + 1e-9):

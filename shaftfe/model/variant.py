@@ -105,6 +105,7 @@ class Bearing:
     outer_diameter_mm: float = 0.0
     chamfer_mm: float = 0.0   # axial length of the inner ring's bore chamfer (0 = sharp)
     r_s_min_mm: float = 0.0   # ISO 15 smallest corner chamfer r_s min (0 = not given)
+    holds_torsion: bool = False   # reacts torque about the axis (a coupling, a locked drive)
 
     @property
     def x_start_mm(self) -> float:
@@ -221,6 +222,8 @@ class Variant:
     clearance_mm: float | None = None             # the seed's smallest clearance (1.4 mm)
     stock_diameter_mm: float | None = None        # bar stock of the shaft (Ø25)
     overrides: tuple[tuple[str, object], ...] = ()  # (path, value) set for this run (--set)
+    loads: tuple = ()                  # shaftfe.model.loads.Load: the [[loads]] tables
+    load_cases: tuple = ()             # shaftfe.model.loads.LoadCase: the [[load_cases]]
 
     @property
     def overrides_map(self) -> dict:
@@ -245,6 +248,9 @@ class Variant:
 
     def attachment(self, name: str) -> Attachment:
         return next(a for a in self.attachments if a.name == name)
+
+    def load_case(self, name: str):
+        return next(c for c in self.load_cases if c.name == name)
 
     def with_seed_load_case(self) -> Variant:
         """The same variant carrying only the attachments the seed loaded the shaft with
