@@ -254,9 +254,11 @@ class Variant:
 
     def with_seed_load_case(self) -> Variant:
         """The same variant carrying only the attachments the seed loaded the shaft with
-        (gear, counterweight 1, counterweight 2), as Inventor's shaft module did."""
+        (gear, counterweight 1, counterweight 2), as Inventor's shaft module did, and none of
+        the file's [[loads]] (the seed neglected the gear mesh and the pump drive)."""
         return dataclasses.replace(
-            self, attachments=tuple(a for a in self.attachments if a.seed_load_case))
+            self, attachments=tuple(a for a in self.attachments if a.seed_load_case), loads=(),
+            load_cases=())
 
 
 def _canonical(obj: Any) -> Any:
