@@ -18,7 +18,11 @@ Three file formats are read (SPEC §3):
     ``# sample_rate_hz = ...`` or argument).
 ``csv``
     a data-logger export with the header ``time_s,rpm`` and one ``time, rpm`` row per sample,
-    any (even irregular) but strictly increasing times.
+    any (even irregular) but strictly increasing times. Further columns are **load channels**
+    (issue #31): ``time_s,rpm,torque_Nm`` — each column named by a channel that the variant's
+    ``[[loads]]`` scale with (``scales_with = "torque_Nm"``), its unit in the name after the
+    first underscore (``CHANNEL_RE``); any finite value (a torque may reverse). The channels
+    are ``LoadHistory.channels``; the rpm² loads still follow the ``rpm`` column.
 
 Lines starting with ``#`` are comments; ``# key = value`` comments before the first data line
 are header keys (``format``, ``reference_rpm``, ``sample_rate_hz``); blank lines are skipped.
@@ -73,6 +77,8 @@ MAX_BYTES = 256 * 2 ** 20      # see the module docstring: ~6× the 5-million-sa
 MAX_LINES = 10_000_000         # a day at 100 Hz is 8.6 million samples
 SAMPLE_RATE_HZ = (1e-3, 1e5)   # see the module docstring; a csv's intervals: 1/hi .. 1/lo s
 _BINARY_PROBE = 2 ** 20        # a NUL byte in the first MiB: a binary file
+CHANNEL_RE = re.compile(r"[A-Za-z][A-Za-z0-9]*_[A-Za-z0-9_]+")   # name_unit, e.g. torque_Nm
+MAX_CHANNELS = 16
 _HEADER_RE = re.compile(r"^#\s*([A-Za-z_][A-Za-z0-9_]*)\s*[=:]\s*(\S.*?)\s*$")
 
 
@@ -90,12 +96,33 @@ class LoadHistory:
     duration_s: float
     source: str
     format: str
+    channels: tuple = ()          # ((name, values), ...): the csv's load channels
 
     def __post_init__(self) -> None:
         for name in ("time_s", "rpm", "load_factor"):
             arr = np.array(getattr(self, name), dtype=float)
             arr.flags.writeable = False
             object.__setattr__(self, name, arr)
+        chans = []
+        for nm, vals in self.channels:
+            arr = np.array(vals, dtype=float)
+            arr.flags.writeable = False
+            chans.append((str(nm), arr))
+        object.__setattr__(self, "channels", tuple(chans))
+
+    @property
+    def channel_names(self) -> tuple[str, ...]:
+        return tuple(nm for nm, _ in self.channels)
+
+    def channel(self, name: str) -> np.ndarray:
+        """The values of channel ``name`` (InputError naming the history if it has none)."""
+        for nm, vals in self.channels:
+            if nm == name:
+                return vals
+        raise InputError(self.source, f"channel {name}", "a column of the load history: "
+                         + (", ".join(self.channel_names) or "(it has none besides time_s, rpm; "
+                            "write a csv 'time_s,rpm," + name + "')"),
+                         reason="is named by a load but absent from the history")
 
     @property
     def n_samples(self) -> int:
@@ -110,7 +137,8 @@ class LoadHistory:
         offs = np.repeat(np.arange(k) * self.duration_s, self.n_samples)
         return LoadHistory(np.tile(self.time_s - t0, k) + offs + t0, np.tile(self.rpm, k),
                            np.tile(self.load_factor, k), self.rpm_ref, k * self.duration_s,
-                           self.source, self.format)
+                           self.source, self.format,
+                           tuple((nm, np.tile(v, k)) for nm, v in self.channels))
 
     def with_reference(self, rpm_ref: float) -> LoadHistory:
         """The same speeds with the load factor taken relative to another reference speed — the
@@ -118,7 +146,7 @@ class LoadHistory:
         the seed's rpm.dat normalised to 7000 rpm: load factor × (7000/10 000)²)."""
         _check_ref(rpm_ref, self.source, "rpm_ref")
         return LoadHistory(self.time_s, self.rpm, rpm2_scale(self.rpm, rpm_ref), float(rpm_ref),
-                           self.duration_s, self.source, self.format)
+                           self.duration_s, self.source, self.format, self.channels)
 
     def scaled(self, factor: float) -> LoadHistory:
         """Every speed multiplied by ``factor`` (load factor × factor²), same times."""
@@ -126,7 +154,7 @@ class LoadHistory:
             raise InputError(self.source, "scale", "a finite number > 0", got=factor)
         rpm = self.rpm * factor
         return LoadHistory(self.time_s, rpm, rpm2_scale(rpm, self.rpm_ref), self.rpm_ref,
-                           self.duration_s, self.source, self.format)
+                           self.duration_s, self.source, self.format, self.channels)
 
 
 def from_rpm(rpm, *, sample_rate_hz: float = SEED_SAMPLE_RATE_HZ,
@@ -253,10 +281,11 @@ def _read_fast(src: str, text: str, fmt: str | None, rpm_ref, sample_rate_hz):
     try:
         if is_csv:
             first, _, rest = body.partition("\n")
-            if [c.strip().lower() for c in first.split(",")] != ["time_s", "rpm"]:
+            names = [c.strip() for c in first.split(",")]
+            if [c.lower() for c in names[:2]] != ["time_s", "rpm"] or not _channels_ok(names):
                 return None
             data = np.loadtxt(io.StringIO(rest), delimiter=",", ndmin=2, dtype=float)
-            if data.shape[1] != 2 or data.shape[0] < 2:
+            if data.shape[1] != len(names) or data.shape[0] < 2:
                 return None
         else:
             data = np.loadtxt(io.StringIO(body), ndmin=2, dtype=float)
@@ -280,7 +309,8 @@ def _read_fast(src: str, text: str, fmt: str | None, rpm_ref, sample_rate_hz):
             return None                  # the line reader names the line
         ref = DEFAULT_RPM_REF if rpm_ref is None else float(rpm_ref)
         return LoadHistory(t, rpm, rpm2_scale(rpm, ref), ref, float(t[-1] - t[0] + (t[-1] - t[-2])),
-                           src, "csv")
+                           src, "csv", tuple((nm, data[:, 2 + j])
+                                             for j, nm in enumerate(names[2:])))
     try:
         rate = _header_or_option(src, header, "sample_rate_hz", sample_rate_hz, check_sample_rate)
         ref = (_header_or_option(src, header, "reference_rpm", rpm_ref, _check_ref)
@@ -454,8 +484,14 @@ def _read_csv(src, header, rows, rpm_ref) -> LoadHistory:
         raise InputError(src, "data", "a header 'time_s,rpm' and at least two rows",
                          reason="is empty")
     line0, first = rows[0]
-    if [c.strip().lower() for c in first.split(",")] != ["time_s", "rpm"]:
-        raise InputError(src, f"line {line0}: header", "'time_s,rpm'", got=first)
+    names = [c.strip() for c in first.split(",")]
+    if [c.lower() for c in names[:2]] != ["time_s", "rpm"]:
+        raise InputError(src, f"line {line0}: header", "'time_s,rpm' (then load channels, "
+                         "e.g. 'time_s,rpm,torque_Nm')", got=first)
+    if not _channels_ok(names):
+        raise InputError(src, f"line {line0}: header", f"channel names name_unit (letters, "
+                         f"digits, _; e.g. torque_Nm), unique, at most {MAX_CHANNELS}",
+                         got=first)
     data = rows[1:]
     if len(data) < 2:
         raise InputError(src, "data", "at least two rows 'time_s,rpm'",
@@ -463,11 +499,15 @@ def _read_csv(src, header, rows, rpm_ref) -> LoadHistory:
     ref = DEFAULT_RPM_REF if rpm_ref is None else float(rpm_ref)
     t = np.empty(len(data))
     rpm = np.empty(len(data))
+    extra = np.empty((len(names) - 2, len(data)))
     allowed_rpm = f"a finite number in [0, {RPM_CEILING:g}] rpm"
     for i, (line, s) in enumerate(data):
         cols = s.split(",")
-        if len(cols) != 2:
-            raise InputError(src, f"line {line}", "two columns 'time_s,rpm'", got=s)
+        if len(cols) != len(names):
+            raise InputError(src, f"line {line}", f"{len(names)} columns '{','.join(names)}'",
+                             got=s)
+        for j, nm in enumerate(names[2:]):
+            extra[j, i] = _number(src, line, cols[2 + j].strip(), nm, "a finite number")
         t[i] = _number(src, line, cols[0].strip(), "time_s", "a finite number (s)")
         v = _number(src, line, cols[1].strip(), "rpm", allowed_rpm)
         if not 0 <= v <= RPM_CEILING:
@@ -478,4 +518,12 @@ def _read_csv(src, header, rows, rpm_ref) -> LoadHistory:
                              f"> {t[i - 1]:g} (strictly increasing)", got=float(t[i]))
     _check_intervals(src, t, [line for line, _ in data])
     duration = float(t[-1] - t[0] + (t[-1] - t[-2]))
-    return LoadHistory(t, rpm, rpm2_scale(rpm, ref), ref, duration, src, "csv")
+    return LoadHistory(t, rpm, rpm2_scale(rpm, ref), ref, duration, src, "csv",
+                       tuple((nm, extra[j]) for j, nm in enumerate(names[2:])))
+
+
+def _channels_ok(names: list[str]) -> bool:
+    """A csv header's load channels after time_s, rpm: name_unit each, unique, not too many."""
+    ch = names[2:]
+    return (len(ch) <= MAX_CHANNELS and len(set(ch)) == len(ch)
+            and all(CHANNEL_RE.fullmatch(c) for c in ch))
