@@ -169,6 +169,8 @@ def keys() -> list[tuple[str, str, str, str]]:
          "torque about +x (torque), or the torque the mesh puts on this shaft (gear_mesh)"),
         ("loads.<load>.angle_deg", "deg", "number (default 0; not for torque, axial_force)",
          "direction in the y-z plane: 0 = +y, 90 = +z; gear_mesh: towards the contact"),
+        ("loads.<load>.frame", "—", "space | shaft (default space; force and moment only)",
+         "fixed in space (rotating bending in fatigue) or turning with the shaft"),
         ("loads.<load>.scales_with", "—", "constant | rpm2 | a channel name (default constant)",
          "speed law: as written; × (rpm/ref_rpm)²; × channel/channel_ref"),
         ("loads.<load>.ref_rpm", "rpm", f"(0, 1e5] (default {REF_RPM:g}; only rpm2)",
@@ -317,7 +319,11 @@ Kinds: `force` (`F_N` along `angle_deg`), `moment` (`M_Nmm`, its vector along `a
 `torque` (`T_Nmm` about +x), `axial_force` (`F_N` along +x), `gear_mesh` (the nominal forces
 of ISO 6336-1 at the pitch circle: F_t = 2T/d, F_r = |F_t| tan α_n / cos β towards the axis,
 F_a = F_t tan β, and the moment F_a d/2 of the axial force), `gravity` (`g_mm_s2` along
-`angle_deg` on the shaft's and every part's mass). Torques must form a path: per speed law
+`angle_deg` on the shaft's and every part's mass). The solvers work in the frame that turns
+with the shaft: a gear mesh's transverse forces, gravity and a `force` or `moment` with
+`frame = "space"` (the default) are fixed in space, so a static run shows them at the instant
+their direction is `angle_deg` in the shaft's frame, and in fatigue they are rotating bending;
+`frame = "shaft"` turns with the shaft (an unbalance). Torques must form a path: per speed law
 they sum to zero, or a bearing says `holds_torsion = true`; a torque with nothing to react it
 is refused. A load case sets the speed, a factor per load (`parts` for every part's m e ω²)
 and the value of each channel.

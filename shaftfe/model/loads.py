@@ -38,6 +38,15 @@ gravity        ``g_mm_s2`` (default 9810) along ``angle_deg``: the shaft's own m
 Torques must form a path: per speed law the torques sum to zero, or a bearing declares
 ``holds_torsion = true``; else the load is refused, naming the free rotation.
 
+**Frame** (``frame``): the solvers work in the frame that turns with the shaft. A load that
+turns with the shaft (an unbalance, a part's m e ω²: ``"shaft"``) is static there; a load
+fixed in space (a gear mesh's tangential and radial force and the moment of its axial force,
+gravity, a belt pull: ``"space"``) turns once per revolution relative to the shaft: a static
+solve shows it at the instant its direction is ``angle_deg`` in the shaft's frame, and in
+fatigue it is rotating bending (a fully reversed cycle per revolution). Torques and axial
+forces are the same in both frames. Defaults: ``force`` and ``moment`` ``"space"`` (the
+textbook shaft: gear, belt and weight loads on a turning shaft), the parts' m e ω² ``"shaft"``.
+
 Attachments (``attachment_actions``): each part's m e ω² (law rpm², at ``REF_RPM``) acts at the
 part's centroid and enters the shaft through its seat as a force and the moment of that force
 about the seat centre (x_c − x_seat) e_x × F. ``seed_placement=True`` keeps the seed's model
@@ -102,6 +111,7 @@ class Load:
     channel_ref: float = 1.0           # the channel value ``value`` is given for (a channel law)
     seat: str = ""                     # the segment named by ``seat`` ("" = by x_mm)
     gear: GearGeometry | None = None
+    frame: str = "space"               # "space" (fixed in space) | "shaft" (turns with it)
 
 
 @dataclass(frozen=True)
@@ -150,6 +160,7 @@ class Action:
     pressed_half: bool = False
     seat: str = ""                     # the seat's segment or part name, for mesh groups
     load: str = ""                     # the name a load case's factor uses ("" = ``name``)
+    frame: str = "shaft"               # "space": turns relative to the shaft (module docstring)
 
     @property
     def factor_name(self) -> str:
@@ -185,7 +196,7 @@ def _offset_moment(dx: float, F: tuple[float, float, float]) -> tuple[float, flo
 def load_actions(load: Load, variant) -> tuple[list[Action], list[BodyAction]]:
     """The actions of one load (gravity: one per part and one body action)."""
     kw = dict(scales_with=load.scales_with, ref_rpm=load.ref_rpm,
-              channel_ref=load.channel_ref, seat=load.seat)
+              channel_ref=load.channel_ref, seat=load.seat, frame=load.frame)
     c, s = _dir(load.angle_deg)
     zero = (0.0, 0.0, 0.0)
     if load.kind == "force":
@@ -196,19 +207,24 @@ def load_actions(load: Load, variant) -> tuple[list[Action], list[BodyAction]]:
                        (0.0, load.value * c, load.value * s), **kw)], []
     if load.kind == "torque":
         return [Action(load.name, load.x_mm, load.band_mm, zero, (load.value, 0.0, 0.0),
-                       **kw)], []
+                       **{**kw, "frame": "shaft"})], []
     if load.kind == "axial_force":
         return [Action(load.name, load.x_mm, load.band_mm, (load.value, 0.0, 0.0), zero,
-                       **kw)], []
+                       **{**kw, "frame": "shaft"})], []
     if load.kind == "gear_mesh":
         g = load.gear
         ft, fr, fa = g.forces(load.value)
         r = 0.5 * g.pitch_diameter_mm
         # contact at r e_r, e_r = (0, c, s); tangential e_t = (0, -s, c) so r e_r × F_t e_t
         # = r F_t e_x = T; radial towards the axis; axial along +x at the pitch radius
-        F = (fa, -ft * s - fr * c, ft * c - fr * s)
-        M = (load.value, fa * r * s, -fa * r * c)
-        return [Action(load.name, load.x_mm, load.band_mm, F, M, **kw)], []
+        # the torque and the axial force are the same in both frames; the transverse forces
+        # and the axial force's moment are fixed in space (rotating bending)
+        Fq = (0.0, -ft * s - fr * c, ft * c - fr * s)
+        Mq = (0.0, fa * r * s, -fa * r * c)
+        return [Action(load.name, load.x_mm, load.band_mm, (fa, 0.0, 0.0),
+                       (load.value, 0.0, 0.0), **{**kw, "frame": "shaft"}),
+                Action(load.name, load.x_mm, load.band_mm, Fq, Mq,
+                       **{**kw, "frame": "space"})], []
     if load.kind == "gravity":
         a = (0.0, load.value * c, load.value * s)
         acts = []
@@ -219,7 +235,7 @@ def load_actions(load: Load, variant) -> tuple[list[Action], list[BodyAction]]:
             acts.append(Action(f"{load.name}:{part.name}", xs,
                                (part.seat_x_start_mm, part.seat_x_end_mm), F,
                                _offset_moment(part.x_centroid_mm - xs, F),
-                               **{**kw, "seat": part.name}, load=load.name))
+                               **{**kw, "seat": part.name, "frame": "space"}, load=load.name))
         return acts, [BodyAction(load.name, a, load.scales_with, load.ref_rpm,
                                  load.channel_ref)]
     raise InputError("loads", f"{load.name}.kind", " | ".join(KINDS), got=load.kind)
@@ -239,7 +255,7 @@ def attachment_actions(variant, *, seed_placement: bool = False) -> list[Action]
         M = (0.0, 0.0, 0.0) if seed_placement else _offset_moment(a.x_centroid_mm - xs, F)
         out.append(Action(a.name, xs, (a.seat_x_start_mm, a.seat_x_end_mm), F, M, "rpm2",
                           REF_RPM, 1.0, pressed_half=seed_placement, seat=a.name,
-                          load="parts"))
+                          load="parts", frame="shaft"))
     return out
 
 
@@ -256,12 +272,22 @@ def actions(variant, *, seed_placement: bool = False
 
 
 def pattern_key(item: Action | BodyAction | Load) -> tuple:
-    """The pattern an action belongs to: actions of one key scale together (one solve each)."""
+    """The pattern an action belongs to: actions of one key scale together (one solve each).
+    (A load fixed in space is a static pattern like any other; fatigue, which needs it at
+    every phase of a revolution, asks for its ``quadrature`` as well.)"""
     if item.scales_with == "constant":
         return ("constant",)
     if item.scales_with == "rpm2":
         return ("rpm2", float(item.ref_rpm))
     return (item.scales_with, float(item.channel_ref))
+
+
+def quadrature(a: Action) -> Action:
+    """The action turned by +90° about the axis: with ``a`` it spans every phase of a load
+    fixed in space (σ(φ) = cos φ σ(a) + sin φ σ(quadrature(a)), linear elasticity)."""
+    F, M = a.F_N, a.M_Nmm
+    import dataclasses
+    return dataclasses.replace(a, F_N=(F[0], -F[2], F[1]), M_Nmm=(M[0], -M[2], M[1]))
 
 
 def laws(variant) -> tuple[str, ...]:
@@ -309,7 +335,8 @@ def check_torque_path(variant, src: str = "loads") -> None:
 # --------------------------------------------------------------------------- reading
 
 _COMMON_KEYS = {"name", "kind", "x_mm", "seat", "width_mm", "angle_deg", "scales_with",
-                "ref_rpm", "channel_ref"}
+                "ref_rpm", "channel_ref", "frame"}
+FRAMES = ("space", "shaft")
 _KIND_KEYS = {
     "force": {"F_N"}, "moment": {"M_Nmm"}, "torque": {"T_Nmm"}, "axial_force": {"F_N"},
     "gear_mesh": {"T_Nmm", "module_mm", "teeth", "pressure_angle_deg", "helix_angle_deg",
@@ -440,11 +467,16 @@ def read_load(t: dict, src: str, fld: str, segs) -> Load:
     if kind in ("torque", "axial_force") and "angle_deg" in t:
         raise InputError(src, f"{fld}.angle_deg", f"absent for {kind} (it acts along the axis)",
                          got=angle)
+    frame = t.get("frame", "space")
+    if frame not in FRAMES or (kind not in ("force", "moment") and "frame" in t):
+        raise InputError(src, f"{fld}.frame", "space | shaft, only for force and moment (a gear "
+                         "mesh and gravity are fixed in space; torque and axial force are the "
+                         "same in both frames)", got=frame)
     gear = None
     if kind == "gear_mesh":
         seg = next(s for s in segs if s.x_start_mm - 1e-9 <= x <= s.x_end_mm + 1e-9)
         gear = _gear(t, src, fld, seg.diameter_mm)
-    return Load(name, kind, x, band, value, angle, law, ref_rpm, channel_ref, seat, gear)
+    return Load(name, kind, x, band, value, angle, law, ref_rpm, channel_ref, seat, gear, frame)
 
 
 def read_loads(raw, src: str, segs, part_names=()) -> tuple[Load, ...]:

@@ -38,10 +38,13 @@ def test_helical_gear_forces_and_the_axial_force_moment():
     # −y, F_a along +x; moments: T about x, and r e_y × F_a e_x = −r F_a e_z
     v = load_variant("x2_57")
     ld = Load("g", "gear_mesh", 11.0, (6.0, 16.0), 1e5, 0.0, gear=g)
-    (act,), _ = load_actions(ld, v)
+    (axial, act), _ = load_actions(ld, v)
     r = d / 2
-    assert act.F_N == pytest.approx((fa, -fr, ft), rel=RTOL)
-    assert act.M_Nmm[0] == pytest.approx(1e5, rel=RTOL)
+    # the torque and the axial force turn with the shaft; the rest is fixed in space
+    assert axial.frame == "shaft" and act.frame == "space"
+    assert axial.F_N == pytest.approx((fa, 0.0, 0.0), rel=RTOL)
+    assert axial.M_Nmm == pytest.approx((1e5, 0.0, 0.0), rel=RTOL)
+    assert act.F_N == pytest.approx((0.0, -fr, ft), rel=RTOL)
     assert act.M_Nmm[2] == pytest.approx(-r * fa, rel=RTOL)
-    assert abs(act.M_Nmm[1]) < 1e-9 * r * fa
+    assert abs(act.M_Nmm[1]) < 1e-9 * r * fa and act.M_Nmm[0] == 0.0
     assert math.tan(beta) == pytest.approx(0.2679491924311227, rel=RTOL)
