@@ -21,13 +21,24 @@ measure: where the dominant principal stress changes between σ1 and σ3 in a sh
 state (|σ1| ≈ |σ3|) the sign jumps and a range of up to 2 σ_vM is counted that the tensor does
 not have (conservative).
 
+Time compression (``reversal_union``): only the samples where some factor history L_k turns
+(its reversals, ``counting.reversals``) are kept — exact for one channel (the rainflow cycles
+of σ_1 λ(t) are those of λ's reversals), and for several the multichannel peak-valley editing
+that durability codes use (a combination Σ a_k L_k can turn between two channels' reversals
+only where one channel's slope overtakes another's; the error is a range lost inside a
+monotone stretch of every channel).
+
 Candidates (``candidate_nodes``): the nodes whose bound on the equivalent stress can matter.
 σ_vM is a norm of the stress tensor, so |σ_vM(Σ_k σ_k L_k)| ≤ Σ_k σ_vM(σ_k) max|L_k| =: U (the
-triangle inequality); the candidates are the extremes of U per region (``field.candidates``)
-and every node whose bound U reaches ``CANDIDATE_FRACTION`` of the largest exact peak |σ_eq|
-among those. A node outside has a stress history bounded below that fraction of a candidate's
-peak; the damage of the S-N curve's slope k ≥ 3 at a fraction f of the stress is below f^k of
-it (f = 0.5: 1/8): it cannot be the hot spot.
+triangle inequality). The exact peak |σ_eq| is computed at the extremes of U per region
+(``field.candidates``); the candidates are the ``MAX_CANDIDATES`` nodes of largest U among
+those whose U reaches ``CANDIDATE_FRACTION`` of the largest of these peaks (the node of that
+peak always among them). A node with a bound below that fraction has a stress history below
+half a candidate's peak (damage ≤ 1/8 of it for an S-N slope k ≥ 3): it cannot be the hot
+spot. A node above it but beyond the ``MAX_CANDIDATES`` largest bounds is not assessed
+(``candidate_nodes`` returns how many; the run says so). Each candidate costs one rainflow
+count of its own history (the single-channel path counts one for the whole field), which is
+what bounds their number.
 """
 
 from __future__ import annotations
@@ -42,6 +53,7 @@ from shaftfe.util.units import rpm2_scale, von_mises
 
 MULTI_CHANNEL_EQUIVALENT = "signed_von_mises"
 CANDIDATE_FRACTION = 0.5
+MAX_CANDIDATES = 16
 _CHUNK = 2_000_000                   # samples × nodes per equivalent-stress chunk
 
 
@@ -74,15 +86,39 @@ def equivalent_histories(stress_k: np.ndarray, L: np.ndarray, nodes,
     return out
 
 
+def reversal_union(L: np.ndarray) -> np.ndarray:
+    """The sample indices where some factor history turns (first and last kept)."""
+    keep = np.zeros(L.shape[1], dtype=bool)
+    keep[[0, -1]] = True
+    for row in L:
+        d = np.diff(row)
+        nz = np.flatnonzero(d)
+        if nz.size < 2:
+            continue
+        # a turn between consecutive changes of opposite sign (plateaus: their last sample)
+        turn = nz[1:][np.sign(d[nz[1:]]) != np.sign(d[nz[:-1]])]
+        keep[turn] = True
+    return np.flatnonzero(keep)
+
+
 def candidate_nodes(stress_k: np.ndarray, L: np.ndarray, excluded: np.ndarray,
-                    regions: dict, kind: str = MULTI_CHANNEL_EQUIVALENT) -> np.ndarray:
-    """The nodes that can be the hot spot (module docstring)."""
-    bound = sum(von_mises(stress_k[k]) * float(np.abs(L[k]).max(initial=0.0))
-                for k in range(stress_k.shape[0]))
-    first = candidates(np.asarray(bound, dtype=float), excluded, regions)
-    peak = float(np.abs(equivalent_histories(stress_k, L, first, kind)).max(initial=0.0))
-    more = np.flatnonzero(bound >= CANDIDATE_FRACTION * peak) if peak > 0 else first[:0]
-    return np.unique(np.concatenate([first, more]))
+                    regions: dict, kind: str = MULTI_CHANNEL_EQUIVALENT
+                    ) -> tuple[np.ndarray, int]:
+    """(the nodes that can be the hot spot, how many more passed the bound but were beyond
+    ``MAX_CANDIDATES``) (module docstring)."""
+    bound = np.asarray(sum(von_mises(stress_k[k]) * float(np.abs(L[k]).max(initial=0.0))
+                           for k in range(stress_k.shape[0])), dtype=float)
+    first = candidates(bound, excluded, regions)
+    peaks = np.abs(equivalent_histories(stress_k, L, first, kind)).max(axis=1, initial=0.0)
+    peak = float(peaks.max(initial=0.0))
+    best = first[int(np.argmax(peaks))] if first.size else None
+    ok = np.flatnonzero((bound >= CANDIDATE_FRACTION * peak) & ~excluded) if peak > 0 \
+        else first[:0]
+    ok = ok[np.argsort(-bound[ok], kind="stable")]
+    chosen = ok[:MAX_CANDIDATES]
+    if best is not None:
+        chosen = np.concatenate([[best], chosen])
+    return np.unique(chosen).astype(np.int64), int(max(0, ok.size - MAX_CANDIDATES))
 
 
 @dataclass(frozen=True, eq=False)
@@ -104,14 +140,15 @@ def assess_nodes(stress_k: np.ndarray, L: np.ndarray, nodes, material, *,
     a unit reference stress (the history is already in MPa): the same mean-stress correction,
     S-N curve and Miner sum, one implementation."""
     nodes = np.asarray(nodes, dtype=np.int64)
-    s_t = equivalent_histories(stress_k, L, nodes, kind)
+    L = L[:, reversal_union(L)]
     dmg, sf, st, pk, ncl = (np.zeros(nodes.size) for _ in range(5))
     one = np.ones(1)
     for i in range(nodes.size):
-        cyc = counting.count_cycles(s_t[i], closure)
+        s_t = equivalent_histories(stress_k, L, nodes[i:i + 1], kind)[0]
+        cyc = counting.count_cycles(s_t, closure)
         dmg[i] = kernels.node_damage(one, cyc, material, theory, kf)[0]
         n_i, st_i = kernels.safety_factor(one, cyc, material, design_life_blocks, theory, kf)
         sf[i], st[i] = n_i[0], st_i[0]
-        pk[i] = float(np.abs(s_t[i]).max(initial=0.0))
+        pk[i] = float(np.abs(s_t).max(initial=0.0))
         ncl[i] = cyc.n
     return NodeLives(nodes, dmg, sf, st.astype(int), pk, ncl.astype(int))

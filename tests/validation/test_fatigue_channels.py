@@ -66,10 +66,11 @@ def test_candidates_hold_every_possible_hot_spot():
     sk = rng.normal(0.0, 100.0, size=(2, 6, 300))
     h = from_rpm(rng.uniform(1000, 9000, 500), sample_rate_hz=10.0, rpm_ref=7000.0)
     L = np.vstack([h.load_factor, np.sin(np.arange(500) / 7.0)])
-    cand = channels.candidate_nodes(sk, L, np.zeros(300, bool), {})
+    cand, more = channels.candidate_nodes(sk, L, np.zeros(300, bool), {})
     s_t = channels.equivalent_histories(sk, L, np.arange(300))
     peaks = np.abs(s_t).max(axis=1)
     # the hot spot by peak is a candidate; every non-candidate is below half the best peak
     assert int(np.argmax(peaks)) in set(cand.tolist())
     out = np.setdiff1d(np.arange(300), cand)
-    assert peaks[out].max(initial=0) < channels.CANDIDATE_FRACTION * peaks[cand].max()
+    if more == 0:
+        assert peaks[out].max(initial=0) < channels.CANDIDATE_FRACTION * peaks[cand].max()
