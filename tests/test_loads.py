@@ -107,3 +107,32 @@ check = "static"
     assert w.loads[1].value == -300.0 and w.content_hash != v.content_hash
     with pytest.raises(InputError, match="rotation about the shaft axis free"):
         load_variant(p, {"loads.pump.T_Nmm": -300.0})
+
+
+def test_the_driven_example_variant_carries_the_drive_loads():
+    # geometry/examples/x2_57_driven.toml: x2_57 + the drive loads, named by itself
+    v = load_variant(ld_path("x2_57_driven.toml"))
+    base = load_variant("x2_57")
+    assert v.name == "x2_57_driven" and v.attachments == base.attachments
+    acts, _ = ld.actions(v)
+    for law in ("rpm2", "alpha_rad_s2"):              # the torques balance per law exactly
+        assert sum(a.torque_Nmm for a in acts if a.scales_with == law) == 0.0
+    assert v.provenance.source["loads.mesh_pump.T_Nmm"] == "reconstructed"
+    assert v.with_seed_load_case().loads == ()
+
+
+def test_angular_acceleration_channel_of_a_linear_run_up():
+    # rpm rising linearly 1200 → 9500 in 1 s (the seed's run-up): dω/dt = 869.2 rad/s²
+    # (seed 000 §8.2.2); np.gradient is exact on a linear function: round-off only
+    import numpy as np
+
+    from shaftfe.fatigue.history import from_rpm
+    h = from_rpm(np.linspace(1200.0, 9500.0, 101), sample_rate_hz=100.0)
+    a = h.channel("alpha_rad_s2")
+    np.testing.assert_allclose(a, (9500.0 - 1200.0) * 2 * np.pi / 60.0, rtol=1e-12)
+    assert abs(a[0] - 869.2) < 0.05                   # the seed's rounded figure
+
+
+def ld_path(name: str):
+    from shaftfe.util.paths import GEOMETRY_DIR
+    return GEOMETRY_DIR / "examples" / name

@@ -22,7 +22,9 @@ Three file formats are read (SPEC §3):
     (issue #31): ``time_s,rpm,torque_Nm`` — each column named by a channel that the variant's
     ``[[loads]]`` scale with (``scales_with = "torque_Nm"``), its unit in the name after the
     first underscore (``CHANNEL_RE``); any finite value (a torque may reverse). The channels
-    are ``LoadHistory.channels``; the rpm² loads still follow the ``rpm`` column.
+    are ``LoadHistory.channels``; the rpm² loads still follow the ``rpm`` column. The channel
+    ``alpha_rad_s2`` (the angular acceleration) is derived from the rpm column when it is not
+    logged (``angular_acceleration``).
 
 Lines starting with ``#`` are comments; ``# key = value`` comments before the first data line
 are header keys (``format``, ``reference_rpm``, ``sample_rate_hz``); blank lines are skipped.
@@ -77,6 +79,7 @@ MAX_BYTES = 256 * 2 ** 20      # see the module docstring: ~6× the 5-million-sa
 MAX_LINES = 10_000_000         # a day at 100 Hz is 8.6 million samples
 SAMPLE_RATE_HZ = (1e-3, 1e5)   # see the module docstring; a csv's intervals: 1/hi .. 1/lo s
 _BINARY_PROBE = 2 ** 20        # a NUL byte in the first MiB: a binary file
+ALPHA_CHANNEL = "alpha_rad_s2"        # derived from the rpm column when not logged
 CHANNEL_RE = re.compile(r"[A-Za-z][A-Za-z0-9]*_[A-Za-z0-9_]+")   # name_unit, e.g. torque_Nm
 MAX_CHANNELS = 16
 _HEADER_RE = re.compile(r"^#\s*([A-Za-z_][A-Za-z0-9_]*)\s*[=:]\s*(\S.*?)\s*$")
@@ -115,10 +118,14 @@ class LoadHistory:
         return tuple(nm for nm, _ in self.channels)
 
     def channel(self, name: str) -> np.ndarray:
-        """The values of channel ``name`` (InputError naming the history if it has none)."""
+        """The values of channel ``name`` (InputError naming the history if it has none). The
+        angular acceleration ``alpha_rad_s2`` is derived from the rpm column when the history
+        has no such column (``angular_acceleration``)."""
         for nm, vals in self.channels:
             if nm == name:
                 return vals
+        if name == ALPHA_CHANNEL:
+            return angular_acceleration(self)
         raise InputError(self.source, f"channel {name}", "a column of the load history: "
                          + (", ".join(self.channel_names) or "(it has none besides time_s, rpm; "
                             "write a csv 'time_s,rpm," + name + "')"),
@@ -527,3 +534,14 @@ def _channels_ok(names: list[str]) -> bool:
     ch = names[2:]
     return (len(ch) <= MAX_CHANNELS and len(set(ch)) == len(ch)
             and all(CHANNEL_RE.fullmatch(c) for c in ch))
+
+
+def angular_acceleration(history: LoadHistory) -> np.ndarray:
+    """dω/dt in rad/s² at every sample of the rpm column (second-order central differences,
+    one-sided at the ends: ``numpy.gradient`` on the sample times; a block that repeats is
+    differenced as it stands). The d'Alembert torque of a run-up follows it
+    (``scales_with = "alpha_rad_s2"``)."""
+    from shaftfe.util.units import omega
+    if history.n_samples < 2:
+        return np.zeros(history.n_samples)
+    return np.gradient(omega(history.rpm), history.time_s)

@@ -44,6 +44,9 @@ from shaftfe.model.variant import (
 from shaftfe.util.paths import COMMON_DIR, GEOMETRY_DIR  # the variant files (geometry/)
 
 _TABLE_KINDS = {"materials", "bearing_types", "parts"}       # merged across files by sub-key
+# the file named on the command line may include a whole variant and add to it (its loads):
+# it then names itself; every other key is still defined in one file only
+_TOP_MAY_RENAME = {"name", "description"}
 def list_variants(directory: str | Path | None = None) -> list[str]:
     """Names of the variant files in ``geometry/`` (``<name>.toml``; ``common/`` excluded)."""
     d = Path(directory) if directory is not None else GEOMETRY_DIR
@@ -142,7 +145,7 @@ def _merge(path: Path, merged: dict, ctx: Ctx, stack: tuple[Path, ...]) -> None:
                 dest[sub] = entry
                 ctx.origin[f"{key}.{sub}"] = shown
         else:
-            if key in merged:
+            if key in merged and not (len(stack) == 1 and key in _TOP_MAY_RENAME):
                 raise InputError(shown, key, "defined once (in one file only)",
                                  reason=f"is also defined in {ctx.origin[key]}")
             merged[key] = val
@@ -677,7 +680,7 @@ def _build(path: Path, merged: dict, ctx: Ctx, *, check_balance: bool = True) ->
     atts = _attachments(merged, segs, mats, ctx, top)
     target = _balance_target(merged, ctx, top)
     lsrc = ctx.file_of("loads", top)
-    loads = read_loads(merged.get("loads", []), lsrc, segs, [a.name for a in atts])
+    loads = read_loads(merged.get("loads", []), lsrc, segs, [a.name for a in atts], ctx)
     cases = read_load_cases(merged.get("load_cases", []), ctx.file_of("load_cases", top), loads)
 
     v = Variant(

@@ -479,13 +479,19 @@ def read_load(t: dict, src: str, fld: str, segs) -> Load:
     return Load(name, kind, x, band, value, angle, law, ref_rpm, channel_ref, seat, gear, frame)
 
 
-def read_loads(raw, src: str, segs, part_names=()) -> tuple[Load, ...]:
-    """The ``[[loads]]`` list (names unique, and not a part's name)."""
-    from shaftfe.model.fields import table
+def read_loads(raw, src: str, segs, part_names=(), ctx=None) -> tuple[Load, ...]:
+    """The ``[[loads]]`` list (names unique, and not a part's name). A table that gives
+    provenance lists (seed / reconstructed / derived / standard) must tag every number, as
+    every other table; one without them is a user's load (no provenance recorded)."""
+    from shaftfe.model.fields import PROV_KEYS, provenance, table
     if not isinstance(raw, list):
         raise InputError(src, "loads", "a list of [[loads]] tables", got=type(raw).__name__)
-    out = [read_load(table(t, src, f"loads[{i}]"), src, f"loads[{i}]", segs)
-           for i, t in enumerate(raw)]
+    out = []
+    for i, t in enumerate(raw):
+        t = table(t, src, f"loads[{i}]")
+        out.append(read_load(t, src, f"loads[{i}]", segs))
+        if ctx is not None and any(k in t for k in PROV_KEYS - {"note"}):
+            provenance(t, src, f"loads[{i}]", f"loads.{out[-1].name}", ctx)
     names = [ld.name for ld in out] + list(part_names)
     dup = sorted({n for n in names if names.count(n) > 1})
     if dup:
