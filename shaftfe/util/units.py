@@ -10,8 +10,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 REF_RPM = 10_000.0          # the speed every rpm² field is solved at (any speed would do)
 RPM_TO_RAD_S = 2.0 * math.pi / 60.0
 
@@ -20,6 +18,7 @@ def omega(rpm):
     """Angular speed in rad/s of ``rpm`` (a number or an array)."""
     if isinstance(rpm, int | float):
         return float(rpm) * RPM_TO_RAD_S
+    import numpy as np          # not at the top: ``shaftfe --help`` imports this module
     return np.asarray(rpm, dtype=float) * RPM_TO_RAD_S
 
 
@@ -28,12 +27,14 @@ def rpm2_scale(rpm, ref_rpm: float = REF_RPM):
     ``ref_rpm`` to ``rpm`` (a number or an array)."""
     if isinstance(rpm, int | float):
         return (float(rpm) / ref_rpm) ** 2
+    import numpy as np
     return (np.asarray(rpm, dtype=float) / ref_rpm) ** 2
 
 
 def von_mises(s):
     """von Mises stress of Voigt stresses ``s`` with the components on the FIRST axis (6, ...)
     in the order xx, yy, zz, xy, yz, xz."""
+    import numpy as np
     xx, yy, zz, xy, yz, xz = s
     return np.sqrt(0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2)
                    + 3.0 * (xy ** 2 + yz ** 2 + xz ** 2))
