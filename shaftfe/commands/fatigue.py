@@ -60,7 +60,8 @@ def register(sub) -> None:
                    "csv 'time_s,rpm' (see shaftfe.fatigue.history)")
     p.add_argument("--variant", default="x2_57", help="variant name or path (default x2_57)")
     add_engine_option(p, "engine file whose max_rpm is the highest speed the history may "
-                      "reach (default vm450: the engine of the x2_* balancer shafts)",
+                      "reach (default: the highest speed of the variant's [duty] "
+                      "speed_range_rpm)",
                       "assess a history above the engine's max_rpm (with a warning)")
     p.add_argument("--ref-rpm", type=float, default=None,
                    help="speed a normalised history is normalised by (default: the file's "

@@ -81,7 +81,8 @@ class FatigueJob:
     spin_softening: bool = True            # the parts' m ω² u (static model; README)
     overrides: tuple[str, ...] = ()        # --set PATH=VALUE on the variant (model.overrides)
     design_life_h: float | None = None     # hours of riding; with design_life=None
-    engine: str = "vm450"                  # whose max_rpm bounds the history (check_history)
+    engine: str | None = None              # whose max_rpm bounds the history (check_history);
+    #                                        None: the variant's [duty] speed range
     allow_overspeed: bool = False          # assess a history above max_rpm (with a warning)
 
 
@@ -289,7 +290,7 @@ def load_inputs(job: FatigueJob) -> FatigueInputs:
     variant = load_variant(job.variant, job.overrides)
     refuse_sharp_corners(variant, "a fatigue check")     # every method reads these inputs
     history = read_spectrum(job.spectrum, job.ref_rpm, job.sample_rate)
-    check_history(history, job.engine, job.allow_overspeed)
+    check_history(history, job.engine or variant.duty, job.allow_overspeed)
     return FatigueInputs(history, load_material(job.material), variant)
 
 

@@ -141,6 +141,13 @@ def known_materials(path: str | Path = SN_FILE) -> list[str]:
     return sorted(_read(Path(path)).keys())
 
 
+def card_of_material(material: str, path: str | Path = SN_FILE) -> str | None:
+    """The name of the S-N card whose ``material`` is the record ``material`` (the first in
+    name order), or None."""
+    cards = _read(Path(path))
+    return next((n for n in sorted(cards) if cards[n].get("material") == material), None)
+
+
 def load_material(name: str, path: str | Path = SN_FILE, *,
                   beyond_last: str | None = None,
                   infinite_life_cycles: float | None = None) -> FatigueMaterial:

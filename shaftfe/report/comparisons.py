@@ -297,12 +297,15 @@ def _campbell_rows(camp: dict, C: dict) -> list[Comparison]:
     return rows
 
 
-def comparisons(bal: dict, beam_check: dict, st: dict, fat: dict, camp: dict, variant,
-                seedmod) -> list[Comparison]:
-    """Every seed figure next to ours: balancing and the variant's balance table always; the
-    loads, static, fatigue and rotor rows only for the variant the seed's FE studies were of
-    (``seedmod.VARIANT``)."""
-    rows = _balancing_rows(bal, seedmod.BALANCING) + _variant_rows(bal, variant)
+def comparisons(bal: dict | None, beam_check: dict, st: dict, fat: dict, camp: dict, variant,
+                seedmod, *, seed_engine: bool = True) -> list[Comparison]:
+    """Every seed figure next to ours: the balancing on the seed's engine
+    (``seed_engine``); the variant's balance table where its file tags it seed; the loads,
+    static, fatigue and rotor rows only for the variant the seed's FE studies were of
+    (``seedmod.VARIANT``). A shaft that is not the seed's gets none."""
+    rows = _balancing_rows(bal, seedmod.BALANCING) if bal and seed_engine else []
+    if bal and variant.provenance.source.get("balance.X2_percent") == "seed":
+        rows += _variant_rows(bal, variant)
     if variant.name != seedmod.VARIANT:
         return rows
     return (rows + _load_rows(variant, seedmod.STATIC, seedmod.SEED_PARTS)
