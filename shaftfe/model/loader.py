@@ -683,6 +683,7 @@ def _build(path: Path, merged: dict, ctx: Ctx, *, check_balance: bool = True) ->
     lsrc = ctx.file_of("loads", top)
     loads = read_loads(merged.get("loads", []), lsrc, segs, [a.name for a in atts], ctx)
     cases = read_load_cases(merged.get("load_cases", []), ctx.file_of("load_cases", top), loads)
+    duty = _duty(merged, ctx, top)
 
     v = Variant(
         name=name, description=str(desc), segments=segs, bearings=bearings,
@@ -693,7 +694,7 @@ def _build(path: Path, merged: dict, ctx: Ctx, *, check_balance: bool = True) ->
         source_files=tuple(ctx.files), materials=tuple(mats[k] for k in sorted(mats)),
         balance_target=target,
         clearance_mm=num(shaft, "clearance_to_crankshaft_mm", ssrc, "shaft", required=False),
-        stock_diameter_mm=stock, loads=loads, load_cases=cases, duty=_duty(merged, ctx, top))
+        stock_diameter_mm=stock, loads=loads, load_cases=cases, duty=duty)
     from shaftfe.solid.plan import prepare
     validate_variant(v)
     prepare(v)       # the solid's own rules (slots, hex socket, contact bands): every command

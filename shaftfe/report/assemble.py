@@ -80,6 +80,17 @@ def _machine() -> dict:
             "platform": platform.platform(), "python": platform.python_version()}
 
 
+def _life_in_blocks(o: ReportOptions, history) -> ReportOptions:
+    """The design life in passes of the history's block (a life in hours over its length),
+    within the fatigue command's range (``fatigue.run.resolve_design_life``)."""
+    import dataclasses
+
+    from shaftfe.fatigue.run import FatigueJob, resolve_design_life
+    job = resolve_design_life(FatigueJob(str(o.spectrum), design_life=o.design_life_blocks,
+                                         design_life_h=o.design_life_h), history)
+    return dataclasses.replace(o, design_life_blocks=job.design_life)
+
+
 def _static(o: ReportOptions, variant, prog):
     """ONE static solve at the design speeds, stored in the static cache for fatigue, and with
     --estimate-error a second solve on the neighbour level."""
@@ -266,6 +277,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         o = with_duty(o, variant)           # what the options leave open, from its [duty]
         check_options(o)
         engine, history, material = read_inputs(o, variant)
+        o = _life_in_blocks(o, history)
         prov = provenance_summary(variant)
     figs: list[Figure] = []
     fig_dir = out / "figures"
@@ -297,7 +309,8 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     with prog.stage("plots"):
         _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, cres,
                camp, files["vtu_rpm"], add_fig)
-    errs = error_estimates(st, res, fat, scaled, bench, camp, beam_out)
+    errs = error_estimates(st, res, fat, scaled, bench, camp, beam_out,
+                           seed=variant.name == seedmod.VARIANT)
     comps = comparisons(bal, beam_out, st, fat, camp, variant, seedmod,
                         seed_engine=is_seed_engine(engine, seedmod))
     notes = tuple(dict.fromkeys(list(res.notes) + list(ref.notes)))

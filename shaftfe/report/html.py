@@ -266,7 +266,7 @@ def _inputs(r) -> str:
           + (" The drawings' dimensions did not survive in the seed, so the geometry is "
              "reconstructed to reproduce the seed's facts; "
              f"<code>{_e(p['document'])}</code> says how each value was fitted and to what."
-             if "seed" in p["counts"] else "") + "</p>"
+             if p.get("seed_geometry") else "") + "</p>"
           f"<details><summary>the {len(p['reconstructed'])} reconstructed values</summary>"
           f"<p class=\"note\">{_e(', '.join(p['reconstructed']))}</p></details>")
     return s

@@ -57,7 +57,10 @@ def provenance_summary(variant) -> dict:
         counts[tag] = counts.get(tag, 0) + 1
         if tag == "reconstructed":
             recon.append(path)
-    return {"counts": counts, "reconstructed": recon,
+    # the seed's shaft: its geometry tagged seed (the drawings' dimensions, RECONSTRUCTION.md)
+    seed_geometry = any(tag == "seed" and path.startswith("segments.")
+                        for path, tag in variant.provenance.source.items())
+    return {"counts": counts, "reconstructed": recon, "seed_geometry": seed_geometry,
             "document": "geometry/RECONSTRUCTION.md",
             "files": list(variant.source_files)}
 
