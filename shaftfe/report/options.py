@@ -111,6 +111,8 @@ def with_duty(o: ReportOptions, variant) -> ReportOptions:
     the option. The engine and the element checks' data are optional (no engine: no balancing
     section; no element data: no key and gear-pair checks)."""
     import dataclasses
+
+    from shaftfe.fatigue.sn import variant_card
     d = variant.duty
     where = variant.source_files[0] if variant.source_files else variant.name
     src = d.source if d is not None else where
@@ -137,17 +139,7 @@ def with_duty(o: ReportOptions, variant) -> ReportOptions:
         campbell_range_rpm=o.campbell_range_rpm or need(
             d and d.campbell_range_rpm, "campbell_range_rpm", "--campbell-range",
             "the Campbell range [low, high] in rpm"),
-        material=o.material or (d and d.sn_curve) or _material_card(variant, src),
+        material=o.material or variant_card(variant),
         design_life_blocks=life_b, design_life_h=life_h)
 
 
-def _material_card(variant, src: str) -> str:
-    """The S-N card (geometry/common/sn_curves.toml) of the shaft's own material."""
-    from shaftfe.fatigue.sn import card_of_material, known_materials
-    name = card_of_material(variant.material.name)
-    if name is None:
-        raise InputError(src, "duty.sn_curve", "an S-N card of sn_curves.toml for the seed "
-                         f"method (none has material = {variant.material.name!r}, the shaft's): "
-                         f"one of {', '.join(known_materials())}, or --material",
-                         reason="is not stated")
-    return name
