@@ -707,6 +707,8 @@ DUTY_CASES.update({
                               ["x2_57.toml", "duty.design_speeds_rpm", "--rpm"]),
     "beam_no_duty_no_rpm": (["beam", "--variant", "{V:no_duty}"],
                             ["x2_57.toml", "duty.design_speeds_rpm", "--rpm"]),
+    "campbell_no_duty_no_range": (["campbell", "--variant", "{V:no_duty}"],
+                                  ["x2_57.toml", "duty.campbell_range_rpm", "RANGE"]),
 })
 CASES.update(DUTY_CASES)          # counted by the catalogue's coverage test
 

@@ -192,3 +192,34 @@ def test_a_report_of_a_shaft_that_is_not_the_seeds_shows_nothing_of_the_seed(rep
     assert s["fatigue"]["settings"]["design_life_blocks"] == pytest.approx(2000 * 3600 / 10,
                                                                            rel=1e-12)
     assert s["fatigue"]["settings"]["material"] == "12050"
+
+
+def test_design_life_from_the_duty_else_the_seeds_with_a_warning(tmp_path):
+    """The fatigue command's design life: the variant's [duty] life in hours over the block
+    (2000 h of a 10 s block = 720 000 blocks, exact in binary: 7.2e6 / 10), else 1e7 blocks
+    said in a warning."""
+    from shaftfe.fatigue.run import FatigueJob, read_spectrum, resolve_design_life
+    from shaftfe.util.notices import ShaftfeWarning
+    v = load_variant(_write(tmp_path))
+    h = read_spectrum(str(tmp_path / "duty.rpm"), None, None)
+    assert resolve_design_life(FatigueJob("x"), h, v.duty).design_life == 720_000.0
+    with pytest.warns(ShaftfeWarning, match="states no design life"):
+        assert resolve_design_life(FatigueJob("x"), h, None).design_life == 1e7
+    # a life typed on the command line wins over the duty's
+    assert resolve_design_life(FatigueJob("x", design_life=5.0), h, v.duty).design_life == 5.0
+
+
+def test_checks_run_only_where_their_element_is(tmp_path):
+    """No gear, no keyway, no element data: no gear-pair or key check and no seed bearing
+    points (beam model only: milliseconds); the seed's x2_57 keeps its two keys and its gear
+    pair (the seed's safety 33.93, seed 000 §8.2.2: ours from the same Merritt formula)."""
+    from shaftfe.fatigue.run import read_spectrum
+    from shaftfe.fatigue.standards_out import compute_elements
+    v = load_variant(_write(tmp_path))
+    h = read_spectrum(str(tmp_path / "duty.rpm"), None, None)
+    el = compute_elements(v, h, 1.0, 1.0, 70.0)
+    assert el["gear"] is None and el["keys"] == [] and el["bearings"]["seed_points"] == []
+    seed = load_variant("x2_57")
+    el = compute_elements(seed, read_spectrum(seed.duty.spectrum, None, None), 1.0, 1.0, 70.0)
+    assert el["gear"] is not None and len(el["keys"]) == 2
+    assert len(el["bearings"]["seed_points"]) == 2
