@@ -172,7 +172,7 @@ def report(tmp_path_factory):
 # S-N card, its gear pair's safety and its comparison section
 SEED_MARKS = ("VM 450", "vm450", "rpm.dat", "10 000 rpm", "9500", "9 500",
               "Structural Steel", "structural_steel", "5.76", "33.93", "gear pair",
-              "seed 000", "Seed figures", "crank C", "3203), 7000")
+              "seed 000", "Seed figures", "seed figures", "crank C", "3203), 7000")
 
 
 def test_a_report_of_a_shaft_that_is_not_the_seeds_shows_nothing_of_the_seed(report):

@@ -159,12 +159,12 @@ def _print_summary(rep, page) -> None:
           f"{num(hs['safety_factor'], 3)} at {num(fat['settings']['design_life_blocks'])} blocks; "
           f"hot spot {hs['region']}")
     print(f"Campbell: {rep.campbell['statement']}")
-    print()
-    print_table(["quantity", "unit", "seed", "shaftfe", "diff", "shaftfe model"],
-                [[c.quantity, c.unit, num(c.seed, 5), num(c.ours, 5), pct(c.diff_percent),
-                  _short(c.model)]
-                 for c in rep.comparisons if c.group in ("static", "fatigue")],
-                title="seed figures next to ours (all of them in the report)")
+    rows = [[c.quantity, c.unit, num(c.seed, 5), num(c.ours, 5), pct(c.diff_percent),
+             _short(c.model)] for c in rep.comparisons if c.group in ("static", "fatigue")]
+    if rows:                                  # the seed's shaft only
+        print()
+        print_table(["quantity", "unit", "seed", "shaftfe", "diff", "shaftfe model"], rows,
+                    title="seed figures next to ours (all of them in the report)")
     print()
     print("run time: " + ", ".join(f"{n} {t:.1f} s" for n, t in rep.timings)
           + f"; total {sum(t for _, t in rep.timings):.1f} s")
