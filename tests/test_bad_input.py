@@ -654,6 +654,7 @@ CASES.update(LOAD_CASES)
 
 @pytest.mark.parametrize("case", sorted(LOAD_CASES))
 def test_bad_load_input(case, space, capsys, monkeypatch):
+    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
 
 
 # --- issue #31, slice duty (item 6: the variant owns its duty) -------------------------------
