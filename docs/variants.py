@@ -27,6 +27,7 @@ def _p(kind: str) -> str:
 
 
 def keys() -> list[tuple[str, str, str, str]]:
+    from shaftfe.util.limits import PROOF_FACTOR, RPM_CEILING
     """(``--set`` path, unit, allowed, meaning); ``<seg>``, ``<part>`` … stand for names."""
     from shaftfe.model import bearing_stiffness as bs
     from shaftfe.model import loads as ld
@@ -210,6 +211,27 @@ def keys() -> list[tuple[str, str, str, str]]:
          "the crank mechanism's reciprocating mass"),
         ("balance.crank_radius_mm", "mm", "number (default 0: X2 not checked)",
          "crank radius R"),
+        # duty
+        ("duty.speed_range_rpm", "rpm", f"[low, high], 0 ≤ low < high ≤ {RPM_CEILING:g}; high "
+         "≤ the engine's max_rpm", "lowest running (idle) and highest speed: high bounds every "
+         "rpm history (fatigue, report) unless --allow-overspeed"),
+        ("duty.design_speeds_rpm", "rpm", f"each in (0, {PROOF_FACTOR:g} × high]",
+         "the report's static speeds; the first is static's and beam's default --rpm"),
+        ("duty.campbell_range_rpm", "rpm", f"[low, high], 0 ≤ low < high ≤ {RPM_CEILING:g}",
+         "the report's Campbell sweep"),
+        ("duty.spectrum", "—", "a file: relative to the file stating [duty], else in "
+         "loadspectra/", "the rpm history of the report"),
+        ("duty.design_life_h", "h", "in (0, 1e7]; or design_life_blocks, not both",
+         "design life in hours of the history"),
+        ("duty.design_life_blocks", "—", "in [1, 1e12]; or design_life_h",
+         "design life in passes of the history's block (the seed's 1e7)"),
+        ("duty.engine", "—", "a .toml file: relative, else geometry/engines/NAME.toml",
+         "the engine the shaft balances: the report's balancing section (none: no section)"),
+        ("duty.sn_curve", "—", "a card of geometry/common/sn_curves.toml", "the seed method's "
+         "S-N card (default: the card whose material is the shaft's)"),
+        ("duty.elements", "—", "a file like common/elements.toml: relative, else "
+         "geometry/common/", "the drive, key and gear-pair data of the element checks (none: "
+         "no key or gear-pair check)"),
     ]
 
 
@@ -265,6 +287,20 @@ file: one line naming the file, the key and the allowed range if anything is wro
   keys; the parts are shared between variants, the attachments are the variant's own.
 * **Order**: segments follow each other along x from the left end face (`shaft.x_start_mm`,
   default 0) in file order; a segment's `fillet_mm` is the fillet at its right end.
+
+## Duty: what the shaft is asked to do
+
+The optional `[duty]` table states the shaft's speeds, its rpm history and design life, the
+engine it balances and the data of its element checks (every key below). The shipped x2_*
+variants include `common/duty_vm450.toml`, the seed's duty (VM 450, 1200-9500 rpm, design speeds
+10 000 and 7000 rpm, `rpm.dat`, 1e7 blocks), tagged `seed`. Nothing falls back to the seed's
+values: a variant without `[duty]` gets none of them, and a command that needs one asks for it
+on its command line (one line naming the field, the file and the option). The checks run only
+where their element is: balancing with an engine, the key check where a segment has a keyway,
+the gear-pair check where the variant has a part named `gear` (both with `elements`); the
+seed's comparison figures appear only for the seed's engine and variant. The shaft's material
+(`shaft.material`) selects the strength card of FKM and DIN 743 and, without `sn_curve`, the
+seed method's S-N card (`sn_curves.toml` entry with that `material`).
 
 ## Every key
 

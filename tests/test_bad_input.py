@@ -655,3 +655,65 @@ CASES.update(LOAD_CASES)
 @pytest.mark.parametrize("case", sorted(LOAD_CASES))
 def test_bad_load_input(case, space, capsys, monkeypatch):
     test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
+
+
+# --- issue #31, slice duty (item 6: the variant owns its duty) -------------------------------
+# the [duty] table of common/duty_vm450.toml: speeds out of range or reversed, files that do not
+# exist, an unknown S-N card or key; a variant with no [duty] asks for what a command needs
+DUTY = "common/duty_vm450.toml"
+DUTY_EDITS = {
+    "duty_design_speed_above_proof": (DUTY, "design_speeds_rpm = [10000.0, 7000.0]",
+                                      "design_speeds_rpm = [12000.0, 7000.0]"),
+    "duty_speed_range_reversed": (DUTY, "speed_range_rpm = [1200.0, 9500.0]",
+                                  "speed_range_rpm = [9500.0, 1200.0]"),
+    "duty_speed_range_above_engine": (DUTY, "speed_range_rpm = [1200.0, 9500.0]",
+                                      "speed_range_rpm = [1200.0, 12000.0]"),
+    "duty_campbell_range_reversed": (DUTY, "campbell_range_rpm = [0.0, 9500.0]",
+                                     "campbell_range_rpm = [9500.0, 0.0]"),
+    "duty_unknown_spectrum": (DUTY, 'spectrum = "rpm.dat"', 'spectrum = "nosuch.dat"'),
+    "duty_unknown_engine": (DUTY, 'engine = "vm450"', 'engine = "vm999"'),
+    "duty_unknown_sn_curve": (DUTY, 'sn_curve = "structural_steel"', 'sn_curve = "steel"'),
+    "duty_life_under_one_block": (DUTY, "design_life_blocks = 1.0e7",
+                                  "design_life_blocks = 0.5"),
+    "duty_unknown_key": (DUTY, 'sn_curve = "', 'max_speed = "9500"\nsn_curve = "'),
+    "no_duty": ("x2_57.toml", ', "common/duty_vm450.toml"]', "]"),
+}
+DUTY_EXPECT = {
+    "duty_design_speed_above_proof": ["duty_vm450.toml", "duty.design_speeds_rpm[0]",
+                                      "11400", "1.2 ×"],
+    "duty_speed_range_reversed": ["duty_vm450.toml", "duty.speed_range_rpm", "low < high"],
+    "duty_speed_range_above_engine": ["duty_vm450.toml", "duty.speed_range_rpm",
+                                      "max_rpm 9500"],
+    "duty_campbell_range_reversed": ["duty_vm450.toml", "duty.campbell_range_rpm",
+                                     "low < high"],
+    "duty_unknown_spectrum": ["duty_vm450.toml", "duty.spectrum", "nosuch.dat", "rpm.dat"],
+    "duty_unknown_engine": ["duty_vm450.toml", "duty.engine", "vm999", "vm450.toml"],
+    "duty_unknown_sn_curve": ["duty_vm450.toml", "duty.sn_curve", "structural_steel"],
+    "duty_life_under_one_block": ["duty_vm450.toml", "duty.design_life_blocks", "[1, 1e12]"],
+    "duty_unknown_key": ["duty_vm450.toml", "duty.max_speed", "not a known field"],
+}
+VARIANT_EDITS.update(DUTY_EDITS)
+DUTY_CASES = {f"variant_check_{_k}": (["variant", "check", f"{{V:{_k}}}"], DUTY_EXPECT[_k])
+              for _k in DUTY_EXPECT}
+DUTY_CASES.update({
+    "report_campbell_range_reversed": (["report", "--campbell-range", "9500:0", "--out",
+                                        "{W}/o"], ["--campbell-range", "a <= b"]),
+    "report_no_duty": (["report", "--variant", "{V:no_duty}", "--no-pictures", "--out",
+                        "{W}/o"], ["x2_57.toml", "duty.design_life_h", "is not stated",
+                                   "--design-life-h"]),
+    "report_no_duty_no_spectrum": (["report", "--variant", "{V:no_duty}", "--design-life-h",
+                                    "1000", "--no-pictures", "--out", "{W}/o"],
+                                   ["x2_57.toml", "duty.spectrum", "--spectrum"]),
+    "static_no_duty_no_rpm": (["static", "--variant", "{V:no_duty}", "--out", "{W}/o"],
+                              ["x2_57.toml", "duty.design_speeds_rpm", "--rpm"]),
+    "beam_no_duty_no_rpm": (["beam", "--variant", "{V:no_duty}"],
+                            ["x2_57.toml", "duty.design_speeds_rpm", "--rpm"]),
+    "campbell_no_duty_no_range": (["campbell", "--variant", "{V:no_duty}"],
+                                  ["x2_57.toml", "duty.campbell_range_rpm", "RANGE"]),
+})
+CASES.update(DUTY_CASES)          # counted by the catalogue's coverage test
+
+
+@pytest.mark.parametrize("case", sorted(DUTY_CASES))
+def test_duty_bad_input(case, space, capsys, monkeypatch):
+    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)

@@ -12,7 +12,7 @@ import pytest
 
 import shaftfe.model.loader as variant_mod
 from shaftfe.cli import main
-from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
+from shaftfe.model.variant import Attachment, Bearing, Duty, Material, Segment, Variant
 
 ROOT = Path(__file__).resolve().parents[1]
 K = ((35_030.0, 8756.0), (8756.0, 35_030.0))
@@ -27,7 +27,8 @@ def _fake_variant(n_bearings: int = 2) -> Variant:
             Attachment("cw2", 80.0, 105.0, 0.24, 20.23, 92.0, angle_deg=180.0))
     return Variant("fake", "test", segs, brgs, atts,
                    Material("14220", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0), 0.0,
-                   clearance_station_x_mm=50.0)
+                   clearance_station_x_mm=50.0,
+                   duty=Duty("fake", (1200.0, 9500.0), design_speeds_rpm=(10_000.0,)))
 
 
 @pytest.fixture

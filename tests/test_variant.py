@@ -39,7 +39,7 @@ def test_variant_loads_with_contiguous_segments_and_files(name):
     v = load_variant(name)
     assert v.name == name
     assert v.source_files[0].endswith(f"{name}.toml")
-    assert len(v.source_files) == 5                      # the variant + 4 common includes
+    assert len(v.source_files) == 6                      # the variant + 5 common includes
     for a, b in zip(v.segments, v.segments[1:], strict=False):
         assert b.x_start_mm == pytest.approx(a.x_end_mm)   # exact sums of mm: default rel 1e-6
     assert v.segments[0].x_start_mm == 0.0
@@ -170,8 +170,8 @@ BAD_CASES = {
                                     '["angle_deg", "x_centroid_mm"]\nderived = ["polar_inertia_'
                                     'kg_mm2", "diametral_inertia_kg_mm2"]\nnote = """m and e: '
                                     'seed §8.2.2 (F_v1', "x2_57.toml", "attachments[0].material"),
-    "unknown_include": ("x2_57.toml", '"common/parts.toml"]', '"common/parts.toml", '
-                        '"common/nope.toml"]', "x2_57.toml", "include[4]"),
+    "unknown_include": ("x2_57.toml", '"common/duty_vm450.toml"]', '"common/duty_vm450.toml", '
+                        '"common/nope.toml"]', "x2_57.toml", "include[5]"),
     "seat_not_a_segment": ("x2_57.toml", 'seat = "cw2_seat"', 'seat = "nowhere"',
                            "x2_57.toml", "attachments[1].seat"),
     "negative_mass": ("x2_57.toml", "mass_kg = 0.24\n", "mass_kg = -0.24\n",

@@ -75,20 +75,38 @@ def add_engine_option(p, engine_help: str | None = None,
     """``--engine`` and ``--allow-overspeed`` of a command that assesses operating speeds: the
     engine's max_rpm is the limit (``util.limits.engine_speed_limit``). Without help texts: a
     command of checking speeds (static, beam), up to ``PROOF_FACTOR`` × max_rpm."""
-    from shaftfe.util.limits import DEFAULT_ENGINE, PROOF_FACTOR
-    p.add_argument("--engine", default=DEFAULT_ENGINE, help=engine_help or (
-        f"engine file whose max_rpm bounds --rpm (default {DEFAULT_ENGINE}: the engine of the "
-        f"x2_* balancer shafts): up to {PROOF_FACTOR:g} × max_rpm, an overspeed proof check "
-        "(the seed's 10 000 rpm is 1.05 × 9500)"))
+    from shaftfe.util.limits import PROOF_FACTOR
+    p.add_argument("--engine", default=None, help=engine_help or (
+        "engine file whose max_rpm bounds --rpm (default: the highest speed of the variant's "
+        f"[duty] speed_range_rpm): up to {PROOF_FACTOR:g} × that speed, an overspeed proof "
+        "check (the x2_* shafts' 10 000 rpm is 1.05 × the VM 450's 9500)"))
     p.add_argument("--allow-overspeed", action="store_true", help=overspeed_help or (
         f"a --rpm above {PROOF_FACTOR:g} × the engine's max_rpm (with a warning)"))
 
 
-def check_speeds(rpms, args) -> None:
-    """The checking speeds against the engine's limit for a proof check (util.limits)."""
+def check_speeds(rpms, args, variant=None) -> None:
+    """The checking speeds against the engine's limit for a proof check (util.limits): the
+    --engine given, else the variant's [duty] speed range."""
     from shaftfe.util.limits import PROOF_FACTOR, check_operating_speed
-    check_operating_speed(max(rpms), args.engine, args.allow_overspeed, "command line",
+    limit = args.engine or (variant.duty if variant is not None else None)
+    check_operating_speed(max(rpms), limit, args.allow_overspeed, "command line",
                           "--rpm", factor=PROOF_FACTOR)
+
+
+def design_speeds(text: str | None, variant, option: str = "--rpm", *,
+                  first: bool = False) -> list[float]:
+    """``--rpm`` as typed, else the design speeds the variant's [duty] states (``first``: the
+    first of them, the checking speed of ``static`` and ``beam``); neither: one line naming the
+    field and the file (nothing defaults to the seed's speeds)."""
+    if text is not None:
+        return parse_rpm_list(text, option)
+    d = variant.duty
+    if d is None or not d.design_speeds_rpm:
+        src = d.source if d is not None else (variant.source_files or (variant.name,))[0]
+        raise InputError(src, "duty.design_speeds_rpm", f"the design speeds in rpm (in the "
+                         f"variant's [duty] table, or {option} on the command line)",
+                         reason="is not stated")
+    return list(d.design_speeds_rpm[:1] if first else d.design_speeds_rpm)
 
 
 def parse_rpm_list(text: str, option: str = "--rpm") -> list[float]:

@@ -15,8 +15,8 @@ def register(sub) -> None:
         "reactions and L10h, deflection line and at the named stations, nominal von Mises stress "
         "and Kt-based notch estimates at the shoulders. Centrifugal loads m e ω² scale with rpm².")
     p.add_argument("--variant", required=True, help="variant name, e.g. x2_57")
-    p.add_argument("--rpm", default="10000", help="speed(s) in rpm, comma-separated "
-                   "(default 10000), e.g. 10000,7000")
+    p.add_argument("--rpm", default=None, help="speed(s) in rpm, comma-separated (default: "
+                   "the first of the variant's [duty] design_speeds_rpm), e.g. 10000,7000")
     from shaftfe.commands._common import add_engine_option
     add_engine_option(p)
     p.add_argument("--rigid-supports", action="store_true",
@@ -43,12 +43,21 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from shaftfe.commands._common import parse_rpm_list, print_json, print_table, write_atomic
+    from shaftfe.commands._common import (
+        check_speeds,
+        design_speeds,
+        load_variant_from,
+        parse_rpm_list,
+        print_json,
+        print_table,
+        write_atomic,
+    )
     from shaftfe.util.fmt import life
-
-    rpms = parse_rpm_list(args.rpm)
-    from shaftfe.commands._common import check_speeds
-    check_speeds(rpms, args)
+    if args.rpm is not None:
+        parse_rpm_list(args.rpm)               # a bad --rpm before the variant is read
+    variant = load_variant_from(args)
+    rpms = design_speeds(args.rpm, variant, first=True)
+    check_speeds(rpms, args, variant)
     from shaftfe.util.limits import check_max_element
     check_max_element(args.max_element)
     plot_fmt = None
@@ -62,10 +71,8 @@ def run(args) -> int:
 
     from shaftfe.beam.model import build_model
     from shaftfe.beam.solve import solve
-    from shaftfe.commands._common import load_variant_from
     from shaftfe.util.notices import collected
 
-    variant = load_variant_from(args)
     if args.seed_load_case:
         variant = variant.with_seed_load_case()
     model = build_model(variant, rigid_supports=args.rigid_supports,

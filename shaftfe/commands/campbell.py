@@ -73,8 +73,9 @@ def register(sub) -> None:
         description="Natural frequencies of the spinning balancer shaft over a speed range "
         "(reduced modal basis, MAC mode tracking, forward/backward whirl labels) and the "
         "critical speeds where a branch crosses an engine-order line k × rpm/60.")
-    p.add_argument("range", metavar="RANGE",
-                   help="speed range in rpm: a:b or a:b:step (e.g. 0:8000)")
+    p.add_argument("range", metavar="RANGE", nargs="?", default=None,
+                   help="speed range in rpm: a:b or a:b:step (e.g. 0:8000; default: the "
+                   "variant's [duty] campbell_range_rpm)")
     p.add_argument("--step", type=float, default=1000.0, help="speed step in rpm "
                    "(default 1000; a step given in RANGE wins)")
     default_orders = ",".join(f"{k:g}" for k in DEFAULT_ORDERS)
@@ -254,10 +255,26 @@ def _staged(out):
     return staged_dir(out) if out else nullcontext(None)
 
 
+def _duty_range(args) -> str:
+    """RANGE from the variant's [duty] campbell_range_rpm; neither: one line naming both."""
+    from shaftfe.commands._common import load_variant_from
+    v = load_variant_from(args)
+    d = v.duty
+    if d is None or d.campbell_range_rpm is None:
+        src = d.source if d is not None else (v.source_files or (v.name,))[0]
+        raise InputError(src, "duty.campbell_range_rpm", "the Campbell range [low, high] in "
+                         "rpm (in the variant's [duty] table, or RANGE on the command line)",
+                         reason="is not stated")
+    lo, hi = d.campbell_range_rpm
+    return f"{lo:g}:{hi:g}"
+
+
 def run_campbell(args) -> int:
     from shaftfe.commands._common import print_json, write_atomic
 
-    rpms = speeds_from_range(args.range, args.step)
+    if args.range is not None:
+        speeds_from_range(args.range, args.step)     # a bad RANGE before the variant is read
+    rpms = speeds_from_range(args.range or _duty_range(args), args.step)
     orders = parse_orders(args.orders)
     _check_common(args)
     vtu = None

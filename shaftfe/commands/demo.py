@@ -36,9 +36,12 @@ def register(sub) -> None:
 
 def run(args) -> int:
     from shaftfe.commands import report
-    from shaftfe.report.options import ReportOptions
+    from shaftfe.model.loader import load_variant
+    from shaftfe.report.options import ReportOptions, with_duty
 
-    # the seed's study as it was made: its load case, no spin softening (its Ansys static)
-    options = ReportOptions(variant=DEFAULT_VARIANT, level=args.level, seed_load_case=True,
-                            spin_softening=False)
+    # the seed's study as it was made: its load case, no spin softening (its Ansys static),
+    # and its duty (the variant's [duty]: the seed's speeds, rpm.dat, VM 450)
+    options = with_duty(ReportOptions(variant=DEFAULT_VARIANT, level=args.level,
+                                      seed_load_case=True, spin_softening=False),
+                        load_variant(DEFAULT_VARIANT))
     return report.make_report(options, args.out, json_out=args.json)

@@ -60,7 +60,8 @@ def register(sub) -> None:
                    "csv 'time_s,rpm' (see shaftfe.fatigue.history)")
     p.add_argument("--variant", default="x2_57", help="variant name or path (default x2_57)")
     add_engine_option(p, "engine file whose max_rpm is the highest speed the history may "
-                      "reach (default vm450: the engine of the x2_* balancer shafts)",
+                      "reach (default: the highest speed of the variant's [duty] "
+                      "speed_range_rpm)",
                       "assess a history above the engine's max_rpm (with a warning)")
     p.add_argument("--ref-rpm", type=float, default=None,
                    help="speed a normalised history is normalised by (default: the file's "
@@ -69,10 +70,12 @@ def register(sub) -> None:
                    help="sample rate in Hz of an rpm / normalised file without a header")
     opt("--mean-stress", "soderberg | goodman | gerber | none (default soderberg, as the seed)")
     opt("--equivalent", "von_mises | signed_von_mises (default von_mises, as the seed)")
-    opt("--material", "S-N card in geometry/common/sn_curves.toml: structural_steel (default, "
-        "the seed's Ansys Structural Steel) | 14220")
-    opt("--design-life-h", "design life in hours of riding (default: 1e7 blocks, the seed's; "
-        "1e7 blocks of the seed's 300 s block = 833 333 h); either form from one pass of the "
+    opt("--material", "S-N card in geometry/common/sn_curves.toml, e.g. structural_steel | "
+        "14220 | 12050 (default: the variant's [duty] sn_curve, structural_steel for the x2_* "
+        "shafts as the seed; else the card of the shaft's material)")
+    opt("--design-life-h", "design life in hours of riding (default: the variant's [duty] "
+        "design life, 1e7 blocks of the 300 s block = 833 333 h for the x2_* shafts; none "
+        "stated: 1e7 blocks with a warning); either form from one pass of the "
         "history to 1e9 blocks and 1e9 h", type=float)
     opt("--design-life", "design life in blocks (passes of the history), the seed's form; "
         "not together with --design-life-h; the same bounds", type=float)

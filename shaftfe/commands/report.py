@@ -22,10 +22,22 @@ def register(sub) -> None:
         "display of the stages goes to stderr on a terminal (not with --json).")
     p.add_argument("--variant", default="x2_57", help="variant name or path (default x2_57)")
     p.add_argument("--spectrum", default=None,
-                   help="rpm history (default: the bundled loadspectra/rpm.dat)")
-    add_engine_option(p, "engine file (default vm450); its max_rpm ends the Campbell range "
-                      "and bounds the rpm history",
+                   help="rpm history (default: the variant's [duty] spectrum)")
+    add_engine_option(p, "engine file for the balancing section and whose max_rpm bounds the "
+                      "rpm history (default: the variant's [duty] engine; none: no balancing, "
+                      "the [duty] speed range bounds the history)",
                       "assess an rpm history above the engine's max_rpm (with a warning)")
+    p.add_argument("--rpm", default=None, help="design speeds, comma-separated (default: the "
+                   "variant's [duty] design_speeds_rpm)")
+    p.add_argument("--campbell-range", default=None, metavar="LO:HI",
+                   help="speed range of the Campbell sweep in rpm (default: the variant's "
+                   "[duty] campbell_range_rpm)")
+    p.add_argument("--design-life-h", type=float, default=None, metavar="H",
+                   help="design life in hours (default: the variant's [duty] design life)")
+    p.add_argument("--material", default=None, metavar="CARD",
+                   help="the seed method's S-N card in geometry/common/sn_curves.toml "
+                   "(default: the variant's [duty] sn_curve, else the card of the shaft's "
+                   "material)")
     p.add_argument("--level", default="default", help="mesh level: coarse | default | fine")
     p.add_argument("--model", default="solid",
                    help="static model: solid (3D P2 tets, default) | axisymmetric (Fourier "
@@ -58,12 +70,19 @@ def register(sub) -> None:
 
 
 def options_from_args(args):
+    from shaftfe.commands._common import parse_range, parse_rpm_list
     from shaftfe.report.options import ReportOptions
-    from shaftfe.util.paths import DEFAULT_SPECTRUM
+    from shaftfe.util.limits import RPM_CEILING
 
+    camp = None
+    if args.campbell_range is not None:
+        lo, hi, _ = parse_range(args.campbell_range, "--campbell-range", lo=0.0, hi=RPM_CEILING)
+        camp = (lo, hi)
     return ReportOptions(
-        variant=args.variant, spectrum=args.spectrum or str(DEFAULT_SPECTRUM),
-        engine=args.engine, level=args.level, rotor_model=args.rotor_model,
+        variant=args.variant, spectrum=args.spectrum,
+        engine=args.engine, campbell_range_rpm=camp, design_life_h=args.design_life_h,
+        design_rpm=tuple(parse_rpm_list(args.rpm)) if args.rpm is not None else None,
+        material=args.material, level=args.level, rotor_model=args.rotor_model,
         campbell_step_rpm=args.campbell_step, estimate_error=args.estimate_error,
         cache_dir=args.cache_dir, pictures=not args.no_pictures,
         seed_load_case=args.seed_load_case, model=args.model,
@@ -140,12 +159,12 @@ def _print_summary(rep, page) -> None:
           f"{num(hs['safety_factor'], 3)} at {num(fat['settings']['design_life_blocks'])} blocks; "
           f"hot spot {hs['region']}")
     print(f"Campbell: {rep.campbell['statement']}")
-    print()
-    print_table(["quantity", "unit", "seed", "shaftfe", "diff", "shaftfe model"],
-                [[c.quantity, c.unit, num(c.seed, 5), num(c.ours, 5), pct(c.diff_percent),
-                  _short(c.model)]
-                 for c in rep.comparisons if c.group in ("static", "fatigue")],
-                title="seed figures next to ours (all of them in the report)")
+    rows = [[c.quantity, c.unit, num(c.seed, 5), num(c.ours, 5), pct(c.diff_percent),
+             _short(c.model)] for c in rep.comparisons if c.group in ("static", "fatigue")]
+    if rows:                                  # the seed's shaft only
+        print()
+        print_table(["quantity", "unit", "seed", "shaftfe", "diff", "shaftfe model"], rows,
+                    title="seed figures next to ours (all of them in the report)")
     print()
     print("run time: " + ", ".join(f"{n} {t:.1f} s" for n, t in rep.timings)
           + f"; total {sum(t for _, t in rep.timings):.1f} s")

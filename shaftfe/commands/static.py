@@ -12,6 +12,7 @@ from shaftfe.commands._common import (
     add_engine_option,
     add_set_option,
     check_speeds,
+    design_speeds,
     load_variant_from,
     out_name,
     parse_rpm_list,
@@ -34,8 +35,9 @@ def register(sub) -> None:
         "update). "
         "Writes result.vtu, summary.json and deflection.png to --out.")
     p.add_argument("--variant", required=True, help="variant name (geometry/<name>.toml) or path")
-    p.add_argument("--rpm", default="10000",
-                   help="speed(s) in rpm, comma-separated (default 10000), e.g. 7000,10000")
+    p.add_argument("--rpm", default=None,
+                   help="speed(s) in rpm, comma-separated (default: the first of the variant's "
+                   "[duty] design_speeds_rpm, 10000 for the x2_* shafts), e.g. 7000,10000")
     add_engine_option(p)
     p.add_argument("--model", default="solid", choices=MODELS,
                    help="solid: 3D P2 tets (default); axisymmetric: the body of revolution in "
@@ -78,8 +80,11 @@ def run(args) -> int:
 
     from shaftfe.util.atomic import staged_dir
 
-    rpms = parse_rpm_list(args.rpm)
-    check_speeds(rpms, args)
+    if args.rpm is not None:
+        parse_rpm_list(args.rpm)               # a bad --rpm before the variant is read
+    variant = load_variant_from(args)
+    rpms = design_speeds(args.rpm, variant, first=True)
+    check_speeds(rpms, args, variant)
     if args.order not in (1, 2):
         raise InputError("--order", "--order", "1 | 2", got=args.order)
     if args.level not in LEVEL_NAMES:
@@ -93,13 +98,12 @@ def run(args) -> int:
         raise InputError("--solver", "--solver", "auto | superlu | pardiso | amg",
                          got=args.solver)
     if args.model == "axisymmetric":
-        return _run_axisymmetric(args, rpms, load_variant_from(args))
+        return _run_axisymmetric(args, rpms, variant)
     from shaftfe.static import cache as static_cache
     from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
     from shaftfe.util.units import REF_RPM
 
-    variant = load_variant_from(args)
     opts = StaticOptions(level=args.level, order=args.order, rigid_supports=args.rigid_supports,
                          load_distribution=args.load_distribution, body_force=args.body_force,
                          seed_load_case=args.seed_load_case, solver=args.solver,

@@ -22,8 +22,10 @@ def register(sub) -> None:
                        "the whole-balancer mass properties against the seed's table, and the "
                        "attachment forces m e ω² with rigid-support reactions.")
     ps.add_argument("variant", help="variant name (e.g. x2_57) or path to a .toml file")
-    ps.add_argument("--rpm", default="7000,10000",
-                    help="speeds for the forces, comma-separated (default 7000,10000)")
+    ps.add_argument("--rpm", default=None,
+                    help="speeds for the forces, comma-separated (default: the variant's "
+                    "[duty] design speeds, ascending: 7000,10000 for the x2_* shafts; none "
+                    "stated: no force table)")
     ps.add_argument("--json", action="store_true", help="print JSON instead of tables")
     add_set_option(ps)
     ps.set_defaults(handler=run_show)
@@ -215,8 +217,10 @@ def run_show(args) -> int:
     from shaftfe.commands._common import parse_rpm_list, print_json, print_table
     from shaftfe.model.loader import load_variant
 
-    rpms = parse_rpm_list(args.rpm)
+    rpms = parse_rpm_list(args.rpm) if args.rpm is not None else None
     v = load_variant(args.variant, tuple(args.set or ()))
+    if rpms is None:
+        rpms = sorted(v.duty.design_speeds_rpm) if v.duty is not None else []
     rep = _report(v, rpms)
     if args.json:
         print_json(rep)

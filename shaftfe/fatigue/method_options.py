@@ -48,7 +48,7 @@ METHOD_OPTIONS: dict[str, tuple[str, object, tuple[str, ...]]] = {
     "--ec": ("ec", None, STANDARDS),                # None: elements.bearings.EC_DEFAULT
     "--mean-stress": ("mean_stress", "soderberg", SEED),
     "--equivalent": ("equivalent", "von_mises", SEED),
-    "--material": ("material", "structural_steel", SEED),
+    "--material": ("material", None, SEED),         # None: the variant's (sn.variant_card)
     "--kf": ("kf", 1.0, SEED),
     "--model": ("model", "solid", FIELD),
     "--level": ("level", "default", FIELD),

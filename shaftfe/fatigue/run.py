@@ -69,7 +69,8 @@ class FatigueJob:
     sample_rate: float | None = None       # Hz, for a file without a header
     mean_stress: str = "soderberg"
     equivalent: str = "von_mises"
-    material: str = "structural_steel"     # S-N card in geometry/common/sn_curves.toml
+    material: str | None = None            # S-N card in geometry/common/sn_curves.toml; None:
+    #                                        the variant's (fatigue.sn.variant_card)
     design_life: float | None = None       # blocks; None: design_life_h, else 1e7 (the seed's)
     speed_kmh: float = 70.0
     kf: float = 1.0                        # fatigue strength factor in (0, 1]
@@ -81,7 +82,8 @@ class FatigueJob:
     spin_softening: bool = True            # the parts' m ω² u (static model; README)
     overrides: tuple[str, ...] = ()        # --set PATH=VALUE on the variant (model.overrides)
     design_life_h: float | None = None     # hours of riding; with design_life=None
-    engine: str = "vm450"                  # whose max_rpm bounds the history (check_history)
+    engine: str | None = None              # whose max_rpm bounds the history (check_history);
+    #                                        None: the variant's [duty] speed range
     allow_overspeed: bool = False          # assess a history above max_rpm (with a warning)
 
 
@@ -143,11 +145,21 @@ def check_life_settings(design_life: float | None, speed_kmh: float,
                          f"an average riding speed in (0, {SPEED_KMH_MAX:g}] km/h", got=speed_kmh)
 
 
-def resolve_design_life(job: FatigueJob, history) -> FatigueJob:
+def resolve_design_life(job: FatigueJob, history, duty=None) -> FatigueJob:
     """The job with its design life in blocks: ``design_life`` or ``design_life_h`` over the
-    history's block length, each within ``design_life_range`` of this history, or the seed's
-    1e7 blocks when neither is given."""
+    history's block length, each within ``design_life_range`` of this history; when neither is
+    given, the variant's ``duty`` design life, else 1e7 blocks (the seed's, said in a
+    warning)."""
     from dataclasses import replace
+    if job.design_life is None and job.design_life_h is None:
+        if duty is not None and (duty.design_life_blocks or duty.design_life_h):
+            job = replace(job, design_life=duty.design_life_blocks,
+                          design_life_h=duty.design_life_h)
+        else:
+            from shaftfe.util.notices import warn
+            warn("design-life-default", "fatigue", "the variant states no design life "
+                 f"([duty] design_life_h): {DEFAULT_DESIGN_LIFE_BLOCKS:g} blocks of the "
+                 "history assumed (the seed's); --design-life-h sets one")
     block = history.duration_s
     lo, hi = design_life_range(block)
     if job.design_life is not None:
@@ -289,8 +301,10 @@ def load_inputs(job: FatigueJob) -> FatigueInputs:
     variant = load_variant(job.variant, job.overrides)
     refuse_sharp_corners(variant, "a fatigue check")     # every method reads these inputs
     history = read_spectrum(job.spectrum, job.ref_rpm, job.sample_rate)
-    check_history(history, job.engine, job.allow_overspeed)
-    return FatigueInputs(history, load_material(job.material), variant)
+    check_history(history, job.engine or variant.duty, job.allow_overspeed)
+    from shaftfe.fatigue.sn import variant_card
+    return FatigueInputs(history, load_material(job.material or variant_card(variant)),
+                         variant)
 
 
 def static_reference(variant, job: FatigueJob):
@@ -338,7 +352,8 @@ def run_fatigue(job: FatigueJob, inputs: FatigueInputs | None = None,
         with stage("history"):
             inputs = load_inputs(job)
     history, material, variant = inputs.history, inputs.material, inputs.variant
-    job = resolve_design_life(job, history)
+    from dataclasses import replace
+    job = resolve_design_life(replace(job, material=material.name), history, variant.duty)
     with stage("static"):
         ref = static_reference(variant, job)
     with stage("rainflow + life"):

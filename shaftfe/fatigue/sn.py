@@ -141,6 +141,30 @@ def known_materials(path: str | Path = SN_FILE) -> list[str]:
     return sorted(_read(Path(path)).keys())
 
 
+def card_of_material(material: str, path: str | Path = SN_FILE) -> str | None:
+    """The name of the S-N card whose ``material`` is the record ``material`` (the first in
+    name order), or None."""
+    cards = _read(Path(path))
+    return next((n for n in sorted(cards) if cards[n].get("material") == material), None)
+
+
+def variant_card(variant) -> str:
+    """The seed method's S-N card of a variant: its [duty] ``sn_curve``, else the card whose
+    ``material`` is the shaft's own (``card_of_material``); neither: one line naming the
+    material and the cards there are."""
+    d = variant.duty
+    if d is not None and d.sn_curve is not None:
+        return d.sn_curve
+    name = card_of_material(variant.material.name)
+    if name is None:
+        src = d.source if d is not None else (variant.source_files or (variant.name,))[0]
+        raise InputError(src, "duty.sn_curve", "an S-N card of sn_curves.toml for the seed "
+                         f"method (none has material = {variant.material.name!r}, the shaft's): "
+                         f"one of {', '.join(known_materials())}, or --material",
+                         reason="is not stated")
+    return name
+
+
 def load_material(name: str, path: str | Path = SN_FILE, *,
                   beyond_last: str | None = None,
                   infinite_life_cycles: float | None = None) -> FatigueMaterial:

@@ -74,7 +74,7 @@ def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None):
         raise InputError("command line", "--model", "solid (the FKM gradient is taken on the "
                          "3D field)", got=job.model)
     inputs = inputs or load_inputs(job)
-    job = resolve_design_life(job, inputs.history)
+    job = resolve_design_life(job, inputs.history, inputs.variant.duty)
     card = strength_card(inputs.variant, opts)
     ref = ref or static_reference(inputs.variant, job)
     res = assess_field(ref, inputs.history, card, load_surfaces(),

@@ -143,11 +143,14 @@ def din_summary(run) -> dict:
             "notes": list(run.notes)}
 
 
-def elements_summary(bearings, keys, gear_chk, kappa: float, e_c: float) -> dict:
+def elements_summary(bearings, keys, gear_chk, kappa: float, e_c: float, *,
+                     seed: bool = True) -> dict:
+    """The element checks' summary; ``seed``: with the seed's single-point bearing lives
+    (only for the seed's shaft); ``gear_chk`` None: no gear pair (the block is None)."""
     from shaftfe.elements.bearings import SEED_POINTS
     from shaftfe.model.bearing_life import l10h
     seed_rows = []
-    for s in SEED_POINTS:
+    for s in SEED_POINTS if seed else ():
         C = s["C_N"] if s["C_N"] else next(b.C_N for b in bearings)
         seed_rows.append({**s, "C_N": C, "ours_L10h": l10h(C, s["P_N"], s["rpm"])})
     return {"bearings": {"kappa": kappa, "e_C": e_c,
@@ -156,7 +159,8 @@ def elements_summary(bearings, keys, gear_chk, kappa: float, e_c: float) -> dict
                          "seed_points": seed_rows},
             "keys": [{k: _num(v) if isinstance(v, float) else v for k, v in vars(k_).items()}
                      for k_ in keys],
-            "gear": {k: _num(v) for k, v in vars(gear_chk).items()}}
+            "gear": {k: _num(v) for k, v in vars(gear_chk).items()}
+            if gear_chk is not None else None}
 
 
 def _h(v) -> str:
@@ -182,6 +186,8 @@ def elements_lines(el: dict, speed_kmh: float) -> list[str]:
                    f"{k['sigma_d_MPa']:.0f} MPa; 5×5×8: p {k['pressure_MPa']:.2f} MPa, "
                    f"safety {k['safety']:.1f}")
     g = el["gear"]
+    if g is None:
+        return out
     out.append(f"gear pair (Merritt as Inventor, 9500 rpm, 1.5× torque {g['torque_Nmm'] / 1e3:.4f} "
                f"N·m): F_t {g['F_t_N']:.3f} N, F_r {g['F_r_N']:.3f} N, F_n {g['F_n_N']:.3f} N, "
                f"v {g['v_m_s']:.3f} m/s, safety {g['safety']:.2f} (seed 33.93)")
@@ -190,11 +196,21 @@ def elements_lines(el: dict, speed_kmh: float) -> list[str]:
 
 def compute_elements(variant, history, kappa: float, e_c: float, speed_kmh: float,
                      beam=None) -> dict:
-    """Bearings over the duty cycle, both keys and the gear pair of ``variant`` (``beam``: the
-    beam solution at ``standards.REF_RPM`` when the caller has one)."""
+    """Bearings over the duty cycle, the keys and the gear pair of ``variant`` (``beam``: the
+    beam solution at ``standards.REF_RPM`` when the caller has one). Each check runs only
+    where its element is: the keys where a segment has a keyway, the gear pair where the
+    variant has a part named "gear"; both need the drive's data, the element-check file its
+    [duty] names (``elements``; none: no key or gear check). The seed's single-point bearing
+    lives stand beside ours for the seed's shaft only."""
     from shaftfe.elements import bearings, drive, gear, key
     from shaftfe.model.mass import mass_properties
-    doc = drive.load()
+    from shaftfe.report.seed import VARIANT
+    elements = variant.duty.elements if variant.duty is not None else None
+    seed = variant.name == VARIANT
+    duty = bearings.duty(variant, history, kappa, e_c, speed_kmh=speed_kmh, beam=beam)
+    if elements is None:
+        return elements_summary(duty, [], None, kappa, e_c, seed=seed)
+    doc = drive.load(elements)
     dr = drive.drive(doc)
     mp = mass_properties(variant)
     M_all = drive.torque_Nmm(mp.polar_inertia_kg_mm2 + dr.pump_inertia_kg_mm2, dr)
@@ -208,10 +224,9 @@ def compute_elements(variant, history, kappa: float, e_c: float, speed_kmh: floa
                 M = drive.torque_Nmm(cw2.polar_inertia_kg_mm2
                                      + cw2.mass_kg * cw2.eccentricity_mm ** 2, dr)
             keys.append(key.check(s.name, M, s.diameter_mm, doc["keys"]))
-    g = gear.check(M_all, dr.max_rpm, doc["gear_pair"])
-    return elements_summary(bearings.duty(variant, history, kappa, e_c, speed_kmh=speed_kmh,
-                                          beam=beam),
-                            keys, g, kappa, e_c)
+    has_gear = any(a.name == "gear" for a in variant.attachments)
+    g = gear.check(M_all, dr.max_rpm, doc["gear_pair"]) if has_gear else None
+    return elements_summary(duty, keys, g, kappa, e_c, seed=seed)
 
 
 FKM_FIELDS = ("fkm_utilisation", "fkm_safety", "von_mises_ref")

@@ -33,6 +33,7 @@ from shaftfe.model.variant import (
     Attachment,
     BalanceTarget,
     Bearing,
+    Duty,
     HexSocket,
     Keyway,
     Material,
@@ -638,7 +639,7 @@ def resolved_dict(path: Path, ctx: Ctx | None = None) -> dict:
 def _build(path: Path, merged: dict, ctx: Ctx, *, check_balance: bool = True) -> Variant:
     top = _show(path.resolve())
     allowed_top = {"name", "description", "shaft", "materials", "bearing_types", "parts",
-                   "use_parts", "attachments", "balance", "loads", "load_cases"}
+                   "use_parts", "attachments", "balance", "loads", "load_cases", "duty"}
     for k in merged:
         if k not in allowed_top:
             raise InputError(ctx.file_of(k, top), k, "one of " + ", ".join(sorted(allowed_top)),
@@ -682,6 +683,7 @@ def _build(path: Path, merged: dict, ctx: Ctx, *, check_balance: bool = True) ->
     lsrc = ctx.file_of("loads", top)
     loads = read_loads(merged.get("loads", []), lsrc, segs, [a.name for a in atts], ctx)
     cases = read_load_cases(merged.get("load_cases", []), ctx.file_of("load_cases", top), loads)
+    duty = _duty(merged, ctx, top)
 
     v = Variant(
         name=name, description=str(desc), segments=segs, bearings=bearings,
@@ -692,13 +694,99 @@ def _build(path: Path, merged: dict, ctx: Ctx, *, check_balance: bool = True) ->
         source_files=tuple(ctx.files), materials=tuple(mats[k] for k in sorted(mats)),
         balance_target=target,
         clearance_mm=num(shaft, "clearance_to_crankshaft_mm", ssrc, "shaft", required=False),
-        stock_diameter_mm=stock, loads=loads, load_cases=cases)
+        stock_diameter_mm=stock, loads=loads, load_cases=cases, duty=duty)
     from shaftfe.solid.plan import prepare
     validate_variant(v)
     prepare(v)       # the solid's own rules (slots, hex socket, contact bands): every command
     if target is not None and check_balance:
         _check_balance(v, target, ctx.file_of("balance", top))
     return dataclasses.replace(v, content_hash=content_hash(v))
+
+
+_DUTY_KEYS = {"speed_range_rpm", "design_speeds_rpm", "campbell_range_rpm", "spectrum",
+              "design_life_h", "design_life_blocks", "engine", "sn_curve", "elements"}
+
+
+def _duty_file(val, src: str, fld: str, std_dir: Path, allowed: str) -> str:
+    """A file named by [duty]: relative to the file stating it, else a bare name in its
+    standard directory (engines: geometry/engines/NAME.toml)."""
+    from shaftfe.util.paths import ENGINES_DIR
+    need(isinstance(val, str) and val != "", src, fld, allowed, val)
+    here = Path(src).resolve().parent
+    names = [val] if std_dir != ENGINES_DIR or val.endswith(".toml") else [val, f"{val}.toml"]
+    for cand in [here / n for n in names] + [std_dir / n for n in names]:
+        if cand.is_file():
+            return str(cand.resolve())
+    have = ", ".join(sorted(p.name for p in std_dir.iterdir() if p.is_file()
+                            and not p.name.startswith((".", "README", "make_"))))
+    raise InputError(src, fld, f"{allowed}: a file relative to {Path(src).name} or one of "
+                     f"{have} in {_show(std_dir)}/", got=val, reason="is not an existing file")
+
+
+def _rpm_pair(t: dict, key: str, src: str, lo0: float, hi0: float) -> tuple[float, float]:
+    v = t.get(key)
+    ok = (isinstance(v, list) and len(v) == 2 and all(is_num(e) for e in v)
+          and all(math.isfinite(float(e)) for e in v))
+    need(ok, src, f"duty.{key}", "[low, high] in rpm", v)
+    lo, hi = float(v[0]), float(v[1])
+    need(lo0 <= lo < hi <= hi0, src, f"duty.{key}",
+         f"[low, high] with {lo0:g} <= low < high <= {hi0:g} rpm", v)
+    return lo, hi
+
+
+def _duty(merged: dict, ctx: Ctx, top: str) -> Duty | None:
+    """The variant's [duty] (``model.variant.Duty``), or None when it states none: a command
+    that needs a duty value then asks for it (nothing defaults to the seed's)."""
+    if "duty" not in merged:
+        return None
+    from shaftfe.util.limits import PROOF_FACTOR, RPM_CEILING
+    from shaftfe.util.paths import COMMON_DIR, ENGINES_DIR, LOADSPECTRA_DIR
+    src = ctx.file_of("duty", top)
+    t = table(merged["duty"], src, "duty")
+    check_keys(t, _DUTY_KEYS, src, "duty")
+    provenance(t, src, "duty", "duty", ctx)
+    need("speed_range_rpm" in t, src, "duty.speed_range_rpm",
+         "[lowest running, highest] speed in rpm", None)
+    lo, hi = _rpm_pair(t, "speed_range_rpm", src, 0.0, RPM_CEILING)
+    ds = t.get("design_speeds_rpm", [])
+    need(isinstance(ds, list) and all(is_num(e) for e in ds), src, "duty.design_speeds_rpm",
+         "a list of speeds in rpm", ds)
+    top_ds = min(PROOF_FACTOR * hi, RPM_CEILING)
+    for i, r in enumerate(ds):
+        need(math.isfinite(r) and 0 < r <= top_ds, src, f"duty.design_speeds_rpm[{i}]",
+             f"a speed in (0, {top_ds:g}] rpm ({PROOF_FACTOR:g} × the highest speed "
+             f"{hi:g} of speed_range_rpm: a proof check)", r)
+    camp = _rpm_pair(t, "campbell_range_rpm", src, 0.0, RPM_CEILING) \
+        if "campbell_range_rpm" in t else None
+    life_h = num(t, "design_life_h", src, "duty", required=False)
+    life_b = num(t, "design_life_blocks", src, "duty", required=False)
+    need(life_h is None or life_b is None, src, "duty.design_life_h",
+         "design_life_h or design_life_blocks, not both", life_h)
+    need(life_h is None or 0 < life_h <= 1e7, src, "duty.design_life_h",
+         "a life in (0, 1e7] h", life_h)
+    need(life_b is None or 1 <= life_b <= 1e12, src, "duty.design_life_blocks",
+         "a number of blocks in [1, 1e12]", life_b)
+    engine = _duty_file(t["engine"], src, "duty.engine", ENGINES_DIR,
+                        "an engine file (.toml)") if "engine" in t else None
+    if engine is not None:
+        from shaftfe.balance.engines import load_engine
+        e = load_engine(engine)
+        need(e.max_rpm is None or hi <= e.max_rpm, src, "duty.speed_range_rpm",
+             f"a highest speed <= {e.name}'s max_rpm {e.max_rpm:g} rpm", [lo, hi])
+    spectrum = _duty_file(t["spectrum"], src, "duty.spectrum", LOADSPECTRA_DIR,
+                          "an rpm history file") if "spectrum" in t else None
+    elements = _duty_file(t["elements"], src, "duty.elements", COMMON_DIR,
+                          "an element-check file like common/elements.toml") \
+        if "elements" in t else None
+    sn = t.get("sn_curve")
+    if sn is not None:
+        from shaftfe.fatigue.sn import known_materials
+        cards = known_materials()
+        need(sn in cards, src, "duty.sn_curve", one_of(cards, "sn_curves"), sn)
+    return Duty(source=src, speed_range_rpm=(lo, hi),
+                design_speeds_rpm=tuple(float(r) for r in ds), campbell_range_rpm=camp,
+                spectrum=spectrum, design_life_h=life_h, design_life_blocks=life_b,
+                engine=engine, sn_curve=sn, elements=elements)
 
 
 # The variant's [balance] table states the whole balancer's mass and balance ratio; its parts

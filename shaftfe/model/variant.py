@@ -204,6 +204,33 @@ class MassProperties:
 
 
 @dataclass(frozen=True)
+class Duty:
+    """What the shaft is asked to do (the variant's ``[duty]`` table): its speeds, its rpm
+    history and design life, the engine it balances and the data of its element checks.
+    Files are resolved paths (``loader._duty``: relative to the file stating [duty], else a bare
+    name in its standard directory). ``None`` = not stated: a command needing it asks for it
+    on the command line; nothing falls back to the seed's values."""
+    source: str                                   # the file that states [duty]
+    speed_range_rpm: tuple[float, float]          # lowest running (idle) … highest speed
+    design_speeds_rpm: tuple[float, ...] = ()     # static checking speeds (proof speeds)
+    campbell_range_rpm: tuple[float, float] | None = None
+    spectrum: str | None = None                   # rpm history file
+    design_life_h: float | None = None            # design life in hours of the history
+    design_life_blocks: float | None = None       # … or in passes of its block (the seed's 1e7)
+    engine: str | None = None                     # engine file (balancing); None = no balancing
+    sn_curve: str | None = None                   # the seed method's S-N card (sn_curves.toml)
+    elements: str | None = None                   # drive, keys and gear pair data (elements.toml)
+
+    @property
+    def max_rpm(self) -> float:
+        return self.speed_range_rpm[1]
+
+    def speed_limit(self) -> tuple[float, str]:
+        """(the highest operating speed, where it comes from): ``util.limits``' bound."""
+        return self.max_rpm, f"highest speed of speed_range_rpm in {self.source} [duty]"
+
+
+@dataclass(frozen=True)
 class Variant:
     name: str                          # "x2_57"
     description: str
@@ -224,6 +251,7 @@ class Variant:
     overrides: tuple[tuple[str, object], ...] = ()  # (path, value) set for this run (--set)
     loads: tuple = ()                  # shaftfe.model.loads.Load: the [[loads]] tables
     load_cases: tuple = ()             # shaftfe.model.loads.LoadCase: the [[load_cases]]
+    duty: Duty | None = None                      # [duty]: None = the variant states none
 
     @property
     def overrides_map(self) -> dict:
@@ -275,11 +303,12 @@ def _canonical(obj: Any) -> Any:
 
 def content_hash(v: Variant) -> str:
     """sha256 of a canonical JSON of the resolved physical content: segments, bearings,
-    attachments, materials, hex socket, parting plane and clearance station. Names of the
+    attachments, materials, hex socket, parting plane and clearance station (not the duty: the
+    solid and its solution do not depend on it). Names of the
     variant, descriptions, provenance and file names are left out, so comments, whitespace,
     notes and the include layout do not change it."""
     skip = {"name", "description", "provenance", "source_files", "content_hash",
-            "balance_target", "overrides"}
+            "balance_target", "overrides", "duty"}
     body = {f.name: _canonical(getattr(v, f.name)) for f in dataclasses.fields(v)
             if f.name not in skip}
     text = json.dumps(body, sort_keys=True, separators=(",", ":"), ensure_ascii=True)

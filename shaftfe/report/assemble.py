@@ -28,7 +28,14 @@ from pathlib import Path
 
 from shaftfe.fatigue.method_options import DEFAULT_METHOD
 from shaftfe.report.comparisons import comparisons, error_estimates
-from shaftfe.report.options import ERROR_STAGE, OTHER_LEVEL, ReportOptions, check_options, stages
+from shaftfe.report.options import (
+    ERROR_STAGE,
+    OTHER_LEVEL,
+    ReportOptions,
+    check_options,
+    stages,
+    with_duty,
+)
 from shaftfe.report.results import Figure, Report
 from shaftfe.report.stages import (
     balancing,
@@ -37,6 +44,7 @@ from shaftfe.report.stages import (
     campbell,
     fatigue,
     file_comments,
+    is_seed_engine,
     provenance_summary,
     read_inputs,
     static_summary,
@@ -70,6 +78,17 @@ def _machine() -> dict:
         load = None
     return {"cpus": os.cpu_count(), "load_average_1_5_15": load,
             "platform": platform.platform(), "python": platform.python_version()}
+
+
+def _life_in_blocks(o: ReportOptions, history) -> ReportOptions:
+    """The design life in passes of the history's block (a life in hours over its length),
+    within the fatigue command's range (``fatigue.run.resolve_design_life``)."""
+    import dataclasses
+
+    from shaftfe.fatigue.run import FatigueJob, resolve_design_life
+    job = resolve_design_life(FatigueJob(str(o.spectrum), design_life=o.design_life_blocks,
+                                         design_life_h=o.design_life_h), history)
+    return dataclasses.replace(o, design_life_blocks=job.design_life)
 
 
 def _static(o: ReportOptions, variant, prog):
@@ -206,6 +225,7 @@ def _vtu(o: ReportOptions, out: Path, variant, res, ref, ff, rotor_model, cres) 
 
 
 def _inputs_block(o: ReportOptions, variant, engine, fat: dict) -> dict:
+    d = variant.duty
     return {
         "variant": variant.name, "description": variant.description,
         "files": list(variant.source_files), "content_hash": variant.content_hash,
@@ -220,10 +240,13 @@ def _inputs_block(o: ReportOptions, variant, engine, fat: dict) -> dict:
                          "seed_load_case": a.seed_load_case,
                          "force_N": {f"{rp:g}": a.force_N(rp) for rp in o.design_rpm}}
                         for a in variant.attachments],
-        "engine": engine.name, "engine_file": repo_relative(engine.source),
+        "engine": engine.name if engine else None,
+        "engine_file": repo_relative(engine.source) if engine else None,
         "spectrum": fat["history"]["source"], "design_rpm": list(o.design_rpm),
         "spectrum_comments": file_comments(o.spectrum),
-        "campbell_range_rpm": [0.0, float(engine.max_rpm)],
+        "campbell_range_rpm": [float(r) for r in o.campbell_range_rpm],
+        "duty": {"file": d.source, "speed_range_rpm": list(d.speed_range_rpm)}
+        if d is not None else None,
     }
 
 
@@ -248,19 +271,24 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     out = Path(out)
     check_options(o)
     machine = _machine()
+    with prog.stage("inputs"):
+        from shaftfe.model.loader import load_variant
+        variant = load_variant(o.variant, o.overrides)
+        o = with_duty(o, variant)           # what the options leave open, from its [duty]
+        check_options(o)
+        engine, history, material = read_inputs(o, variant)
+        o = _life_in_blocks(o, history)
+        prov = provenance_summary(variant)
     figs: list[Figure] = []
     fig_dir = out / "figures"
 
     def add_fig(name: str, title: str, caption: str) -> None:
         figs.append(Figure(name, title, caption, (fig_dir / f"{name}.png").read_bytes()))
 
-    with prog.stage("inputs"):
-        variant, engine, history, material = read_inputs(o)
-        prov = provenance_summary(variant)
-    with prog.stage("balancing"):
-        bal, fres, sw, _ = balancing(engine, variant, seedmod)
+    with prog.stage("balancing"):             # only for a shaft of a named engine
+        bal, fres, sw, _ = balancing(engine, variant, seedmod) if engine else (None,) * 4
     with prog.stage("beam check"):
-        beam_out, _ = beam_check(variant)
+        beam_out, _ = beam_check(variant, o.design_rpm)
     res, ref = _static(o, variant, prog)
     st = (static_summary_axisymmetric if o.model == "axisymmetric" else static_summary)(
         res, variant)
@@ -270,7 +298,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     with prog.stage("strength by standard"):
         strength = _strength(o, variant, ref, history, ff.result.cycles)
     with prog.stage("Campbell"):
-        camp, cres, rotor_model = campbell(variant, engine, o)
+        camp, cres, rotor_model = campbell(variant, o)
     with prog.stage("VTU"):
         files = _vtu(o, out, variant, res, ref, ff, rotor_model, cres)
     with prog.stage("3D pictures"):
@@ -281,8 +309,10 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     with prog.stage("plots"):
         _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, cres,
                camp, files["vtu_rpm"], add_fig)
-    errs = error_estimates(st, res, fat, scaled, bench, camp, beam_out)
-    comps = comparisons(bal, beam_out, st, fat, camp, variant, seedmod)
+    errs = error_estimates(st, res, fat, scaled, bench, camp, beam_out,
+                           seed=variant.name == seedmod.VARIANT)
+    comps = comparisons(bal, beam_out, st, fat, camp, variant, seedmod,
+                        seed_engine=is_seed_engine(engine, seedmod))
     notes = tuple(dict.fromkeys(list(res.notes) + list(ref.notes)))
     return Report(
         options=o, created_utc=datetime.datetime.now(datetime.UTC).strftime(
@@ -361,8 +391,8 @@ def _pictures(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> list[tup
         ("safety_factor_3d", "safety_factor", 0.0, "fatigue safety factor (seed method)",
          f"{head}: fatigue safety factor, seed method\nmin {num(hot.safety_factor, 3)} at "
          f"{num(o.design_life_blocks)} blocks ({hot.region})",
-         f"fatigue safety factor of the seed method (von Mises, {o.mean_stress}, Structural "
-         f"Steel S-N) at {o.design_life_blocks:g} blocks [-]; red below 1, yellow at 1, green "
+         f"fatigue safety factor of the seed method (von Mises, {o.mean_stress}, S-N card "
+         f"{o.material}) at {o.design_life_blocks:g} blocks [-]; red below 1, yellow at 1, green "
          "above; hot spot = the minimum outside the singular points. The default method's "
          "(FKM) verdict is in Strength by standard."),
     )
@@ -380,14 +410,13 @@ def _pictures(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> list[tup
 
 def _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, cres, camp,
            rpm_vtu, add_fig) -> None:
-    from shaftfe.balance import plots
-    from shaftfe.fatigue import kernels
-    from shaftfe.fatigue import plots as fatigue_plots
-    from shaftfe.fatigue.counting import rainflow_matrix
-    from shaftfe.io import vtu as export
-    from shaftfe.rotordynamics.plots import plot_campbell
-    from shaftfe.util.atomic import write_atomic
+    if fres is not None:                      # a shaft of a named engine
+        _balance_plots(fres, sw, fig_dir, add_fig)
+    _other_plots(o, fig_dir, variant, res, ref, ff, history, material, cres, rpm_vtu, add_fig)
 
+
+def _balance_plots(fres, sw, fig_dir, add_fig) -> None:
+    from shaftfe.balance import plots
     plots.plot_forces(fres, fig_dir / "balance_forces.png")
     add_fig("balance_forces", "shaking forces over one revolution",
             f"{fres.engine}, crank C X = {100 * fres.X:.1f} %, balancer X2 = "
@@ -399,7 +428,17 @@ def _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, 
             f"max|Fx|, max|Fy|, RMS|F|, max|F| [N] against the balancer ratio X2 [%] for crank "
             f"C (X = {100 * sw.X[0]:.1f} %), {sw.rpm:g} rpm, cylinder frame (as the seed's "
             "fig. 58: x across, y along the cylinder axis).")
+
+
+def _other_plots(o, fig_dir, variant, res, ref, ff, history, material, cres, rpm_vtu,
+                 add_fig) -> None:
+    from shaftfe.fatigue import kernels
+    from shaftfe.fatigue import plots as fatigue_plots
+    from shaftfe.fatigue.counting import rainflow_matrix
+    from shaftfe.io import vtu as export
+    from shaftfe.rotordynamics.plots import plot_campbell
     from shaftfe.static.outputs import clearance_of
+    from shaftfe.util.atomic import write_atomic
     clear = clearance_of(variant)
     if o.model == "axisymmetric":
         from shaftfe.axisymmetric.reference import surface_envelope

@@ -213,8 +213,10 @@ def _summary(r) -> str:
              f"critical speeds in {num(camp['rpm'][0])} to {num(camp['rpm'][-1])} rpm"),
     ]
     return ('<h2 id="summary">Summary</h2><div class="cards">' + "".join(cards) + "</div>"
-            '<p class="note">The seed method (Ansys Structural Steel, Soderberg) is in '
-            '<a href="#strength">Strength by standard</a> and the seed comparison.</p>'
+            f'<p class="note">The seed method ({_e(r.fatigue["settings"]["material"])} S-N card, '
+            f'{_e(r.fatigue["settings"]["mean_stress"])}) is in '
+            '<a href="#strength">Strength by standard</a>'
+            + (" and the seed comparison" if r.comparisons else "") + ".</p>"
             f'<p class="note">{_e(camp["statement"])}.</p>')
 
 
@@ -229,7 +231,8 @@ def _inputs(r) -> str:
                                             i.get("overrides", {}).items()) or "none"],
             ["shaft", f"length {num(i['length_mm'])} mm, {i['material']}, E "
                       f"{num(i['E_MPa'])} MPa, ν {num(i['nu'], 3)}"],
-            ["engine", f"{i['engine']} ({i['engine_file']})"],
+            ["engine", f"{i['engine']} ({i['engine_file']})" if i["engine"]
+             else "none (the variant's [duty] names none: no balancing)"],
             ["rpm history", i["spectrum"]],
             ["design speeds", ", ".join(f"{num(x)} rpm" for x in i["design_rpm"])],
             ["Campbell range", f"{num(i['campbell_range_rpm'][0])} to "
@@ -246,21 +249,24 @@ def _inputs(r) -> str:
                  f"{num(b['K_N_per_mm'][0][0], 5)} / {num(b['K_N_per_mm'][0][1], 5)}",
                  num(b["axial"])] for b in i["bearings"]], numeric={2, 3})
     rpms = i["design_rpm"]
-    s += table(["part", "m [kg]", "e [mm]", "seat x [mm]", "loads the shaft (seed case)"]
+    slc = any(a["seed_load_case"] for a in i["attachments"])   # the column where it means one
+    s += table(["part", "m [kg]", "e [mm]", "seat x [mm]"]
+               + (["loads the shaft (seed case)"] if slc else [])
                + [f"m e ω² at {num(x)} rpm [N]" for x in rpms],
                [[a["name"], num(a["mass_kg"], 4), num(a["eccentricity_mm"], 4),
-                 num(a["x_mm"]), num(a["seed_load_case"])]
+                 num(a["x_mm"])] + ([num(a["seed_load_case"])] if slc else [])
                 + [num(a["force_N"][f"{x:g}"], 4) for x in rpms] for a in i["attachments"]],
-               numeric={1, 2, 3, *range(5, 5 + len(rpms))})
+               numeric={1, 2, 3, *range(4 + slc, 4 + slc + len(rpms))})
     if i.get("spectrum_comments"):
         s += (f"<p class=\"note\">The rpm history <code>{_e(i['spectrum'])}</code> says of "
               f"itself: “{_e(' '.join(i['spectrum_comments']))}”</p>")
     counts = ", ".join(f"{n} {t}" for t, n in sorted(p["counts"].items()))
     s += ("<h3>Provenance of the drawing parameters</h3>"
-          f"<p>Every numeric value of the variant files is tagged: {_e(counts)}. The drawings' "
-          "dimensions did not survive in the seed, so the geometry is reconstructed to "
-          f"reproduce the seed's facts; <code>{_e(p['document'])}</code> says how each value was "
-          "fitted and to what.</p>"
+          f"<p>Every numeric value of the variant files is tagged: {_e(counts)}."
+          + (" The drawings' dimensions did not survive in the seed, so the geometry is "
+             "reconstructed to reproduce the seed's facts; "
+             f"<code>{_e(p['document'])}</code> says how each value was fitted and to what."
+             if p.get("seed_geometry") else "") + "</p>"
           f"<details><summary>the {len(p['reconstructed'])} reconstructed values</summary>"
           f"<p class=\"note\">{_e(', '.join(p['reconstructed']))}</p></details>")
     return s
@@ -268,10 +274,12 @@ def _inputs(r) -> str:
 
 def _balancing(r) -> str:
     b = r.balancing
+    if b is None:
+        return ""
     m = b["metrics"]
     s = ('<h2 id="balancing">Balancing</h2>'
          f"<p>{_e(b['engine'])} at {num(b['rpm'])} rpm (tilt {num(b['tilt_deg'])}°), "
-         f"crank C X = {num(b['X_percent'], 3)} %, balancer X2 = {num(b['X2_percent'], 4)} % "
+         f"crank X = {num(b['X_percent'], 3)} %, balancer X2 = {num(b['X2_percent'], 4)} % "
          "(this variant's mass properties), first-order amplitude m_pos R ω² = "
          f"{num(b['first_order_amplitude_N'], 4)} N.</p>")
     s += table(["metric (engine frame)", "value [N]", "crank angle [°]"],
@@ -424,6 +432,8 @@ def _campbell(r) -> str:
 
 
 def _comparison(r) -> str:
+    if not r.comparisons:                     # a shaft that is not the seed's
+        return ""
     s = ('<h2 id="seed">Seed figures next to ours</h2><p class="note">Seed figures from '
          "<code>shaftfe/report/seed.py</code> (and the variant file's seed-tagged balance "
          "table); ours from this run. Difference = ours / seed − 1.</p>")
@@ -535,7 +545,9 @@ def _strength(r) -> str:
         return ""
     fat = r.fatigue["hot_spot"]
     ref = num(r.fatigue["history"]["static_ref_rpm"])
-    rows = [("seed (Ansys-style: von Mises, Soderberg, Structural Steel S-N)",
+    st = r.fatigue["settings"]
+    rows = [(f"seed (Ansys-style: von Mises, {_e(st['mean_stress'])}, S-N card "
+             f"{_e(st['material'])})",
              num(fat["safety_factor"], 3, strip=False), "-",
              life(fat["life_blocks"], fat["life_hours"]),
              f"{num(fat['sigma_eq_ref_MPa'], 4)} at x = {num(fat['xyz_mm'][0])} mm: the node of "
@@ -559,10 +571,11 @@ def _strength(r) -> str:
     c0 = r.static["cases"][0]
     html = ('<h2 id="strength">Strength by standard</h2>'
             "<p>The default of <code>shaftfe fatigue</code> is <b>FKM</b>: it judges the local "
-            "stress of the 3D field with the shaft's own material (16MnCr5, case hardened), "
-            "surface and stress gradient, as an FE user signs a shaft. The seed method keeps "
-            "Ansys's generic Structural Steel (yield 250 MPa, below the hot spot's stress), so "
-            "its Soderberg correction inflates the amplitudes; DIN 743 judges nominal beam "
+            "stress of the 3D field with the shaft's own material (card "
+            f"{_e(s['din743']['card'])}), surface and stress gradient, as an FE user signs a "
+            f"shaft. The seed method takes the S-N card {_e(st['material'])} (yield "
+            f"{num(st['yield_MPa'])} MPa) with its {_e(st['mean_stress'])} correction; DIN 743 "
+            "judges nominal beam "
             "stresses with tabulated notch factors at the fatigue limit of one cycle (the "
             "history's largest), so it gives no life. They differ because they judge different "
             "materials and different stresses, not because one is wrong.</p>"
@@ -576,7 +589,10 @@ def _strength(r) -> str:
             + "".join(f"<tr><td>{a}</td><td>{b}</td><td>{c}</td><td>{e}</td><td>{_e(h)}</td>"
                       "</tr>" for a, b, c, e, h in rows) + "</table>")
     from shaftfe.fatigue.standards_out import elements_lines
-    html += "<h3>Bearings (ISO 281), keys and gear pair (seed 000 §8.2)</h3><ul>" + "".join(
+    el = s["elements"]
+    what = "Bearings (ISO 281)" + (", keys" if el.get("keys") else "") + \
+        (" and gear pair" if el.get("gear") else "")
+    html += f"<h3>{what}</h3><ul>" + "".join(
         f"<li>{_e(line.strip())}</li>" for line in
         elements_lines(s["elements"], r.fatigue["settings"]["speed_kmh"])) + "</ul>"
     return html
@@ -585,7 +601,10 @@ def _strength(r) -> str:
 def render(report) -> str:
     r = report
     title = f"shaftfe assessment: {r.inputs['variant']}"
-    nav = "".join(f'<a href="#{k}">{_e(v)}</a>' for k, v in SECTIONS)
+    nav = "".join(f'<a href="#{k}">{_e(v)}</a>' for k, v in SECTIONS
+                  if not (k == "seed" and not r.comparisons)
+                  and not (k == "balancing" and r.balancing is None)
+                  and not (k == "strength" and not r.strength))
     body = "".join([
         "<header>", f"<h1>{_e(title)}</h1>",
         f'<p class="meta">{_e(r.inputs["description"])} · {_e(r.created_utc)} · shaftfe '

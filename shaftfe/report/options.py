@@ -8,7 +8,6 @@ from dataclasses import dataclass
 from shaftfe.errors import InputError
 from shaftfe.rotordynamics.options import DEFAULT_ORDERS, ROTOR_MODELS
 from shaftfe.solid.levels import ESTIMATE_PAIR_CHEAP
-from shaftfe.util.paths import DEFAULT_SPECTRUM
 
 STAGES = ("inputs", "balancing", "beam check", "static (mesh + one solve)", "fatigue",
           "strength by standard", "Campbell", "VTU", "3D pictures", "plots")
@@ -34,18 +33,21 @@ def stages(o) -> tuple[str, ...]:
 class ReportOptions:
     variant: str = "x2_57"
     overrides: tuple[str, ...] = ()       # --set PATH=VALUE on the variant (model.overrides)
-    spectrum: str = str(DEFAULT_SPECTRUM)
-    engine: str = "vm450"
+    # None: the variant's [duty] states it (``with_duty``); nothing defaults to the seed's
+    spectrum: str | None = None
+    engine: str | None = None             # None with no [duty] engine: no balancing section
     level: str = "default"
-    design_rpm: tuple[float, ...] = (10_000.0, 7_000.0)   # seed §8.2.2 static check, §8.3 ref
+    design_rpm: tuple[float, ...] | None = None
+    campbell_range_rpm: tuple[float, float] | None = None
     campbell_step_rpm: float = 500.0
     modes: int = 12
     orders: tuple[float, ...] = DEFAULT_ORDERS
     rotor_model: str = "beam"
     estimate_error: bool = False          # solve a second mesh level (OTHER_LEVEL)
     mean_stress: str = "soderberg"
-    material: str = "structural_steel"
-    design_life_blocks: float = 1e7
+    material: str | None = None           # the seed method's S-N card (sn_curves.toml)
+    design_life_blocks: float | None = None
+    design_life_h: float | None = None
     speed_kmh: float = 70.0
     cache_dir: str | None = None
     pictures: bool = True                 # PyVista renders (off: no VTK import)
@@ -69,10 +71,16 @@ def check_options(o: ReportOptions) -> None:
         raise InputError("command line", "--rotor-model", " | ".join(ROTOR_MODELS),
                          got=o.rotor_model)
     from shaftfe.util.limits import RPM_CEILING, check_rpm
-    if not o.design_rpm:
+    if o.design_rpm is not None and not o.design_rpm:
         raise InputError("command line", "--rpm", "one or more speeds", got="")
-    for r in o.design_rpm:
+    for r in o.design_rpm or ():
         check_rpm(r, "--rpm", positive=True)
+    if o.campbell_range_rpm is not None:
+        lo, hi = o.campbell_range_rpm
+        if not (math.isfinite(lo) and math.isfinite(hi) and 0 <= lo < hi <= RPM_CEILING):
+            raise InputError("command line", "--campbell-range",
+                             f"LO:HI with 0 <= LO < HI <= {RPM_CEILING:g} rpm",
+                             got=f"{lo:g}:{hi:g}")
     if not (math.isfinite(o.campbell_step_rpm)
             and CAMPBELL_STEP_MIN_RPM <= o.campbell_step_rpm <= RPM_CEILING):
         raise InputError("command line", "--campbell-step",
@@ -82,7 +90,7 @@ def check_options(o: ReportOptions) -> None:
     if not (1 <= o.modes <= 50):
         raise InputError("command line", "--modes", "1..50", got=o.modes)
     from shaftfe.fatigue.run import MEAN_STRESS, check_life_settings
-    check_life_settings(o.design_life_blocks, o.speed_kmh)
+    check_life_settings(o.design_life_blocks, o.speed_kmh, o.design_life_h)
     if o.mean_stress not in MEAN_STRESS:
         raise InputError("command line", "--mean-stress", " | ".join(MEAN_STRESS),
                          got=o.mean_stress)
@@ -95,3 +103,43 @@ def solid_rotor_available() -> bool:
     """True when the 3D solid rotor model (``shaftfe.rotordynamics.solid_rotor``) is installed."""
     import importlib.util
     return importlib.util.find_spec("shaftfe.rotordynamics.solid_rotor") is not None
+
+
+def with_duty(o: ReportOptions, variant) -> ReportOptions:
+    """``o`` with every duty value it leaves open taken from the variant's [duty]
+    (``model.variant.Duty``); a value neither states is one line naming the field, the file and
+    the option. The engine and the element checks' data are optional (no engine: no balancing
+    section; no element data: no key and gear-pair checks)."""
+    import dataclasses
+
+    from shaftfe.fatigue.sn import variant_card
+    d = variant.duty
+    where = variant.source_files[0] if variant.source_files else variant.name
+    src = d.source if d is not None else where
+
+    def need(value, field: str, option: str, what: str):
+        if value is None:
+            raise InputError(src, f"duty.{field}", f"{what} (in the variant's [duty] table, "
+                             f"or {option} on the command line)", reason="is not stated")
+        return value
+
+    life_h = o.design_life_h if o.design_life_blocks is None else None
+    life_b = o.design_life_blocks
+    if life_b is None and life_h is None and d is not None:
+        life_b, life_h = d.design_life_blocks, d.design_life_h
+    if life_b is None:
+        need(life_h, "design_life_h", "--design-life-h", "a design life in hours")
+    return dataclasses.replace(
+        o,
+        spectrum=o.spectrum or need(d and d.spectrum, "spectrum", "--spectrum",
+                                    "an rpm history file"),
+        engine=o.engine or (d.engine if d is not None else None),
+        design_rpm=o.design_rpm or need((d and d.design_speeds_rpm) or None,
+                                        "design_speeds_rpm", "--rpm", "the design speeds"),
+        campbell_range_rpm=o.campbell_range_rpm or need(
+            d and d.campbell_range_rpm, "campbell_range_rpm", "--campbell-range",
+            "the Campbell range [low, high] in rpm"),
+        material=o.material or variant_card(variant),
+        design_life_blocks=life_b, design_life_h=life_h)
+
+

@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from shaftfe.fatigue.run import SEED as FATIGUE
 
-__all__ = ["BALANCING", "CAMPBELL", "CRANK_C_X", "FATIGUE", "SEED_PARTS", "SOURCES", "STATIC",
-           "VARIANT"]
+__all__ = ["BALANCING", "CAMPBELL", "CRANK_C_X", "ENGINE", "FATIGUE", "SEED_PARTS", "SOURCES",
+           "STATIC", "VARIANT"]
 
 # The variant the seed's static, fatigue and rotor-dynamics studies are of (X2 = 57 %); for
 # another variant only the balancing and its own balance-table rows are compared.
@@ -18,6 +18,10 @@ VARIANT = "x2_57"
 # The parts whose forces the seed states (seed 000 §8.2.2): the gear, counterweight 1 (bolted
 # to the gear, F1 = both) and counterweight 2 (Fv2), by their names in the variant files.
 SEED_PARTS = ("gear", "counterweight_1", "counterweight_2")
+
+# The engine of the seed's balancing study (geometry/engines/vm450.toml's name): its figures
+# (the §5.4 row, crank C) are compared only on this engine.
+ENGINE = "VM 450"
 
 # Crank C of the VM 450 (m_C 3.580 kg, γ 2.85 mm): X = 31.1 % (seed 000 §8.2.1). The balancing
 # stage of the report uses it with the variant's X2, as the seed's §8.2.2 study did.

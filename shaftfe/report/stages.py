@@ -12,23 +12,21 @@ from shaftfe.util.paths import repo_relative
 from shaftfe.util.units import omega
 
 
-def read_inputs(o: ReportOptions) -> tuple:
+def read_inputs(o: ReportOptions, variant) -> tuple:
+    """The engine (None: the variant states none and --engine is not given: no balancing),
+    the rpm history (bounded by the engine's max_rpm, else the variant's [duty] speed range)
+    and the seed method's S-N card of the options ``o`` (``options.with_duty``)."""
     from shaftfe.balance.engines import load_engine
     from shaftfe.fatigue.run import check_history, read_spectrum
     from shaftfe.fatigue.sn import load_material
-    from shaftfe.model.loader import load_variant
-
-    variant = load_variant(o.variant, o.overrides)
     from shaftfe.solid.plan import refuse_sharp_corners
     refuse_sharp_corners(variant, "the report's fatigue check")     # before any solve
-    engine = load_engine(o.engine)
-    if engine.max_rpm is None or not engine.max_rpm > 0:
-        raise InputError(engine.source, "max_rpm", "> 0 rpm (the Campbell range ends there)",
-                         got=engine.max_rpm, reason="is missing")
+    engine = load_engine(o.engine) if o.engine else None
     history = read_spectrum(o.spectrum, None, None)
-    check_history(history, o.engine, o.allow_overspeed)     # at rest, or above max_rpm
+    # at rest, or above the engine's max_rpm (the variant's highest speed without an engine)
+    check_history(history, o.engine or variant.duty, o.allow_overspeed)
     material = load_material(o.material)
-    return variant, engine, history, material
+    return engine, history, material
 
 
 def file_comments(path, limit: int = 20) -> list[str]:
@@ -59,30 +57,39 @@ def provenance_summary(variant) -> dict:
         counts[tag] = counts.get(tag, 0) + 1
         if tag == "reconstructed":
             recon.append(path)
-    return {"counts": counts, "reconstructed": recon,
+    # the seed's shaft: its geometry tagged seed (the drawings' dimensions, RECONSTRUCTION.md)
+    seed_geometry = any(tag == "seed" and path.startswith("segments.")
+                        for path, tag in variant.provenance.source.items())
+    return {"counts": counts, "reconstructed": recon, "seed_geometry": seed_geometry,
             "document": "geometry/RECONSTRUCTION.md",
             "files": list(variant.source_files)}
 
 
+def is_seed_engine(engine, seedmod) -> bool:
+    """The engine the seed's balancing figures are of (seed 000 ch. 5 and 8: the VM 450)."""
+    return engine is not None and engine.name == seedmod.ENGINE
+
+
 def balancing(engine, variant, seedmod) -> tuple[dict, object, object, object]:
+    """The engine's shaking forces with the variant's X2 and the sweep over X2; the crank's X
+    is the seed's crank C (31.1 %) on the seed's engine, else the engine file's own; the seed's
+    §5.4 row only on the seed's engine (``seed_row`` None otherwise)."""
     import numpy as np
 
     from shaftfe.balance import single, sweep
 
     mp = mass_properties(variant)
     x2 = variant_x2(variant, mp, default=engine.X2 if engine.X2 is not None else 0.0)
-    X = seedmod.CRANK_C_X
+    seed = is_seed_engine(engine, seedmod)
+    X = seedmod.CRANK_C_X if seed else engine.X
+    if X is None:
+        raise InputError(engine.source, "compensation_mass_kg",
+                         "the crank's balance (compensation_mass_kg, compensation_radius_mm or "
+                         "X) for the balancing section", reason="is missing")
     res = single.forces(engine, X=X, X2=x2, rpm=engine.rpm)
     sw = sweep.sweep(engine, [X], np.arange(0.0, 1.0001, 0.01), rpm=engine.rpm,
                      tilt_deg=0.0)            # cylinder frame, as the seed's fig. 58
     mins = {k: (float(v[0][0]), 100.0 * float(v[1][0])) for k, v in sw.minima().items()}
-    sb = seedmod.BALANCING
-    sw2 = sweep.sweep(engine, [sb["X"]], np.arange(0.0, 1.0001, 0.01), rpm=sb["rpm"],
-                      tilt_deg=0.0)
-    mins2 = {k: (float(v[0][0]), 100.0 * float(v[1][0])) for k, v in sw2.minima().items()}
-    w = omega(sb["rpm"])
-    bal_force = engine.balancer_mass_kg * engine.balancer_radius_mm * 1e-3 * w ** 2 \
-        if engine.balancer_mass_kg and engine.balancer_radius_mm else None
     out = {
         "engine": engine.name, "engine_file": repo_relative(engine.source), "rpm": engine.rpm,
         "tilt_deg": engine.tilt_deg, "idle_rpm": engine.idle_rpm, "max_rpm": engine.max_rpm,
@@ -92,24 +99,34 @@ def balancing(engine, variant, seedmod) -> tuple[dict, object, object, object]:
         "first_order_amplitude_N": res.first_order_amplitude,
         "metrics": res.metrics.as_dict(),
         "sweep_minima": {k: {"value_N": v[0], "at_X2_percent": v[1]} for k, v in mins.items()},
-        "seed_row": {"X_percent": 100 * sb["X"], "rpm": sb["rpm"], "tilt_deg": 0.0,
-                     "minima": {k: {"value_N": v[0], "at_X2_percent": v[1]}
-                                for k, v in mins2.items()}},
-        "balancer_force_A1_N": bal_force,
+        "seed_row": None, "balancer_force_A1_N": None,
         "mass_properties": {"mass_kg": mp.mass_kg, "gamma2_mm": mp.gamma2_mm,
                             "x_T_mm": mp.x_T_mm,
                             "polar_inertia_kg_mm2": mp.polar_inertia_kg_mm2},
     }
+    if not seed:
+        return out, res, sw, None
+    sb = seedmod.BALANCING
+    sw2 = sweep.sweep(engine, [sb["X"]], np.arange(0.0, 1.0001, 0.01), rpm=sb["rpm"],
+                      tilt_deg=0.0)
+    mins2 = {k: (float(v[0][0]), 100.0 * float(v[1][0])) for k, v in sw2.minima().items()}
+    w = omega(sb["rpm"])
+    bal_force = engine.balancer_mass_kg * engine.balancer_radius_mm * 1e-3 * w ** 2 \
+        if engine.balancer_mass_kg and engine.balancer_radius_mm else None
+    out["seed_row"] = {"X_percent": 100 * sb["X"], "rpm": sb["rpm"], "tilt_deg": 0.0,
+                       "minima": {k: {"value_N": v[0], "at_X2_percent": v[1]}
+                                  for k, v in mins2.items()}}
+    out["balancer_force_A1_N"] = bal_force
     return out, res, sw, mins2
 
 
-def beam_check(variant) -> tuple[dict, object]:
-    """Inventor-style beam (rigid supports, seed load case) at 10 000 and 7000 rpm."""
+def beam_check(variant, rpms) -> tuple[dict, object]:
+    """Inventor-style beam (rigid supports, seed load case) at the design speeds ``rpms``."""
     from shaftfe.beam.model import build_model
     from shaftfe.beam.solve import solve
 
     v = variant.with_seed_load_case()
-    rpms = [10_000.0, 7_000.0]
+    rpms = [float(r) for r in rpms]
     timo = solve(build_model(v, rigid_supports=True), rpms)
     eb = solve(build_model(v, rigid_supports=True, shear_deformation=False), rpms)
     out = {}
@@ -269,12 +286,12 @@ def fatigue(ref, history, material, o: ReportOptions) -> tuple[dict, object]:
     return out, ff
 
 
-def campbell(variant, engine, o: ReportOptions) -> tuple[dict, object, object]:
+def campbell(variant, o: ReportOptions) -> tuple[dict, object, object]:
     import numpy as np
 
-    top = float(engine.max_rpm)
-    n = math.floor(top / o.campbell_step_rpm + 1e-9)
-    rpms = [i * o.campbell_step_rpm for i in range(n + 1)]
+    bottom, top = (float(r) for r in o.campbell_range_rpm)
+    n = math.floor((top - bottom) / o.campbell_step_rpm + 1e-9)
+    rpms = [bottom + i * o.campbell_step_rpm for i in range(n + 1)]
     if top - rpms[-1] > 1e-9 * top:
         rpms.append(top)
     from shaftfe.rotordynamics.analyse import analyse

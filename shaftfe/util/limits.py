@@ -65,10 +65,16 @@ DEFAULT_ENGINE = "vm450"     # the x2_* balancer shafts' engine (see the module 
 PROOF_FACTOR = 1.2           # static / beam checking speeds: up to 1.2 × max_rpm (docstring)
 
 
-def engine_speed_limit(engine: str = DEFAULT_ENGINE) -> tuple[float, str]:
+def engine_speed_limit(engine=DEFAULT_ENGINE) -> tuple[float, str]:
     """(the engine's max_rpm, where it comes from); an engine file without max_rpm: the
-    absolute ``RPM_CEILING``."""
+    absolute ``RPM_CEILING``. ``engine`` is an engine name or file, or a variant's duty
+    (``model.variant.Duty``: the highest speed of its speed range), or None (no engine and no
+    duty: ``RPM_CEILING``)."""
     from shaftfe.balance.engines import load_engine
+    if engine is None:
+        return RPM_CEILING, "shaftfe.util.limits.RPM_CEILING (no engine, no [duty] speed range)"
+    if hasattr(engine, "speed_limit"):
+        return engine.speed_limit()
     from shaftfe.util.paths import repo_relative
     e = load_engine(engine)
     if e.max_rpm is None:
