@@ -224,7 +224,9 @@ class Columns:
     c_n), anti | None) on ``Surface`` nodes, ``reactions`` name -> (5, c) (Fx, Fy, Fz, q_y,
     q_z on the shaft), ``torsion`` name -> (c,) the θ_x reaction about +x (N·mm) of a bearing
     that holds the twist (or of the gauge), ``load_sum`` (3, c) the applied resultant,
-    ``torque_sum`` (c,), ``motion`` part -> (2, c) the seats' (q_y, q_z) under softening."""
+    ``torque_sum`` (c,), ``load_scale`` (c,) Σ (|F| + |M| / L) of the actions (the force
+    scale of an equilibrium check when the resultant vanishes: a torque, a couple), ``motion``
+    part -> (2, c) the seats' (q_y, q_z) under softening."""
     components: tuple[Component, ...]
     harmonics: tuple
     stress: tuple
@@ -232,6 +234,7 @@ class Columns:
     torsion: dict
     load_sum: np.ndarray
     torque_sum: np.ndarray
+    load_scale: np.ndarray
     motion: dict
     gauge: str | None                   # the bearing whose θ_x row is only a gauge
 
@@ -280,12 +283,14 @@ def load_bands(variant, plan, seed_placement: bool) -> tuple:
 
 
 def _right_hand_sides(h, mesh, plan, variant, comps, acts, body, pressure, coeffs):
-    """(f0 (ndof, c), f1s, f1a, load_sum (3, c), torque_sum (c,), the pressure's σ_nn
-    amplitudes per part (n = 0, n = 1 sym, n = 1 anti) for the pressed column)."""
+    """(f0 (ndof, c), f1s, f1a, load_sum (3, c), torque_sum (c,), load_scale (c,), the
+    pressure's σ_nn amplitudes per part (n = 0, n = 1 sym, n = 1 anti) for the pressed
+    column)."""
     c = len(comps)
     index = {(co.pattern, co.factor_name, co.pressed_half): i for i, co in enumerate(comps)}
     f0, f1s, f1a = (np.zeros((h.ndof, c)) for _ in range(3))
-    load_sum, torque_sum = np.zeros((3, c)), np.zeros(c)
+    load_sum, torque_sum, scale = np.zeros((3, c)), np.zeros(c), np.zeros(c)
+    length = float(plan.length)
     sn = ({}, {}, {})
     if pressure:
         j = index[(("rpm2", REF_RPM), "parts", True)]
@@ -295,6 +300,7 @@ def _right_hand_sides(h, mesh, plan, variant, comps, acts, body, pressure, coeff
         for ld in pressure:
             a = math.radians(ld.angle_deg)
             load_sum[:, j] += ld.force_N * np.array([0.0, math.cos(a), math.sin(a)])
+            scale[j] += abs(ld.force_N)
     rows: dict = {}
     for a in acts:
         if a.pressed_half:
@@ -314,6 +320,7 @@ def _right_hand_sides(h, mesh, plan, variant, comps, acts, body, pressure, coeff
         f1a[:, j] += la
         load_sum[:, j] += a.F_N
         torque_sum[j] += a.M_Nmm[0]
+        scale[j] += float(np.linalg.norm(a.F_N) + np.linalg.norm(a.M_Nmm) / length)
     if body:
         rho = float(variant.material.density_t_mm3)
         unit0 = h.body_vector((1.0, 0.0, 0.0), 0)
@@ -326,7 +333,8 @@ def _right_hand_sides(h, mesh, plan, variant, comps, acts, body, pressure, coeff
             f1s[:, j] += rho * ay * unit1
             f1a[:, j] += rho * az * unit1
             load_sum[:, j] += mass * np.array([ax, ay, az])
-    return f0, f1s, f1a, load_sum, torque_sum, sn
+            scale[j] += mass * float(np.linalg.norm(b.accel_mm_s2))
+    return f0, f1s, f1a, load_sum, torque_sum, scale, sn
 
 
 def solve_model(variant, options: AxiOptions = AxiOptions(), *, rpm: float = REF_RPM,
@@ -362,7 +370,7 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, rpm: float = REF
     S = rc.Surface(mesh)
     bearings = [(b.name, hm.rbe3(h, mesh.group_edges(f"bearing:{b.name}"), b.x_center_mm), b)
                 for b in variant.bearings]
-    f0, f1s, f1a, load_sum, torque_sum, sn = _right_hand_sides(
+    f0, f1s, f1a, load_sum, torque_sum, load_scale, sn = _right_hand_sides(
         h, mesh, plan, variant, comps, acts, body, loads, coeffs)
     nc = len(comps)
     fac = np.array([c.factor(rpm, case) for c in comps])
@@ -461,7 +469,7 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, rpm: float = REF
             "mesh_from_cache": mesh.from_cache, "relative_residual": max(relres)}
     motion = {name: np.array([row @ us, row @ ua]) for name, row, _ in soft}
     cols = Columns(tuple(comps), tuple(cols_h), tuple(cols_s), reac, tors, load_sum,
-                   torque_sum, motion, gauge)
+                   torque_sum, load_scale, motion, gauge)
     base = AxiSolution(variant, options, plan, mesh, (), tuple(loads), tuple(bearings), {}, S,
                        (), n_used, change, track.names, secs, float(rpm), {},
                        {name: float(k) for name, _, k in soft}, cols)

@@ -268,8 +268,11 @@ def _case(sol: AxiSolution, r: float, scale: float, peaks, stations, st_u, ax_u,
     for name, (qy, qz) in sol.attachment_motion.items():     # spin softening: m ω² u
         load_sum = load_sum + sol.softening_N_per_mm[name] * np.array([0.0, qy, qz]) * scale
     reac_sum = sum((np.array(rr[:3]) for rr in sol.reactions.values()), np.zeros(3)) * scale
-    ref = float(np.linalg.norm(load_sum)) or sum(float(np.linalg.norm(rr[:3])) * abs(scale)
-                                                 for rr in sol.reactions.values())
+    # relative to the resultant, or where it (nearly) vanishes (torques, couples) to the
+    # loads' own size Σ (|F| + |M| / L)
+    ref = float(np.linalg.norm(load_sum))
+    size = float(np.abs(cols.load_scale * f).sum()) * abs(scale)
+    ref = ref if ref > 1e-3 * size else size
     eq = float(np.linalg.norm(load_sum + reac_sum) / ref) if ref > 0 else 0.0
     brs = []
     for name, rb, b in sol.bearings:

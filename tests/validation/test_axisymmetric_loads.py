@@ -189,3 +189,31 @@ def test_stepped_shaft_kt(stepped, load):
     assert kt == pytest.approx(ref, rel=KT_MESH), (load, kt, ref)
     lo, hi = CHART_BAND
     assert lo * CHART[load] <= kt <= hi * CHART[load], (load, kt, CHART[load])
+
+
+def test_constant_loads_do_not_scale_with_speed(cache):
+    """A constant torque beside a part's m e ω² (law rpm², at REF_RPM): each speed is the
+    columns × its factors, the torque × 1 and the part × (rpm / REF_RPM)² (exact: the same
+    columns, one multiplication each; 1e-12 covers the rounding of the products)."""
+    from dataclasses import replace
+
+    from shaftfe.model.variant import Attachment
+    v = _variant(BAR, [dict(name="T", kind="torque", x_mm=160.0, T_Nmm=1.0e5)])
+    v = replace(v, attachments=(Attachment("w", 95.0, 105.0, 1.0, 2.0, 100.0),))
+    res = solve_axisymmetric(v, [5000.0, 10000.0], AxiOptions(spin_softening=False),
+                             cache_dir=cache)
+    lo, hi = res.cases
+    assert dict(lo.torsion_Nmm)["L"] == pytest.approx(-1.0e5, rel=1e-9)
+    assert dict(hi.torsion_Nmm)["L"] == pytest.approx(-1.0e5, rel=1e-9)
+    f_lo, f_hi = dict((n, f) for n, _, f in lo.components), dict(
+        (n, f) for n, _, f in hi.components)
+    assert f_lo == {"T": 1.0, "parts": 0.25} and f_hi == {"T": 1.0, "parts": 1.0}
+    for a, b in zip(lo.bearings, hi.bearings, strict=True):      # forces: the part's only
+        assert a.Fy_N == pytest.approx(0.25 * b.Fy_N, rel=1e-12)
+
+
+def test_an_unknown_load_case_is_refused():
+    from shaftfe.errors import InputError
+    v = _variant(BAR, [dict(name="T", kind="torque", x_mm=160.0, T_Nmm=1.0e5)])
+    with pytest.raises(InputError, match="--case"):
+        solve_axisymmetric(v, case="nope")
