@@ -1,17 +1,37 @@
 """The shaft as a body of revolution under its real loads: options, loads in harmonics, the
 bearings' remote points, and the solve of every harmonic needed.
 
-Loads (the 3D model's, ``static.model``): each attachment's m e ω² at REF_RPM as a pressure on
-the half of its seat opposite its direction (ψ = θ − (angle + 180°), |ψ| < 90°), uniform or
-cosine in ψ, p0 from the net force: F = p0 R L · π a_1 (``kernels.force_per_p0``). Its Fourier
-series p(ψ) = p0 Σ a_n cos nψ splits into the symmetric (cos nθ) and antisymmetric (sin nθ)
-parts of harmonic n with the factors cos n(angle + π) and sin n(angle + π). Harmonic n = 1
-carries the whole net force; n = 0 and n ≥ 2 are self-equilibrated.
+Loads (``model.loads.actions``: every load of the variant as a force and moment about an
+axis point, delivered through a surface band):
+
+* a remote load (the default for every action): the band's RBE3 rows (``harmonic.rbe3``, the
+  area-weighted least-squares rigid motion of the band) transposed times [F; M]
+  (``Rbe3.load``), so F and M are carried exactly and the band stays free to deform (Ansys'
+  deformable Remote Force). On a surface of revolution the six rigid modes live in n = 0
+  (u_x: an axial force; θ_x: a torque, the kernels' U_θ part of n = 0) and n = 1 (u_y, θ_z in
+  the symmetric part; u_z, θ_y in the antisymmetric one): a remote load has no n ≥ 2 part. A
+  part's m e ω² acts at its centroid, entering through its seat (group ``load:<part>``); a
+  ``[[loads]]`` band that is not a part's seat splits the outline (group ``band:x0:x1``).
+* the seed's placement (``seed_load_case``: actions with ``pressed_half``): each part's
+  m e ω² as a pressure on the half of its seat opposite its direction (ψ = θ − (angle +
+  180°), |ψ| < 90°), uniform or cosine in ψ, p0 from the net force: F = p0 R L · π a_1
+  (``kernels.force_per_p0``). Its Fourier series p(ψ) = p0 Σ a_n cos nψ splits into the
+  symmetric (cos nθ) and antisymmetric (sin nθ) parts of harmonic n with the factors
+  cos n(angle + π) and sin n(angle + π); n = 1 carries the whole net force, n = 0 and n ≥ 2
+  are self-equilibrated.
+* gravity (``BodyAction``): the body force ρ a of the shaft's own mass (n = 0 for a_x, n = 1
+  for a_y, a_z), the parts' weights as remote loads.
+
+Components (``Component``): the actions of one speed-law pattern (``model.loads.pattern_key``)
+and one load-case factor name are one right-hand side; every harmonic is factorised once for
+all of them, and a speed or a load case is the columns × their factors (``superpose``).
 
 Bearings (``fe.supports``): the RBE3 remote point at the seat-band centre, radial 2×2 spring
 (K11, K12, K21, K22) on (u_y, u_z), i.e. on the symmetric and antisymmetric n = 1 parts, which
-it couples through K12/K21; tilt spring if given; u_x held at the axial bearing and θ_x at the
-bearings of ``hold_twist`` (n = 0); ``rigid_supports``: u_y = u_z = 0 at the remote points.
+it couples through K12/K21; tilt spring if given; u_x held at the axial bearing; θ_x held only
+at the bearings that hold torsion (``Bearing.holds_torsion``), else at the axial bearing as a
+gauge whose reaction vanishes because the torques balance (``model.loads.check_torque_path``;
+the solve reports it); ``rigid_supports``: u_y = u_z = 0 at the remote points.
 
 Spin softening (``AxiOptions.spin_softening``, on by default as in 3D): in the co-rotating
 frame each attachment's centrifugal force is m ω² (e + u), u its seat's rigid translation; the part
@@ -19,7 +39,8 @@ m ω² u is a negative spring −m ω² on the seat's remote point (u_y, u_z: bo
 same RBE3 rows as a bearing; the tilt of the part is left out). The response is then not ∝ ω²:
 a solve serves one speed only.
 
-Truncation (``AxiOptions.truncation``): harmonics are added in order until the two last loaded
+Truncation (``AxiOptions.truncation``, the half-seat pressures only): harmonics are added in
+order until the two last loaded
 ones each change the stress on every fillet and shoulder by less than ``truncation`` × the
 largest von Mises stress there (at most ``n_max``). Their series decays geometrically with n
 away from a seat (a harmonic n decays over about R/n from its load), so the neglected

@@ -1,7 +1,8 @@
-"""`shaftfe static --model axisymmetric`: the shaft as a body of revolution, every rpm from one
-solve at REF_RPM (loads ∝ ω²), the same outputs as the 3D path (``static.result``): bearing
-reactions and L10h, axis deflections at the stations, peaks per region (von Mises and max
-principal with their location), plus what the model leaves out.
+"""`shaftfe static --model axisymmetric`: the shaft as a body of revolution, every rpm (or a
+named load case) from one solve, each speed the load components × their factors (all ∝ ω²:
+the fields once at REF_RPM, scaled), the same outputs as the 3D path (``static.result``):
+bearing reactions and L10h, axis deflections at the stations, peaks per region (von Mises and
+max principal with their location), the torsion reactions, plus what the model leaves out.
 
 A peak is the maximum over the region's surface nodes and θ of the surface-recovered stress
 (``recovery``), located by a parabola through the three best θ samples (1° grid) and the three

@@ -87,6 +87,9 @@ def test_plain_shaft_torsion(torsion):
     assert np.abs(got / tau - 1).max() <= FAR_FIELD, (got.min(), got.max(), tau)
     # the other components vanish (pure shear): relative to τ, at the same bound
     assert np.abs(sig[[0, 1, 2, 4, 5]]).max() <= FAR_FIELD * tau
+    # von Mises of the synthesised state: √3 τ (the n = 0 τ_tθ enters the θ synthesis)
+    from shaftfe.util.units import von_mises
+    assert np.abs(von_mises(sig) / (math.sqrt(3) * tau) - 1).max() <= FAR_FIELD
     # statics: the bearing that holds torsion reacts −T, exactly (round-off of the solve)
     c = torsion.cases[0]
     assert dict(c.torsion_Nmm)["L"] == pytest.approx(-T, rel=1e-9)
