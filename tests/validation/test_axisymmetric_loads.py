@@ -134,15 +134,17 @@ def test_plain_shaft_tension_and_gravity(cache):
     assert np.abs(sig[0].mean(axis=1) / (4 * F / (math.pi * D_BAR ** 2)) - 1).max() <= FAR_FIELD
 
 
-def test_pure_bending_by_end_moments(cache):
-    """Moments M and −M about z near the two ends: the bearings carry nothing (statics) and
-    between them the section moment is −M (the left part's balance), so σ_xx = +M y/I and
-    |σ| = 32 M/(π d³) at θ = 0°, 180° (beam theory, σ_xx = −M_z y/I)."""
+@pytest.mark.parametrize("angle", [90.0, 0.0, 210.0])
+def test_pure_bending_by_end_moments(cache, angle):
+    """Moments m = M (0, cos a, sin a) and −m near the two ends: the bearings carry nothing
+    (statics) and between them the section moment is −m (the left part's balance), so
+    σ_xx = (M_y z − M_z y)/I = M (sin a · y − cos a · z)/I with |σ| = 32 M/(π d³) (beam
+    theory); a = 90° is M_z (n = 1 symmetric part), 0° is M_y (the antisymmetric part)."""
     M = 2.0e5
     v = _variant(BAR, [dict(name="ML", kind="moment", x_mm=2.0, width_mm=4.0, M_Nmm=M,
-                            angle_deg=90.0),
+                            angle_deg=angle),
                        dict(name="MR", kind="moment", x_mm=198.0, width_mm=4.0, M_Nmm=-M,
-                            angle_deg=90.0)])
+                            angle_deg=angle)])
     res = solve_axisymmetric(v, 1000.0, AxiOptions(spin_softening=False), cache_dir=cache)
     c = res.cases[0]
     for br in c.bearings:          # round-off: 1e-9 of the end moment's force scale M / L
@@ -150,7 +152,9 @@ def test_pure_bending_by_end_moments(cache):
     sig = _mid_surface(res)
     nominal = 32 * M / (math.pi * D_BAR ** 3)
     th = rc.theta_grid()
-    want = M * (0.5 * D_BAR * np.cos(th)) / (math.pi * D_BAR ** 4 / 64)      # −(−M) y / I
+    a = math.radians(angle)
+    y, z = 0.5 * D_BAR * np.cos(th), 0.5 * D_BAR * np.sin(th)
+    want = M * (math.sin(a) * y - math.cos(a) * z) / (math.pi * D_BAR ** 4 / 64)
     assert np.abs(sig[0] - want[None]).max() <= FAR_FIELD * nominal
     assert np.abs(sig[0]).max() == pytest.approx(nominal, rel=FAR_FIELD)
 
