@@ -104,6 +104,17 @@ class Harmonics:
         return weight(n) * f
 
 
+    def body_vector(self, b, n: int) -> np.ndarray:
+        """Load vector (ndof,) of a constant body-force amplitude b = (b_x, b_r, b_θ) (N/mm³)
+        over the whole meridian, harmonic n (the weight w_n included)."""
+        m = self.mesh
+        fe = kn.body_load(m.xr[0][m.tri].T, m.xr[1][m.tri].T, b)        # (ne, 6, 3)
+        f = np.zeros(self.ndof)
+        for c in range(3):
+            np.add.at(f, 3 * m.tri.T.ravel() + c, fe[:, :, c].ravel())
+        return weight(n) * f
+
+
 ASSEMBLY_CACHE_FORMAT = 1
 
 
@@ -183,6 +194,14 @@ class Rbe3:
     tx: np.ndarray
     uy: np.ndarray
     tz: np.ndarray
+
+    def load(self, F, M) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Nodal forces of a remote load: force F (N) and moment M (N·mm) about (x_mm, 0, 0)
+        through this band, as the transpose of its averaging rows times [F; M] (RBE3: F and M
+        carried exactly, the band free to deform): (n = 0, n = 1 symmetric, n = 1
+        antisymmetric); u_z = ``uy`` · V and θ_y = −``tz`` · V in the antisymmetric part."""
+        return (F[0] * self.ux + M[0] * self.tx, F[1] * self.uy + M[2] * self.tz,
+                F[2] * self.uy - M[1] * self.tz)
 
 
 def rbe3(h: Harmonics, edge_ids, x_c: float) -> Rbe3:

@@ -198,6 +198,15 @@ def edge_moments(X: np.ndarray, R: np.ndarray, fields, order: int = 6) -> np.nda
     return rows, gram
 
 
+def body_load(X: np.ndarray, R: np.ndarray, b, order: int = 4) -> np.ndarray:
+    """∫∫ b · N r dr dx on each element for a constant body-force amplitude b = (b_x, b_r,
+    b_θ) (N/mm³): (ne, 6 nodes, 3 components), without the harmonic's weight w_n."""
+    pts, w = triangle_rule(order)
+    _, r, det, N, _, _ = element_geometry(X, R, pts)
+    nN = np.einsum("eq,aq->ea", det * r * w[None], N)             # ∫ N r dA (ne, 6)
+    return nN[:, :, None] * np.asarray(b, dtype=float)[None, None, :]
+
+
 # ----------------------------------------------------------------------------- Fourier loads
 
 

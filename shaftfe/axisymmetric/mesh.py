@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
+import itertools
 import json
 import math
 import time
@@ -118,11 +119,16 @@ class MeridianMesh:
 # ------------------------------------------------------------------------------- the shaft
 
 
-def shaft_geometry(sol) -> MeridianGeometry:
+def shaft_geometry(sol, bands=()) -> MeridianGeometry:
     """The outline of a solid plan ``sol`` (``solid.plan.prepare(variant)``): the profile the
     3D solid revolves (``solid.plan.profile``), with the 3D
     face-group names on its curves. Hot curves: every fillet (size factor ρ), every sharp
-    concave shoulder corner (a hot point, size factor r_small / 10)."""
+    concave shoulder corner (a hot point, size factor r_small / 10).
+
+    ``bands``: (group, x0, x1) surface bands a remote load is delivered through (a
+    ``[[loads]]`` entry that is not a part's seat): the straight outline is split at their ends
+    and every outline piece off the axis and the end faces whose middle lies in [x0, x1] gets
+    the group; no bands, the outline of the plan alone (the mesh key unchanged)."""
     from shaftfe.solid.plan import TOL, profile
     prof = profile(sol)
     fil = {round(f.x_shoulder, 9): f for f in sol.fillets}
@@ -154,6 +160,7 @@ def shaft_geometry(sol) -> MeridianGeometry:
             curves.append(Curve(prev, end, g))
         prev = end
     curves.append(Curve(prev, (sol.x_right, 0.0), ("end:right",)))
+    curves = _with_bands(curves, bands, TOL)
     curves.append(Curve((sol.x_right, 0.0), (sol.x_left, 0.0), ("axis",)))
     # seat ends: the traction jumps there (a bearing band's RBE3 traction, a pressure patch)
     # are singular points whose pollution reaches a fillet next to them; size as the smallest
@@ -161,8 +168,39 @@ def shaft_geometry(sol) -> MeridianGeometry:
     rho = min((f.rho for f in sol.fillets), default=0.1 * sol.r_min)
     for st in sol.seats:
         points += [(st.x0, st.part.r, rho), (st.x1, st.part.r, rho)]
+    for c in curves:               # a load band's ends are traction jumps as well
+        if any(g.startswith(BAND_PREFIX) for g in c.groups):
+            points += [(*c.start, rho), (*c.end, rho)]
     bands = tuple((a, b, 2 * r) for (a, b), r in zip(sol.segment_x, sol.radii, strict=True))
     return MeridianGeometry(sol.name, tuple(curves), 2 * sol.r_max, tuple(points), bands)
+
+
+BAND_PREFIX = "band:"
+
+
+def _with_bands(curves: list[Curve], bands, tol: float) -> list[Curve]:
+    """``curves`` with the straight pieces (r ≠ 0, not vertical) split at the band ends and the
+    band groups added (``shaft_geometry``)."""
+    if not bands:
+        return curves
+    cuts = sorted({x for _, a, b in bands for x in (a, b)})
+    out: list[Curve] = []
+    for c in curves:
+        (xa, ra), (xb, rb) = c.start, c.end
+        straight = c.center is None and abs(xb - xa) > tol and min(ra, rb) > 0
+        pieces = [c]
+        if straight:
+            inner = [x for x in cuts if min(xa, xb) + tol < x < max(xa, xb) - tol]
+            xs = [xa, *(inner if xb > xa else inner[::-1]), xb]
+            pieces = [Curve((x0, ra + (rb - ra) * (x0 - xa) / (xb - xa)),
+                            (x1, ra + (rb - ra) * (x1 - xa) / (xb - xa)), c.groups)
+                      for x0, x1 in itertools.pairwise(xs)]
+        for p in pieces:
+            xm = 0.5 * (p.start[0] + p.end[0])
+            vertical = p.center is None and abs(p.end[0] - p.start[0]) <= tol
+            g = tuple(name for name, a, b in bands if a - tol <= xm <= b + tol and not vertical)
+            out.append(dataclasses.replace(p, groups=p.groups + g) if g else p)
+    return out
 
 
 def cylinder_geometry(R: float, L: float) -> MeridianGeometry:

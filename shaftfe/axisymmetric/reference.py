@@ -92,8 +92,15 @@ def static_reference(res, seconds: float | None = None):
     """The ``StaticReference`` (see the module docstring) of an ``AxiResult`` at its
     reference speed."""
     from shaftfe.static.cache import StaticReference
+    from shaftfe.util.notices import warn
     t0 = time.perf_counter()
     sol = res.solution
+    other = [c.factor_name for c in getattr(sol.columns, "components", ())
+             if c.scales_with != "rpm2"]
+    if other:        # the fatigue stage scales a reference ∝ rpm²: say what does not
+        warn("reference-not-rpm2", "axisymmetric fatigue reference", f"the loads "
+             f"{', '.join(other)} do not scale with rpm²; the reference holds them at their "
+             f"{res.ref_rpm:g} rpm values and a speed-scaled history scales them ∝ rpm² too")
     mesh, S = sol.mesh, sol.surface
     keep = np.nonzero(~S.on_axis)[0]
     theta = rc.theta_grid()

@@ -1,7 +1,8 @@
-"""`shaftfe static --model axisymmetric`: the shaft as a body of revolution, every rpm from one
-solve at REF_RPM (loads ∝ ω²), the same outputs as the 3D path (``static.result``): bearing
-reactions and L10h, axis deflections at the stations, peaks per region (von Mises and max
-principal with their location), plus what the model leaves out.
+"""`shaftfe static --model axisymmetric`: the shaft as a body of revolution, every rpm (or a
+named load case) from one solve, each speed the load components × their factors (all ∝ ω²:
+the fields once at REF_RPM, scaled), the same outputs as the 3D path (``static.result``):
+bearing reactions and L10h, axis deflections at the stations, peaks per region (von Mises and
+max principal with their location), the torsion reactions, plus what the model leaves out.
 
 A peak is the maximum over the region's surface nodes and θ of the surface-recovered stress
 (``recovery``), located by a parabola through the three best θ samples (1° grid) and the three
@@ -20,13 +21,13 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from shaftfe.axisymmetric import recovery as rc
-from shaftfe.axisymmetric.mesh import arc_length_angle
-from shaftfe.axisymmetric.model import AxiOptions, AxiSolution, solve_model
-from shaftfe.fe.recovery import von_mises
+from shaftfe.axisymmetric.mesh import BAND_PREFIX, arc_length_angle
+from shaftfe.axisymmetric.model import AxiOptions, AxiSolution, solve_model, superpose
+from shaftfe.errors import InputError
 from shaftfe.model.bearing_life import l10h
 from shaftfe.solid.plan import cut_features
 from shaftfe.static.result import BearingReaction, Station
-from shaftfe.util.units import REF_RPM, rpm2_scale
+from shaftfe.util.units import REF_RPM, rpm2_scale, von_mises
 
 SEAT_EDGE_BAND_DEG = 10.0
 
@@ -56,6 +57,10 @@ class AxiCase:
     load_sum_N: tuple[float, float, float]
     reaction_sum_N: tuple[float, float, float]
     equilibrium_residual: float
+    case: str = ""                       # the load case's name ("" = a plain speed)
+    torsion_Nmm: tuple = ()              # (bearing, its θ_x reaction on the shaft, N·mm)
+    torque_gauge_relative: float | None = None   # the gauge's reaction / Σ |applied T|
+    components: tuple = ()               # (load name, speed law, factor) of each column
 
 
 @dataclass(frozen=True, eq=False)
@@ -134,7 +139,7 @@ def regions(mesh) -> dict[str, list[int]]:
     out: dict[str, list[int]] = {}
     for i, c in enumerate(mesh.geometry.curves):
         for g in c.groups:
-            if g == "axis":
+            if g == "axis" or g.startswith(BAND_PREFIX):
                 continue
             name = ("seat:" + g.split(":", 1)[1] if g.startswith("load:")
                     else "seat:" + g if g.startswith("bearing:") else g)
@@ -148,7 +153,7 @@ def excluded_nodes(sol: AxiSolution, exclude_mm: float) -> np.ndarray:
     mesh, S = sol.mesh, sol.surface
     ends = []
     for c in mesh.geometry.curves:
-        if any(g.startswith(("load:", "bearing:")) for g in c.groups):
+        if any(g.startswith(("load:", "bearing:", BAND_PREFIX)) for g in c.groups):
             ends += [c.start, c.end]
     mask = np.zeros(S.nodes.size, dtype=bool)
     if not ends:
@@ -254,16 +259,76 @@ def _locate(mesh, S, idx, val, theta):
 # ------------------------------------------------------------------------------ the API
 
 
+def _case(sol: AxiSolution, r: float, scale: float, peaks, stations, st_u, ax_u,
+          case=None) -> AxiCase:
+    """The results at speed ``r`` of the fields of ``sol`` × ``scale`` (``peaks``, station and
+    axis displacements of those fields)."""
+    cols = sol.columns
+    f = np.asarray(sol.factors, dtype=float)
+    load_sum = (cols.load_sum @ f) * scale
+    for name, (qy, qz) in sol.attachment_motion.items():     # spin softening: m ω² u
+        load_sum = load_sum + sol.softening_N_per_mm[name] * np.array([0.0, qy, qz]) * scale
+    reac_sum = sum((np.array(rr[:3]) for rr in sol.reactions.values()), np.zeros(3)) * scale
+    # relative to the resultant, or where it (nearly) vanishes (torques, couples) to the
+    # loads' own size Σ (|F| + |M| / L)
+    ref = float(np.linalg.norm(load_sum))
+    size = float(np.abs(cols.load_scale * f).sum()) * abs(scale)
+    ref = ref if ref > 1e-3 * size else size
+    eq = float(np.linalg.norm(load_sum + reac_sum) / ref) if ref > 0 else 0.0
+    brs = []
+    for name, rb, b in sol.bearings:
+        Fx, Fy, Fz, qy, qz = sol.reactions[name]
+        F = math.hypot(Fy, Fz) * scale
+        life = l10h(b.C_N, F, r, b.life_exponent)
+        brs.append(BearingReaction(name, rb.x_mm, Fx * scale, Fy * scale, Fz * scale, F,
+                                   qy * scale, qz * scale,
+                                   life if math.isfinite(life) else None, b.C_N,
+                                   b.life_exponent))
+    sts = tuple(Station(nm, float(x), float(u[1] * scale), float(u[2] * scale),
+                        float(math.hypot(u[1], u[2]) * scale))
+                for (nm, x), u in zip(stations, st_u, strict=True))
+    pk = tuple(AxiPeak(p.region, p.von_mises_MPa * scale, p.xyz_mm, p.theta_deg,
+                       p.max_principal_MPa * scale, p.max_principal_xyz_mm, p.fillet_angle_deg,
+                       p.n_nodes, p.n_excluded, p.omitted_zone) for p in peaks)
+    tors = tuple((k, float(t @ f) * scale) for k, t in cols.torsion.items())
+    gauge = None
+    if cols.gauge is not None:
+        applied = float(np.abs(cols.torque_sum * f).sum()) * abs(scale)
+        t_g = dict(tors)[cols.gauge]
+        gauge = abs(t_g) / applied if applied > 0 else 0.0
+    comps = tuple((c.factor_name, c.scales_with, float(x) * scale)
+                  for c, x in zip(cols.components, f, strict=True))
+    return AxiCase(r, scale, tuple(brs), sts,
+                   float(np.nanmax(np.hypot(ax_u[:, 1], ax_u[:, 2])) * scale), pk,
+                   tuple(float(c) for c in load_sum), tuple(float(c) for c in reac_sum), eq,
+                   "" if case is None else case.name, tors, gauge, comps)
+
+
+def resolve_case(variant, case):
+    """A load case given by name (or as a ``LoadCase``) → the variant's ``LoadCase``."""
+    if case is None or not isinstance(case, str):
+        return case
+    names = [c.name for c in variant.load_cases]
+    if case not in names:
+        raise InputError("--case", "case", "a [[load_cases]] name of the variant: "
+                         + (", ".join(names) or "(it has none)"), got=case)
+    return variant.load_case(case)
+
+
 def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(), *,
-                       cache_dir=None) -> AxiResult:
-    """Solve once at REF_RPM and report every rpm in ``rpm``: results × (rpm / REF_RPM)².
-    With ``options.spin_softening`` the response is not ∝ rpm²: each speed is solved at it
-    (one solve each, on the same cached mesh), the fields are the first speed's."""
+                       cache_dir=None, case=None) -> AxiResult:
+    """Every speed in ``rpm`` (or the load case ``case``, a name or a ``LoadCase``, at its own
+    speed) from one solve: one factorisation per harmonic and one column per load component
+    (``model.Component``), each speed's fields the columns × that speed's factors. Loads all
+    ∝ rpm² (every shipped variant): solved once at REF_RPM, results × (rpm / REF_RPM)². With
+    ``options.spin_softening`` the response is not ∝ rpm²: each speed is solved at it (one
+    solve each, on the same cached mesh), the fields are the first speed's."""
     from dataclasses import replace
 
     from shaftfe.static.solve import _check_rpms
     t0 = time.perf_counter()
-    rpms = _check_rpms(rpm)
+    case = resolve_case(variant, case)
+    rpms = _check_rpms(case.rpm if case is not None else rpm)
     from shaftfe.solid.plan import warn_sharp_corners
     warn_sharp_corners(variant)          # a fillet 0 at a loaded shoulder: not a stress there
     if options.spin_softening and len(rpms) > 1:
@@ -279,61 +344,49 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
         run = {**first.run, "total_seconds": time.perf_counter() - t0}
         return replace(first, cases=cases, run=run)
     ref_rpm = rpms[0] if options.spin_softening else REF_RPM
-    sol = solve_model(variant, options, rpm=ref_rpm, cache_dir=cache_dir)
+    sol = solve_model(variant, options, rpm=ref_rpm, cache_dir=cache_dir, case=case)
     v = sol.variant
     t1 = time.perf_counter()
     omitted = tuple(cut_features(sol.plan))
-    peaks = region_peaks(sol, omitted)
-    stations = [(f"seat:{ld.name}", v.attachment(ld.name).seat_center_mm) for ld in sol.loads]
+    stations = [(f"seat:{a.name}", a.seat_center_mm) for a in v.attachments
+                if a.force_N(REF_RPM) != 0]
+    stations += [(f"load:{ld.name}", ld.x_mm) for ld in getattr(v, "loads", ())
+                 if ld.kind != "gravity"]
     stations += [(f"bearing:{name}", rb.x_mm) for name, rb, _ in sol.bearings]
     if v.clearance_station_x_mm is not None:
         stations.append(("clearance", float(v.clearance_station_x_mm)))
-    st_u = axis_displacement(sol, [x for _, x in stations])
     x0, x1 = float(sol.mesh.xr[0].min()), float(sol.mesh.xr[0].max())
     ax_x = np.linspace(x0, x1, 121)
-    ax_u = axis_displacement(sol, ax_x)
-    load_sum = np.zeros(3)
-    for ld in sol.loads:
-        a = math.radians(ld.angle_deg)
-        load_sum += ld.force_N * np.array([0.0, math.cos(a), math.sin(a)])
-    for name, (qy, qz) in sol.attachment_motion.items():     # spin softening: m ω² u
-        load_sum += sol.softening_N_per_mm[name] * np.array([0.0, qy, qz])
-    reac_sum = sum((np.array(r[:3]) for r in sol.reactions.values()), np.zeros(3))
-    scale_f = max(float(np.linalg.norm(load_sum)), 1e-300)
-    eq = float(np.linalg.norm(load_sum + reac_sum) / scale_f)
-    cases = []
+    # all ∝ rpm² (or one case, or softening: one speed): the fields once, scaled per speed
+    proportional = case is not None or options.spin_softening or all(
+        c.scales_with == "rpm2" for c in sol.columns.components)
+    cases, first = [], None
     for r in rpms:
-        s = 1.0 if options.spin_softening else rpm2_scale(r, ref_rpm)   # softening: one speed
-        brs = []
-        for name, rb, b in sol.bearings:
-            Fx, Fy, Fz, qy, qz = sol.reactions[name]
-            F = math.hypot(Fy, Fz) * s
-            life = l10h(b.C_N, F, r, b.life_exponent)
-            brs.append(BearingReaction(name, rb.x_mm, Fx * s, Fy * s, Fz * s, F, qy * s,
-                                       qz * s, life if math.isfinite(life) else None,
-                                       b.C_N, b.life_exponent))
-        sts = tuple(Station(nm, float(x), float(u[1] * s), float(u[2] * s),
-                            float(math.hypot(u[1], u[2]) * s))
-                    for (nm, x), u in zip(stations, st_u, strict=True))
-        pk = tuple(AxiPeak(p.region, p.von_mises_MPa * s, p.xyz_mm, p.theta_deg,
-                           p.max_principal_MPa * s, p.max_principal_xyz_mm, p.fillet_angle_deg,
-                           p.n_nodes, p.n_excluded, p.omitted_zone) for p in peaks)
-        cases.append(AxiCase(r, s, tuple(brs), sts,
-                             float(np.nanmax(np.hypot(ax_u[:, 1], ax_u[:, 2])) * s), pk,
-                             tuple(float(c) for c in load_sum * s),
-                             tuple(float(c) for c in reac_sum * s), eq))
+        if proportional:
+            at, s = sol, (1.0 if options.spin_softening or case is not None
+                          else rpm2_scale(r, ref_rpm))
+        else:                            # constant and channel loads: the columns per speed
+            at, s = superpose(sol, sol.columns.factors(r)), 1.0
+        if first is None or not proportional:
+            peaks = region_peaks(at, omitted)
+            st_u = axis_displacement(at, [x for _, x in stations])
+            ax_u = axis_displacement(at, ax_x)
+            first = first or (at, ax_u)
+        cases.append(_case(at, r, s, peaks, stations, st_u, ax_u, case))
+    sol, ax_u = first
     notes = [f"{f['feature']} is not modelled (a body of revolution); peaks with x in "
              f"[{f['zone_mm'][0]:g}, {f['zone_mm'][1]:g}] mm lie in its zone of influence: "
              "use the 3D path there" for f in omitted]
     notes.append("threads are plain cylinders at their modelled diameter (as in the 3D path)")
-    others = sorted(p.region for p in peaks if p.region.startswith("fillet:")
+    others = sorted(p.region for p in cases[0].peaks if p.region.startswith("fillet:")
                     and p.region not in sol.truncation_fillets)
-    if others:
+    if others and sol.loads:
         notes.append(f"harmonic series cut at n = {sol.n_used} when the fillets "
                      f"{', '.join(sol.truncation_fillets)} had converged to "
                      f"{options.truncation:g}; the peaks of {', '.join(others)} (in the zone of "
                      "an omitted feature) are not converged in n (AxiOptions("
                      "converge_all_fillets=True) includes them)")
+    notes += _load_notes(sol, cases)
     run = dict(sol.seconds)
     run["post_seconds"] = time.perf_counter() - t1
     run["total_seconds"] = time.perf_counter() - t0
@@ -344,3 +397,31 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
                      sol.mesh.n_elements, tuple(h.n for h in sol.harmonics),
                      sol.truncation_change, omitted, tuple(cases), ax_x, ax_u, sol,
                      tuple(notes), run)
+
+
+GAUGE_TOL = 1e-9     # relative: Σ T = 0 per law to round-off (``model.loads.TORQUE_TOL``)
+
+
+def _load_notes(sol: AxiSolution, cases) -> list[str]:
+    """How the loads enter (the placement, the twist's support) and the torsion gauge's
+    check: its reaction must vanish against the applied torques (a warning if it does not)."""
+    from shaftfe.util.notices import warn
+    cols = sol.columns
+    out = []
+    if not sol.options.seed_load_case and any(a.force_N(REF_RPM) for a in
+                                              sol.variant.attachments):
+        out.append("each part's m e ω² acts at its centroid, through its seat as a remote "
+                   "force and moment (RBE3); --seed-load-case: the seed's half-seat pressure")
+    if np.any(cols.torque_sum):
+        if cols.gauge is None:
+            held = ", ".join(cols.torsion)
+            out.append(f"torsion held by the bearings that hold it ({held})")
+        else:
+            worst = max((c.torque_gauge_relative or 0.0) for c in cases)
+            out.append(f"no bearing holds torsion: the twist is fixed at {cols.gauge} only as a "
+                       f"gauge; its reaction is {worst:.1e} of the applied torques (Σ T = 0)")
+            if worst > GAUGE_TOL:
+                warn("torque-gauge", f"axisymmetric {cols.gauge}", f"the gauge holding the "
+                     f"twist carries {worst:.2e} of the applied torques: the case's factors "
+                     "leave a net torque that no support holds")
+    return out

@@ -165,7 +165,7 @@ def _run_axisymmetric(args, rpms, variant) -> int:
     out = Path(args.out) if args.out else \
         Path("reports") / out_name(variant.name, variant.overrides) / "static"
     with staged_dir(out) as stage:             # both files or none
-        res = solve_axisymmetric(variant, rpms, opts)
+        res = solve_axisymmetric(variant, rpms, opts, case=getattr(args, "case", None))
         summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
     return _report(args, summary, lambda: (_print_overrides(variant),
                                            _print_axi(res, opts, out, _corners(variant))))

@@ -3,8 +3,9 @@
 Sources:
 * Statics (lever rule): two bearings without tilt springs make the shaft statically
   determinate, so the reactions follow from the loads alone, whatever the springs: Σ F = 0 and
-  Σ M = 0 about a bearing, each part's m e ω² acting at its seat centre (a uniform pressure
-  over the seat length). Exact to round-off.
+  Σ M = 0 about a bearing, each part's m e ω² acting at its centroid (the default: a remote
+  force and moment through its seat) or at its seat centre (``seed_load_case``: the seed's
+  pressure on the half seat, only the seed's three parts). Exact to round-off.
 * Peterson's / Roark's shoulder-fillet bending charts (``shaftfe.beam.scf``: W. D. & D. F.
   Pilkey, Peterson's Stress Concentration Factors, 3rd ed., Chart 3.10; Young & Budynas,
   Roark's Formulas, 7th ed., Table 17.1 case 17b) as a sanity band only: the charts are
@@ -38,15 +39,20 @@ def x2_57(cache):
                                  cache_dir=cache)
 
 
-def test_reactions_are_the_lever_rule(x2_57):
+@pytest.mark.parametrize("seed", [False, True], ids=["centroid", "seed_placement"])
+def test_reactions_are_the_lever_rule(x2_57, seed, cache):
     v, res = x2_57
+    if seed:
+        v = v.with_seed_load_case()
+        res = solve_axisymmetric(v, REF_RPM, AxiOptions(level="coarse", spin_softening=False,
+                                                        seed_load_case=True), cache_dir=cache)
     c = res.case(REF_RPM)
     (a, b) = c.bearings
     Fy = Fz = My = Mz = 0.0
     for at in v.attachments:
         F = at.force_N(REF_RPM)
         ang = math.radians(at.angle_deg)
-        x = at.seat_center_mm
+        x = at.seat_center_mm if seed else at.x_centroid_mm
         Fy += F * math.cos(ang)
         Fz += F * math.sin(ang)
         My += F * math.cos(ang) * (x - a.x_mm)
