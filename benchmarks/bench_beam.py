@@ -14,8 +14,9 @@ from benchmarks._timing import best_time
 
 
 def main() -> None:
-    from shaftfe.beam.model import PointLoad, build_model
+    from shaftfe.beam.model import build_model
     from shaftfe.beam.solve import solve
+    from shaftfe.model.loads import Load
     from shaftfe.model.variant import Bearing, Material, Segment, Variant
 
     E, nu, L, d, P = 210_000.0, 0.3, 200.0, 20.0, 1000.0
@@ -27,12 +28,12 @@ def main() -> None:
     v = Variant("uniform", "benchmark", (Segment("s", 0.0, L, d),),
                 (Bearing("A", "-", 0.0, 0.0, 1e4, 1e4, K0, axial=True),
                  Bearing("B", "-", L, 0.0, 1e4, 1e4, K0)), (),
-                Material("steel", E, nu, 7.85e-9, 540.0, 800.0), 0.0)
-    load = [PointLoad(L / 2, Fy_N=P)]
+                Material("steel", E, nu, 7.85e-9, 540.0, 800.0), 0.0,
+                loads=(Load("P", "force", L / 2, (L / 2, L / 2), P),))
     print(f"{'case':<28}{'nodes':>7}{'time ms':>10}{'rel. error':>12}")
     for h in (100.0, 10.0, 2.0, 0.5, 0.1):
         def run(h=h):
-            m = build_model(v, rigid_supports=True, max_element_mm=h, extra_loads=load)
+            m = build_model(v, rigid_supports=True, max_element_mm=h)
             return m, solve(m, 0.0)[0]
         m, r = run()
         i = min(range(m.n_nodes), key=lambda k: abs(m.x[k] - L / 2))

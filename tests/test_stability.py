@@ -24,6 +24,7 @@ from shaftfe.errors import InputError, SolverError
 from shaftfe.model.examples import STEEL
 from shaftfe.model.variant import Attachment, Bearing, Segment, Variant
 from shaftfe.solid.levels import MeshLevel
+from shaftfe.util.units import REF_RPM, omega
 
 K_SEED = 35_030.0
 RPM = 10_000.0
@@ -420,6 +421,8 @@ def three_bearing(k: float, *, rigid: bool = False):
 
 
 EPS = float(np.finfo(float).eps)
+# the beam's rpm² load column is solved at REF_RPM: per unit ω² (rad²/s²) it is divided by this
+W2_REF = float(omega(REF_RPM) ** 2)
 
 
 def _roundoff_terms(model, sol, rows):
@@ -436,7 +439,7 @@ def _roundoff_terms(model, sol, rows):
     Ks, fixed = support_stiffness(model)
     free = np.setdiff1d(np.arange(K.shape[0]), fixed)
     Kt = (K + Ks)[np.ix_(free, free)]
-    u, F = np.abs(sol.u[free, 0]), np.abs(model.load_unit)
+    u, F = np.abs(sol.u[free, 0]) / W2_REF, np.abs(model.f[:, 0]) / W2_REF
     G = np.linalg.solve(Kt, rows[:, free].T).T                    # Kt is symmetric
     return np.abs(G) @ (np.abs(Kt) @ u + F[free]), np.abs(rows[:, free]) @ u, free
 
@@ -458,7 +461,7 @@ def reaction_roundoff_bound(model, sol) -> np.ndarray:
     h = np.array([NDOF * s.node + UY for s in model.supports])
     solve, rec, free = _roundoff_terms(model, sol, K[h])
     n_terms = np.count_nonzero(K[np.ix_(h, free)], axis=1) + 1
-    return OMEGA * solve + n_terms * EPS * (rec + np.abs(model.load_unit[h]))
+    return OMEGA * solve + n_terms * EPS * (rec + np.abs(model.f[h, 0]) / W2_REF)
 
 
 def test_beam_three_bearings_rigid_limit_is_the_textbook_continuous_beam():
@@ -471,7 +474,8 @@ def test_beam_three_bearings_rigid_limit_is_the_textbook_continuous_beam():
     What is left is round-off, bounded by ``reaction_roundoff_bound`` (≈ 4e-8 relative;
     measured 4.7e-10 on OpenBLAS SkylakeX kernels, 1.9e-9 on Haswell/Prescott: the old fixed
     rtol 1e-9 failed there)."""
-    from shaftfe.beam.solve import RESIDUAL_TOL, omega, result_at, solve_unit
+    from shaftfe.beam.solve import RESIDUAL_TOL, result_at, solve_unit
+
     m = three_bearing(0.0, rigid=True)
     sol = solve_unit(m)
     res = result_at(sol, RPM)
@@ -495,7 +499,8 @@ def test_beam_stiffness_sweep_converges_to_the_rigid_limit_as_one_over_k():
 
     Round-off floor: ``reaction_roundoff_bound`` of the spring solve plus that of the rigid
     reference, ≈ 4e-8 of max |R| (measured 1e-9 … 2e-9 at 1e12 on three OpenBLAS kernels)."""
-    from shaftfe.beam.solve import RESIDUAL_TOL, omega, result_at, solve_unit
+    from shaftfe.beam.solve import RESIDUAL_TOL, result_at, solve_unit
+
     m_rig = three_bearing(0.0, rigid=True)
     s_rig = solve_unit(m_rig)
     rig = np.array([b.Fy_N for b in result_at(s_rig, RPM).bearings])
@@ -601,7 +606,7 @@ def test_beam_slender_and_stubby_match_timoshenko(L_over_D):
     e_p[0, dof] = 1.0
     # derived round-off bound of the solve (see _roundoff_terms) + 16 eps for evaluating the
     # closed form (a dozen roundings)
-    rel = OMEGA * _roundoff_terms(m, sol, e_p)[0][0] / abs(sol.u[dof, 0]) + 16 * EPS
+    rel = OMEGA * _roundoff_terms(m, sol, e_p)[0][0] / abs(sol.u[dof, 0] / W2_REF) + 16 * EPS
     assert r.stations["p"].uy_mm == pytest.approx(ref, rel=rel)       # derived bound (above)
     assert r.backward_error <= RESIDUAL_TOL     # solver contract (RESIDUAL_TOL = 1e-8)
 

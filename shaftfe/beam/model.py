@@ -16,21 +16,30 @@ Supports
 ``rigid_supports=True`` (Inventor's shaft module): simple supports v = w = 0 at the bearing
 centres, tilt free. Otherwise the 2×2 ``Bearing.K_N_per_mm`` acts on (v, w) at the bearing
 centre (coupled y-z) and ``tilt_stiffness_Nmm_per_rad`` on (θ_y, θ_z). In both cases u_x is
-held at the bearing with ``axial=True`` and θ_x at that same bearing centre (the seed removes the
-rotation about the axis at the bearings; a single torsion hold is enough for a static check and
-carries all the torque). A system that is not restrained against every rigid-body motion raises
-``SolverError`` naming the free motion (checked on the rigid-body modes, not by the solver).
+held at the bearing with ``axial=True`` (it carries the axial force). Torsion: θ_x is held at
+every bearing with ``holds_torsion = true``; where none does, the torques of every load pattern
+sum to zero (``shaftfe.model.loads.check_torque_path``) and θ_x is pinned at one bearing
+(``torsion_node``) only as a gauge for the free rotation about the axis: its reaction is zero to
+round-off, and every result reports it (``BeamResult.torsion_gauge_Nmm``). A system that is not
+restrained against every rigid-body motion raises ``SolverError`` naming the free motion
+(checked on the rigid-body modes, not by the solver).
 
 Loads
 -----
-Each attachment's centrifugal force m e ω² (``Attachment.force_N``) acts in the direction
-``angle_deg`` (0° = +y, 90° = +z) as a point load at the seat centre (default) or, with
-``spread_loads=True``, as a uniform line load over the seat (consistent nodal loads). Loads scale
-with ω²: the model is solved once per unit ω² (rad²/s²) and scaled for every rpm
-(``shaftfe.beam.solve``). Extra static ``PointLoad`` s (forces and a torque) may be added; they
-do not scale with rpm.
+Every load of the variant (``shaftfe.model.loads.actions``: the parts' m e ω², the
+``[[loads]]`` forces, moments, torques, axial forces, gear meshes and gravity) is an action: a
+force F and a moment M about (x, 0, 0), delivered through a band of the shaft. By default each
+action acts at its node x (a point load); with ``spread_loads=True`` its transverse force is a
+uniform line load over the band (consistent nodal loads, kept per element for the end forces)
+and its axial force and moments are spread over the band's nodes by their tributary lengths.
+``seed_placement=True`` keeps the seed's placement of the parts' forces (the seat centre, no
+moment): with it every seed number is today's. Gravity's body action loads the shaft's own
+mass as a line load ρ A g per element. Actions are grouped into load columns (one per speed-law
+pattern ``pattern_key`` and load name, so that a case's per-load factors stay exact), solved
+from one factorisation (``shaftfe.beam.solve``) and superposed per speed or load case.
 
-Shoulders carry their Kt (``shaftfe.beam.scf``, bending fit) for the post-processing.
+Shoulders carry their Kt for bending, tension and torsion (``shaftfe.beam.scf``) for the
+post-processing.
 
 Units: mm, N, MPa, t/mm³. Pure functions; NumPy only.
 """
@@ -38,8 +47,6 @@ Units: mm, N, MPa, t/mm³. Pure functions; NumPy only.
 from __future__ import annotations
 
 import itertools
-import math
-from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from types import MappingProxyType
 
@@ -61,19 +68,26 @@ from shaftfe.beam.elements import (
 )
 from shaftfe.beam.scf import kt_shoulder
 from shaftfe.errors import InputError, SolverError
+from shaftfe.model.loads import actions, check_torque_path, pattern_key
 from shaftfe.model.validate import source_of, validate_variant
 
 # --------------------------------------------------------------------------- model
 
 @dataclass(frozen=True)
-class PointLoad:
-    """A static point load (does not scale with rpm): forces in N, torque about x in N·mm."""
-    x_mm: float
-    Fx_N: float = 0.0
-    Fy_N: float = 0.0
-    Fz_N: float = 0.0
-    Mx_Nmm: float = 0.0
-    name: str = ""
+class LoadColumn:
+    """One solved load column: the actions of one speed-law pattern (``pattern_key``) and one
+    load name, at their written magnitudes. ``LoadCase.factor(column)`` is its factor in a
+    case (the attributes are those it reads); ``torque_abs_Nmm`` = Σ |T| applied (the scale of
+    the torsion gauge's check)."""
+    name: str
+    scales_with: str
+    ref_rpm: float
+    channel_ref: float
+    torque_abs_Nmm: float = 0.0
+
+    @property
+    def factor_name(self) -> str:
+        return self.name
 
 
 @dataclass(frozen=True)
@@ -86,6 +100,7 @@ class Support:
     tilt_Nmm_per_rad: float
     C_N: float
     life_exponent: float
+    holds_torsion: bool = False
 
 
 @dataclass(frozen=True)
@@ -95,11 +110,17 @@ class Shoulder:
     D_mm: float
     d_mm: float
     r_mm: float
-    kt: float
+    kt: float            # bending
     kt_in_range: bool
     kt_fit: str
     kt_note: str
     small_side: str      # "left" | "right": side of the smaller diameter
+    kt_tension: float = 1.0
+    kt_torsion: float = 1.0
+    kt_tension_in_range: bool = True
+    kt_torsion_in_range: bool = True
+    kt_tension_note: str = ""
+    kt_torsion_note: str = ""
 
 
 @dataclass(frozen=True, eq=False)
@@ -113,13 +134,14 @@ class BeamModel:
     density: float                 # t/mm³
     supports: tuple[Support, ...]
     rigid_supports: bool
-    torsion_node: int
-    load_unit: np.ndarray          # (ndof,) nodal load per unit ω² (N s²)
-    load_static: np.ndarray        # (ndof,) static extra loads
-    q_unit: np.ndarray             # (n_el, 2) line load per unit ω² in (y, z), N/mm per rad²/s²
+    torsion_node: int              # the torsion gauge (no bearing holds torsion) or unused
+    columns: tuple[LoadColumn, ...]
+    f: np.ndarray                  # (ndof, n_col) nodal loads per column, N and N·mm
+    q: np.ndarray                  # (n_col, n_el, 2) element line loads in (y, z), N/mm
     stations: MappingProxyType     # name -> node index
     shoulders: tuple[Shoulder, ...]
     spread_loads: bool
+    seed_placement: bool = False
     notes: tuple[str, ...] = ()
     clearance_mm: float | None = None     # the file's smallest clearance at station "clearance"
 
@@ -134,6 +156,11 @@ class BeamModel:
     @property
     def L(self) -> np.ndarray:
         return np.diff(self.x)
+
+    @property
+    def torsion_held(self) -> bool:
+        """True if a bearing holds torsion (else θ_x is pinned at ``torsion_node`` as a gauge)."""
+        return any(s.holds_torsion for s in self.supports)
 
 
 def _validate(variant, max_element_mm: float, rigid_supports: bool) -> None:
@@ -162,36 +189,37 @@ def _node(x: np.ndarray, xq: float) -> int:
 
 def build_model(variant, *, rigid_supports: bool = False, max_element_mm: float = 5.0,
                 spread_loads: bool = False, kt_fit: str = "roark",
-                extra_loads: Sequence[PointLoad] = (), shear_deformation: bool = True
-                ) -> BeamModel:
-    """Discretise ``variant`` (a ``shaftfe.model.variant.Variant``) into a Timoshenko beam model.
+                shear_deformation: bool = True, seed_placement: bool = False) -> BeamModel:
+    """Discretise ``variant`` (a ``shaftfe.model.variant.Variant``) into a Timoshenko beam model
+    with every load of the variant (``shaftfe.model.loads.actions``).
 
     ``shear_deformation=False`` gives the Euler-Bernoulli limit (κ → ∞, Φ = 0), e.g. to
-    compare with tools that neglect shear."""
+    compare with tools that neglect shear. ``seed_placement=True``: the parts' forces at their
+    seat centres with no moment (the seed's placement, ``--seed-load-case``)."""
     _validate(variant, max_element_mm, rigid_supports)
-    x = _node_positions(variant, max_element_mm, extra_loads)
+    check_torque_path(variant, source_of(variant))
+    acts, body = actions(variant, seed_placement=seed_placement)
+    x = _node_positions(variant, max_element_mm, acts)
     sec = _element_sections(variant, x, shear_deformation)
     mat = variant.material
     G = mat.E_MPa / (2.0 * (1.0 + mat.nu))
     supports, torsion_node = _supports(variant, x, rigid_supports)
-    f_unit, q_unit = _centrifugal_loads(variant, x, spread_loads)
-    f_static = _static_loads(x, extra_loads)
+    columns, f, q = _loads(acts, body, x, sec.A * float(mat.density_t_mm3), spread_loads)
     stations = _stations(variant, x)
     shoulders = _shoulders(variant.segments, x, kt_fit)
     return BeamModel(
         name=variant.name, x=x, sections=sec, E=float(mat.E_MPa), G=float(G), nu=float(mat.nu),
         density=float(mat.density_t_mm3), supports=supports,
-        rigid_supports=bool(rigid_supports), torsion_node=torsion_node, load_unit=f_unit,
-        load_static=f_static, q_unit=q_unit, stations=MappingProxyType(stations),
-        shoulders=shoulders, spread_loads=bool(spread_loads),
+        rigid_supports=bool(rigid_supports), torsion_node=torsion_node, columns=columns, f=f,
+        q=q, stations=MappingProxyType(stations), shoulders=shoulders,
+        spread_loads=bool(spread_loads), seed_placement=bool(seed_placement),
         notes=_notes(variant, shear_deformation), clearance_mm=variant.clearance_mm)
 
 
-def _node_positions(variant, max_element_mm: float, extra_loads: Sequence[PointLoad]
-                    ) -> np.ndarray:
+def _node_positions(variant, max_element_mm: float, acts) -> np.ndarray:
     """Node coordinates: the key points (segment boundaries, bearing centres and edges, seat
-    centres and edges, clearance station, hex-socket bottom, extra loads), every interval cut
-    into equal elements no longer than ``max_element_mm``."""
+    centres and edges, clearance station, hex-socket bottom, every action's point and band),
+    every interval cut into equal elements no longer than ``max_element_mm``."""
     segs = variant.segments
     x0, x1 = segs[0].x_start_mm, segs[-1].x_end_mm
     key = [s.x_start_mm for s in segs] + [x1]
@@ -204,10 +232,8 @@ def _node_positions(variant, max_element_mm: float, extra_loads: Sequence[PointL
     hs = variant.hex_socket
     if hs is not None:
         key.append(x0 + hs.depth_mm if hs.end == "left" else x1 - hs.depth_mm)
-    for p in extra_loads:
-        if not (x0 - 1e-9 <= p.x_mm <= x1 + 1e-9):
-            raise InputError("extra_loads", "x_mm", f"in [{x0}, {x1}]", got=p.x_mm)
-        key.append(p.x_mm)
+    for a in acts:               # on the shaft: checked by the loader (model.loads)
+        key += [a.x_mm, *a.band_mm]
     return _mesh(np.clip(np.asarray(key, dtype=float), x0, x1), max_element_mm)
 
 
@@ -236,8 +262,9 @@ def _element_sections(variant, x: np.ndarray, shear_deformation: bool) -> Sectio
 
 
 def _supports(variant, x: np.ndarray, rigid_supports: bool) -> tuple[tuple[Support, ...], int]:
-    """One ``Support`` per bearing (springs dropped when ``rigid_supports``) and the node whose
-    torsion is held: the first axial bearing, else the first bearing."""
+    """One ``Support`` per bearing (springs dropped when ``rigid_supports``) and the torsion
+    gauge's node: the first axial bearing, else the first bearing (used only when no bearing
+    holds torsion, and by the beam rotor's torsional modes)."""
     supports = []
     for b in variant.bearings:
         supports.append(Support(
@@ -246,44 +273,73 @@ def _supports(variant, x: np.ndarray, rigid_supports: bool) -> tuple[tuple[Suppo
                                                           for r in b.K_N_per_mm),
             axial=bool(b.axial),
             tilt_Nmm_per_rad=0.0 if rigid_supports else float(b.tilt_stiffness_Nmm_per_rad),
-            C_N=float(b.C_N), life_exponent=float(b.life_exponent)))
+            C_N=float(b.C_N), life_exponent=float(b.life_exponent),
+            holds_torsion=bool(getattr(b, "holds_torsion", False))))
     axial = [s for s in supports if s.axial]
     torsion_node = axial[0].node if axial else (supports[0].node if supports else 0)
     return tuple(supports), torsion_node
 
 
-def _centrifugal_loads(variant, x: np.ndarray, spread_loads: bool
-                       ) -> tuple[np.ndarray, np.ndarray]:
-    """Loads per unit ω² of the attachments: nodal loads (ndof,) and element line loads
-    (n_el, 2) in (y, z). Point loads at the seat centres, or with ``spread_loads`` uniform over
-    each seat (as consistent nodal loads, and kept per element for the end forces)."""
+def _column_of(item) -> tuple:
+    return (pattern_key(item), getattr(item, "factor_name", item.name))
+
+
+def _tributary(x: np.ndarray, lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:
+    """(nodes, weights summing to 1) of the band [lo, hi]: each node's share of the band's
+    length (half of each adjacent element inside it); one node with weight 1 for a point."""
+    if hi - lo <= 1e-6:
+        return np.array([_node(x, 0.5 * (lo + hi))]), np.ones(1)
+    i0, i1 = _node(x, lo), _node(x, hi)
+    nodes = np.arange(i0, i1 + 1)
+    L = np.diff(x[nodes])
+    w = np.zeros(nodes.size)
+    w[:-1] += 0.5 * L
+    w[1:] += 0.5 * L
+    return nodes, w / w.sum()
+
+
+def _loads(acts, body, x: np.ndarray, rho_A: np.ndarray, spread: bool
+           ) -> tuple[tuple[LoadColumn, ...], np.ndarray, np.ndarray]:
+    """Load columns, their nodal loads (ndof, n_col) and element line loads (n_col, n_el, 2).
+
+    An action at a point: F and M at its node. Spread (``spread``, a band longer than 1e-6 mm):
+    the transverse force as a uniform line load over the band (consistent nodal loads), the
+    axial force and the moments over the band's nodes by their tributary lengths. A body
+    action (gravity): the line load ρ A a of every element (its transverse part)."""
+    keys: dict[tuple, int] = {}
+    cols: list[dict] = []
+    for item in (*acts, *body):
+        k = _column_of(item)
+        if k not in keys:
+            keys[k] = len(cols)
+            cols.append(dict(name=k[1], scales_with=item.scales_with,
+                             ref_rpm=float(item.ref_rpm), channel_ref=float(item.channel_ref),
+                             torque_abs_Nmm=0.0))
+    ndof, ne = NDOF * x.size, x.size - 1
+    f = np.zeros((ndof, len(cols)))
+    q = np.zeros((len(cols), ne, 2))
     xm = 0.5 * (x[:-1] + x[1:])
-    f_unit = np.zeros(NDOF * x.size)
-    q_unit = np.zeros((x.size - 1, 2))
-    for a in variant.attachments:
-        f1 = a.mass_kg * a.eccentricity_mm * 1e-3          # N per (rad/s)²
-        ang = math.radians(a.angle_deg)
-        dirv = np.array([math.cos(ang), math.sin(ang)])
-        lo, hi = sorted((a.seat_x_start_mm, a.seat_x_end_mm))
-        n = _node(x, 0.5 * (lo + hi))
-        if spread_loads and hi - lo > 1e-6:
-            in_seat = (xm > lo) & (xm < hi)
-            q_unit[in_seat] += f1 / (hi - lo) * dirv
+    for a in acts:
+        c = keys[_column_of(a)]
+        cols[c]["torque_abs_Nmm"] += abs(a.M_Nmm[0])
+        lo, hi = sorted(a.band_mm)
+        if spread and hi - lo > 1e-6:
+            q[c, (xm > lo) & (xm < hi)] += np.array(a.F_N[1:]) / (hi - lo)
+            nodes, w = _tributary(x, lo, hi)
+            for dof, v in ((UX, a.F_N[0]), (RX, a.M_Nmm[0]), (RY, a.M_Nmm[1]),
+                           (RZ, a.M_Nmm[2])):
+                if v:
+                    f[NDOF * nodes + dof, c] += v * w
         else:
-            f_unit[NDOF * n + UY] += f1 * dirv[0]
-            f_unit[NDOF * n + UZ] += f1 * dirv[1]
-    if spread_loads:
-        f_unit += _consistent_line_loads(x, q_unit)
-    return f_unit, q_unit
-
-
-def _static_loads(x: np.ndarray, extra_loads: Sequence[PointLoad]) -> np.ndarray:
-    """Nodal loads (ndof,) of the extra static point loads (forces and torque)."""
-    f_static = np.zeros(NDOF * x.size)
-    for p in extra_loads:
-        n = _node(x, p.x_mm)
-        f_static[NDOF * n + np.array([UX, UY, UZ, RX])] += [p.Fx_N, p.Fy_N, p.Fz_N, p.Mx_Nmm]
-    return f_static
+            n = _node(x, a.x_mm)
+            f[NDOF * n + np.array([UX, UY, UZ]), c] += a.F_N
+            f[NDOF * n + np.array([RX, RY, RZ]), c] += a.M_Nmm
+    for b in body:
+        c = keys[_column_of(b)]
+        q[c] += rho_A[:, None] * np.array(b.accel_mm_s2[1:])[None, :]
+    for c in range(len(cols)):
+        f[:, c] += _consistent_line_loads(x, q[c])
+    return tuple(LoadColumn(**d) for d in cols), f, q
 
 
 def _stations(variant, x: np.ndarray) -> dict[str, int]:
@@ -300,17 +356,22 @@ def _stations(variant, x: np.ndarray) -> dict[str, int]:
 
 
 def _shoulders(segs, x: np.ndarray, kt_fit: str) -> tuple[Shoulder, ...]:
-    """A ``Shoulder`` with its bending Kt at every diameter step between adjacent segments."""
+    """A ``Shoulder`` with its Kt in bending, tension and torsion at every diameter step
+    between adjacent segments."""
     shoulders = []
     for s0, s1 in itertools.pairwise(segs):
         if abs(s0.diameter_mm - s1.diameter_mm) < 1e-12:
             continue
         Dm, dm = max(s0.diameter_mm, s1.diameter_mm), min(s0.diameter_mm, s1.diameter_mm)
-        k = kt_shoulder(Dm, dm, s0.fillet_mm, kt_fit)
+        k, kn, kt = (kt_shoulder(Dm, dm, s0.fillet_mm, kt_fit, load)
+                     for load in ("bending", "tension", "torsion"))
         shoulders.append(Shoulder(
             x_mm=s0.x_end_mm, node=_node(x, s0.x_end_mm), D_mm=Dm, d_mm=dm, r_mm=s0.fillet_mm,
             kt=k.kt, kt_in_range=k.in_range, kt_fit=kt_fit, kt_note=k.note,
-            small_side="left" if s0.diameter_mm < s1.diameter_mm else "right"))
+            small_side="left" if s0.diameter_mm < s1.diameter_mm else "right",
+            kt_tension=kn.kt, kt_torsion=kt.kt, kt_tension_in_range=kn.in_range,
+            kt_torsion_in_range=kt.in_range, kt_tension_note=kn.note,
+            kt_torsion_note=kt.note))
     return tuple(shoulders)
 
 
@@ -371,8 +432,10 @@ def _support_terms(model: BeamModel) -> tuple[list[tuple[np.ndarray, np.ndarray]
             terms.append((np.array([b + RY, b + RZ]), s.tilt_Nmm_per_rad * np.eye(2)))
         if s.axial:
             fixed.append(b + UX)
-    if model.supports:
-        fixed.append(NDOF * model.torsion_node + RX)
+        if s.holds_torsion:
+            fixed.append(b + RX)
+    if model.supports and not model.torsion_held:
+        fixed.append(NDOF * model.torsion_node + RX)     # the gauge (Σ T = 0 per pattern)
     return terms, np.unique(np.asarray(fixed, dtype=int))
 
 

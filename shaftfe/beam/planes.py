@@ -11,8 +11,13 @@ What moves the plane: several load directions (each fillet sees its own resultan
 bearing tilt stiffness or more than two bearings (the reactions then depend on the
 stiffnesses, K12 included). With two tilt-free bearings the reactions follow from statics
 alone, so K12 cannot rotate the plane (measured on x2_57 with the loads turned by 0/30/45/90°:
-θ* = the load angle to 1e-12°). All loads ∝ ω², so the plane does not depend on the speed
-(spin softening, off here, would turn it by the deflection's share of the load, ~1 %).
+θ* = the load angle to 1e-12°). The beam solve carries every load of the variant
+(``shaftfe.model.loads``: the parts' forces at their centroids, the ``[[loads]]``) at
+``REF_RPM`` with every other load at its written magnitude: when loads of different speed laws
+act in different planes the plane depends on the case, and this is the one the mesher
+refines (spin softening, off here, would turn it by the deflection's share of the load, ~1 %).
+A plane within ``SNAP_RAD`` of π is reported as 0 (the same line; the sign of a round-off
+moment must not change the mesh).
 """
 
 from __future__ import annotations
@@ -24,6 +29,7 @@ import numpy as np
 from shaftfe.util.units import REF_RPM
 
 MIN_SHARE = 1e-3              # |M| below this share of the largest: no plane (whole ring hot)
+SNAP_RAD = 1e-9               # a line at π − 1e-9 rad is the line at 0 (round-off of M_y)
 
 
 def hot_axes(variant, fillets) -> dict[str, float | None]:
@@ -46,7 +52,8 @@ def hot_axes(variant, fillets) -> dict[str, float | None]:
         if not top > 0 or math.hypot(my, mz) < MIN_SHARE * top:
             out[fl.segment] = None
         else:
-            out[fl.segment] = math.atan2(my, -mz) % math.pi
+            th = math.atan2(my, -mz) % math.pi
+            out[fl.segment] = 0.0 if math.pi - th < SNAP_RAD else th
     return out
 
 

@@ -2,22 +2,27 @@
 
 Solve
 -----
-The model is assembled banded, the held dofs are eliminated and the system is solved once
-(banded Cholesky with symmetric Jacobi scaling and one step of iterative refinement) for two
-load cases: the centrifugal loads per unit ω² (rad²/s²) and the static extra loads. Every solve
-is checked by its componentwise backward error (``RESIDUAL_TOL``) and reports its relative
-residual and a 1-norm condition estimate. Each rpm then scales the unit solution by ω².
+The model is assembled banded, the held dofs are eliminated and the system is factorised once
+(banded Cholesky with symmetric Jacobi scaling and one step of iterative refinement) and solved
+for every load column of the model (one per speed-law pattern and load name, at the loads'
+written magnitudes: the parts' m e ω² at ``REF_RPM``). Every solve is checked by its
+componentwise backward error (``RESIDUAL_TOL``) and reports its relative residual and a 1-norm
+condition estimate. A speed (``result_at``) or a load case (``result_of_case``) is then the sum
+of the columns times their factors (``shaftfe.model.loads.law_factor`` / ``LoadCase.factor``).
 
 Results
 -------
 Per rpm (``BeamResult``): bearing reactions (vector, magnitude, ISO 281 basic L10h = (C/P)^p 10⁶ /
 (60 n)), deflection line and named-station deflections, bending moment/torque at both ends of
-every element (jumps at tilt springs are kept), nominal bending stress σ = M/W (32 M/(π d³) for a
-solid section; at a shoulder each side uses its own diameter, so the maximum is on the smaller
-one), τ = T (D/2)/J (16 T/(π d³) solid), von Mises √(σ² + 3τ²), its maximum and x, and at each
-shoulder Kt (``shaftfe.beam.scf``, bending fit) × the nominal von Mises stress on the smaller
-diameter at the shoulder (a torsion Kts is not modelled: the seed's loads carry no torque).
-Reactions are the forces the supports exert ON the shaft (bearing load = −reaction).
+every element (jumps at tilt springs are kept), axial force N and torque T there (from the
+same element end forces: statics of the axial bearing and of the torque path), nominal bending
+stress σ_b = M/W (32 M/(π d³) for a solid section; at a shoulder each side uses its own
+diameter, so the maximum is on the smaller one), σ_N = N/A, τ = |T| (D/2)/J (16 T/(π d³)
+solid), the combined normal stress of the worst fibre σ = |σ_N| + σ_b (the fibre where bending
+adds to the axial stress) and von Mises of (σ, τ) (``shaftfe.util.units.von_mises``), its
+maximum and x; at each shoulder the peak von Mises of (Kt_b σ_b + Kt_N |σ_N|, Kt_T τ) on the
+smaller diameter (``shaftfe.beam.scf``: bending, tension and torsion fits). Reactions are the
+forces the supports exert ON the shaft (bearing load = −reaction); L10h from the radial load.
 
 Units: mm, N, MPa, t/mm³; rpm for speeds. Pure functions; SciPy is imported inside the solve.
 """
@@ -41,18 +46,20 @@ from shaftfe.beam.model import (
 )
 from shaftfe.errors import InputError, SolverError
 from shaftfe.model.bearing_life import l10h
-from shaftfe.util.units import omega
+from shaftfe.model.loads import law_factor
+from shaftfe.util.notices import warn
+from shaftfe.util.units import von_mises
 
 # --------------------------------------------------------------------------- solve
 
 @dataclass(frozen=True, eq=False)
 class UnitSolution:
-    """Displacements for the centrifugal loads per unit ω² (column 0) and for the static extra
-    loads (column 1); reactions in the same two columns."""
+    """Displacements for every load column of the model (``BeamModel.columns``: the loads at
+    their written magnitudes); reactions and element end forces in the same columns."""
     model: BeamModel
-    u: np.ndarray                 # (ndof, 2)
-    r: np.ndarray                 # (ndof, 2) support reactions on the shaft, K u − f
-    end_forces: np.ndarray        # (n_el, 12, 2) element end forces (internal, on element)
+    u: np.ndarray                 # (ndof, n_col)
+    r: np.ndarray                 # (ndof, n_col) support reactions on the shaft, K u − f
+    end_forces: np.ndarray        # (n_el, 12, n_col) element end forces (internal, on element)
     relative_residual: float = 0.0   # max over the load columns of ‖K u − F‖/‖F‖ (free dofs)
     backward_error: float = 0.0      # componentwise (Oettli-Prager), checked ≤ RESIDUAL_TOL
     cond_estimate: float = math.nan  # 1-norm condition estimate of the supported K (Hager)
@@ -63,7 +70,7 @@ RESIDUAL_TOL = 1e-8               # every solve: componentwise backward error be
 
 
 def solve_unit(model: BeamModel) -> UnitSolution:
-    """Assemble (banded), apply supports and solve once for the unit-ω² and static load cases.
+    """Assemble (banded), apply supports, factorise once and solve every load column.
 
     Held dofs are eliminated; the reduced matrix keeps the 11-wide band, so the solve is a
     banded Cholesky factorisation (O(n))."""
@@ -91,7 +98,8 @@ def solve_unit(model: BeamModel) -> UnitSolution:
     nf = free.size
     ab = np.bincount((_BAND + ri - ci) * nf + ci, weights=vals,
                      minlength=(_BAND + 1) * nf).reshape(_BAND + 1, nf)
-    F = np.stack([model.load_unit, model.load_static], axis=1)
+    F = model.f
+    ncol = F.shape[1]
     # symmetric Jacobi scaling D K D (translations in N/mm, rotations in N·mm/rad: the scaled
     # matrix has a unit diagonal) and one step of iterative refinement against the unscaled
     # triplets (issue 8: stiffness 1 … 1e12 N/mm)
@@ -104,19 +112,24 @@ def solve_unit(model: BeamModel) -> UnitSolution:
         raise SolverError(f"beam model {model.name!r}: stiffness not positive definite "
                           f"({exc})") from None
     Kr = _reduced_matrix(ri, ci, vals, nf)
-    u = np.zeros((ndof, 2))
-    uf = d[:, None] * cho_solve_banded((c, False), d[:, None] * F[free])
-    uf += d[:, None] * cho_solve_banded((c, False), d[:, None] * (F[free] - Kr @ uf))
+    u = np.zeros((ndof, ncol))
+    uf = np.zeros((nf, ncol))
+    if ncol:
+        uf = d[:, None] * cho_solve_banded((c, False), d[:, None] * F[free])
+        uf += d[:, None] * cho_solve_banded((c, False), d[:, None] * (F[free] - Kr @ uf))
     u[free] = uf
     relres, berr, cond = _solve_checks(Kr, d, c, uf, F[free], model.name)
     # element end forces (internal): K_e u_e minus the fixed-end forces of element line loads
     ue = u[dofs]                                            # (ne, 12, 2)
     fe = np.einsum("eij,ejc->eic", ke, ue)
     # reactions: r = K_elastic u − F (= −K_spring u at springs, the held force at held dofs)
-    r = np.stack([np.bincount(dofs.ravel(), weights=fe[:, :, k].ravel(), minlength=ndof)
-                  for k in range(2)], axis=1) - F
-    if model.spread_loads:
-        fe[:, :, 0] -= _element_fixed_end_loads(model.L, model.q_unit)
+    r = np.zeros((ndof, ncol))
+    for k in range(ncol):
+        r[:, k] = np.bincount(dofs.ravel(), weights=fe[:, :, k].ravel(), minlength=ndof)
+    r -= F
+    for k in range(ncol):
+        if np.any(model.q[k]):
+            fe[:, :, k] -= _element_fixed_end_loads(model.L, model.q[k])
     return UnitSolution(model=model, u=u, r=r, end_forces=fe, relative_residual=relres,
                         backward_error=berr, cond_estimate=cond)
 
@@ -145,6 +158,8 @@ def _solve_checks(K, d, c, u, F, name) -> tuple[float, float, float]:
     from scipy.sparse.linalg import LinearOperator, onenormest
 
     nf = K.shape[0]
+    if F.shape[1] == 0:
+        return 0.0, 0.0, math.nan
     fn = np.linalg.norm(F, axis=0)
     r = K @ u - F
     rn = np.linalg.norm(r, axis=0)
@@ -187,8 +202,8 @@ class BearingResult:
     Fy_N: float           # reaction on the shaft
     Fz_N: float
     F_N: float            # radial magnitude (= bearing load P)
-    Fx_N: float
-    L10h: float           # ISO 281 basic rating life, hours (inf if unloaded or rpm = 0)
+    Fx_N: float           # axial reaction (the axial bearing)
+    L10h: float           # ISO 281 basic rating life from F_N, hours (inf if unloaded, rpm = 0)
 
 
 @dataclass(frozen=True)
@@ -209,7 +224,9 @@ class NotchResult:
     kt_in_range: bool
     kt_note: str
     sigma_nom_MPa: float      # von Mises nominal on the smaller diameter at the shoulder
-    sigma_peak_MPa: float     # kt × sigma_nom
+    sigma_peak_MPa: float     # von Mises of (Kt_b σ_b + Kt_N |σ_N|, Kt_T τ)
+    kt_tension: float = 1.0
+    kt_torsion: float = 1.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -231,7 +248,7 @@ class BeamResult:
     T: np.ndarray             # torque, N·mm
     sigma: np.ndarray         # nominal bending stress, MPa
     tau: np.ndarray           # nominal torsional shear stress, MPa
-    sigma_vm: np.ndarray      # von Mises of (sigma, tau)
+    sigma_vm: np.ndarray      # von Mises of (sigma_x, tau)
     max_sigma_vm_MPa: float
     x_max_sigma_vm_mm: float
     notches: tuple[NotchResult, ...]
@@ -241,18 +258,30 @@ class BeamResult:
     relative_residual: float = 0.0    # of the one supported solve (UnitSolution)
     backward_error: float = 0.0       # componentwise backward error of that solve
     cond_estimate: float = math.nan   # 1-norm condition estimate of the supported stiffness
+    N: np.ndarray | None = None       # axial force at x_sec, N (tension > 0)
+    sigma_N: np.ndarray | None = None     # N / A, MPa
+    sigma_x: np.ndarray | None = None     # |σ_N| + σ_b: the worst fibre's normal stress, MPa
+    case: str = ""                    # the load case's name ("" = a plain speed)
+    torsion_gauge_Nmm: float = 0.0    # torque at the torsion gauge (0 unless a case is unbalanced)
 
     @property
     def max_deflection_mm(self) -> float:
         return float(self.u.max())
 
+    def max_abs(self, line: str) -> float:
+        """max |·| of a line along the shaft ("N", "T", "tau", "sigma_N", ...), 0 if empty."""
+        v = getattr(self, line)
+        return float(np.abs(v).max()) if v is not None and v.size else 0.0
+
     def to_dict(self, lines: bool = False) -> dict:
         def fin(v):
             return None if not math.isfinite(v) else v
         d = {
-            "variant": self.name, "rpm": self.rpm, "rigid_supports": self.rigid_supports,
+            "variant": self.name, "rpm": self.rpm, "case": self.case,
+            "rigid_supports": self.rigid_supports,
             "bearings": [{"name": b.name, "x_mm": b.x_mm, "Fy_N": b.Fy_N, "Fz_N": b.Fz_N,
-                          "F_N": b.F_N, "L10h": fin(b.L10h)} for b in self.bearings],
+                          "F_N": b.F_N, "Fx_N": b.Fx_N, "L10h": fin(b.L10h)}
+                         for b in self.bearings],
             "stations": {k: {"x_mm": s.x_mm, "uy_mm": s.uy_mm, "uz_mm": s.uz_mm,
                              "u_mm": s.u_mm} for k, s in self.stations.items()},
             "max_deflection_mm": self.max_deflection_mm,
@@ -262,8 +291,11 @@ class BeamResult:
             "x_max_sigma_vm_with_kt_mm": self.x_max_peak_mm,
             "notches": [{"x_mm": n.x_mm, "D_mm": n.D_mm, "d_mm": n.d_mm, "r_mm": n.r_mm,
                          "kt": fin(n.kt), "kt_in_range": n.kt_in_range, "kt_note": n.kt_note,
+                         "kt_tension": fin(n.kt_tension), "kt_torsion": fin(n.kt_torsion),
                          "sigma_nom_MPa": n.sigma_nom_MPa, "sigma_peak_MPa": fin(n.sigma_peak_MPa)}
                         for n in self.notches],
+            "max_abs_N_N": self.max_abs("N"), "max_abs_T_Nmm": self.max_abs("T"),
+            "max_tau_MPa": self.max_abs("tau"), "torsion_gauge_Nmm": self.torsion_gauge_Nmm,
             "notes": list(self.notes),
             "solve": {"relative_residual": self.relative_residual,
                       "backward_error": self.backward_error,
@@ -272,7 +304,8 @@ class BeamResult:
         if lines:
             d["lines"] = {"x_mm": self.x.tolist(), "uy_mm": self.uy.tolist(),
                           "uz_mm": self.uz.tolist(), "x_sec_mm": self.x_sec.tolist(),
-                          "M_Nmm": self.M.tolist(), "sigma_vm_MPa": self.sigma_vm.tolist()}
+                          "M_Nmm": self.M.tolist(), "N_N": self.N.tolist(),
+                          "T_Nmm": self.T.tolist(), "sigma_vm_MPa": self.sigma_vm.tolist()}
         return d
 
 
@@ -280,6 +313,11 @@ class BeamResult:
 
 AT_REST_NOTE = ("0 rpm: no load (the only load, the parts' m·e·ω², is zero at rest): every "
                 "reaction, deflection and stress is 0 and the bearing life unbounded")
+AXIAL_LIFE_NOTE = ("L10h from the radial load only: the bearing's axial load Fx (ISO 281 "
+                   "P = X F_r + Y F_a) needs X and Y, which the variant does not give")
+# the torsion gauge (no bearing holds torsion) must carry no torque: a case whose torques do
+# not balance (a factor on one torque of a pair) is reported, beyond round-off of the inputs
+GAUGE_TOL = 1e-9
 # small-deflection model: a linear beam (and the linear 3D model) holds while rotations stay
 # small. A deflection u over the length L bends the shaft to slopes θ ≈ 3 u / L; at u = 0.02 L,
 # θ ≈ 0.06 rad and the neglected second-order terms (1 − cos θ ≈ θ²/2, the axial shortening)
@@ -307,11 +345,22 @@ def check_deflection(where: str, length_mm: float, u_max_mm: float,
              "stated in the variant file: the shaft would touch it (contact is not modelled)")
 
 
-def result_at(sol: UnitSolution, rpm: float) -> BeamResult:
-    """Scale the unit solution to ``rpm`` (centrifugal loads ∝ ω²) and post-process."""
+def column_factors(model: BeamModel, rpm: float, case=None) -> np.ndarray:
+    """The factor of every load column at a plain speed ``rpm`` (rpm² loads × (rpm/ref)²,
+    constant × 1, channel loads at their reference) or in ``case`` (a ``LoadCase``)."""
+    if case is not None:
+        return np.array([case.factor(c) for c in model.columns])
+    return np.array([law_factor(c.scales_with, rpm, {}, ref_rpm=c.ref_rpm,
+                                channel_ref=c.channel_ref) for c in model.columns])
+
+
+def result_at(sol: UnitSolution, rpm: float, case=None) -> BeamResult:
+    """Superpose the load columns at ``rpm`` (or in the load case ``case``, at its speed) and
+    post-process."""
     m = sol.model
-    w2 = omega(rpm) ** 2
-    coef = np.array([w2, 1.0])
+    if case is not None:
+        rpm = case.rpm
+    coef = column_factors(m, rpm, case)
     u = sol.u @ coef
     r = sol.r @ coef
     fe = sol.end_forces @ coef                                  # (ne, 12)
@@ -327,42 +376,84 @@ def result_at(sol: UnitSolution, rpm: float) -> BeamResult:
         bearings.append(BearingResult(s.name, s.x_mm, Fy, Fz, F, Fx,
                                       l10h(s.C_N, F, rpm, s.life_exponent)))
     # internal resultants at element ends: start = −f(start), end = +f(end)
-    My = np.stack([-fe[:, RY], fe[:, NDOF + RY]], 1).ravel()
-    Mz = np.stack([-fe[:, RZ], fe[:, NDOF + RZ]], 1).ravel()
-    T = np.stack([-fe[:, RX], fe[:, NDOF + RX]], 1).ravel()
+    def line(dof):
+        return np.stack([-fe[:, dof], fe[:, NDOF + dof]], 1).ravel()
+    My, Mz, T, N = line(RY), line(RZ), line(RX), line(UX)
     M = np.hypot(My, Mz)
     x_sec = np.stack([m.x[:-1], m.x[1:]], 1).ravel()
     sec = m.sections
-    W = np.repeat(sec.W, 2)
-    Wt = np.repeat(sec.Wt, 2)
-    sigma = M / W
-    tau = np.abs(T) / Wt
-    vm = np.sqrt(sigma**2 + 3.0 * tau**2)
+    W, Wt, A = np.repeat(sec.W, 2), np.repeat(sec.Wt, 2), np.repeat(sec.A, 2)
+    sigma, sigma_N, tau = M / W, N / A, np.abs(T) / Wt
+    sigma_x = np.abs(sigma_N) + sigma
+    zero = np.zeros_like(sigma)
+    vm = von_mises((sigma_x, zero, zero, tau, zero, zero))
     imax = int(np.argmax(vm))
     notches = []
     for sh in m.shoulders:
         # element on the small-diameter side of the shoulder node
         e = sh.node - 1 if sh.small_side == "left" else sh.node
         k = 2 * e + (1 if sh.small_side == "left" else 0)
-        s_nom = float(vm[k])
+        peak = von_mises((sh.kt * sigma[k] + sh.kt_tension * abs(sigma_N[k]), 0.0, 0.0,
+                          sh.kt_torsion * tau[k], 0.0, 0.0))
         notches.append(NotchResult(sh.x_mm, sh.D_mm, sh.d_mm, sh.r_mm, sh.kt, sh.kt_in_range,
-                                   sh.kt_note, s_nom, sh.kt * s_nom))
+                                   _kt_note(sh, sigma_N[k], tau[k]), float(vm[k]), float(peak),
+                                   sh.kt_tension, sh.kt_torsion))
     clr = stations.get("clearance")
-    check_deflection(f"beam, {rpm:g} rpm", float(m.x[-1] - m.x[0]), float(umag.max()),
+    where = f"beam, {case.name}" if case is not None else f"beam, {rpm:g} rpm"
+    check_deflection(where, float(m.x[-1] - m.x[0]), float(umag.max()),
                      None if clr is None else clr.u_mm, m.clearance_mm)
+    gauge = _gauge_torque(m, r, coef, where)
     peak, xpeak = float(vm[imax]), float(x_sec[imax])
     for nt in notches:
         if nt.sigma_peak_MPa > peak:
             peak, xpeak = nt.sigma_peak_MPa, nt.x_mm
+    notes = m.notes
+    loaded = np.abs(m.f).max(axis=0, initial=0.0) > 0
+    if rpm == 0 and not np.any(coef[loaded]):
+        notes += (AT_REST_NOTE,)
+    if any(b.Fx_N for b in bearings):
+        notes += (AXIAL_LIFE_NOTE,)
     return BeamResult(
         name=m.name, rpm=float(rpm), rigid_supports=m.rigid_supports, x=m.x, uy=uy, uz=uz,
         u=umag, stations=MappingProxyType(stations), bearings=tuple(bearings), x_sec=x_sec,
         d_sec=np.repeat(sec.D, 2), My=My, Mz=Mz, M=M, T=T, sigma=sigma, tau=tau, sigma_vm=vm,
         max_sigma_vm_MPa=float(vm[imax]), x_max_sigma_vm_mm=float(x_sec[imax]),
-        notches=tuple(notches), max_peak_MPa=peak, x_max_peak_mm=xpeak,
-        notes=m.notes + ((AT_REST_NOTE,) if rpm == 0 else ()),
+        notches=tuple(notches), max_peak_MPa=peak, x_max_peak_mm=xpeak, notes=notes,
         relative_residual=sol.relative_residual, backward_error=sol.backward_error,
-        cond_estimate=sol.cond_estimate)
+        cond_estimate=sol.cond_estimate, N=N, sigma_N=sigma_N, sigma_x=sigma_x,
+        case="" if case is None else case.name, torsion_gauge_Nmm=gauge)
+
+
+def _kt_note(sh, sigma_N: float, tau: float) -> str:
+    """The shoulder's Kt notes of the loads it carries (bending always; tension and torsion
+    where they are non-zero)."""
+    out = [sh.kt_note] if sh.kt_note else []
+    if sigma_N and sh.kt_tension_note:
+        out.append(f"tension: {sh.kt_tension_note}")
+    if tau and sh.kt_torsion_note:
+        out.append(f"torsion: {sh.kt_torsion_note}")
+    return "; ".join(out)
+
+
+def _gauge_torque(m: BeamModel, r: np.ndarray, coef: np.ndarray, where: str) -> float:
+    """The torque the torsion gauge carries (0 when a bearing holds torsion). Zero to
+    round-off when the torques balance; else a visible warning (the case's torques do not)."""
+    if m.torsion_held or not m.supports:
+        return 0.0
+    t = float(r[NDOF * m.torsion_node + RX])
+    scale = float(np.abs(coef) @ np.array([c.torque_abs_Nmm for c in m.columns]))
+    if abs(t) > GAUGE_TOL * max(scale, 1.0):
+        warn("torque-unbalanced", where, f"the applied torques do not balance (net "
+             f"{-t:.4g} N·mm) and no bearing holds torsion: the beam holds the twist at "
+             f"x = {m.x[m.torsion_node]:g} mm to solve, which is not physical (declare "
+             "holds_torsion on the bearing that reacts it, or balance the case's factors)")
+    return t
+
+
+def solve_cases(model: BeamModel, cases) -> tuple[BeamResult, ...]:
+    """Solve once and return one ``BeamResult`` per load case (``LoadCase``)."""
+    sol = solve_unit(model)
+    return tuple(result_at(sol, c.rpm, c) for c in cases)
 
 
 def solve(model: BeamModel, rpm: float | Sequence[float]) -> tuple[BeamResult, ...]:

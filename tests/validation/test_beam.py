@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -31,7 +32,6 @@ from shaftfe.beam.elements import (
     section_properties,
 )
 from shaftfe.beam.model import (
-    PointLoad,
     assemble_mass,
     assemble_stiffness,
     build_model,
@@ -41,6 +41,7 @@ from shaftfe.beam.model import (
 from shaftfe.beam.solve import solve, solve_unit
 from shaftfe.errors import InputError, SolverError
 from shaftfe.model.bearing_life import l10h
+from shaftfe.model.loads import Load
 from shaftfe.model.variant import Attachment, Bearing, HexSocket, Material, Segment, Variant
 
 E, NU = 210_000.0, 0.3
@@ -52,7 +53,8 @@ RIGID = ((0.0, 0.0), (0.0, 0.0))
 
 def make_variant(segments, bearings, attachments=(), hex_socket=None, clearance=None,
                  name="t"):
-    """segments: [(length, diameter, fillet_right)], bearings: [(x, K, axial, tilt, C)]."""
+    """segments: [(length, diameter, fillet_right)], bearings: [(x, K, axial, tilt, C,
+    holds_torsion)]."""
     segs, x = [], 0.0
     for i, (length, dia, *rest) in enumerate(segments):
         segs.append(Segment(f"s{i}", x, length, dia, fillet_mm=rest[0] if rest else 0.0))
@@ -63,7 +65,8 @@ def make_variant(segments, bearings, attachments=(), hex_socket=None, clearance=
         tilt = rest[1] if len(rest) > 1 else 0.0
         C = rest[2] if len(rest) > 2 else 10_000.0
         brgs.append(Bearing(f"b{i}", "test", xb, 0.0, C, C, K, axial=axial,
-                            tilt_stiffness_Nmm_per_rad=tilt))
+                            tilt_stiffness_Nmm_per_rad=tilt,
+                            holds_torsion=rest[3] if len(rest) > 3 else False))
     return Variant(name, "test", tuple(segs), tuple(brgs), tuple(attachments), STEEL, 0.0,
                    hex_socket=hex_socket, clearance_station_x_mm=clearance)
 
@@ -78,7 +81,21 @@ def node(model, x):
     return i
 
 
-def one(v, rpm=0.0, **kw):
+def point(x, Fy=0.0, Fz=0.0, Mx=0.0, Fx=0.0):
+    """Point loads at x (the load model's ``[[loads]]`` entries, constant law, no band): a
+    force in y, one in z, a torque about x and an axial force."""
+    out = []
+    for kind, val, ang in (("force", Fy, 0.0), ("force", Fz, 90.0), ("torque", Mx, 0.0),
+                           ("axial_force", Fx, 0.0)):
+        if val:
+            out.append(Load(f"{kind}@{x:g}/{ang:g}", kind, x, (x, x), val, ang))
+    return out
+
+
+def one(v, rpm=0.0, loads=(), **kw):
+    """Build and solve ``v`` with the extra point ``loads`` (lists from ``point``)."""
+    if loads:
+        v = replace(v, loads=tuple(ld for grp in loads for ld in grp))
     m = build_model(v, **kw)
     return m, solve(m, rpm)[0]
 
@@ -156,7 +173,7 @@ def test_simply_supported_central_load(max_el):
     A, Ia = props(d)
     v = make_variant([(L, d)], [(0.0, RIGID), (L, RIGID)])
     m, r = one(v, rigid_supports=True, max_element_mm=max_el,
-               extra_loads=[PointLoad(L / 2, Fy_N=P)])
+               loads=[point(L / 2, Fy=P)])
     ref = P * L**3 / (48 * E * Ia) + P * L / (4 * KAPPA * G * A)
     # exact element: round-off only (EXACT, see its definition)
     assert r.uy[node(m, L / 2)] == pytest.approx(ref, rel=EXACT)
@@ -179,7 +196,7 @@ def test_overhang_tip_load():
     A, Ia = props(d)
     v = make_variant([(L + a, d)], [(0.0, RIGID), (L, RIGID)])
     _, r = one(v, rigid_supports=True, max_element_mm=5,
-               extra_loads=[PointLoad(L + a, Fz_N=P)])
+               loads=[point(L + a, Fz=P)])
     ref = P * a**2 * (L + a) / (3 * E * Ia) + P * a * (L + a) / (L * KAPPA * G * A)
     # exact element: round-off only (EXACT, see its definition)
     assert r.uz[-1] == pytest.approx(ref, rel=EXACT)
@@ -196,7 +213,7 @@ def test_cantilever_on_radial_and_tilt_springs():
     L, d, P, k, kt = 120.0, 16.0, 500.0, 20_000.0, 3.0e7
     A, Ia = props(d)
     v = make_variant([(L, d)], [(0.0, ((k, 0.0), (0.0, k)), True, kt)])
-    _, r = one(v, max_element_mm=10, extra_loads=[PointLoad(L, Fy_N=P)])
+    _, r = one(v, max_element_mm=10, loads=[point(L, Fy=P)])
     ref = P * L**3 / (3 * E * Ia) + P * L / (KAPPA * G * A) + P / k + P * L**2 / kt
     # exact element: round-off only (EXACT, see its definition)
     assert r.uy[-1] == pytest.approx(ref, rel=EXACT)
@@ -209,7 +226,7 @@ def test_simply_supported_on_unequal_springs():
     L, d, P, k1, k2 = 200.0, 20.0, 1000.0, 35_030.0, 12_000.0
     A, Ia = props(d)
     v = make_variant([(L, d)], [(0.0, ((k1, 0), (0, k1))), (L, ((k2, 0), (0, k2)))])
-    m, r = one(v, max_element_mm=8, extra_loads=[PointLoad(L / 2, Fy_N=P)])
+    m, r = one(v, max_element_mm=8, loads=[point(L / 2, Fy=P)])
     rigid = P * L**3 / (48 * E * Ia) + P * L / (4 * KAPPA * G * A)
     ref = rigid + 0.5 * (P / 2 / k1 + P / 2 / k2)
     # exact element: round-off only (EXACT, see its definition)
@@ -224,7 +241,7 @@ def test_overhang_on_springs_lever_rule():
     L, a, d, P, k1, k2 = 150.0, 60.0, 18.0, 800.0, 30_000.0, 50_000.0
     A, Ia = props(d)
     v = make_variant([(L + a, d)], [(0.0, ((k1, 0), (0, k1))), (L, ((k2, 0), (0, k2)))])
-    _, r = one(v, max_element_mm=5, extra_loads=[PointLoad(L + a, Fy_N=P)])
+    _, r = one(v, max_element_mm=5, loads=[point(L + a, Fy=P)])
     tip_rigid = P * a**2 * (L + a) / (3 * E * Ia) + P * a * (L + a) / (L * KAPPA * G * A)
     dA = -P * a / L / k1            # bearing A is pulled away from the load (−y)
     dB = P * (L + a) / L / k2
@@ -242,7 +259,7 @@ def test_coupled_spring_support_displacement_is_K_inverse_R():
     L, d, P, xp, ang = 180.0, 20.0, 2000.0, 70.0, math.radians(30)
     v = make_variant([(L, d)], [(0.0, Kc), (L, Kc)])
     Py, Pz = P * math.cos(ang), P * math.sin(ang)
-    m, r = one(v, max_element_mm=6, extra_loads=[PointLoad(xp, Fy_N=Py, Fz_N=Pz)])
+    m, r = one(v, max_element_mm=6, loads=[point(xp, Fy=Py, Fz=Pz)])
     load_on = {0: np.array([Py, Pz]) * (L - xp) / L, 1: np.array([Py, Pz]) * xp / L}
     Kinv = np.linalg.inv(np.array(Kc))
     for i, b in enumerate(r.bearings):
@@ -253,7 +270,7 @@ def test_coupled_spring_support_displacement_is_K_inverse_R():
         # exact element: round-off only (EXACT, see its definition)
         assert np.allclose(disp, Kinv @ load_on[i], rtol=EXACT)
     # a pure y load still moves the supports in z through K12
-    m2, ry = one(v, max_element_mm=6, extra_loads=[PointLoad(L / 2, Fy_N=P)])
+    m2, ry = one(v, max_element_mm=6, loads=[point(L / 2, Fy=P)])
     A, Ia = props(d)
     rigid = P * L**3 / (48 * E * Ia) + P * L / (4 * KAPPA * G * A)
     sup = Kinv @ np.array([P / 2, 0.0])
@@ -275,7 +292,7 @@ def test_stepped_hollow_shaft_against_unit_load_integral():
     xa, xb, xp, P = 5.0, 110.0, 45.0, 3000.0
     v = make_variant(segs, [(xa, RIGID), (xb, RIGID)], hex_socket=hs)
     m, r = one(v, rigid_supports=True, max_element_mm=4,
-               extra_loads=[PointLoad(xp, Fy_N=P)])
+               loads=[point(xp, Fy=P)])
     span = xb - xa
     Ra = P * (xb - xp) / span
 
@@ -331,20 +348,22 @@ def test_uniform_line_load_spread_over_seat():
     assert r.M.max() == pytest.approx(q * L**2 / 8, rel=EXACT)
 
 
-def test_equilibrium_with_several_loads_and_coupled_springs():
+@pytest.mark.parametrize("seed", [False, True])
+def test_equilibrium_with_several_loads_and_coupled_springs(seed):
     """Static equilibrium (Newton): Σ reactions + Σ applied loads = 0 in y and z, and the moment
-    about x = 0 also balances, to 1e-10 relative."""
+    about x = 0 also balances, to 1e-10 relative: with each part's force at its centroid (the
+    default: issue #31) or at its seat centre (``seed_placement``, the seed's model)."""
     Kc = ((35_030.0, 8756.0), (8756.0, 35_030.0))
     atts = [Attachment("gear", 5, 20, 0.152, 1.36, 12, angle_deg=0.0),
             Attachment("cw1", 5, 20, 0.125, 22.59, 12, angle_deg=10.0),
             Attachment("cw2", 80, 105, 0.24, 20.23, 92, angle_deg=200.0)]
     v = make_variant([(25, 17, 1), (50, 22, 1), (35, 17)], [(30, Kc), (70, Kc)],
                      attachments=atts)
-    _, r = one(v, 10_000.0, max_element_mm=3)
+    _, r = one(v, 10_000.0, max_element_mm=3, seed_placement=seed)
     Fy = sum(a.force_N(10_000) * math.cos(math.radians(a.angle_deg)) for a in atts)
     Fz = sum(a.force_N(10_000) * math.sin(math.radians(a.angle_deg)) for a in atts)
     My = sum(a.force_N(10_000) * math.cos(math.radians(a.angle_deg))
-             * 0.5 * (a.seat_x_start_mm + a.seat_x_end_mm) for a in atts)
+             * (a.seat_center_mm if seed else a.x_centroid_mm) for a in atts)
     scale = max(a.force_N(10_000) for a in atts)
     # statics: round-off of the recovered forces, eps·max(|K||u|)/max|F| = 2.5e-12 for this
     # model (see EXACT); 1e-10 = 40× that
@@ -412,12 +431,13 @@ def test_attachment_force_is_m_e_omega_squared():
 
 
 def test_torque_gives_tau_and_von_mises():
-    """Torque T applied at the free end and held at the axial bearing: τ = 16 T/(π d³) between
-    them, σ_vm = √(σ² + 3τ²) (von Mises for bending + torsion)."""
+    """Torque T applied at the free end and held at the axial bearing (``holds_torsion``):
+    τ = 16 T/(π d³) between them, σ_vm = √(σ² + 3τ²) (von Mises for bending + torsion)."""
     L, d, T, P = 200.0, 20.0, 40_000.0, 1000.0
-    v = make_variant([(L, d)], [(0.0, RIGID, True), (150.0, RIGID, False)])
+    v = make_variant([(L, d)], [(0.0, RIGID, True, 0.0, 10_000.0, True),
+                                (150.0, RIGID, False)])
     m, r = one(v, rigid_supports=True, max_element_mm=10,
-               extra_loads=[PointLoad(100.0, Fy_N=P), PointLoad(L, Mx_Nmm=T)])
+               loads=[point(100.0, Fy=P), point(L, Mx=T)])
     tau = 16 * T / (math.pi * d**3)
     inside = r.x_sec < 200.0
     # exact element: round-off only (EXACT, see its definition)
@@ -427,7 +447,7 @@ def test_torque_gives_tau_and_von_mises():
     # rotation of the free end = T L/(G J)
     Ip = math.pi * d**4 / 32
     assert r.x[-1] == L
-    u = solve_unit(m).u[:, 1]
+    u = solve_unit(m).u.sum(axis=1)          # every load column at factor 1
     # exact element: round-off only (EXACT, see its definition)
     assert u[NDOF * (m.n_nodes - 1) + RX] == pytest.approx(T * L / (G * Ip), rel=EXACT)
 
@@ -560,7 +580,7 @@ def test_euler_bernoulli_limit():
     _, Ia = props(d)
     v = make_variant([(L + a, d)], [(0.0, RIGID), (L, RIGID)])
     m, r = one(v, rigid_supports=True, max_element_mm=5, shear_deformation=False,
-               extra_loads=[PointLoad(L / 2, Fy_N=P), PointLoad(L + a, Fz_N=P)])
+               loads=[point(L / 2, Fy=P), point(L + a, Fz=P)])
     # exact element: round-off only, Skeel bound 1.2e-10 here (κ → ∞ stiffens the shear
     # terms): 10 × EXACT leaves 80× (was rel 1e-6)
     assert r.uy[node(m, L / 2)] == pytest.approx(P * L**3 / (48 * E * Ia), rel=10 * EXACT)
