@@ -227,6 +227,9 @@ class NotchResult:
     sigma_peak_MPa: float     # von Mises of (Kt_b σ_b + Kt_N |σ_N|, Kt_T τ)
     kt_tension: float = 1.0
     kt_torsion: float = 1.0
+    M_Nmm: float = 0.0        # bending moment on the smaller diameter at the shoulder
+    N_N: float = 0.0          # axial force there
+    T_Nmm: float = 0.0        # torque there
 
 
 @dataclass(frozen=True, eq=False)
@@ -292,6 +295,7 @@ class BeamResult:
             "notches": [{"x_mm": n.x_mm, "D_mm": n.D_mm, "d_mm": n.d_mm, "r_mm": n.r_mm,
                          "kt": fin(n.kt), "kt_in_range": n.kt_in_range, "kt_note": n.kt_note,
                          "kt_tension": fin(n.kt_tension), "kt_torsion": fin(n.kt_torsion),
+                         "M_Nmm": n.M_Nmm, "N_N": n.N_N, "T_Nmm": n.T_Nmm,
                          "sigma_nom_MPa": n.sigma_nom_MPa, "sigma_peak_MPa": fin(n.sigma_peak_MPa)}
                         for n in self.notches],
             "max_abs_N_N": self.max_abs("N"), "max_abs_T_Nmm": self.max_abs("T"),
@@ -397,7 +401,8 @@ def result_at(sol: UnitSolution, rpm: float, case=None) -> BeamResult:
                           sh.kt_torsion * tau[k], 0.0, 0.0))
         notches.append(NotchResult(sh.x_mm, sh.D_mm, sh.d_mm, sh.r_mm, sh.kt, sh.kt_in_range,
                                    _kt_note(sh, sigma_N[k], tau[k]), float(vm[k]), float(peak),
-                                   sh.kt_tension, sh.kt_torsion))
+                                   sh.kt_tension, sh.kt_torsion, float(M[k]), float(N[k]),
+                                   float(T[k])))
     clr = stations.get("clearance")
     where = f"beam, {case.name}" if case is not None else f"beam, {rpm:g} rpm"
     check_deflection(where, float(m.x[-1] - m.x[0]), float(umag.max()),

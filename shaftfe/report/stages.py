@@ -127,8 +127,9 @@ def beam_check(variant, rpms) -> tuple[dict, object]:
 
     v = variant.with_seed_load_case()
     rpms = [float(r) for r in rpms]
-    timo = solve(build_model(v, rigid_supports=True), rpms)
-    eb = solve(build_model(v, rigid_supports=True, shear_deformation=False), rpms)
+    timo = solve(build_model(v, rigid_supports=True, seed_placement=True), rpms)
+    eb = solve(build_model(v, rigid_supports=True, shear_deformation=False,
+                           seed_placement=True), rpms)
     out = {}
     for label, res in (("timoshenko", timo), ("euler_bernoulli", eb)):
         out[label] = [{"rpm": r.rpm,
