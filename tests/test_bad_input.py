@@ -716,4 +716,19 @@ CASES.update(DUTY_CASES)          # counted by the catalogue's coverage test
 
 @pytest.mark.parametrize("case", sorted(DUTY_CASES))
 def test_duty_bad_input(case, space, capsys, monkeypatch):
+# --- issue #31, slice beamloads: `shaftfe beam` meets the loads (one line, exit 2) -----------
+BEAM_LOAD_CASES = {
+    "beam_torque_unreacted": (["beam", "--variant", "{V:load_torque_unreacted}"],
+                              LOAD_EXPECT["load_torque_unreacted"]),
+    "beam_unknown_case": (["beam", "--variant", "x2_57", "--case", "overload"],
+                          ["--case", "[[load_cases]] name", "overload"]),
+    "beam_set_load_outside": (["beam", "--variant", "{V:load_force_in_wrong_unit}", "--set",
+                               "loads.f.F_N=100.0", "--set", "loads.f.x_mm=-3.0"],
+                              ["--set loads.f.x_mm=-3.0", "x_mm", "on the shaft"]),
+}
+CASES.update(BEAM_LOAD_CASES)
+
+
+@pytest.mark.parametrize("case", sorted(BEAM_LOAD_CASES))
+def test_beam_bad_load_input(case, space, capsys, monkeypatch):
     test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)

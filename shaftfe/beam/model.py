@@ -77,13 +77,14 @@ from shaftfe.model.validate import source_of, validate_variant
 class LoadColumn:
     """One solved load column: the actions of one speed-law pattern (``pattern_key``) and one
     load name, at their written magnitudes. ``LoadCase.factor(column)`` is its factor in a
-    case (the attributes are those it reads); ``torque_abs_Nmm`` = Σ |T| applied (the scale of
-    the torsion gauge's check)."""
+    case (the attributes are those it reads); ``torque_abs_Nmm`` = Σ |T| and ``axial_abs_N`` =
+    Σ |F_x| applied (the scales below which a torque or an axial force is round-off)."""
     name: str
     scales_with: str
     ref_rpm: float
     channel_ref: float
     torque_abs_Nmm: float = 0.0
+    axial_abs_N: float = 0.0
 
     @property
     def factor_name(self) -> str:
@@ -314,7 +315,7 @@ def _loads(acts, body, x: np.ndarray, rho_A: np.ndarray, spread: bool
             keys[k] = len(cols)
             cols.append(dict(name=k[1], scales_with=item.scales_with,
                              ref_rpm=float(item.ref_rpm), channel_ref=float(item.channel_ref),
-                             torque_abs_Nmm=0.0))
+                             torque_abs_Nmm=0.0, axial_abs_N=0.0))
     ndof, ne = NDOF * x.size, x.size - 1
     f = np.zeros((ndof, len(cols)))
     q = np.zeros((len(cols), ne, 2))
@@ -322,6 +323,7 @@ def _loads(acts, body, x: np.ndarray, rho_A: np.ndarray, spread: bool
     for a in acts:
         c = keys[_column_of(a)]
         cols[c]["torque_abs_Nmm"] += abs(a.M_Nmm[0])
+        cols[c]["axial_abs_N"] += abs(a.F_N[0])
         lo, hi = sorted(a.band_mm)
         if spread and hi - lo > 1e-6:
             q[c, (xm > lo) & (xm < hi)] += np.array(a.F_N[1:]) / (hi - lo)

@@ -383,6 +383,10 @@ def result_at(sol: UnitSolution, rpm: float, case=None) -> BeamResult:
     def line(dof):
         return np.stack([-fe[:, dof], fe[:, NDOF + dof]], 1).ravel()
     My, Mz, T, N = line(RY), line(RZ), line(RX), line(UX)
+    # a torque or an axial force below round-off of the applied ones is zero (statics: the
+    # load columns' own torques cancel only in the sum)
+    for line_, key in ((T, "torque_abs_Nmm"), (N, "axial_abs_N")):
+        line_[np.abs(line_) <= GAUGE_TOL * _applied(m, coef, key)] = 0.0
     M = np.hypot(My, Mz)
     x_sec = np.stack([m.x[:-1], m.x[1:]], 1).ravel()
     sec = m.sections
@@ -440,14 +444,18 @@ def _kt_note(sh, sigma_N: float, tau: float) -> str:
     return "; ".join(out)
 
 
+def _applied(m: BeamModel, coef: np.ndarray, key: str) -> float:
+    """Σ over the load columns of |factor| × the column's applied Σ|T| or Σ|F_x| (``key``)."""
+    return float(np.abs(coef) @ np.array([getattr(c, key) for c in m.columns]))
+
+
 def _gauge_torque(m: BeamModel, r: np.ndarray, coef: np.ndarray, where: str) -> float:
     """The torque the torsion gauge carries (0 when a bearing holds torsion). Zero to
     round-off when the torques balance; else a visible warning (the case's torques do not)."""
     if m.torsion_held or not m.supports:
         return 0.0
     t = float(r[NDOF * m.torsion_node + RX])
-    scale = float(np.abs(coef) @ np.array([c.torque_abs_Nmm for c in m.columns]))
-    if abs(t) > GAUGE_TOL * max(scale, 1.0):
+    if abs(t) > GAUGE_TOL * max(_applied(m, coef, "torque_abs_Nmm"), 1.0):
         warn("torque-unbalanced", where, f"the applied torques do not balance (net "
              f"{-t:.4g} N·mm) and no bearing holds torsion: the beam holds the twist at "
              f"x = {m.x[m.torsion_node]:g} mm to solve, which is not physical (declare "

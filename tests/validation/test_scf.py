@@ -87,3 +87,41 @@ def test_out_of_range_policy():
     assert not big.in_range and big.kt >= 1.0 and "outside" in big.note
     with pytest.raises(ValueError):
         kt_shoulder(22.0, 17.0, 1.0, "nosuchfit")
+
+
+# --- issue #31 (beam slice): tension and torsion fits ---------------------------------------
+
+def test_tension_and_torsion_fits_agree_and_match_the_axisymmetric_tables():
+    """Tension (Roark 7th ed. Table 17.1 case 17a, Peterson 3rd ed. Chart 3.4) and torsion
+    (Roark 17c, Peterson Chart 3.12): each pair is two independent fits of the same charts
+    (measured maximum difference over 1.02 ≤ D/d ≤ 3, 0.01 ≤ r/d ≤ 0.3 where both are in range:
+    2.9 % tension, 3.1 % torsion; hence 3.5 %, the bending pair's 3 % plus the coarser torsion
+    fit). Against the project's converged axisymmetric FE (reports/benchmarks/kt_reference.json
+    grid, Kt = max principal / nominal on d, Richardson-converged): torsion within 3 %
+    (measured −1.4 … +2.6 %, the charts' torsion values come from an analysis); tension 5 … 25 %
+    BELOW the FE (measured −9 … −21 %): the photoelastic tension chart's known unconservative
+    bias for shoulder fillets (Tipton, Sorem & Schmidt, Machine Design, Jan 2009). A
+    mistranscribed coefficient moves a fit out of these bands."""
+    import json
+    from pathlib import Path
+
+    from shaftfe.beam.scf import kt_shoulder_fit
+    Dd, rd = np.meshgrid(np.linspace(1.02, 3.0, 40), np.linspace(0.01, 0.3, 40))
+    for load in ("tension", "torsion"):
+        a, ok_a = kt_shoulder_fit(Dd, 1.0, rd, "roark", load)
+        b, ok_b = kt_shoulder_fit(Dd, 1.0, rd, "peterson", load)
+        both = ok_a & ok_b
+        assert both.sum() >= 300
+        assert np.abs(a[both] / b[both] - 1).max() < 0.035, load     # see docstring
+    ref = json.loads((Path(__file__).resolve().parents[2]
+                      / "reports/benchmarks/kt_reference.json").read_text())
+    n = 0
+    for g in ref["grid"]:
+        for fit in ("roark", "peterson"):
+            for load, lo, hi in (("torsion", -0.03, 0.03), ("tension", -0.25, -0.05)):
+                kt, ok = kt_shoulder_fit(g["D_over_d"], 1.0, g["r_over_d"], fit, load)
+                if ok:
+                    n += 1
+                    rel = float(kt) / g[load]["kt"] - 1
+                    assert lo < rel < hi, (fit, load, g["D_over_d"], g["r_over_d"], rel)
+    assert n >= 40
