@@ -107,3 +107,23 @@ def test_real_variant_x2_57_runs():
     assert abs(sum(b["Fy_N"] for b in res["bearings"]) + Fy) < 1e-9 * scale
     assert abs(sum(b["Fz_N"] for b in res["bearings"]) + Fz) < 1e-9 * scale
     assert math.isfinite(res["max_sigma_vm_nominal_MPa"])
+
+
+def test_axial_force_and_torque_printed_where_they_act(capsys):
+    """issue #31 (beam): a variant with torques and an axial force (the Shigley Example 7-2
+    file: a torque between the gears, none axial) prints the torque line and the shoulders'
+    torsion Kt; the seed's variant (no torque, no axial force) prints neither. JSON carries
+    max |T|, max |N|, τ and the gauge torque (zero: the file's torques balance)."""
+    data = str(ROOT / "tests/validation/data/shigley_ex7_2.toml")
+    assert main(["beam", "--variant", data, "--rigid-supports"]) == 0
+    out = capsys.readouterr().out
+    assert "torque max |T| 3.661e+05 N·mm" in out and "Kt_T" in out and "Kt_N" not in out
+    assert main(["beam", "--variant", data, "--rigid-supports", "--json"]) == 0
+    r = json.loads(capsys.readouterr().out)["results"][0]
+    # 3240 lbf·in (the book's torque): exact unit conversion, round-off of the statics only
+    assert r["max_abs_T_Nmm"] == pytest.approx(3240 * 4.4482216152605 * 25.4, rel=1e-9)
+    assert r["max_abs_N_N"] == 0.0 and r["max_tau_MPa"] > 0
+    assert abs(r["torsion_gauge_Nmm"]) <= 1e-9 * r["max_abs_T_Nmm"]  # balanced: round-off
+    assert main(["beam", "--variant", "x2_57"]) == 0
+    out = capsys.readouterr().out
+    assert "torque max" not in out and "Kt_T" not in out

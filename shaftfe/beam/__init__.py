@@ -5,13 +5,15 @@ Modules, in pipeline order:
 
 * ``elements``: dof layout (6 per node), section properties (Cowper κ, circle minus hexagon at
   the hex socket) and the two-node IIE Timoshenko element stiffness and consistent mass.
-* ``scf``: stress-concentration factors Kt of the shoulder fillets (bending fits).
-* ``model``: ``build_model`` (nodes, sections, supports, centrifugal and static loads, stations,
-  shoulders) into a ``BeamModel``; assembled stiffness, mass and support matrices, rigid-body
-  modes and the support check.
-* ``solve``: one supported solve per unit ω² (``solve_unit``), its scaling and post-processing
-  per rpm (``result_at``, ``solve``, ``analyse``) into ``BeamResult`` (reactions, L10h,
-  deflections, nominal and Kt-corrected stresses).
+* ``scf``: stress-concentration factors Kt of the shoulder fillets (bending, tension and
+  torsion fits).
+* ``model``: ``build_model`` (nodes, sections, supports, every load of the variant as load
+  columns from ``shaftfe.model.loads.actions``, stations, shoulders) into a ``BeamModel``;
+  assembled stiffness, mass and support matrices, rigid-body modes and the support check.
+* ``solve``: one factorisation and one solve per load column (``solve_unit``), superposed per
+  rpm or load case (``result_at``, ``solve``, ``solve_cases``, ``analyse``) into ``BeamResult``
+  (reactions, L10h, deflections, bending moment, axial force, torque, nominal and Kt-corrected
+  stresses).
 
 Importing this package imports none of its modules; they load NumPy (SciPy inside the solve).
 """

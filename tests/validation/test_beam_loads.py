@@ -276,3 +276,30 @@ def test_shigley_example_7_2_reactions_torque_and_moments():
         # total as 0.5 (|M_xz| + |M_xy|)/M, plus the total's own printing
         tol = 0.5 + 0.5 * (m_xz + m_xy) / m_tot
         assert _at(r, x, "M") / nm == pytest.approx(m_tot, abs=tol), name
+
+
+def test_gravity_on_the_shafts_own_mass_is_a_uniform_line_load():
+    """Gravity (``kind = "gravity"``) on a plain bar on simple supports at its ends: the
+    uniform load q = ρ A g (Gere & Goodno, simple beam with a uniform load): reactions q L/2
+    each, the largest moment q L²/8 at mid-span, along the gravity direction (here −z)."""
+    L, d, g = 200.0, 20.0, 9810.0
+    v = _bar(L, d, [Load("g", "gravity", 0.5 * L, (0.0, L), g, 270.0)])
+    r = solve(build_model(v, rigid_supports=True, max_element_mm=10.0), 0.0)[0]
+    q = 7.85e-9 * math.pi * d**2 / 4 * g
+    for b in r.bearings:
+        # consistent line loads on exact elements: round-off only (EXACT)
+        assert b.Fz_N == pytest.approx(q * L / 2, rel=EXACT) and abs(b.Fy_N) <= EXACT * q * L
+    assert r.M.max() == pytest.approx(q * L**2 / 8, rel=EXACT)
+
+
+def test_spread_and_point_placement_give_the_same_reactions():
+    """The same actions delivered at a point or spread over their bands (``spread_loads``)
+    have the same resultants, so on two tilt-free bearings (statically determinate) the same
+    reactions: x2_57 with every part at its centroid (force and moment at the seat)."""
+    from shaftfe.model.loader import load_variant
+    v = load_variant("x2_57")
+    a = solve(build_model(v), 10_000.0)[0]
+    b = solve(build_model(v, spread_loads=True), 10_000.0)[0]
+    for p, s in zip(a.bearings, b.bearings, strict=True):
+        # statics: round-off of the two solves (the beam's recovery bound, ≤ 1e-9; see EXACT)
+        assert s.F_N == pytest.approx(p.F_N, rel=EXACT), p.name
