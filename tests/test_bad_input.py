@@ -716,6 +716,9 @@ CASES.update(DUTY_CASES)          # counted by the catalogue's coverage test
 
 @pytest.mark.parametrize("case", sorted(DUTY_CASES))
 def test_duty_bad_input(case, space, capsys, monkeypatch):
+    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
+
+
 # --- issue #31, slice beamloads: `shaftfe beam` meets the loads (one line, exit 2) -----------
 BEAM_LOAD_CASES = {
     "beam_torque_unreacted": (["beam", "--variant", "{V:load_torque_unreacted}"],
