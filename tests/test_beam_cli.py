@@ -115,10 +115,11 @@ def test_axial_force_and_torque_printed_where_they_act(capsys):
     torsion Kt; the seed's variant (no torque, no axial force) prints neither. JSON carries
     max |T|, max |N|, τ and the gauge torque (zero: the file's torques balance)."""
     data = str(ROOT / "tests/validation/data/shigley_ex7_2.toml")
-    assert main(["beam", "--variant", data, "--rigid-supports"]) == 0
+    # the file states no [duty]: the speed on the command line (its loads are constant)
+    assert main(["beam", "--variant", data, "--rigid-supports", "--rpm", "1000"]) == 0
     out = capsys.readouterr().out
     assert "torque max |T| 3.661e+05 N·mm" in out and "Kt_T" in out and "Kt_N" not in out
-    assert main(["beam", "--variant", data, "--rigid-supports", "--json"]) == 0
+    assert main(["beam", "--variant", data, "--rigid-supports", "--rpm", "1000", "--json"]) == 0
     r = json.loads(capsys.readouterr().out)["results"][0]
     # 3240 lbf·in (the book's torque): exact unit conversion, round-off of the statics only
     assert r["max_abs_T_Nmm"] == pytest.approx(3240 * 4.4482216152605 * 25.4, rel=1e-9)
