@@ -18,7 +18,7 @@ def omega(rpm):
     """Angular speed in rad/s of ``rpm`` (a number or an array)."""
     if isinstance(rpm, int | float):
         return float(rpm) * RPM_TO_RAD_S
-    import numpy as np          # not at the top: ``shaftfe --help`` imports this module
+    import numpy as np  # not at the top: ``shaftfe --help`` imports this module
     return np.asarray(rpm, dtype=float) * RPM_TO_RAD_S
 
 
