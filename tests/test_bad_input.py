@@ -717,3 +717,16 @@ CASES.update(DUTY_CASES)          # counted by the catalogue's coverage test
 @pytest.mark.parametrize("case", sorted(DUTY_CASES))
 def test_duty_bad_input(case, space, capsys, monkeypatch):
     test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
+# --- slice fatproto (issue #31 §5: the fatigue methods behind one registry) --------------------
+# an unknown --method is refused by the registry (fatigue.methods.get_method), naming every
+# registered method, before any input is read
+FP_CASES = {
+    "fatigue_unknown_method": (["fatigue", "{RPM}", "--method", "goodman", "--out", "{W}/o"],
+                               ["--method", "goodman", "seed | fkm | din743"]),
+}
+CASES.update(FP_CASES)
+
+
+@pytest.mark.parametrize("case", sorted(FP_CASES))
+def test_fp_fatigue_unknown_method(case, space, capsys, monkeypatch):
+    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)

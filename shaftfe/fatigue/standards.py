@@ -42,6 +42,26 @@ def check_options(o: StrengthOptions) -> None:
                          got=o.damage_sum)
 
 
+def strength_options(job) -> StrengthOptions:
+    """The standards' options of a ``fatigue.run.FatigueJob`` (the command's names)."""
+    return StrengthOptions(card=job.card, rule=job.miner, consequences=job.consequences,
+                           inspection=job.inspection, damage_sum=job.damage_sum)
+
+
+def bearing_options(job) -> tuple[float, float]:
+    """(κ, e_C) of the bearings' ISO 281 life over the duty cycle: the job's or the defaults
+    (``elements.bearings``), each within the standard's range."""
+    from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
+    kappa = KAPPA_DEFAULT if job.kappa is None else job.kappa
+    ec = EC_DEFAULT if job.ec is None else job.ec
+    if not (math.isfinite(kappa) and 0.1 <= kappa <= 4.0):
+        raise InputError("command line", "--kappa", "a number in [0.1, 4] (ISO 281)", got=kappa)
+    if not (math.isfinite(ec) and 0.0 <= ec <= 1.0):
+        raise InputError("command line", "--ec", "a number in [0, 1] (ISO 281 Table 13)",
+                         got=ec)
+    return kappa, ec
+
+
 def strength_card(variant, opts: StrengthOptions):
     """The strength card an assessment uses: the record named by ``opts.card`` (``--card``) if
     given, else the variant's own shaft material (the drawing's), the same record its FE model

@@ -35,6 +35,9 @@ from shaftfe.study.spec import Analyses
 # above the engine's speeds (x2_57 beam rotor: 39 700 rpm, 4.2 × the VM 450's 9500 rpm), and a
 # beam sweep to 60 000 rpm costs ~0.3 s. A critical above the top is reported as None.
 CAMPBELL_TOP_RPM = 60_000.0
+# the fatigue method of a study's rows (``fatigue.methods``): the seed's, on the study's S-N card
+# (study.report.fatigue_basis names it beside every fatigue column)
+FATIGUE_METHOD = "seed"
 
 
 def _fin(v) -> float | None:
@@ -123,17 +126,23 @@ def static_rows(v, an: Analyses, shaft_mesh=None, cache_dir=None) -> tuple[dict,
     return out, res
 
 
-def fatigue_row(res, an: Analyses) -> dict:
-    from shaftfe.fatigue.field import evaluate
+def fatigue_row(res, an: Analyses, variant=None) -> dict:
+    """The fatigue columns: the study's method (by name from ``fatigue.methods``) on the
+    design's static field; its governing location."""
+    from shaftfe.fatigue.methods import AssessmentInputs, get_method
+    from shaftfe.fatigue.run import FatigueJob
     from shaftfe.static.cache import from_result
-    history, material = _fatigue_inputs(an.spectrum, an.material)
-    ff = evaluate(from_result(res), history, material, equivalent=an.equivalent,
-                  theory=an.mean_stress, design_life_blocks=an.design_life,
-                  speed_kmh=an.speed_kmh)
-    h = ff.hot_spot
-    return {"fatigue_hot_spot": h.region, "fatigue_sf": _fin(h.safety_factor),
-            "life_blocks": _fin(h.life_blocks), "life_h": _fin(h.life_hours),
-            "life_km": _fin(h.life_km)}
+    history, _ = _fatigue_inputs(an.spectrum, an.material)
+    job = FatigueJob(spectrum=an.spectrum, material=an.material, mean_stress=an.mean_stress,
+                     equivalent=an.equivalent, design_life=an.design_life,
+                     speed_kmh=an.speed_kmh, level=an.level, spin_softening=an.spin_softening,
+                     engine=an.engine)
+    got = get_method(FATIGUE_METHOD).assess(
+        AssessmentInputs.one_channel(variant, history, field=from_result(res)), job)
+    g = got.governing
+    return {"fatigue_hot_spot": g.name, "fatigue_sf": _fin(g.safety),
+            "life_blocks": _fin(g.life_blocks), "life_h": _fin(g.life_hours),
+            "life_km": _fin(g.life_km)}
 
 
 def campbell_row(v, an: Analyses) -> dict:
@@ -174,7 +183,7 @@ def evaluate_design(base: str, overrides, an: Analyses, *, shaft_mesh=None,
             cols, res = static_rows(v, an, shaft_mesh, cache_dir)
             row.update(cols)
             if an.fatigue:
-                row.update(fatigue_row(res, an))
+                row.update(fatigue_row(res, an, v))
             del res
         if an.campbell:
             row.update(campbell_row(v, an))
