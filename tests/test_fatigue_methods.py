@@ -228,3 +228,21 @@ def test_the_report_takes_the_seed_method_from_the_registry(coarse, monkeypatch)
                    speed_kmh=o.speed_kmh)
     assert np.array_equal(ff.result.safety_factor, old.result.safety_factor)
     assert ff.hot_spot == old.hot_spot
+
+
+@pytest.mark.parametrize("method", list(METHODS))
+def test_a_study_takes_its_method_by_name(coarse, method, monkeypatch):
+    """A study's fatigue row is the governing place of the method it names (the design's
+    static field stands in by this module's coarse reference: no second solve)."""
+    from shaftfe.static import cache as static_cache
+    from shaftfe.study import evaluate
+    from shaftfe.study.spec import Analyses
+    job, got, ref = coarse
+    monkeypatch.setattr(static_cache, "from_result", lambda res: ref)
+    an = Analyses(static=True, fatigue=True, fatigue_method=method, spectrum=str(RPM_DAT))
+    row = evaluate.fatigue_row(None, an, got.variant)
+    g = get_method(method).assess(AssessmentInputs.one_channel(got.variant, got.history,
+                                                               field=ref), job).governing
+    assert row["fatigue_hot_spot"] == g.name and row["fatigue_sf"] == g.safety
+    assert row["life_h"] == (None if math.isnan(g.life_hours) else g.life_hours)
+    assert ("fatigue_method" in an.options()) == (method != "seed")   # seed studies' keys kept

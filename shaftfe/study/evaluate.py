@@ -10,8 +10,8 @@ Every number comes from the package's own analyses, the ones the commands use:
 * static: the 3D solid (``static.solve.solve_static``) at 10 000 rpm (the fatigue reference)
   and ``bearing_rpm``: the filtered von Mises peak of every fillet and keyway, L10h from the 3D
   reactions (replacing the beam's);
-* fatigue: the seed's method on that field (``fatigue.field.evaluate``): the filtered hot spot's
-  safety factor and life in blocks, hours and km;
+* fatigue: the study's method (the seed's by default, ``fatigue.field.evaluate``) on that
+  field: the governing place's safety factor and life in blocks, hours and km;
 * campbell: the beam rotor's first forward 1× critical speed and its margin over the engine's
   max_rpm.
 
@@ -35,9 +35,6 @@ from shaftfe.study.spec import Analyses
 # above the engine's speeds (x2_57 beam rotor: 39 700 rpm, 4.2 × the VM 450's 9500 rpm), and a
 # beam sweep to 60 000 rpm costs ~0.3 s. A critical above the top is reported as None.
 CAMPBELL_TOP_RPM = 60_000.0
-# the fatigue method of a study's rows (``fatigue.methods``): the seed's, on the study's S-N card
-# (study.report.fatigue_basis names it beside every fatigue column)
-FATIGUE_METHOD = "seed"
 
 
 def _fin(v) -> float | None:
@@ -127,8 +124,9 @@ def static_rows(v, an: Analyses, shaft_mesh=None, cache_dir=None) -> tuple[dict,
 
 
 def fatigue_row(res, an: Analyses, variant=None) -> dict:
-    """The fatigue columns: the study's method (by name from ``fatigue.methods``) on the
-    design's static field; its governing location."""
+    """The fatigue columns: the study's method (``analyses.fatigue.method``, by name from
+    ``fatigue.methods``) on the design's static field; its governing location (a limit check
+    such as DIN 743 has a safety and no life: the life columns are empty)."""
     from shaftfe.fatigue.methods import AssessmentInputs, get_method
     from shaftfe.fatigue.run import FatigueJob
     from shaftfe.static.cache import from_result
@@ -137,7 +135,7 @@ def fatigue_row(res, an: Analyses, variant=None) -> dict:
                      equivalent=an.equivalent, design_life=an.design_life,
                      speed_kmh=an.speed_kmh, level=an.level, spin_softening=an.spin_softening,
                      engine=an.engine)
-    got = get_method(FATIGUE_METHOD).assess(
+    got = get_method(an.fatigue_method, "study", "analyses.fatigue.method").assess(
         AssessmentInputs.one_channel(variant, history, field=from_result(res)), job)
     g = got.governing
     return {"fatigue_hot_spot": g.name, "fatigue_sf": _fin(g.safety),
