@@ -246,3 +246,19 @@ def test_a_study_takes_its_method_by_name(coarse, method, monkeypatch):
     assert row["fatigue_hot_spot"] == g.name and row["fatigue_sf"] == g.safety
     assert row["life_h"] == (None if math.isnan(g.life_hours) else g.life_hours)
     assert ("fatigue_method" in an.options()) == (method != "seed")   # seed studies' keys kept
+
+
+def test_an_assessment_keeps_the_warnings_raised_while_it_ran():
+    """``util.notices.raised``: in a collection (a command) the block's new warnings, still
+    collected once; outside one (the API) the block's warnings, passed on as ShaftfeWarning."""
+    from shaftfe.util.notices import ShaftfeWarning, collected, collecting, raised, warn
+    with collecting(echo=False):
+        warn("before", "x", "raised before the block")
+        with raised() as got:
+            warn("before", "x", "raised before the block")     # not new: not the block's
+            warn("inside", "y", "raised in the block")
+        assert [w["code"] for w in got] == ["inside"]
+        assert [w["code"] for w in collected()] == ["before", "inside"]
+    with pytest.warns(ShaftfeWarning, match="y: outside a collection"), raised() as got:
+        warn("api", "y", "outside a collection")
+    assert [w["code"] for w in got] == ["api"]

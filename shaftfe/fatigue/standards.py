@@ -83,9 +83,12 @@ def ground_fillets(variant) -> frozenset[str]:
     return frozenset(out)
 
 
-def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None):
+def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None, progress=None):
     """FKM on the static reference of ``job`` (a ``FatigueJob``: variant, history, mesh level,
-    load case); returns (``fkm_field.FkmResult``, inputs, ref)."""
+    load case); returns (``fkm_field.FkmResult``, inputs, ref). ``progress``: a
+    ``util.progress.Progress`` with the stages "static" and "FKM"."""
+    from contextlib import nullcontext
+
     from shaftfe.fatigue.cards import load_surfaces
     from shaftfe.fatigue.fkm_field import assess_field
     from shaftfe.fatigue.run import load_inputs, resolve_design_life, static_reference
@@ -96,11 +99,15 @@ def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None):
     inputs = inputs or load_inputs(job)
     job = resolve_design_life(job, inputs.history, inputs.variant.duty)
     card = strength_card(inputs.variant, opts)
-    ref = ref or static_reference(inputs.variant, job)
-    res = assess_field(ref, inputs.history, card, load_surfaces(),
-                       ground_fillets=ground_fillets(inputs.variant), rule=opts.rule,
-                       j_D=fkm.J_D[(opts.consequences, opts.inspection)],
-                       damage_sum=opts.damage_sum, design_life_blocks=job.design_life)
+    def stage(name):
+        return progress.stage(name) if progress is not None else nullcontext()
+    with stage("static"):
+        ref = ref or static_reference(inputs.variant, job)
+    with stage("FKM"):
+        res = assess_field(ref, inputs.history, card, load_surfaces(),
+                           ground_fillets=ground_fillets(inputs.variant), rule=opts.rule,
+                           j_D=fkm.J_D[(opts.consequences, opts.inspection)],
+                           damage_sum=opts.damage_sum, design_life_blocks=job.design_life)
     return res, inputs, ref
 
 

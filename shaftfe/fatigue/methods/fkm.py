@@ -41,6 +41,8 @@ class Fkm:
         sd.bearing_options(options)
 
     def assess(self, inputs: AssessmentInputs, options, progress=None) -> FatigueAssessment:
+        from contextlib import nullcontext
+
         from shaftfe.fatigue import standards as sd
         from shaftfe.fatigue.cards import load_surfaces
         from shaftfe.fatigue.fkm_field import assess_field
@@ -48,21 +50,26 @@ class Fkm:
         from shaftfe.util.notices import raised
         ch = inputs.single(self.name)
         opts = sd.strength_options(options)
+
+        def stage(name):
+            return progress.stage(name) if progress is not None else nullcontext()
         with raised() as warned:
             if ch.field is None:
                 res, _, ref = sd.run_fkm(options, opts,
-                                         FatigueInputs(ch.history, None, inputs.variant))
+                                         FatigueInputs(ch.history, None, inputs.variant),
+                                         progress=progress)
             else:                   # the caller's field and count (the report: no second one)
                 ref = ch.field
                 job = options if options.design_life is not None else \
                     resolve_design_life(options, ch.history, inputs.variant.duty)
-                res = assess_field(ref, ch.history, sd.strength_card(inputs.variant, opts),
-                                   load_surfaces(),
-                                   ground_fillets=sd.ground_fillets(inputs.variant),
-                                   rule=opts.rule,
-                                   j_D=sd.fkm.J_D[(opts.consequences, opts.inspection)],
-                                   damage_sum=opts.damage_sum,
-                                   design_life_blocks=job.design_life, cycles=ch.cycles)
+                with stage("FKM"):
+                    res = assess_field(ref, ch.history, sd.strength_card(inputs.variant, opts),
+                                       load_surfaces(),
+                                       ground_fillets=sd.ground_fillets(inputs.variant),
+                                       rule=opts.rule,
+                                       j_D=sd.fkm.J_D[(opts.consequences, opts.inspection)],
+                                       damage_sum=opts.damage_sum,
+                                       design_life_blocks=job.design_life, cycles=ch.cycles)
         rule, bs, v = res.rule, res.block_seconds, options.speed_kmh
 
         def loc(r, c):

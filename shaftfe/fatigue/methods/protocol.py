@@ -76,8 +76,10 @@ class Location:
     """One assessed place: the method's figures in common units (nan: the method has none)."""
     name: str                       # region (3D field) or notch (beam)
     x_mm: float
-    utilisation: float              # ≤ 1 passes: the method's degree of utilisation
-    safety: float                   # the achieved safety factor
+    utilisation: float              # ≤ 1 passes: FKM's degree of utilisation a, DIN 743's
+    #                                 S_min / min(S_D, S_F), the seed's 1 / safety factor
+    safety: float                   # the achieved safety factor (the seed's: stress factor
+    #                                 to the design life, capped at kernels.SAFETY_FACTOR_MAX)
     damage_per_block: float         # share of the life used per pass of the history
     life_blocks: float              # inf: no damage; nan: not a life method
     life_hours: float
