@@ -220,7 +220,7 @@ def test_the_report_takes_the_seed_method_from_the_registry(coarse, monkeypatch)
             calls.append(a)
             return seed.assess(*a, **kw)
     monkeypatch.setitem(METHODS, "seed", Spy())
-    o = ReportOptions(level="coarse")
+    o = ReportOptions(level="coarse", material="structural_steel", design_life_blocks=1e7)
     _, ff = fatigue(ref, got.history, got.material, o, got.variant)
     assert len(calls) == 1
     old = evaluate(ref, got.history, got.material, equivalent="von_mises",
