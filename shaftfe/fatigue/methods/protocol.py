@@ -8,7 +8,9 @@ and never ask which one they hold (as ``rotordynamics.analyse.RotorKind`` for th
 * ``AssessmentInputs``: the shaft (a ``Variant``) and its load channels. The stress history is a
   sum over channels, σ(t) = Σ_k σ_k L_k(t): each ``LoadChannel`` pairs a stress field at its
   reference with a load-factor history. Today there is ONE channel, "rpm2": the static solution
-  at the reference speed and (rpm / ref)²; a method refuses more (``single``). A channel's field
+  at the reference speed and (rpm / ref)²; a method refuses more (``single``) until it combines
+  them (the kernel for that is ``fatigue.channels``: per-node rainflow of the signed von Mises
+  of Σ_k σ_k L_k(t); a method built on it is one more module). A channel's field
   (the 3D or axisymmetric ``StaticReference``, the beam solution) and its rainflow count may be
   given by a caller that already has them (the report, a study); else the method obtains them
   from its options (the static cache, the beam at ``util.units.REF_RPM``).
@@ -39,7 +41,8 @@ RPM2 = "rpm2"
 class LoadChannel:
     """One term σ_k L_k(t) of the stress history."""
     name: str
-    history: object                 # fatigue.history.LoadHistory: its load factor is L_k(t)
+    history: object                 # fatigue.history.LoadHistory; L_k(t) is its load factor
+    #                                 for "rpm2" (a named channel's: channels.channel_factors)
     field: object | None = None     # static.cache.StaticReference (3D or axisymmetric) at its
     #                                 reference speed; None: the method loads or solves it
     beam: object | None = None      # the beam solution at util.units.REF_RPM (DIN 743), or None
