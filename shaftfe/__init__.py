@@ -13,6 +13,9 @@ else (examples/ has two short scripts)::
     res = shaftfe.solve_static(v, [7000, 10000], shaftfe.StaticOptions(level="coarse"))
     run = shaftfe.analyse_rotor(v, range(0, 8001, 100))    # Campbell (beam rotor)
     fat = shaftfe.run_fatigue(shaftfe.FatigueJob("loadspectra/rpm.dat"))
+    fkm = shaftfe.get_fatigue_method("fkm")                # any method by name: one protocol
+    a = fkm.assess(shaftfe.AssessmentInputs.one_channel(v, fat.history), fat.job)
+    a.governing                                            # utilisation, safety, life (h, km)
 
 Every name loads its module on first use: ``import shaftfe`` has no side effects and loads no
 FE stack (numpy, scikit-fem, gmsh, pyvista stay unloaded until a name needs them).
@@ -59,6 +62,13 @@ _API = {
     "FatigueJob": ("shaftfe.fatigue.run", "FatigueJob"),
     "run_fatigue": ("shaftfe.fatigue.run", "run_fatigue"),
     "write_fatigue_outputs": ("shaftfe.fatigue.outputs", "write_outputs"),
+    # fatigue methods by name: seed, fkm, din743 (one protocol, one result type)
+    "FATIGUE_METHODS": ("shaftfe.fatigue.methods", "METHODS"),
+    "get_fatigue_method": ("shaftfe.fatigue.methods", "get_method"),
+    "FatigueMethod": ("shaftfe.fatigue.methods", "FatigueMethod"),
+    "FatigueAssessment": ("shaftfe.fatigue.methods", "FatigueAssessment"),
+    "AssessmentInputs": ("shaftfe.fatigue.methods", "AssessmentInputs"),
+    "LoadChannel": ("shaftfe.fatigue.methods", "LoadChannel"),
     # rotor dynamics
     "RotorOptions": ("shaftfe.rotordynamics.options", "RotorOptions"),
     "analyse_rotor": ("shaftfe.rotordynamics.analyse", "analyse"),

@@ -735,3 +735,40 @@ CASES.update(BEAM_LOAD_CASES)
 @pytest.mark.parametrize("case", sorted(BEAM_LOAD_CASES))
 def test_beam_bad_load_input(case, space, capsys, monkeypatch):
     test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
+# --- slice fatproto (issue #31 §5: the fatigue methods behind one registry) --------------------
+# an unknown --method is refused by the registry (fatigue.methods.get_method), naming every
+# registered method, before any input is read
+FP_CASES = {
+    "fatigue_unknown_method": (["fatigue", "{RPM}", "--method", "goodman", "--out", "{W}/o"],
+                               ["--method", "goodman", "seed | fkm | din743"]),
+}
+CASES.update(FP_CASES)
+
+
+@pytest.mark.parametrize("case", sorted(FP_CASES))
+def test_fp_fatigue_unknown_method(case, space, capsys, monkeypatch):
+    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
+# a study's fatigue method by name from the same registry; a key of an option the method does
+# not use is refused by the command's rule (study.spec.FATIGUE_KEY_OPTIONS)
+_FP_FATIGUE = STUDY_HEAD + '[analyses]\nstatic = { level = "coarse" }\nfatigue = { spectrum = ' \
+    '"over.dat", '
+STUDY_FILES.update({
+    "fp_method_unknown.toml": _FP_FATIGUE + 'method = "goodman" }\n',
+    "fp_material_with_fkm.toml": _FP_FATIGUE + 'method = "fkm", material = "14220" }\n',
+})
+FP_STUDY_CASES = {
+    "study_fatigue_method_unknown": (["study", "run", "{W}/fp_method_unknown.toml", "--out",
+                                      "{W}/o"], ["analyses.fatigue.method", "goodman",
+                                                 "seed | fkm | din743"]),
+    "study_fatigue_material_with_fkm": (["study", "run", "{W}/fp_material_with_fkm.toml",
+                                         "--out", "{W}/o"],
+                                        ["analyses.fatigue.material", "only with method = seed",
+                                         "not used by method fkm"]),
+}
+STUDY_CASES.update(FP_STUDY_CASES)
+
+
+@pytest.mark.parametrize("case", sorted(FP_STUDY_CASES))
+def test_fp_study_fatigue_method(case, study_space, capsys, monkeypatch):
+    test_bad_study_input_is_one_clear_line_exit_2_and_writes_nothing(case, study_space, capsys,
+                                                                     monkeypatch)

@@ -114,18 +114,18 @@ def test_every_method_option_is_in_the_help_with_its_methods(capsys):
     with pytest.raises(SystemExit):
         build_parser().parse_args(["fatigue", "--help"])
     text = "".join(capsys.readouterr().out.split())    # argparse wraps lines, even at '-'
-    for option in mo.METHOD_OPTIONS:
+    for option in mo.OPTIONS:
         assert f"{option}" in text and "".join(mo.applies_to(option).split()) in text
     assert "".join(mo.help_epilog().split()) in text
     sub = next(a for a in build_parser()._subparsers._group_actions[0].choices.items()
                if a[0] == "fatigue")[1]
     helps = {o: a.help for a in sub._actions for o in a.option_strings}
-    for option in mo.METHOD_OPTIONS:                    # each option's own line names them
+    for option in mo.OPTIONS:                    # each option's own line names them
         assert helps[option].endswith(mo.applies_to(option)), option
 
 
 def test_an_option_is_refused_only_with_a_method_that_does_not_use_it():
-    for option, (_, default, methods) in mo.METHOD_OPTIONS.items():
+    for option, (_, default, methods) in mo.table().items():
         value = "x" if default is None else default        # given, even at its default
         for m in mo.METHODS:
             if m in methods:

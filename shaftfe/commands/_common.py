@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-import math
 import os
 import sys
 
@@ -137,25 +136,7 @@ def print_json(obj: object) -> None:
 
 
 def print_table(headers: list[str], rows: list[list[object]], title: str | None = None) -> None:
-    """Plain fixed-width table for terminals."""
-    # a round-off residue (6.9e-13) beside numbers of order 1e3 reads as 0 in its column
-    big = [max((abs(r[i]) for r in rows if isinstance(r[i], float) and math.isfinite(r[i])),
-               default=0.0) for i in range(len(headers))]
-    cells = [[str(h) for h in headers]] + [
-        [_fmt(0.0 if isinstance(c, float) and c != 0 and abs(c) < 1e-9 * big[i] else c)
-         for i, c in enumerate(r)] for r in rows]
-    widths = [max(len(r[i]) for r in cells) for i in range(len(headers))]
-    if title:
-        print(title)
-    for k, row in enumerate(cells):
-        print("  ".join(c.rjust(w) for c, w in zip(row, widths, strict=True)))
-        if k == 0:
-            print("  ".join("-" * w for w in widths))
-
-
-def _fmt(v: object) -> str:
-    if isinstance(v, float):
-        if v != 0 and abs(v) < 1:
-            return f"{v:.4g}"       # small values keep 4 significant digits (0.06712 mm)
-        return f"{v:,.2f}".replace(",", " ")
-    return str(v)
+    """Plain fixed-width table for terminals (``util.fmt.table_lines``)."""
+    from shaftfe.util.fmt import table_lines
+    for line in table_lines(headers, rows, title):
+        print(line)

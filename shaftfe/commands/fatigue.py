@@ -1,9 +1,10 @@
 """`shaftfe fatigue`: fatigue life and safety factor of the shaft under an engine-speed history.
 
 Replaces the seed's Ansys Fatigue Tool study (SPEC §3). A thin command: the options become a
-``shaftfe.fatigue.run.FatigueJob``, ``run_fatigue`` does the work, ``shaftfe.fatigue.outputs``
-writes fatigue.vtu, summary.json and three plots of the hot spot (all or none), and this module
-prints the result.
+``shaftfe.fatigue.run.FatigueJob``, the method named by ``--method`` is taken from the registry
+(``shaftfe.fatigue.methods.METHODS``: seed, FKM, DIN 743, ...) and assesses the history, writes
+its files (all or none) and gives the lines this module prints. The command never asks which
+method it holds.
 
 Stdlib only at module level; numpy / scikit-fem / meshio / matplotlib inside the handler.
 """
@@ -12,15 +13,13 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import math
 
 from shaftfe.commands._common import add_engine_option
 from shaftfe.solid.levels import LEVEL_NAMES
-from shaftfe.util.fmt import design_life, life, lives
-from shaftfe.util.units import rpm2_scale
 
 
 def register(sub) -> None:
+    from shaftfe.fatigue.methods import DEFAULT_METHOD, METHODS
     p = sub.add_parser(
         "fatigue", help="fatigue life and safety factor under an rpm history (rainflow, Miner)",
         description="Fatigue of the balancer shaft under an engine-speed history: the 3D static "
@@ -28,22 +27,16 @@ def register(sub) -> None:
         "mean-stress correction, the S-N curve and Miner's rule at every node. Prints the life "
         "in blocks / hours / km, the safety factor at the design life and the hot spot "
         "(singular points at the bearing and load-patch edges excluded; the unfiltered minimum "
-        "shown too). Writes into --out, per method: fkm: fatigue.vtu (fkm_utilisation, "
-        "fkm_safety at the assessed surface nodes), haigh.png (F2, the governing spot's "
-        "cycles), rainflow_matrix.png, damage_matrix.png, summary.json; din743: "
-        "din743_safety.png (S_D, S_F per notch), summary.json; seed: fatigue.vtu (life, "
-        "damage, safety factor at every node), haigh.png, rainflow_matrix.png, "
-        "damage_matrix.png, summary.json.")
+        "shown too). Writes into --out, per method: " + "; ".join(
+            f"{n}: {m.files_help}" for n, m in METHODS.items()) + ".")
     from shaftfe.fatigue.method_options import applies_to, help_epilog
     p.epilog = help_epilog()
 
     def opt(name, help, **kw):               # an option of some methods: default None (given?)
         p.add_argument(name, default=None, help=f"{help} {applies_to(name)}", **kw)
-    p.add_argument("--method", default="fkm",
-                   help="fkm (default: FKM guideline, local stresses on the 3D field, the "
-                   "shaft's real material and surface) | din743 (DIN 743, nominal stresses on "
-                   "the beam) | seed (the seed's Ansys-style method: von Mises, Soderberg, "
-                   "Structural Steel S-N; exactly as before)")
+    p.add_argument("--method", default=DEFAULT_METHOD, help=" | ".join(
+        f"{n} ({'default: ' if n == DEFAULT_METHOD else ''}{m.title})"
+        for n, m in METHODS.items()))
     opt("--card", "material record in geometry/common/materials.toml whose strengths the "
         "standards use (default: the variant's shaft material, e.g. 14220 = 16MnCr5 case "
         "hardened)")
@@ -101,8 +94,8 @@ def register(sub) -> None:
                    "$SHAFTFE_CACHE_DIR or ~/.cache/shaftfe)")
     p.add_argument("--json", action="store_true", help="print the summary JSON instead of text")
     p.add_argument("--out", default=None,
-                   help="output directory (default reports/<variant>/fatigue for seed, "
-                   "reports/<variant>/fatigue-<method> for fkm, din743)")
+                   help="output directory (default reports/<variant>/<folder>: " + ", ".join(
+                       f"{m.out_dir} for {n}" for n, m in METHODS.items()) + ")")
     from shaftfe.commands._common import add_set_option
     add_set_option(p)
     p.set_defaults(handler=run)
@@ -119,128 +112,32 @@ def job_of(args):
 def run(args) -> int:
     from pathlib import Path
 
-    from shaftfe.commands._common import print_json
+    from shaftfe.commands._common import out_name, print_json
     from shaftfe.fatigue.method_options import with_defaults
-    from shaftfe.fatigue.outputs import write_outputs
-    from shaftfe.fatigue.run import check_job, load_inputs, run_fatigue
+    from shaftfe.fatigue.methods import AssessmentInputs, get_method
+    from shaftfe.fatigue.run import check_job, load_inputs
     from shaftfe.util.atomic import staged_dir
     from shaftfe.util.progress import Progress
+    method = get_method(args.method)
     with_defaults(args)                 # an option the method does not use: refused
     job = job_of(args)
     check_job(job)
-    if args.method != "seed":
-        from shaftfe.commands.strength import run_standard
-        return run_standard(args, job)
-    prog = Progress(["history", "static", "rainflow + life", "outputs"],
+    method.check(job)
+    prog = Progress(["history", *method.stages, "outputs"],
                     enabled=False if args.json else None)
     with prog.stage("history"):
-        inputs = load_inputs(job)
-    from shaftfe.commands._common import out_name
+        got = load_inputs(job)
+    inputs = AssessmentInputs.one_channel(got.variant, got.history)
+    v = inputs.variant
     out = Path(args.out) if args.out else \
-        Path("reports") / out_name(inputs.variant.name, inputs.variant.overrides) / "fatigue"
+        Path("reports") / out_name(v.name, v.overrides) / method.out_dir
     with staged_dir(out) as stage:             # every file or none
-        result = run_fatigue(job, inputs, progress=prog)
+        result = method.assess(inputs, job, progress=prog)
         with prog.stage("outputs"):
-            summary, plots = write_outputs(result, stage)
+            summary, files = method.write(result, inputs, job, stage)
     if args.json:
         print_json(summary)
         return 0
-    _print_result(result, out, plots)
-    e = result.level_error
-    if e is not None:
-        print(f"mesh level {job.level}: its peak stress reads {100 * e['stress_rel_error']:+.1f} "
-              f"% against the axisymmetric truth ({e['source']}); with the "
-              f"hot-spot stress corrected by that, the life is {_lives_of(e, result)} "
-              f"({_pct(e['life_blocks'], result.field.hot_spot.life_blocks)}) and the safety "
-              f"factor {e['safety_factor']:.3f}")
-    elif job.model == "solid":
-        print(f"mesh level {job.level}: no measured error of its peak stress for this shaft and "
-              "mesh (measured on x2_57 as shipped: reports/benchmarks/truth.md); no level "
-              "correction of the life")
+    for line in method.lines(result, inputs, job, summary, out, files):
+        print(line)
     return 0
-
-
-def _lives_of(e: dict, result) -> str:
-    from shaftfe.fatigue.assess import life_hours
-    b = e["life_blocks"]
-    return lives(b, None if b is None else float(life_hours(b, result.history.duration_s)))
-
-
-def _pct(new: float | None, old: float) -> str:
-    if new is None or not (math.isfinite(old) and old > 0):
-        return "-"
-    return f"{100 * (new / old - 1):+.0f} %"
-
-
-def _print_result(run, out, plots) -> None:
-    from shaftfe.commands._common import print_table
-    from shaftfe.static.model import load_case_label
-    args, variant, history, material, ref, ff = (run.job, run.variant, run.history,
-                                                 run.material, run.ref, run.field)
-    t_eval = run.eval_seconds
-    r = ff.result
-    hot, raw = ff.hot_spot, ff.hot_spot_unfiltered
-    s_hot = hot.sigma_eq_ref_MPa
-    lf = ff.history.load_factor
-    vtu = out / "fatigue.vtu"
-    print(f"{variant.name} fatigue: {history.source} ({history.n_samples} samples, "
-          f"{history.duration_s:g} s block, rpm {history.rpm.min():.0f}-{history.rpm.max():.0f}, "
-          f"file reference {history.rpm_ref:g} rpm)")
-    if args.model == "axisymmetric":
-        print(f"static: axisymmetric, solved in {ref.seconds:.1f} s ({ref.ref_rpm:g} rpm, "
-              f"harmonics n = 0..{ref.options['harmonics'][-1]}, {args.level}; "
-              f"{ref.n_nodes} surface points)")
-    elif ref.from_cache:
-        print(f"static: from cache ({ref.seconds:.2f} s; solved at {ref.ref_rpm:g} rpm, "
-              f"{ref.n_nodes} nodes, P2 {args.level})")
-    else:
-        print(f"static: solved in {ref.seconds:.1f} s ({ref.ref_rpm:g} rpm, {ref.n_nodes} "
-              f"nodes, P2 {args.level})")
-    print(f"load factor = (rpm / {ff.ref_rpm:g})^2 in [{lf.min():.4g}, {lf.max():.4g}]; "
-          f"{args.equivalent}, {args.mean_stress}, {material.name}, kf {args.kf:g}, "
-          f"load case: {load_case_label(args.seed_load_case)}, "
-          "bearing springs")
-    print(f"cycles per block: {r.cycles.total_count:g} ({r.cycles.n} distinct range/mean "
-          f"classes, rainflow of the repeated block); evaluated {ff.n_nodes} nodes in "
-          f"{t_eval:.3f} s")
-    print()
-    if hot.infinite_life:
-        why = ("the history has no load cycles (constant speed)" if r.cycles.n == 0 else
-               "every cycle is below the endurance limit")
-        print(f"life: infinite ({why}): no fatigue damage")
-    elif not math.isfinite(hot.damage_per_block):
-        print(f"life: 0 blocks (static failure: a cycle's mean stress reaches the "
-              f"{'yield' if args.mean_stress == 'soderberg' else 'ultimate'} strength)")
-    else:
-        print(f"life: {lives(hot.life_blocks, hot.life_hours, hot.life_km, args.speed_kmh)}")
-    cap = " (capped: life at this load factor >= design life)" \
-        if hot.safety_status == "capped" else ""
-    print(f"safety factor at {design_life(args.design_life, history.duration_s, args.speed_kmh)}"
-          f": {hot.safety_factor:.3f}{cap}")
-    print(f"hot spot: {hot.region} at x y z = {_xyz(hot.xyz_mm)} mm, "
-          f"sigma_eq = {s_hot:.1f} MPa at {ref.ref_rpm:g} rpm"
-          + (f" = {s_hot * rpm2_scale(history.rpm_ref, ref.ref_rpm):.1f} MPa at "
-             f"{history.rpm_ref:g} rpm" if history.rpm_ref != ref.ref_rpm else "")
-          + " "
-          f"(singular points excluded: {ff.n_excluded} nodes)")
-    print(f"unfiltered minimum: {raw.region} at x y z = {_xyz(raw.xyz_mm)} mm, life "
-          f"{lives(raw.life_blocks, raw.life_hours)}, safety factor {raw.safety_factor:.3g}"
-          f"{' (a singular point, excluded)' if raw.excluded else ''}")
-    print()
-    rows = [[h.region, h.xyz_mm[0], h.sigma_eq_ref_MPa, life(h.life_blocks), h.safety_factor]
-            for h in ff.region_hot_spots if h is not None and not h.region.startswith("end:")]
-    print_table(["region", "x mm", f"sigma_eq MPa @{ref.ref_rpm:g}", "life blocks",
-                 f"SF @{args.design_life:g}"], rows, title="per region (filtered)")
-    from shaftfe.fatigue.run import SEED, seed_applies
-    if seed_applies(args, variant.name):
-        print()
-        print(f"seed (Ansys, seed 000 §8.3): safety factor {SEED['safety_factor_at_1e7']} at "
-              f"1e7, life 25 000 blocks (2083 h, 145 810 km), hot spot: {SEED['hot_spot']}")
-    for n in list(r.notes) + list(ref.notes):
-        print(f"note: {n}")
-    print(f"\nwrote {vtu}, {out / 'summary.json'}, "
-          + ", ".join(str(out / v) for v in plots.values()))
-
-
-def _xyz(p) -> str:
-    return " ".join(f"{c:.2f}" for c in p)

@@ -9,7 +9,9 @@ broadcasting (``kernels``: equivalent stress, mean-stress theories, Miner damage
 pure NumPy), with S-N curves and material cards from ``sn``. ``assess`` chains them for one
 stress field, ``field`` for the whole static solution (hot spots per region), ``run`` is the
 job as an API (``FatigueJob`` → ``FatigueRun``), ``outputs`` writes its files, ``plots`` its
-figures, ``reference`` an independent recomputation for the validation tests.
+figures, ``reference`` an independent recomputation for the validation tests. The methods
+(the seed's, FKM, DIN 743) answer one protocol and are chosen by name from one registry,
+``methods.METHODS`` (``methods.get_method``; a new method is one module there).
 
 The names below load their module on first use: importing this package costs nothing. The
 function ``assess`` is imported from its module (``shaftfe.fatigue.assess.assess``): the

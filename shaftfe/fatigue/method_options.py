@@ -1,5 +1,6 @@
 """Which ``shaftfe fatigue`` option belongs to which method: the one table (stdlib only, so the
-command's ``--help`` is generated from it without importing numpy).
+command's ``--help`` is generated from it without importing numpy). Which method uses which
+option is each method's own ``options`` (``fatigue.methods``, the registry).
 
 An option the chosen method does not use would be dropped without a word (``--card`` with the
 seed method, whose S-N card is ``--material``; ``--model axisymmetric`` with DIN 743, which
@@ -29,59 +30,68 @@ Options of every method (the history, the variant, the engine's speed limit, ``-
 from __future__ import annotations
 
 from shaftfe.errors import InputError
+from shaftfe.fatigue.methods import DEFAULT_METHOD, METHODS, get_method
 
-METHODS = ("fkm", "din743", "seed")
-DEFAULT_METHOD = "fkm"
+__all__ = ["DEFAULT_METHOD", "OPTIONS", "applies_to", "check_method_options", "help_epilog",
+           "methods_of", "table", "with_defaults"]
 
-SEED, FKM, DIN = ("seed",), ("fkm",), ("din743",)
-FIELD = ("seed", "fkm")              # the methods that use the static 3D (or axisymmetric) field
-STANDARDS = ("fkm", "din743")
-
-# option -> (argparse dest, default, the methods that use it)
-METHOD_OPTIONS: dict[str, tuple[str, object, tuple[str, ...]]] = {
-    "--card": ("card", None, STANDARDS),            # None: the variant's shaft material
-    "--miner": ("miner", "modified", FKM),
-    "--consequences": ("consequences", "severe", FKM),
-    "--inspection": ("inspection", False, FKM),
-    "--damage-sum": ("damage_sum", 0.3, FKM),
-    "--kappa": ("kappa", None, STANDARDS),          # None: elements.bearings.KAPPA_DEFAULT
-    "--ec": ("ec", None, STANDARDS),                # None: elements.bearings.EC_DEFAULT
-    "--mean-stress": ("mean_stress", "soderberg", SEED),
-    "--equivalent": ("equivalent", "von_mises", SEED),
-    "--material": ("material", None, SEED),         # None: the variant's (sn.variant_card)
-    "--kf": ("kf", 1.0, SEED),
-    "--model": ("model", "solid", FIELD),
-    "--level": ("level", "default", FIELD),
-    "--exclude-mm": ("exclude_mm", 0.0, FIELD),
-    "--seed-load-case": ("seed_load_case", False, FIELD),
-    "--spin-softening": ("spin_softening", True, FIELD),
-    "--design-life": ("design_life", None, FIELD),  # None: run.DEFAULT_DESIGN_LIFE_BLOCKS
-    "--design-life-h": ("design_life_h", None, FIELD),
+# option -> (argparse dest, default); which methods use it: each method's ``options`` (the
+# registry, ``fatigue.methods``), so a new method names its rows in its own module
+OPTIONS: dict[str, tuple[str, object]] = {
+    "--card": ("card", None),                # None: the variant's shaft material
+    "--miner": ("miner", "modified"),
+    "--consequences": ("consequences", "severe"),
+    "--inspection": ("inspection", False),
+    "--damage-sum": ("damage_sum", 0.3),
+    "--kappa": ("kappa", None),              # None: elements.bearings.KAPPA_DEFAULT
+    "--ec": ("ec", None),                    # None: elements.bearings.EC_DEFAULT
+    "--mean-stress": ("mean_stress", "soderberg"),
+    "--equivalent": ("equivalent", "von_mises"),
+    "--material": ("material", None),        # None: the variant's (sn.variant_card)
+    "--kf": ("kf", 1.0),
+    "--model": ("model", "solid"),
+    "--level": ("level", "default"),
+    "--exclude-mm": ("exclude_mm", 0.0),
+    "--seed-load-case": ("seed_load_case", False),
+    "--spin-softening": ("spin_softening", True),
+    "--design-life": ("design_life", None),  # None: run.DEFAULT_DESIGN_LIFE_BLOCKS
+    "--design-life-h": ("design_life_h", None),
 }
 
-# option -> method -> (the values that method takes, why): where a method takes only part of an
-# option's values (FKM's stress gradient is taken along the normal of the 3D field: the
-# axisymmetric model's revolved surface has no element layer to take it in)
-METHOD_VALUES: dict[str, dict[str, tuple[tuple[str, ...], str]]] = {
-    "--model": {"fkm": (("solid",), "the FKM stress gradient is taken on the 3D field")},
-}
+
+def methods_of(option: str) -> tuple[str, ...]:
+    """The registered methods that use ``option``, in the registry's order."""
+    return tuple(n for n, m in METHODS.items() if option in m.options)
+
+
+def table() -> dict[str, tuple[str, object, tuple[str, ...]]]:
+    """option -> (dest, default, the methods that use it): the table as the registry makes it
+    now (a method registered later, e.g. by a test, is in it)."""
+    return {o: (d, v, methods_of(o)) for o, (d, v) in OPTIONS.items()}
+
+
+def _narrowed(option: str, method: str):
+    """(the values ``method`` takes of ``option``, why), where it takes only part of them (FKM's
+    stress gradient is taken along the normal of the 3D field: --model solid only); else None."""
+    return METHODS[method].narrowed.get(option)
 
 
 def applies_to(option: str) -> str:
     """'[fkm, din743]': the methods of ``option``, for its help text; a method that takes only
     some of its values names them: '[seed, fkm: solid only]'."""
-    narrow = METHOD_VALUES.get(option, {})
-    return "[" + ", ".join(m + (f": {' | '.join(narrow[m][0])} only" if m in narrow else "")
-                           for m in METHOD_OPTIONS[option][2]) + "]"
+    def one(m):
+        narrow = _narrowed(option, m)
+        return m + (f": {' | '.join(narrow[0])} only" if narrow else "")
+    return "[" + ", ".join(one(m) for m in methods_of(option)) + "]"
 
 
 def help_epilog() -> str:
     """The table as the help's closing paragraph: each method and its options."""
     def name(o, m):
-        narrow = METHOD_VALUES.get(o, {}).get(m)
+        narrow = _narrowed(o, m)
         return f"{o} ({' | '.join(narrow[0])} only)" if narrow else o
-    per = [f"{m}: " + " ".join(name(o, m) for o, (_, _, ms) in METHOD_OPTIONS.items() if m in ms)
-           for m in METHODS]
+    per = [f"{m}: " + " ".join(name(o, m) for o in OPTIONS if o in meth.options)
+           for m, meth in METHODS.items()]
     return ("Options by method: " + "; ".join(per) + ". Any other option applies to every "
             "method; an option given that the chosen method does not use is refused.")
 
@@ -89,17 +99,17 @@ def help_epilog() -> str:
 def check_method_options(method: str, given: dict[str, object]) -> None:
     """``given``: option -> value of the options typed on the command line (None: not given).
     Refuses an unknown method and any option the method does not use."""
-    if method not in METHODS:
-        raise InputError("command line", "--method", " | ".join(METHODS), got=method)
+    get_method(method)
     for option, value in given.items():
-        if value is None or option not in METHOD_OPTIONS:
+        if value is None or option not in OPTIONS:
             continue
-        methods = METHOD_OPTIONS[option][2]
+        methods = methods_of(option)
         if method not in methods:
             raise InputError("command line", option, f"only with --method {' | '.join(methods)}",
                              got=value, reason=f"is not used by --method {method}")
-        if method in METHOD_VALUES.get(option, {}):
-            values, why = METHOD_VALUES[option][method]
+        narrow = _narrowed(option, method)
+        if narrow:
+            values, why = narrow
             if value not in values:
                 others = [m for m in methods if m != method]
                 raise InputError("command line", option, f"{' | '.join(values)} with --method "
@@ -111,7 +121,7 @@ def with_defaults(args) -> None:
     """Check the options of ``args`` (an argparse namespace, the table's options parsed with
     default None) against ``args.method``, then set each one left out to its default."""
     check_method_options(args.method, {o: getattr(args, d, None)
-                                       for o, (d, _, _) in METHOD_OPTIONS.items()})
-    for dest, default, _ in METHOD_OPTIONS.values():
+                                       for o, (d, _) in OPTIONS.items()})
+    for dest, default in OPTIONS.values():
         if getattr(args, dest, None) is None:
             setattr(args, dest, default)

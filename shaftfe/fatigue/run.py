@@ -85,6 +85,14 @@ class FatigueJob:
     engine: str | None = None              # whose max_rpm bounds the history (check_history);
     #                                        None: the variant's [duty] speed range
     allow_overspeed: bool = False          # assess a history above max_rpm (with a warning)
+    # the standards' options (FKM, DIN 743: fatigue.standards.strength_options)
+    card: str | None = None                # strength card; None: the variant's shaft material
+    miner: str = "modified"                # FKM governing Miner rule
+    consequences: str = "severe"           # FKM j_D
+    inspection: bool = False               # FKM j_D with regular inspections
+    damage_sum: float = 0.3                # FKM effective damage sum D_M
+    kappa: float | None = None             # ISO 281 κ of the bearings (None: the default)
+    ec: float | None = None                # ISO 281 e_C (None: the default)
 
 
 @dataclass(frozen=True, eq=False)
@@ -294,7 +302,6 @@ class FatigueInputs:
 
 def load_inputs(job: FatigueJob) -> FatigueInputs:
     """The job's history, S-N material and variant (each InputError names its file)."""
-    from shaftfe.fatigue.sn import load_material
     from shaftfe.model.loader import load_variant
     from shaftfe.solid.plan import refuse_sharp_corners
     check_job(job)
@@ -302,9 +309,14 @@ def load_inputs(job: FatigueJob) -> FatigueInputs:
     refuse_sharp_corners(variant, "a fatigue check")     # every method reads these inputs
     history = read_spectrum(job.spectrum, job.ref_rpm, job.sample_rate)
     check_history(history, job.engine or variant.duty, job.allow_overspeed)
-    from shaftfe.fatigue.sn import variant_card
-    return FatigueInputs(history, load_material(job.material or variant_card(variant)),
-                         variant)
+    return FatigueInputs(history, sn_material(job, variant), variant)
+
+
+def sn_material(job: FatigueJob, variant):
+    """The seed method's S-N card: ``job.material``, else the variant's
+    (``fatigue.sn.variant_card``)."""
+    from shaftfe.fatigue.sn import load_material, variant_card
+    return load_material(job.material or variant_card(variant))
 
 
 def static_reference(variant, job: FatigueJob):
@@ -338,10 +350,11 @@ def static_reference(variant, job: FatigueJob):
 
 
 def run_fatigue(job: FatigueJob, inputs: FatigueInputs | None = None,
-                progress=None) -> FatigueRun:
-    """Read the inputs (unless given), load or solve the static reference, evaluate every
-    node. ``progress``: a ``shaftfe.util.progress.Progress`` with the stages "history",
-    "static" and "rainflow + life"."""
+                progress=None, ref=None) -> FatigueRun:
+    """Read the inputs (unless given), load or solve the static reference (unless given as
+    ``ref``: then no level correction either, the caller owns the field and its error),
+    evaluate every node. ``progress``: a ``shaftfe.util.progress.Progress`` with the stages
+    "history", "static" and "rainflow + life"."""
     from contextlib import nullcontext
 
     from shaftfe.fatigue.field import evaluate
@@ -353,9 +366,13 @@ def run_fatigue(job: FatigueJob, inputs: FatigueInputs | None = None,
             inputs = load_inputs(job)
     history, material, variant = inputs.history, inputs.material, inputs.variant
     from dataclasses import replace
-    job = resolve_design_life(replace(job, material=material.name), history, variant.duty)
+    job = replace(job, material=material.name)
+    given = ref is not None
+    if not (given and job.design_life is not None):
+        # a caller with its own field (the report, a study) has checked its design life
+        job = resolve_design_life(job, history, variant.duty)
     with stage("static"):
-        ref = static_reference(variant, job)
+        ref = ref if given else static_reference(variant, job)
     with stage("rainflow + life"):
         t0 = time.perf_counter()
         ff = evaluate(ref, history, material, equivalent=job.equivalent,
@@ -363,5 +380,5 @@ def run_fatigue(job: FatigueJob, inputs: FatigueInputs | None = None,
                       speed_kmh=job.speed_kmh)
         t_eval = time.perf_counter() - t0
         level_error = _level_correction(job, ref, ff, history, material) \
-            if job.model == "solid" else None
+            if job.model == "solid" and not given else None
     return FatigueRun(job, variant, history, material, ref, ff, t_eval, level_error)

@@ -42,6 +42,26 @@ def check_options(o: StrengthOptions) -> None:
                          got=o.damage_sum)
 
 
+def strength_options(job) -> StrengthOptions:
+    """The standards' options of a ``fatigue.run.FatigueJob`` (the command's names)."""
+    return StrengthOptions(card=job.card, rule=job.miner, consequences=job.consequences,
+                           inspection=job.inspection, damage_sum=job.damage_sum)
+
+
+def bearing_options(job) -> tuple[float, float]:
+    """(κ, e_C) of the bearings' ISO 281 life over the duty cycle: the job's or the defaults
+    (``elements.bearings``), each within the standard's range."""
+    from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
+    kappa = KAPPA_DEFAULT if job.kappa is None else job.kappa
+    ec = EC_DEFAULT if job.ec is None else job.ec
+    if not (math.isfinite(kappa) and 0.1 <= kappa <= 4.0):
+        raise InputError("command line", "--kappa", "a number in [0.1, 4] (ISO 281)", got=kappa)
+    if not (math.isfinite(ec) and 0.0 <= ec <= 1.0):
+        raise InputError("command line", "--ec", "a number in [0, 1] (ISO 281 Table 13)",
+                         got=ec)
+    return kappa, ec
+
+
 def strength_card(variant, opts: StrengthOptions):
     """The strength card an assessment uses: the record named by ``opts.card`` (``--card``) if
     given, else the variant's own shaft material (the drawing's), the same record its FE model
@@ -63,9 +83,12 @@ def ground_fillets(variant) -> frozenset[str]:
     return frozenset(out)
 
 
-def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None):
+def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None, progress=None):
     """FKM on the static reference of ``job`` (a ``FatigueJob``: variant, history, mesh level,
-    load case); returns (``fkm_field.FkmResult``, inputs, ref)."""
+    load case); returns (``fkm_field.FkmResult``, inputs, ref). ``progress``: a
+    ``util.progress.Progress`` with the stages "static" and "FKM"."""
+    from contextlib import nullcontext
+
     from shaftfe.fatigue.cards import load_surfaces
     from shaftfe.fatigue.fkm_field import assess_field
     from shaftfe.fatigue.run import load_inputs, resolve_design_life, static_reference
@@ -76,11 +99,15 @@ def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None):
     inputs = inputs or load_inputs(job)
     job = resolve_design_life(job, inputs.history, inputs.variant.duty)
     card = strength_card(inputs.variant, opts)
-    ref = ref or static_reference(inputs.variant, job)
-    res = assess_field(ref, inputs.history, card, load_surfaces(),
-                       ground_fillets=ground_fillets(inputs.variant), rule=opts.rule,
-                       j_D=fkm.J_D[(opts.consequences, opts.inspection)],
-                       damage_sum=opts.damage_sum, design_life_blocks=job.design_life)
+    def stage(name):
+        return progress.stage(name) if progress is not None else nullcontext()
+    with stage("static"):
+        ref = ref or static_reference(inputs.variant, job)
+    with stage("FKM"):
+        res = assess_field(ref, inputs.history, card, load_surfaces(),
+                           ground_fillets=ground_fillets(inputs.variant), rule=opts.rule,
+                           j_D=fkm.J_D[(opts.consequences, opts.inspection)],
+                           damage_sum=opts.damage_sum, design_life_blocks=job.design_life)
     return res, inputs, ref
 
 

@@ -7,6 +7,7 @@ import math
 
 from shaftfe.fatigue import din743 as din
 from shaftfe.fatigue.assess import life_hours
+from shaftfe.fatigue.methods import METHODS
 from shaftfe.util.fmt import NO_FINITE_LIFE, big, json_clean, life, life_h_km, life_reason
 
 NONE = "—"        # a value the assessment has not got (nan): printed as this, never as "nan"
@@ -230,13 +231,9 @@ def compute_elements(variant, history, kappa: float, e_c: float, speed_kmh: floa
 
 
 FKM_FIELDS = ("fkm_utilisation", "fkm_safety", "von_mises_ref")
-# the files each method writes (fkm, din743: ``write_outputs``; seed:
-# ``fatigue.outputs.write_outputs``); `shaftfe fatigue --help` names them
-OUTPUT_FILES = {"fkm": ("fatigue.vtu", "haigh.png", "rainflow_matrix.png", "damage_matrix.png",
-                        "summary.json"),
-                "din743": ("din743_safety.png", "summary.json"),
-                "seed": ("fatigue.vtu", "haigh.png", "rainflow_matrix.png", "damage_matrix.png",
-                         "summary.json")}
+# the files each method writes (``fatigue.methods``: each method's ``files``); `shaftfe
+# fatigue --help` names them
+OUTPUT_FILES = {n: m.files for n, m in METHODS.items()}
 
 
 def write_fkm_files(res, ref, out) -> tuple[dict, dict]:
@@ -289,20 +286,16 @@ def write_din_files(summary: dict, out) -> dict:
     return {"din743_safety": "din743_safety.png"}
 
 
-def write_outputs(method: str, res, ref, out, summary: dict) -> tuple[dict, list[str]]:
-    """Every file of ``shaftfe fatigue --method fkm | din743`` into the (staged) directory
-    ``out``, summary.json last with the run's warnings (``util.notices.collected``). Returns
-    the summary written and the file names."""
+def write_outputs(summary: dict, out) -> tuple[dict, list[str]]:
+    """summary.json of ``shaftfe fatigue --method fkm | din743`` into the (staged) directory
+    ``out``, the last file, with the run's warnings (``util.notices.collected``); ``summary``
+    names the files written before it ("vtu", "plots"). Returns the summary written and the
+    file names."""
     import json
 
     from shaftfe.util.atomic import write_atomic
     from shaftfe.util.notices import collected
-    if method == "fkm":
-        vtu, plots = write_fkm_files(res, ref, out)
-        summary = {**summary, "vtu": vtu, "plots": plots}
-    else:
-        summary = {**summary, "plots": write_din_files(summary, out)}
-    summary["warnings"] = collected()
+    summary = {**summary, "warnings": collected()}
     summary = json_clean(summary)         # JSON has no inf: null with the reason beside
     write_atomic(out / "summary.json", json.dumps(summary, indent=1, allow_nan=False) + "\n")
     files = ([summary["vtu"]["file"]] if "vtu" in summary else []) + \

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from shaftfe.fatigue.method_options import DEFAULT_METHOD
+from shaftfe.fatigue.methods import DEFAULT_METHOD
 from shaftfe.report.comparisons import comparisons, error_estimates
 from shaftfe.report.options import (
     ERROR_STAGE,
@@ -146,12 +146,12 @@ def _nodal_peak(st: dict, ref) -> None:
             c["peak_von_mises_node_MPa"] = float(vm[keep & np.isfinite(vm)].max())
 
 
-def _fatigue(o: ReportOptions, res, ref, history, material):
+def _fatigue(o: ReportOptions, res, ref, history, material, variant=None):
     """Fatigue on the static solution, and the hot spot's life with its stress corrected by
     the level's measured error (benchmark) or by the run's own two-level estimate."""
     from shaftfe.fatigue.field import hot_spot_with_factor
     from shaftfe.fatigue.run import level_corrected_life
-    fat, ff = fatigue(ref, history, material, o)
+    fat, ff = fatigue(ref, history, material, o, variant)
     life = {"theory": o.mean_stress, "design_life_blocks": o.design_life_blocks,
             "speed_kmh": o.speed_kmh}
     # the 3D level's measured error (the axisymmetric levels' errors are in
@@ -294,7 +294,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         res, variant)
     _nodal_peak(st, ref)
     with prog.stage("fatigue"):
-        fat, ff, scaled, bench = _fatigue(o, res, ref, history, material)
+        fat, ff, scaled, bench = _fatigue(o, res, ref, history, material, variant)
     with prog.stage("strength by standard"):
         strength = _strength(o, variant, ref, history, ff.result.cycles)
     with prog.stage("Campbell"):
@@ -333,28 +333,24 @@ def _strength(o: ReportOptions, variant, ref, history, cycles=None) -> dict:
     from shaftfe.errors import InputError
     from shaftfe.fatigue import standards as sd
     from shaftfe.fatigue import standards_out as so
-    from shaftfe.fatigue.cards import load_surfaces
-    from shaftfe.fatigue.fkm_field import assess_field
-    from shaftfe.fatigue.run import FatigueInputs, FatigueJob
+    from shaftfe.fatigue.methods import AssessmentInputs, get_method
+    from shaftfe.report.stages import fatigue_job
     from shaftfe.util.notices import warn
-    opts = sd.StrengthOptions()
     out = {"default_method": DEFAULT_METHOD}
     try:                    # the shaft's own material decides; not every record is assessable
-        card = sd.din743_card(variant, opts)
+        sd.din743_card(variant, sd.StrengthOptions())
     except InputError as exc:
         warn("strength-material", "report", f"strength by standard left out: {exc}")
         return {}
+    job = fatigue_job(o)
     if o.model == "solid":
-        res = assess_field(ref, history, card, load_surfaces(),
-                           ground_fillets=sd.ground_fillets(variant), rule=opts.rule,
-                           j_D=sd.fkm.J_D[(opts.consequences, opts.inspection)],
-                           damage_sum=opts.damage_sum, design_life_blocks=o.design_life_blocks,
-                           cycles=cycles)
-        out["fkm"] = so.fkm_summary(res)
-    job = FatigueJob(spectrum=str(o.spectrum), variant=o.variant)
+        fkm = get_method("fkm").assess(AssessmentInputs.one_channel(
+            variant, history, field=ref, cycles=cycles), job)
+        out["fkm"] = so.fkm_summary(fkm.detail.result)
     beam = sd.beam_at_ref(variant)              # one beam solve for DIN 743 and the bearings
-    din = sd.run_din743(job, opts, FatigueInputs(history, None, variant), beam)
-    out["din743"] = so.din_summary(din)
+    din = get_method("din743").assess(AssessmentInputs.one_channel(variant, history, beam=beam),
+                                      job)
+    out["din743"] = so.din_summary(din.detail.run)
     out["elements"] = so.compute_elements(variant, history, KAPPA_DEFAULT, EC_DEFAULT,
                                           o.speed_kmh, beam)
     return out

@@ -257,11 +257,24 @@ def _region_of_peak(c) -> str:
         best.von_mises_MPa, c.peak_von_mises_MPa, rel_tol=1e-9) else "-"
 
 
-def fatigue(ref, history, material, o: ReportOptions) -> tuple[dict, object]:
-    from shaftfe.fatigue.field import evaluate
+def fatigue_job(o: ReportOptions):
+    """The report's fatigue settings as the options of every fatigue method (the seed's von
+    Mises, kf 1; the standards' defaults)."""
+    from shaftfe.fatigue.run import FatigueJob
+    return FatigueJob(spectrum=str(o.spectrum), variant=o.variant, mean_stress=o.mean_stress,
+                      material=o.material, design_life=o.design_life_blocks,
+                      speed_kmh=o.speed_kmh, level=o.level, cache_dir=o.cache_dir,
+                      model=o.model, seed_load_case=o.seed_load_case,
+                      spin_softening=o.spin_softening, overrides=o.overrides,
+                      engine=o.engine, allow_overspeed=o.allow_overspeed)
 
-    ff = evaluate(ref, history, material, equivalent="von_mises", theory=o.mean_stress,
-                  kf=1.0, design_life_blocks=o.design_life_blocks, speed_kmh=o.speed_kmh)
+
+def fatigue(ref, history, material, o: ReportOptions, variant=None) -> tuple[dict, object]:
+    """The seed method (by name from ``fatigue.methods``) on the report's static field."""
+    from shaftfe.fatigue.methods import AssessmentInputs, get_method
+    got = get_method("seed").assess(AssessmentInputs.one_channel(variant, history, field=ref),
+                                    fatigue_job(o))
+    ff = got.detail.field
     r = ff.result
     lf = ff.history.load_factor
     hot, raw = ff.hot_spot, ff.hot_spot_unfiltered

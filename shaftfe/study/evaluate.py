@@ -10,8 +10,8 @@ Every number comes from the package's own analyses, the ones the commands use:
 * static: the 3D solid (``static.solve.solve_static``) at 10 000 rpm (the fatigue reference)
   and ``bearing_rpm``: the filtered von Mises peak of every fillet and keyway, L10h from the 3D
   reactions (replacing the beam's);
-* fatigue: the seed's method on that field (``fatigue.field.evaluate``): the filtered hot spot's
-  safety factor and life in blocks, hours and km;
+* fatigue: the study's method (the seed's by default, ``fatigue.field.evaluate``) on that
+  field: the governing place's safety factor and life in blocks, hours and km;
 * campbell: the beam rotor's first forward 1× critical speed and its margin over the engine's
   max_rpm.
 
@@ -123,17 +123,24 @@ def static_rows(v, an: Analyses, shaft_mesh=None, cache_dir=None) -> tuple[dict,
     return out, res
 
 
-def fatigue_row(res, an: Analyses) -> dict:
-    from shaftfe.fatigue.field import evaluate
+def fatigue_row(res, an: Analyses, variant=None) -> dict:
+    """The fatigue columns: the study's method (``analyses.fatigue.method``, by name from
+    ``fatigue.methods``) on the design's static field; its governing location (a limit check
+    such as DIN 743 has a safety and no life: the life columns are empty)."""
+    from shaftfe.fatigue.methods import AssessmentInputs, get_method
+    from shaftfe.fatigue.run import FatigueJob
     from shaftfe.static.cache import from_result
-    history, material = _fatigue_inputs(an.spectrum, an.material)
-    ff = evaluate(from_result(res), history, material, equivalent=an.equivalent,
-                  theory=an.mean_stress, design_life_blocks=an.design_life,
-                  speed_kmh=an.speed_kmh)
-    h = ff.hot_spot
-    return {"fatigue_hot_spot": h.region, "fatigue_sf": _fin(h.safety_factor),
-            "life_blocks": _fin(h.life_blocks), "life_h": _fin(h.life_hours),
-            "life_km": _fin(h.life_km)}
+    history, _ = _fatigue_inputs(an.spectrum, an.material)
+    job = FatigueJob(spectrum=an.spectrum, material=an.material, mean_stress=an.mean_stress,
+                     equivalent=an.equivalent, design_life=an.design_life,
+                     speed_kmh=an.speed_kmh, level=an.level, spin_softening=an.spin_softening,
+                     engine=an.engine)
+    got = get_method(an.fatigue_method, "study", "analyses.fatigue.method").assess(
+        AssessmentInputs.one_channel(variant, history, field=from_result(res)), job)
+    g = got.governing
+    return {"fatigue_hot_spot": g.name, "fatigue_sf": _fin(g.safety),
+            "life_blocks": _fin(g.life_blocks), "life_h": _fin(g.life_hours),
+            "life_km": _fin(g.life_km)}
 
 
 def campbell_row(v, an: Analyses) -> dict:
@@ -174,7 +181,7 @@ def evaluate_design(base: str, overrides, an: Analyses, *, shaft_mesh=None,
             cols, res = static_rows(v, an, shaft_mesh, cache_dir)
             row.update(cols)
             if an.fatigue:
-                row.update(fatigue_row(res, an))
+                row.update(fatigue_row(res, an, v))
             del res
         if an.campbell:
             row.update(campbell_row(v, an))

@@ -36,24 +36,38 @@ META_KEYS = {"study_file": str, "digest": str, "name": str, "base": str, "parame
              "objectives": list, "requirements": list, "analyses": dict}
 
 
+def _method(analyses: dict | None) -> tuple[str, bool]:
+    """(the study's fatigue method, whether it takes the study's S-N card: ``--material``)."""
+    from shaftfe.fatigue.method_options import methods_of
+    method = (analyses or {}).get("fatigue_method") or "seed"
+    return method, method in methods_of("--material")
+
+
 def fatigue_basis(analyses: dict | None) -> str:
-    """What a study's fatigue numbers are: always the seed method (``evaluate.fatigue_row``,
-    ``fatigue.field.evaluate``) on the study's S-N card, not the FKM default of
-    ``shaftfe fatigue``; the two differ (a safety factor of 0.47 against 2.5 on x2_57)."""
-    card = (analyses or {}).get("material") or "structural_steel"
-    return f"seed method, S-N card {card}"
+    """What a study's fatigue numbers are: its method (``analyses.fatigue.method``, by default
+    the seed's, ``evaluate.fatigue_row``) on the study's S-N card (the seed's) or the shaft's
+    own strength card (the standards), not necessarily the FKM default of ``shaftfe fatigue``;
+    the two differ (a safety factor of 0.47 against 2.5 on x2_57)."""
+    method, sn = _method(analyses)
+    if not sn:
+        return f"{method} method, the shaft's own strength card"
+    return f"{method} method, S-N card {(analyses or {}).get('material') or 'structural_steel'}"
 
 
 def fatigue_note(analyses: dict | None) -> str:
     """The sentence that names the study's fatigue numbers and how they differ from the
     fatigue command's default (one quantity, two values: the difference named)."""
     an = analyses or {}
+    method, sn = _method(analyses)
+    if not sn:
+        return (f"Fatigue numbers (safety factor, life): the {method} method on the shaft's own "
+                f"strength card, as shaftfe fatigue --method {method} computes them.")
     card = an.get("material") or "structural_steel"
     how = f"{an.get('equivalent') or 'von_mises'}, {an.get('mean_stress') or 'soderberg'}"
-    return (f"Fatigue numbers (safety factor, life): the seed method ({how}) on the S-N card "
-            f"{card}, as shaftfe fatigue --method seed --material {card} computes them; shaftfe "
-            "fatigue's default method (FKM, the shaft's own material) gives other values for "
-            "the same shaft.")
+    return (f"Fatigue numbers (safety factor, life): the {method} method ({how}) on the S-N "
+            f"card {card}, as shaftfe fatigue --method {method} --material {card} computes "
+            "them; shaftfe fatigue's default method (FKM, the shaft's own material) gives other "
+            "values for the same shaft.")
 
 
 def labels(analyses: dict | None = None) -> dict[str, str]:

@@ -105,6 +105,7 @@ class Analyses:
     level: str = "coarse"
     spin_softening: bool = True
     fatigue: bool = False
+    fatigue_method: str = "seed"           # by name from fatigue.methods.METHODS
     spectrum: str = ""                     # rpm history, resolved against the study file
     material: str = "structural_steel"
     mean_stress: str = "soderberg"
@@ -126,6 +127,8 @@ class Analyses:
             p = Path(p)
             return hashlib.sha256(p.read_bytes()).hexdigest() if p.is_file() else ""
         d = {k: getattr(self, k) for k in self.__dataclass_fields__}
+        if d["fatigue_method"] == "seed":     # the only method before the key: the keys of
+            del d["fatigue_method"]           # existing studies stay as they were
         d["spectrum"] = digest(self.spectrum) if self.spectrum else ""
         try:
             d["engine_file"] = digest(resolve_engine_path(self.engine))
@@ -240,6 +243,26 @@ def _parameter(i: int, t: dict, src: str, method: str) -> Parameter:
                      n=n)
 
 
+# a key of [analyses.fatigue] -> the `shaftfe fatigue` option it stands for: refused with a
+# method that does not use it, by the command's rule (fatigue.method_options)
+FATIGUE_KEY_OPTIONS = {"material": "--material", "mean_stress": "--mean-stress",
+                       "equivalent": "--equivalent", "design_life_blocks": "--design-life"}
+
+
+def _fatigue_method(f: dict, src: str) -> str:
+    """[analyses.fatigue] method: a name of the registry (default the seed's); a key of an
+    option the method does not use is refused."""
+    from shaftfe.fatigue.method_options import methods_of
+    from shaftfe.fatigue.methods import METHODS
+    method = _str(f, "method", src, "analyses.fatigue", "seed", tuple(METHODS))
+    for key, option in FATIGUE_KEY_OPTIONS.items():
+        if key in f and method not in methods_of(option):
+            raise InputError(src, f"analyses.fatigue.{key}",
+                             f"only with method = {' | '.join(methods_of(option))}", got=f[key],
+                             reason=f"is not used by method {method}")
+    return method
+
+
 def _analyses(t: dict, src: str, base_dir: Path) -> Analyses:
     from shaftfe.fatigue.kernels import EQUIVALENT_STRESSES, MEAN_STRESS_THEORIES
     from shaftfe.solid.levels import LEVEL_NAMES
@@ -268,7 +291,7 @@ def _analyses(t: dict, src: str, base_dir: Path) -> Analyses:
         if not isinstance(sp, bool):
             raise InputError(src, "analyses.static.spin_softening", "true | false", got=sp)
         kw["spin_softening"] = sp
-    if (f := sub("fatigue", {"spectrum", "material", "mean_stress", "equivalent",
+    if (f := sub("fatigue", {"method", "spectrum", "material", "mean_stress", "equivalent",
                              "design_life_blocks", "speed_kmh"})) is not None:
         if "static" not in kw:
             raise InputError(src, "analyses.fatigue", "with [analyses.static] (fatigue scales "
@@ -282,6 +305,7 @@ def _analyses(t: dict, src: str, base_dir: Path) -> Analyses:
             raise InputError(src, "analyses.fatigue.spectrum", "an existing file (relative to "
                              "the study file)", got=spec)
         kw.update(fatigue=True, spectrum=str(p.resolve()),
+                  fatigue_method=_fatigue_method(f, src),
                   material=_str(f, "material", src, "analyses.fatigue", "structural_steel"),
                   mean_stress=_str(f, "mean_stress", src, "analyses.fatigue", "soderberg",
                                    MEAN_STRESS_THEORIES),

@@ -78,3 +78,29 @@ def json_clean(o):
     except (TypeError, ValueError):
         return str(o)
     return f if math.isfinite(f) else None
+
+
+def table_lines(headers: list[str], rows: list[list[object]],
+                title: str | None = None) -> list[str]:
+    """A plain fixed-width table for terminals, as lines (title, header, rule, rows)."""
+    # a round-off residue (6.9e-13) beside numbers of order 1e3 reads as 0 in its column
+    big = [max((abs(r[i]) for r in rows if isinstance(r[i], float) and math.isfinite(r[i])),
+               default=0.0) for i in range(len(headers))]
+    cells = [[str(h) for h in headers]] + [
+        [_cell(0.0 if isinstance(c, float) and c != 0 and abs(c) < 1e-9 * big[i] else c)
+         for i, c in enumerate(r)] for r in rows]
+    widths = [max(len(r[i]) for r in cells) for i in range(len(headers))]
+    out = [title] if title else []
+    for k, row in enumerate(cells):
+        out.append("  ".join(c.rjust(w) for c, w in zip(row, widths, strict=True)))
+        if k == 0:
+            out.append("  ".join("-" * w for w in widths))
+    return out
+
+
+def _cell(v: object) -> str:
+    if isinstance(v, float):
+        if v != 0 and abs(v) < 1:
+            return f"{v:.4g}"       # small values keep 4 significant digits (0.06712 mm)
+        return f"{v:,.2f}".replace(",", " ")
+    return str(v)

@@ -22,7 +22,7 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import asdict, dataclass
 
-__all__ = ["Notice", "ShaftfeWarning", "collected", "collecting", "warn"]
+__all__ = ["Notice", "ShaftfeWarning", "collected", "collecting", "raised", "warn"]
 
 
 class ShaftfeWarning(UserWarning):
@@ -81,3 +81,22 @@ def collecting(echo: bool = True):
     finally:
         _ACTIVE.reset(token)
         _ECHO.reset(token_echo)
+
+
+@contextmanager
+def raised():
+    """Yield a list that holds, after the block, the warnings (dicts) raised inside it: inside
+    a collection the ones new to it (collected and printed there as usual); outside one, the
+    block's warnings, then passed on as ``ShaftfeWarning`` as ``warn`` does there."""
+    box: list[dict] = []
+    active = _ACTIVE.get()
+    if active is None:
+        with collecting(echo=False) as inner:
+            yield box
+        box.extend(n.as_dict() for n in inner)
+        for n in inner:
+            warnings.warn(n.line(), ShaftfeWarning, stacklevel=3)
+        return
+    n0 = len(active)
+    yield box
+    box.extend(n.as_dict() for n in active[n0:])

@@ -1,0 +1,83 @@
+"""DIN 743 (``fatigue.din743``, ``fatigue.standards.run_din743``): nominal stresses on the beam
+model at every shoulder, keyway and press fit, a fatigue-limit check (S_D) of the history's
+largest cycle and a static check (S_F) at its highest speed; no mesh, no design life. The
+bearings' ISO 281 life and the seed's key and gear checks beside it."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from types import MappingProxyType
+
+from shaftfe.fatigue.methods.fkm import head_line, standard_summary, tail_lines
+from shaftfe.fatigue.methods.protocol import AssessmentInputs, FatigueAssessment, Location
+
+
+@dataclass(frozen=True, eq=False)
+class DinDetail:
+    run: object                      # fatigue.standards.Din743Run
+    beam: object                     # the beam solution it took its moments from
+
+
+class Din743:
+    name = "din743"
+    title = "DIN 743, nominal stresses on the beam"
+    options = ("--card", "--kappa", "--ec")
+    narrowed = MappingProxyType({})
+    out_dir = "fatigue-din743"
+    files = ("din743_safety.png", "summary.json")
+    files_help = "din743_safety.png (S_D, S_F per notch), summary.json"
+    stages = ("beam + DIN 743",)
+
+    def check(self, options) -> None:
+        from shaftfe.fatigue import standards as sd
+        sd.check_options(sd.strength_options(options))
+        sd.bearing_options(options)
+
+    def assess(self, inputs: AssessmentInputs, options, progress=None) -> FatigueAssessment:
+        from contextlib import nullcontext
+
+        from shaftfe.fatigue import din743
+        from shaftfe.fatigue import standards as sd
+        from shaftfe.fatigue.run import FatigueInputs
+        from shaftfe.util.notices import raised
+        ch = inputs.single(self.name)
+        with raised() as warned, (progress.stage(self.stages[0]) if progress is not None
+                                  else nullcontext()):
+            # one beam solve for DIN 743 and the bearings
+            beam = ch.beam if ch.beam is not None else sd.beam_at_ref(inputs.variant)
+            run = sd.run_din743(options, sd.strength_options(options),
+                                FatigueInputs(ch.history, None, inputs.variant), beam)
+
+        def loc(w):
+            s = min(w.result.S_D, w.result.S_F)
+            return Location(w.result.notch.name, w.x_mm,
+                            din743.S_MIN / s if s > 0 else math.inf, s,
+                            math.nan, math.nan, math.nan, math.nan)   # no life: a limit check
+        return FatigueAssessment(self.name, tuple(loc(w) for w in run.rows), loc(run.governing),
+                                 tuple(warned), tuple(run.notes), DinDetail(run, beam))
+
+    def write(self, result, inputs, options, out) -> tuple[dict, list[str]]:
+        from shaftfe.fatigue import standards_out as so
+        run, beam = result.detail.run, result.detail.beam
+        summary = standard_summary(inputs, options, so.din_summary(run), beam)
+        return so.write_outputs({**summary, "plots": so.write_din_files(summary, out)}, out)
+
+    def lines(self, result, inputs, options, summary, out, files) -> list[str]:
+        from shaftfe.fatigue import din743
+        from shaftfe.fatigue import standards_out as so
+        from shaftfe.util.fmt import table_lines
+        res = result.detail.run
+        p = head_line(inputs, "DIN 743", res.card.name, options)
+        p.append(f"cycle: the history's largest, {res.rpm_min:.0f}-{res.rpm_max:.0f} rpm (case "
+                 f"2); S_F at {res.rpm_max:.0f} rpm; beam at {res.ref_rpm:g} rpm scaled by rpm²")
+        p += table_lines(so.DIN_HEAD, so.din_rows(res), title="DIN 743, nominal stresses, "
+                         "bending factors per notch")
+        g = res.governing
+        p.append(f"governing: {g.result.notch.name} at x = {g.x_mm:g} mm: S_D "
+                 f"{so._f(g.result.S_D)}, S_F {so._f(g.result.S_F)} (S_min {din743.S_MIN})")
+        p += [f"note: {note}" for note in res.notes]
+        return p + tail_lines(summary, out, files, options)
+
+
+METHOD = Din743()
