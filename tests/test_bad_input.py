@@ -772,3 +772,18 @@ STUDY_CASES.update(FP_STUDY_CASES)
 def test_fp_study_fatigue_method(case, study_space, capsys, monkeypatch):
     test_bad_study_input_is_one_clear_line_exit_2_and_writes_nothing(case, study_space, capsys,
                                                                      monkeypatch)
+# --- issue #31, the static check's load case: an unknown case, a case with the seed method
+STATIC_CASES = {
+    "fatigue_din743_unknown_case": (
+        ["fatigue", "{RPM}", "--method", "din743", "--variant",
+         str(GEOMETRY_DIR / "examples" / "x2_57_driven.toml"), "--case", "overload", "--out",
+         "{W}/o"], ["--case", "overload", "run_up"]),
+    "fatigue_seed_case": (["fatigue", "{RPM}", "--case", "run_up", "--out", "{W}/o"],
+                          ["--case", "din743"]),
+}
+CASES.update(STATIC_CASES)
+
+
+@pytest.mark.parametrize("case", sorted(STATIC_CASES))
+def test_static_case_bad_input(case, space, capsys, monkeypatch):
+    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)

@@ -47,6 +47,8 @@ def register(sub) -> None:
     opt("--inspection", "FKM j_D with regular inspections (default none)",
         action="store_true")
     opt("--damage-sum", "FKM effective damage sum D_M (default 0.3, steel)", type=float)
+    opt("--case", "a [[load_cases]] name of the variant: DIN 743's static check S_F on that "
+        "case (its speed, factors and channels), beside the fatigue check")
     opt("--kappa", "ISO 281 viscosity ratio κ of the bearings (default 1.0)", type=float)
     opt("--ec", "ISO 281 contamination factor e_C (default 0.3)", type=float)
     p.add_argument("spectrum", help="rpm history: normalised rpm²/ref² (seed rpm.dat), rpm, or "

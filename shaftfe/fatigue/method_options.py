@@ -56,6 +56,7 @@ OPTIONS: dict[str, tuple[str, object]] = {
     "--spin-softening": ("spin_softening", True),
     "--design-life": ("design_life", None),  # None: run.DEFAULT_DESIGN_LIFE_BLOCKS
     "--design-life-h": ("design_life_h", None),
+    "--case": ("case", None),                # a [[load_cases]] name: DIN 743 S_F on it
 }
 
 

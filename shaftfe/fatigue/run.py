@@ -93,6 +93,7 @@ class FatigueJob:
     damage_sum: float = 0.3                # FKM effective damage sum D_M
     kappa: float | None = None             # ISO 281 κ of the bearings (None: the default)
     ec: float | None = None                # ISO 281 e_C (None: the default)
+    case: str | None = None                # a [[load_cases]] name: static S_F on it (DIN 743)
 
 
 @dataclass(frozen=True, eq=False)

@@ -17,12 +17,13 @@ from shaftfe.fatigue.methods.protocol import AssessmentInputs, FatigueAssessment
 class DinDetail:
     run: object                      # fatigue.standards.Din743Run
     beam: object                     # the beam solution it took its moments from
+    static: object = None            # fatigue.static_check.StaticCheck on --case, or None
 
 
 class Din743:
     name = "din743"
     title = "DIN 743, nominal stresses on the beam"
-    options = ("--card", "--kappa", "--ec")
+    options = ("--card", "--kappa", "--ec", "--case")
     narrowed = MappingProxyType({})
     out_dir = "fatigue-din743"
     files = ("din743_safety.png", "summary.json")
@@ -40,6 +41,9 @@ class Din743:
         from shaftfe.fatigue import din743
         from shaftfe.fatigue import standards as sd
         from shaftfe.fatigue.run import FatigueInputs
+        from shaftfe.fatigue.static_check import case_of, din743_static
+        if options.case is not None:
+            case_of(inputs.variant, options.case)        # a wrong name before any solve
         from shaftfe.util.notices import raised
         ch = inputs.single(self.name)
         with raised() as warned, (progress.stage(self.stages[0]) if progress is not None
@@ -48,6 +52,8 @@ class Din743:
             beam = ch.beam if ch.beam is not None else sd.beam_at_ref(inputs.variant)
             run = sd.run_din743(options, sd.strength_options(options),
                                 FatigueInputs(ch.history, None, inputs.variant), beam)
+            static = (din743_static(inputs.variant, options.case, sd.strength_options(options))
+                      if options.case is not None else None)
 
         def loc(w):
             s = min(w.result.S_D, w.result.S_F)
@@ -55,12 +61,20 @@ class Din743:
                             din743.S_MIN / s if s > 0 else math.inf, s,
                             math.nan, math.nan, math.nan, math.nan)   # no life: a limit check
         return FatigueAssessment(self.name, tuple(loc(w) for w in run.rows), loc(run.governing),
-                                 tuple(warned), tuple(run.notes), DinDetail(run, beam))
+                                 tuple(warned), tuple(run.notes), DinDetail(run, beam, static))
 
     def write(self, result, inputs, options, out) -> tuple[dict, list[str]]:
         from shaftfe.fatigue import standards_out as so
         run, beam = result.detail.run, result.detail.beam
         summary = standard_summary(inputs, options, so.din_summary(run), beam)
+        st = result.detail.static
+        if st is not None:
+            summary["static_case"] = {
+                "case": st.case, "rpm": st.rpm, "card": st.card, "S_min": st.S_min,
+                "governing": st.governing.notch, "S_F": st.governing.S_F,
+                "rows": [{"notch": r.notch, "x_mm": r.x_mm, "sigma_zd_MPa": r.sigma_zd_MPa,
+                          "sigma_b_MPa": r.sigma_b_MPa, "tau_t_MPa": r.tau_t_MPa,
+                          "S_F": r.S_F} for r in st.rows]}
         return so.write_outputs({**summary, "plots": so.write_din_files(summary, out)}, out)
 
     def lines(self, result, inputs, options, summary, out, files) -> list[str]:
@@ -77,6 +91,17 @@ class Din743:
         p.append(f"governing: {g.result.notch.name} at x = {g.x_mm:g} mm: S_D "
                  f"{so._f(g.result.S_D)}, S_F {so._f(g.result.S_F)} (S_min {din743.S_MIN})")
         p += [f"note: {note}" for note in res.notes]
+        st = result.detail.static
+        if st is not None:
+            p += table_lines(["notch", "x mm", "σ_zd MPa", "σ_b MPa", "τ_t MPa", "S_F"],
+                             [[r.notch, f"{r.x_mm:g}", f"{r.sigma_zd_MPa:.2f}",
+                               f"{r.sigma_b_MPa:.1f}", f"{r.tau_t_MPa:.2f}", so._f(r.S_F)]
+                              for r in st.rows],
+                             title=f"DIN 743 static check on load case {st.case!r} "
+                                   f"({st.rpm:g} rpm, every load with its factor; beam)")
+            g = st.governing
+            p.append(f"static: {g.notch}: S_F {so._f(g.S_F)} "
+                     f"({'≥' if st.ok else 'BELOW'} S_min {st.S_min})")
         return p + tail_lines(summary, out, files, options)
 
 
