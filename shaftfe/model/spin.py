@@ -47,7 +47,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-PART_MODELS = ("rigid_body", "own_inertia", "axisymmetrised")
+PART_MODELS = ("rigid_body", "own_inertia", "axisymmetrised", "seat_mass")
 DEFAULT_PART_MODEL = "rigid_body"
 
 
@@ -80,6 +80,8 @@ def spinning_part(a, model: str = DEFAULT_PART_MODEL) -> SpinningPart:
     elif model == "axisymmetrised":
         tilt = tilt - 0.5 * me2 * np.eye(2)
     xs = 0.5 * (a.seat_x_start_mm + a.seat_x_end_mm)
+    if model == "seat_mass":
+        return SpinningPart(a.name, float(xs), 0.0, m, np.zeros((2, 2)))
     return SpinningPart(a.name, float(xs), float(a.x_centroid_mm - xs), m, tilt)
 
 

@@ -86,16 +86,18 @@ def parts_softening(model: beam.BeamModel, parts) -> np.ndarray:
     return S
 
 
-def unbalance_load(model: beam.BeamModel, variant) -> tuple[np.ndarray, np.ndarray]:
+def unbalance_load(model: beam.BeamModel, variant, placement: str = "centroid"
+                   ) -> tuple[np.ndarray, np.ndarray]:
     """(f_c, f_s) per unit ω² (N s²): every part's m e at its centroid at t = 0 (along its
-    angle) and a quarter turn later, moved to its seat node by the rigid link."""
+    angle) and a quarter turn later, moved to its seat node by the rigid link; ``placement``
+    "seat": at the seat centre (the seed's placement, no moment)."""
     fc, fs = np.zeros(NDOF * model.n_nodes), np.zeros(NDOF * model.n_nodes)
     for a in variant.attachments:
         me = a.mass_kg * 1e-3 * a.eccentricity_mm
         if me == 0:
             continue
         xs = 0.5 * (a.seat_x_start_mm + a.seat_x_end_mm)
-        idx, T = _link(model, xs, a.x_centroid_mm - xs)
+        idx, T = _link(model, xs, a.x_centroid_mm - xs if placement == "centroid" else 0.0)
         al = math.radians(a.angle_deg)
         for f, ang in ((fc, al), (fs, al + 0.5 * math.pi)):
             f[idx] += T.T @ np.array([me * math.cos(ang), me * math.sin(ang), 0.0, 0.0])
@@ -146,10 +148,11 @@ def _bearing_forces(model: beam.BeamModel, u: np.ndarray) -> dict:
 
 
 def corotating_static(variant, rpm: float, *, part_model: str = DEFAULT_PART_MODEL,
-                      shaft: bool = True, parts: bool = True, max_element_mm: float = 5.0
-                      ) -> SyncResult:
-    """The co-rotating static at ``rpm`` (module docstring); ``rpm`` = 0 gives the unsoftened
-    solution per unit ω² scaled to nothing: use ``unsoftened`` for the reference."""
+                      shaft: bool = True, parts: bool = True, max_element_mm: float = 5.0,
+                      placement: str = "centroid") -> SyncResult:
+    """The co-rotating static at ``rpm`` (module docstring); ``shaft``/``parts`` False leave
+    out their softening (both False: the unsoftened solution at ``rpm``); ``placement`` of the
+    unbalance loads as ``unbalance_load``."""
     model = beam.build_model(variant, max_element_mm=max_element_mm)
     K = beam.assemble_stiffness(model) + beam.support_stiffness(model)[0]
     fixed = beam.support_stiffness(model)[1]
@@ -159,7 +162,7 @@ def corotating_static(variant, rpm: float, *, part_model: str = DEFAULT_PART_MOD
     if parts:
         S += parts_softening(model, spinning_parts(variant, part_model))
     w2 = omega(rpm) ** 2
-    fc, _ = unbalance_load(model, variant)
+    fc, _ = unbalance_load(model, variant, placement)
     free = np.setdiff1d(np.arange(K.shape[0]), fixed)
     A = (K - w2 * S)[np.ix_(free, free)]
     u = np.zeros(K.shape[0])

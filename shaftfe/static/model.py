@@ -84,22 +84,27 @@ class SoftSeat:
 SHAFT_RITZ_DEGREE = 9
 
 
-def shaft_rows(mesh, density: float, degree: int = SHAFT_RITZ_DEGREE) -> np.ndarray:
-    """(2 (degree + 1), ndof) rows B with Bᵀ B = M_⊥ Φ (Φᵀ M_⊥ Φ)⁻¹ Φᵀ M_⊥: the Ritz projection
-    of the shaft's transverse mass M_⊥ (∫ ρ (u_y v_y + u_z v_z)) on Φ = P_j(ξ(x)) e_y, P_j(ξ(x))
-    e_z (Legendre, ξ ∈ [−1, 1] over the shaft). Exact on span Φ and below M_⊥ in energy
-    elsewhere (it softens the part of the motion outside the basis not at all)."""
+def legendre_ritz(Ms, x: np.ndarray, degree: int = SHAFT_RITZ_DEGREE) -> np.ndarray:
+    """(degree + 1, N) rows Bs with Bsᵀ Bs = Ms H (Hᵀ Ms H)⁻¹ Hᵀ Ms, H = P_j(ξ(x)) at the nodes
+    (Legendre, ξ ∈ [−1, 1] over the nodes' x range): the Ritz projection of a scalar mass
+    matrix Ms on polynomials in x. Exact on their span and below Ms in energy elsewhere."""
     from numpy.polynomial import legendre
+    xi = (2.0 * x - (x.min() + x.max())) / (x.max() - x.min())
+    H = legendre.legvander(xi, degree)                   # (N, degree + 1)
+    MH = np.asarray(Ms @ H)
+    L = np.linalg.cholesky(H.T @ MH)                     # the Gram Hᵀ Ms H
+    return np.linalg.solve(L, MH.T)
 
+
+def shaft_rows(mesh, density: float, degree: int = SHAFT_RITZ_DEGREE) -> np.ndarray:
+    """(2 (degree + 1), ndof) rows B with Bᵀ B the Ritz projection of the shaft's transverse
+    mass M_⊥ (∫ ρ (u_y v_y + u_z v_z)) on Φ = P_j(ξ(x)) e_y, P_j(ξ(x)) e_z (``legendre_ritz``):
+    it softens the part of the motion outside the basis not at all."""
     from shaftfe.rotordynamics.solid_rotor import mass_and_gyro
     Ms = reuse.memo("scalar_mass", (reuse.mesh_digest(mesh), density),
                     lambda: mass_and_gyro(mesh, density)[0])
     x = mesh.doflocs[0]
-    xi = (2.0 * x - (x.min() + x.max())) / (x.max() - x.min())
-    H = legendre.legvander(xi, degree)                   # (N, degree + 1)
-    MH = np.asarray(Ms @ H)
-    L = np.linalg.cholesky(H.T @ MH)                     # Gram Φᵀ M Φ of one component
-    Bs = np.linalg.solve(L, MH.T)                        # (degree + 1, N): L⁻¹ Hᵀ M
+    Bs = legendre_ritz(Ms, x, degree)
     B = np.zeros((2 * Bs.shape[0], 3 * x.size))
     B[:Bs.shape[0], 1::3] = Bs
     B[Bs.shape[0]:, 2::3] = Bs

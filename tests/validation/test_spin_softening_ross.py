@@ -235,3 +235,49 @@ def test_solid_increments_against_ross_and_beam(solid, x2_57, rpm):
             print(f"{rpm:g} {pm:15s} {k:18s} 3D {got[k]:+.4f}  beam {beam[k]:+.4f}  "
                   f"ref {want:+.4f}  tol {tol:.4f}")
             assert abs(got[k] - want) <= tol, (pm, k, got[k], want, tol)
+
+
+# --------------------------------------------------------------------------- axisymmetric
+
+def test_axisymmetric_increments_against_the_beam(x2_57, cache):
+    """The axisymmetric path's softening (the same model in harmonic n = 1: parts, tilt, the
+    shaft's Ritz mass) against the beam path's at 10 000 rpm, both with the axisymmetric
+    path's loads (the parts' forces at their seat centres). Bearing reactions' increments;
+    tolerance δ × S as for 3D, δ the largest relative difference of the parts' unsoftened
+    centroid motions u_y + d θ_z (what their m ω² acts on; RBE3 rows of the seat's edges in
+    harmonic n = 1) between the two models, measured here (0.036)."""
+    from shaftfe.axisymmetric import harmonic as hm
+    from shaftfe.axisymmetric.model import AxiOptions
+    from shaftfe.axisymmetric.solve import solve_axisymmetric
+    from shaftfe.beam.elements import NDOF
+    from shaftfe.beam.model import _node
+    from shaftfe.rotordynamics.synchronous import corotating_static
+    rpm = 10000.0
+    on = solve_axisymmetric(x2_57, rpm, AxiOptions(level="coarse"), cache_dir=cache)
+    off = solve_axisymmetric(x2_57, rpm, AxiOptions(level="coarse", spin_softening=False),
+                             cache_dir=cache)
+    b0 = corotating_static(x2_57, rpm, shaft=False, parts=False, placement="seat")
+    sol = off.solution
+    h = hm.assemble(sol.mesh, x2_57.material.E_MPa, x2_57.material.nu, cache_dir=cache)
+    us = next(f.sym for f in sol.harmonics if f.n == 1)
+    s = (rpm / sol.rpm) ** 2                     # the unsoftened solve is at REF_RPM
+    delta = 0.0
+    for a in x2_57.attachments:
+        if a.mass_kg > 0:
+            x, d = a.seat_center_mm, a.x_centroid_mm - a.seat_center_mm
+            rb = hm.rbe3(h, sol.mesh.group_edges(f"load:{a.name}"), x)
+            q = b0.u[NDOF * _node(b0.model.x, x) + np.arange(NDOF)]
+            delta = max(delta, abs(s * ((rb.uy + d * rb.tz) @ us) / (q[1] + d * q[5]) - 1))
+    full = corotating_static(x2_57, rpm, placement="seat")
+    parts = corotating_static(x2_57, rpm, shaft=False, placement="seat")
+    own = corotating_static(x2_57, rpm, parts=False, placement="seat")
+
+    def inc(r, k):
+        return 100.0 * (r.bearings_N[k] / b0.bearings_N[k] - 1)
+    for a, b in zip(on.cases[0].bearings, off.cases[0].bearings, strict=True):
+        got = 100.0 * (a.F_radial_N / b.F_radial_N - 1)
+        tol = delta * (abs(inc(parts, a.name)) + abs(inc(own, a.name)))
+        print(f"axisymmetric {a.name}: {got:+.4f} %, beam {inc(full, a.name):+.4f} %, "
+              f"tol {tol:.4f} (δ {delta:.3f})")
+        assert abs(got - inc(full, a.name)) <= tol
+    assert on.cases[0].equilibrium_residual <= 1e-8      # the shaft's softening force included

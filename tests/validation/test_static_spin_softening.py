@@ -1,9 +1,9 @@
 """3D spin softening (issue #12 item 3) against the mass on a spring.
 
 Model: tests/validation/test_axisymmetric_products.py's ``_mass_on_springs`` (Ø20 × 100 steel
-shaft on two equal springs, one 1 kg part at mid-span, e = 2 mm) through the 3D path, its shaft
-made massless (density 0) so that the mass on springs stays the reference: the shaft's own mass
-softening is validated in test_spin_softening_ross.py.
+shaft on two equal springs, one 1 kg part at mid-span, e = 2 mm; the shaft massless so that
+the mass on springs stays the reference: its own mass softening is validated in
+test_spin_softening_ross.py) through the 3D path.
 
 Reference: u = m e ω² / (k_eff − m ω²), the equilibrium k_eff u = m ω² (e + u) of a mass on a
 spring in the co-rotating frame, k_eff = the two bearing springs in parallel in series with the
@@ -17,15 +17,7 @@ import math
 import pytest
 
 from shaftfe.errors import SolverError
-from tests.validation.test_axisymmetric_products import _mass_on_springs as _with_shaft_mass
-from tests.validation.test_axisymmetric_products import _shaft_compliance
-
-
-def _mass_on_springs(k):
-    """The mass on springs with a massless shaft (module docstring)."""
-    from dataclasses import replace
-    v = _with_shaft_mass(k)
-    return replace(v, material=replace(v.material, density_t_mm3=0.0))
+from tests.validation.test_axisymmetric_products import _mass_on_springs, _shaft_compliance
 
 M, E_MM, K = 1.0, 2.0, 100.0
 W2 = 50e3 / M                              # m ω² = 50 N/mm: 2k − m ω² = ¾ of 2k
