@@ -33,6 +33,7 @@ import numpy as np
 from shaftfe.beam import elements
 from shaftfe.beam import model as beam
 from shaftfe.beam.elements import NDOF, RY, RZ, UY, UZ
+from shaftfe.errors import SolverError
 from shaftfe.model.spin import DEFAULT_PART_MODEL, spinning_parts
 from shaftfe.util.units import omega
 
@@ -165,8 +166,14 @@ def corotating_static(variant, rpm: float, *, part_model: str = DEFAULT_PART_MOD
     fc, _ = unbalance_load(model, variant, placement)
     free = np.setdiff1d(np.arange(K.shape[0]), fixed)
     A = (K - w2 * S)[np.ix_(free, free)]
+    try:                           # positive definite below the softened rotor's first critical
+        c = np.linalg.cholesky(0.5 * (A + A.T))
+    except np.linalg.LinAlgError:
+        raise SolverError(f"spin softening (beam): {rpm:g} rpm is at or above a critical speed "
+                          "of the softened rotor; the co-rotating static solution does not "
+                          "exist") from None
     u = np.zeros(K.shape[0])
-    u[free] = np.linalg.solve(A, fc[free] * w2)
+    u[free] = np.linalg.solve(c.T, np.linalg.solve(c, fc[free] * w2))
     return SyncResult(rpm, u, None, _bearing_forces(model, u), model)
 
 

@@ -283,3 +283,31 @@ def test_axisymmetric_increments_against_the_beam(x2_57, cache):
               f"tol {tol:.4f} (δ {delta:.3f})")
         assert abs(got - inc(full, a.name)) <= tol
     assert on.cases[0].equilibrium_residual <= 1e-8      # the shaft's softening force included
+
+
+def test_beam_corotating_static_refuses_a_supercritical_speed(x2_57):
+    """Above the softened rotor's first forward critical speed the co-rotating static solution
+    does not exist: refused. The speed: the beam rotor's own forward synchronous critical
+    (the smallest ω with K − ω² S singular, S the same softening), bracketed by ±2 %
+    (measured: 33 900 rpm, far above x2_57's range)."""
+    import scipy.linalg as sla
+
+    from shaftfe.beam import model as beam
+    from shaftfe.errors import SolverError
+    from shaftfe.model.spin import spinning_parts
+    from shaftfe.rotordynamics.synchronous import (
+        corotating_static,
+        parts_softening,
+        shaft_softening,
+    )
+    m = beam.build_model(x2_57)
+    Ks, fixed = beam.support_stiffness(m)
+    K = beam.assemble_stiffness(m) + Ks
+    S = shaft_softening(m) + parts_softening(m, spinning_parts(x2_57))
+    free = np.setdiff1d(np.arange(K.shape[0]), fixed)
+    mu = sla.eigh(S[np.ix_(free, free)], K[np.ix_(free, free)], eigvals_only=True)
+    w_c = 1.0 / math.sqrt(mu.max())                  # S x = μ K x: ω_c² = 1 / μ_max
+    rpm_c = w_c * 60 / (2 * math.pi)
+    corotating_static(x2_57, 0.98 * rpm_c)
+    with pytest.raises(SolverError, match="critical speed"):
+        corotating_static(x2_57, 1.02 * rpm_c)
