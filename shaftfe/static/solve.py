@@ -340,7 +340,8 @@ class SpeedSolution:
     scale: float
     u: np.ndarray
     lam: list
-    soft_N: dict                      # part -> (F_y, F_z): m ω² ū_c, its centroid's motion
+    soft_N: dict                      # part -> (F_y, F_z): m ω² ū_c (its centroid's motion);
+                                      # "shaft" -> the resultant of the shaft's softening
     extra: np.ndarray | None          # the softening forces as a load vector (ndof) or None
 
 
@@ -415,11 +416,15 @@ def soften(model: StaticModel, base: UnitSolution, unit: list, rpm: float) -> Sp
     lam = [s * lb + sum(m_ * wu.lam[k] for m_, wu in zip(mu, unit, strict=True))
            for k, lb in enumerate(base.lam)]
     w2 = omega(rpm) ** 2
-    soft_N = {}
+    soft_N, j = {}, 0
     for sd in model.soft:
         for p in sd.parts:
             f = p.mass_t * w2 * (centroid_rows(sd.R6, p.d_mm) @ u)
             soft_N[p.name] = (float(f[0]), float(f[1]))
+        if not sd.parts:               # the shaft: the resultant of its softening forces
+            f = (sd.R.T @ mu[j:j + sd.R.shape[0]]).reshape(-1, 3).sum(axis=0)
+            soft_N[sd.name] = (float(f[1]), float(f[2]))
+        j += sd.R.shape[0]
     return SpeedSolution(rpm, s, u, lam, soft_N, R.T @ mu)
 
 
