@@ -33,11 +33,13 @@ at the bearings that hold torsion (``Bearing.holds_torsion``), else at the axial
 gauge whose reaction vanishes because the torques balance (``model.loads.check_torque_path``;
 the solve reports it); ``rigid_supports``: u_y = u_z = 0 at the remote points.
 
-Spin softening (``AxiOptions.spin_softening``, on by default as in 3D): in the co-rotating
-frame each attachment's centrifugal force is m ω² (e + u), u its seat's rigid translation; the part
-m ω² u is a negative spring −m ω² on the seat's remote point (u_y, u_z: both n = 1 parts, the
-same RBE3 rows as a bearing; the tilt of the part is left out). The response is then not ∝ ω²:
-a solve serves one speed only.
+Spin softening (``AxiOptions.spin_softening``, on by default as in 3D): the co-rotating model
+of ``shaftfe.model.spin``, in harmonic n = 1 (both parts): each part's mass at its centroid
+(the seat's RBE3 rows u_y + d θ_z, a negative spring −m ω²), its tilt matrix on the seat's θ
+rows (I_d − I_p and the eccentric centroid's m e² about the axis ⊥ e, which couples the two
+parts), and the shaft's own transverse mass by its Ritz projection on Legendre polynomials in
+x (``static.model.legendre_ritz``, as in 3D). The response is then not ∝ ω²: a solve serves
+one speed only.
 
 Truncation (``AxiOptions.truncation``, the half-seat pressures only): harmonics are added in
 order until the two last loaded
@@ -384,9 +386,8 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, rpm: float = REF
     loads = pressure_loads(variant, plan, options.load_distribution, REF_RPM) if pressed else []
     comps = _components(acts, body, bool(loads))
     omega2 = omega(rpm) ** 2
-    soft = [(a.name, hm.rbe3(h, mesh.group_edges(f"load:{a.name}"), a.seat_center_mm).uy,
-             a.mass_kg * omega2 * 1e-3)                       # kg/s² = N/m → N/mm
-            for a in variant.attachments if options.spin_softening and a.mass_kg > 0]
+    soft, centroid = _softening(h, mesh, variant, omega2) if options.spin_softening else ([],
+                                                                                        [])
     coeffs = kn.half_pressure_coefficients(options.load_distribution, options.n_max)
     S = rc.Surface(mesh)
     bearings = [(b.name, hm.rbe3(h, mesh.group_edges(f"bearing:{b.name}"), b.x_center_mm), b)
@@ -421,8 +422,7 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, rpm: float = REF
     all_idx = np.arange(nc)
     try:
         job0 = pool.submit(hm.solve, h.K(0), f0, h.reduction(0), hard=np.array(hard))
-        job1 = pool.submit(_solve_n1, h, bearings, f1s, f1a, options.rigid_supports,
-                           [(row, k) for _, row, k in soft])
+        job1 = pool.submit(_solve_n1, h, bearings, f1s, f1a, options.rigid_supports, soft)
         sol0, (us, ua, reac1, res1) = job0.result(), job1.result()
         relres = [sol0.relres, res1]
         pj = [i for i, c in enumerate(comps) if c.pressed_half]
@@ -488,12 +488,12 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, rpm: float = REF
     secs = {"mesh_seconds": t_mesh, "assembly_seconds": t_asm,
             "solve_seconds": t_all - t_mesh - t_asm, "total_seconds": t_all,
             "mesh_from_cache": mesh.from_cache, "relative_residual": max(relres)}
-    motion = {name: np.array([row @ us, row @ ua]) for name, row, _ in soft}
+    motion = {name: np.array([row @ us, row @ ua]) for name, row, _ in centroid}
     cols = Columns(tuple(comps), tuple(cols_h), tuple(cols_s), reac, tors, load_sum,
                    torque_sum, load_scale, motion, gauge)
     base = AxiSolution(variant, options, plan, mesh, (), tuple(loads), tuple(bearings), {}, S,
                        (), n_used, change, track.names, secs, float(rpm), {},
-                       {name: float(k) for name, _, k in soft}, cols)
+                       {name: float(k) for name, _, k in centroid}, cols)
     return superpose(base, fac)
 
 
@@ -514,6 +514,52 @@ def superpose(sol: AxiSolution, factors) -> AxiSolution:
                    attachment_motion=motion, factors=tuple(float(x) for x in f))
 
 
+def _softening(h, mesh, variant, omega2: float):
+    """(rows with their (symmetric, antisymmetric) 2×2 stiffness blocks, (name, row, k) whose
+    motion × k is the softening force: each part's centroid, and the shaft's mass-weighted mean
+    motion × its m ω²) of the co-rotating softening at ω² (module docstring). A seat's tilt
+    row ``tz`` reads (θ_z, −θ_y) on the two parts: the tilt matrix T on (θ_y, θ_z) acts there
+    as P T Pᵀ, P = [[0, 1], [−1, 0]]."""
+    from shaftfe.model.spin import spinning_parts
+    from shaftfe.static.model import legendre_ritz
+    P = np.array([[0.0, 1.0], [-1.0, 0.0]])
+    soft, centroid = [], []
+    for p in spinning_parts(variant):
+        rb = hm.rbe3(h, mesh.group_edges(f"load:{p.name}"), p.x_seat_mm)
+        row = rb.uy + p.d_mm * rb.tz
+        soft.append((row, -p.mass_t * omega2 * np.eye(2)))
+        soft.append((rb.tz, -omega2 * (P @ p.tilt @ P.T)))
+        centroid.append((p.name, row, p.mass_t * omega2))        # t/s² = N/mm
+    rho = float(variant.material.density_t_mm3)
+    if rho > 0:
+        # the 3D mass of the symmetric part, ∫ ρ |u|² dV = ρ π ∫ (U_x² + U_r² + U_θ²) r dr dx; a
+        # lateral field u_y = h(x) is U_r = h, U_θ = −h: rows ρ π Ms h on U_r and −ρ π Ms h on
+        # U_θ, Gram 2 ρ π hᵀ Ms h (Ms the r-weighted scalar mass of the meridian mesh)
+        Ms = _meridian_mass(mesh)
+        Bs = legendre_ritz(2.0 * math.pi * rho * Ms, mesh.xr[0])
+        B = np.zeros((Bs.shape[0], h.ndof))
+        B[:, 1::3], B[:, 2::3] = 0.5 * Bs, -0.5 * Bs
+        soft += [(b, -omega2 * np.eye(2)) for b in B]
+        m_shaft = 2.0 * math.pi * rho * float(Ms.sum())
+        e_y = np.zeros(h.ndof)
+        e_y[1::3], e_y[2::3] = 1.0, -1.0
+        mean = (B.T @ (B @ e_y)) / m_shaft                     # mass-weighted mean u_y row
+        centroid.append(("shaft", mean, m_shaft * omega2))
+    return soft, centroid
+
+
+def _meridian_mass(mesh):
+    """∫ N_a N_b r dr dx of the meridian mesh's P2 triangles (sparse N × N)."""
+    import scipy.sparse as sp
+    pts, w = kn.triangle_rule(4)
+    X, R = mesh.xr[0][mesh.tri].T, mesh.xr[1][mesh.tri].T
+    _, r, det, N, _, _ = kn.element_geometry(X, R, pts)
+    Me = np.einsum("aq,bq,eq->eab", N, N, det * r * w[None])
+    rows = np.repeat(mesh.tri.T, 6, axis=1).ravel()
+    cols = np.tile(mesh.tri.T, (1, 6)).ravel()
+    return sp.csr_matrix((Me.ravel(), (rows, cols)), shape=(mesh.n_nodes,) * 2)
+
+
 def _solve_n1(h, bearings, fs, fa, rigid: bool, soft=()):
     """Harmonic n = 1, both parts, with ONE factorisation for both and every column of
     ``fs``, ``fa`` (ndof, c).
@@ -523,8 +569,9 @@ def _solve_n1(h, bearings, fs, fa, rigid: bool, soft=()):
     both parts) is factorised, and the rest, ΔC = C − c̄ I, is a rank-2-per-bearing term
     U ΔC Uᵀ solved by the Woodbury identity: x = x0 − A0⁻¹U (I + ΔC UᵀA0⁻¹U)⁻¹ ΔC Uᵀ x0.
     Rigid supports: the remote points' u_y held in both parts by multipliers instead.
-    ``soft``: (u_y row, m ω²) of each attachment's seat, a negative isotropic spring −m ω² I in
-    the same low-rank term. The softened system is positive definite exactly when every
+    ``soft``: (row, 2×2 block on its symmetric and antisymmetric values) of the co-rotating
+    softening (``_softening``: negative, or for a disk-like tilt positive, springs) in the same
+    low-rank term. The softened system is positive definite exactly when every
     eigenvalue of I + D UᵀA0⁻¹U is positive (A0 and UᵀA0⁻¹U are; determinant lemma): else the
     speed is at or above a critical speed of the softened rotor and a SolverError says so.
 
@@ -546,7 +593,7 @@ def _solve_n1(h, bearings, fs, fa, rigid: bool, soft=()):
         hard, rows = None, list(uy)
         blocks = [c - cb * np.eye(2) for c, cb in zip(C, cbar, strict=True)]
     rows += [row for row, _ in soft]
-    blocks += [-k * np.eye(2) for _, k in soft]
+    blocks += [blk for _, blk in soft]
     m = len(blocks)
     rows = np.array(rows).reshape(m, h.ndof)
     sol = hm.solve(K1, np.column_stack([fs, fa, *rows]), T1, springs=base, hard=hard)

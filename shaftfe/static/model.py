@@ -13,6 +13,7 @@ import numpy as np
 from shaftfe.errors import InputError
 from shaftfe.fe import assembly as fem
 from shaftfe.fe import reuse, supports
+from shaftfe.model.spin import DEFAULT_PART_MODEL, part_rows, spinning_part
 from shaftfe.model.validate import validate_variant
 from shaftfe.solid.levels import MeshLevel
 from shaftfe.util.units import REF_RPM, omega
@@ -41,7 +42,7 @@ class StaticOptions:
     solver: str = "auto"                   # see shaftfe.fe.solvers
     hold_twist: str = "all"                # θ_x held at "all" bearings, the "axial" one, "none"
     exclude_mm: float = 0.0                # extra band around patch edges for filtered peaks
-    spin_softening: bool = True            # the parts' m ω² u (see shaftfe.static.solve.soften)
+    spin_softening: bool = True            # co-rotating softening (shaftfe.static.solve.soften)
 
     @property
     def load_case(self) -> str:
@@ -60,16 +61,94 @@ class StaticModel:
     load_force: dict                      # attachment name -> (Fx, Fy, Fz) at REF_RPM
     f: np.ndarray                         # total load vector at REF_RPM
     assembly_seconds: float
-    soft: tuple = ()                      # SoftSeat per spinning part (spin softening)
+    soft: tuple = ()                      # SoftSeat per loaded seat and the shaft (softening)
 
 
 @dataclass(frozen=True, eq=False)
 class SoftSeat:
-    """A part's seat for spin softening: its remote point's (u_y, u_z) = R u (the RBE3 rows of
-    the whole seat about the seat centre on the axis) and the part's mass."""
+    """One low-rank term of the co-rotating softening (``shaftfe.model.spin``): the negative
+    stiffness ω² Rᵀ diag(w) R. A seat: R the rows of its parts' centroid motions and tilts
+    (``spin.part_rows`` on the seat's RBE3 rows ``R6`` about the seat centre, the parts on one
+    seat summed into at most four rows), ``parts`` the parts on it; the shaft (``parts`` = ()):
+    the Ritz rows of its transverse mass (``shaft_rows``)."""
     name: str
-    R: np.ndarray                         # (2, ndof)
-    mass_t: float
+    R: np.ndarray                         # (k, ndof)
+    w: np.ndarray                         # (k,) per unit ω²: t (translations), t·mm² (tilts)
+    R6: np.ndarray | None = None          # (6, ndof) the seat's remote-point rows
+    parts: tuple = ()                     # SpinningPart on this seat
+
+
+# the shaft's transverse mass softening on Legendre polynomials in x of (u_y, u_z): a beam-like
+# basis (the transverse motion of a shaft is its axis's deflection up to the section's
+# distortion). The degree against the exact solve on coarse x2_57 at 10 000 rpm (error of the
+# softening): 1 → 1e-2, 3 → 1.5e-5, 9 → 4e-6 (tests/validation/test_spin_softening_ross.py);
+# each degree costs two right-hand sides of the one factorisation
+SHAFT_RITZ_DEGREE = 3
+
+
+def legendre_ritz(Ms, x: np.ndarray, degree: int = SHAFT_RITZ_DEGREE) -> np.ndarray:
+    """(degree + 1, N) rows Bs with Bsᵀ Bs = Ms H (Hᵀ Ms H)⁻¹ Hᵀ Ms, H = P_j(ξ(x)) at the nodes
+    (Legendre, ξ ∈ [−1, 1] over the nodes' x range): the Ritz projection of a scalar mass
+    matrix Ms on polynomials in x. Exact on their span and below Ms in energy elsewhere."""
+    from numpy.polynomial import legendre
+    xi = (2.0 * x - (x.min() + x.max())) / (x.max() - x.min())
+    H = legendre.legvander(xi, degree)                   # (N, degree + 1)
+    MH = np.asarray(Ms @ H)
+    L = np.linalg.cholesky(H.T @ MH)                     # the Gram Hᵀ Ms H
+    return np.linalg.solve(L, MH.T)
+
+
+def shaft_rows(mesh, density: float, degree: int = SHAFT_RITZ_DEGREE) -> np.ndarray:
+    """(2 (degree + 1), ndof) rows B with Bᵀ B the Ritz projection of the shaft's transverse
+    mass M_⊥ (∫ ρ (u_y v_y + u_z v_z)) on Φ = P_j(ξ(x)) e_y, P_j(ξ(x)) e_z (``legendre_ritz``):
+    it softens the part of the motion outside the basis not at all."""
+    from shaftfe.rotordynamics.solid_rotor import mass_and_gyro
+    Ms = reuse.memo("scalar_mass", (reuse.mesh_digest(mesh), density),
+                    lambda: mass_and_gyro(mesh, density)[0])
+    x = mesh.doflocs[0]
+    Bs = legendre_ritz(Ms, x, degree)
+    B = np.zeros((2 * Bs.shape[0], 3 * x.size))
+    B[:Bs.shape[0], 1::3] = Bs
+    B[Bs.shape[0]:, 2::3] = Bs
+    return B
+
+
+def spin_seats(variant, mesh, *, part_model: str = DEFAULT_PART_MODEL,
+               shaft: bool = True) -> tuple[SoftSeat, ...]:
+    """The co-rotating softening terms of ``variant`` on ``mesh``: one per loaded seat (its
+    parts, ``shaftfe.model.spin``) and, with ``shaft``, the shaft's own mass (``shaft_rows``)."""
+    seats: dict = {}
+    for a in variant.attachments:
+        groups = [np.asarray(fc) for g, fc in mesh.boundaries.items()
+                  if g.startswith(f"load:{a.name}:")]
+        if a.mass_kg > 0 and groups:
+            key = (a.seat_x_start_mm, a.seat_x_end_mm)
+            seats.setdefault(key, (np.concatenate(groups), []))[1].append(
+                spinning_part(a, part_model))
+    out = []
+    for (x0, x1), (facets, parts) in seats.items():
+        R6 = fem.rigid_rows(mesh, facets, (0.5 * (x0 + x1), 0.0, 0.0))
+        # Σ over the parts on the seat as one 4 × 4 matrix on (u_y, u_z, θ_y, θ_z), then its
+        # eigenvectors as rows (at most four per seat, whatever the number of parts)
+        S4 = np.zeros((4, 4))
+        for p in parts:
+            S4 += _seat_block(*part_rows(np.eye(6), p))
+        lam, vec = np.linalg.eigh(S4)
+        keep = np.abs(lam) > 1e-12 * np.abs(lam).max()
+        R = vec[:, keep].T @ R6[[1, 2, 4, 5]]
+        out.append(SoftSeat("+".join(p.name for p in parts), np.ascontiguousarray(R),
+                            lam[keep], np.ascontiguousarray(R6), tuple(parts)))
+    if shaft and variant.material.density_t_mm3 > 0:
+        out.append(SoftSeat("shaft", shaft_rows(mesh, variant.material.density_t_mm3),
+                            np.ones(2 * (SHAFT_RITZ_DEGREE + 1))))
+    return tuple(out)
+
+
+def _seat_block(rows: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """Σ w_i r_i r_iᵀ restricted to the seat's (u_y, u_z, θ_y, θ_z) (rows over the 6 rigid
+    dofs of its remote point)."""
+    r = rows[:, [1, 2, 4, 5]]
+    return (r.T * w) @ r
 
 
 # --------------------------------------------------------------------------- model
@@ -134,15 +213,9 @@ def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh
     f = np.zeros(K.shape[0])
     for v in loads.values():
         f += v
-    soft = []
-    for a in variant.attachments if options.spin_softening else ():
-        groups = [np.asarray(fc) for g, fc in m.boundaries.items()
-                  if g.startswith(f"load:{a.name}:")]
-        if a.mass_kg > 0 and groups:
-            R = fem.rigid_rows(m, np.concatenate(groups), (a.seat_center_mm, 0.0, 0.0))[[1, 2]]
-            soft.append(SoftSeat(a.name, np.ascontiguousarray(R), a.mass_kg * 1e-3))
+    soft = spin_seats(variant, m) if options.spin_softening else ()
     return StaticModel(variant, shaft_mesh, options, K, tuple(couplings), blocks, loads,
-                       forces, f, time.perf_counter() - t0, tuple(soft))
+                       forces, f, time.perf_counter() - t0, soft)
 
 
 def region_facets(mesh) -> dict[str, np.ndarray]:

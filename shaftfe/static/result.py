@@ -100,7 +100,8 @@ class StaticCase:
     reaction_sum_N: tuple[float, float, float]
     equilibrium_residual: float                # |Σ reactions + Σ loads| / |Σ loads|
     beam: dict | None = None                   # shaftfe.beam.model numbers side by side
-    spin_softening_N: dict | None = None       # part -> (F_y, F_z) of m ω² ū (None: off)
+    spin_softening_N: dict | None = None       # part -> (F_y, F_z) of m ω² ū_c at its
+                                               # centroid, "shaft" -> its resultant (None: off)
 
 
 @dataclass(frozen=True, eq=False)

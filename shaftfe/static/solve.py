@@ -56,6 +56,7 @@ from shaftfe.fe import assembly as fem
 from shaftfe.fe import recovery, reuse, supports
 from shaftfe.fe.lowrank import LowRankSolver
 from shaftfe.model.bearing_life import l10h
+from shaftfe.model.spin import centroid_rows
 from shaftfe.solid.plan import warn_sharp_corners
 from shaftfe.static.model import (
     REF_RPM,
@@ -334,23 +335,39 @@ def _reactions(model: StaticModel, lam: list, f: np.ndarray):
 @dataclass(frozen=True, eq=False)
 class SpeedSolution:
     """The solution at one speed with its loads scaled by ``scale`` = (rpm / REF_RPM)²: u, the
-    support multipliers per block, and the spin-softening force on each part's seat (N)."""
+    support multipliers per block, and the spin-softening force on each part (N)."""
     rpm: float
     scale: float
     u: np.ndarray
     lam: list
-    soft_N: dict                      # part -> (F_y, F_z): m ω² (u_y, u_z) of its seat
+    soft_N: dict                      # part -> (F_y, F_z): m ω² ū_c (its centroid's motion);
+                                      # "shaft" -> the resultant of the shaft's softening
     extra: np.ndarray | None          # the softening forces as a load vector (ndof) or None
+
+
+def _soft_terms(model: StaticModel) -> tuple[np.ndarray, np.ndarray]:
+    """(R, w): every softening row of the model and its weight per unit ω²."""
+    return (np.vstack([sd.R for sd in model.soft]),
+            np.concatenate([sd.w for sd in model.soft]))
+
+
+def _sqrt_psd(C: np.ndarray) -> np.ndarray:
+    """C^½ of the symmetric positive semi-definite compliance C = R A⁻¹ Rᵀ (eigenvalues below
+    zero by round-off taken as zero)."""
+    lam, vec = np.linalg.eigh(0.5 * (C + C.T))
+    return (vec * np.sqrt(np.clip(lam, 0.0, None))) @ vec.T
 
 
 def _softening_failure(model: StaticModel, RW: np.ndarray, rpm: float) -> str:
     """Why the softened system is not positive definite, in numbers the user can check. It
-    fails exactly when ω² λ_max ≥ 1, λ_max the largest eigenvalue of M^½ (R W) M^½ (M the
-    parts' masses): ω_c = λ_max^-½ is the speed this solve implies. A stiffer support lowers
-    the seats' compliance R W and raises ω_c, so a failure with very stiff springs is the solve's
-    conditioning, not the rotor: the message names both the implied speed and the springs."""
-    sm = np.sqrt(np.repeat([sd.mass_t for sd in model.soft], 2))
-    lam = float(np.linalg.eigvalsh(sm[:, None] * RW * sm[None, :]).max())
+    fails exactly when ω² λ_max ≥ 1, λ_max the largest eigenvalue of C^½ D₁ C^½ (C = R A⁻¹ Rᵀ
+    the compliance of the softening rows, D₁ their weights per unit ω²): ω_c = λ_max^-½ is the
+    speed this solve implies. A stiffer support lowers C and raises ω_c, so a failure with very
+    stiff springs is the solve's conditioning, not the rotor: the message names both the
+    implied speed and the springs."""
+    _, w = _soft_terms(model)
+    Ch = _sqrt_psd(RW)
+    lam = float(np.linalg.eigvalsh(Ch @ (w[:, None] * Ch)).max())
     rpm_c = 60.0 / (2.0 * math.pi * math.sqrt(lam)) if lam > 0 else 0.0
     k_max = max((abs(float(k)) for c in model.couplings for row in c.K for k in row),
                 default=0.0)
@@ -363,36 +380,51 @@ def _softening_failure(model: StaticModel, RW: np.ndarray, rpm: float) -> str:
 
 
 def soften(model: StaticModel, base: UnitSolution, unit: list, rpm: float) -> SpeedSolution:
-    """Spin softening at ``rpm`` (exact, by a second Woodbury step on the solved system).
+    """Spin softening at ``rpm``: the co-rotating static problem done completely (exact on its
+    low-rank terms, by a second Woodbury step on the solved system).
 
-    In the co-rotating frame each part's centrifugal force is m ω² (e + ū), ū = R u its seat's
-    remote-point motion (``StaticModel.soft``): the m ω² ū part is a negative spring −m ω² on
-    R. With u₀ the solution for the loads at REF_RPM and W = A⁻¹ Rᵀ (``unit``: the supported
-    system's responses to unit seat forces, from the same factorisation), the softened solution
-    for the loads × s is u = s u₀ + W μ with μ = D ū, D = diag(m ω²), and
-    (I − R W D) ū = s R u₀. The softened stiffness is positive definite exactly when
-    I − D^½ (R W) D^½ is (R W is the seats' compliance, symmetric positive definite): else the
-    speed is at or above a critical speed of the softened rotor and the static co-rotating
-    solution does not exist (SolverError). The same combination gives the multipliers."""
+    Model (``shaftfe.model.spin``): in the co-rotating frame the rpm² loads act on a rotor
+    softened by ω² Σ Rᵀ diag(w) R (``StaticModel.soft``): each seat's parts (mass at the
+    centroid through the rigid link from the seat's RBE3 point, tilt inertia I_d − I_p and the
+    eccentric centroid's m e² about the axis ⊥ e: the rigid body's exact centrifugal potential)
+    and the shaft's own transverse mass M_⊥ by its Ritz projection on Legendre polynomials in x
+    (``static.model.shaft_rows``: one factorisation, no second one of K − ω² M_⊥; its error
+    against that exact solve is measured in tests/validation/test_spin_softening_ross.py).
+
+    With u₀ the solution for the loads at REF_RPM and W = A⁻¹ Rᵀ (``unit``: the supported
+    system's responses to the rows, from the same factorisation), the softened solution for the
+    loads × s is u = s u₀ + W μ with μ = D ū, D = ω² diag(w), ū = R u and
+    (I − R W D) ū = s R u₀. The softened stiffness A − Rᵀ D R is positive definite exactly when
+    I − C^½ D C^½ is (C = R W, symmetric positive semi-definite; D may have negative entries:
+    tilt stiffening): else the speed is at or above a critical speed of the softened rotor and
+    the static co-rotating solution does not exist (SolverError). The same combination gives
+    the multipliers."""
     s = rpm2_scale(rpm)
     if not model.soft or rpm == 0:
         return SpeedSolution(rpm, s, base.u * s, [lb * s for lb in base.lam], {}, None)
-    R = np.vstack([sd.R for sd in model.soft])
-    W = np.column_stack([w.u for w in unit])
+    R, w = _soft_terms(model)
+    W = np.column_stack([wu.u for wu in unit])
     RW = R @ W
     RW = 0.5 * (RW + RW.T)
-    w2 = omega(rpm) ** 2
-    d = np.repeat([sd.mass_t * w2 for sd in model.soft], 2)
-    sq = np.sqrt(d)
-    if np.linalg.eigvalsh(np.eye(d.size) - sq[:, None] * RW * sq[None, :]).min() <= 0:
+    d = omega(rpm) ** 2 * w
+    Ch = _sqrt_psd(RW)
+    if np.linalg.eigvalsh(np.eye(d.size) - Ch @ (d[:, None] * Ch)).min() <= 0:
         raise SolverError(_softening_failure(model, RW, rpm))
     ubar = np.linalg.solve(np.eye(d.size) - RW * d[None, :], s * (R @ base.u))
     mu = d * ubar
     u = s * base.u + W @ mu
-    lam = [s * lb + sum(m_ * w.lam[k] for m_, w in zip(mu, unit, strict=True))
+    lam = [s * lb + sum(m_ * wu.lam[k] for m_, wu in zip(mu, unit, strict=True))
            for k, lb in enumerate(base.lam)]
-    soft_N = {sd.name: (float(mu[2 * j]), float(mu[2 * j + 1]))
-              for j, sd in enumerate(model.soft)}
+    w2 = omega(rpm) ** 2
+    soft_N, j = {}, 0
+    for sd in model.soft:
+        for p in sd.parts:
+            f = p.mass_t * w2 * (centroid_rows(sd.R6, p.d_mm) @ u)
+            soft_N[p.name] = (float(f[0]), float(f[1]))
+        if not sd.parts:               # the shaft: the resultant of its softening forces
+            f = (sd.R.T @ mu[j:j + sd.R.shape[0]]).reshape(-1, 3).sum(axis=0)
+            soft_N[sd.name] = (float(f[1]), float(f[2]))
+        j += sd.R.shape[0]
     return SpeedSolution(rpm, s, u, lam, soft_N, R.T @ mu)
 
 
@@ -519,7 +551,7 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
     t_model = time.perf_counter() - t0
     soft_on = bool(model.soft) and any(r > 0 for r in rpms)
     if soft_on:
-        R = np.vstack([sd.R for sd in model.soft])
+        R = _soft_terms(model)[0]
         sols = solve_model(model, np.column_stack([model.f, R.T]))
         sol, unit = sols[0], sols[1:]
     else:

@@ -254,7 +254,10 @@ def test_report_axisymmetric(tmp_path, cache, monkeypatch):
 def _mass_on_springs(k, angle_deg: float = 0.0):
     """Ø20 × 100 steel shaft on two equal springs at x = 10 and 90 (k: a stiffness in N/mm, or
     a 2×2 matrix), one 1 kg part at mid-span with e = 2 mm: the classic mass on springs, the
-    shaft a third spring in series."""
+    shaft a third spring in series, made massless (density 0) so that its own spin softening
+    stays out of this reference (validated in test_spin_softening_ross.py)."""
+    from dataclasses import replace
+
     from shaftfe.model.examples import STEEL
     from shaftfe.model.variant import Attachment, Bearing, Segment, Variant
     K = ((k, 0.0), (0.0, k)) if np.isscalar(k) else tuple(map(tuple, k))
@@ -262,7 +265,7 @@ def _mass_on_springs(k, angle_deg: float = 0.0):
            Bearing("R", "x", 90.0, 10.0, 1e4, 1e4, K))
     att = (Attachment("w", 45.0, 55.0, 1.0, 2.0, 50.0, angle_deg=angle_deg),)
     return Variant("spin", "mass on springs", (Segment("a", 0.0, 100.0, 20.0, 0.0),), brg, att,
-                   STEEL, 0.0)
+                   replace(STEEL, density_t_mm3=0.0), 0.0)
 
 
 def test_spin_softening_is_the_mass_on_springs(tmp_path):
