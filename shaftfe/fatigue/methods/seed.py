@@ -30,13 +30,37 @@ class Seed:
         """Everything the seed method reads is checked by ``run.check_job``."""
 
     def assess(self, inputs: AssessmentInputs, options, progress=None) -> FatigueAssessment:
-        from shaftfe.fatigue.run import FatigueInputs, run_fatigue, sn_material
+        from contextlib import nullcontext
+
+        from shaftfe.fatigue import channel_run as cr
+        from shaftfe.fatigue.run import (
+            FatigueInputs,
+            resolve_design_life,
+            run_fatigue,
+            sn_material,
+            static_reference,
+        )
         from shaftfe.util.notices import raised
         ch = inputs.single(self.name)
+        material = sn_material(options, inputs.variant)
         with raised() as warned:
-            run = run_fatigue(options, FatigueInputs(
-                ch.history, sn_material(options, inputs.variant), inputs.variant), progress,
-                ref=ch.field)
+            ref = ch.field
+            if ref is None and any(ld.scales_with != "rpm2" for ld in inputs.variant.loads):
+                # several load patterns: the reference's per-pattern fields (channel_run)
+                job = resolve_design_life(options, ch.history, inputs.variant.duty)
+                with (progress.stage(self.stages[0]) if progress is not None
+                      else nullcontext()):
+                    ref = static_reference(inputs.variant, job)
+                if cr.needs_channels(ref):
+                    with (progress.stage(self.stages[1]) if progress is not None
+                          else nullcontext()):
+                        crun = cr.run_channels(job, inputs.variant, ch.history, material, ref)
+                    lv = crun.lives
+                    locs = tuple(_channel_location(crun, i) for i in range(lv.nodes.size))
+                    return FatigueAssessment(self.name, locs, locs[crun.hot], tuple(warned),
+                                             tuple(ref.notes), crun)
+            run = run_fatigue(options, FatigueInputs(ch.history, material, inputs.variant),
+                              progress, ref=ref)
         ff = run.field
         return FatigueAssessment(self.name, tuple(_location(h) for h in ff.region_hot_spots
                                                   if h is not None), _location(ff.hot_spot),
@@ -44,11 +68,17 @@ class Seed:
                                  run)
 
     def write(self, result, inputs, options, out) -> tuple[dict, list[str]]:
+        from shaftfe.fatigue import channel_run as cr
         from shaftfe.fatigue.outputs import write_outputs
+        if isinstance(result.detail, cr.ChannelRun):
+            return cr.write(result.detail, out)
         summary, plots = write_outputs(result.detail, out)
         return summary, ["fatigue.vtu", *plots.values(), "summary.json"]
 
     def lines(self, result, inputs, options, summary, out, files) -> list[str]:
+        from shaftfe.fatigue import channel_run as cr
+        if isinstance(result.detail, cr.ChannelRun):
+            return cr.lines(result.detail, summary, out, files)
         return _lines(result.detail, out, summary["plots"])
 
 
@@ -61,6 +91,17 @@ def _location(h) -> Location:
     sf = h.safety_factor
     return Location(h.region, h.xyz_mm[0], 1.0 / sf if sf > 0 else math.inf, sf,
                     h.damage_per_block, h.life_blocks, h.life_hours, h.life_km)
+
+
+def _channel_location(run, i: int) -> Location:
+    """A candidate node of a several-pattern run as a ``Location``."""
+    from shaftfe.fatigue.assess import life_hours, life_km
+    d = float(run.lives.damage[i])
+    blocks = 1.0 / d if d > 0 else math.inf
+    hours = float(life_hours(blocks, run.history.duration_s))
+    sf = float(run.lives.safety[i])
+    return Location(run.regions[i], float(run.xyz[0, i]), 1.0 / sf if sf > 0 else math.inf,
+                    sf, d, blocks, hours, float(life_km(hours, run.job.speed_kmh)))
 
 
 def _lines(run, out, plots) -> list[str]:
