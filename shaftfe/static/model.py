@@ -15,7 +15,7 @@ shaft's own mass (``fe.assembly.body_force_load``). Actions of one pattern
 (``LoadPattern``): one right-hand side each, from one factorisation.
 
 Torsion: a bearing holds θ_x only if it declares ``holds_torsion``. With none, the rotation about
-the axis is a gauge: one hard row, the mean θ_x of the bearing seats (``TWIST_GAUGE``), whose
+the axis is a gauge: one hard row, θ_x of one bearing's seat (``twist_gauge_block``), whose
 reaction equals the net applied torque by equilibrium and must be round-off (the loader's
 torque-path rule): the solve checks it."""
 
@@ -113,7 +113,8 @@ class StaticModel:
     assembly_seconds: float
     soft: tuple = ()                      # SoftSeat per spinning part (spin softening)
     patterns: tuple = ()                  # LoadPattern per independent pattern
-    twist_gauge: bool = False             # no bearing holds torsion: θ_x is a gauge row
+    twist_gauge: str = ""                 # no bearing holds torsion: the bearing whose seat
+    #                                       θ_x is the gauge (``twist_gauge_block``), else ""
 
 
 @dataclass(frozen=True, eq=False)
@@ -164,9 +165,10 @@ def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh
                                          hold_twist=bool(getattr(b, "holds_torsion", False)))
                  for b in variant.bearings]
     blocks = [blk for c in couplings for blk in supports.blocks(c)]
-    gauge = not any(c.hold_twist for c in couplings)
-    if gauge and couplings:
+    gauge = ""
+    if couplings and not any(c.hold_twist for c in couplings):
         blocks.append(twist_gauge_block(couplings))
+        gauge = blocks[-1].bearing
     blocks = tuple(blocks)
     loads, forces, patterns = _load_patterns(variant, m, options)
     f = np.zeros(K.shape[0])
@@ -183,17 +185,15 @@ def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh
                        forces, f, time.perf_counter() - t0, tuple(soft), patterns, gauge)
 
 
-TWIST_GAUGE = "twist gauge"              # the SupportBlock's name when no bearing holds torsion
-
-
 def twist_gauge_block(couplings) -> supports.SupportBlock:
-    """The gauge of the free rotation about the axis: one hard row, the mean θ_x of the bearing
-    seats (their RBE3 rows) = 0. It fixes the rigid rotation the loads leave undetermined
-    without holding any torque: its reaction is the net applied torque (equilibrium), which
-    the solve checks to be round-off. Unlike a pinned node it leaves the displacement field
-    that of the seats' mean rotation (a bearing holding θ_x with no torque gives the same)."""
-    R = sum(c.G[3] for c in couplings) / len(couplings)
-    return supports.SupportBlock(TWIST_GAUGE, ("θ_x",), R[None, :], None)
+    """The gauge of the free rotation about the axis when no bearing holds torsion: one hard
+    row, θ_x of one bearing's seat (its RBE3 row; the axial bearing's, else the first) = 0. It
+    fixes the rigid rotation the loads leave undetermined without holding any torque: its
+    reaction is the net applied torque (equilibrium), which the torque-path rule makes zero and
+    the solve checks to be round-off. A seat's mean rotation, not a pinned node: the nodal
+    displacements are those a bearing holding θ_x with no torque gives."""
+    c = next((c for c in couplings if c.axial), couplings[0])
+    return supports.SupportBlock(c.name, ("θ_x",), c.G[[3]], None)
 
 
 # feature faces a load band never covers (fillets, shoulders, keyways, the hex socket, ends)

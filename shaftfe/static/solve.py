@@ -558,8 +558,8 @@ def _twist_gauge_check(model: StaticModel, sol: UnitSolution, f: np.ndarray) -> 
     """The twist gauge's reaction relative to the applied torques Σ|x × f|ₓ over the nodes
     (``static.model.twist_gauge_block``): by equilibrium it is the net applied torque, which
     the torque-path rule makes zero; above ``RESIDUAL_TOL`` it is a SolverError."""
-    from shaftfe.static.model import TWIST_GAUGE
-    k = next(i for i, blk in enumerate(model.blocks) if blk.bearing == TWIST_GAUGE)
+    k = next(i for i, blk in enumerate(model.blocks)
+             if blk.bearing == model.twist_gauge and blk.labels == ("θ_x",))
     x = model.shaft_mesh.mesh.doflocs
     f3 = f.reshape(-1, 3)
     scale = float(np.abs(x[1] * f3[:, 2] - x[2] * f3[:, 1]).sum())
