@@ -255,12 +255,14 @@ def _print_tables(res, opts, out, corners=()) -> None:
         for b in c.bearings:
             bb = beam_b.get(b.name, {})
             rows.append([b.name, b.x_mm, b.F_radial_N, bb.get("F_N", "-"),
-                         life(b.L10h), life(bb.get("L10h"))]
+                         life(b.L10h), life(bb.get("L10h")) if bb else "-"]
                         + ([b.Fx_N, "-" if b.Mx_Nmm is None else b.Mx_Nmm] if torque else []))
         title = f"{c.rpm:g} rpm, " + (f"case {c.case!r}" if c.case else opts.load_case)
         print_table(["bearing", "x mm", "|F| N (FE)", "|F| N (beam)", "L10h h (FE)",
                      "L10h h (beam)"] + (["Fx N", "torque N·mm"] if torque else []), rows,
                     title=f"{title}: bearing reactions")
+        if (c.beam or {}).get("error"):
+            print(f"beam: {c.beam['error']}")
         _at_rest(c.rpm if all(p["scales_with"] == "rpm2" for p in res.patterns) else None)
         print(f"equilibrium residual {c.equilibrium_residual:.1e}")
         beam_st = (c.beam or {}).get("stations", {})

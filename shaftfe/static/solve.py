@@ -644,7 +644,13 @@ def solve_static(variant, rpm=None, options: StaticOptions = StaticOptions(), *,
     stations = _station_list(model)
     x0, x1 = float(xyz[0].min()), float(xyz[0].max())
     ax_x = np.linspace(x0 + 1e-6, x1 - 1e-6, 121)
-    beam_res = _beam_check(v, rpms, options) if beam else {}
+    beam_res = {}
+    if beam and lc is not None:
+        # the beam model takes plain speeds, not a case's factors: no side by side
+        beam_res = {"error": f"no beam side by side for load case {lc.name!r} (the beam model "
+                             "takes plain speeds)"}
+    elif beam:
+        beam_res = _beam_check(v, rpms, options)
 
     ax_u_ref = axis_deflection(v, m, u, ax_x)
     gauge_rel = 0.0
