@@ -10,12 +10,15 @@ Model (issue 4)
 * Linear elasticity on the P2 (or P1) tet mesh of ``shaftfe.solid.mesh``; E, ν of the variant's
   shaft material; mm, N, MPa.
 * Bearings: ``shaftfe.fe.supports`` (RBE3 remote point at the seat centre, 2×2 radial spring,
-  axial and twist held, tilt free unless given; ``rigid_supports`` → remote radial translations
-  held).
-* Loads in the co-rotating frame: each attachment's m e ω² (``Attachment.force_N``) along its
-  eccentricity (0° = +y, 90° = +z) as a pressure on ``load:<name>:pressed`` (uniform or cosine),
-  net force exactly m e ω²; optionally the shaft's own centrifugal body force ρ ω² (0, y, z).
-  Every load is ∝ ω², so ONE solve at ``REF_RPM`` serves every speed: results × (rpm/REF_RPM)².
+  u_x held at the axial bearing, θ_x held only at a bearing with ``holds_torsion`` (else one
+  gauge row whose reaction is checked to be round-off: ``static.model.twist_gauge_block``),
+  tilt free unless given; ``rigid_supports`` → remote radial translations held).
+* Loads (issue #31): every action of ``shaftfe.model.loads`` (the parts' m e ω² at their
+  centroids, the ``[[loads]]``, gravity; ``static.model``), one load vector per pattern. ONE
+  factorisation, one solve per pattern (one multi-right-hand-side call with the spin-softening
+  columns); each speed (plain factors) or the named load case is Σ factor × pattern solution;
+  the stresses are recovered once per pattern and superposed (one rpm² pattern: the
+  reference × (rpm/REF_RPM)², as before).
 
 Solve (Woodbury, no dense clique in the sparse matrix)
 ------------------------------------------------------
