@@ -39,7 +39,7 @@ def main() -> None:
         a, b = _cmd(here, f"{tmp}/a"), _cmd(base, f"{tmp}/b")
         p = subprocess.run(["farm-bench", "-n", str(RUNS), "--warmup", "1", "--timeout", "1500",
                             "--vs", " ".join(b), "--", *a], capture_output=True, text=True,
-                           check=True)
+                           check=True, cwd=tmp)    # not a checkout: `-m` would import from it
     table = p.stdout.strip()
     m = re.search(r"A/B wall\s+(\S+)\s+(\S+)\s+(\S+)", table)
     ratio = float(m.group(2)) if m else float("nan")

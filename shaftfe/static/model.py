@@ -296,6 +296,9 @@ def _load_patterns(variant, m, options: StaticOptions):
     if options.body_force:
         shaft = loadmodel.BodyAction("shaft_body", (0.0, 0.0, 0.0), "rpm2", REF_RPM)
         add(shaft, "shaft_body", fem.body_force_load(m, rho, omega(REF_RPM) ** 2))
+    if not vec:                    # nothing loads the shaft: one zero rpm² pattern
+        vec[("rpm2", REF_RPM)] = np.zeros(3 * m.doflocs.shape[1])
+        meta[("rpm2", REF_RPM)] = ("rpm2", REF_RPM, 1.0, "", [])
     patterns = []
     for key, v in vec.items():
         law, ref, cref, own, names = meta[key]

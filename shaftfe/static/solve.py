@@ -441,10 +441,15 @@ def _bearing_rows(model: StaticModel, reac: dict, u: np.ndarray, r: float, s: fl
 
 
 def _load_cross_force(model: StaticModel) -> dict:
-    """Per part: the nodal load's component across its intended direction, relative."""
+    """Per part loaded by a pressure (the seed's placement, ``--seed-load-case``): the nodal
+    load's component across its intended direction, relative. A remote load carries its
+    force exactly (``static.model.remote_load``): nothing to report."""
     out = {}
+    if not model.options.seed_load_case:
+        return out
+    parts = {a.name for a in model.variant.attachments}
     for nm, F in model.load_force.items():
-        if nm == "shaft_body":
+        if nm not in parts:
             continue
         fv = model.loads[nm].reshape(-1, 3).sum(axis=0)
         e = np.asarray(F) / np.linalg.norm(F)
