@@ -341,7 +341,6 @@ def test_rigid_supports_hold_remote_points(cache):
 
 @pytest.mark.parametrize("what,expect", [
     ("axial", "axial translation"),
-    ("twist", "rotation about the shaft axis"),
     ("one_bearing", "tilt"),
 ])
 def test_missing_support_is_named(cache, what, expect):
@@ -351,8 +350,6 @@ def test_missing_support_is_named(cache, what, expect):
     v, opts = cylinder(), _opts(level="default")
     if what == "axial":
         v = cylinder(axial=False)
-    elif what == "twist":
-        opts = _opts(level="default", hold_twist="none")
     elif what == "one_bearing":
         v = dataclasses.replace(v, bearings=v.bearings[:1])
     with pytest.raises(SolverError, match=expect):

@@ -29,15 +29,21 @@ def register(sub) -> None:
     p = sub.add_parser(
         "static", help="3D FE static check: stresses, deflections, bearing reactions, L10h",
         description="3D P2 finite-element static analysis of a balancer-shaft variant in the "
-        "co-rotating frame: centrifugal loads m e ω² on the pressed half of each seat, bearings "
-        "as RBE3 remote points on 2×2 radial springs (or rigid). One factorisation serves every "
-        "rpm (loads ∝ rpm²; spin softening, on by default: each rpm exactly by a low-rank "
-        "update). "
+        "co-rotating frame: every load of the variant (the parts' m e ω² at their centroids and "
+        "the [[loads]]) as a remote load on its seat or band, bearings as RBE3 remote points on "
+        "2×2 radial springs (or rigid), θ_x held only where a bearing holds torsion. One "
+        "factorisation, one solve per load pattern, each speed or --case their superposition "
+        "(spin softening, on by default: each case exactly by a low-rank update). "
         "Writes result.vtu, summary.json and deflection.png to --out.")
     p.add_argument("--variant", required=True, help="variant name (geometry/<name>.toml) or path")
     p.add_argument("--rpm", default=None,
                    help="speed(s) in rpm, comma-separated (default: the first of the variant's "
-                   "[duty] design_speeds_rpm, 10000 for the x2_* shafts), e.g. 7000,10000")
+                   "[duty] design_speeds_rpm, 10000 for the x2_* shafts), e.g. 7000,10000; "
+                   "each at its plain factors (rpm² loads × (rpm/ref)², constant × 1, channel "
+                   "loads at their channel_ref)")
+    p.add_argument("--case", default=None, metavar="NAME",
+                   help="run the variant's [[load_cases]] entry NAME (its rpm and factors) "
+                   "instead of --rpm")
     add_engine_option(p)
     p.add_argument("--model", default="solid", choices=MODELS,
                    help="solid: 3D P2 tets (default); axisymmetric: the body of revolution in "
@@ -80,10 +86,18 @@ def run(args) -> int:
 
     from shaftfe.util.atomic import staged_dir
 
+    case = getattr(args, "case", None)
+    if case is not None and args.rpm is not None:
+        raise InputError("--case", "--rpm", "absent with --case (the case has its own rpm)",
+                         got=args.rpm)
     if args.rpm is not None:
         parse_rpm_list(args.rpm)               # a bad --rpm before the variant is read
     variant = load_variant_from(args)
-    rpms = design_speeds(args.rpm, variant, first=True)
+    if case is not None:
+        from shaftfe.static.solve import _named_case
+        rpms = [_named_case(variant, case).rpm]
+    else:
+        rpms = design_speeds(args.rpm, variant, first=True)
     check_speeds(rpms, args, variant)
     if args.order not in (1, 2):
         raise InputError("--order", "--order", "1 | 2", got=args.order)
@@ -117,7 +131,8 @@ def run(args) -> int:
         with prog.stage("mesh + solve"):
             # with spin softening `shaftfe fatigue` also needs the unsoftened stress at
             # REF_RPM (its S0 (λ + β λ²)): recovered too when this run can be cached for it
-            res = solve_static(variant, rpms, opts, beam=not args.no_beam,
+            res = solve_static(variant, None if case else rpms, opts, case=case,
+                               beam=not args.no_beam,
                                linear_stress=math.isclose(rpms[0], REF_RPM))
             if args.estimate_error:
                 from shaftfe.static.error import with_error_estimate
@@ -226,19 +241,30 @@ def _print_tables(res, opts, out, corners=()) -> None:
     print(f"variant {res.variant}: P{opts.order} {opts.level}, {res.n_dofs} dofs, "
           f"{'rigid supports' if opts.rigid_supports else 'bearing springs'}, solver "
           f"{d['solver']}, {res.run['total_seconds']:.1f} s")
-    print(f"load case: {opts.load_case}")
+    print(f"load case: {opts.load_case}" + (f"; case {res.case_name!r}" if res.case_name
+                                             else ""))
+    print("load patterns (one solve each): " + ", ".join(
+        f"{p['key']} ({', '.join(p['loads']) or 'none'})" for p in res.patterns))
+    if "twist_gauge_torque_rel" in d:
+        print(f"torsion: no bearing holds torsion; the rotation about the axis is a gauge whose "
+              f"reaction is {d['twist_gauge_torque_rel']:.1e} of the applied torques")
     for c in res.cases:
         print()
         rows = []
         beam_b = {b["name"]: b for b in (c.beam or {}).get("bearings", [])}
+        torque = any(b.Mx_Nmm is not None for b in c.bearings)
         for b in c.bearings:
             bb = beam_b.get(b.name, {})
             rows.append([b.name, b.x_mm, b.F_radial_N, bb.get("F_N", "-"),
-                         life(b.L10h), life(bb.get("L10h"))])
+                         life(b.L10h), life(bb.get("L10h")) if bb else "-"]
+                        + ([b.Fx_N, "-" if b.Mx_Nmm is None else b.Mx_Nmm] if torque else []))
+        title = f"{c.rpm:g} rpm, " + (f"case {c.case!r}" if c.case else opts.load_case)
         print_table(["bearing", "x mm", "|F| N (FE)", "|F| N (beam)", "L10h h (FE)",
-                     "L10h h (beam)"], rows,
-                    title=f"{c.rpm:g} rpm, {opts.load_case}: bearing reactions")
-        _at_rest(c.rpm)
+                     "L10h h (beam)"] + (["Fx N", "torque N·mm"] if torque else []), rows,
+                    title=f"{title}: bearing reactions")
+        if (c.beam or {}).get("error"):
+            print(f"beam: {c.beam['error']}")
+        _at_rest(c.rpm if all(p["scales_with"] == "rpm2" for p in res.patterns) else None)
         print(f"equilibrium residual {c.equilibrium_residual:.1e}")
         beam_st = (c.beam or {}).get("stations", {})
         rows = _station_rows(c.stations, beam_st)

@@ -20,7 +20,8 @@ Pieces
   (face integrals from the facets' own nodes: ``shaftfe.fe.facets``).
 * ``rigid_rows``: the six rows that give a face's RBE3 remote-point motion (least-squares rigid
   fit to the face displacements with area weighting); see ``shaftfe.fe.supports``.
-* ``body_force_load``: the centrifugal body force ρ ω² (0, y, z) of the shaft itself.
+* ``body_force_load``: the centrifugal body force ρ ω² (0, y, z) of the shaft itself, and a
+  uniform acceleration's ρ a (gravity).
 * ``rigid_body_modes``: the six rigid motions sampled at the nodes.
 """
 
@@ -352,12 +353,18 @@ def surface_load(mesh, facets, force, direction, distribution: str = "uniform",
     return f + sum(c * g for c, g in zip(coef, corr, strict=True))
 
 
-def body_force_load(mesh, density: float, omega2: float) -> np.ndarray:
-    """Centrifugal body force of the shaft in the co-rotating frame: ∫ ρ ω² (0, y, z) · v dx."""
+def body_force_load(mesh, density: float, omega2: float, accel=None) -> np.ndarray:
+    """Body force of the shaft's own mass in the co-rotating frame: the centrifugal
+    ∫ ρ ω² (0, y, z) · v dx, plus ∫ ρ a · v dx of a uniform acceleration ``accel`` (mm/s², e.g.
+    gravity) when given."""
     from skfem import LinearForm
+    a = None if accel is None else np.asarray(accel, dtype=float)
 
     @LinearForm
-    def centrifugal(v, w):
-        return density * omega2 * (w.x[1] * v[1] + w.x[2] * v[2])
+    def body(v, w):
+        out = density * omega2 * (w.x[1] * v[1] + w.x[2] * v[2])
+        if a is not None:
+            out = out + density * (a[0] * v[0] + a[1] * v[1] + a[2] * v[2])
+        return out
 
-    return centrifugal.assemble(vector_basis(mesh, 4 if is_quadratic(mesh) else 2))
+    return body.assemble(vector_basis(mesh, 4 if is_quadratic(mesh) else 2))

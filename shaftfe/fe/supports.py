@@ -9,7 +9,9 @@ spreads the support force over the seat. From the remote point to ground:
 * radial: a 2×2 spring on (u_y, u_z) with ``Bearing.K_N_per_mm`` (K11, K12, K21, K22); with
   ``rigid=True`` (Inventor-style) u_y = u_z = 0 instead (hard constraint);
 * axial: u_x = 0 at every bearing with ``axial=True`` (hard);
-* rotation about the shaft axis: θ_x = 0 at every bearing (hard; the seed removed it at both);
+* rotation about the shaft axis: θ_x = 0 (hard) at a bearing coupled with ``hold_twist``: in the
+  3D static path the bearings that declare ``holds_torsion`` (else one gauge row that carries
+  no torque: ``shaftfe.static.model.twist_gauge_block``); the seed removed it at both;
 * tilt (θ_y, θ_z): free, unless ``tilt_stiffness_Nmm_per_rad`` > 0 (isotropic tilt spring).
 
 The supports enter the solve as a low-rank term Σ Gᵀ C G (springs) plus hard rows H u = 0

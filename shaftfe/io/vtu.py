@@ -87,7 +87,7 @@ def write_vtu(result, path, rpm: float, *,
     path and the region names (cell data ``region`` = index + 1)."""
     from shaftfe.fe import recovery
     m = result.mesh.mesh
-    s = rpm2_scale(rpm, result.ref_rpm)
+    s = 1.0 if rpm == result.ref_rpm else rpm2_scale(rpm, result.ref_rpm)
     stress = result.stress_ref * s
     point_data = {"displacement": result.u_ref.reshape(-1, 3) * s,
                   "von_mises": result.von_mises_ref * s,
@@ -170,7 +170,7 @@ def plot_png(result, path, rpm: float, *, envelope=None, model: str = "3D FE",
     import matplotlib.pyplot as plt
 
     from shaftfe.util.atomic import write_atomic
-    s = rpm2_scale(rpm, result.ref_rpm)
+    s = 1.0 if rpm == result.ref_rpm else rpm2_scale(rpm, result.ref_rpm)
     case = result.case(rpm)
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 7.6), sharex=True,
                                  gridspec_kw={"height_ratios": [1.25, 1]})

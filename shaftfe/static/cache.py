@@ -50,7 +50,8 @@ import numpy as np
 from shaftfe.static.result import warn_unresolved_fillets
 from shaftfe.util import paths
 
-STATIC_CACHE_FORMAT = 2          # 2: spin softening's unsoftened stress (stress_linear)
+STATIC_CACHE_FORMAT = 3          # 2: spin softening's unsoftened stress (stress_linear)
+#                                  3: the per-pattern stresses (pattern_stress, patterns)
 FINGERPRINT_MODULES = ("shaftfe.static.model", "shaftfe.static.solve", "shaftfe.static.result",
                        "shaftfe.fe.recovery", "shaftfe.fe.assembly", "shaftfe.fe.lowrank",
                        "shaftfe.fe.supports", "shaftfe.fe.facets", "shaftfe.fe.surface")
@@ -85,21 +86,34 @@ class StaticReference:
     # with spin softening: the unsoftened stress at ref_rpm (6, n); ``stress_ref`` is the
     # softened one, and fatigue models each node as S(λ) = S0 (λ + β λ²) from the two
     stress_linear: np.ndarray | None = field(default=None, repr=False)
+    # the load patterns (``StaticResult.patterns``: label, law, references, loads) and, per
+    # label, the unsoftened stress (6, n) at the pattern's written magnitudes: a case or a
+    # history is Σ_k factor_k(t) × pattern_stress[k] (empty when the solve did not recover them)
+    patterns: tuple = ()
+    pattern_stress: dict = field(default_factory=dict, repr=False)
 
     def __post_init__(self) -> None:
         for name in ("stress_ref", "von_mises_ref", "xyz", "excluded", "cells", "face_cells",
                      "face_group", "stress_linear"):
             if getattr(self, name) is None:
                 continue
-            a = np.asarray(getattr(self, name))
-            if a.flags.writeable:
-                a = a.copy()
-                a.flags.writeable = False
-            object.__setattr__(self, name, a)
+            object.__setattr__(self, name, _readonly(getattr(self, name)))
+        from types import MappingProxyType
+        object.__setattr__(self, "pattern_stress", MappingProxyType(
+            {k: _readonly(v) for k, v in dict(self.pattern_stress).items()}))
 
     @property
     def n_nodes(self) -> int:
         return int(self.xyz.shape[1])
+
+
+def _readonly(a) -> np.ndarray:
+    a = np.asarray(a)
+    if a.flags.writeable:
+        a = a.copy()
+        a.flags.writeable = False
+    return a
+
 
 # --------------------------------------------------------------------------- key
 
@@ -245,6 +259,11 @@ def store(variant, options, res, cache_dir=None) -> StaticReference:
     softened = any(c.spin_softening_N for c in res.cases)
     if res.mesh_key != mkey:        # the prediction missed: do not store under a wrong key
         notes.append("static cache: the mesh key could not be predicted; result not cached")
+    elif getattr(res, "case_name", "") or not math.isclose(float(res.ref_rpm), REF_RPM):
+        # the cache holds the plain case at REF_RPM (what load_or_solve solves), nothing else
+        notes.append(f"static cache: a result at {float(res.ref_rpm):g} rpm"
+                     + (f" of case {res.case_name!r}" if getattr(res, "case_name", "") else "")
+                     + f", not the plain case at {REF_RPM:g} rpm; not cached")
     elif softened and (res.stress_linear_ref is None
                        or not math.isclose(float(res.ref_rpm), REF_RPM)):
         notes.append("static cache: a softened result without its unsoftened stress at "
@@ -279,7 +298,17 @@ def from_result(res, key: str = "", seconds: float = 0.0) -> StaticReference:
         from_cache=False, seconds=seconds, relative_residual=_float_or_none(
             res.diagnostics.get("relative_residual")),
         stress_linear=(None if getattr(res, "stress_linear_ref", None) is None
-                       else np.asarray(res.stress_linear_ref, dtype=float)))
+                       else np.asarray(res.stress_linear_ref, dtype=float)),
+        patterns=tuple(getattr(res, "patterns", ())),
+        pattern_stress=_pattern_stress(res))
+
+
+def _pattern_stress(res) -> dict:
+    """{pattern label: stress} of a ``StaticResult`` (its mapping is keyed by pattern key)."""
+    ps = getattr(res, "pattern_stress", {})
+    keys = list(getattr(res, "pattern_u", {}))
+    return {p["key"]: np.asarray(ps[k], dtype=float)
+            for p, k in zip(res.patterns, keys, strict=True) if k in ps}
 
 
 def _float_or_none(v) -> float | None:
@@ -293,7 +322,8 @@ def _save(path: Path, ref: StaticReference) -> None:
             "variant_hash": ref.variant_hash, "options": ref.options, "ref_rpm": ref.ref_rpm,
             "mesh_key": ref.mesh_key, "regions": names, "face_groups": list(ref.face_groups),
             "n_elements": ref.n_elements, "solve_seconds": ref.solve_seconds,
-            "relative_residual": ref.relative_residual}
+            "relative_residual": ref.relative_residual, "patterns": list(ref.patterns),
+            "pattern_stress": list(ref.pattern_stress)}
     arrays = {"stress_ref": ref.stress_ref, "von_mises_ref": ref.von_mises_ref, "xyz": ref.xyz,
               "excluded": ref.excluded, "cells": ref.cells, "face_cells": ref.face_cells,
               "face_group": ref.face_group}
@@ -301,6 +331,8 @@ def _save(path: Path, ref: StaticReference) -> None:
         arrays["stress_linear"] = ref.stress_linear
     for i, n in enumerate(names):
         arrays[f"r{i}"] = ref.regions[n]
+    for i, k in enumerate(ref.pattern_stress):
+        arrays[f"p{i}"] = ref.pattern_stress[k]
     cachefile.save(path, arrays, meta)
 
 
@@ -319,10 +351,12 @@ def _load(path: Path, key: str, name: str, t0: float) -> StaticReference | None:
                                  "face_cells", "face_group")}
         regions = {n: z[f"r{i}"] for i, n in enumerate(meta["regions"])}
         lin = z["stress_linear"] if "stress_linear" in z else None
+        pst = {k: z[f"p{i}"] for i, k in enumerate(meta["pattern_stress"])}
         n = arr["xyz"].shape[1] if arr["xyz"].ndim == 2 else -1
         ok = (arr["xyz"].shape == (3, n) and n > 0 and arr["stress_ref"].shape == (6, n)
               and arr["von_mises_ref"].shape == (n,)
               and (lin is None or (lin.shape == (6, n) and bool(np.all(np.isfinite(lin)))))
+              and all(a.shape == (6, n) and bool(np.all(np.isfinite(a))) for a in pst.values())
               and all(np.all(np.isfinite(arr[k])) for k in ("stress_ref", "von_mises_ref",
                                                               "xyz"))
               and arr["cells"].ndim == 2 and arr["cells"].shape[1] in (4, 10)
@@ -340,7 +374,7 @@ def _load(path: Path, key: str, name: str, t0: float) -> StaticReference | None:
             n_elements=int(meta["n_elements"]), solve_seconds=float(meta["solve_seconds"]),
             from_cache=True, seconds=time.perf_counter() - t0,
             relative_residual=_float_or_none(meta.get("relative_residual")),
-            stress_linear=lin, **arr)
+            stress_linear=lin, patterns=tuple(meta["patterns"]), pattern_stress=pst, **arr)
         if not math.isfinite(ref.ref_rpm) or ref.ref_rpm <= 0:
             return None
         return ref

@@ -32,8 +32,10 @@ def estimate_error(res: StaticResult, variant, options: StaticOptions, cache_dir
     other = other_level or ESTIMATE_PAIR.get(level_name(options.level), "fine")
     k_this, k_other = mesh_level(options.level).k_fillet, mesh_level(other).k_fillet
     from shaftfe.static.solve import solve_static
-    res2 = solve_static(variant, [c.rpm for c in res.cases], replace(options, level=other),
-                        cache_dir=cache_dir, beam=False)
+    case = getattr(res, "case_name", "") or None        # a load case: its own rpm
+    res2 = solve_static(variant, None if case else [c.rpm for c in res.cases],
+                        replace(options, level=other), case=case, cache_dir=cache_dir,
+                        beam=False)
     finer_first = k_this < k_other or (k_this == k_other and other != "fine")
     fine_r, coarse_r = (res, res2) if finer_first else (res2, res)
     p_s, p_u = (2, 3) if options.order == 2 else (1, 2)

@@ -1,18 +1,36 @@
-"""The 3D static model: options, the assembled model (stiffness, bearing couplings, loads at
-REF_RPM) and the mesh's named regions. ``build_model`` validates the variant, meshes it (or takes
-a mesh), assembles K and couples the bearings. See ``shaftfe.static.solve`` for the solve."""
+"""The 3D static model: options, the assembled model (stiffness, bearing couplings, one load
+vector per load pattern) and the mesh's named regions. ``build_model`` validates the variant,
+meshes it (or takes a mesh), assembles K, couples the bearings and builds the loads from
+``shaftfe.model.loads.actions``. See ``shaftfe.static.solve`` for the solve.
+
+Loads (issue #31): every action (a force F and moment M about (x, 0, 0)) enters as a remote load
+on its band's surface facets, f = Rᵀ [F; M] with R the band's RBE3 rows about the action's point
+(``fe.assembly.rigid_rows``): F and M are carried exactly and the band stays free to deform
+(Ansys' deformable Remote Force). A part's band is its seat's mesh groups ``load:<part>:*``; a
+segment seat or a station band is the outer surface's facets that overlap [x0, x1]
+(``band_facets``). With ``seed_load_case`` the parts' actions keep the seed's placement: a
+pressure on the pressed half seat (``fe.assembly.surface_load``, today's code). Gravity adds the
+shaft's own mass (``fe.assembly.body_force_load``). Actions of one pattern
+(``model.loads.pattern_key``; one load alone when a load case factors it) sum to ONE load vector
+(``LoadPattern``): one right-hand side each, from one factorisation.
+
+Torsion: a bearing holds θ_x only if it declares ``holds_torsion``. With none, the rotation about
+the axis is a gauge: one hard row, θ_x of one bearing's seat (``twist_gauge_block``), whose
+reaction equals the net applied torque by equilibrium and must be round-off (the loader's
+torque-path rule): the solve checks it."""
 
 from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from shaftfe.errors import InputError
 from shaftfe.fe import assembly as fem
 from shaftfe.fe import reuse, supports
+from shaftfe.model import loads as loadmodel
 from shaftfe.model.spin import DEFAULT_PART_MODEL, part_rows, spinning_part
 from shaftfe.model.validate import validate_variant
 from shaftfe.solid.levels import MeshLevel
@@ -40,13 +58,46 @@ class StaticOptions:
     body_force: bool = False               # the shaft's own centrifugal load
     seed_load_case: bool = False           # only the parts the seed loaded (gear, CW1, CW2)
     solver: str = "auto"                   # see shaftfe.fe.solvers
-    hold_twist: str = "all"                # θ_x held at "all" bearings, the "axial" one, "none"
     exclude_mm: float = 0.0                # extra band around patch edges for filtered peaks
     spin_softening: bool = True            # co-rotating softening (shaftfe.static.solve.soften)
 
     @property
     def load_case(self) -> str:
         return load_case_label(self.seed_load_case)
+
+
+@dataclass(frozen=True, eq=False)
+class LoadPattern:
+    """One independent load pattern: the actions that scale together (``model.loads.
+    pattern_key``; a load a case factors on its own is a pattern of its own), summed into one
+    load vector ``f`` at their written magnitudes: one right-hand side of the solve. A case
+    takes it × ``factor`` (``LoadCase.factor`` reads ``factor_name`` and the law)."""
+    key: tuple
+    scales_with: str
+    ref_rpm: float
+    channel_ref: float
+    factor_name: str                      # the load a case's factor names ("" = none alone)
+    names: tuple[str, ...]                # the actions in it
+    f: np.ndarray = field(repr=False)
+    F_N: tuple[float, float, float] = (0.0, 0.0, 0.0)       # resultant force
+    M_Nmm: tuple[float, float, float] = (0.0, 0.0, 0.0)     # resultant moment about 0
+
+    @property
+    def name(self) -> str:
+        return self.factor_name
+
+    @property
+    def label(self) -> str:
+        """A readable, unique name of the pattern (summary.json, the cache)."""
+        return ":".join(f"{k:g}" if isinstance(k, float) else str(k) for k in self.key)
+
+    def factor(self, rpm: float, case=None) -> float:
+        """The pattern's factor in ``case`` (a ``LoadCase``), or at the plain speed ``rpm``:
+        rpm² loads × (rpm / ref)², constant × 1, channel loads at their ``channel_ref``."""
+        if case is not None:
+            return case.factor(self)
+        return loadmodel.law_factor(self.scales_with, rpm, {}, ref_rpm=self.ref_rpm,
+                                    channel_ref=self.channel_ref)
 
 
 @dataclass(frozen=True, eq=False)
@@ -57,11 +108,14 @@ class StaticModel:
     K: object                             # scipy CSR stiffness
     couplings: tuple
     blocks: tuple
-    loads: dict                           # attachment name -> load vector at REF_RPM
-    load_force: dict                      # attachment name -> (Fx, Fy, Fz) at REF_RPM
-    f: np.ndarray                         # total load vector at REF_RPM
+    loads: dict                           # action name -> load vector (written magnitude)
+    load_force: dict                      # action name -> (Fx, Fy, Fz) (written magnitude)
+    f: np.ndarray                         # the plain-speed case's total load at REF_RPM
     assembly_seconds: float
     soft: tuple = ()                      # SoftSeat per loaded seat and the shaft (softening)
+    patterns: tuple = ()                  # LoadPattern per independent pattern
+    twist_gauge: str = ""                 # no bearing holds torsion: the bearing whose seat
+    #                                       θ_x is the gauge (``twist_gauge_block``), else ""
 
 
 @dataclass(frozen=True, eq=False)
@@ -164,9 +218,6 @@ def _check_options(o: StaticOptions) -> None:
                          got=o.load_distribution)
     if not (math.isfinite(o.exclude_mm) and o.exclude_mm >= 0):
         raise InputError("--exclude-mm", "exclude_mm", ">= 0", got=o.exclude_mm)
-    if o.hold_twist not in supports.HOLD_TWIST:
-        raise InputError("options", "hold_twist", " | ".join(supports.HOLD_TWIST),
-                         got=o.hold_twist)
     from shaftfe.fe.solvers import METHODS
     if o.solver not in METHODS:
         raise InputError("--solver", "solver", " | ".join(METHODS), got=o.solver)
@@ -189,33 +240,145 @@ def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh
     t0 = time.perf_counter()
     K = reuse.memo("K", (reuse.mesh_digest(m), mat.E_MPa, mat.nu),
                    lambda: fem.elasticity_stiffness(m, mat.E_MPa, mat.nu))
-    couplings = []
-    for b in variant.bearings:
-        hold = options.hold_twist == "all" or (options.hold_twist == "axial" and b.axial)
-        couplings.append(supports.couple_bearing(m, b, rigid=options.rigid_supports,
-                                                 hold_twist=hold))
-    blocks = tuple(blk for c in couplings for blk in supports.blocks(c))
-    loads, forces = {}, {}
-    face_cache: dict = {}          # facet bases shared by parts on the same seat
-    for a in variant.attachments:
-        F = a.force_N(REF_RPM)
-        if F == 0:
-            continue
-        e = _direction(a.angle_deg)
-        loads[a.name] = fem.surface_load(m, m.boundaries[f"load:{a.name}:pressed"], F, e,
-                                         options.load_distribution, cache=face_cache)
-        forces[a.name] = tuple(float(c) for c in F * e)
-    if options.body_force:
-        w2 = omega(REF_RPM) ** 2
-        fb = fem.body_force_load(m, mat.density_t_mm3, w2)
-        loads["shaft_body"] = fb
-        forces["shaft_body"] = tuple(float(c) for c in fb.reshape(-1, 3).sum(axis=0))
+    couplings = [supports.couple_bearing(m, b, rigid=options.rigid_supports,
+                                         hold_twist=bool(getattr(b, "holds_torsion", False)))
+                 for b in variant.bearings]
+    blocks = [blk for c in couplings for blk in supports.blocks(c)]
+    gauge = ""
+    if couplings and not any(c.hold_twist for c in couplings):
+        blocks.append(twist_gauge_block(couplings))
+        gauge = blocks[-1].bearing
+    blocks = tuple(blocks)
+    loads, forces, patterns = _load_patterns(variant, m, options)
     f = np.zeros(K.shape[0])
-    for v in loads.values():
-        f += v
+    for p in patterns:
+        f += p.factor(REF_RPM) * p.f
     soft = spin_seats(variant, m) if options.spin_softening else ()
     return StaticModel(variant, shaft_mesh, options, K, tuple(couplings), blocks, loads,
-                       forces, f, time.perf_counter() - t0, soft)
+                       forces, f, time.perf_counter() - t0, soft, patterns, gauge)
+
+
+def twist_gauge_block(couplings) -> supports.SupportBlock:
+    """The gauge of the free rotation about the axis when no bearing holds torsion: one hard
+    row, θ_x of one bearing's seat (its RBE3 row; the axial bearing's, else the first) = 0. It
+    fixes the rigid rotation the loads leave undetermined without holding any torque: its
+    reaction is the net applied torque (equilibrium), which the torque-path rule makes zero and
+    the solve checks to be round-off. A seat's mean rotation, not a pinned node: the nodal
+    displacements are those a bearing holding θ_x with no torque gives."""
+    c = next((c for c in couplings if c.axial), couplings[0])
+    return supports.SupportBlock(c.name, ("θ_x",), c.G[[3]], None)
+
+
+# feature faces a load band never covers (fillets, shoulders, keyways, the hex socket, ends)
+_NOT_A_BAND = ("fillet:", "shoulder:", "keyway:", "hex_socket", "end:")
+BAND_NORMAL_MIN = 0.7         # |n · e_r| of an outer cylindrical facet (not a face or chamfer)
+
+
+def band_facets(mesh, band: tuple[float, float]) -> np.ndarray:
+    """The outer surface's boundary facets a station or segment load is delivered through: the
+    facets whose axial extent overlaps [x0, x1] (a full ring however narrow the band), with a
+    radial normal (|n_r| > ``BAND_NORMAL_MIN``) and outside the feature faces (fillets,
+    shoulders, keyways, hex socket, end faces). Empty if there are none."""
+    bf = np.asarray(mesh.boundary_facets())
+    skip = [np.asarray(f) for g, f in mesh.boundaries.items() if g.startswith(_NOT_A_BAND)]
+    if skip:
+        bf = np.setdiff1d(bf, np.concatenate(skip))
+    P = mesh.p[:, mesh.facets[:, bf]]                       # (3, 3 corners, nf)
+    x0, x1 = band
+    eps = 1e-9 * max(1.0, abs(x1 - x0))
+    over = (P[0].max(axis=0) > x0 + eps) & (P[0].min(axis=0) < x1 - eps)
+    n = np.cross((P[:, 1] - P[:, 0]).T, (P[:, 2] - P[:, 0]).T).T
+    c = P.mean(axis=1)
+    rc = np.hypot(c[1], c[2])
+    nr = np.abs(n[1] * c[1] + n[2] * c[2]) / np.maximum(np.linalg.norm(n, axis=0) * rc, 1e-300)
+    return bf[over & (nr > BAND_NORMAL_MIN)]
+
+
+def _action_facets(mesh, act) -> np.ndarray:
+    """A part's seat groups ``load:<part>:*``, else the band's outer facets."""
+    groups = [np.asarray(f) for g, f in mesh.boundaries.items()
+              if act.seat and g.startswith(f"load:{act.seat}:")]
+    if groups:
+        return np.concatenate(groups)
+    fac = band_facets(mesh, act.band_mm)
+    if fac.size == 0:
+        raise InputError("loads", f"{act.factor_name}.x_mm", "a band on the shaft's outer "
+                         "cylindrical surface (not inside a fillet, keyway or the hex socket)",
+                         got=f"[{act.band_mm[0]:g}, {act.band_mm[1]:g}] mm")
+    return fac
+
+
+def remote_load(mesh, facets, point, F, M, cache: dict | None = None) -> np.ndarray:
+    """f = Rᵀ [F; M]: the load vector of a force F and a moment M about ``point`` delivered
+    through ``facets`` by their RBE3 rows R (``fe.assembly.rigid_rows``). R Φ = I, so the
+    resultant of f is exactly (F, M) about ``point``; ``cache``: R per (facets, point)."""
+    key = (np.asarray(facets).tobytes(), tuple(point))
+    R = None if cache is None else cache.get(key)
+    if R is None:
+        R = fem.rigid_rows(mesh, facets, point)
+        if cache is not None:
+            cache[key] = R
+    return R.T @ np.concatenate([np.asarray(F, dtype=float), np.asarray(M, dtype=float)])
+
+
+def resultant(mesh, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(Σ f, Σ x × f about the origin) of a nodal load vector."""
+    f3 = f.reshape(-1, 3)
+    return f3.sum(axis=0), np.cross(mesh.doflocs.T, f3).sum(axis=0)
+
+
+def _load_patterns(variant, m, options: StaticOptions):
+    """({action name: vector}, {action name: force}, patterns): every action of the variant
+    (``model.loads.actions``) as a load vector, summed per pattern."""
+    acts, body = loadmodel.actions(variant, seed_placement=options.seed_load_case)
+    factored = {k for c in getattr(variant, "load_cases", ()) for k, _ in c.factors}
+    loads, forces = {}, {}
+    vec: dict[tuple, np.ndarray] = {}
+    meta: dict[tuple, tuple] = {}
+    face_cache: dict = {}          # facet bases shared by parts on the same seat
+    rows: dict = {}
+
+    def add(item, name: str, v: np.ndarray) -> None:
+        own = getattr(item, "factor_name", item.name)
+        key = loadmodel.pattern_key(item)
+        if own in factored:
+            key = (*key, "load", own)
+        if key not in vec:
+            vec[key] = np.zeros_like(v)
+            meta[key] = (item.scales_with, float(item.ref_rpm), float(item.channel_ref),
+                         own if own in factored else "", [])
+        vec[key] += v
+        meta[key][4].append(name)
+        loads[name] = v
+        forces[name] = tuple(float(c) for c in v.reshape(-1, 3).sum(axis=0))
+
+    for act in acts:
+        if act.pressed_half:        # the seed's placement: today's pressure on the half seat
+            a = variant.attachment(act.seat)
+            F = a.force_N(REF_RPM)
+            v = fem.surface_load(m, m.boundaries[f"load:{a.name}:pressed"], F,
+                                 _direction(a.angle_deg), options.load_distribution,
+                                 cache=face_cache)
+        else:
+            v = remote_load(m, _action_facets(m, act), (act.x_mm, 0.0, 0.0), act.F_N,
+                            act.M_Nmm, rows)
+        add(act, act.name, v)
+    rho = variant.material.density_t_mm3
+    for b in body:
+        add(b, f"{b.name}:shaft", fem.body_force_load(m, rho, 0.0, accel=b.accel_mm_s2))
+    if options.body_force:
+        shaft = loadmodel.BodyAction("shaft_body", (0.0, 0.0, 0.0), "rpm2", REF_RPM)
+        add(shaft, "shaft_body", fem.body_force_load(m, rho, omega(REF_RPM) ** 2))
+    if not vec:                    # nothing loads the shaft: one zero rpm² pattern
+        vec[("rpm2", REF_RPM)] = np.zeros(3 * m.doflocs.shape[1])
+        meta[("rpm2", REF_RPM)] = ("rpm2", REF_RPM, 1.0, "", [])
+    patterns = []
+    for key, v in vec.items():
+        law, ref, cref, own, names = meta[key]
+        F, M = resultant(m, v)
+        patterns.append(LoadPattern(key, law, ref, cref, own, tuple(names), v,
+                                    tuple(float(c) for c in F), tuple(float(c) for c in M)))
+    return loads, forces, tuple(patterns)
 
 
 def region_facets(mesh) -> dict[str, np.ndarray]:

@@ -32,7 +32,10 @@ def write_outputs(variant_arg: str, variant, opts, res, rpms: list[float], out) 
         "versions": package_versions("pypardiso"),
         "vtu": {"file": vtu.name, "rpm": rpm_vtu, "regions": regions,
                 "stress_components": ["xx", "yy", "zz", "xy", "yz", "xz"],
-                "note": "fields at vtu.rpm; scale by (rpm / vtu.rpm)^2 for another speed"},
+                "note": ("fields at vtu.rpm; scale by (rpm / vtu.rpm)^2 for another speed"
+                         if all(p["scales_with"] == "rpm2" for p in res.patterns) else
+                         "fields of the case at vtu.rpm (loads not all ∝ rpm²: superpose "
+                         "the patterns with their factors for another case)")},
         **res.to_dict(),
         "warnings": collected(),
     }

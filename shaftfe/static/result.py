@@ -4,6 +4,7 @@ stresses) and the reference solution at REF_RPM (frozen; arrays read-only by con
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
@@ -71,6 +72,7 @@ class BearingReaction:
     L10h: float | None           # ISO 281 basic, hours (None: unloaded or rpm 0)
     C_N: float
     life_exponent: float
+    Mx_Nmm: float | None = None  # torque reaction about +x (a bearing that holds torsion)
 
 
 @dataclass(frozen=True)
@@ -102,6 +104,8 @@ class StaticCase:
     beam: dict | None = None                   # shaftfe.beam.model numbers side by side
     spin_softening_N: dict | None = None       # part -> (F_y, F_z) of m ω² ū_c at its
                                                # centroid, "shaft" -> its resultant (None: off)
+    case: str = ""                             # the load case's name ("" = the plain speed)
+    factors: dict = field(default_factory=dict)  # pattern label -> its factor in this case
 
 
 @dataclass(frozen=True, eq=False)
@@ -136,6 +140,13 @@ class StaticResult:
     # with spin softening and ``solve_static(..., linear_stress=True)``: the unsoftened stress
     # at ref_rpm (6, n_nodes); the softened one is ``stress_ref`` (fatigue's β per node)
     stress_linear_ref: np.ndarray | None = field(default=None, repr=False)
+    case_name: str = ""                                # the load case named (--case), or ""
+    patterns: tuple = ()                               # per load pattern: summary dicts
+    # per pattern key: u (ndof,) and the unsoftened stress (6, n_nodes) at the pattern's
+    # written magnitudes (factor 1): a case is Σ factor × these (fatigue's Σ_k σ_k L_k(t));
+    # read-only mappings (stress absent with spin softening unless linear_stress)
+    pattern_u: Mapping = field(default_factory=dict, repr=False)
+    pattern_stress: Mapping = field(default_factory=dict, repr=False)
 
     def case(self, rpm: float) -> StaticCase:
         return next(c for c in self.cases if math.isclose(c.rpm, rpm))
@@ -145,6 +156,7 @@ class StaticResult:
         return json_clean({
             "variant": self.variant, "variant_hash": self.variant_hash,
             "options": asdict(self.options), "load_case": self.options.load_case,
+            "case": self.case_name or None, "patterns": list(self.patterns),
             "ref_rpm": self.ref_rpm,
             "mesh": {"key": self.mesh_key, "nodes": self.n_nodes, "elements": self.n_elements,
                      "dofs": self.n_dofs},

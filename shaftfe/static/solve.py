@@ -10,12 +10,15 @@ Model (issue 4)
 * Linear elasticity on the P2 (or P1) tet mesh of ``shaftfe.solid.mesh``; E, ν of the variant's
   shaft material; mm, N, MPa.
 * Bearings: ``shaftfe.fe.supports`` (RBE3 remote point at the seat centre, 2×2 radial spring,
-  axial and twist held, tilt free unless given; ``rigid_supports`` → remote radial translations
-  held).
-* Loads in the co-rotating frame: each attachment's m e ω² (``Attachment.force_N``) along its
-  eccentricity (0° = +y, 90° = +z) as a pressure on ``load:<name>:pressed`` (uniform or cosine),
-  net force exactly m e ω²; optionally the shaft's own centrifugal body force ρ ω² (0, y, z).
-  Every load is ∝ ω², so ONE solve at ``REF_RPM`` serves every speed: results × (rpm/REF_RPM)².
+  u_x held at the axial bearing, θ_x held only at a bearing with ``holds_torsion`` (else one
+  gauge row whose reaction is checked to be round-off: ``static.model.twist_gauge_block``),
+  tilt free unless given; ``rigid_supports`` → remote radial translations held).
+* Loads (issue #31): every action of ``shaftfe.model.loads`` (the parts' m e ω² at their
+  centroids, the ``[[loads]]``, gravity; ``static.model``), one load vector per pattern. ONE
+  factorisation, one solve per pattern (one multi-right-hand-side call with the spin-softening
+  columns); each speed (plain factors) or the named load case is Σ factor × pattern solution;
+  the stresses are recovered once per pattern and superposed (one rpm² pattern: the
+  reference × (rpm/REF_RPM)², as before).
 
 Solve (Woodbury, no dense clique in the sparse matrix)
 ------------------------------------------------------
@@ -292,8 +295,14 @@ def _recover(model: StaticModel, u: np.ndarray, options: StaticOptions) -> _Reco
     """Nodal averaging everywhere, then the surface recovery (``shaftfe.fe.surface``) on the
     traction-free faces, whose values replace the averaged ones there."""
     t1 = time.perf_counter()
-    m = model.shaft_mesh.mesh
     stress, surf = _stress_field(model, u)
+    return _recover_from(model, stress, surf, options, t1)
+
+
+def _recover_from(model: StaticModel, stress: np.ndarray, surf, options: StaticOptions,
+                  t1: float) -> _Recovered:
+    """The peaks per region of a recovered field (``_stress_field``)."""
+    m = model.shaft_mesh.mesh
     vm = recovery.von_mises(stress)
     excl = recovery.excluded_nodes(m, _patches(m), options.exclude_mm)
     xyz = m.doflocs
@@ -379,7 +388,8 @@ def _softening_failure(model: StaticModel, RW: np.ndarray, rpm: float) -> str:
             "N/mm) or use --rigid-supports")
 
 
-def soften(model: StaticModel, base: UnitSolution, unit: list, rpm: float) -> SpeedSolution:
+def soften(model: StaticModel, base: UnitSolution, unit: list, rpm: float,
+           scale: float | None = None) -> SpeedSolution:
     """Spin softening at ``rpm``: the co-rotating static problem done completely (exact on its
     low-rank terms, by a second Woodbury step on the solved system).
 
@@ -398,8 +408,9 @@ def soften(model: StaticModel, base: UnitSolution, unit: list, rpm: float) -> Sp
     I − C^½ D C^½ is (C = R W, symmetric positive semi-definite; D may have negative entries:
     tilt stiffening): else the speed is at or above a critical speed of the softened rotor and
     the static co-rotating solution does not exist (SolverError). The same combination gives
-    the multipliers."""
-    s = rpm2_scale(rpm)
+    the multipliers. ``scale``: the factor s on ``base`` (default (rpm / REF_RPM)²; a load
+    case passes its superposed base solution Σ factor × pattern solution with s = 1)."""
+    s = rpm2_scale(rpm) if scale is None else scale
     if not model.soft or rpm == 0:
         return SpeedSolution(rpm, s, base.u * s, [lb * s for lb in base.lam], {}, None)
     R, w = _soft_terms(model)
@@ -455,15 +466,21 @@ def _bearing_rows(model: StaticModel, reac: dict, u: np.ndarray, r: float, s: fl
         bearings.append(BearingReaction(c.name, c.x_mm, float(rv[0]), float(rv[1]),
                                         float(rv[2]), F, float(q[1]), float(q[2]),
                                         _finite(l10h(b.C_N, F, r, b.life_exponent)), b.C_N,
-                                        b.life_exponent))
+                                        b.life_exponent,
+                                        float(rv[3]) if c.hold_twist else None))
     return tuple(bearings)
 
 
 def _load_cross_force(model: StaticModel) -> dict:
-    """Per part: the nodal load's component across its intended direction, relative."""
+    """Per part loaded by a pressure (the seed's placement, ``--seed-load-case``): the nodal
+    load's component across its intended direction, relative. A remote load carries its
+    force exactly (``static.model.remote_load``): nothing to report."""
     out = {}
+    if not model.options.seed_load_case:
+        return out
+    parts = {a.name for a in model.variant.attachments}
     for nm, F in model.load_force.items():
-        if nm == "shaft_body":
+        if nm not in parts:
             continue
         fv = model.loads[nm].reshape(-1, 3).sum(axis=0)
         e = np.asarray(F) / np.linalg.norm(F)
@@ -471,15 +488,16 @@ def _load_cross_force(model: StaticModel) -> dict:
     return out
 
 
-def _check_rpms(rpm) -> list[float]:
-    """The speeds of a static solve. Rule (issue #30): speeds >= 0, at least one > 0. The only
-    load is the parts' m·e·ω², zero at rest: a 0 rpm case beside a positive speed is exactly
-    zero (stated as such by the commands: ``shaftfe.beam.solve.AT_REST_NOTE``); a run of
-    nothing but 0 rpm has nothing to solve and no reference speed (the spin-softened
-    reference is the first positive speed), and is refused with one line."""
+def _check_rpms(rpm, at_rest_loads: bool = False) -> list[float]:
+    """The speeds of a static solve. Rule (issue #30): speeds >= 0, at least one > 0 when every
+    load is the parts' (or another rpm²) load, zero at rest: a 0 rpm case beside a positive
+    speed is then exactly zero (stated as such by the commands:
+    ``shaftfe.beam.solve.AT_REST_NOTE``); a run of nothing but 0 rpm has nothing to solve and
+    is refused with one line. ``at_rest_loads``: the variant has loads of another law
+    (constant, a channel), which act at rest: 0 rpm alone is then a case."""
     rpms = [float(rpm)] if isinstance(rpm, int | float) else [float(r) for r in rpm]
     if (not rpms or any(not (math.isfinite(r) and r >= 0) for r in rpms)
-            or not any(r > 0 for r in rpms)):
+            or not (at_rest_loads or any(r > 0 for r in rpms))):
         raise InputError("--rpm", "rpm", "speeds >= 0 rpm, at least one > 0 (at 0 rpm the only "
                          "load, the parts' m·e·ω², is zero: there is nothing to solve)", got=rpm)
     return rpms
@@ -488,7 +506,7 @@ def _check_rpms(rpm) -> list[float]:
 # the conditions bench_truth measured the bars under (the rest of StaticOptions may vary:
 # level, solver, rigid or spring supports, spin softening on or off: both measured)
 _BAR_CONDITIONS = {"order": 2, "load_distribution": "uniform", "body_force": False,
-                   "seed_load_case": False, "hold_twist": "all", "exclude_mm": 0.0}
+                   "seed_load_case": False, "exclude_mm": 0.0}
 
 
 def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> tuple[dict, dict]:
@@ -533,58 +551,162 @@ def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> tuple[d
     return bars, notes
 
 
-def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), *,
-                 shaft_mesh=None, cache_dir=None, beam: bool = True,
+def _named_case(variant, case):
+    """The ``LoadCase`` named ``case`` (None: the plain speeds)."""
+    if case is None:
+        return None
+    names = [c.name for c in getattr(variant, "load_cases", ())]
+    if case not in names:
+        raise InputError("--case", "case", "a [[load_cases]] name of the variant: "
+                         + (", ".join(names) or "(it has none)"), got=case)
+    return variant.load_case(case)
+
+
+def _combine(sols: list, phi: list[float]) -> UnitSolution:
+    """Σ φ_k × pattern solution k (u and the support multipliers): a case's base solution."""
+    if len(sols) == 1:
+        s0 = sols[0]
+        return UnitSolution(s0.u * phi[0], [lb * phi[0] for lb in s0.lam], s0.relres,
+                            s0.hard_violation, s0.cond_S, s0.diagnostics, s0.run)
+    u = sum(f * s_.u for f, s_ in zip(phi, sols, strict=True))
+    lam = [sum(f * s_.lam[k] for f, s_ in zip(phi, sols, strict=True))
+           for k in range(len(sols[0].lam))]
+    return UnitSolution(u, lam, max(s_.relres for s_ in sols),
+                        max(s_.hard_violation for s_ in sols), sols[0].cond_S,
+                        sols[0].diagnostics, sols[0].run)
+
+
+def _combine_recovered(model: StaticModel, parts: list, phi: list[float],
+                       options: StaticOptions) -> _Recovered:
+    """A case's stresses and peaks from the per-pattern stress fields (stress, surface fit and
+    its trace samples are linear in u): Σ φ_k field_k, then the peaks of the sum."""
+    from shaftfe.fe.surface import SurfaceField
+    t1 = time.perf_counter()
+    stress = sum(f * st for f, (st, _) in zip(phi, parts, strict=True))
+    surf = None
+    if parts[0][1] is not None:
+        s0 = parts[0][1]
+        lin = {k: sum(f * getattr(sf, k) for f, (_, sf) in zip(phi, parts, strict=True))
+               for k in ("stress", "samples")}
+        surf = SurfaceField(s0.nodes, lin["stress"], s0.patches, lin["samples"],
+                            s0.sample_normals, s0.sample_points, s0.xyz)
+    return _recover_from(model, stress, surf, options, t1)
+
+
+def _twist_gauge_check(model: StaticModel, sol: UnitSolution, f: np.ndarray) -> float:
+    """The twist gauge's reaction relative to the applied torques Σ|x × f|ₓ over the nodes
+    (``static.model.twist_gauge_block``): by equilibrium it is the net applied torque, which
+    the torque-path rule makes zero; above ``RESIDUAL_TOL`` it is a SolverError."""
+    k = next(i for i, blk in enumerate(model.blocks)
+             if blk.bearing == model.twist_gauge and blk.labels == ("θ_x",))
+    x = model.shaft_mesh.mesh.doflocs
+    f3 = f.reshape(-1, 3)
+    scale = float(np.abs(x[1] * f3[:, 2] - x[2] * f3[:, 1]).sum())
+    t = float(abs(sol.lam[k][0]))
+    rel = t / scale if scale > 0 else 0.0
+    if rel > RESIDUAL_TOL:
+        raise SolverError(f"the free rotation about the shaft axis carries a torque of {t:.4g} "
+                          f"N·mm ({rel:.2e} of the applied torques; limit {RESIDUAL_TOL:g}): the"
+                          " torques do not sum to zero and no bearing holds torsion")
+    return rel
+
+
+def solve_static(variant, rpm=None, options: StaticOptions = StaticOptions(), *,
+                 case: str | None = None, shaft_mesh=None, cache_dir=None, beam: bool = True,
                  linear_stress: bool = False) -> StaticResult:
-    """Solve once at REF_RPM and report every rpm in ``rpm`` (a number or a sequence): the
-    loads scale with ω², so every case is the reference solution × (rpm / REF_RPM)².
-    With spin softening each speed is solved exactly (``soften``) and the reference is the
-    first speed; ``linear_stress`` then also recovers the unsoftened stress at that speed
-    (``StaticResult.stress_linear_ref``: fatigue's per-node softening model)."""
+    """One factorisation, one solve per load pattern (``StaticModel.patterns``), and every
+    reported case the superposition Σ factor × pattern solution: each speed of ``rpm`` (a
+    number or a sequence; default REF_RPM) at its plain factors (rpm² loads × (rpm / ref)²,
+    constant × 1, channel loads at their reference), or the load case named ``case`` (its rpm
+    and factors; ``rpm`` then None or that rpm). With spin softening each case is softened
+    exactly (``soften`` on the case's base solution) and the reference is the first case
+    (positive speed); ``linear_stress`` then also recovers the unsoftened per-pattern stresses
+    (``StaticResult.pattern_stress``; ``stress_linear_ref``: fatigue's per-node softening
+    model). Without softening the reference is REF_RPM when every load is rpm², else the first
+    case. Stresses are recovered once per pattern and superposed (one pattern: scaled)."""
     t_all = time.perf_counter()
-    rpms = _check_rpms(rpm)
+    lc = _named_case(variant, case)
+    if lc is not None:
+        if rpm is not None and [float(r) for r in np.atleast_1d(rpm)] != [lc.rpm]:
+            raise InputError("--rpm", "rpm", f"absent with --case (case {lc.name!r} runs at "
+                             f"{lc.rpm:g} rpm)", got=rpm)
+        rpm = lc.rpm
+    from shaftfe.model.loads import laws
+    only_rpm2 = set(laws(variant)) <= {"rpm2"}
+    rpms = _check_rpms(REF_RPM if rpm is None else rpm, at_rest_loads=not only_rpm2)
     warn_sharp_corners(variant)          # a fillet 0 at a loaded shoulder: not a stress there
     t0 = time.perf_counter()
     model = build_model(variant, options, shaft_mesh=shaft_mesh, cache_dir=cache_dir)
     v, sm = model.variant, model.shaft_mesh
     m = sm.mesh
     t_model = time.perf_counter() - t0
+    pats = model.patterns
+    n_p = len(pats)
+    scaled = n_p == 1 and pats[0].scales_with == "rpm2" and lc is None
     soft_on = bool(model.soft) and any(r > 0 for r in rpms)
+    cols = [p.f for p in pats]
     if soft_on:
-        R = _soft_terms(model)[0]
-        sols = solve_model(model, np.column_stack([model.f, R.T]))
-        sol, unit = sols[0], sols[1:]
+        cols += list(_soft_terms(model)[0])
+    sols = solve_model(model, np.column_stack(cols))
+    psol, unit = sols[:n_p], sols[n_p:]
+    phis = {r: [p.factor(r, lc) for p in pats] for r in dict.fromkeys(rpms)}
+    speeds = {r: soften(model, _combine(psol, phis[r]), unit, r, scale=1.0) for r in phis}
+    if soft_on:
+        ref_rpm = next(r for r in rpms if r > 0)
     else:
-        sol, unit = solve_model(model), []
-    # with spin softening the response is not ∝ ω²: the reference fields are those of the
-    # first speed, and each speed is solved exactly (``soften``); without it, one solve at
-    # REF_RPM scaled serves every speed
-    ref_rpm = next(r for r in rpms if r > 0) if soft_on else REF_RPM
-    speeds = {r: soften(model, sol, unit, r) for r in dict.fromkeys(rpms)}
-    ref = speeds[ref_rpm] if soft_on else soften(model, sol, unit, REF_RPM)
+        ref_rpm = REF_RPM if scaled else rpms[0]
+    ref = speeds[ref_rpm] if ref_rpm in speeds else soften(
+        model, _combine(psol, [p.factor(ref_rpm) for p in pats]), unit, ref_rpm, scale=1.0)
     u = ref.u
-    rec = _recover(model, u, options)
-    recs = {r: rec for r in speeds} if not soft_on else {
-        r: rec if r == ref_rpm else _recover(model, sp_.u, options) for r, sp_ in speeds.items()}
+    # stress per pattern (unsoftened, at its written magnitude): free without softening (the
+    # cases superpose them), one field each with softening when asked (linear_stress)
+    pfields = ([_stress_field(model, s_.u) for s_ in psol]
+               if (not soft_on and not scaled and n_p > 1) or (soft_on and linear_stress)
+               else None)
+    if soft_on:
+        recs = {r: _recover(model, sp_.u, options) for r, sp_ in speeds.items()}
+        rec = recs[ref_rpm]
+    elif scaled or n_p == 1:
+        # one pattern: one recovery at the reference, the cases by its factor (peaks × φ
+        # only for φ >= 0: a negative factor flips the principal stresses)
+        rec = _recover(model, u, options)
+        k_ref = pats[0].factor(ref_rpm, None if scaled else lc)
+        recs = {r: (rec, phis[r][0] / k_ref) if k_ref and phis[r][0] / k_ref >= 0
+                else (_recover(model, sp_.u, options), 1.0) for r, sp_ in speeds.items()}
+        if pfields is None and not soft_on:
+            pfields = [(rec.stress / k_ref, None)] if k_ref else [_stress_field(model, psol[0].u)]
+    else:
+        recs = {r: _combine_recovered(model, pfields, phis[r], options) for r in speeds}
+        rec = recs[ref_rpm] if ref_rpm in recs else _combine_recovered(
+            model, pfields, [p.factor(ref_rpm) for p in pats], options)
     xyz = m.doflocs
     stations = _station_list(model)
     x0, x1 = float(xyz[0].min()), float(xyz[0].max())
     ax_x = np.linspace(x0 + 1e-6, x1 - 1e-6, 121)
-    beam_res = _beam_check(v, rpms, options) if beam else {}
+    beam_res = {}
+    if beam and lc is not None:
+        # the beam model takes plain speeds, not a case's factors: no side by side
+        beam_res = {"error": f"no beam side by side for load case {lc.name!r} (the beam model "
+                             "takes plain speeds)"}
+    elif beam:
+        beam_res = _beam_check(v, rpms, options)
 
     ax_u_ref = axis_deflection(v, m, u, ax_x)
+    gauge_rel = 0.0
     cases = []
     for r in rpms:
         sp_ = speeds[r]
         ur = sp_.u
-        # without softening the peaks are the reference's × (rpm / REF_RPM)²
-        rc_, f_ = (rec, sp_.scale) if not soft_on else (recs[r], 1.0)
+        rc_, f_ = recs[r] if isinstance(recs[r], tuple) else (recs[r], 1.0)
         st_u = axis_deflection(v, m, ur, [q[1] for q in stations])
         ax_u = axis_deflection(v, m, ur, ax_x)
         radial = np.hypot(ur[1::3], ur[2::3])
         imax = int(np.argmax(radial))
-        f_r = model.f * sp_.scale + (0.0 if sp_.extra is None else sp_.extra)
+        f_r = sum(f * p.f for f, p in zip(phis[r], pats, strict=True))
+        f_r = f_r + (0.0 if sp_.extra is None else sp_.extra)
         reac, load_sum, reac_sum, eq_res = _reactions(model, sp_.lam, f_r)
+        if model.twist_gauge:
+            gauge_rel = max(gauge_rel, _twist_gauge_check(model, sp_, f_r))
         sts = tuple(Station(nm, float(x), float(uu[1]), float(uu[2]),
                             float(math.hypot(uu[1], uu[2])))
                     for (nm, x), uu in zip(stations, st_u, strict=True))
@@ -598,7 +720,8 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
         elif r in beam_res:
             bm = _beam_summary(beam_res[r])
         cases.append(StaticCase(
-            rpm=r, scale=rpm2_scale(r, ref_rpm), bearings=_bearing_rows(model, reac, ur, r, 1.0),
+            rpm=r, scale=rpm2_scale(r, ref_rpm) if ref_rpm > 0 else 1.0,
+            bearings=_bearing_rows(model, reac, ur, r, 1.0),
             stations=sts, max_deflection_mm=float(radial[imax]),
             max_deflection_xyz_mm=tuple(float(c) for c in xyz[:, imax]),
             max_axis_deflection_mm=float(np.hypot(ax_u[:, 1], ax_u[:, 2]).max()),
@@ -608,30 +731,54 @@ def solve_static(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(),
             peak_von_mises_unfiltered_xyz_mm=g.xyz_unfiltered_mm,
             load_sum_N=tuple(float(c) for c in load_sum),
             reaction_sum_N=tuple(float(c) for c in reac_sum),
-            equilibrium_residual=eq_res, beam=bm, spin_softening_N=sp_.soft_N or None))
+            equilibrium_residual=eq_res, beam=bm, spin_softening_N=sp_.soft_N or None,
+            case=lc.name if lc is not None else "",
+            factors={p.label: float(f) for p, f in zip(pats, phis[r], strict=True)}))
 
-    diag = dict(sol.diagnostics)
+    diag = dict(psol[0].diagnostics)
+    diag.update(relative_residual=max(s_.relres for s_ in psol),
+                hard_violation_rel=max(s_.hard_violation for s_ in psol),
+                relative_residual_before_refinement=max(
+                    s_.diagnostics["relative_residual_before_refinement"] for s_ in psol),
+                n_load_patterns=n_p)
     diag.update(min_quality=sm.min_quality, n_excluded_nodes=int(rec.excluded.size),
                 n_surface_recovered_nodes=rec.n_surface)
+    if model.twist_gauge:
+        diag["twist_gauge_torque_rel"] = gauge_rel
     cross = _load_cross_force(model)
     if cross:
         diag["load_cross_force_rel"] = cross
-    run = dict(sol.run)
+    run = dict(psol[0].run)
     run.update(mesh_seconds=sm.build_seconds, mesh_from_cache=sm.from_cache,
                assembly_seconds=model.assembly_seconds, model_seconds=t_model,
                recovery_seconds=rec.seconds)
     bars, bar_notes = truth_bars(v, options, rec.peaks, sm.key)
     unresolved = warn_unresolved_fillets({pk.region: pk.von_mises_MPa for pk in rec.peaks})
+    from types import MappingProxyType
+    p_u = MappingProxyType({p.key: s_.u for p, s_ in zip(pats, psol, strict=True)})
+    p_s = MappingProxyType({} if pfields is None else {
+        p.key: st for p, (st, _) in zip(pats, pfields, strict=True)})
+    lin_ref = None
+    if soft_on and linear_stress:
+        lin_ref = sum(p.factor(ref_rpm, lc) * p_s[p.key] for p in pats)
     res = StaticResult(
         variant=v.name, variant_hash=v.content_hash, options=options, ref_rpm=ref_rpm,
         n_nodes=sm.n_nodes, n_elements=sm.n_elements, n_dofs=3 * sm.n_nodes, mesh_key=sm.key,
         u_ref=u, stress_ref=rec.stress, von_mises_ref=rec.vm, axis_x=ax_x, axis_u_ref=ax_u_ref,
         cases=tuple(cases), diagnostics=diag, notes=(), mesh=sm, run=run,
         truth_error_bar_pct=bars, truth_bar_notes=bar_notes, unresolved_fillets=unresolved,
-        stress_linear_ref=(_stress_field(model, sol.u * ref.scale)[0]
-                           if soft_on and linear_stress else None))
+        stress_linear_ref=lin_ref, case_name=lc.name if lc is not None else "",
+        patterns=tuple(_pattern_info(p) for p in pats), pattern_u=p_u, pattern_stress=p_s)
     res.run["total_seconds"] = time.perf_counter() - t_all
     return res
+
+
+def _pattern_info(p) -> dict:
+    """A load pattern for summary.json: its label, law, references and loads, and its
+    resultant at the written magnitudes."""
+    return {"key": p.label, "scales_with": p.scales_with, "ref_rpm": p.ref_rpm,
+            "channel_ref": p.channel_ref, "factor_name": p.factor_name, "loads": list(p.names),
+            "F_N": list(p.F_N), "M_Nmm": list(p.M_Nmm)}
 
 
 def _beam_summary(br) -> dict:

@@ -56,6 +56,10 @@ def test_no_moment_no_plane():
     assert ax["thread_m10"] is None and ax["cw2_seat"] is None
 
 
+@pytest.mark.xfail(strict=True, reason="the 3D path puts each part's force at its centroid "
+                   "(issue #31), the beam planes on main still at the seat centre (collar: 3D "
+                   "peak 10.2° off the beam plane): h/beamloads moves them (remove this marker "
+                   "when it XPASSes after that merge)")
 def test_two_load_planes_the_3d_peak_lies_in_each_fillets_refined_sector(cache):
     """Counterweight 2 (and its key) turned to 60°, the rest at 0°: the loads act in two
     planes, so the old geometric rule (``hot_axis``) has no single line and refines the whole
