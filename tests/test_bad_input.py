@@ -786,6 +786,7 @@ CASES.update(STATIC_CASES)
 
 @pytest.mark.parametrize("case", sorted(STATIC_CASES))
 def test_static_case_bad_input(case, space, capsys, monkeypatch):
+    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
 # --- issue #31, the 3D static path's load cases (h/solidloads): --case must name a case of the
 # variant, and a case brings its own speed
 SOLID_CASES = {
@@ -797,7 +798,7 @@ SOLID_CASES = {
                                                           "--case"]),
     "static_case_axisymmetric": (["static", "--variant", "x2_57", "--case", "overload",
                                   "--model", "axisymmetric", "--out", "{W}/o"],
-                                 ["--case", "--model solid"]),
+                                 ["--case", "overload", "[[load_cases]] name"]),
 }
 CASES.update(SOLID_CASES)
 

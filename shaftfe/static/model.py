@@ -348,9 +348,12 @@ def _load_patterns(variant, m, options: StaticOptions):
             meta[key] = (item.scales_with, float(item.ref_rpm), float(item.channel_ref),
                          own if own in factored else "", [])
         vec[key] += v
-        meta[key][4].append(name)
-        loads[name] = v
-        forces[name] = tuple(float(c) for c in v.reshape(-1, 3).sum(axis=0))
+        if name not in meta[key][4]:
+            meta[key][4].append(name)
+        # a load of several actions (a gear mesh: its axial part and its transverse part)
+        # is one vector under its name
+        loads[name] = loads[name] + v if name in loads else v
+        forces[name] = tuple(float(c) for c in loads[name].reshape(-1, 3).sum(axis=0))
 
     for act in acts:
         if act.pressed_half:        # the seed's placement: today's pressure on the half seat

@@ -105,9 +105,6 @@ def test_every_variant_reactions_are_the_statics(solved):
             assert got[name] == pytest.approx(F, rel=1e-5), name
 
 
-@pytest.mark.xfail(strict=True, reason="the 3D path puts each part's force at its centroid "
-                   "(issue #31); the beam model on main still at the seat centre: h/beamloads "
-                   "moves it (remove this marker when it XPASSes after that merge)")
 def test_every_variant_agrees_with_the_beam_model(solved):
     """Timoshenko beam model (shaftfe.beam.model, same springs and loads): reactions within 1e-5,
     deflection under the gear within 4 %."""
