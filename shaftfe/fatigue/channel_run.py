@@ -109,10 +109,6 @@ def run_channels(job, variant, history, material, ref) -> ChannelRun:
         warn("rotating-bending-not-counted", "fatigue", "loads fixed in space ("
              + ", ".join(fixed) + ") are assessed at their static instant; their reversal once "
              "per revolution (rotating bending) is not counted in this life")
-    if more:
-        warn("channel-candidates-capped", "fatigue", f"{more} more nodes could exceed half the "
-             f"hot spot's peak stress than the {channels.MAX_CANDIDATES} assessed "
-             "(fatigue.channels.MAX_CANDIDATES)")
     return ChannelRun(job, variant, history, material, ref, lv,
                       tuple(member.get(int(i), "-") for i in nodes),
                       np.asarray(ref.xyz)[:, nodes], hot, labels, more, fixed,
@@ -130,17 +126,22 @@ def summary(run: ChannelRun, files: dict) -> dict:
         blocks = 1.0 / d if d > 0 else float("inf")
         hours = float(life_hours(blocks, h.duration_s))
         return {"region": run.regions[i], "xyz_mm": [float(c) for c in run.xyz[:, i]],
-                "peak_sigma_eq_MPa": float(lv.peak_MPa[i]), "damage_per_block": d,
+                "peak_sigma_eq_MPa": float(lv.peak_MPa[i]),
+                "damage_per_block": finite_or_none(d),   # null: static failure (σ_m ≥ R)
                 "life_blocks": finite_or_none(blocks),
                 "life_hours": finite_or_none(hours),
                 "life_km": finite_or_none(float(life_km(hours, run.job.speed_kmh))),
-                "safety_factor": float(lv.safety[i]), "cycle_classes": int(lv.n_classes[i])}
+                "safety_factor": finite_or_none(float(lv.safety[i])),
+                "cycle_classes": int(lv.n_classes[i])}
     return {"variant": run.variant.name, "method": "seed", "spectrum": str(h.source),
             "channels": list(h.channel_names), "patterns": list(run.patterns),
             "equivalent": channels.MULTI_CHANNEL_EQUIVALENT, "mean_stress": run.job.mean_stress,
             "material": run.material.name, "design_life_blocks": run.job.design_life,
             "hot_spot": row(run.hot), "candidates": [row(i) for i in range(lv.nodes.size)],
             "unassessed_candidates": run.unassessed,
+            "candidate_rule": f"the {channels.MAX_CANDIDATES} nodes of largest stress bound "
+                              f"above {channels.CANDIDATE_FRACTION:g} × the exact peak of the "
+                              "regions' extremes (fatigue.channels)",
             "loads_fixed_in_space_not_cycled": list(run.space_fixed),
             "seconds": run.seconds, "files": files}
 
@@ -157,8 +158,8 @@ def write(run: ChannelRun, out) -> tuple[dict, list[str]]:
     cells = [("vertex", np.arange(pts.shape[0]).reshape(-1, 1))]
     with np.errstate(divide="ignore"):
         life = np.where(lv.damage > 0, 1.0 / np.where(lv.damage > 0, lv.damage, 1.0), np.inf)
-    data = {"damage_per_block": lv.damage, "life_blocks": np.minimum(life, 1e30),
-            "safety_factor": lv.safety, "peak_sigma_eq_MPa": lv.peak_MPa}
+    data = {"damage_per_block": np.minimum(lv.damage, 1e30), "life_blocks": np.minimum(life, 1e30),
+            "safety_factor": np.minimum(lv.safety, 1e30), "peak_sigma_eq_MPa": lv.peak_MPa}
     meshio.write(out / "fatigue.vtu", meshio.Mesh(pts, cells, point_data=data))
     s = summary(run, {"vtu": "fatigue.vtu"})
     write_atomic(out / "summary.json", json.dumps(s, indent=2, allow_nan=False) + "\n")
@@ -177,13 +178,32 @@ def lines(run: ChannelRun, summary_: dict, out, files) -> list[str]:
          "",
          "life: " + lives(hot["life_blocks"] if hot["life_blocks"] is not None else
                           float("inf"), hot["life_hours"], hot["life_km"], job.speed_kmh),
-         f"safety factor at {job.design_life:g} blocks: {hot['safety_factor']:.3f}",
+         f"safety factor at {job.design_life:g} blocks: "
+         + (f"{hot['safety_factor']:.3f}" if hot["safety_factor"] is not None else "∞"),
          f"hot spot: {hot['region']} at x = {hot['xyz_mm'][0]:.2f} mm, peak σ_eq "
          f"{hot['peak_sigma_eq_MPa']:.1f} MPa", ""]
     rows = [[c["region"], f"{c['xyz_mm'][0]:.2f}", f"{c['peak_sigma_eq_MPa']:.1f}",
              life(c["life_blocks"] if c["life_blocks"] is not None else float("inf")),
-             f"{c['safety_factor']:.3f}"] for c in summary_["candidates"]]
+             f"{c['safety_factor']:.3f}" if c["safety_factor"] is not None else "∞"]
+            for c in summary_["candidates"]]
     p += table_lines(["region", "x mm", "peak σ_eq MPa", "life blocks",
                       f"SF @{job.design_life:g}"], rows, title="candidate nodes")
+    p.append(f"candidates: {summary_['candidate_rule']}"
+             + (f"; {run.unassessed} more nodes passed the bound, not assessed"
+                if run.unassessed else ""))
     p.append("\nwrote " + ", ".join(str(out / f) for f in files))
     return p
+
+
+def warn_rpm2_only(variant, method: str) -> None:
+    """A method that scales one field (or one beam solution) by (rpm/ref)²: the variant's loads
+    of other laws are then taken at their reference values and scaled like the rest. Said
+    once, naming them (the seed method assesses them per pattern: ``run_channels``)."""
+    from shaftfe.util.notices import warn
+    other = [ld.name for ld in variant.loads if ld.scales_with != "rpm2"]
+    if other:
+        warn("loads-scaled-as-rpm2", "fatigue", f"--method {method} scales one stress field by "
+             f"(rpm/ref)²: the loads {', '.join(other)} (laws other than rpm2) are taken at "
+             "their reference value and scaled with rpm² too; --method seed assesses each load "
+             "pattern with its own history")
+

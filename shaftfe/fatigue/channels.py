@@ -32,11 +32,12 @@ Candidates (``candidate_nodes``): the nodes whose bound on the equivalent stress
 σ_vM is a norm of the stress tensor, so |σ_vM(Σ_k σ_k L_k)| ≤ Σ_k σ_vM(σ_k) max|L_k| =: U (the
 triangle inequality). The exact peak |σ_eq| is computed at the extremes of U per region
 (``field.candidates``); the candidates are the ``MAX_CANDIDATES`` nodes of largest U among
-those whose U reaches ``CANDIDATE_FRACTION`` of the largest of these peaks (the node of that
-peak always among them). A node with a bound below that fraction has a stress history below
-half a candidate's peak (damage ≤ 1/8 of it for an S-N slope k ≥ 3): it cannot be the hot
-spot. A node above it but beyond the ``MAX_CANDIDATES`` largest bounds is not assessed
-(``candidate_nodes`` returns how many; the run says so). Each candidate costs one rainflow
+those whose U reaches ``CANDIDATE_FRACTION`` (0.9) of the largest of these peaks
+(the node of that peak always among them). A node with a bound below that fraction has a
+stress history below 0.9 × a candidate's peak (damage ≤ 0.9^k ≈ 0.59 of it for an S-N slope
+k ≥ 5): it is not the hot spot unless its cycles differ much from the candidate's. A node
+above it but beyond the ``MAX_CANDIDATES`` largest bounds is not assessed (``candidate_nodes``
+returns how many; the run says so). Each candidate costs one rainflow
 count of its own history (the single-channel path counts one for the whole field), which is
 what bounds their number.
 """
@@ -52,7 +53,7 @@ from shaftfe.fatigue.field import candidates
 from shaftfe.util.units import rpm2_scale, von_mises
 
 MULTI_CHANNEL_EQUIVALENT = "signed_von_mises"
-CANDIDATE_FRACTION = 0.5
+CANDIDATE_FRACTION = 0.9
 MAX_CANDIDATES = 16
 _CHUNK = 2_000_000                   # samples × nodes per equivalent-stress chunk
 

@@ -44,8 +44,10 @@ class Din743:
         from shaftfe.fatigue.static_check import case_of, din743_static
         if options.case is not None:
             case_of(inputs.variant, options.case)        # a wrong name before any solve
+        from shaftfe.fatigue.channel_run import warn_rpm2_only
         from shaftfe.util.notices import raised
         ch = inputs.single(self.name)
+        warn_rpm2_only(inputs.variant, self.name)
         with raised() as warned, (progress.stage(self.stages[0]) if progress is not None
                                   else nullcontext()):
             # one beam solve for DIN 743 and the bearings

@@ -45,10 +45,12 @@ class Fkm:
 
         from shaftfe.fatigue import standards as sd
         from shaftfe.fatigue.cards import load_surfaces
+        from shaftfe.fatigue.channel_run import warn_rpm2_only
         from shaftfe.fatigue.fkm_field import assess_field
         from shaftfe.fatigue.run import FatigueInputs, resolve_design_life
         from shaftfe.util.notices import raised
         ch = inputs.single(self.name)
+        warn_rpm2_only(inputs.variant, self.name)
         opts = sd.strength_options(options)
 
         def stage(name):
