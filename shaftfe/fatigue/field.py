@@ -38,7 +38,7 @@ from shaftfe.fatigue.assess import (
     FatigueResult,
     assess,
 )
-from shaftfe.fatigue.kernels import equivalent_stress, von_mises
+from shaftfe.fatigue.kernels import BETA_MIN, equivalent_stress, von_mises
 from shaftfe.fatigue.sn import FatigueMaterial
 
 _REGION_PRIORITY = ("fillet:", "keyway:", "shoulder:", "seat:")
@@ -156,6 +156,8 @@ def candidates(s_eq: np.ndarray, excluded: np.ndarray, regions: dict) -> np.ndar
 
 
 BETA_FLOOR = 1e-3        # nodes below this fraction of the peak |S0| keep β = 0 (no damage)
+BETA_LOW_STRESS = 0.01   # a β beyond the model's range is dropped only below this share of the peak
+#                          (x2_57, default level, seed loads: one node, at 0.13 % of the peak)
 
 
 def softening_beta(s_soft, s_lin) -> np.ndarray:
@@ -169,11 +171,19 @@ def softening_beta(s_soft, s_lin) -> np.ndarray:
     negligible, and a ratio of two near-zero numbers is not a coefficient."""
     s1 = np.asarray(s_soft, dtype=float)
     s0 = np.asarray(s_lin, dtype=float)
-    big = np.abs(s0) > BETA_FLOOR * float(np.abs(s0).max(initial=0.0))
+    peak = float(np.abs(s0).max(initial=0.0))
+    big = np.abs(s0) > BETA_FLOOR * peak
     ok = big & (s0 * s1 > 0)
     beta = np.zeros(s0.shape)
     np.divide(s1, s0, out=beta, where=ok)
-    return np.where(ok, beta - 1.0, 0.0)
+    beta = np.where(ok, beta - 1.0, 0.0)
+    # the completed co-rotating model (model.spin) also stiffens (a part's tilt inertia): at a
+    # node where the softened stress falls far below the linear one the one-coefficient model
+    # S0 (λ + β λ²) stops being monotone (β ≤ kernels.BETA_MIN). Such nodes are low-stressed
+    # (BETA_LOW_STRESS); they keep β = 0, their linear
+    # stress, and a node above that share is refused by kernels.check_beta as before
+    low = (beta <= BETA_MIN) & (np.abs(s0) < BETA_LOW_STRESS * peak)
+    return np.where(low, 0.0, beta)
 
 
 def evaluate_arrays(stress_ref, history, material: FatigueMaterial, *, ref_rpm: float,

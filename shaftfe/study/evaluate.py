@@ -97,7 +97,8 @@ def _bearing_cols(rows, prefix: str) -> dict:
 
 def beam_row(v, an: Analyses) -> dict:
     from shaftfe.beam.solve import analyse
-    br = analyse(v, an.bearing_rpm)[0]
+    vv = v.with_seed_load_case() if an.seed_load_case else v      # as the static row's
+    br = analyse(vv, an.bearing_rpm, seed_placement=an.seed_load_case)[0]
     out = {"beam_max_peak_MPa": br.max_peak_MPa, "beam_max_deflection_mm": br.max_deflection_mm}
     out.update(_bearing_cols(br.bearings, "beam_"))
     return out
@@ -107,7 +108,8 @@ def static_rows(v, an: Analyses, shaft_mesh=None, cache_dir=None) -> tuple[dict,
     from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
     from shaftfe.util.units import REF_RPM
-    opts = StaticOptions(level=an.level, spin_softening=an.spin_softening)
+    opts = StaticOptions(level=an.level, spin_softening=an.spin_softening,
+                         seed_load_case=an.seed_load_case)
     rpms = [REF_RPM] if an.bearing_rpm == REF_RPM else [REF_RPM, an.bearing_rpm]
     res = solve_static(v, rpms, opts, shaft_mesh=shaft_mesh, cache_dir=cache_dir, beam=False,
                        linear_stress=an.fatigue)
@@ -134,7 +136,7 @@ def fatigue_row(res, an: Analyses, variant=None) -> dict:
     job = FatigueJob(spectrum=an.spectrum, material=an.material, mean_stress=an.mean_stress,
                      equivalent=an.equivalent, design_life=an.design_life,
                      speed_kmh=an.speed_kmh, level=an.level, spin_softening=an.spin_softening,
-                     engine=an.engine)
+                     engine=an.engine, seed_load_case=an.seed_load_case)
     got = get_method(an.fatigue_method, "study", "analyses.fatigue.method").assess(
         AssessmentInputs.one_channel(variant, history, field=from_result(res)), job)
     g = got.governing

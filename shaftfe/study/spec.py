@@ -104,6 +104,8 @@ class Analyses:
     static: bool = False
     level: str = "coarse"
     spin_softening: bool = True
+    seed_load_case: bool = False           # the seed's load model (parts F1, Fv2 at the seat
+    #                                        centres) in the beam, static and fatigue rows
     fatigue: bool = False
     fatigue_method: str = "seed"           # by name from fatigue.methods.METHODS
     spectrum: str = ""                     # rpm history, resolved against the study file
@@ -129,6 +131,8 @@ class Analyses:
         d = {k: getattr(self, k) for k in self.__dataclass_fields__}
         if d["fatigue_method"] == "seed":     # the only method before the key: the keys of
             del d["fatigue_method"]           # existing studies stay as they were
+        if not d["seed_load_case"]:           # likewise
+            del d["seed_load_case"]
         d["spectrum"] = digest(self.spectrum) if self.spectrum else ""
         try:
             d["engine_file"] = digest(resolve_engine_path(self.engine))
@@ -281,7 +285,7 @@ def _analyses(t: dict, src: str, base_dir: Path) -> Analyses:
         kw["X_percent"] = _num(b, "X_percent", src, "analyses.balance", None, lo=0, hi=200)
         kw["engine_rpm"] = _num(b, "rpm", src, "analyses.balance", None, lo=1, hi=20_000)
     kw["beam"] = sub("beam", set()) is not None if "beam" in t else True
-    if (s := sub("static", {"model", "level", "spin_softening"})) is not None:
+    if (s := sub("static", {"model", "level", "spin_softening", "seed_load_case"})) is not None:
         # the 3D solid only: the axisymmetric path has no bearing reactions per bearing
         # springs in 3D nor the filtered region peaks the row reports
         _str(s, "model", src, "analyses.static", "solid", ("solid",))
@@ -291,6 +295,10 @@ def _analyses(t: dict, src: str, base_dir: Path) -> Analyses:
         if not isinstance(sp, bool):
             raise InputError(src, "analyses.static.spin_softening", "true | false", got=sp)
         kw["spin_softening"] = sp
+        slc = s.get("seed_load_case", False)
+        if not isinstance(slc, bool):
+            raise InputError(src, "analyses.static.seed_load_case", "true | false", got=slc)
+        kw["seed_load_case"] = slc
     if (f := sub("fatigue", {"method", "spectrum", "material", "mean_stress", "equivalent",
                              "design_life_blocks", "speed_kmh"})) is not None:
         if "static" not in kw:
