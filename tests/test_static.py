@@ -537,9 +537,11 @@ def test_sharp_corner_rule_one_place():
 def test_deflection_beyond_the_model_or_the_clearance_is_warned():
     """A deflection above 2 % of the length (small-deflection model) or above the file's
     clearance at its station is warned (beam and 3D share check_deflection): x2_57 at the rpm
-    ceiling, 20 000 rpm, moves 1.49 mm at the clearance station (4 × its 0.371 mm at 10 000,
-    loads ∝ rpm²) against the 1.4 mm stated; at 10 000 rpm nothing is warned. The audit's
-    254.6 mm (a stiffness 1000 × too soft, now refused) is 2.2 × the shaft's length."""
+    ceiling, 20 000 rpm, with the seed's placement (parts at their seat centres) moves 1.49 mm
+    at the clearance station (4 × its 0.371 mm at 10 000, loads ∝ rpm²) against the 1.4 mm
+    stated (with the parts at their centroids, the default since issue #31: 0.95 mm, not
+    warned); at 10 000 rpm nothing is warned. The audit's 254.6 mm (a stiffness 1000 × too soft,
+    now refused) is 2.2 × the shaft's length."""
     import warnings
 
     from shaftfe.beam.solve import analyse, check_deflection
@@ -548,7 +550,7 @@ def test_deflection_beyond_the_model_or_the_clearance_is_warned():
     with pytest.warns(ShaftfeWarning, match="small-deflection"):
         check_deflection("test", 114.0, 254.6, None, None)
     with pytest.warns(ShaftfeWarning, match="clearance to the crankshaft"):
-        analyse(load_variant("x2_57"), 20000.0)
+        analyse(load_variant("x2_57"), 20000.0, seed_placement=True)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         analyse(load_variant("x2_57"), 10000.0)

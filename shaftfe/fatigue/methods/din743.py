@@ -42,8 +42,9 @@ class Din743:
         from shaftfe.fatigue import standards as sd
         from shaftfe.fatigue.run import FatigueInputs
         from shaftfe.fatigue.static_check import case_of, din743_static
-        if options.case is not None:
-            case_of(inputs.variant, options.case)        # a wrong name before any solve
+        case = getattr(options, "case", None)
+        if case is not None:
+            case_of(inputs.variant, case)                # a wrong name before any solve
         from shaftfe.fatigue.channel_run import warn_rpm2_only
         from shaftfe.util.notices import raised
         ch = inputs.single(self.name)
@@ -54,8 +55,8 @@ class Din743:
             beam = ch.beam if ch.beam is not None else sd.beam_at_ref(inputs.variant)
             run = sd.run_din743(options, sd.strength_options(options),
                                 FatigueInputs(ch.history, None, inputs.variant), beam)
-            static = (din743_static(inputs.variant, options.case, sd.strength_options(options))
-                      if options.case is not None else None)
+            static = (din743_static(inputs.variant, case, sd.strength_options(options))
+                      if case is not None else None)
 
         def loc(w):
             s = min(w.result.S_D, w.result.S_F)
