@@ -110,7 +110,10 @@ def candidate_nodes(stress_k: np.ndarray, L: np.ndarray, excluded: np.ndarray,
     bound = np.asarray(sum(von_mises(stress_k[k]) * float(np.abs(L[k]).max(initial=0.0))
                            for k in range(stress_k.shape[0])), dtype=float)
     first = candidates(bound, excluded, regions)
-    peaks = np.abs(equivalent_histories(stress_k, L, first, kind)).max(axis=1, initial=0.0)
+    # |σ_eq| is σ_vM for every kind (the sign aside): the unsigned measure, no principal
+    # stresses; on the samples where some channel turns (``reversal_union``)
+    peaks = np.abs(equivalent_histories(stress_k, L[:, reversal_union(L)], first,
+                                         "von_mises")).max(axis=1, initial=0.0)
     peak = float(peaks.max(initial=0.0))
     best = first[int(np.argmax(peaks))] if first.size else None
     ok = np.flatnonzero((bound >= CANDIDATE_FRACTION * peak) & ~excluded) if peak > 0 \

@@ -149,9 +149,9 @@ def static_key(variant, options, mesh_key: str, ref_rpm: float) -> str:
 
 
 def variant_hash(variant) -> str:
-    """The variant's content hash (computed if a variant built in code has none)."""
-    if getattr(variant, "content_hash", ""):
-        return variant.content_hash
+    """The variant's content hash, always computed from its content: a variant changed in code
+    (``dataclasses.replace(v, loads=...)``) keeps the loaded file's ``content_hash`` field, and
+    trusting that field would return the unchanged variant's cached solution."""
     from shaftfe.model.variant import content_hash
     return content_hash(variant)
 

@@ -44,7 +44,7 @@ from shaftfe.study.sampling import Design
 from shaftfe.study.spec import StudySpec
 
 MiB = 1024 ** 2
-# Resident memory one worker needs (measured with farm-bench: the static command's peak RSS
+# Resident memory one worker needs (measured as whole processes: the static command's peak RSS
 # at each level, README speed table; the beam pipeline ~250 MiB) plus headroom for the mesh
 # object in transit: a cap, not a limit on what a design may use.
 MEMORY_PER_WORKER = {"beam": 400 * MiB, "coarse": 1200 * MiB, "default": 2000 * MiB,
