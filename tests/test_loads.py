@@ -64,49 +64,19 @@ def test_speed_laws_and_case_factors():
     assert ld.LoadCase("y", 0.0).factor(c) == 1.0            # a channel not given: its ref
 
 
-def test_loads_read_from_the_file_and_set(tmp_path):
-    g = tmp_path / "g"
-    import shutil
-
-    from shaftfe.util.paths import GEOMETRY_DIR
-    shutil.copytree(GEOMETRY_DIR, g, ignore=shutil.ignore_patterns("*.md", "engines"))
-    p = g / "x2_57.toml"
-    text = p.read_text(encoding="utf-8").replace("[balance]", """[[loads]]
-name = "mesh"
-kind = "gear_mesh"
-seat = "gear_seat"
-module_mm = 2.0
-teeth = 33
-T_Nmm = 376.0
-angle_deg = 180.0
-scales_with = "torque_Nm"
-channel_ref = 0.376
-
-[[loads]]
-name = "pump"
-kind = "torque"
-x_mm = 110.0
-T_Nmm = -376.0
-scales_with = "torque_Nm"
-channel_ref = 0.376
-
-[[load_cases]]
-name = "overload"
-rpm = 9500.0
-factors = { mesh = 1.5, pump = 1.5 }
-check = "static"
-
-[balance]""", 1)
-    p.write_text(text, encoding="utf-8")
+def test_loads_read_from_the_file_and_set():
+    # geometry/examples/x2_57_driven.toml (the file docs/VARIANTS.md shows): read, set, refused
+    p = ld_path("x2_57_driven.toml")
     v = load_variant(p)
-    assert [x.name for x in v.loads] == ["mesh", "pump"]
+    assert [x.name for x in v.loads] == ["mesh_pump", "pump", "mesh_run_up", "inertia_cw2"]
     assert v.loads[0].gear.pitch_diameter_mm == 66.0 and v.loads[0].band_mm == (6.0, 16.0)
-    assert ld.channels(v) == ("torque_Nm",)
-    assert v.load_case("overload").factor(v.loads[0]) == 1.5
-    w = load_variant(p, {"loads.pump.T_Nmm": -300.0, "loads.mesh.T_Nmm": 300.0})
-    assert w.loads[1].value == -300.0 and w.content_hash != v.content_hash
+    assert ld.channels(v) == ("alpha_rad_s2",)
+    run_up = v.load_case("run_up")
+    assert run_up.factor(v.loads[2]) == 1.0 and run_up.factor(v.loads[0]) == (9500 / 9500) ** 2
+    w = load_variant(p, {"loads.pump.T_Nmm": -80.0, "loads.mesh_pump.T_Nmm": 80.0})
+    assert w.loads[1].value == -80.0 and w.content_hash != v.content_hash
     with pytest.raises(InputError, match="rotation about the shaft axis free"):
-        load_variant(p, {"loads.pump.T_Nmm": -300.0})
+        load_variant(p, {"loads.pump.T_Nmm": -80.0})
 
 
 def test_the_driven_example_variant_carries_the_drive_loads():

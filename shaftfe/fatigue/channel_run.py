@@ -24,10 +24,12 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from types import SimpleNamespace
 
 import numpy as np
 
 from shaftfe.fatigue import channels
+from shaftfe.model.loads import actions, pattern_key
 from shaftfe.util.units import rpm2_scale
 
 
@@ -42,9 +44,8 @@ def pattern_fields(ref, history) -> tuple[tuple[str, ...], np.ndarray, np.ndarra
     ``history`` (module docstring: the softening pattern last)."""
     labels, fields, rows = [], [], []
     for p in ref.patterns:
-        law = p["scales_with"]
-        key = ("constant",) if law == "constant" else (
-            ("rpm2", float(p["ref_rpm"])) if law == "rpm2" else (law, float(p["channel_ref"])))
+        key = pattern_key(SimpleNamespace(scales_with=p["scales_with"], ref_rpm=p["ref_rpm"],
+                                          channel_ref=p["channel_ref"]))
         labels.append(p["key"])
         fields.append(np.asarray(ref.pattern_stress[p["key"]], dtype=float))
         rows.append(channels.channel_factors(history, [key])[0])
@@ -78,7 +79,6 @@ class ChannelRun:
 
 def space_fixed_loads(variant) -> tuple[str, ...]:
     """The loads with a transverse part fixed in space (rotating bending, not counted)."""
-    from shaftfe.model.loads import actions
     acts, body = actions(variant)
     names = [a.name for a in acts if a.frame == "space"
              and any(abs(c) > 0 for c in (*a.F_N[1:], *a.M_Nmm[1:]))]

@@ -50,7 +50,8 @@ import numpy as np
 
 from shaftfe.fatigue import counting, kernels
 from shaftfe.fatigue.field import candidates
-from shaftfe.util.units import rpm2_scale, von_mises
+from shaftfe.model.loads import FIXED_LAWS, law_factor
+from shaftfe.util.units import REF_RPM, von_mises
 
 MULTI_CHANNEL_EQUIVALENT = "signed_von_mises"
 CANDIDATE_FRACTION = 0.9
@@ -60,16 +61,16 @@ _CHUNK = 2_000_000                   # samples × nodes per equivalent-stress ch
 
 def channel_factors(history, keys) -> np.ndarray:
     """The factor histories L_k(t) (K, T) of the pattern keys (``model.loads.pattern_key``)
-    on ``history``: ("rpm2", ref) → (rpm/ref)², ("constant",) → 1, (channel, ref) →
-    channel(t)/ref (an absent channel: InputError naming the history's columns)."""
+    on ``history``, by the speed laws' own rule (``model.loads.law_factor``): ("rpm2", ref) →
+    (rpm/ref)², ("constant",) → 1, (channel, ref) → channel(t)/ref (an absent channel:
+    InputError naming the history's columns)."""
     rows = []
     for key in keys:
-        if key[0] == "constant":
-            rows.append(np.ones(history.n_samples))
-        elif key[0] == "rpm2":
-            rows.append(rpm2_scale(history.rpm, float(key[1])))
-        else:
-            rows.append(history.channel(key[0]) / float(key[1]))
+        law, ref = key[0], (float(key[1]) if len(key) > 1 else 1.0)
+        chans = {} if law in FIXED_LAWS else {law: history.channel(law)}
+        v = law_factor(law, history.rpm, chans, ref_rpm=ref if law == "rpm2" else REF_RPM,
+                       channel_ref=ref if law not in FIXED_LAWS else 1.0)
+        rows.append(np.broadcast_to(np.asarray(v, dtype=float), (history.n_samples,)))
     return np.vstack(rows) if rows else np.zeros((0, history.n_samples))
 
 

@@ -150,10 +150,22 @@ class Din743Run:
         return min(self.rows, key=lambda r: min(r.result.S_D, r.result.S_F))
 
 
-def _at(beam, x: float) -> tuple[float, float]:
-    """(M, T) N·mm at x (both continuous along the beam: no point moments or torques)."""
-    return float(np.interp(x, beam.x_sec, beam.M)), float(np.interp(x, beam.x_sec,
-                                                                      np.abs(beam.T)))
+def section_stresses(beam, x: float, d: float, span: float) -> tuple[float, float, float]:
+    """The nominal stresses (σ_zd = 4N/(πd²), σ_b = 32M/(πd³), τ_t = 16T/(πd³)) MPa a notch at
+    x of diameter d is judged by: the larger |N|, M, |T| at x − span and x + span (a hub's load
+    spread over its seat: the more loaded end). A section load below 1e-9 of the largest
+    bending moment (or axial force) is the round-off of an unloaded end: 0."""
+    N = beam.N if beam.N is not None else np.zeros_like(beam.M)
+    scale = float(np.max(np.abs(beam.M))) or 1.0
+    n_scale = max(float(np.max(np.abs(N), initial=0.0)), scale)
+
+    def at(line) -> float:
+        return max(abs(float(np.interp(xx, beam.x_sec, line))) for xx in (x - span, x + span))
+    n, m, t = at(N), at(beam.M), at(beam.T)
+    zd = 4.0 * n / (math.pi * d ** 2) if n > 1e-9 * n_scale else 0.0
+    sb = 32.0 * m / (math.pi * d ** 3) if m > 1e-9 * scale else 0.0
+    tt = 16.0 * t / (math.pi * d ** 3) if t > 1e-9 * scale else 0.0
+    return zd, sb, tt
 
 
 def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
@@ -233,14 +245,10 @@ def run_din743(job, opts: StrengthOptions, inputs=None, beam=None) -> Din743Run:
         lo, hi = float(cyc.minimum[k]), float(cyc.maximum[k])
     rows, notes = [], []
     table = converged_kt()
-    scale = float(np.max(np.abs(beam.M))) or 1.0
     for x, notch, d, span in din743_notches(inputs.variant, beam, card, load_surfaces(), table):
-        at = [_at(beam, xx) for xx in (x - span, x + span)]
-        M, T = max(a[0] for a in at), max(a[1] for a in at)
-        M = M if M > 1e-9 * scale else 0.0            # round-off of an unloaded end
-        sb = 32.0 * M / (math.pi * d ** 3)
-        tt = 16.0 * T / (math.pi * d ** 3) if T > 1e-9 * scale else 0.0
-        st = din743.Stresses(b_a=sb * (hi - lo) / 2, b_m=sb * (hi + lo) / 2,
+        zd, sb, tt = section_stresses(beam, x, d, span)
+        st = din743.Stresses(zd_a=zd * (hi - lo) / 2, zd_m=zd * (hi + lo) / 2,
+                             b_a=sb * (hi - lo) / 2, b_m=sb * (hi + lo) / 2,
                              t_a=tt * (hi - lo) / 2, t_m=tt * (hi + lo) / 2)
         kv = k_v_case_hardening(notch.d_mm, True) if card.case_hardened else 1.0
         res = din743.assess(notch, st, card.rm_n_MPa, card.rp_n_MPa, card.group, k_v=kv,

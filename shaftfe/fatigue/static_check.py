@@ -5,18 +5,16 @@ A load case (``model.loads.LoadCase``: a speed, a factor per load, the channels'
 extreme the shaft must carry once without yielding: an overload of 1.5 × torque, a run-up, the
 top speed. The beam solves it (``beam.solve.solve_cases``: every load, torsion and axial force,
 one factorisation); at each notch of ``fatigue.standards.din743_notches`` the nominal stresses
-are σ_zd = N/A, σ_b = 32 M/(π d³), τ_t = 16 T/(π d³) (the larger of the values at the notch's
-judged span, as the fatigue check takes them), entered as maxima (static: amplitude 0), and
-DIN 743-1 gives S_F = 1/√((σ_zd,max/σ_zdFK + σ_b,max/σ_bFK)² + (τ_t,max/τ_tFK)²)
-(``fatigue.din743.assess``: one implementation of the standard), required ≥ S_min = 1.2.
+are those the fatigue check takes (``fatigue.standards.section_stresses``: σ_zd = N/A,
+σ_b = 32 M/(π d³), τ_t = 16 T/(π d³) at the notch's judged span), entered as maxima
+(static: amplitude 0), and DIN 743-1 gives
+S_F = 1/√((σ_zd,max/σ_zdFK + σ_b,max/σ_bFK)² + (τ_t,max/τ_tFK)²) (``fatigue.din743.assess``:
+one implementation of the standard), required ≥ S_min = 1.2.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
-
-import numpy as np
 
 from shaftfe.errors import InputError
 from shaftfe.fatigue import din743
@@ -59,35 +57,25 @@ def case_of(variant, name: str, option: str = "--case"):
         ", ".join(c.name for c in variant.load_cases) or "(it defines none)"), got=name)
 
 
-def _line_at(beam, line: np.ndarray, x: float, span: float) -> float:
-    return max(abs(float(np.interp(xx, beam.x_sec, line))) for xx in (x - span, x + span))
-
-
 def din743_static(variant, case_name: str, opts) -> StaticCheck:
     """S_F per notch of ``variant`` in its load case ``case_name`` (``opts``: the strength
     options that choose the material card, ``fatigue.standards.StrengthOptions``)."""
     from shaftfe.beam.model import build_model
     from shaftfe.beam.solve import solve_cases
     from shaftfe.fatigue.cards import load_surfaces
-    from shaftfe.fatigue.standards import converged_kt, din743_card, din743_notches
+    from shaftfe.fatigue.standards import (
+        converged_kt,
+        din743_card,
+        din743_notches,
+        section_stresses,
+    )
     case = case_of(variant, case_name)
     card = din743_card(variant, opts)
     beam = solve_cases(build_model(variant), [case])[0]
-    N = beam.N if beam.N is not None else np.zeros_like(beam.M)
     rows = []
-    # a section load below 1e-9 of the largest of its kind is the round-off of an unloaded end
-    # (an S_F of 1e14 would be printed): zero, as fatigue.standards.run_din743 does
-    big = {k: float(np.abs(a).max(initial=0.0)) for k, a in (("N", N), ("M", beam.M),
-                                                             ("T", beam.T))}
-
-    def at(kind, line, x, span):
-        v = _line_at(beam, line, x, span)
-        return v if v > 1e-9 * big[kind] else 0.0
     for x, notch, d, span in din743_notches(variant, beam, card, load_surfaces(),
                                             converged_kt()):
-        zd = 4.0 * at("N", N, x, span) / (math.pi * d ** 2)
-        sb = 32.0 * at("M", beam.M, x, span) / (math.pi * d ** 3)
-        tt = 16.0 * at("T", beam.T, x, span) / (math.pi * d ** 3)
+        zd, sb, tt = section_stresses(beam, x, d, span)
         res = din743.assess(notch, din743.Stresses(zd_m=zd, b_m=sb, t_m=tt), card.rm_n_MPa,
                             card.rp_n_MPa, card.group, hard_layer=card.case_hardened)
         rows.append(StaticRow(x, notch.name, zd, sb, tt, res.S_F))

@@ -235,6 +235,20 @@ def robust_mapping(mesh):
     return _Mapping(mesh, mesh.elem(), mesh.bndelem)
 
 
+def scalar_quadrature(mesh):
+    """(φ (nloc, nq), ∇φ (ne, nq, nloc, 3), w |det J| (ne, nq)) of the scalar nodal basis at
+    the quadrature points (order 4 on P2: exact for a mass on straight P2 tets, 2 on P1): the
+    one quadrature of the scalar mass (``rotordynamics.solid_rotor.mass_and_gyro``,
+    ``static.model.mass_times``)."""
+    from skfem.quadrature import get_quadrature
+    order = 4 if is_quadratic(mesh) else 2
+    e = scalar_element(mesh)
+    X, _ = get_quadrature(mesh.refdom, order)
+    phi = np.array([e.lbasis(X, a)[0] for a in range(e.doflocs.shape[0])])
+    dN, wdx = physical_gradients(mesh, order)
+    return phi, dN, wdx
+
+
 def element_nodes(mesh) -> np.ndarray:
     """(nloc, ne) node numbers of every element (10 for P2, 4 for P1) in scikit-fem order."""
     return mesh.dofs.element_dofs if is_quadratic(mesh) else mesh.t

@@ -56,12 +56,15 @@ half of the seat the part presses on.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 from dataclasses import dataclass
 
 from shaftfe.errors import InputError
-from shaftfe.util.units import REF_RPM
+from shaftfe.model.fields import PROV_KEYS, check_keys, is_num, num, provenance, table, text
+from shaftfe.util.limits import RPM_CEILING
+from shaftfe.util.units import REF_RPM, rpm2_scale
 
 KINDS = ("force", "moment", "torque", "axial_force", "gear_mesh", "gravity")
 FIXED_LAWS = ("constant", "rpm2")
@@ -135,11 +138,12 @@ class LoadCase:
 def law_factor(law: str, rpm: float, channels: dict, *, ref_rpm: float = REF_RPM,
                channel_ref: float = 1.0) -> float:
     """The factor of a speed law at ``rpm`` with channel values ``channels`` (a channel not
-    given is at its reference value: factor 1)."""
+    given is at its reference value: factor 1); ``rpm`` and the channel values may be arrays
+    (a history: ``fatigue.channels.channel_factors``)."""
     if law == "constant":
         return 1.0
     if law == "rpm2":
-        return (rpm / ref_rpm) ** 2
+        return rpm2_scale(rpm, ref_rpm)
     return channels.get(law, channel_ref) / channel_ref
 
 
@@ -286,7 +290,6 @@ def quadrature(a: Action) -> Action:
     """The action turned by +90° about the axis: with ``a`` it spans every phase of a load
     fixed in space (σ(φ) = cos φ σ(a) + sin φ σ(quadrature(a)), linear elasticity)."""
     F, M = a.F_N, a.M_Nmm
-    import dataclasses
     return dataclasses.replace(a, F_N=(F[0], -F[2], F[1]), M_Nmm=(M[0], -M[2], M[1]))
 
 
@@ -357,7 +360,6 @@ GEAR_MIN_TEETH = 6
 
 
 def _num(t: dict, key: str, src: str, fld: str, default=None) -> float | None:
-    from shaftfe.model.fields import num
     return num(t, key, src, fld, default=default, required=default is None)
 
 
@@ -426,7 +428,6 @@ def _gear(t: dict, src: str, fld: str, seat_d: float) -> GearGeometry:
 
 def read_load(t: dict, src: str, fld: str, segs) -> Load:
     """One ``[[loads]]`` table → ``Load`` (InputError naming the file and field)."""
-    from shaftfe.model.fields import check_keys, text
     kind = text(t, "kind", src, fld)
     if kind not in KINDS:
         raise InputError(src, f"{fld}.kind", " | ".join(KINDS), got=kind)
@@ -483,7 +484,6 @@ def read_loads(raw, src: str, segs, part_names=(), ctx=None) -> tuple[Load, ...]
     """The ``[[loads]]`` list (names unique, and not a part's name). A table that gives
     provenance lists (seed / reconstructed / derived / standard) must tag every number, as
     every other table; one without them is a user's load (no provenance recorded)."""
-    from shaftfe.model.fields import PROV_KEYS, provenance, table
     if not isinstance(raw, list):
         raise InputError(src, "loads", "a list of [[loads]] tables", got=type(raw).__name__)
     out = []
@@ -502,8 +502,6 @@ def read_loads(raw, src: str, segs, part_names=(), ctx=None) -> tuple[Load, ...]
 def read_load_cases(raw, src: str, loads: tuple[Load, ...]) -> tuple[LoadCase, ...]:
     """The ``[[load_cases]]`` list: ``name``, ``rpm``, ``factors = {load = f}``, ``channels =
     {channel = value}``, ``check = "static"`` (optional)."""
-    from shaftfe.model.fields import check_keys, is_num, table, text
-    from shaftfe.util.limits import RPM_CEILING
     if not isinstance(raw, list):
         raise InputError(src, "load_cases", "a list of [[load_cases]] tables",
                          got=type(raw).__name__)

@@ -163,15 +163,9 @@ class SolidOptions:
 def mass_and_gyro(mesh, density: float):
     """Scalar consistent mass Ms = ∫ ρ φ_a φ_b and S = ∫ ρ φ_a ∂_θ φ_b (N × N sparse CSR,
     N = nodes), by order-4 quadrature (exact on straight P2 tets)."""
-    from skfem.quadrature import get_quadrature
-
     from shaftfe.fe import assembly as fem
 
-    order = 4 if fem.is_quadratic(mesh) else 2
-    e = fem.scalar_element(mesh)
-    X, _ = get_quadrature(mesh.refdom, order)
-    phi = np.array([e.lbasis(X, a)[0] for a in range(e.doflocs.shape[0])])   # (nloc, nq)
-    dN, wdx = fem.physical_gradients(mesh, order)                              # (ne,nq,nloc,3)
+    phi, dN, wdx = fem.scalar_quadrature(mesh)        # (nloc, nq), (ne,nq,nloc,3), (ne, nq)
     en = fem.element_nodes(mesh)                                               # (nloc, ne)
     xq = np.einsum("iae,aq->eqi", mesh.doflocs[:, en], phi)                    # (ne, nq, 3)
     pw = phi.T[None, :, :] * (density * wdx)[:, :, None]                       # (ne, nq, nloc)

@@ -154,16 +154,11 @@ def legendre_ritz(Ms, x: np.ndarray, degree: int = SHAFT_RITZ_DEGREE) -> np.ndar
 
 
 def mass_times(mesh, density: float, H: np.ndarray) -> np.ndarray:
-    """Ms H for the scalar consistent mass Ms = ∫ ρ φ_a φ_b (the quadrature of
-    ``rotordynamics.solid_rotor.mass_and_gyro``: order 4 on P2) and nodal columns H (N, J),
+    """Ms H for the scalar consistent mass Ms = ∫ ρ φ_a φ_b (``fe.assembly.scalar_quadrature``,
+    as ``rotordynamics.solid_rotor.mass_and_gyro``) and nodal columns H (N, J),
     element by element without assembling Ms (nor the rotor's gyroscopic matrix): the static
     command needs only these few columns (measured: 0.8 s of assembly saved on x2_57)."""
-    from skfem.quadrature import get_quadrature
-    order = 4 if fem.is_quadratic(mesh) else 2
-    e = fem.scalar_element(mesh)
-    X, _ = get_quadrature(mesh.refdom, order)
-    phi = np.array([e.lbasis(X, a)[0] for a in range(e.doflocs.shape[0])])   # (nloc, nq)
-    _, wdx = fem.physical_gradients(mesh, order)                              # (ne, nq)
+    phi, _, wdx = fem.scalar_quadrature(mesh)                                 # (nloc, nq), (ne, nq)
     en = fem.element_nodes(mesh)                                              # (nloc, ne)
     Hq = np.einsum("aq,aej->eqj", phi, H[en])                                 # H at the points
     contrib = np.einsum("aq,eqj->eaj", phi, (density * wdx)[:, :, None] * Hq)  # (ne, nloc, J)
@@ -188,9 +183,10 @@ def shaft_rows(mesh, density: float, degree: int = SHAFT_RITZ_DEGREE) -> np.ndar
 
 
 def spin_seats(variant, mesh, *, part_model: str = DEFAULT_PART_MODEL,
-               shaft: bool = True) -> tuple[SoftSeat, ...]:
+               shaft: bool = True, rows: dict | None = None) -> tuple[SoftSeat, ...]:
     """The co-rotating softening terms of ``variant`` on ``mesh``: one per loaded seat (its
-    parts, ``shaftfe.model.spin``) and, with ``shaft``, the shaft's own mass (``shaft_rows``)."""
+    parts, ``shaftfe.model.spin``) and, with ``shaft``, the shaft's own mass (``shaft_rows``).
+    ``rows``: the seats' RBE3 rows already made for the loads (``seat_rows``)."""
     seats: dict = {}
     for a in variant.attachments:
         groups = [np.asarray(fc) for g, fc in mesh.boundaries.items()
@@ -201,7 +197,7 @@ def spin_seats(variant, mesh, *, part_model: str = DEFAULT_PART_MODEL,
                 spinning_part(a, part_model))
     out = []
     for (x0, x1), (facets, parts) in seats.items():
-        R6 = fem.rigid_rows(mesh, facets, (0.5 * (x0 + x1), 0.0, 0.0))
+        R6 = seat_rows(mesh, facets, (0.5 * (x0 + x1), 0.0, 0.0), rows)
         # Σ over the parts on the seat as one 4 × 4 matrix on (u_y, u_z, θ_y, θ_z), then its
         # eigenvectors as rows (at most four per seat, whatever the number of parts)
         S4 = np.zeros((4, 4))
@@ -269,11 +265,12 @@ def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh
         blocks.append(twist_gauge_block(couplings))
         gauge = blocks[-1].bearing
     blocks = tuple(blocks)
-    loads, forces, patterns = _load_patterns(variant, m, options)
+    rows: dict = {}                # the seats' RBE3 rows: the loads' and the softening's
+    loads, forces, patterns = _load_patterns(variant, m, options, rows)
     f = np.zeros(K.shape[0])
     for p in patterns:
         f += p.factor(REF_RPM) * p.f
-    soft = spin_seats(variant, m) if options.spin_softening else ()
+    soft = spin_seats(variant, m, rows=rows) if options.spin_softening else ()
     return StaticModel(variant, shaft_mesh, options, K, tuple(couplings), blocks, loads,
                        forces, f, time.perf_counter() - t0, soft, patterns, gauge)
 
@@ -328,16 +325,24 @@ def _action_facets(mesh, act) -> np.ndarray:
     return fac
 
 
-def remote_load(mesh, facets, point, F, M, cache: dict | None = None) -> np.ndarray:
-    """f = Rᵀ [F; M]: the load vector of a force F and a moment M about ``point`` delivered
-    through ``facets`` by their RBE3 rows R (``fe.assembly.rigid_rows``). R Φ = I, so the
-    resultant of f is exactly (F, M) about ``point``; ``cache``: R per (facets, point)."""
-    key = (np.asarray(facets).tobytes(), tuple(point))
+def seat_rows(mesh, facets, point, cache: dict | None = None) -> np.ndarray:
+    """The RBE3 rows (6, ndof) of ``facets`` about ``point`` (``fe.assembly.rigid_rows``), made
+    once per (facets, point) in ``cache``: a seat's rows serve its parts' loads and its spin
+    softening."""
+    key = (np.asarray(facets).tobytes(), tuple(float(c) for c in point))
     R = None if cache is None else cache.get(key)
     if R is None:
         R = fem.rigid_rows(mesh, facets, point)
         if cache is not None:
             cache[key] = R
+    return R
+
+
+def remote_load(mesh, facets, point, F, M, cache: dict | None = None) -> np.ndarray:
+    """f = Rᵀ [F; M]: the load vector of a force F and a moment M about ``point`` delivered
+    through ``facets`` by their RBE3 rows R (``seat_rows``). R Φ = I, so the resultant of f is
+    exactly (F, M) about ``point``; ``cache``: R per (facets, point)."""
+    R = seat_rows(mesh, facets, point, cache)
     return R.T @ np.concatenate([np.asarray(F, dtype=float), np.asarray(M, dtype=float)])
 
 
@@ -347,7 +352,7 @@ def resultant(mesh, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return f3.sum(axis=0), np.cross(mesh.doflocs.T, f3).sum(axis=0)
 
 
-def _load_patterns(variant, m, options: StaticOptions):
+def _load_patterns(variant, m, options: StaticOptions, rows: dict | None = None):
     """({action name: vector}, {action name: force}, patterns): every action of the variant
     (``model.loads.actions``) as a load vector, summed per pattern."""
     acts, body = loadmodel.actions(variant, seed_placement=options.seed_load_case)
@@ -356,7 +361,7 @@ def _load_patterns(variant, m, options: StaticOptions):
     vec: dict[tuple, np.ndarray] = {}
     meta: dict[tuple, tuple] = {}
     face_cache: dict = {}          # facet bases shared by parts on the same seat
-    rows: dict = {}
+    rows = {} if rows is None else rows
 
     def add(item, name: str, v: np.ndarray) -> None:
         own = getattr(item, "factor_name", item.name)
