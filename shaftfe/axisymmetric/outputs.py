@@ -51,17 +51,22 @@ def revolved_fields(sol, scale: float, sectors: int = SECTORS):
     return pts, cells, disp, vm
 
 
-def write_outputs(variant_arg: str, variant, opts, res, rpms, out) -> dict:
+def write_revolved_vtu(sol, scale: float, path):
+    """The meridian solution ``sol`` × ``scale`` revolved (``revolved_fields``) into ``path``:
+    point data ``displacement_mm`` and ``von_mises_MPa``, cell data ``region`` 0."""
     from shaftfe.io.vtu import write_point_fields
+    pts, cells, disp, vm = revolved_fields(sol, scale)
+    write_point_fields(pts, [("wedge", cells)], [np.zeros(cells.shape[0], dtype=np.int32)],
+                       path, {"displacement_mm": disp, "von_mises_MPa": vm})
+    return path
+
+
+def write_outputs(variant_arg: str, variant, opts, res, rpms, out) -> dict:
     from shaftfe.util.atomic import write_atomic
     from shaftfe.util.notices import collected
     from shaftfe.util.versions import package_versions
     rpm_vtu = rpms[0]
-    s = res.case(rpm_vtu).scale
-    pts, cells, disp, vm = revolved_fields(res.solution, s)
-    path = out / "result.vtu"
-    write_point_fields(pts, [("wedge", cells)], [np.zeros(cells.shape[0], dtype=np.int32)],
-                       path, {"displacement_mm": disp, "von_mises_MPa": vm})
+    path = write_revolved_vtu(res.solution, res.case(rpm_vtu).scale, out / "result.vtu")
     opts_d = {**asdict(opts), "level": opts.level_name}
     summary = {
         "inputs": {"variant": variant_arg, "rpm": rpms, "model": "axisymmetric",

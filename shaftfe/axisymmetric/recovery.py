@@ -165,19 +165,25 @@ class Surface:
 def synthesize(parts, theta: np.ndarray, shear: np.ndarray) -> np.ndarray:
     """Σ over harmonics of amplitudes × trig factors: ``parts`` = [(n, sym (6, k), anti (6, k)
     or None)], θ (q,) in rad → (6, k, q)."""
-    first = parts[0][1]
-    out = np.zeros((*first.shape, theta.size))
+    return synthesize_at([(n, s[:, :, None], None if a is None else a[:, :, None])
+                          for n, s, a in parts], np.asarray(theta)[None, :], shear)
+
+
+def synthesize_at(parts, theta: np.ndarray, shear: np.ndarray) -> np.ndarray:
+    """The same sum with amplitudes (6, *shape) and angles θ broadcastable to ``shape``: one
+    angle per point (a 3D point at θ = atan2(z, y)) or a grid (amplitudes (6, k, 1), θ (1, q))."""
+    theta = np.asarray(theta, dtype=float)
+    sh = shear.reshape((6, *(1,) * theta.ndim))
+    out = 0.0
     for n, sym, anti in parts:
-        c, s = np.cos(n * theta), np.sin(n * theta)
         if n == 0:
-            out += sym[..., None]
+            out = out + sym
             continue
-        fs = np.where(shear[:, None], s[None], c[None])          # (6, q)
-        out += sym[:, :, None] * fs[:, None, :]
+        c, s = np.cos(n * theta)[None], np.sin(n * theta)[None]
+        out = out + sym * np.where(sh, s, c)
         if anti is not None:
-            fa = np.where(shear[:, None], -c[None], s[None])
-            out += anti[:, :, None] * fa[:, None, :]
-    return out
+            out = out + anti * np.where(sh, -c, s)
+    return out * np.ones((1, *theta.shape))
 
 
 def parabola_peak(x, y) -> tuple[float, float]:
@@ -196,24 +202,34 @@ def parabola_peak(x, y) -> tuple[float, float]:
 
 
 def displacement(harmonics, nodes: np.ndarray, theta: np.ndarray) -> np.ndarray:
-    """(3, k, q) Cartesian displacement (x, y, z) at ``nodes`` and angles θ (rad): each
-    harmonic's U_x, U_r, U_θ with its trig factors (``kernels``: U_x, U_r ∝ cos nθ,
-    U_θ ∝ sin nθ in the symmetric part, every component × 1 for n = 0; sin nθ and −cos nθ in
-    the antisymmetric part), u_r and u_θ rotated to y, z."""
-    ux, ur, ut = (np.zeros((nodes.size, theta.size)) for _ in range(3))
-    for h in harmonics:
-        c, s = np.cos(h.n * theta)[None], np.sin(h.n * theta)[None]
-        U = h.sym.reshape(-1, 3)[nodes]
-        ux += U[:, [0]] * c
-        ur += U[:, [1]] * c
-        ut += U[:, [2]] * (s if h.n else 1.0)        # n = 0: torsion, u_θ = U_θ
-        if h.anti is not None:
-            V = h.anti.reshape(-1, 3)[nodes]
-            ux += V[:, [0]] * s
-            ur += V[:, [1]] * s
-            ut -= V[:, [2]] * c
-    c, s = np.cos(theta)[None], np.sin(theta)[None]
-    return np.stack([ux, ur * c - ut * s, ur * s + ut * c])
+    """(3, k, q) Cartesian displacement (x, y, z) at ``nodes`` and angles θ (rad)
+    (``displacement_at`` on the grid nodes × θ)."""
+    amps = [(h.n, h.sym.reshape(-1, 3)[nodes].T[:, :, None],
+             None if h.anti is None else h.anti.reshape(-1, 3)[nodes].T[:, :, None])
+            for h in harmonics]
+    return displacement_at(amps, np.asarray(theta)[None, :])
+
+
+def displacement_at(amps, theta: np.ndarray) -> np.ndarray:
+    """(3, *shape) Cartesian displacement from each harmonic's amplitudes (U_x, U_r, U_θ)
+    (3, *shape) of its symmetric and antisymmetric parts, ``amps`` = [(n, sym, anti | None)],
+    at angles θ broadcastable to ``shape`` (``kernels``: U_x, U_r ∝ cos nθ, U_θ ∝ sin nθ in the
+    symmetric part, every component × 1 for n = 0; sin nθ and −cos nθ in the antisymmetric
+    part), u_r and u_θ rotated to y, z."""
+    theta = np.asarray(theta, dtype=float)
+    ux = ur = ut = 0.0
+    for n, U, V in amps:
+        c, s = np.cos(n * theta), np.sin(n * theta)
+        ux = ux + U[0] * c
+        ur = ur + U[1] * c
+        ut = ut + U[2] * (s if n else 1.0)        # n = 0: torsion, u_θ = U_θ
+        if V is not None:
+            ux = ux + V[0] * s
+            ur = ur + V[1] * s
+            ut = ut - V[2] * c
+    c, s = np.cos(theta), np.sin(theta)
+    one = np.ones(theta.shape)
+    return np.stack([ux * one, ur * c - ut * s, ur * s + ut * c])
 
 
 def principal_max_local(s: np.ndarray) -> np.ndarray:

@@ -21,7 +21,7 @@ from shaftfe.commands._common import (
 )
 from shaftfe.errors import InputError
 from shaftfe.solid.levels import LEVEL_NAMES
-from shaftfe.static import MODELS
+from shaftfe.static import STATIC_MODELS
 from shaftfe.util.fmt import life
 
 
@@ -45,10 +45,12 @@ def register(sub) -> None:
                    help="run the variant's [[load_cases]] entry NAME (its rpm and factors) "
                    "instead of --rpm")
     add_engine_option(p)
-    p.add_argument("--model", default="solid", choices=MODELS,
-                   help="solid: 3D P2 tets (default); axisymmetric: the body of revolution in "
-                   "Fourier harmonics on a 2D meridian mesh (keyways and the hex socket left "
-                   "out; says which peaks they affect)")
+    p.add_argument("--model", default="zoned", choices=STATIC_MODELS,
+                   help="zoned (default): the axisymmetric model of the whole shaft, 3D P2 "
+                   "submodels only in the zones of the keyways and the hex socket, driven by "
+                   "the global field at their cuts; solid: the full 3D P2 model (the "
+                   "reference); axisymmetric: the body of revolution alone (keyways and the "
+                   "hex socket left out; says which peaks they affect)")
     p.add_argument("--level", default="default", help="mesh level: " + " | ".join(LEVEL_NAMES))
     p.add_argument("--order", type=int, default=2, help="element order 1 | 2 (default 2)")
     p.add_argument("--rigid-supports", action="store_true",
@@ -113,6 +115,8 @@ def run(args) -> int:
                          got=args.solver)
     if args.model == "axisymmetric":
         return _run_axisymmetric(args, rpms, variant)
+    if args.model == "zoned":
+        return _run_zoned(args, rpms, variant)
     from shaftfe.static import cache as static_cache
     from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
@@ -184,6 +188,69 @@ def _run_axisymmetric(args, rpms, variant) -> int:
         summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
     return _report(args, summary, lambda: (_print_overrides(variant),
                                            _print_axi(res, opts, out, _corners(variant))))
+
+
+def _run_zoned(args, rpms, variant) -> int:
+    from pathlib import Path
+
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.util.atomic import staged_dir
+    from shaftfe.zoned.outputs import write_outputs
+    from shaftfe.zoned.solve import solve_zoned
+    for flag, bad in (("--estimate-error", args.estimate_error),
+                      ("--body-force", args.body_force)):
+        if bad:
+            raise InputError(flag, flag, "not with --model zoned (the default): use "
+                             "--model solid")
+    opts = StaticOptions(level=args.level, order=args.order, rigid_supports=args.rigid_supports,
+                         load_distribution=args.load_distribution,
+                         seed_load_case=args.seed_load_case, solver=args.solver,
+                         exclude_mm=args.exclude_mm, spin_softening=args.spin_softening)
+    out = Path(args.out) if args.out else \
+        Path("reports") / out_name(variant.name, variant.overrides) / "static"
+    case = getattr(args, "case", None)
+    with staged_dir(out) as stage:             # every file or none
+        res = solve_zoned(variant, rpms, opts, case=case)
+        summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
+    return _report(args, summary, lambda: (_print_overrides(variant),
+                                           _print_zoned(res, opts, out, _corners(variant))))
+
+
+def _print_zoned(res, opts, out, corners=()) -> None:
+    from shaftfe.solid.plan import sharp_mark
+    g = res.global_result
+    print(f"variant {res.variant}: zoned — axisymmetric global ({g.n_nodes} meridian nodes, "
+          f"harmonics n = 0..{g.harmonics[-1]}) + {len(res.zones)} 3D P{opts.order} submodel"
+          f"{'s' if len(res.zones) != 1 else ''} at {opts.level} "
+          f"({sum(z.n_dofs for z in res.zones)} dofs), "
+          f"{'rigid supports' if opts.rigid_supports else 'bearing springs'}, "
+          f"{res.run['total_seconds']:.2f} s")
+    print(f"load case: {opts.load_case}")
+    print_table(["zone", "features", "x mm", "cut at mm", "dofs", "cut check %", "grown"],
+                [[z.name, ", ".join(z.features), f"{z.x_mm[0]:g} … {z.x_mm[1]:g}",
+                  ", ".join(f"{x:g}" for x in z.cuts_mm) or "-", z.n_dofs,
+                  max((100 * max(c.vm_diff_rel, c.sxx_diff_rel) for c in z.cut_checks),
+                      default=0.0), z.grown] for z in res.zones])
+    for c in res.cases:
+        print()
+        print_table(["bearing", "x mm", "|F| N", "L10h h"],
+                    [[b.name, b.x_mm, b.F_radial_N, life(b.L10h)] for b in c.bearings],
+                    title=f"{c.rpm:g} rpm, " + (f"case {c.case!r}" if c.case else
+                                                opts.load_case) + ": bearing reactions "
+                    "(global model)")
+        _at_rest(c.rpm)
+        print(f"equilibrium residual {c.equilibrium_residual:.1e}")
+        print_table(["station", "x mm", "deflection µm"],
+                    [r[:3] for r in _station_rows(c.stations, {})])
+        rows = [[p.region, p.model, p.von_mises_MPa, p.max_principal_MPa, p.xyz_mm[0],
+                 sharp_mark(corners, p.xyz_mm)]
+                for p in c.peaks if p.kind not in ("end", "seat", "bearing_seat")
+                and p.region != "surface"]
+        print_table(["region", "model", "von Mises MPa", "max principal MPa", "x mm", "note"],
+                    rows)
+    for n in res.notes:
+        print(f"note: {n}")
+    print(f"\nwrote {out / 'result.vtu'}, the zones' zone_*.vtu, {out / 'summary.json'}")
 
 
 def _print_axi(res, opts, out, corners=()) -> None:

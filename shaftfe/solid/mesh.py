@@ -59,7 +59,7 @@ from shaftfe.solid.levels import DEFAULT_LEVEL, MeshLevel, mesh_level
 from shaftfe.solid.plan import Solid, prepare
 from shaftfe.util import paths
 
-__all__ = ["ShaftMesh", "build_mesh", "cache_path", "mesh_key", "mesh_plan"]
+__all__ = ["ShaftMesh", "build_mesh", "build_solid_mesh", "cache_path", "mesh_key", "mesh_plan"]
 
 CACHE_FORMAT = 3     # 2: bearing groups = the ring's contact band (chamfers off)
 #                      3: deterministic P2 repair (_untangle) instead of Gmsh's HighOrder
@@ -140,16 +140,25 @@ def build_mesh(variant, level: str | MeshLevel = DEFAULT_LEVEL, order: int = 2, 
     computed by a beam pass (``shaftfe.beam.planes.hot_axes``: the pipeline's callers pass
     it); missing fillets (or None for the argument) take ``hot_axis``, the line of the loads
     when they all act along one. Rounded to 0.1° into the plan (and so the cache key)."""
-    t0 = time.perf_counter()
     level = mesh_level(level)
     _check_order(order)
     sol = mesh_plan(variant, level, hot_axes)    # InputError before gmsh is touched
+    return build_solid_mesh(sol, level, order, cache_dir, use_cache, variant.name)
+
+
+def build_solid_mesh(sol: Solid, level: str | MeshLevel = DEFAULT_LEVEL, order: int = 2,
+                     cache_dir=None, use_cache: bool = True, name: str = "") -> ShaftMesh:
+    """Mesh the solid plan ``sol`` (a whole shaft's ``mesh_plan``, or a 3D submodel's
+    ``solid.plan.clip``), cached by the plan's content like ``build_mesh``."""
+    t0 = time.perf_counter()
+    level = mesh_level(level)
+    _check_order(order)
     key = mesh_key(sol, level, order, gmsh_version())
     path = cache_path(key, cache_dir)
     if use_cache and path.exists():
         data = _load(path, key)
         if data is not None:
-            return _finish(data, variant.name, level.name, order, key, t0, True)
+            return _finish(data, name or sol.name, level.name, order, key, t0, True)
     data = _generate(sol, level, order)
     data["meta"]["key"] = key
     if use_cache:
@@ -157,7 +166,7 @@ def build_mesh(variant, level: str | MeshLevel = DEFAULT_LEVEL, order: int = 2, 
             _save(path, data)
         except OSError:
             pass                                  # a read-only cache must not break meshing
-    return _finish(data, variant.name, level.name, order, key, t0, False)
+    return _finish(data, name or sol.name, level.name, order, key, t0, False)
 
 
 # --------------------------------------------------------------------------------------

@@ -313,6 +313,59 @@ def prepare(variant) -> Solid:
                  tuple(slots), tuple(seats), hx, tuple(prof))
 
 
+def clip(sol: Solid, x0: float, x1: float) -> Solid:
+    """The plan of the part of ``sol`` on [x0, x1]: a 3D submodel's solid (``shaftfe.zoned``).
+    Segments are cut at x0 and x1; the fillets, shoulders, keyways, seats and the hex socket
+    inside are kept; the new end faces (groups ``end:left`` / ``end:right``) are the cut faces
+    where x0 > ``sol.x_left`` or x1 < ``sol.x_right``. The caller places the cuts on straight
+    parts clear of every fillet, seat and cut (``zoned.zones``): a ValueError otherwise."""
+    import dataclasses
+    x0, x1 = max(x0, sol.x_left), min(x1, sol.x_right)
+    idx = [i for i, (a, b) in enumerate(sol.segment_x) if b > x0 + TOL and a < x1 - TOL]
+    for x in (x0, x1):
+        inner = sol.x_left + TOL < x < sol.x_right - TOL
+        if inner and not any(p.x0 + TOL < x < p.x1 - TOL for p in sol.parts):
+            raise ValueError(f"cut at x = {x:g} mm not on a straight part")
+    parts, new_part = [], {}
+    for k, i in enumerate(idx):
+        p = sol.parts[i]
+        q = dataclasses.replace(p, index=k, x0=max(p.x0, x0), x1=min(p.x1, x1))
+        parts.append(q)
+        new_part[p] = q
+
+    def inside(a: float, b: float) -> bool:
+        return a >= x0 - TOL and b <= x1 + TOL
+
+    def across(a: float, b: float) -> bool:
+        return a < x0 - TOL < b or a < x1 - TOL < b - 2 * TOL
+
+    seats = []
+    for st in sol.seats:
+        if inside(st.x0, st.x1):
+            seats.append(dataclasses.replace(st, part=new_part[st.part]))
+        elif across(st.x0, st.x1):
+            raise ValueError(f"cut through seat {st.name}")
+    fillets = tuple(f for f in sol.fillets if x0 + TOL < f.x_shoulder < x1 - TOL)
+    keep = {f.segment for f in fillets}
+    hx = sol.hex
+    if hx is not None and not ((hx.end == "left" and x0 <= sol.x_left + TOL)
+                               or (hx.end == "right" and x1 >= sol.x_right - TOL)):
+        hx = None
+    return dataclasses.replace(
+        sol, length=x1 - x0, x_left=x0, x_right=x1,
+        radii=tuple(sol.radii[i] for i in idx),
+        segment_names=tuple(sol.segment_names[i] for i in idx),
+        segment_x=tuple((max(sol.segment_x[i][0], x0), min(sol.segment_x[i][1], x1))
+                        for i in idx),
+        fillets=fillets,
+        shoulders=tuple(s for s in sol.shoulders if x0 + TOL < s.x < x1 - TOL),
+        parts=tuple(parts),
+        slots=tuple(k for k in sol.slots if inside(k.x0, k.x1)),
+        seats=tuple(seats), hex=hx,
+        profile_x=tuple(x for x in sol.profile_x if x0 + TOL < x < x1 - TOL),
+        hot_axes_deg=tuple(h for h in sol.hot_axes_deg if h[0] in keep))
+
+
 def profile(sol: Solid) -> list[tuple[str, tuple]]:
     """Outer profile in the (x, r) half plane from the left end (r = 0 excluded): a list of
     ("line", (x, r)) points and ("arc", (x_end, r_end, xc, rc)) pieces, starting from

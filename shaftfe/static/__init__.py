@@ -14,6 +14,9 @@ import importlib
 # The static models every command that takes a static solution accepts as --model: 3D P2
 # tets, or the body of revolution in Fourier harmonics (shaftfe.axisymmetric).
 MODELS = ("solid", "axisymmetric")
+# ``shaftfe static`` also takes the zoned solve (shaftfe.zoned: the axisymmetric global model
+# with 3D submodels where the shaft is not round), its default
+STATIC_MODELS = ("zoned", *MODELS)
 
 _HOME = {
     "StaticOptions": "model", "StaticModel": "model",

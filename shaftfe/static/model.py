@@ -266,7 +266,7 @@ def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh
         gauge = blocks[-1].bearing
     blocks = tuple(blocks)
     rows: dict = {}                # the seats' RBE3 rows: the loads' and the softening's
-    loads, forces, patterns = _load_patterns(variant, m, options, rows)
+    loads, forces, patterns = load_patterns(variant, m, options, rows)
     f = np.zeros(K.shape[0])
     for p in patterns:
         f += p.factor(REF_RPM) * p.f
@@ -352,10 +352,13 @@ def resultant(mesh, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return f3.sum(axis=0), np.cross(mesh.doflocs.T, f3).sum(axis=0)
 
 
-def _load_patterns(variant, m, options: StaticOptions, rows: dict | None = None):
+def load_patterns(variant, m, options: StaticOptions, rows: dict | None = None, keep=None):
     """({action name: vector}, {action name: force}, patterns): every action of the variant
-    (``model.loads.actions``) as a load vector, summed per pattern."""
+    (``model.loads.actions``) as a load vector, summed per pattern. ``keep``: a predicate on
+    the actions (a 3D submodel takes those inside its zone; the body loads act on its mesh)."""
     acts, body = loadmodel.actions(variant, seed_placement=options.seed_load_case)
+    if keep is not None:
+        acts = [a for a in acts if keep(a)]
     factored = {k for c in getattr(variant, "load_cases", ()) for k, _ in c.factors}
     loads, forces = {}, {}
     vec: dict[tuple, np.ndarray] = {}

@@ -1,0 +1,51 @@
+"""Files of a zoned run (``shaftfe static``, the default model): ``summary.json``,
+``result.vtu`` (the global axisymmetric solution revolved to 3D, as ``--model axisymmetric``
+writes it) and one ``zone_<k>.vtu`` per 3D submodel (its P2 tets with ``displacement``,
+``von_mises``, ``max_principal`` and ``stress``, cell data ``region``), all at the first speed;
+each written atomically into ``out`` (the command stages the whole directory)."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import asdict
+
+
+def zone_file(k: int) -> str:
+    return f"zone_{k + 1}.vtu"
+
+
+def write_outputs(variant_arg: str, variant, opts, res, rpms, out) -> dict:
+    from shaftfe.axisymmetric.outputs import SECTORS, write_revolved_vtu
+    from shaftfe.fe import recovery
+    from shaftfe.io.vtu import write_fields_vtu
+    from shaftfe.util.atomic import write_atomic
+    from shaftfe.util.notices import collected
+    from shaftfe.util.versions import package_versions
+    rpm_vtu = rpms[0]
+    scale = res.case(rpm_vtu).scale
+    path = write_revolved_vtu(res.global_result.solution, scale, out / "result.vtu")
+    zones = []
+    for k, (sub, sf) in enumerate(res.fields):
+        stress = sf.stress * scale
+        _, regions = write_fields_vtu(sub.shaft_mesh.mesh, out / zone_file(k), {
+            "displacement": sf.u.reshape(-1, 3) * scale,
+            "von_mises": recovery.von_mises(stress),
+            "max_principal": recovery.principal(stress)[0],
+            "stress": stress.T.copy()})
+        zones.append({"zone": sub.zone.name, "file": zone_file(k), "regions": regions})
+    summary = {
+        "inputs": {"variant": variant_arg, "rpm": rpms, "model": "zoned",
+                   "options": {**asdict(opts), "level": getattr(opts.level, "name",
+                                                                 opts.level)},
+                   "source_files": list(getattr(variant, "source_files", ())),
+                   "overrides": variant.overrides_map},
+        "versions": package_versions("pypardiso"),
+        "vtu": {"file": path.name, "rpm": rpm_vtu, "sectors": SECTORS, "zones": zones,
+                "note": "result.vtu: the global axisymmetric solution revolved to 3D (P1 "
+                "wedges on the P2 corner nodes; nodally averaged von Mises); zone_<k>.vtu: "
+                "each 3D submodel's field; all at vtu.rpm"},
+        **res.to_dict(),
+        "warnings": collected(),
+    }
+    write_atomic(out / "summary.json", json.dumps(summary, indent=2, allow_nan=False) + "\n")
+    return summary

@@ -1,0 +1,246 @@
+"""The zoned static solve (issue #32): the axisymmetric harmonic model of the whole shaft as the
+global model (every load, the supports and the spin softening: reactions, deflections and every
+rotationally symmetric notch), and a 3D submodel for each zone of features that are not bodies
+of revolution (``zones``), driven by the global field at its cuts (``submodel``).
+
+Each zone's cut is checked as submodeling practice asks (``submodel.CutCheck``: the submodel's
+stresses on its cut faces against the global ones). A zone whose check exceeds ``CUT_TOL``
+grows (``zones.grow``: its cut moves outward to the next admissible gap) until it passes or
+reaches the shaft's ends. With ``sensitivity`` the peaks' change when the cut moves outward one
+gap is measured too (one more submodel per zone).
+
+Peaks: a region inside a zone (its faces are in the submodel) takes the submodel's peak; every
+other region the global model's. Reactions, deflections and L10h are the global model's.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict, dataclass, field
+
+from shaftfe.axisymmetric.model import AxiOptions
+from shaftfe.axisymmetric.solve import resolve_case, solve_axisymmetric
+from shaftfe.solid.features import by_region, features
+from shaftfe.static.model import StaticOptions
+from shaftfe.static.solve import _check_rpms
+from shaftfe.util.units import REF_RPM
+from shaftfe.zoned import submodel as sm
+from shaftfe.zoned.zones import grow, plan_zones
+
+# the cut check's bound: the largest difference of von Mises or σ_xx on a cut face, relative
+# to the face's largest global von Mises. Measured on x2_57 (both zones, default level): 5.6 %
+# with the submodel's default elements on the cut face (the difference is the two meshes'
+# discretisation there: it does not fall when the cut moves a gap outward, 5.9 %), so the bound
+# is set above that discretisation floor; a cut inside a feature's field exceeds it
+CUT_TOL = 0.10
+MAX_GROW = 3
+
+
+@dataclass(frozen=True)
+class ZonedPeak:
+    region: str
+    kind: str                         # the feature's kind (``solid.features``), "" if none
+    von_mises_MPa: float
+    xyz_mm: tuple[float, float, float]
+    max_principal_MPa: float
+    max_principal_xyz_mm: tuple[float, float, float]
+    model: str                        # "axisymmetric" or the zone's name
+
+
+@dataclass(frozen=True)
+class ZoneInfo:
+    name: str
+    features: tuple[str, ...]         # the regions of its cut features
+    x_mm: tuple[float, float]
+    cuts_mm: tuple[float, ...]
+    nominal_mm: tuple[float, float]
+    grown: int                        # how many times the cut check grew it
+    n_dofs: int
+    n_elements: int
+    cut_checks: tuple                 # submodel.CutCheck (first speed)
+    seconds: dict
+    sensitivity: dict | None = None   # region -> relative change of its peak, cut moved out
+
+
+@dataclass(frozen=True)
+class ZonedCase:
+    rpm: float
+    scale: float
+    bearings: tuple
+    stations: tuple
+    max_axis_deflection_mm: float
+    peaks: tuple[ZonedPeak, ...]
+    equilibrium_residual: float
+    case: str = ""
+
+
+@dataclass(frozen=True, eq=False)
+class ZonedResult:
+    variant: str
+    variant_hash: str
+    options: StaticOptions
+    axi_level: str
+    zones: tuple[ZoneInfo, ...]
+    cases: tuple[ZonedCase, ...]
+    notes: tuple[str, ...]
+    run: dict
+    global_result: object = field(default=None, repr=False)     # axisymmetric AxiResult
+    fields: tuple = field(default=(), repr=False)               # (SubModel, SubField) per zone
+
+    def case(self, rpm: float) -> ZonedCase:
+        return next(c for c in self.cases if math.isclose(c.rpm, rpm))
+
+    def to_dict(self) -> dict:
+        from shaftfe.util.fmt import json_clean
+        g = self.global_result
+        opts = {**asdict(self.options), "level": getattr(self.options.level, "name",
+                                                         self.options.level)}
+        return json_clean({
+            "model": "zoned", "variant": self.variant, "variant_hash": self.variant_hash,
+            "options": opts, "load_case": self.options.load_case,
+            "global": {"model": "axisymmetric", "level": self.axi_level,
+                       "nodes": g.n_nodes, "elements": g.n_elements,
+                       "harmonics": list(g.harmonics)},
+            "cut_tolerance": CUT_TOL,
+            "zones": [asdict(z) for z in self.zones],
+            "cases": [asdict(c) for c in self.cases],
+            "notes": list(self.notes), "run": self.run,
+        })
+
+
+def _axi_options(o: StaticOptions, axi_level: str) -> AxiOptions:
+    return AxiOptions(level=axi_level, rigid_supports=o.rigid_supports,
+                      load_distribution=o.load_distribution, seed_load_case=o.seed_load_case,
+                      exclude_mm=o.exclude_mm, spin_softening=o.spin_softening)
+
+
+def _bands(variant, options) -> tuple:
+    """The load bands that are not a part's seat (the seats are features already)."""
+    from shaftfe.model.loads import actions
+    acts, _ = actions(variant.with_seed_load_case() if options.seed_load_case else variant,
+                      seed_placement=options.seed_load_case)
+    return tuple(a.band_mm for a in acts if not a.seat)
+
+
+def _solve_zone(variant, plan, zone, options, gsol, rpm, case, cache_dir):
+    sub = sm.build_submodel(variant, plan, zone, options, cache_dir=cache_dir)
+    return sub, sm.solve_speed(sub, gsol, rpm, case)
+
+
+def _zone_peaks(sf: sm.SubField) -> dict:
+    return {p.region: p for p in sf.peaks}
+
+
+def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), *,
+                axi_level: str = "default", case=None, cache_dir=None,
+                sensitivity: bool = False) -> ZonedResult:
+    """Every speed in ``rpm`` (or the load case ``case``): the global axisymmetric solve, then
+    each zone's submodel (one factorisation per zone, every speed)."""
+    from shaftfe.beam.planes import mesh_hot_axes
+    from shaftfe.solid.mesh import mesh_plan
+    t0 = time.perf_counter()
+    case = resolve_case(variant, case)
+    rpms = _check_rpms(case.rpm if case is not None else rpm,
+                       at_rest_loads=any(getattr(ld, "scales_with", "rpm2") != "rpm2"
+                                         for ld in getattr(variant, "loads", ())))
+    v = variant.with_seed_load_case() if options.seed_load_case else variant
+    aopts = _axi_options(options, axi_level)
+    plan = mesh_plan(v, options.level, mesh_hot_axes(v))
+    feats = by_region(features(plan))
+    bands = _bands(variant, options)
+    zones = plan_zones(plan, bands)
+    t_plan = time.perf_counter() - t0
+    cases, infos, fields, notes = [], [], [], []
+    t_global = t_zones = 0.0
+    subs: dict = {}
+    for r in rpms:
+        t1 = time.perf_counter()
+        g = solve_axisymmetric(variant, r, aopts, cache_dir=cache_dir, case=case)
+        gc = g.cases[0]
+        rpm_f = r if math.isclose(gc.scale, 1.0) else g.ref_rpm
+        t_global += time.perf_counter() - t1
+        t1 = time.perf_counter()
+        peaks: dict[str, ZonedPeak] = {}
+        for z0 in zones:
+            z, grown = z0, 0
+            if z0.name in subs:
+                sub = subs[z0.name]
+                sf = sm.solve_speed(sub, g.solution, rpm_f, case)
+            else:
+                sub, sf = _solve_zone(v, plan, z, options, g.solution, rpm_f, case, cache_dir)
+                while sm.cut_error(sf.cut_check) > CUT_TOL and grown < MAX_GROW:
+                    bigger = grow(z, plan, bands)
+                    if bigger is None:
+                        break
+                    z, grown = bigger, grown + 1
+                    sub, sf = _solve_zone(v, plan, z, options, g.solution, rpm_f, case,
+                                          cache_dir)
+                subs[z0.name] = sub
+                sens = _sensitivity(v, plan, z, options, g.solution, rpm_f, case, cache_dir,
+                                    sf, bands) if sensitivity else None
+                infos.append(ZoneInfo(z.name, tuple(f.region for f in z.features),
+                                      (z.x0, z.x1), z.cuts_mm, z.nominal_mm, grown,
+                                      sub.n_dofs, sub.shaft_mesh.n_elements, sf.cut_check,
+                                      {**sub.seconds, **sf.seconds}, sens))
+                fields.append((sub, sf))
+            for p in sf.peaks:
+                peaks[p.region] = ZonedPeak(p.region, _kind(feats, p.region),
+                                            p.von_mises_MPa * gc.scale, p.xyz_mm,
+                                            p.max_principal_MPa * gc.scale,
+                                            p.max_principal_xyz_mm, sub.zone.name)
+        t_zones += time.perf_counter() - t1
+        for p in gc.peaks:
+            if p.region not in peaks and not _in_zone(feats.get(p.region), subs.values()):
+                peaks[p.region] = ZonedPeak(p.region, _kind(feats, p.region), p.von_mises_MPa,
+                                            p.xyz_mm, p.max_principal_MPa,
+                                            p.max_principal_xyz_mm, "axisymmetric")
+        cases.append(ZonedCase(r, gc.scale, gc.bearings, gc.stations,
+                               gc.max_axis_deflection_mm,
+                               tuple(peaks[k] for k in sorted(peaks)), gc.equilibrium_residual,
+                               gc.case))
+        if len(cases) == 1:
+            first_global = g
+    notes.append("global model: the axisymmetric harmonic model of the whole shaft (reactions, "
+                 "deflections, L10h and every rotationally symmetric notch); 3D submodels "
+                 "only in the zones of " + ", ".join(
+                     r for z in zones for r in (f.region for f in z.features)))
+    notes.append("the keyways' and the hex socket's effect on the shaft's stiffness is not in "
+                 "the global model (reactions and deflections are the round shaft's)")
+    notes += [n for n in first_global.notes if "is not modelled" not in n]
+    run = {"plan_seconds": t_plan, "global_seconds": t_global, "zones_seconds": t_zones,
+           "total_seconds": time.perf_counter() - t0}
+    return ZonedResult(variant.name, variant.content_hash, options, axi_level, tuple(infos),
+                       tuple(cases), tuple(notes), run, first_global, tuple(fields))
+
+
+def _kind(feats: dict, region: str) -> str:
+    f = feats.get(region)
+    return f.kind if f is not None else ""
+
+
+def _in_zone(feat, subs) -> bool:
+    """Does the feature lie inside a solved zone (its peak then comes from the submodel)?"""
+    if feat is None:
+        return False
+    return any(s.zone.x0 - 1e-9 <= feat.x_mm[0] and feat.x_mm[1] <= s.zone.x1 + 1e-9
+               for s in subs)
+
+
+def _sensitivity(v, plan, z, options, gsol, rpm, case, cache_dir, sf, bands) -> dict | None:
+    """The relative change of each cut feature's peak when the zone's cuts move outward one
+    admissible gap (None when there is no room)."""
+    bigger = grow(z, plan, bands)
+    if bigger is None:
+        return None
+    _, sf2 = _solve_zone(v, plan, bigger, options, gsol, rpm, case, cache_dir)
+    a, b = _zone_peaks(sf), _zone_peaks(sf2)
+    out = {"cuts_mm": list(bigger.cuts_mm)}
+    for f in z.features:
+        p, q = a.get(f.region), b.get(f.region)
+        if p is not None and q is not None and q.von_mises_MPa > 0:
+            out[f.region] = p.von_mises_MPa / q.von_mises_MPa - 1.0
+    return out
+
+
+__all__ = ["CUT_TOL", "ZoneInfo", "ZonedCase", "ZonedPeak", "ZonedResult", "solve_zoned"]
