@@ -52,7 +52,8 @@ import sys
 import shaftfe.model.loader as V
 V.load_variant = stepped
 from shaftfe.cli import main
-sys.exit(main(["static", "--variant", "stepped", "--level", "coarse", "--rpm", "7000,10000",
+sys.exit(main(["static", "--model", "solid", "--variant", "stepped", "--level", "coarse",
+               "--rpm", "7000,10000",
                "--json", "--out", sys.argv[1]]))
 """
 

@@ -148,7 +148,8 @@ def test_ctrl_c_at_any_stage_leaves_no_partial_output(tmp_path):
     seen_interrupted = 0
     for k, delay in enumerate((0.5, 1.5, 3.0, 4.5, 6.0)):
         out = tmp_path / f"out{k}"
-        p = _shaftfe("static", "--variant", "x2_57", "--level", "coarse", "--no-beam",
+        p = _shaftfe("static", "--model", "solid", "--variant", "x2_57", "--level", "coarse",
+                     "--no-beam",
                      "--out", str(out), cache=tmp_path / "cache")
         time.sleep(delay)
         p.send_signal(signal.SIGINT)

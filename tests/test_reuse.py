@@ -9,7 +9,8 @@ import sys
 def test_fatigue_reuses_the_static_solution_of_shaftfe_static(tmp_path):
     env = {**os.environ, "SHAFTFE_CACHE_DIR": str(tmp_path / "cache"), "MPLBACKEND": "Agg"}
     common = ["--variant", "x2_57", "--level", "coarse"]
-    st = subprocess.run([sys.executable, "-m", "shaftfe", "static", *common, "--seed-load-case",
+    st = subprocess.run([sys.executable, "-m", "shaftfe", "static", "--model", "solid", *common,
+                         "--seed-load-case",
                          "--out", str(tmp_path / "static")], capture_output=True, text=True,
                         env=env)
     assert st.returncode == 0, st.stderr

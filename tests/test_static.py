@@ -468,8 +468,8 @@ def test_cli_writes_vtu_summary_plot(tmp_path, cache, monkeypatch, capsys):
     monkeypatch.setattr(shaftfe.model.loader, "load_variant",
                         lambda name, overrides=(): cylinder())
     out = tmp_path / "o"
-    rc = main(["static", "--variant", "cyl", "--rpm", "7000,10000", "--level", "default",
-               "--out", str(out)])
+    rc = main(["static", "--model", "solid", "--variant", "cyl", "--rpm", "7000,10000",
+               "--level", "default", "--out", str(out)])
     assert rc == 0
     assert "bearing" in capsys.readouterr().out
     m = meshio.read(out / "result.vtu")

@@ -258,7 +258,7 @@ def _mesh(z, geometry, lv, refine, key, from_cache, t0) -> MeridianMesh:
 
 def _generate(geo: MeridianGeometry, lv: AxiLevel, refine: int) -> dict:
     import gmsh
-    gmsh.initialize(["-noenv"], readConfigFiles=False)
+    gmsh.initialize(["-noenv"], readConfigFiles=False, interruptible=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.option.setNumber("General.NumThreads", 1)

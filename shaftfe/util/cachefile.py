@@ -62,3 +62,22 @@ def load(path: Path, key: str, what: str) -> tuple[dict[str, np.ndarray], dict] 
 def _notice(what: str, path: Path, why: str) -> None:
     print(f"shaftfe: note: {what} cache entry {path.name} is damaged ({why}); rebuilding",
           file=sys.stderr)
+
+
+def cached_csr(path: Path, key: str, what: str, make):
+    """The sparse CSR matrix ``make()`` cached at ``path`` under ``key`` (``save`` / ``load``:
+    checksummed, rebuilt when damaged or another entry's; a read-only cache only costs the
+    write)."""
+    import scipy.sparse as sp
+    got = load(path, key, what) if Path(path).exists() else None
+    if got is not None:
+        z, meta = got
+        return sp.csr_matrix((z["data"], z["indices"], z["indptr"]), shape=tuple(meta["shape"]),
+                             copy=False)
+    A = make().tocsr()
+    try:
+        save(path, {"data": A.data, "indices": A.indices, "indptr": A.indptr},
+             {"key": key, "shape": list(A.shape)})
+    except OSError:
+        pass
+    return A

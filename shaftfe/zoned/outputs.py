@@ -1,7 +1,8 @@
 """Files of a zoned run (``shaftfe static``, the default model): ``summary.json``,
-``result.vtu`` (the global axisymmetric solution revolved to 3D, as ``--model axisymmetric``
-writes it) and one ``zone_<k>.vtu`` per 3D submodel (its P2 tets with ``displacement``,
-``von_mises``, ``max_principal`` and ``stress``, cell data ``region``), all at the first speed;
+``result.vtu`` (the global axisymmetric solution's outline revolved to 3D: the surface, with
+the surface-recovered stress its peaks come from) and one ``zone_<k>.vtu`` per 3D submodel (its
+P2 tets with ``displacement``, ``von_mises``, ``max_principal`` and ``stress``, cell data
+``region``), all at the first speed;
 each written atomically into ``out`` (the command stages the whole directory)."""
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ def zone_file(k: int) -> str:
 
 
 def write_outputs(variant_arg: str, variant, opts, res, rpms, out) -> dict:
-    from shaftfe.axisymmetric.outputs import SECTORS, write_revolved_vtu
+    from shaftfe.axisymmetric.outputs import SECTORS, write_surface_vtu
     from shaftfe.fe import recovery
     from shaftfe.io.vtu import write_fields_vtu
     from shaftfe.util.atomic import write_atomic
@@ -23,7 +24,7 @@ def write_outputs(variant_arg: str, variant, opts, res, rpms, out) -> dict:
     from shaftfe.util.versions import package_versions
     rpm_vtu = rpms[0]
     scale = res.case(rpm_vtu).scale
-    path = write_revolved_vtu(res.global_result.solution, scale, out / "result.vtu")
+    path = write_surface_vtu(res.global_result.solution, scale, out / "result.vtu")
     zones = []
     for k, (sub, sf) in enumerate(res.fields):
         stress = sf.stress * scale
@@ -41,8 +42,8 @@ def write_outputs(variant_arg: str, variant, opts, res, rpms, out) -> dict:
                    "overrides": variant.overrides_map},
         "versions": package_versions("pypardiso"),
         "vtu": {"file": path.name, "rpm": rpm_vtu, "sectors": SECTORS, "zones": zones,
-                "note": "result.vtu: the global axisymmetric solution revolved to 3D (P1 "
-                "wedges on the P2 corner nodes; nodally averaged von Mises); zone_<k>.vtu: "
+                "note": "result.vtu: the global axisymmetric solution's outline revolved to 3D "
+                "(quads; the surface-recovered von Mises of its peaks); zone_<k>.vtu: "
                 "each 3D submodel's field; all at vtu.rpm"},
         **res.to_dict(),
         "warnings": collected(),
