@@ -35,6 +35,7 @@ from shaftfe.zoned.zones import grow, plan_zones
 # is set above that discretisation floor; a cut inside a feature's field exceeds it
 CUT_TOL = 0.10
 MAX_GROW = 3
+CUT_CLEAR_D = 0.5      # × the local diameter: a round feature this near a cut is the global's
 
 
 @dataclass(frozen=True)
@@ -185,13 +186,15 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
                                       {**sub.seconds, **sf.seconds}, sens))
                 fields.append((sub, sf))
             for p in sf.peaks:
+                if not _from_zone(feats.get(p.region), sub.zone, plan):
+                    continue
                 peaks[p.region] = ZonedPeak(p.region, _kind(feats, p.region),
                                             p.von_mises_MPa * gc.scale, p.xyz_mm,
                                             p.max_principal_MPa * gc.scale,
                                             p.max_principal_xyz_mm, sub.zone.name)
         t_zones += time.perf_counter() - t1
         for p in gc.peaks:
-            if p.region not in peaks and not _in_zone(feats.get(p.region), subs.values()):
+            if p.region not in peaks and not _in_zone(feats.get(p.region), subs.values(), plan):
                 peaks[p.region] = ZonedPeak(p.region, _kind(feats, p.region), p.von_mises_MPa,
                                             p.xyz_mm, p.max_principal_MPa,
                                             p.max_principal_xyz_mm, "axisymmetric")
@@ -219,12 +222,24 @@ def _kind(feats: dict, region: str) -> str:
     return f.kind if f is not None else ""
 
 
-def _in_zone(feat, subs) -> bool:
-    """Does the feature lie inside a solved zone (its peak then comes from the submodel)?"""
+def _from_zone(feat, zone, plan) -> bool:
+    """Does a region's peak come from the zone's submodel? Its cut features always; any other
+    feature only if it lies at least ``CUT_CLEAR_D`` local diameters from the zone's cuts (a
+    region cut short by a cut, or next to it, is the global model's: its peak there is the
+    cut's, not the feature's)."""
+    if feat is None or feat.cut:
+        return True
+    from shaftfe.zoned.zones import _diameter_at
+    gap = CUT_CLEAR_D * _diameter_at(plan, 0.5 * (feat.x_mm[0] + feat.x_mm[1]))
+    return all(feat.x_mm[0] - x >= gap or x - feat.x_mm[1] >= gap for x in zone.cuts_mm)
+
+
+def _in_zone(feat, subs, plan) -> bool:
+    """Does the feature's peak come from a solved zone's submodel (``_from_zone``)?"""
     if feat is None:
         return False
     return any(s.zone.x0 - 1e-9 <= feat.x_mm[0] and feat.x_mm[1] <= s.zone.x1 + 1e-9
-               for s in subs)
+               and _from_zone(feat, s.zone, plan) for s in subs)
 
 
 def _sensitivity(v, plan, z, options, gsol, rpm, case, cache_dir, sf, bands) -> dict | None:
