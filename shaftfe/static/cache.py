@@ -47,6 +47,7 @@ from pathlib import Path
 
 import numpy as np
 
+from shaftfe.solid.features import is_patch
 from shaftfe.static.result import warn_unresolved_fillets
 from shaftfe.util import paths
 
@@ -164,7 +165,7 @@ def singular_patches(mesh) -> list[np.ndarray]:
     """The patches whose edges are singular by construction: bearing seats (RBE3 coupling) and
     the pressed half of every load seat (pressure edge) — the static command's choice."""
     return [np.asarray(f) for g, f in mesh.boundaries.items()
-            if g.startswith("bearing:") or g.endswith(":pressed")]
+            if is_patch(g)]
 
 
 def facet_cells(mesh) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
