@@ -6,7 +6,8 @@ body of revolution (``round``: the axisymmetric model holds it exactly) and its 
 influence (``zone_mm``). The feature's ``region`` is the name of its faces in both meshes (the
 3D mesh groups of ``solid.occ`` and the meridian groups of ``axisymmetric.mesh``) and the key
 of its peak in every result; consumers choose features by ``kind`` and the flags below, never
-by parsing that name.
+by parsing that name. This module is the one place that spells a region or a seat's mesh group
+(``fillet_region``, ``seat_group``, ...) and reads one back (``kind_of``, ``region_of``).
 
 Zone of influence (Saint-Venant: a self-equilibrated disturbance of a bar decays over about one
 diameter): a cut (keyway, hex socket) or a notch widens its axial extent by the local diameter
@@ -51,6 +52,11 @@ def shoulder_region(segment: str) -> str:
 
 def keyway_region(segment: str, index: int) -> str:
     return f"keyway:{segment}:{index}"
+
+
+def part_seat_region(part: str) -> str:
+    """The region (peak key, station name) of a part's seat."""
+    return f"seat:{part}"
 
 
 def half_group(seat: str, half: str) -> str:
@@ -101,11 +107,6 @@ def _owner(name: str) -> str:
     """What a fillet, shoulder, seat group or end is named after: its segment, part, bearing
     or side."""
     return name.split(":")[1]
-
-
-def part_seat_region(part: str) -> str:
-    """The region (peak key, station name) of a part's seat."""
-    return f"seat:{part}"
 
 
 def seat_region(group: str) -> str:

@@ -14,8 +14,8 @@ plan, level, order, Gmsh version and options, mesh ``CACHE_FORMAT``); the static
 speed; and a fingerprint (sha256) of the source of the modules that compute the stresses
 (``FINGERPRINT_MODULES``: static model, solve and result, fe assembly, facet integrals,
 supports, recovery, surface recovery, the low-rank solve and the regions' naming scheme
-``solid.features``), so a change of the solver code
-is never served a stale result. Bump ``STATIC_CACHE_FORMAT`` when the stored arrays change meaning.
+``solid.features``), so a change of the solver code is never served a stale result. Bump
+``STATIC_CACHE_FORMAT`` when the stored arrays change meaning.
 
 Stored arrays: ``stress_ref`` (6, n) MPa in the order xx yy zz xy yz xz, ``von_mises_ref`` (n,),
 ``xyz`` (3, n) mm, ``excluded`` (node ids of the singular-point rule of
