@@ -132,9 +132,10 @@ def _cross_check(lines: list[str]) -> None:
         if x.name in st3:
             lines.append(f"| deflection {x.name} µm | {st3[x.name].u_mm * 1e3:.2f} | "
                          f"{x.u_mm * 1e3:.2f} | {st3[x.name].u_mm / x.u_mm - 1:+.3%} |")
+    from shaftfe.solid.features import kind_of
     p3 = {p.region: p for p in s.peaks}
     for p in a.peaks:
-        if p.region.startswith("fillet:") and p.region in p3:
+        if kind_of(p.region) == "fillet" and p.region in p3:
             zone = f" (in the zone of {p.omitted_zone})" if p.omitted_zone else ""
             lines.append(f"| {p.region} vM MPa{zone} | {p3[p.region].von_mises_MPa:.2f} | "
                          f"{p.von_mises_MPa:.2f} | "

@@ -367,17 +367,13 @@ def _region_peaks(mesh, vm: np.ndarray, regions: dict, excl: np.ndarray) -> dict
     return out
 
 
-def _patches(mesh) -> list:
-    return [np.asarray(f) for g, f in mesh.boundaries.items()
-            if g.startswith("bearing:") or g.endswith(":pressed")]
-
-
 def compare_static(level: str, rigid: bool, ccx: str, work: Path, mesh_file: Path) -> dict:
     from shaftfe import static
     from shaftfe.fe import assembly as fem
     from shaftfe.fe import recovery
     from shaftfe.io import abaqus, frd
     from shaftfe.model.loader import load_variant
+    from shaftfe.static.cache import singular_patches
     v = load_variant(VARIANT)
     sm = load_mesh(mesh_file)
     m = sm.mesh
@@ -389,7 +385,7 @@ def compare_static(level: str, rigid: bool, ccx: str, work: Path, mesh_file: Pat
     our_runs = [dict(ours["process"], work_s=ours["work_s"], stages=ours["stages"])]
     # elements around every region's peak node (ours and ccx-style) → integration points
     regions = static.region_nodes(m)
-    excl = recovery.excluded_nodes(m, _patches(m))
+    excl = recovery.excluded_nodes(m, singular_patches(m))
     pk_ours = _region_peaks(m, ours["vm"], regions, excl)
     ed = fem.element_nodes(m)
     pk_nodes = np.array(sorted(set(pk_ours.values())))

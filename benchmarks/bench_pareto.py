@@ -199,8 +199,9 @@ def _c_fatigue(spec: dict) -> dict:
 
 def _beam_fillets(variant) -> dict:
     """FE fillet region name -> shoulder x of that fillet (shaftfe.solid.plan's plan)."""
+    from shaftfe.solid.features import fillet_region
     from shaftfe.solid.plan import prepare
-    return {f"fillet:{f.segment}": f.x_shoulder for f in prepare(variant).fillets}
+    return {fillet_region(f.segment): f.x_shoulder for f in prepare(variant).fillets}
 
 
 def _notch_at(res, x: float):

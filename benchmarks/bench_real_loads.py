@@ -26,9 +26,10 @@ RPM = 9500.0
 def axi(v, case=None):
     from shaftfe.axisymmetric.model import AxiOptions
     from shaftfe.axisymmetric.solve import solve_axisymmetric
+    from shaftfe.solid.features import kind_of
     res = solve_axisymmetric(v, None if case else RPM, AxiOptions(), case=case)
     c = res.cases[0]
-    peaks = {p.region: p.von_mises_MPa for p in c.peaks if p.region.startswith("fillet:")}
+    peaks = {p.region: p.von_mises_MPa for p in c.peaks if kind_of(p.region) == "fillet"}
     return {b.name: b.F_radial_N for b in c.bearings}, peaks
 
 

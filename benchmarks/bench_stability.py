@@ -24,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
+from shaftfe.solid.features import kind_of
 from shaftfe.solid.levels import MeshLevel
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -275,7 +276,7 @@ def fillets(lines):
             rows.append([fmt(rho, "g"), sm.n_nodes, "-", "-", "-", err])
             continue
         pk = {p.region: p.von_mises_MPa for p in res.cases[0].peaks}
-        fil = max(v for k, v in pk.items() if k.startswith("fillet:"))
+        fil = max(v for k, v in pk.items() if kind_of(k) == "fillet")
         rows.append([fmt(rho, "g"), sm.n_nodes, f"{sm.min_quality:.3f}",
                      f"{t_mesh:.1f} / {t_sol:.1f}", fmt(fil, ".5g"),
                      f"{res.diagnostics['relative_residual']:.1e} / "

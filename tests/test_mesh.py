@@ -50,6 +50,21 @@ def test_groups_exist_and_match_the_solid(coarse):
     assert np.array_equal(np.sort(m.subdomains["shaft"]), np.arange(m.t.shape[1]))
 
 
+def test_every_face_group_names_one_feature(coarse):
+    """Each face group of the meshed shaft (every kind of feature: fillets, shoulders, a
+    keyway, the hex socket, split part seats, a bearing seat, the ends) reads back through the
+    one naming table (``solid.features``) to the kind of the feature it belongs to, and every
+    feature of the plan has faces in the mesh (issue #32)."""
+    from shaftfe.solid import features as F
+    from shaftfe.solid.plan import prepare
+    by = F.by_region(F.features(prepare(make_variant())))
+    seen = {F.region_of(g) for g in coarse.mesh.boundaries}
+    assert seen == set(by)
+    for g in coarse.mesh.boundaries:
+        assert F.kind_of(g) == by[F.region_of(g)].kind, g
+    assert {f.kind for f in by.values()} == set(F.KINDS)
+
+
 def test_group_areas_coarse(coarse):
     """Area of each face group (P2 facet quadrature) vs the exact area from
     ``expected_areas``: cylinder 2πRL minus the keyway opening ∫∫ dx ds/√(1−s²/R²), fillet

@@ -34,6 +34,7 @@ from shaftfe.axisymmetric.mesh import (
     arc_length_angle,
     mesh_geometry,
 )
+from shaftfe.solid.features import END_LEFT, END_RIGHT, fillet_region, shoulder_region
 
 # the bar's mesh: fillet elements 0.1 ρ (at 0.2 ρ the first level is still pre-asymptotic:
 # measured on D/d 1.5, r/d 0.1, the three levels then spread 5e-3 against 1.6e-4)
@@ -42,18 +43,19 @@ LOADS = ("tension", "bending", "torsion")
 # the fastest credible observed order: P2 stresses converge as h² (h³ at superconvergent
 # points, h⁴ at best for the surface values of smooth fields); beyond, the "order" is noise
 P_MAX = 4.0
+FILLET = fillet_region("step")      # the bar's fillet (its shoulder segment is "step")
 
 
 def stepped_bar(D: float, d: float, rho: float) -> MeridianGeometry:
     r, R = 0.5 * d, 0.5 * D
     L1, L2 = 4 * d, 4 * D
-    cur = [Curve((0.0, 0.0), (0.0, r), ("end:left",)),
+    cur = [Curve((0.0, 0.0), (0.0, r), (END_LEFT,)),
            Curve((0.0, r), (L1 - rho, r), ("surface",)),
-           Curve((L1 - rho, r), (L1, r + rho), ("fillet:step",), (L1 - rho, r + rho), rho)]
+           Curve((L1 - rho, r), (L1, r + rho), (FILLET,), (L1 - rho, r + rho), rho)]
     if R - (r + rho) > 1e-9:
-        cur.append(Curve((L1, r + rho), (L1, R), ("shoulder:step",)))
+        cur.append(Curve((L1, r + rho), (L1, R), (shoulder_region("step"),)))
     cur += [Curve((L1, R), (L1 + L2, R), ("surface",)),
-            Curve((L1 + L2, R), (L1 + L2, 0.0), ("end:right",)),
+            Curve((L1 + L2, R), (L1 + L2, 0.0), (END_RIGHT,)),
             Curve((L1 + L2, 0.0), (0.0, 0.0), ("axis",))]
     return MeridianGeometry(f"step_{D:g}_{d:g}_{rho:g}", tuple(cur), d,
                             bands=((0.0, L1, d), (L1, L1 + L2, D)))
@@ -93,9 +95,9 @@ def solve_bar(D: float, d: float, rho: float, refine: int = 0, level: AxiLevel =
     geo = stepped_bar(D, d, rho)
     mesh = mesh_geometry(geo, level, refine, cache_dir=cache_dir)
     h = hm.assemble(mesh, E, nu, cache_dir=cache_dir)
-    left, right = mesh.group_edges("end:left"), mesh.group_edges("end:right")
+    left, right = mesh.group_edges(END_LEFT), mesh.group_edges(END_RIGHT)
     S = rc.Surface(mesh)
-    fil = [i for i, c in enumerate(geo.curves) if "fillet:step" in c.groups]
+    fil = [i for i, c in enumerate(geo.curves) if FILLET in c.groups]
     on = np.nonzero(np.isin(S.curve, fil) & ~S.kink)[0]
     ax = mesh.axis_nodes()
     a0, a1 = ax[np.argmin(mesh.xr[0][ax])], ax[np.argmax(mesh.xr[0][ax])]
@@ -125,7 +127,7 @@ def solve_bar(D: float, d: float, rho: float, refine: int = 0, level: AxiLevel =
 
 def fillet_peak(bar: BarSolution, values: np.ndarray) -> tuple[float, float]:
     """(peak, angle along the arc °) of ``values`` at the fillet nodes (``_arc_peak``)."""
-    c = next(c for c in bar.geometry.curves if "fillet:step" in c.groups)
+    c = next(c for c in bar.geometry.curves if FILLET in c.groups)
     return _arc_peak(c, bar.mesh.xr[:, bar.surface.nodes[bar.fillet]], values)
 
 

@@ -5,7 +5,7 @@ triangles whose edges on arcs are curved (Gmsh places the mid-side nodes on the 
 solid's faces (``end:left``, ``end:right``, ``fillet:<seg>``, ``shoulder:<seg>``,
 ``bearing:<name>``, ``load:<name>``; a pressed/free half of the 3D model is a θ-range of the
 ``load:`` line here), plus ``axis`` (r = 0) and ``surface`` (the plain cylinder). Keyway seats
-and the hex socket are 3D cuts and are not in the outline (``shaftfe.solid.plan.cut_features``).
+and the hex socket are 3D cuts and are not in the outline (``shaftfe.solid.features.cuts``).
 
 ``mesh_geometry(geometry, level, refine=0)`` meshes it: sizes k_fillet × ρ on every fillet arc
 (and at sharp concave corners, k_fillet × the smaller radius / 10), growing by ``grad`` per mm
@@ -30,6 +30,7 @@ from types import MappingProxyType
 import numpy as np
 
 from shaftfe.errors import InputError
+from shaftfe.solid.features import END_LEFT, END_RIGHT, fillet_region, shoulder_region
 
 CACHE_FORMAT = 1
 
@@ -142,13 +143,13 @@ def shaft_geometry(sol, bands=()) -> MeridianGeometry:
         if kind == "arc":
             xc, rc = float(data[2]), float(data[3])
             f = next(f for f in sol.fillets if abs(abs(xc - f.x_shoulder) - f.rho) < 1e-6)
-            curves.append(Curve(prev, end, (f"fillet:{f.segment}",), (xc, rc), f.rho))
+            curves.append(Curve(prev, end, (fillet_region(f.segment),), (xc, rc), f.rho))
         elif abs(end[0] - prev[0]) <= TOL:           # vertical: an end face or a shoulder
             if abs(prev[0] - sol.x_left) <= TOL:
-                g = ("end:left",)
+                g = (END_LEFT,)
             else:
                 s = shoulder_at.get(round(prev[0], 9))
-                g = (f"shoulder:{s.segment}",) if s else ("shoulder",)
+                g = (shoulder_region(s.segment),) if s else ("shoulder",)
                 if round(prev[0], 9) not in fil:       # a sharp concave corner
                     rs = min(prev[1], end[1])
                     points.append((prev[0], rs, 0.1 * rs))
@@ -159,7 +160,7 @@ def shaft_geometry(sol, bands=()) -> MeridianGeometry:
                       and abs(rs - r) <= TOL) or ("surface",)
             curves.append(Curve(prev, end, g))
         prev = end
-    curves.append(Curve(prev, (sol.x_right, 0.0), ("end:right",)))
+    curves.append(Curve(prev, (sol.x_right, 0.0), (END_RIGHT,)))
     curves = _with_bands(curves, bands, TOL)
     curves.append(Curve((sol.x_right, 0.0), (sol.x_left, 0.0), ("axis",)))
     # seat ends: the traction jumps there (a bearing band's RBE3 traction, a pressure patch)
@@ -206,9 +207,9 @@ def _with_bands(curves: list[Curve], bands, tol: float) -> list[Curve]:
 def cylinder_geometry(R: float, L: float) -> MeridianGeometry:
     """A plain round bar of radius R and length L (groups end:left, surface, end:right, axis):
     the verification geometry of the closed-form tests."""
-    return MeridianGeometry("bar", (Curve((0, 0), (0, R), ("end:left",)),
+    return MeridianGeometry("bar", (Curve((0, 0), (0, R), (END_LEFT,)),
                                     Curve((0, R), (L, R), ("surface",)),
-                                    Curve((L, R), (L, 0), ("end:right",)),
+                                    Curve((L, R), (L, 0), (END_RIGHT,)),
                                     Curve((L, 0), (0, 0), ("axis",))), 2 * R)
 
 

@@ -69,7 +69,7 @@ from shaftfe.axisymmetric.mesh import (
 from shaftfe.errors import InputError, SolverError
 from shaftfe.model.loads import actions, check_torque_path, law_factor, pattern_key
 from shaftfe.model.validate import validate_variant
-from shaftfe.solid.plan import cut_features
+from shaftfe.solid.features import bearing_group, cuts, kind_of, seat_group
 from shaftfe.static.model import DISTRIBUTIONS, load_case_label
 from shaftfe.util.units import REF_RPM, omega, von_mises
 
@@ -167,7 +167,7 @@ def pressure_loads(variant, sol, distribution: str, rpm: float = REF_RPM) -> lis
         F = a.force_N(rpm)
         if F == 0:
             continue
-        st = seats[f"load:{a.name}"]
+        st = seats[seat_group(a.name)]
         p0 = F / (per * st.part.r * (st.x1 - st.x0))
         out.append(SeatLoad(a.name, st.name, float(a.angle_deg), float(F), float(p0)))
     return out
@@ -284,7 +284,7 @@ def _band_group(a, plan) -> str:
     """The mesh group a remote action is delivered through: its part's seat, else its band."""
     from shaftfe.axisymmetric.mesh import BAND_PREFIX
     seats = {st.name: st for st in plan.seats}
-    st = seats.get(f"load:{a.seat}")
+    st = seats.get(seat_group(a.seat))
     if st is not None and np.allclose((st.x0, st.x1), a.band_mm, atol=1e-6):
         return st.name
     return f"{BAND_PREFIX}{a.band_mm[0]:.6g}:{a.band_mm[1]:.6g}"
@@ -390,7 +390,7 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, rpm: float = REF
                                                                                         [])
     coeffs = kn.half_pressure_coefficients(options.load_distribution, options.n_max)
     S = rc.Surface(mesh)
-    bearings = [(b.name, hm.rbe3(h, mesh.group_edges(f"bearing:{b.name}"), b.x_center_mm), b)
+    bearings = [(b.name, hm.rbe3(h, mesh.group_edges(bearing_group(b.name)), b.x_center_mm), b)
                 for b in variant.bearings]
     f0, f1s, f1a, load_sum, torque_sum, load_scale, sn = _right_hand_sides(
         h, mesh, plan, variant, comps, acts, body, loads, coeffs)
@@ -450,7 +450,7 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, rpm: float = REF
         # n ≥ 2: the half-seat pressure patches (the seed's placement), until no fillet's
         # peak changes any more; the remote loads have no n ≥ 2 part (a band's rigid rows)
         zones = [] if options.converge_all_fillets else \
-            [f["zone_mm"] for f in cut_features(plan)]
+            [f.zone_mm for f in cuts(plan)]
         track = _PeakTracker(S, mesh, zones)
         track.add([(n, a @ fac, None if b is None else b @ fac) for n, a, b in cols_s])
         last: list[float] = []
@@ -525,7 +525,7 @@ def _softening(h, mesh, variant, omega2: float):
     P = np.array([[0.0, 1.0], [-1.0, 0.0]])
     soft, centroid = [], []
     for p in spinning_parts(variant):
-        rb = hm.rbe3(h, mesh.group_edges(f"load:{p.name}"), p.x_seat_mm)
+        rb = hm.rbe3(h, mesh.group_edges(seat_group(p.name)), p.x_seat_mm)
         row = rb.uy + p.d_mm * rb.tz
         soft.append((row, -p.mass_t * omega2 * np.eye(2)))
         soft.append((rb.tz, -omega2 * (P @ p.tilt @ P.T)))
@@ -657,7 +657,7 @@ class _PeakTracker:
         ids = {}
         for i, c in enumerate(mesh.geometry.curves):
             for g in c.groups:
-                if g.startswith("fillet:"):
+                if kind_of(g) == "fillet":
                     ids.setdefault(g, []).append(i)
         sets = {g: np.nonzero(np.isin(surface.curve, v) & ~surface.kink)[0]
                 for g, v in ids.items()}

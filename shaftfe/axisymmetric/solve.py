@@ -25,7 +25,16 @@ from shaftfe.axisymmetric.mesh import BAND_PREFIX, arc_length_angle
 from shaftfe.axisymmetric.model import AxiOptions, AxiSolution, solve_model, superpose
 from shaftfe.errors import InputError
 from shaftfe.model.bearing_life import l10h
-from shaftfe.solid.plan import cut_features
+from shaftfe.solid.features import (
+    SEAT_KINDS,
+    bearing_group,
+    cuts,
+    kind_of,
+    omitted_entry,
+    part_seat_region,
+    region_of,
+    seat_region,
+)
 from shaftfe.static.result import BearingReaction, Station
 from shaftfe.util.units import REF_RPM, rpm2_scale, von_mises
 
@@ -141,9 +150,7 @@ def regions(mesh) -> dict[str, list[int]]:
         for g in c.groups:
             if g == "axis" or g.startswith(BAND_PREFIX):
                 continue
-            name = ("seat:" + g.split(":", 1)[1] if g.startswith("load:")
-                    else "seat:" + g if g.startswith("bearing:") else g)
-            out.setdefault(name, []).append(i)
+            out.setdefault(region_of(g), []).append(i)
     return out
 
 
@@ -153,7 +160,7 @@ def excluded_nodes(sol: AxiSolution, exclude_mm: float) -> np.ndarray:
     mesh, S = sol.mesh, sol.surface
     ends = []
     for c in mesh.geometry.curves:
-        if any(g.startswith(("load:", "bearing:", BAND_PREFIX)) for g in c.groups):
+        if any(kind_of(g) in SEAT_KINDS or g.startswith(BAND_PREFIX) for g in c.groups):
             ends += [c.start, c.end]
     mask = np.zeros(S.nodes.size, dtype=bool)
     if not ends:
@@ -177,7 +184,7 @@ def loaded_seat_angles(sol: AxiSolution) -> dict[str, list[float]]:
     """Region name of each loaded seat -> the angles (°) of the forces pressing on it."""
     out: dict[str, list[float]] = {}
     for ld in sol.loads:
-        out.setdefault("seat:" + ld.group.split(":", 1)[1], []).append(ld.angle_deg)
+        out.setdefault(seat_region(ld.group), []).append(ld.angle_deg)
     return out
 
 
@@ -347,12 +354,12 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
     sol = solve_model(variant, options, rpm=ref_rpm, cache_dir=cache_dir, case=case)
     v = sol.variant
     t1 = time.perf_counter()
-    omitted = tuple(cut_features(sol.plan))
-    stations = [(f"seat:{a.name}", a.seat_center_mm) for a in v.attachments
+    omitted = tuple(omitted_entry(f) for f in cuts(sol.plan))
+    stations = [(part_seat_region(a.name), a.seat_center_mm) for a in v.attachments
                 if a.force_N(REF_RPM) != 0]
     stations += [(f"load:{ld.name}", ld.x_mm) for ld in getattr(v, "loads", ())
                  if ld.kind != "gravity"]
-    stations += [(f"bearing:{name}", rb.x_mm) for name, rb, _ in sol.bearings]
+    stations += [(bearing_group(name), rb.x_mm) for name, rb, _ in sol.bearings]
     if v.clearance_station_x_mm is not None:
         stations.append(("clearance", float(v.clearance_station_x_mm)))
     x0, x1 = float(sol.mesh.xr[0].min()), float(sol.mesh.xr[0].max())
@@ -378,7 +385,7 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
              f"[{f['zone_mm'][0]:g}, {f['zone_mm'][1]:g}] mm lie in its zone of influence: "
              "use the 3D path there" for f in omitted]
     notes.append("threads are plain cylinders at their modelled diameter (as in the 3D path)")
-    others = sorted(p.region for p in cases[0].peaks if p.region.startswith("fillet:")
+    others = sorted(p.region for p in cases[0].peaks if kind_of(p.region) == "fillet"
                     and p.region not in sol.truncation_fillets)
     if others and sol.loads:
         notes.append(f"harmonic series cut at n = {sol.n_used} when the fillets "

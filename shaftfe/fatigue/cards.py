@@ -17,6 +17,7 @@ from pathlib import Path
 from shaftfe.errors import InputError
 from shaftfe.fatigue import fkm
 from shaftfe.model.loader import material_record
+from shaftfe.solid.features import kind_of
 from shaftfe.util.paths import COMMON_DIR
 
 CARDS_FILE = COMMON_DIR / "strength.toml"        # the surfaces
@@ -95,9 +96,10 @@ def load_surfaces(path: str | Path = CARDS_FILE) -> Surfaces:
 def region_rz(region: str, surf: Surfaces, ground_fillets: frozenset[str]) -> float:
     """R_z of a named surface region: bearing seats and the fillets next to them ground,
     keyways milled, the rest finish-turned."""
-    if region.startswith("seat:bearing"):
+    kind = kind_of(region)
+    if kind == "bearing_seat":
         return surf.seat_rz_um
-    if region.startswith("keyway:"):
+    if kind == "keyway":
         return surf.keyway_rz_um
     if region in ground_fillets:
         return surf.fillet_rz_um

@@ -40,8 +40,10 @@ from shaftfe.fatigue.assess import (
 )
 from shaftfe.fatigue.kernels import BETA_MIN, equivalent_stress, von_mises
 from shaftfe.fatigue.sn import FatigueMaterial
+from shaftfe.solid.features import kind_of
 
-_REGION_PRIORITY = ("fillet:", "keyway:", "shoulder:", "seat:")
+# a node on several regions is labelled by the first of its regions' kinds in this order
+_KIND_PRIORITY = {"fillet": 0, "keyway": 1, "shoulder": 2, "seat": 3, "bearing_seat": 3}
 
 
 @dataclass(frozen=True)
@@ -119,9 +121,7 @@ def _label(i: int, regions: dict[str, np.ndarray], member: dict[str, np.ndarray]
     inside = [name for name in regions if member[name][i]]
 
     def rank(name: str) -> tuple[int, str]:
-        k = next((j for j, p in enumerate(_REGION_PRIORITY) if name.startswith(p)),
-                 len(_REGION_PRIORITY))
-        return k, name
+        return _KIND_PRIORITY.get(kind_of(name), len(_KIND_PRIORITY)), name
     return tuple(sorted(inside, key=rank))
 
 

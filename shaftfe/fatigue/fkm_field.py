@@ -33,8 +33,10 @@ import numpy as np
 
 from shaftfe.fatigue import fkm
 from shaftfe.fatigue.cards import StrengthCard, Surfaces, region_rz
+from shaftfe.solid.features import NOTCH_KINDS, is_notch, kind_of
 
-REGION_PREFIXES = ("fillet:", "keyway:", "seat:bearing")
+# the regions FKM assesses: the notches and the bearing seats (ground, press-fitted)
+ASSESSED_KINDS = NOTCH_KINDS | {"bearing_seat"}
 N_CANDIDATES = 3          # per region and sign: the highest-stress nodes assessed
 N_DEPTHS = 32             # profile samples
 
@@ -242,7 +244,7 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
                  ground_fillets: frozenset[str], rule: str = "modified", j_D: float = 1.5,
                  damage_sum: float = 0.3, design_life_blocks: float = 1e7,
                  cycles=None) -> FkmResult:
-    """Every region of ``REGION_PREFIXES`` of the static reference ``ref`` under ``history``.
+    """Every region of the ``ASSESSED_KINDS`` of the static reference ``ref`` under ``history``.
     ``cycles``: the rainflow count of ``history`` re-referenced to ``ref.ref_rpm`` where the
     caller has it (the seed method's, ``FatigueField.result.cycles``): counted once."""
     from shaftfe.fatigue.counting import count_cycles
@@ -262,7 +264,7 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
     rules = fkm.MINER
     out, notes, hints, assessed = [], [], {}, []   # hints: the last spectrum's order, per sign
     for name in sorted(ref.regions):
-        if not name.startswith(REGION_PREFIXES):
+        if kind_of(name) not in ASSESSED_KINDS:
             continue
         nodes = np.asarray(ref.regions[name], dtype=np.int64)
         nodes = nodes[~excluded[nodes]]
@@ -272,7 +274,7 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
         sv = signed[nodes]              # the highest tensile and the highest compressive
         cand = np.unique(np.concatenate([nodes[np.argsort(-sv)[:N_CANDIDATES]],
                                          nodes[np.argsort(sv)[:N_CANDIDATES]]]))
-        notched = not name.startswith("seat:")
+        notched = is_notch(name)
         rz = region_rz(name, surfaces, ground_fillets)
         best = None
         for i in cand:

@@ -18,6 +18,7 @@ import numpy as np
 
 from shaftfe.errors import InputError
 from shaftfe.fatigue import din743, fkm
+from shaftfe.solid.features import fillet_region
 from shaftfe.util.units import REF_RPM
 
 
@@ -79,7 +80,7 @@ def ground_fillets(variant) -> frozenset[str]:
     for i, s in enumerate(segs[:-1]):
         if s.fillet_mm > 0 and (s.name.startswith("bearing_seat")
                                 or segs[i + 1].name.startswith("bearing_seat")):
-            out.add(f"fillet:{s.name}")
+            out.add(fillet_region(s.name))
     return frozenset(out)
 
 
@@ -182,7 +183,7 @@ def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
             "DIN 743-2 formula (no converged Kt for this geometry)"
         out.append((nt.x_mm, din743.Notch(f"shoulder {seg.name}", "shoulder", nt.d_mm,
                                           nt.D_mm, nt.r_mm, al, src,
-                                          region_rz(f"fillet:{seg.name}", surfaces, gf),
+                                          region_rz(fillet_region(seg.name), surfaces, gf),
                                           nt.D_mm), nt.d_mm, 0.0))
     for s in variant.segments:
         for kw in s.keyways:

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from shaftfe.fe import assembly as fem
+from shaftfe.solid.features import bearing_group
 
 HOLD_TWIST = ("all", "axial", "none")   # bearings that hold θ_x: every one, the axial one, none
 
@@ -72,7 +73,7 @@ _DOF = {"u_x": 0, "u_y": 1, "u_z": 2, "θ_x": 3, "θ_y": 4, "θ_z": 5}
 def couple_bearing(mesh, bearing, *, rigid: bool = False, hold_twist: bool = True,
                    group: str | None = None) -> BearingCoupling:
     """Build the RBE3 coupling of ``bearing`` (a ``variant.Bearing``) on its seat group."""
-    group = group or f"bearing:{bearing.name}"
+    group = group or bearing_group(bearing.name)
     facets = np.asarray(mesh.boundaries[group])
     x = float(bearing.x_center_mm)
     G = fem.rigid_rows(mesh, facets, (x, 0.0, 0.0))

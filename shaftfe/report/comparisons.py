@@ -5,7 +5,8 @@ from __future__ import annotations
 
 from shaftfe.report.options import OTHER_LEVEL
 from shaftfe.report.results import Comparison, ErrorEstimate
-from shaftfe.static.benchmark import bench_matches
+from shaftfe.solid.features import kind_of
+from shaftfe.static.benchmark import MEASURED_FILLETS, bench_matches
 
 
 def _richardson_rows(c0: dict, ee: dict) -> list[ErrorEstimate]:
@@ -22,7 +23,7 @@ def _richardson_rows(c0: dict, ee: dict) -> list[ErrorEstimate]:
     mine = {p["region"]: p["von_mises_MPa"] for p in c0["peaks"]}
     items += [(f"{region} peak, {c0['rpm']:g} rpm", mine.get(region), "MPa", e)
               for region, e in sorted(ec["region_peaks"].items())
-              if region.startswith("fillet:")]
+              if kind_of(region) == "fillet"]
     for label, val, unit, e in items:
         if e and val and e["extrapolated"]:
             rel = val / e["extrapolated"] - 1.0
@@ -49,7 +50,7 @@ def _benchmark_rows(report_static: dict, c0: dict, bench: dict | None) -> list[E
                      f"{report_static['n_dofs']}")
         for key, label in (("collar", "collar fillet peak"),
                            ("bsg", "bearing-seat-gear fillet peak")):
-            region = {"collar": "fillet:collar", "bsg": "fillet:bearing_seat_gear"}[key]
+            region = MEASURED_FILLETS[key]
             pk = next((p for p in c0["peaks"] if p["region"] == region), None)
             val = pk["von_mises_MPa"] if pk else None
             rel = bench[key]["rel_error"]

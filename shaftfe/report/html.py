@@ -14,6 +14,7 @@ from html import escape
 
 from shaftfe import __version__
 from shaftfe.rotordynamics.campbell import whirl_ratio_text
+from shaftfe.solid.features import kind_of
 from shaftfe.static.result import PEAK_FIT_LABEL  # what a static peak is (one definition)
 from shaftfe.util.fmt import NO_FINITE_LIFE, life_reason
 
@@ -363,7 +364,7 @@ def _static(r) -> str:
     rows = [[p["region"], num(p["von_mises_MPa"], 4), num(p["xyz_mm"][0]),
              num(p["von_mises_unfiltered_MPa"], 4)]
             for p in sorted(c0["peaks"], key=lambda p: -(p["von_mises_MPa"] or 0))
-            if not p["region"].startswith("end:")]
+            if kind_of(p["region"]) != "end"]
     s += table(["region", "von Mises [MPa]", "x [mm]", "unfiltered [MPa]"], rows,
                numeric={1, 2, 3})
     return s

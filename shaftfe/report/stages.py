@@ -8,6 +8,7 @@ import math
 from shaftfe.errors import InputError
 from shaftfe.model.mass import mass_properties, variant_x2
 from shaftfe.report.options import ReportOptions
+from shaftfe.solid.features import kind_of
 from shaftfe.util.paths import repo_relative
 from shaftfe.util.units import omega
 
@@ -218,7 +219,7 @@ def static_summary_axisymmetric(res, variant) -> dict:
     i_max = int(np.nanargmax(np.hypot(res.axis_u_ref[:, 1], res.axis_u_ref[:, 2])))
     for c in res.cases:
         peaks = [{**asdict(p), "von_mises_unfiltered_MPa": None} for p in c.peaks]
-        best = max((p for p in c.peaks if not p.region.startswith("end:")),
+        best = max((p for p in c.peaks if kind_of(p.region) != "end"),
                    key=lambda p: p.von_mises_MPa)
         cases.append({
             **_case_common(c, variant),
@@ -293,7 +294,7 @@ def fatigue(ref, history, material, o: ReportOptions, variant=None) -> tuple[dic
         "closure": r.cycles.closure,
         "hot_spot": hot.to_dict(), "hot_spot_unfiltered": raw.to_dict(),
         "regions": [h.to_dict() for h in ff.region_hot_spots
-                    if h is not None and not h.region.startswith("end:")],
+                    if h is not None and kind_of(h.region) != "end"],
         "n_excluded_nodes": ff.n_excluded, "evaluation_seconds": ff.seconds,
         "notes": list(r.notes),
     }

@@ -143,6 +143,7 @@ import numpy as np
 from shaftfe.errors import InputError
 from shaftfe.rotordynamics.kernels import Labelling
 from shaftfe.rotordynamics.options import COUPLINGS
+from shaftfe.solid.features import seat_halves
 
 
 @dataclass(frozen=True)
@@ -215,8 +216,7 @@ def attachment_bodies(variant, mesh) -> list[Body]:
     for (x0, x1), parts in groups.items():
         fac = []
         for a in parts:
-            for side in ("pressed", "free"):
-                g = f"load:{a.name}:{side}"
+            for g in seat_halves(a.name):
                 if g not in mesh.boundaries:
                     raise InputError(f"variant {variant.name}", f"attachment {a.name!r}",
                                      "a part whose seat is a named face group of the mesh",

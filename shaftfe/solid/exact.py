@@ -6,6 +6,16 @@ from __future__ import annotations
 
 import math
 
+from shaftfe.solid.features import (
+    END_LEFT,
+    END_RIGHT,
+    HEX_SOCKET,
+    SEAT_HALVES,
+    fillet_region,
+    half_group,
+    keyway_region,
+    shoulder_region,
+)
 from shaftfe.solid.plan import TOL, Fillet, Slot, Solid, prepare
 
 
@@ -109,14 +119,15 @@ def expected_areas_of(sol: Solid) -> dict[str, float]:
             continue
         win_p = (st.angle + 0.5 * math.pi, st.angle + 1.5 * math.pi)
         win_f = (st.angle - 0.5 * math.pi, st.angle + 0.5 * math.pi)
-        out[f"{st.name}:pressed"] = 0.5 * full - sum(slot_hole_area(k, win_p) for k in slots)
-        out[f"{st.name}:free"] = 0.5 * full - sum(slot_hole_area(k, win_f) for k in slots)
+        for half, win in zip(SEAT_HALVES, (win_p, win_f), strict=True):
+            out[half_group(st.name, half)] = 0.5 * full - sum(slot_hole_area(k, win)
+                                                              for k in slots)
     for f in sol.fillets:
-        out[f"fillet:{f.segment}"] = fillet_area(f)
+        out[fillet_region(f.segment)] = fillet_area(f)
     for s in sol.shoulders:
-        out[f"shoulder:{s.segment}"] = math.pi * (s.r_out ** 2 - s.r_in ** 2)
+        out[shoulder_region(s.segment)] = math.pi * (s.r_out ** 2 - s.r_in ** 2)
     for k in sol.slots:
-        out[f"keyway:{k.segment}:{k.index}"] = slot_area(k)
+        out[keyway_region(k.segment, k.index)] = slot_area(k)
     hx = sol.hex
     left = math.pi * sol.radii[0] ** 2
     right = math.pi * sol.radii[-1] ** 2
@@ -125,9 +136,9 @@ def expected_areas_of(sol: Solid) -> dict[str, float]:
             left -= hx.area
         else:
             right -= hx.area
-        out["hex_socket"] = hx.area + 6.0 * hx.circumradius * hx.depth
-    out["end:left"] = left
-    out["end:right"] = right
+        out[HEX_SOCKET] = hx.area + 6.0 * hx.circumradius * hx.depth
+    out[END_LEFT] = left
+    out[END_RIGHT] = right
     return out
 
 

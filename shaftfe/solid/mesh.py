@@ -55,6 +55,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from shaftfe.errors import InputError, SolverError
+from shaftfe.solid.features import kind_of, segment_of
 from shaftfe.solid.levels import DEFAULT_LEVEL, MeshLevel, mesh_level
 from shaftfe.solid.plan import Solid, prepare
 from shaftfe.util import paths
@@ -471,10 +472,8 @@ def _size_fields(gmsh, sol: Solid, level: MeshLevel, cls: dict) -> None:
         fields.append(b)
     fillets = {fl.segment: fl for fl in sol.fillets}
     rho_ref = min((fl.rho for fl in sol.fillets), default=0.1 * 2.0 * sol.r_min)
-    tag_of = {}
-    for g, surfs in cls["faces"].items():
-        if g.startswith("fillet:"):
-            tag_of[g.split(":", 1)[1]] = surfs
+    tag_of = {segment_of(g): surfs for g, surfs in cls["faces"].items()
+              if kind_of(g) == "fillet"}
 
     def threshold(h_loc: float, h_glob: float, dist: int, d_min: float) -> int:
         th = f.add("Threshold")

@@ -7,6 +7,16 @@ from __future__ import annotations
 
 import math
 
+from shaftfe.solid.features import (
+    END_LEFT,
+    END_RIGHT,
+    HEX_SOCKET,
+    SEAT_HALVES,
+    fillet_region,
+    half_group,
+    keyway_region,
+    shoulder_region,
+)
 from shaftfe.solid.plan import Slot, Solid, profile
 
 
@@ -156,16 +166,16 @@ def _plane_groups(gmsh, s: int, sol: Solid, bbox, eps: float) -> list[str]:
         x = 0.5 * (bx0 + bx1)
         if hex_x is not None and abs(x - (hex_x[1] if hx.end == "left" else hex_x[0])) \
                 < eps and rmax <= hx.circumradius + eps:
-            return ["hex_socket"]
+            return [HEX_SOCKET]
         if abs(x - sol.x_left) < eps:
-            return ["end:left"]
+            return [END_LEFT]
         if abs(x - sol.x_right) < eps:
-            return ["end:right"]
-        return [f"shoulder:{sh.segment}" for sh in sol.shoulders
+            return [END_RIGHT]
+        return [shoulder_region(sh.segment) for sh in sol.shoulders
                 if abs(x - sh.x) < eps and rmax <= sh.r_out + eps]
     if hex_x is not None and abs(nrm[0]) < 1e-9 and bx0 > hex_x[0] - eps \
             and bx1 < hex_x[1] + eps and rmax <= hx.circumradius + eps:
-        return ["hex_socket"]
+        return [HEX_SOCKET]
     return []
 
 
@@ -185,7 +195,7 @@ def _cylinder_groups(gmsh, s: int, sol: Solid, bbox, com, eps: float) -> list[st
             groups.append(st.name)
         else:
             side = com[1] * math.cos(st.angle) + com[2] * math.sin(st.angle)
-            groups.append(f"{st.name}:{'pressed' if side < 0 else 'free'}")
+            groups.append(half_group(st.name, SEAT_HALVES[0] if side < 0 else SEAT_HALVES[1]))
     return groups
 
 
@@ -194,7 +204,7 @@ def _fillet_group(sol: Solid, com, eps: float) -> str | None:
         xa, xb = (f.x_shoulder - f.rho, f.x_shoulder) if f.side < 0 else \
             (f.x_shoulder, f.x_shoulder + f.rho)
         if xa - eps < com[0] < xb + eps:        # (OCC's torus bounding box is loose)
-            return f"fillet:{f.segment}"
+            return fillet_region(f.segment)
     return None
 
 
@@ -207,7 +217,7 @@ def _keyway_group(sol: Solid, bbox, com, eps: float) -> str | None:
             sc = (com[1] * math.cos(k.angle) + com[2] * math.sin(k.angle)) / rr
             if sc > score:
                 best, score = k, sc
-    return f"keyway:{best.segment}:{best.index}" if best is not None and score > 0.5 else None
+    return keyway_region(best.segment, best.index) if best is not None and score > 0.5 else None
 
 
 def _sharp_curves(gmsh, sol: Solid, faces: dict, keyway_faces: list[int], eps: float
@@ -220,7 +230,7 @@ def _sharp_curves(gmsh, sol: Solid, faces: dict, keyway_faces: list[int], eps: f
     for sh in sol.shoulders:
         if any(abs(f.x_shoulder - sh.x) < eps for f in sol.fillets):
             continue
-        for s in faces[f"shoulder:{sh.segment}"]:
+        for s in faces[shoulder_region(sh.segment)]:
             for _, c in gmsh.model.getBoundary([(2, s)], oriented=False):
                 b = gmsh.model.getBoundingBox(1, abs(c))
                 if max(abs(b[1]), abs(b[4]), abs(b[2]), abs(b[5])) < sh.r_in + eps:

@@ -24,6 +24,18 @@ from dataclasses import dataclass
 
 from shaftfe.errors import InputError
 from shaftfe.model.validate import source_of, validate_variant
+from shaftfe.solid.features import (
+    END_LEFT,
+    END_RIGHT,
+    HEX_SOCKET,
+    SEAT_HALVES,
+    bearing_group,
+    fillet_region,
+    half_group,
+    keyway_region,
+    seat_group,
+    shoulder_region,
+)
 
 TOL = 1e-6          # mm, geometric tolerance for coincident x-stations
 SQRT3 = math.sqrt(3.0)
@@ -140,13 +152,13 @@ class Solid:
             if s.angle is None:
                 names.append(s.name)
             else:
-                names += [f"{s.name}:pressed", f"{s.name}:free"]
-        names += [f"fillet:{f.segment}" for f in self.fillets]
-        names += [f"shoulder:{s.segment}" for s in self.shoulders]
-        names += [f"keyway:{k.segment}:{k.index}" for k in self.slots]
-        names += ["end:left", "end:right"]
+                names += [half_group(s.name, half) for half in SEAT_HALVES]
+        names += [fillet_region(f.segment) for f in self.fillets]
+        names += [shoulder_region(s.segment) for s in self.shoulders]
+        names += [keyway_region(k.segment, k.index) for k in self.slots]
+        names += [END_LEFT, END_RIGHT]
         if self.hex is not None:
-            names.append("hex_socket")
+            names.append(HEX_SOCKET)
         return tuple(names)
 
 
@@ -264,11 +276,11 @@ def _seats(variant, xs, parts, slots, src: str) -> list[Seat]:
         if not 0 <= c < 0.25 * w:
             raise InputError(src, f"bearings[{i}].chamfer_mm", f">= 0 and < width / 4 "
                              f"({0.25 * w:g})", got=b.chamfer_mm)
-        seats.append(_seat(src, f"bearings[{i}].seat", f"bearing:{b.name}", xc - 0.5 * w,
+        seats.append(_seat(src, f"bearings[{i}].seat", bearing_group(b.name), xc - 0.5 * w,
                            xc + 0.5 * w, None, xs, parts, slots, c))
     for i, at in enumerate(variant.attachments):
         me = abs(float(at.mass_kg) * float(at.eccentricity_mm))
-        seats.append(_seat(src, f"attachments[{i}].seat_x", f"load:{at.name}",
+        seats.append(_seat(src, f"attachments[{i}].seat_x", seat_group(at.name),
                            float(at.seat_x_start_mm), float(at.seat_x_end_mm),
                            math.radians(float(at.angle_deg)), xs, parts, slots,
                            loaded=not me == 0.0))
@@ -404,26 +416,6 @@ def profile(sol: Solid) -> list[tuple[str, tuple]]:
     return pts
 
 
-def cut_features(sol: Solid) -> list[dict]:
-    """The solid's non-axisymmetric cuts (keyways, the hex socket: what an axisymmetric
-    outline leaves out), with their axial zone of influence: the feature's
-    extent widened by the local diameter on each side (Saint-Venant: a self-equilibrated
-    disturbance of a bar decays over about one diameter)."""
-    out = []
-    for k in sol.slots:
-        d = 2 * k.r
-        out.append({"feature": f"keyway:{k.segment}:{k.index}", "x_mm": [k.x0, k.x1],
-                    "zone_mm": [k.x0 - d, k.x1 + d]})
-    if sol.hex is not None:
-        h = sol.hex
-        seg = 0 if h.end == "left" else -1
-        d = 2 * sol.radii[seg]
-        x0, x1 = ((sol.x_left, sol.x_left + h.depth) if h.end == "left"
-                  else (sol.x_right - h.depth, sol.x_right))
-        out.append({"feature": "hex_socket", "x_mm": [x0, x1], "zone_mm": [x0 - d, x1 + d]})
-    return out
-
-
 # --------------------------------------------------------------------------------------
 # sharp corners (issue #30: a sharp shoulder looked safer than a rounded one)
 
@@ -441,7 +433,7 @@ class SharpCorner:
 
     @property
     def region(self) -> str:
-        return f"shoulder:{self.segment}"
+        return shoulder_region(self.segment)
 
     @property
     def zone_mm(self) -> float:

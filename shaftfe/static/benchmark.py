@@ -24,10 +24,12 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from shaftfe.solid.features import fillet_region
 from shaftfe.util.paths import BENCHMARK_JSON, TRUTH_JSON, repo_relative
 
 DOF_MATCH_RTOL = 0.10     # the all-parts load case splits the seats a little differently
-_REGIONS = {"collar": "fillet:collar", "bsg": "fillet:bearing_seat_gear"}
+# the two fillets truth.json measured (their segments), under the keys of the benchmark
+MEASURED_FILLETS = {"collar": fillet_region("collar"), "bsg": fillet_region("bearing_seat_gear")}
 
 
 # the shaft the level errors of truth.json were measured on
@@ -59,7 +61,7 @@ def benchmark_errors(level: str, order: int = 2, path: Path = BENCHMARK_JSON,
     except (OSError, ValueError, KeyError, TypeError):
         return None
     out = {"source": repo_relative(truth_path), "level": level, "order": order}
-    for key, region in _REGIONS.items():
+    for key, region in MEASURED_FILLETS.items():
         r = next((r for r in recs if r.get("case") == f"x2_57 {region}"
                   and r.get("level") == level and r.get("quantity") == "von_mises"), None)
         if r is None:

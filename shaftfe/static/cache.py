@@ -13,8 +13,9 @@ choice does not change the stresses beyond that); the mesh key of ``shaftfe.soli
 plan, level, order, Gmsh version and options, mesh ``CACHE_FORMAT``); the static reference
 speed; and a fingerprint (sha256) of the source of the modules that compute the stresses
 (``FINGERPRINT_MODULES``: static model, solve and result, fe assembly, facet integrals,
-supports, recovery, surface recovery and the low-rank solve), so a change of the solver code
-is never served a stale result. Bump ``STATIC_CACHE_FORMAT`` when the stored arrays change meaning.
+supports, recovery, surface recovery, the low-rank solve and the regions' naming scheme
+``solid.features``), so a change of the solver code is never served a stale result. Bump
+``STATIC_CACHE_FORMAT`` when the stored arrays change meaning.
 
 Stored arrays: ``stress_ref`` (6, n) MPa in the order xx yy zz xy yz xz, ``von_mises_ref`` (n,),
 ``xyz`` (3, n) mm, ``excluded`` (node ids of the singular-point rule of
@@ -47,6 +48,7 @@ from pathlib import Path
 
 import numpy as np
 
+from shaftfe.solid.features import is_patch
 from shaftfe.static.result import warn_unresolved_fillets
 from shaftfe.util import paths
 
@@ -54,7 +56,8 @@ STATIC_CACHE_FORMAT = 3          # 2: spin softening's unsoftened stress (stress
 #                                  3: the per-pattern stresses (pattern_stress, patterns)
 FINGERPRINT_MODULES = ("shaftfe.static.model", "shaftfe.static.solve", "shaftfe.static.result",
                        "shaftfe.fe.recovery", "shaftfe.fe.assembly", "shaftfe.fe.lowrank",
-                       "shaftfe.fe.supports", "shaftfe.fe.facets", "shaftfe.fe.surface")
+                       "shaftfe.fe.supports", "shaftfe.fe.facets", "shaftfe.fe.surface",
+                       "shaftfe.solid.features")     # the regions' names and kinds
 _KEY_SKIP_OPTIONS = ("solver",)
 
 
@@ -164,7 +167,7 @@ def singular_patches(mesh) -> list[np.ndarray]:
     """The patches whose edges are singular by construction: bearing seats (RBE3 coupling) and
     the pressed half of every load seat (pressure edge) — the static command's choice."""
     return [np.asarray(f) for g, f in mesh.boundaries.items()
-            if g.startswith("bearing:") or g.endswith(":pressed")]
+            if is_patch(g)]
 
 
 def facet_cells(mesh) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:

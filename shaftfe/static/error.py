@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+from shaftfe.solid.features import is_notch
 from shaftfe.static.model import StaticOptions
 from shaftfe.static.result import StaticResult
 
@@ -55,7 +56,7 @@ def estimate_error(res: StaticResult, variant, options: StaticOptions, cache_dir
         pk_c = {p.region: p for p in cc.peaks}
         peaks = {p.region: est(p.von_mises_MPa, pk_c[p.region].von_mises_MPa, r_s, p_s)
                  for p in cf.peaks if p.region in pk_c
-                 and (p.region.startswith("fillet:") or p.region.startswith("keyway:"))}
+                 and is_notch(p.region)}
         st_c = {s.name: s for s in cc.stations}
         out["cases"].append({
             "rpm": cf.rpm,

@@ -33,6 +33,15 @@ from shaftfe.fe import reuse, supports
 from shaftfe.model import loads as loadmodel
 from shaftfe.model.spin import DEFAULT_PART_MODEL, part_rows, spinning_part
 from shaftfe.model.validate import validate_variant
+from shaftfe.solid.features import (
+    OUTLINE_KINDS,
+    SEAT_HALVES,
+    is_patch,
+    kind_of,
+    region_of,
+    seat_group,
+    seat_halves,
+)
 from shaftfe.solid.levels import MeshLevel
 from shaftfe.util.units import REF_RPM, omega
 
@@ -190,7 +199,7 @@ def spin_seats(variant, mesh, *, part_model: str = DEFAULT_PART_MODEL,
     seats: dict = {}
     for a in variant.attachments:
         groups = [np.asarray(fc) for g, fc in mesh.boundaries.items()
-                  if g.startswith(f"load:{a.name}:")]
+                  if g in seat_halves(a.name)]
         if a.mass_kg > 0 and groups:
             key = (a.seat_x_start_mm, a.seat_x_end_mm)
             seats.setdefault(key, (np.concatenate(groups), []))[1].append(
@@ -286,8 +295,6 @@ def twist_gauge_block(couplings) -> supports.SupportBlock:
     return supports.SupportBlock(c.name, ("θ_x",), c.G[[3]], None)
 
 
-# feature faces a load band never covers (fillets, shoulders, keyways, the hex socket, ends)
-_NOT_A_BAND = ("fillet:", "shoulder:", "keyway:", "hex_socket", "end:")
 BAND_NORMAL_MIN = 0.7         # |n · e_r| of an outer cylindrical facet (not a face or chamfer)
 
 
@@ -297,7 +304,7 @@ def band_facets(mesh, band: tuple[float, float]) -> np.ndarray:
     radial normal (|n_r| > ``BAND_NORMAL_MIN``) and outside the feature faces (fillets,
     shoulders, keyways, hex socket, end faces). Empty if there are none."""
     bf = np.asarray(mesh.boundary_facets())
-    skip = [np.asarray(f) for g, f in mesh.boundaries.items() if g.startswith(_NOT_A_BAND)]
+    skip = [np.asarray(f) for g, f in mesh.boundaries.items() if kind_of(g) in OUTLINE_KINDS]
     if skip:
         bf = np.setdiff1d(bf, np.concatenate(skip))
     P = mesh.p[:, mesh.facets[:, bf]]                       # (3, 3 corners, nf)
@@ -312,9 +319,9 @@ def band_facets(mesh, band: tuple[float, float]) -> np.ndarray:
 
 
 def _action_facets(mesh, act) -> np.ndarray:
-    """A part's seat groups ``load:<part>:*``, else the band's outer facets."""
+    """A part's seat groups (its two halves), else the band's outer facets."""
     groups = [np.asarray(f) for g, f in mesh.boundaries.items()
-              if act.seat and g.startswith(f"load:{act.seat}:")]
+              if act.seat and g in seat_halves(act.seat)]
     if groups:
         return np.concatenate(groups)
     fac = band_facets(mesh, act.band_mm)
@@ -387,7 +394,7 @@ def load_patterns(variant, m, options: StaticOptions, rows: dict | None = None, 
         if act.pressed_half:        # the seed's placement: today's pressure on the half seat
             a = variant.attachment(act.seat)
             F = a.force_N(REF_RPM)
-            v = fem.surface_load(m, m.boundaries[f"load:{a.name}:pressed"], F,
+            v = fem.surface_load(m, m.boundaries[seat_group(a.name, SEAT_HALVES[0])], F,
                                  _direction(a.angle_deg), options.load_distribution,
                                  cache=face_cache)
         else:
@@ -417,13 +424,7 @@ def region_facets(mesh) -> dict[str, np.ndarray]:
     the hex socket and the end faces."""
     groups: dict[str, list] = {}
     for g, f in mesh.boundaries.items():
-        if g.startswith("load:"):
-            name = "seat:" + g.split(":")[1]
-        elif g.startswith("bearing:"):
-            name = "seat:" + g
-        else:
-            name = g
-        groups.setdefault(name, []).append(np.asarray(f))
+        groups.setdefault(region_of(g), []).append(np.asarray(f))
     return {k: np.concatenate(v) for k, v in groups.items()}
 
 
@@ -435,7 +436,6 @@ def region_nodes(mesh) -> dict[str, np.ndarray]:
 
 
 def _patches(mesh) -> list[np.ndarray]:
-    return [np.asarray(f) for g, f in mesh.boundaries.items()
-            if g.startswith("bearing:") or g.endswith(":pressed")]
+    return [np.asarray(f) for g, f in mesh.boundaries.items() if is_patch(g)]
 
 

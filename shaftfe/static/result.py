@@ -9,6 +9,7 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
+from shaftfe.solid.features import fillet_region, kind_of, segment_of
 from shaftfe.static.model import StaticOptions
 
 # A peak stress of the 3D path is the maximum of the fitted surface stress (fe.surface), which
@@ -34,9 +35,9 @@ def unresolved_fillets(peak_of: dict[str, float],
     ``UNRESOLVED_FACE_OVER_FILLET`` × its ``fillet:<seg>``."""
     out = {}
     for region, face in peak_of.items():
-        if not region.startswith("shoulder:"):
+        if kind_of(region) != "shoulder":
             continue
-        fillet = "fillet:" + region.split(":", 1)[1]
+        fillet = fillet_region(segment_of(region))
         f = peak_of.get(fillet)
         if f is not None and f > 0 and face > UNRESOLVED_FACE_OVER_FILLET * f:
             out[fillet] = (f"the mesh does not resolve this fillet: the shoulder face beside "

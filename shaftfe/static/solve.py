@@ -518,11 +518,12 @@ def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> tuple[d
     bars were measured with (``_BAR_CONDITIONS``), on the pipeline's own mesh of the variant
     (not a mesh the caller built otherwise), for span fillets (not end fillets, meshed apart and
     not measured) whose peak lies outside every cut feature's zone (keyways, hex socket:
-    ``solid.plan.cut_features``, which the axisymmetric truth leaves out). The reasons name
+    ``solid.features.cuts``, which the axisymmetric truth leaves out). The reasons name
     only the geometry: a span fillet outside the measured hull."""
+    from shaftfe.solid.features import cuts, fillet_region
     from shaftfe.solid.levels import LEVELS
     from shaftfe.solid.mesh import end_fillet
-    from shaftfe.solid.plan import cut_features, prepare
+    from shaftfe.solid.plan import prepare
     from shaftfe.static.benchmark import fillet_bar, measured_range
     from shaftfe.static.cache import predicted_mesh_key
     from shaftfe.static.truth_bars import ERROR_BAR_PCT
@@ -535,8 +536,8 @@ def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> tuple[d
     if mesh_key != predicted_mesh_key(variant, options):
         return {}, {}
     plan = prepare(variant)
-    span = {f"fillet:{fl.segment}": fl for fl in plan.fillets if not end_fillet(plan, fl)}
-    zones = [f["zone_mm"] for f in cut_features(plan)]
+    span = {fillet_region(fl.segment): fl for fl in plan.fillets if not end_fillet(plan, fl)}
+    zones = [f.zone_mm for f in cuts(plan)]
     bars, notes = {}, {}
     for p in peaks:
         fl = span.get(p.region)

@@ -29,6 +29,7 @@ import time
 from typing import Any
 
 from shaftfe.errors import InputError, ShaftfeError
+from shaftfe.solid.features import is_notch
 from shaftfe.study.spec import Analyses
 
 # The Campbell sweep's default top: a stiff balancer shaft's first bending critical lies far
@@ -116,7 +117,7 @@ def static_rows(v, an: Analyses, shaft_mesh=None, cache_dir=None) -> tuple[dict,
     ref = res.cases[0]
     out: dict[str, Any] = {"n_dofs": res.n_dofs, "mesh_key": res.mesh_key}
     for p in ref.peaks:
-        if p.region.startswith(("fillet:", "keyway:")):
+        if is_notch(p.region):
             out[f"stress_{p.region}_MPa"] = _fin(p.von_mises_MPa)
     out["stress_max_MPa"] = _fin(ref.peak_von_mises_MPa)
     at = next(c for c in res.cases if c.rpm == an.bearing_rpm)

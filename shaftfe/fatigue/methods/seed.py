@@ -9,6 +9,7 @@ import math
 from types import MappingProxyType
 
 from shaftfe.fatigue.methods.protocol import AssessmentInputs, FatigueAssessment, Location
+from shaftfe.solid.features import kind_of
 
 
 class Seed:
@@ -164,7 +165,7 @@ def _lines(run, out, plots) -> list[str]:
              f"{raw.safety_factor:.3g}{' (a singular point, excluded)' if raw.excluded else ''}")
     p.append("")
     rows = [[h.region, h.xyz_mm[0], h.sigma_eq_ref_MPa, life(h.life_blocks), h.safety_factor]
-            for h in ff.region_hot_spots if h is not None and not h.region.startswith("end:")]
+            for h in ff.region_hot_spots if h is not None and kind_of(h.region) != "end"]
     p += table_lines(["region", "x mm", f"sigma_eq MPa @{ref.ref_rpm:g}", "life blocks",
                       f"SF @{args.design_life:g}"], rows, title="per region (filtered)")
     from shaftfe.fatigue.run import SEED, seed_applies
