@@ -20,6 +20,7 @@ from shaftfe.commands._common import (
     print_table,
 )
 from shaftfe.errors import InputError
+from shaftfe.solid.features import SEAT_KINDS, kind_of, segment_of, shoulder_region
 from shaftfe.solid.levels import LEVEL_NAMES
 from shaftfe.static import STATIC_MODELS
 from shaftfe.util.fmt import life
@@ -274,7 +275,7 @@ def _print_axi(res, opts, out, corners=()) -> None:
         rows = [[p.region, p.von_mises_MPa, p.max_principal_MPa, p.xyz_mm[0], p.theta_deg,
                  "-" if p.fillet_angle_deg is None else p.fillet_angle_deg,
                  p.omitted_zone or "", sharp_mark(corners, p.xyz_mm)]
-                for p in c.peaks if not p.region.startswith(("end:", "seat:"))]
+                for p in c.peaks if kind_of(p.region) not in SEAT_KINDS | {"end"}]
         print_table(["region", "von Mises MPa", "max principal MPa", "x mm", "θ deg",
                      "on fillet deg", "in the zone of", "note"], rows)
     for n in res.notes:
@@ -341,14 +342,14 @@ def _print_tables(res, opts, out, corners=()) -> None:
         print_table(["station", "x mm", "deflection µm (FE)", "µm (beam)"], rows)
         bars = res.truth_error_bar_pct
         unresolved = {*res.unresolved_fillets,
-                      *("shoulder:" + r.split(":", 1)[1] for r in res.unresolved_fillets)}
+                      *(shoulder_region(segment_of(r)) for r in res.unresolved_fillets)}
         rows = [[p.region, p.von_mises_MPa, p.max_principal_MPa, p.xyz_mm[0],
                  p.von_mises_unfiltered_MPa,
                  f"{bars[p.region][0]:+.2f} … {bars[p.region][1]:+.2f}"
                  if p.region in bars else "-",
                  "fillet not resolved: not a stress" if p.region in unresolved
                  else sharp_mark(corners, p.xyz_mm)]
-                for p in c.peaks if not p.region.startswith("end:")]
+                for p in c.peaks if kind_of(p.region) != "end"]
         rows.append(["whole shaft", c.peak_von_mises_MPa, "-", c.peak_von_mises_xyz_mm[0],
                      c.peak_von_mises_unfiltered_MPa, "-",
                      _whole_mark(corners) or ("not bounded: a fillet not resolved"

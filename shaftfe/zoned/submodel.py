@@ -39,6 +39,7 @@ from shaftfe.axisymmetric import pointeval
 from shaftfe.fe import assembly as fem
 from shaftfe.fe import recovery
 from shaftfe.model.spin import DEFAULT_PART_MODEL, part_rows, spinning_part
+from shaftfe.solid.features import END_LEFT, END_RIGHT, bearing_group, is_patch, seat_halves
 from shaftfe.solid.mesh import build_solid_mesh
 from shaftfe.solid.plan import clip
 from shaftfe.static.model import load_patterns, mass_times, region_nodes, seat_rows
@@ -122,7 +123,7 @@ def build_submodel(variant, plan, zone, options, *, level=None, cache_dir=None) 
     t1 = time.perf_counter()
     m = sm.mesh
     mat = variant.material
-    cut_groups = tuple(g for g, on in (("end:left", zone.cut_left), ("end:right", zone.cut_right))
+    cut_groups = tuple(g for g, on in ((END_LEFT, zone.cut_left), (END_RIGHT, zone.cut_right))
                        if on)
     faces = [fem.face_nodes(m, m.boundaries[g]) for g in cut_groups]
     nodes = np.unique(np.concatenate(faces))
@@ -138,7 +139,7 @@ def build_submodel(variant, plan, zone, options, *, level=None, cache_dir=None) 
         by_seat: dict = {}
         for a in variant.attachments:
             groups = [np.asarray(f) for g, f in m.boundaries.items()
-                      if g.startswith(f"load:{a.name}:")]
+                      if g in seat_halves(a.name)]
             if a.mass_kg > 0 and groups:
                 key = (a.seat_x_start_mm, a.seat_x_end_mm)
                 by_seat.setdefault(key, (np.concatenate(groups), []))[1].append(
@@ -146,9 +147,9 @@ def build_submodel(variant, plan, zone, options, *, level=None, cache_dir=None) 
         for (x0, x1), (facets, parts) in by_seat.items():
             seats.append((seat_rows(m, facets, (0.5 * (x0 + x1), 0.0, 0.0), rows),
                           tuple(parts)))
-    bearings = tuple((b.name, np.asarray(m.boundaries[f"bearing:{b.name}"]),
+    bearings = tuple((b.name, np.asarray(m.boundaries[bearing_group(b.name)]),
                       float(b.x_center_mm)) for b in variant.bearings
-                     if f"bearing:{b.name}" in m.boundaries)
+                     if bearing_group(b.name) in m.boundaries)
     solver = factorize(K[free][:, free], options.solver)
     K_IB = K[free][:, cut]
     floating = None
@@ -219,7 +220,7 @@ def load_vector(sub: SubModel, gsol, rpm: float, case=None, ug=None) -> np.ndarr
 def _free_facets(sub: SubModel) -> np.ndarray:
     m = sub.shaft_mesh.mesh
     skip = [np.asarray(f) for g, f in m.boundaries.items()
-            if g.startswith("bearing:") or g.endswith(":pressed") or g in sub.cut_groups]
+            if is_patch(g) or g in sub.cut_groups]
     return np.setdiff1d(m.boundary_facets(), np.concatenate(skip))
 
 
@@ -242,7 +243,7 @@ def solve_speed(sub: SubModel, gsol, rpm: float, case=None) -> SubField:
         ok = np.isfinite(surf.stress[0])
         stress[:, surf.nodes[ok]] = surf.stress[:, ok]
     patches = [np.asarray(fc) for g, fc in m.boundaries.items()
-               if g.startswith("bearing:") or g.endswith(":pressed") or g in sub.cut_groups]
+               if is_patch(g) or g in sub.cut_groups]
     excl = recovery.excluded_nodes(m, patches, sub.options.exclude_mm)
     regions = {k: v for k, v in region_nodes(m).items() if k not in sub.cut_groups}
     peaks = tuple(recovery.peak(stress, m.doflocs, nodes, excl, name, surf)

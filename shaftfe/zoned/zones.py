@@ -53,7 +53,7 @@ def _forbidden(plan, feats, bands) -> list[tuple[float, float]]:
     segment boundary where the diameter changes (with ``CUT_MARGIN_MM`` around each)."""
     out = []
     for f in feats:
-        if f.kind in ("fillet", "shoulder", "seat", "bearing_seat", "keyway", "hex_socket"):
+        if f.kind != "end":
             out.append(f.x_mm)
     out += [tuple(b) for b in bands]
     for i in range(len(plan.radii) - 1):
