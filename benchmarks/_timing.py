@@ -20,3 +20,36 @@ def best_of(fn: Callable[[], Any], repeat: int = 5) -> tuple[float, Any]:
 def best_time(fn: Callable[[], Any], repeat: int = 5) -> float:
     """Best wall time in s of ``repeat`` runs of ``fn``."""
     return best_of(fn, repeat)[0]
+
+
+# a child that runs a command line and reports its own peak memory: ru_maxrss of RUSAGE_CHILDREN
+# is the largest of ALL children so far, so each process writes its own (and its children's)
+_PEAK = ("import os, resource, subprocess, sys\n"
+         "r = subprocess.run(sys.argv[2:]).returncode\n"
+         "kb = max(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss,\n"
+         "         resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)\n"
+         "open(sys.argv[1], 'w').write(str(kb))\n"
+         "sys.exit(r)\n")
+
+
+def process(cmd: list[str], cwd: str, env: dict | None = None) -> dict:
+    """One whole process of ``cmd`` (in ``cwd``, with ``env`` added to this environment): its
+    wall time (``time.perf_counter`` around it), the CPU seconds of the child and its peak
+    resident memory (MiB, Linux ``ru_maxrss``)."""
+    import os
+    import resource
+    import subprocess
+    import sys
+    import tempfile
+    with tempfile.NamedTemporaryFile(suffix=".rss", delete=False) as fh:
+        rss = fh.name
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    subprocess.run([sys.executable, "-c", _PEAK, rss, *cmd], cwd=cwd, check=True,
+                   capture_output=True, env={**os.environ, **(env or {})})
+    wall = time.perf_counter() - t0
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    kb = float(open(rss).read())
+    os.unlink(rss)
+    return {"wall_s": wall, "cpu_s": (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime),
+            "max_rss_MiB": kb / 1024.0}

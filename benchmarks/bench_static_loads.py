@@ -15,13 +15,12 @@ Writes ``reports/benchmarks/static_loads.md``.
 from __future__ import annotations
 
 import os
-import resource
 import statistics
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
+
+from benchmarks._timing import process
 
 RUNS = 4
 LIMIT = 1.05                        # issue #31: warm time within 5 % of today's
@@ -33,13 +32,9 @@ def _cmd(tree: str, out: str) -> list[str]:
 
 
 def _run(cmd: list[str], cwd: str) -> tuple[float, float]:
-    """(wall s, CPU s of the child) of one whole process."""
-    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.perf_counter()
-    subprocess.run(cmd, cwd=cwd, check=True, capture_output=True)
-    wall = time.perf_counter() - t0
-    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return wall, (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+    """(wall s, CPU s of the child) of one whole process (``_timing.process``)."""
+    r = process(cmd, cwd)
+    return r["wall_s"], r["cpu_s"]
 
 
 def main() -> None:

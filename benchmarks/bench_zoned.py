@@ -1,0 +1,246 @@
+"""Issue #32: the zoned static solve against the full 3D model, and its speed side by side with
+the tree before it (``python benchmarks/bench_zoned.py``; ~6 min on 2 cores; the speed part needs
+``SHAFTFE_BASELINE``, a checkout of the tree before the change, else it is left out).
+
+Accuracy (in process, x2_57 at 10 000 rpm, all parts, bearing springs, spin softening):
+``shaftfe static``'s zoned solve at the default level against the full 3D model at ``default``
+and at ``fine`` (``--model solid``): the bearing reactions and the axis deflections at the
+stations (the keyways' and the hex socket's effect on the stiffness, which the global model
+leaves out), every region's peak (von Mises and max principal) with the model it comes from,
+the zones (extent, cuts, dofs, the cut checks, the peaks' change when the cut moves one gap
+outward, the time of each phase). Then a keyed Ø20 bar between two cuts in bending and in
+torsion (``tests/validation/test_zoned.keyed_bar``) at every level against the full 3D model at
+the same level and at ``fine``.
+
+Speed (whole processes, ``_timing.process``): ``shaftfe static --variant x2_57`` of this tree
+(the zoned solve) and of the baseline (its default, the full 3D model), warm (after one
+warm-up, the median of ``RUNS``, A and B in turn) and cold (an empty cache), wall time and peak
+memory; and this tree's ``--model solid`` for the same comparison in one tree.
+
+Writes ``reports/benchmarks/zoned.md`` and ``zoned.json``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from benchmarks._timing import process
+
+RUNS = 3
+RPM = 10_000.0
+HERE = Path(__file__).resolve().parents[1]
+OUT = HERE / "reports" / "benchmarks"
+
+
+def _peaks(case) -> dict:
+    return {p.region: (p.von_mises_MPa, p.max_principal_MPa) for p in case.peaks}
+
+
+def accuracy() -> dict:
+    from shaftfe.model.loader import load_variant
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
+    from shaftfe.zoned.solve import solve_zoned
+    v = load_variant("x2_57")
+    t = time.perf_counter()
+    z = solve_zoned(v, RPM, StaticOptions(), sensitivity=True)
+    tz = time.perf_counter() - t
+    full = {}
+    for lvl in ("default", "fine"):
+        t = time.perf_counter()
+        s = solve_static(v, [RPM], StaticOptions(level=lvl), beam=False)
+        full[lvl] = {"seconds": time.perf_counter() - t, "dofs": s.n_dofs,
+                     "peaks": _peaks(s.cases[0]),
+                     "bearings": {b.name: (b.Fy_N, b.Fz_N, b.F_radial_N)
+                                  for b in s.cases[0].bearings},
+                     "stations": {st.name: st.u_mm for st in s.cases[0].stations}}
+    zc = z.cases[0]
+    return {
+        "zoned": {"seconds": tz, "run": z.run,
+                  "peaks": {p.region: (p.von_mises_MPa, p.max_principal_MPa, p.model, p.kind)
+                            for p in zc.peaks},
+                  "bearings": {b.name: (b.Fy_N, b.Fz_N, b.F_radial_N) for b in zc.bearings},
+                  "stations": {st.name: st.u_mm for st in zc.stations},
+                  "zones": [{"name": q.name, "features": q.features, "x_mm": q.x_mm,
+                             "cuts_mm": q.cuts_mm, "nominal_mm": q.nominal_mm,
+                             "grown": q.grown, "dofs": q.n_dofs,
+                             "cut_checks": [(c.group, c.x_mm, c.vm_diff_rel, c.sxx_diff_rel)
+                                            for c in q.cut_checks],
+                             "sensitivity": q.sensitivity, "seconds": q.seconds}
+                            for q in z.zones],
+                  "global": {"nodes": z.global_result.n_nodes,
+                             "harmonics": list(z.global_result.harmonics)}},
+        "full": full,
+        "keyed_bar": keyed_bar_rows(),
+    }
+
+
+def keyed_bar_rows() -> list[dict]:
+    sys.path.insert(0, str(HERE / "tests" / "validation"))
+    from test_zoned import keyed_bar
+
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import solve_static
+    from shaftfe.zoned.solve import solve_zoned
+    rows = []
+    for kind in ("bending", "torsion"):
+        v = keyed_bar(kind)
+        ref = {}
+        for lvl in ("coarse", "default", "fine"):
+            o = StaticOptions(level=lvl, rigid_supports=True, spin_softening=False)
+            t = time.perf_counter()
+            s = solve_static(v, [1000.0], o, beam=False)
+            ts = time.perf_counter() - t
+            ref[lvl] = (_peaks(s.cases[0])["keyway:bar:0"][0], ts, s.n_dofs)
+        for lvl in ("coarse", "default", "fine"):
+            o = StaticOptions(level=lvl, rigid_supports=True, spin_softening=False)
+            t = time.perf_counter()
+            z = solve_zoned(v, 1000.0, o)
+            tz = time.perf_counter() - t
+            zp = _peaks(z.cases[0])["keyway:bar:0"][0]
+            rows.append({"load": kind, "level": lvl, "zoned_MPa": zp, "zoned_s": tz,
+                         "zone_dofs": z.zones[0].n_dofs,
+                         "cut_check": max(max(c.vm_diff_rel, c.sxx_diff_rel)
+                                          for c in z.zones[0].cut_checks),
+                         "solid_same_MPa": ref[lvl][0], "solid_same_s": ref[lvl][1],
+                         "solid_dofs": ref[lvl][2], "solid_fine_MPa": ref["fine"][0]})
+    return rows
+
+
+def _static(tree: str, out: str, *extra: str) -> list[str]:
+    return ["env", f"PYTHONPATH={tree}", "MPLBACKEND=Agg", sys.executable, "-m", "shaftfe",
+            "static", "--variant", "x2_57", "--out", out, *extra]
+
+
+def speed() -> dict | None:
+    base = os.environ.get("SHAFTFE_BASELINE")
+    if not base:
+        return None
+    here = str(HERE)
+    out: dict = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        cmds = {"zoned (this tree, default)": _static(here, f"{tmp}/a"),
+                "full 3D (baseline, its default)": _static(base, f"{tmp}/b"),
+                "full 3D (this tree, --model solid)": _static(here, f"{tmp}/c", "--model",
+                                                              "solid")}
+        for name, cmd in cmds.items():                   # cold: an empty cache each
+            env = {"SHAFTFE_CACHE_DIR": f"{tmp}/cold-{len(out)}"}
+            out[name] = {"cold": process(cmd, tmp, env)}
+        env = {"SHAFTFE_CACHE_DIR": f"{tmp}/warm"}
+        for cmd in cmds.values():
+            process(cmd, tmp, env)                       # warm-up
+        runs: dict = {name: [] for name in cmds}
+        for _ in range(RUNS):
+            for name, cmd in cmds.items():
+                runs[name].append(process(cmd, tmp, env))
+    for name, rs in runs.items():
+        out[name]["warm"] = {"wall_s": statistics.median(r["wall_s"] for r in rs),
+                             "max_rss_MiB": max(r["max_rss_MiB"] for r in rs),
+                             "all_wall_s": [r["wall_s"] for r in rs]}
+    return out
+
+
+def _pct(a: float, b: float) -> str:
+    return f"{100 * (a / b - 1):+.2f} %" if b else "-"
+
+
+def write(acc: dict, spd: dict | None) -> str:
+    z, f = acc["zoned"], acc["full"]
+    lines = ["# The zoned static solve against the full 3D model (issue #32)", "",
+             "(generated by benchmarks/bench_zoned.py; 2-core machine shared with other jobs, "
+             "wall-clock seconds)", "",
+             f"## x2_57 at {RPM:g} rpm, all parts, bearing springs, spin softening", "",
+             f"Zoned: the axisymmetric global model ({z['global']['nodes']} meridian nodes, "
+             f"harmonics {z['global']['harmonics']}) and {len(z['zones'])} 3D submodels at "
+             f"`default`, {z['seconds']:.2f} s in process (with the sensitivity solves). Full "
+             f"3D: `default` {f['default']['dofs']} dofs, {f['default']['seconds']:.1f} s; "
+             f"`fine` {f['fine']['dofs']} dofs, {f['fine']['seconds']:.1f} s.", "",
+             "### Zones", "",
+             "| zone | features | nominal zone mm | extent mm | cuts mm | grown | dofs | cut "
+             "check (vM / σxx) | peak change, cut one gap out | mesh s | assembly s | factor s "
+             "| solve s | recovery s |", "|" + "---|" * 14]
+    for q in z["zones"]:
+        cc = "; ".join(f"{g} x {x:g}: {100 * a:.2f} / {100 * b:.2f} %"
+                       for g, x, a, b in q["cut_checks"])
+        sens = q["sensitivity"] or {}
+        sv = ", ".join(f"{k} {100 * v:+.2f} %" for k, v in sens.items() if k != "cuts_mm")
+        sv = f"to {sens.get('cuts_mm')}: {sv}" if sens else "-"
+        s = q["seconds"]
+        lines.append(f"| {q['name']} | {', '.join(q['features'])} | {q['nominal_mm'][0]:g} … "
+                     f"{q['nominal_mm'][1]:g} | {q['x_mm'][0]:g} … {q['x_mm'][1]:g} | "
+                     f"{', '.join(f'{x:g}' for x in q['cuts_mm'])} | {q['grown']} | "
+                     f"{q['dofs']} | {cc} | {sv} | {s['mesh_seconds']:.2f} | "
+                     f"{s['assembly_seconds']:.2f} | {s['factor_seconds']:.2f} | "
+                     f"{s['solve_seconds']:.2f} | {s['recovery_seconds']:.2f} |")
+    r = z["run"]
+    lines += ["", f"Phases of the whole zoned solve: plan {r['plan_seconds']:.2f} s, global "
+              f"{r['global_seconds']:.2f} s, zones {r['zones_seconds']:.2f} s (with the "
+              "sensitivity solves).", "", "### Reactions and deflections (the keyways' and the "
+              "hex socket's effect on the stiffness)", "",
+              "| quantity | zoned (global model) | full 3D default | diff | full 3D fine | diff |",
+              "|---|---|---|---|---|---|"]
+    for name, (_, _, F) in z["bearings"].items():
+        d, fi = f["default"]["bearings"][name][2], f["fine"]["bearings"][name][2]
+        lines.append(f"| bearing {name} \\|F\\| N | {F:.2f} | {d:.2f} | {_pct(F, d)} | "
+                     f"{fi:.2f} | {_pct(F, fi)} |")
+    for name, u in z["stations"].items():
+        d, fi = f["default"]["stations"].get(name), f["fine"]["stations"].get(name)
+        if d is None:
+            continue
+        lines.append(f"| deflection {name} µm | {1e3 * u:.3f} | {1e3 * d:.3f} | {_pct(u, d)} | "
+                     f"{1e3 * fi:.3f} | {_pct(u, fi)} |")
+    lines += ["", "### Peaks", "",
+              "| region | kind | from | zoned vM MPa | full default | diff | full fine | diff "
+              "| zoned max principal | full default | full fine |", "|" + "---|" * 11]
+    for reg, (vm, p1, model, kind) in z["peaks"].items():
+        d, fi = f["default"]["peaks"].get(reg), f["fine"]["peaks"].get(reg)
+        if d is None or fi is None:
+            continue
+        lines.append(f"| {reg} | {kind} | {model} | {vm:.2f} | {d[0]:.2f} | {_pct(vm, d[0])} | "
+                     f"{fi[0]:.2f} | {_pct(vm, fi[0])} | {p1:.2f} | {d[1]:.2f} | {fi[1]:.2f} |")
+    lines += ["", "## A keyed Ø20 bar between two cuts (tests/validation/test_zoned.py)", "",
+              "| load | level | zoned keyway vM MPa | zone dofs | zoned s | cut check | full 3D "
+              "same level | diff | full 3D dofs | full 3D s | full 3D fine | diff |",
+              "|" + "---|" * 12]
+    for row in acc["keyed_bar"]:
+        lines.append(f"| {row['load']} | {row['level']} | {row['zoned_MPa']:.2f} | "
+                     f"{row['zone_dofs']} | {row['zoned_s']:.2f} | "
+                     f"{100 * row['cut_check']:.2f} % | {row['solid_same_MPa']:.2f} | "
+                     f"{_pct(row['zoned_MPa'], row['solid_same_MPa'])} | {row['solid_dofs']} | "
+                     f"{row['solid_same_s']:.2f} | {row['solid_fine_MPa']:.2f} | "
+                     f"{_pct(row['zoned_MPa'], row['solid_fine_MPa'])} |")
+    if spd:
+        lines += ["", "## `shaftfe static --variant x2_57`: whole processes, side by side", "",
+                  f"Warm: the median of {RUNS} runs after one warm-up, the three commands in "
+                  "turn on one warm cache; cold: an empty cache (every mesh made).", "",
+                  "| command | warm s | warm runs s | warm peak MiB | cold s | cold peak MiB |",
+                  "|---|---|---|---|---|---|"]
+        for name, d in spd.items():
+            w, c = d["warm"], d["cold"]
+            lines.append(f"| {name} | {w['wall_s']:.2f} | "
+                         f"{', '.join(f'{x:.2f}' for x in w['all_wall_s'])} | "
+                         f"{w['max_rss_MiB']:.0f} | {c['wall_s']:.2f} | "
+                         f"{c['max_rss_MiB']:.0f} |")
+    else:
+        lines += ["", "(speed part left out: SHAFTFE_BASELINE not set)"]
+    return "\n".join(lines) + "\n"
+
+
+def main() -> None:
+    acc = accuracy()
+    spd = speed()
+    OUT.mkdir(parents=True, exist_ok=True)
+    (OUT / "zoned.json").write_text(json.dumps({"accuracy": acc, "speed": spd}, indent=1,
+                                               default=str) + "\n")
+    (OUT / "zoned.md").write_text(write(acc, spd))
+    print((OUT / "zoned.md").read_text())
+
+
+if __name__ == "__main__":
+    main()
