@@ -25,7 +25,13 @@ import math
 
 import numpy as np
 import pytest
-from rotor_refs import ROSS_599, pinned_whirl, rod_speed, timoshenko_free_free
+from rotor_refs import (
+    ROSS_599,
+    friswell_599_variants,
+    pinned_whirl,
+    rod_speed,
+    timoshenko_free_free,
+)
 
 from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
 from shaftfe.rotordynamics import beam_rotor as rotor
@@ -150,26 +156,12 @@ def test_pairs_isotropic_and_split_with_anisotropic_bearings(cyl_mesh, K, split)
 
 # ----------------------------------------------------------------------------- spinning
 
-EF, GF, RHO_F = 211e3, 81.2e3, 7.81e-9      # Friswell et al. (2010) Example 5.9.9
-
-
 def friswell_599(tmp_path_factory, coupling="distributing"):
-    """Shaft 1.5 m × Ø50 mm, bearings 10 MN/m at x = 0 (end face) and 1.0 m (10 mm seat),
-    disk Ø350 × 70 mm (bore 50) as a rigid attachment on the last 10 mm, centroid at 1.5 m."""
+    """Example 5.9.9 (``rotor_refs.friswell_599_variants``) as a solid rotor, coarse mesh."""
     from shaftfe.solid.mesh import build_mesh
 
-    mat = Material("friswell", EF, EF / (2 * GF) - 1.0, RHO_F, 1.0, 1.0)
-    d = rotor.disk_from_geometry("d", 1500.0, 350.0, 50.0, 70.0, RHO_F)
-    att = (Attachment("disk", 1490.0, 1500.0, d.mass_t * 1e3, 0.0, 1500.0,
-                      polar_inertia_kg_mm2=d.Ip_t_mm2 * 1e3,
-                      diametral_inertia_kg_mm2=d.Id_t_mm2 * 1e3),)
-    K = ((10_000.0, 0.0), (0.0, 10_000.0))
-    a = Bearing("a", "test", 0.0, 0.0, 1.0, 1.0, K, axial=True)
-    b = Bearing("b", "test", 1000.0, 10.0, 1.0, 1.0, K)
-    seg = (Segment("s", 0.0, 1500.0, 50.0),)
-    sm = build_mesh(Variant("f599", "mesh", seg, (b,), att, mat, 0.0), "coarse", 2,
-                    cache_dir=tmp_path_factory.mktemp("f599"))
-    v = Variant("f599", "Friswell 5.9.9", seg, (a, b), att, mat, 0.0)
+    v, outline = friswell_599_variants()
+    sm = build_mesh(outline, "coarse", 2, cache_dir=tmp_path_factory.mktemp("f599"))
     return rotor_solid.build_solid_rotor(v, rotor_solid.SolidOptions(coupling=coupling),
                                          shaft_mesh=sm, support_faces={"a": "end:left"})
 
