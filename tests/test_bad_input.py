@@ -811,6 +811,9 @@ def test_bad_solid_case_input(case, space, capsys, monkeypatch):
 MODES_CASES = {
     "report_rotor_model_harmonic": (["report", "--rotor-model", "harmonic", "--out", "{W}/o"],
                                     ["--rotor-model", "beam | solid", "harmonic"]),
+    "campbell_harmonic_stress_stiffening": (["campbell", "0:8000", "--model", "harmonic",
+                                             "--stress-stiffening", "--out", "{W}/o"],
+                                            ["--stress-stiffening", "harmonic", "solid"]),
 }
 CASES.update(MODES_CASES)
 

@@ -57,7 +57,7 @@ Q0 = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
 
 @dataclass(frozen=True)
 class HarmonicOptions:
-    level: str = "default"                # axisymmetric.mesh.AXI_LEVELS
+    level: object = "default"             # a name of axisymmetric.mesh.AXI_LEVELS or an AxiLevel
     coupling: str = "rigid"               # attachments: "rigid" (RBE2) | "distributing" (RBE3)
     rigid_supports: bool = False
     bearing_damping: float = 0.0          # N·s/mm, isotropic, on every bearing's (u_y, u_z)
@@ -116,7 +116,8 @@ def _rigid_fields(x, r, xc, block: int):
 
 def _eliminate(H):
     """T (n × (n − h)) with H T = 0 for the h rows H (dense, h × n, full row rank): the h
-    pivots (largest entries by a column-pivoted QR of Hᵀ) expressed by the other dofs."""
+    pivot dofs (the first columns of a column-pivoted QR of H, a well-conditioned H_P)
+    expressed by the other dofs, u_P = −H_P⁻¹ H_F u_F (exact elimination, no penalty)."""
     import scipy.linalg as la
     import scipy.sparse as sp
     h, n = H.shape
