@@ -167,6 +167,11 @@ def _describe(args, model) -> str:
         return (f"variant {args.variant}: solid model (P{sm.order} tets, level {sm.level}, "
                 f"{sm.n_nodes} nodes, {model.n_dof} dofs, {len(disks)} rigid attachment "
                 f"bodies, {args.coupling} coupling), {sup}{damp}")
+    if args.model == "harmonic":
+        m = model.mesh
+        return (f"variant {args.variant}: harmonic model (n = 0, 1 on the meridian mesh, level "
+                f"{m.level}, {m.n_nodes} nodes, {model.n_dof} dofs, {len(disks)} rigid "
+                f"attachment bodies, {args.coupling} coupling; keyways left out), {sup}{damp}")
     return (f"variant {args.variant}: {args.model} model ({nodes}{model.n_dof} dofs, "
             f"{len(disks)} rigid disks), {sup}{damp}")
 

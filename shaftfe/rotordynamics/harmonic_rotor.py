@@ -345,5 +345,7 @@ def campbell(rotor: HarmonicRotor, rpms, n_modes: int = 12, **kw):
     if rotor.damped_rows is not None:       # the dampers' static residual vectors K⁻¹ Rᵀ
         from scipy.sparse.linalg import splu
         res = splu(rotor.K.tocsc()).solve(rotor.damped_rows.T.toarray())
-    return sweep(rotor.K, rotor.M, rotor.G, rpms, n_modes, rotor.labelling, C=rotor.C,
-                 residuals=res, **kw)
+    from dataclasses import replace
+    out = sweep(rotor.K, rotor.M, rotor.G, rpms, n_modes, rotor.labelling, C=rotor.C,
+                residuals=res, **kw)
+    return replace(out, notes=out.notes + rotor.notes)
