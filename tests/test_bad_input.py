@@ -812,3 +812,18 @@ CASES.update(SOLID_CASES)
 @pytest.mark.parametrize("case", sorted(SOLID_CASES))
 def test_bad_solid_case_input(case, space, capsys, monkeypatch):
     test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
+# --- issue #32 item 5 (h/modes): the harmonic rotor model is a Campbell/modal model, not yet
+# one of the report's (it would otherwise fall back to the beam silently)
+MODES_CASES = {
+    "report_rotor_model_harmonic": (["report", "--rotor-model", "harmonic", "--out", "{W}/o"],
+                                    ["--rotor-model", "beam | solid", "harmonic"]),
+    "campbell_harmonic_stress_stiffening": (["campbell", "0:8000", "--model", "harmonic",
+                                             "--stress-stiffening", "--out", "{W}/o"],
+                                            ["--stress-stiffening", "harmonic", "solid"]),
+}
+CASES.update(MODES_CASES)
+
+
+@pytest.mark.parametrize("case", sorted(MODES_CASES))
+def test_bad_modes_input(case, space, capsys, monkeypatch):
+    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)

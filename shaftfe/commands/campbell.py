@@ -5,12 +5,14 @@ options become a ``shaftfe.rotordynamics.analyse.RotorOptions`` and
 ``shaftfe.rotordynamics.analyse.analyse`` builds the model chosen by ``--model`` — ``beam``
 (Timoshenko beam + rigid disks, milliseconds) or ``solid`` (3D P2 tets of the static model's mesh at
 ``--level``, attachments as rigid bodies tied to their seats by ``--coupling``;
-``shaftfe.rotordynamics.solid_rotor``) — sweeps the speeds and checks the reduced sweep against the
-full-size problem. The solid model's results are shown next to the beam model's (same variant and
-options), and with ``--out`` its mode shapes at rest are written as ``modes.vtu`` (docs/FIELDS.md,
-"Mode shapes"). ``--stress-stiffening`` (solid model only, off by default) adds the centrifugal
-prestress of the shaft body (``shaftfe.rotordynamics.prestress``); ``--spin-softening`` is refused
-(a rotating-frame term, not applicable in the stationary-frame formulation used here).
+``shaftfe.rotordynamics.solid_rotor``) or ``harmonic`` (the round shaft's n = 0, 1 harmonics on
+the meridian mesh at ``--level`` with the same bodies; ``harmonic_rotor``) — sweeps the speeds
+and checks the reduced sweep against the full-size problem. The solid model's results are
+shown next to the beam model's (same variant and options), and with ``--out`` its mode shapes
+at rest are written as ``modes.vtu`` (docs/FIELDS.md, "Mode shapes"). ``--stress-stiffening``
+(solid model only, off by default) adds the centrifugal prestress of the shaft body
+(``shaftfe.rotordynamics.prestress``); ``--spin-softening`` is refused (a rotating-frame term,
+not applicable in the stationary-frame formulation used here).
 """
 
 from __future__ import annotations
@@ -38,12 +40,15 @@ def _common_options(p) -> None:
     add_set_option(p)
     p.add_argument("--modes", type=int, default=12, help="number of modes (default 12)")
     p.add_argument("--model", choices=ROTOR_MODELS, default="beam",
-                   help="rotor model: beam (Timoshenko beam + rigid disks; default) or solid "
-                   "(3D P2 tets + rigid attachments; shown next to the beam result)")
+                   help="rotor model: beam (Timoshenko beam + rigid disks; default), solid "
+                   "(3D P2 tets + rigid attachments; shown next to the beam result) or "
+                   "harmonic (the round shaft's n = 0, 1 harmonics on its meridian mesh + the "
+                   "same rigid attachments; keyways left out)")
     p.add_argument("--level", choices=LEVEL_NAMES, default="coarse",
-                   help="solid model: mesh level (default coarse)")
+                   help="solid and harmonic models: mesh level (default coarse)")
     p.add_argument("--coupling", choices=COUPLINGS, default="rigid",
-                   help="solid model: tie of the attachments to their seats, rigid (RBE2-like, "
+                   help="solid and harmonic models: tie of the attachments to their seats, "
+                   "rigid (RBE2-like, "
                    "bonded hub; default) or distributing (RBE3-like, no seat stiffening)")
     p.add_argument("--max-element", type=float, default=5.0, metavar="MM",
                    help="beam model: maximum element length in mm (default 5)")
@@ -162,6 +167,11 @@ def _describe(args, model) -> str:
         return (f"variant {args.variant}: solid model (P{sm.order} tets, level {sm.level}, "
                 f"{sm.n_nodes} nodes, {model.n_dof} dofs, {len(disks)} rigid attachment "
                 f"bodies, {args.coupling} coupling), {sup}{damp}")
+    if args.model == "harmonic":
+        m = model.mesh
+        return (f"variant {args.variant}: harmonic model (n = 0, 1 on the meridian mesh, level "
+                f"{m.level}, {m.n_nodes} nodes, {model.n_dof} dofs, {len(disks)} rigid "
+                f"attachment bodies, {args.coupling} coupling; keyways left out), {sup}{damp}")
     return (f"variant {args.variant}: {args.model} model ({nodes}{model.n_dof} dofs, "
             f"{len(disks)} rigid disks), {sup}{damp}")
 

@@ -1,11 +1,12 @@
-"""One entry to both rotor models: ``analyse(variant, rpms, options)``.
+"""One entry to the rotor models: ``analyse(variant, rpms, options)``.
 
-The beam rotor (``beam_rotor``: Timoshenko beam + rigid disks) and the 3D solid rotor
-(``solid_rotor``: P2 tets + rigid attachment bodies) answer the same small protocol,
-``RotorKind``: build the model, sweep the speeds, verify the reduced sweep against the full-size
-quadratic eigenproblem, and split a mode's strain energy between shaft and bearings. The
-Campbell command, the modal command and the report all go through ``analyse``; none of them
-knows which model it holds.
+The beam rotor (``beam_rotor``: Timoshenko beam + rigid disks), the 3D solid rotor
+(``solid_rotor``: P2 tets + rigid attachment bodies) and the harmonic rotor
+(``harmonic_rotor``: the round shaft's n = 0, 1 fields on the meridian mesh + the same bodies)
+answer the same small protocol, ``RotorKind``: build the model, sweep the speeds, verify the
+reduced sweep against the full-size quadratic eigenproblem, and split a mode's strain energy
+between shaft and bearings. The Campbell command, the modal command and the report all go
+through ``analyse``; none of them knows which model it holds.
 """
 
 from __future__ import annotations
@@ -91,7 +92,29 @@ class _Solid:
         return solid_modal.support_energy_share(model, vecs)
 
 
-KINDS: dict[str, RotorKind] = {"beam": _Beam(), "solid": _Solid()}
+class _Harmonic:
+    def build(self, variant, o: RotorOptions):
+        from shaftfe.rotordynamics import harmonic_rotor
+        opts = harmonic_rotor.HarmonicOptions(level=o.level, coupling=o.coupling,
+                                              rigid_supports=o.rigid_supports,
+                                              bearing_damping=o.bearing_damping)
+        return harmonic_rotor.build_harmonic_rotor(variant, opts, cache_dir=o.cache_dir)
+
+    def sweep(self, model, rpms, n_modes, orders, keep_vectors):
+        from shaftfe.rotordynamics import harmonic_rotor
+        return harmonic_rotor.campbell(model, rpms, n_modes, orders=orders,
+                                       keep_vectors=keep_vectors), None
+
+    def verify(self, model, res, provider):
+        from shaftfe.rotordynamics import beam_rotor
+        return beam_rotor.verify(model, res)
+
+    def support_energy_share(self, model, vecs):
+        from shaftfe.rotordynamics import beam_rotor  # K_support and K: the same rule
+        return beam_rotor.support_energy_share(model, vecs)
+
+
+KINDS: dict[str, RotorKind] = {"beam": _Beam(), "solid": _Solid(), "harmonic": _Harmonic()}
 assert tuple(KINDS) == ROTOR_MODELS
 
 

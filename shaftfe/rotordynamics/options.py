@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 from shaftfe.errors import InputError
 
-ROTOR_MODELS = ("beam", "solid")
+ROTOR_MODELS = ("beam", "solid", "harmonic")
 COUPLINGS = ("rigid", "distributing")     # solid model: RBE2-like (bonded) | RBE3-like
 # The excitation (engine) orders of a Campbell diagram's lines k × n/60, n the shaft's speed:
 # 1× (the shaft's own unbalance: the counterweights' m e ω², the only load modelled) and 2×
@@ -24,12 +24,13 @@ SEPARATION_MARGIN = 0.10
 
 @dataclass(frozen=True)
 class RotorOptions:
-    model: str = "beam"                   # "beam" | "solid"
+    model: str = "beam"                   # "beam" | "solid" | "harmonic"
     rigid_supports: bool = False
     bearing_damping: float = 0.0          # N·s/mm, isotropic, on every bearing (0: undamped)
     max_element_mm: float = 5.0           # beam elements
-    level: object = "coarse"              # solid: mesh level (name or MeshLevel)
-    coupling: str = "rigid"               # solid: attachments "rigid" | "distributing"
+    level: object = "coarse"              # solid: mesh level (name or MeshLevel);
+    #                                       harmonic: meridian level name
+    coupling: str = "rigid"               # solid, harmonic: "rigid" | "distributing"
     stress_stiffening: bool = False       # solid: centrifugal prestress
     cache_dir: object = None
 

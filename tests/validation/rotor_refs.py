@@ -90,3 +90,27 @@ def overhung_closed_form(L, D, m, Ip, Id, offset, Omega):
 # the ROSS regression values for this example (petrobras/ross, same source as above).
 ROSS_599 = {0.0: [90.14, 90.14, 630.73, 630.73, 830.43, 830.43],
             4000.0: [76.19, 103.91, 565.99, 634.23, 647.75, 1174.2]}
+
+
+EF_599, GF_599, RHO_599 = 211e3, 81.2e3, 7.81e-9      # Friswell et al. (2010) Example 5.9.9
+
+
+def friswell_599_variants():
+    """(model, outline) variants of Example 5.9.9: shaft 1.5 m × Ø50 mm, bearings 10 MN/m at
+    x = 0 (on the end face: the outline variant leaves it out, the model's bearing ``a`` is
+    tied to ``end:left``) and 1.0 m (10 mm seat), disk Ø350 × 70 mm (bore 50) as a rigid
+    attachment on the last 10 mm, centroid at 1.5 m."""
+    from shaftfe.model.variant import Attachment, Bearing, Material, Segment, Variant
+    from shaftfe.rotordynamics import beam_rotor as rotor
+
+    mat = Material("friswell", EF_599, EF_599 / (2 * GF_599) - 1.0, RHO_599, 1.0, 1.0)
+    d = rotor.disk_from_geometry("d", 1500.0, 350.0, 50.0, 70.0, RHO_599)
+    att = (Attachment("disk", 1490.0, 1500.0, d.mass_t * 1e3, 0.0, 1500.0,
+                      polar_inertia_kg_mm2=d.Ip_t_mm2 * 1e3,
+                      diametral_inertia_kg_mm2=d.Id_t_mm2 * 1e3),)
+    K = ((10_000.0, 0.0), (0.0, 10_000.0))
+    a = Bearing("a", "test", 0.0, 0.0, 1.0, 1.0, K, axial=True)
+    b = Bearing("b", "test", 1000.0, 10.0, 1.0, 1.0, K)
+    seg = (Segment("s", 0.0, 1500.0, 50.0),)
+    return (Variant("f599", "Friswell 5.9.9", seg, (a, b), att, mat, 0.0),
+            Variant("f599", "mesh", seg, (b,), att, mat, 0.0))
