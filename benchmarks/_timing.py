@@ -22,12 +22,12 @@ def best_time(fn: Callable[[], Any], repeat: int = 5) -> float:
     return best_of(fn, repeat)[0]
 
 
-# a child that runs a command line and reports its own peak memory: ru_maxrss of RUSAGE_CHILDREN
-# is the largest of ALL children so far, so each process writes its own (and its children's)
-_PEAK = ("import os, resource, subprocess, sys\n"
+# a small child that runs the command line and reports the peak memory of ITS child: ru_maxrss
+# of RUSAGE_CHILDREN is the largest over all children so far, and a process forked from a big
+# one starts with the parent's RSS, so the command is measured from this small wrapper
+_PEAK = ("import resource, subprocess, sys\n"
          "r = subprocess.run(sys.argv[2:]).returncode\n"
-         "kb = max(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss,\n"
-         "         resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)\n"
+         "kb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss\n"
          "open(sys.argv[1], 'w').write(str(kb))\n"
          "sys.exit(r)\n")
 

@@ -233,7 +233,11 @@ def write(acc: dict, spd: dict | None) -> str:
 
 
 def main() -> None:
-    acc = accuracy()
+    """``--speed-only``: keep the accuracy part of the last zoned.json and re-time."""
+    if "--speed-only" in sys.argv and (OUT / "zoned.json").exists():
+        acc = json.loads((OUT / "zoned.json").read_text())["accuracy"]
+    else:
+        acc = accuracy()
     spd = speed()
     OUT.mkdir(parents=True, exist_ok=True)
     (OUT / "zoned.json").write_text(json.dumps({"accuracy": acc, "speed": spd}, indent=1,

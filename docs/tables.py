@@ -154,10 +154,35 @@ def truth_bars() -> str:
     return "\n".join(out)
 
 
+def zoned_speed() -> str:
+    """``shaftfe static`` zoned against the full 3D model: whole processes side by side and
+    the keyway peaks against the full 3D fine model (benchmarks/bench_zoned.py)."""
+    import json
+    d = json.loads((ROOT / "reports" / "benchmarks" / "zoned.json").read_text())
+    acc, spd = d["accuracy"], d["speed"] or {}
+    z, fine = acc["zoned"], acc["full"]["fine"]
+    dofs = {"zoned (this tree, default)": sum(q["dofs"] for q in z["zones"]),
+            "full 3D (this tree, --model solid)": acc["full"]["default"]["dofs"],
+            "full 3D (baseline, its default)": acc["full"]["default"]["dofs"]}
+    out = ["| `shaftfe static --variant x2_57` | warm s | cold s | peak MiB (warm) | 3D dofs |",
+           "|---|---|---|---|---|"]
+    for name, r in spd.items():
+        out.append(f"| {name} | {r['warm']['wall_s']:.2f} | {r['cold']['wall_s']:.2f} | "
+                   f"{r['warm']['max_rss_MiB']:.0f} | {dofs.get(name, '-')} |")
+    out += ["", "| peak (von Mises) | zoned MPa | full 3D fine MPa | difference |",
+            "|---|---|---|---|"]
+    for reg, (vm, _, model, kind) in z["peaks"].items():
+        if kind in ("keyway", "hex_socket") or (kind == "fillet" and model == "axisymmetric"):
+            f = fine["peaks"][reg][0]
+            out.append(f"| {reg} ({model}) | {vm:.2f} | {f:.2f} | {100 * (vm / f - 1):+.2f} % |")
+    return "\n".join(out)
+
+
 # table name -> (the file that quotes it, the function that computes it)
 TABLES = {"fatigue-x2_57": (DOCS / "VALIDATION.md", fatigue_x2_57),
           "truth-bars": (DOCS / "VALIDATION.md", truth_bars),
-          "study-x2_tradeoff": (DOCS / "STUDIES.md", study_x2_tradeoff)}
+          "study-x2_tradeoff": (DOCS / "STUDIES.md", study_x2_tradeoff),
+          "zoned-speed": (DOCS / "PERFORMANCE.md", zoned_speed)}
 
 
 def render(path: Path, text: str) -> str:

@@ -53,17 +53,43 @@ def keyed(request, cache):
             solve_static(v, [1000.0], o, beam=False, cache_dir=cache))
 
 
+def test_keyway_between_two_cuts_carries_the_section_forces_of_statics(keyed):
+    """The resultant the submodel's fixed cut carries (its reactions Φᵀ (K u − f) about the
+    face centre) against statics: four-point bending, M = F · 30 mm between the loads; torsion,
+    T. Bound 2 %: the floating cut's resultant is the global field's consistent nodal force on
+    the submodel's elements at the cut, exact for fields of the elements' degree on straight
+    elements (pure bending and torsion are); the coarse mesh's curved boundary elements carry
+    it to 1.7 % (bending) and 0.5 % (torsion), measured. Two displacement-driven cuts let the
+    keyway's softer section take less of the imposed twist and curvature (its peak came out
+    10 % low in bending, 7 % in torsion): outside the bound."""
+    from shaftfe.fe import assembly as fem
+    from shaftfe.zoned.submodel import _stiffness, load_vector
+    kind, z, _ = keyed
+    sub, sf = z.fields[0]
+    m = sub.shaft_mesh.mesh
+    K = _stiffness(sub.shaft_mesh, STEEL.E_MPa, STEEL.nu)
+    r = K @ sf.u - load_vector(sub, z.global_result.solution, z.global_result.ref_rpm)
+    nodes = fem.face_nodes(m, m.boundaries[sub.cut_groups[0]])
+    dofs = (3 * nodes[:, None] + np.arange(3)).ravel()
+    Phi = fem.rigid_body_modes(m, (float(m.doflocs[0, nodes].mean()), 0.0, 0.0))[dofs]
+    F = Phi.T @ r[dofs]                                   # (Fx, Fy, Fz, Mx, My, Mz)
+    if kind == "bending":
+        assert abs(F[5]) == pytest.approx(F_N * 30.0, rel=0.02)
+    else:
+        assert abs(F[3]) == pytest.approx(T_NMM, rel=0.02)
+
+
 def test_keyway_between_two_cuts_matches_the_full_3d_model(keyed):
-    """The keyway's peak, zoned against full 3D at the same level. Bound 2 %: the two models
+    """The keyway's peak, zoned against full 3D at the same level. Bound 5 %: the two models
     mesh the keyway independently (Gmsh meshes the clipped solid anew) and a peak on the
-    keyway's sharp edges moves by about 1 % from one mesh to another of the same level
-    (measured here +0.27 % bending, +0.65 % torsion; x2_57 at default −0.37 %, −0.21 %); two
-    displacement-driven cuts without the floating second cut were −10 % and −7 %, outside it."""
+    keyway's sharp edges is not converged: between two meshes of one level it moved by up to
+    4.5 % on this bar (reports/benchmarks/zoned.md: +0.27 % bending and +0.65 % torsion at
+    coarse, −4.47 % torsion at default; x2_57 at default −0.37 %, −0.21 %)."""
     _, z, s = keyed
     zp = {p.region: p for p in z.cases[0].peaks}["keyway:bar:0"]
     sp = {p.region: p for p in s.cases[0].peaks}["keyway:bar:0"]
     assert zp.model == "zone:keyway:bar:0"
-    assert zp.von_mises_MPa == pytest.approx(sp.von_mises_MPa, rel=0.02)
+    assert zp.von_mises_MPa == pytest.approx(sp.von_mises_MPa, rel=0.05)
     (zone,) = z.zones
     assert zone.cuts_mm == (52.0, 108.0)          # the keyway's extent ± one diameter
     assert zone.grown == 0
