@@ -19,11 +19,11 @@ import math
 import time
 from dataclasses import dataclass
 
-from shaftfe.errors import InputError
+from shaftfe.errors import InputError, SolverError
 from shaftfe.fatigue.assess import DEFAULT_DESIGN_LIFE_BLOCKS
 from shaftfe.fatigue.kernels import EQUIVALENT_STRESSES, MEAN_STRESS_THEORIES
 from shaftfe.solid.levels import LEVEL_NAMES
-from shaftfe.static import MODELS
+from shaftfe.static import MODELS, STATIC_MODELS
 from shaftfe.util.fmt import LIFE_MAX
 from shaftfe.util.limits import OVERSPEED_HINT, check_exclude_mm
 
@@ -200,11 +200,12 @@ def check_history(history, engine: str, allow_overspeed: bool, hint: str = OVERS
                           hint=hint)
 
 
-def check_model_level(model: str, level: str) -> None:
-    """--model one of ``static.MODELS`` and --level one of that model's levels (shared by
+def check_model_level(model: str, level: str, allowed: tuple[str, ...] = MODELS) -> None:
+    """--model one of ``allowed`` (``static.MODELS``; ``shaftfe fatigue`` also takes the zoned
+    solve, ``static.STATIC_MODELS``) and --level one of that model's levels (shared by
     ``shaftfe fatigue`` and ``shaftfe report``)."""
-    if model not in MODELS:
-        raise InputError("command line", "--model", " | ".join(MODELS), got=model)
+    if model not in allowed:
+        raise InputError("command line", "--model", " | ".join(allowed), got=model)
     if model == "axisymmetric":
         from shaftfe.axisymmetric.mesh import AXI_LEVELS
         names = tuple(AXI_LEVELS)
@@ -221,7 +222,7 @@ def check_job(job: FatigueJob) -> None:
     if job.equivalent not in EQUIVALENT:
         raise InputError("command line", "--equivalent", " | ".join(EQUIVALENT),
                          got=job.equivalent)
-    check_model_level(job.model, job.level)
+    check_model_level(job.model, job.level, STATIC_MODELS)
     check_life_settings(job.design_life, job.speed_kmh, job.design_life_h)
     if not (math.isfinite(job.kf) and 0 < job.kf <= 1):
         raise InputError("command line", "--kf", "a number in (0, 1]", got=job.kf)
@@ -342,12 +343,40 @@ def static_reference(variant, job: FatigueJob):
             ref = replace(ref, stress_linear=axi_reference(lin).stress_ref,
                           seconds=time.perf_counter() - t0)
         return ref
+    if job.model == "zoned":
+        return zoned_static_reference(variant, job)
     from shaftfe.static import cache as static_cache
     from shaftfe.static.model import StaticOptions
     extra = {"exclude_mm": job.exclude_mm} if job.exclude_mm > 0 else {}
     opts = StaticOptions(level=job.level, seed_load_case=job.seed_load_case,
                          spin_softening=job.spin_softening, **extra)
     return static_cache.load_or_solve(variant, opts, job.cache_dir)
+
+
+def zoned_static_reference(variant, job: FatigueJob):
+    """The zoned solve's surface reference at REF_RPM (``zoned.reference``; solved each time
+    from the cached meshes, no cache of its own), with spin softening also the unsoftened
+    stress on the same points (the second solve starts from the zones the first grew to)."""
+    from dataclasses import replace
+
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.util.units import REF_RPM
+    from shaftfe.zoned.reference import zoned_reference
+    from shaftfe.zoned.solve import solve_zoned
+    opts = StaticOptions(level=job.level, seed_load_case=job.seed_load_case,
+                         exclude_mm=job.exclude_mm, spin_softening=job.spin_softening)
+    t0 = time.perf_counter()
+    ref = zoned_reference(solve_zoned(variant, REF_RPM, opts, cache_dir=job.cache_dir))
+    if job.spin_softening:
+        lin = zoned_reference(solve_zoned(variant, REF_RPM, replace(opts, spin_softening=False),
+                                          cache_dir=job.cache_dir))
+        import numpy as np
+        if lin.xyz.shape != ref.xyz.shape or not np.array_equal(lin.xyz, ref.xyz):
+            raise SolverError("zoned fatigue reference: the unsoftened solve's zones differ "
+                              "from the softened one's; use --no-spin-softening or --model "
+                              "solid")
+        ref = replace(ref, stress_linear=lin.stress_ref)
+    return replace(ref, seconds=time.perf_counter() - t0)
 
 
 def run_fatigue(job: FatigueJob, inputs: FatigueInputs | None = None,

@@ -87,6 +87,7 @@ class ZonedResult:
     notes: tuple[str, ...]
     run: dict
     global_result: object = field(default=None, repr=False)     # axisymmetric AxiResult
+    plan: object = field(default=None, repr=False)         # the mesh plan the zones are cut from
     fields: tuple = field(default=(), repr=False)               # (SubModel, SubField) per zone
 
     def case(self, rpm: float) -> ZonedCase:
@@ -224,7 +225,7 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
     run = {"plan_seconds": t_plan, "global_seconds": t_global, "zones_seconds": t_zones,
            "total_seconds": time.perf_counter() - t0}
     return ZonedResult(variant.name, variant.content_hash, options, axi_level, tuple(infos),
-                       tuple(cases), tuple(notes), run, first_global, tuple(fields))
+                       tuple(cases), tuple(notes), run, first_global, plan, tuple(fields))
 
 
 def _growth_file(plan, bands, options, cache_dir):

@@ -126,6 +126,10 @@ def _lines(run, out, plots) -> list[str]:
         p.append(f"static: axisymmetric, solved in {ref.seconds:.1f} s ({ref.ref_rpm:g} rpm, "
                  f"harmonics n = 0..{ref.options['harmonics'][-1]}, {args.level}; "
                  f"{ref.n_nodes} surface points)")
+    elif args.model == "zoned":
+        p.append(f"static: zoned (the axisymmetric global model and {len(ref.options['zones'])} "
+                 f"3D zones), solved in {ref.seconds:.1f} s ({ref.ref_rpm:g} rpm, {args.level}; "
+                 f"{ref.n_nodes} surface points)")
     elif ref.from_cache:
         p.append(f"static: from cache ({ref.seconds:.2f} s; solved at {ref.ref_rpm:g} rpm, "
                  f"{ref.n_nodes} nodes, P2 {args.level})")
