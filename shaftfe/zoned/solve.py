@@ -221,6 +221,9 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
                      r for z in zones for r in (f.region for f in z.features)))
     notes.append("the keyways' and the hex socket's effect on the shaft's stiffness is not in "
                  "the global model (reactions and deflections are the round shaft's)")
+    notes.append("no error bars: the 3D levels' bars were measured on whole-shaft meshes and "
+                 "the axisymmetric model's error only on x2_57's span fillets "
+                 "(reports/benchmarks/zoned.md compares every peak with the full 3D model)")
     notes += [n for n in first_global.notes if "is not modelled" not in n]
     run = {"plan_seconds": t_plan, "global_seconds": t_global, "zones_seconds": t_zones,
            "total_seconds": time.perf_counter() - t0}
