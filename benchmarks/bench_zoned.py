@@ -9,7 +9,7 @@ stations (the keyways' and the hex socket's effect on the stiffness, which the g
 leaves out), every region's peak (von Mises and max principal) with the model it comes from,
 the zones (extent, cuts, dofs, the cut checks, the peaks' change when the cut moves one gap
 outward, the time of each phase). Then a keyed Ø20 bar between two cuts in bending and in
-torsion (``tests/validation/test_zoned.keyed_bar``) at every level against the full 3D model at
+torsion (``model.examples.keyed_bar``) at every level against the full 3D model at
 the same level and at ``fine``.
 
 Speed (whole processes, ``_timing.process``): ``shaftfe static --variant x2_57`` of this tree
@@ -82,9 +82,7 @@ def accuracy() -> dict:
 
 
 def keyed_bar_rows() -> list[dict]:
-    sys.path.insert(0, str(HERE / "tests" / "validation"))
-    from test_zoned import keyed_bar
-
+    from shaftfe.model.examples import keyed_bar
     from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
     from shaftfe.zoned.solve import solve_zoned

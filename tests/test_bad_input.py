@@ -455,12 +455,6 @@ B_CASES.update({
 })
 CASES.update(B_CASES)          # counted by the catalogue's coverage test
 
-
-@pytest.mark.parametrize("case", sorted(B_CASES))
-def test_bad_input_b_static_variant(case, space, capsys, monkeypatch):
-    """The same contract as the catalogue's test for the cases above (defined after its
-    parametrisation, so run here)."""
-    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
 # --- issue #30 §1-2, slice a1 (the fatigue command's inputs) ---------------------------------
 # The engine's speed limit (util.limits: max_rpm of geometry/engines/vm450.toml, 9500 rpm; a
 # static/beam proof check up to 1.2 × = 11 400 rpm), absurd sample rates and design lives
@@ -550,10 +544,6 @@ MATERIAL_CASES = {
 CASES.update(MATERIAL_CASES)
 
 
-@pytest.mark.parametrize("case", sorted(MATERIAL_CASES))
-def test_material_record_bad_input(case, space, capsys, monkeypatch):
-    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
-
 
 # --- issue #30, slice s2-study-fixes: study folders and addresses ---------------------------
 # a study.json without its keys (`{}` beside a finished study's table), `study report` on a
@@ -611,10 +601,6 @@ F2_CASES = {
 }
 CASES.update(F2_CASES)
 
-
-@pytest.mark.parametrize("case", sorted(F2_CASES))
-def test_f2_fatigue_bad_input(case, space, capsys, monkeypatch):
-    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
 # --- issue #31, loads as data (model.loads): a load outside the shaft, a torque with nothing to
 # react it, a magnitude in the wrong unit, a gear that cannot exist, an unknown kind or law
 _BAL = "[balance]\nX2_percent = 57.0"
@@ -657,10 +643,6 @@ LOAD_CASES["static_set_load_outside"] = (
      "--set", "loads.f.x_mm=-3.0"], ["--set loads.f.x_mm=-3.0", "x_mm", "on the shaft"])
 CASES.update(LOAD_CASES)
 
-
-@pytest.mark.parametrize("case", sorted(LOAD_CASES))
-def test_bad_load_input(case, space, capsys, monkeypatch):
-    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
 
 
 # --- issue #31, slice duty (item 6: the variant owns its duty) -------------------------------
@@ -720,10 +702,6 @@ DUTY_CASES.update({
 CASES.update(DUTY_CASES)          # counted by the catalogue's coverage test
 
 
-@pytest.mark.parametrize("case", sorted(DUTY_CASES))
-def test_duty_bad_input(case, space, capsys, monkeypatch):
-    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
-
 
 # --- issue #31, slice beamloads: `shaftfe beam` meets the loads (one line, exit 2) -----------
 BEAM_LOAD_CASES = {
@@ -737,10 +715,6 @@ BEAM_LOAD_CASES = {
 }
 CASES.update(BEAM_LOAD_CASES)
 
-
-@pytest.mark.parametrize("case", sorted(BEAM_LOAD_CASES))
-def test_beam_bad_load_input(case, space, capsys, monkeypatch):
-    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
 # --- slice fatproto (issue #31 §5: the fatigue methods behind one registry) --------------------
 # an unknown --method is refused by the registry (fatigue.methods.get_method), naming every
 # registered method, before any input is read
@@ -750,10 +724,6 @@ FP_CASES = {
 }
 CASES.update(FP_CASES)
 
-
-@pytest.mark.parametrize("case", sorted(FP_CASES))
-def test_fp_fatigue_unknown_method(case, space, capsys, monkeypatch):
-    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
 # a study's fatigue method by name from the same registry; a key of an option the method does
 # not use is refused by the command's rule (study.spec.FATIGUE_KEY_OPTIONS)
 _FP_FATIGUE = STUDY_HEAD + '[analyses]\nstatic = { level = "coarse" }\nfatigue = { spectrum = ' \
@@ -789,10 +759,6 @@ STATIC_CASES = {
 }
 CASES.update(STATIC_CASES)
 
-
-@pytest.mark.parametrize("case", sorted(STATIC_CASES))
-def test_static_case_bad_input(case, space, capsys, monkeypatch):
-    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
 # --- issue #31, the 3D static path's load cases (h/solidloads): --case must name a case of the
 # variant, and a case brings its own speed
 SOLID_CASES = {
@@ -808,10 +774,6 @@ SOLID_CASES = {
 }
 CASES.update(SOLID_CASES)
 
-
-@pytest.mark.parametrize("case", sorted(SOLID_CASES))
-def test_bad_solid_case_input(case, space, capsys, monkeypatch):
-    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
 # --- issue #32 item 5 (h/modes): the harmonic rotor model is a Campbell/modal model, not yet
 # one of the report's (it would otherwise fall back to the beam silently)
 MODES_CASES = {
@@ -824,6 +786,12 @@ MODES_CASES = {
 CASES.update(MODES_CASES)
 
 
-@pytest.mark.parametrize("case", sorted(MODES_CASES))
-def test_bad_modes_input(case, space, capsys, monkeypatch):
+# the tables defined after the catalogue's own parametrisation (each merged into CASES, so the
+# coverage test counts it): one test runs them under the same contract
+LATER_CASES = {**B_CASES, **MATERIAL_CASES, **F2_CASES, **LOAD_CASES, **DUTY_CASES,
+               **BEAM_LOAD_CASES, **FP_CASES, **STATIC_CASES, **SOLID_CASES, **MODES_CASES}
+
+
+@pytest.mark.parametrize("case", sorted(LATER_CASES))
+def test_later_tables_are_one_clear_line_exit_2(case, space, capsys, monkeypatch):
     test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)

@@ -100,3 +100,20 @@ def test_fatigue_seed_method_runs_on_the_zoned_field(tmp_path, cache, monkeypatc
     assert s["hot_spot"]["region"].startswith("fillet:")
     assert main(["fatigue", rpm, "--method", "fkm", "--model", "zoned", "--out",
                  str(tmp_path / "g")]) == 2
+
+
+def test_a_cut_check_that_never_passes_is_warned(cache, monkeypatch):
+    """A zone whose cut check still fails when it can grow no further is not silently taken:
+    a visible warning names the zone (forced here by a bound no cut meets, and no growth)."""
+    import shaftfe.zoned.solve as zs
+    from shaftfe.model.examples import keyed_bar
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.util.notices import collected, collecting
+    monkeypatch.setattr(zs, "CUT_TOL", 1e-9)
+    monkeypatch.setattr(zs, "MAX_GROW", 0)
+    with collecting(echo=False):
+        zs.solve_zoned(keyed_bar("torsion"), 1000.0,
+                       StaticOptions(level="coarse", rigid_supports=True, spin_softening=False),
+                       cache_dir=cache)
+        warned = [w for w in collected() if w["code"] == "cut-check"]
+    assert warned and "zone:keyway:bar:0" in warned[0]["where"]

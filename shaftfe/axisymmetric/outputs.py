@@ -6,7 +6,6 @@ atomically into ``out`` (the command stages the whole directory)."""
 
 from __future__ import annotations
 
-import json
 from dataclasses import asdict
 
 import numpy as np
@@ -101,24 +100,13 @@ def write_surface_vtu(sol, scale: float, path):
 
 
 def write_outputs(variant_arg: str, variant, opts, res, rpms, out) -> dict:
-    from shaftfe.util.atomic import write_atomic
-    from shaftfe.util.notices import collected
-    from shaftfe.util.versions import package_versions
+    from shaftfe.static.outputs import write_summary
     rpm_vtu = rpms[0]
     path = write_revolved_vtu(res.solution, res.case(rpm_vtu).scale, out / "result.vtu")
-    opts_d = {**asdict(opts), "level": opts.level_name}
-    summary = {
-        "inputs": {"variant": variant_arg, "rpm": rpms, "model": "axisymmetric",
-                   "options": opts_d,
-                   "source_files": list(getattr(variant, "source_files", ())),
-                   "overrides": variant.overrides_map},
-        "versions": package_versions(),
-        "vtu": {"file": path.name, "rpm": rpm_vtu, "sectors": SECTORS,
-                "note": "the meridian solution revolved to 3D (P1 wedges on the P2 corner "
-                "nodes; nodally averaged von Mises); fields at vtu.rpm, scale by "
-                "(rpm / vtu.rpm)^2 for another speed"},
-        **res.to_dict(),
-        "warnings": collected(),
-    }
-    write_atomic(out / "summary.json", json.dumps(summary, indent=2, allow_nan=False) + "\n")
-    return summary
+    return write_summary(out, variant_arg, variant, rpms,
+                         {**asdict(opts), "level": opts.level_name}, {
+                             "file": path.name, "rpm": rpm_vtu, "sectors": SECTORS,
+                             "note": "the meridian solution revolved to 3D (P1 wedges on the P2 "
+                             "corner nodes; nodally averaged von Mises); fields at vtu.rpm, "
+                             "scale by (rpm / vtu.rpm)^2 for another speed"},
+                         res.to_dict(), model="axisymmetric")

@@ -29,11 +29,14 @@ from shaftfe.util.fmt import life
 def register(sub) -> None:
     p = sub.add_parser(
         "static", help="3D FE static check: stresses, deflections, bearing reactions, L10h",
-        description="3D P2 finite-element static analysis of a balancer-shaft variant in the "
-        "co-rotating frame: every load of the variant (the parts' m e ω² at their centroids and "
-        "the [[loads]]) as a remote load on its seat or band, bearings as RBE3 remote points on "
-        "2×2 radial springs (or rigid), θ_x held only where a bearing holds torsion. One "
-        "factorisation, one solve per load pattern, each speed or --case their superposition "
+        description="Static analysis of a balancer-shaft variant in the co-rotating frame. "
+        "Default (--model zoned): the shaft as a body of revolution (axisymmetric harmonics) "
+        "with 3D P2 submodels only in the zones of the keyways and the hex socket; --model "
+        "solid: the full 3D P2 model, described here: every load of the variant (the parts' "
+        "m e ω² at their centroids and the [[loads]]) as a remote load on its seat or band, "
+        "bearings as RBE3 remote points on 2×2 radial springs (or rigid), θ_x held only where "
+        "a bearing holds torsion. One factorisation, one solve per load pattern, each speed or "
+        "--case their superposition "
         "(spin softening, on by default: each case exactly by a low-rank update). "
         "Writes result.vtu, summary.json and deflection.png to --out.")
     p.add_argument("--variant", required=True, help="variant name (geometry/<name>.toml) or path")
@@ -64,7 +67,7 @@ def register(sub) -> None:
                    help="each part's m ω² u (the deflected part's centrifugal force in the "
                    "co-rotating frame; on by default: +1.5 %% on the collar fillet at "
                    "10 000 rpm); 3D: every --rpm solved exactly by a low-rank update of one "
-                   "factorisation; --model axisymmetric: one solve per --rpm")
+                   "factorisation; --model axisymmetric and zoned: one solve per --rpm")
     p.add_argument("--seed-load-case", action="store_true",
                    help="load only the parts the seed loaded (gear, counterweights 1 and 2)")
     p.add_argument("--solver", default="auto",
@@ -85,7 +88,6 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from pathlib import Path
 
     from shaftfe.util.atomic import staged_dir
 
@@ -119,17 +121,11 @@ def run(args) -> int:
     if args.model == "zoned":
         return _run_zoned(args, rpms, variant)
     from shaftfe.static import cache as static_cache
-    from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
     from shaftfe.util.units import REF_RPM
 
-    opts = StaticOptions(level=args.level, order=args.order, rigid_supports=args.rigid_supports,
-                         load_distribution=args.load_distribution, body_force=args.body_force,
-                         seed_load_case=args.seed_load_case, solver=args.solver,
-                         exclude_mm=args.exclude_mm,
-                         spin_softening=args.spin_softening)
-    out = Path(args.out) if args.out else \
-        Path("reports") / out_name(variant.name, variant.overrides) / "static"
+    opts = _options(args)
+    out = _out(args, variant)
     from shaftfe.util.progress import Progress
     prog = Progress(["mesh + solve", "outputs"], enabled=False if args.json else None)
     with staged_dir(out) as stage:             # all three files or none
@@ -166,7 +162,6 @@ def _report(args, summary: dict, show) -> int:
 
 
 def _run_axisymmetric(args, rpms, variant) -> int:
-    from pathlib import Path
 
     from shaftfe.axisymmetric.model import AxiOptions
     from shaftfe.axisymmetric.outputs import write_outputs
@@ -182,8 +177,7 @@ def _run_axisymmetric(args, rpms, variant) -> int:
                       load_distribution=args.load_distribution,
                       seed_load_case=args.seed_load_case, exclude_mm=args.exclude_mm,
                       spin_softening=args.spin_softening)
-    out = Path(args.out) if args.out else \
-        Path("reports") / out_name(variant.name, variant.overrides) / "static"
+    out = _out(args, variant)
     with staged_dir(out) as stage:             # both files or none
         res = solve_axisymmetric(variant, rpms, opts, case=getattr(args, "case", None))
         summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
@@ -191,10 +185,24 @@ def _run_axisymmetric(args, rpms, variant) -> int:
                                            _print_axi(res, opts, out, _corners(variant))))
 
 
-def _run_zoned(args, rpms, variant) -> int:
-    from pathlib import Path
-
+def _options(args):
+    """The 3D options of the command line (the full 3D model's and the zoned one's)."""
     from shaftfe.static.model import StaticOptions
+    return StaticOptions(level=args.level, order=args.order, rigid_supports=args.rigid_supports,
+                         load_distribution=args.load_distribution, body_force=args.body_force,
+                         seed_load_case=args.seed_load_case, solver=args.solver,
+                         exclude_mm=args.exclude_mm, spin_softening=args.spin_softening)
+
+
+def _out(args, variant):
+    """--out, else reports/<variant>[_set_<hash>]/static."""
+    from pathlib import Path
+    return Path(args.out) if args.out else \
+        Path("reports") / out_name(variant.name, variant.overrides) / "static"
+
+
+def _run_zoned(args, rpms, variant) -> int:
+
     from shaftfe.util.atomic import staged_dir
     from shaftfe.zoned.outputs import write_outputs
     from shaftfe.zoned.solve import solve_zoned
@@ -203,12 +211,8 @@ def _run_zoned(args, rpms, variant) -> int:
         if bad:
             raise InputError(flag, flag, "not with --model zoned (the default): use "
                              "--model solid")
-    opts = StaticOptions(level=args.level, order=args.order, rigid_supports=args.rigid_supports,
-                         load_distribution=args.load_distribution,
-                         seed_load_case=args.seed_load_case, solver=args.solver,
-                         exclude_mm=args.exclude_mm, spin_softening=args.spin_softening)
-    out = Path(args.out) if args.out else \
-        Path("reports") / out_name(variant.name, variant.overrides) / "static"
+    opts = _options(args)
+    out = _out(args, variant)
     case = getattr(args, "case", None)
     with staged_dir(out) as stage:             # every file or none
         res = solve_zoned(variant, rpms, opts, case=case)

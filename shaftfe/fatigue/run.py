@@ -327,22 +327,14 @@ def static_reference(variant, job: FatigueJob):
     (``shaftfe.axisymmetric.reference``; solved each time from the cached meridian mesh: a
     few seconds, no cache of its own)."""
     if job.model == "axisymmetric":
-        from dataclasses import replace
-
         from shaftfe.axisymmetric.model import AxiOptions
         from shaftfe.axisymmetric.reference import static_reference as axi_reference
         from shaftfe.axisymmetric.solve import solve_axisymmetric
         opts = AxiOptions(level=job.level, seed_load_case=job.seed_load_case,
                           exclude_mm=job.exclude_mm, spin_softening=job.spin_softening)
-        t0 = time.perf_counter()
-        res = solve_axisymmetric(variant, options=opts, cache_dir=job.cache_dir)
-        ref = axi_reference(res, time.perf_counter() - t0)
-        if job.spin_softening:        # fatigue's S0 (λ + β λ²) needs the unsoftened stress too
-            lin = solve_axisymmetric(variant, options=replace(opts, spin_softening=False),
-                                     cache_dir=job.cache_dir)
-            ref = replace(ref, stress_linear=axi_reference(lin).stress_ref,
-                          seconds=time.perf_counter() - t0)
-        return ref
+        return _surface_reference(
+            lambda o: axi_reference(solve_axisymmetric(variant, options=o,
+                                                       cache_dir=job.cache_dir)), opts)
     if job.model == "zoned":
         return zoned_static_reference(variant, job)
     from shaftfe.static import cache as static_cache
@@ -355,26 +347,34 @@ def static_reference(variant, job: FatigueJob):
 
 def zoned_static_reference(variant, job: FatigueJob):
     """The zoned solve's surface reference at REF_RPM (``zoned.reference``; solved each time
-    from the cached meshes, no cache of its own), with spin softening also the unsoftened
-    stress on the same points (the second solve starts from the zones the first grew to)."""
-    from dataclasses import replace
-
+    from the cached meshes, no cache of its own)."""
     from shaftfe.static.model import StaticOptions
     from shaftfe.util.units import REF_RPM
     from shaftfe.zoned.reference import zoned_reference
     from shaftfe.zoned.solve import solve_zoned
     opts = StaticOptions(level=job.level, seed_load_case=job.seed_load_case,
                          exclude_mm=job.exclude_mm, spin_softening=job.spin_softening)
+    return _surface_reference(
+        lambda o: zoned_reference(solve_zoned(variant, REF_RPM, o, cache_dir=job.cache_dir)),
+        opts)
+
+
+def _surface_reference(make, opts):
+    """``make(opts)`` (a surface reference of the axisymmetric or the zoned model, solved each
+    time), with spin softening also the unsoftened stress on the same points (fatigue's
+    S0 (λ + β λ²)): a second solve; the zoned one starts from the zones the first grew to, and
+    points that differ anyway are refused in one line."""
+    from dataclasses import replace
+
+    import numpy as np
     t0 = time.perf_counter()
-    ref = zoned_reference(solve_zoned(variant, REF_RPM, opts, cache_dir=job.cache_dir))
-    if job.spin_softening:
-        lin = zoned_reference(solve_zoned(variant, REF_RPM, replace(opts, spin_softening=False),
-                                          cache_dir=job.cache_dir))
-        import numpy as np
+    ref = make(opts)
+    if opts.spin_softening:
+        lin = make(replace(opts, spin_softening=False))
         if lin.xyz.shape != ref.xyz.shape or not np.array_equal(lin.xyz, ref.xyz):
-            raise SolverError("zoned fatigue reference: the unsoftened solve's zones differ "
-                              "from the softened one's; use --no-spin-softening or --model "
-                              "solid")
+            raise SolverError("fatigue reference: the unsoftened solve's points differ from "
+                              "the softened one's (the zones grew differently); use "
+                              "--no-spin-softening or --model solid")
         ref = replace(ref, stress_linear=lin.stress_ref)
     return replace(ref, seconds=time.perf_counter() - t0)
 

@@ -8,6 +8,7 @@ socket, split load seats, a bearing seat) at a size that meshes in seconds.
 
 from __future__ import annotations
 
+from shaftfe.model.loads import Load
 from shaftfe.model.variant import Attachment, Bearing, HexSocket, Keyway, Material, Segment, Variant
 
 STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
@@ -41,3 +42,25 @@ def four_step_shaft(*, name: str = "four_step", description: str = "synthetic fo
                               angle_deg=hub_angle))
     hx = HexSocket(hex_end, 8.0, 10.0) if hex_socket else None
     return Variant(name, description, segs, brg, tuple(att), STEEL, 0.0, hex_socket=hx)
+
+
+KEYED_BAR_F_N = 1000.0        # four-point bending: a force at x = 40 and x = 120 mm
+KEYED_BAR_T_NMM = 50_000.0    # torsion: +T at x = 40, −T at x = 120
+
+
+def keyed_bar(kind: str) -> Variant:
+    """Ø20 × 160 mm bar, a 6 × 3.5 × 16 keyway at x = 80, supports at 10 and 150 mm, in
+    four-point bending (``kind`` "bending": F at 40 and 120 mm, so M = F · 30 mm between them)
+    or torsion (+T at 40, −T at 120): the zoned solve's two-cut case (tests/validation/
+    test_zoned.py, benchmarks/bench_zoned.py)."""
+    kw = (Keyway(6.0, 3.5, 16.0, 80.0, 0.0),)
+    segs = (Segment("bar", 0.0, 160.0, 20.0, 0.0, keyways=kw),)
+    brg = (Bearing("L", "x", 10.0, 10.0, 14_400.0, 10_000.0, K_SEED, axial=True),
+           Bearing("R", "x", 150.0, 10.0, 14_400.0, 10_000.0, K_SEED))
+    if kind == "bending":
+        loads = (Load("p1", "force", 40.0, (38.0, 42.0), KEYED_BAR_F_N, 0.0),
+                 Load("p2", "force", 120.0, (118.0, 122.0), KEYED_BAR_F_N, 0.0))
+    else:
+        loads = (Load("t1", "torque", 40.0, (38.0, 42.0), KEYED_BAR_T_NMM),
+                 Load("t2", "torque", 120.0, (118.0, 122.0), -KEYED_BAR_T_NMM))
+    return Variant(f"keyed_{kind}", "keyed bar", segs, brg, (), STEEL, 0.0, loads=loads)

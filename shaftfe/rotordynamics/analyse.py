@@ -92,7 +92,11 @@ class _Solid:
         return solid_modal.support_energy_share(model, vecs)
 
 
-class _Harmonic:
+class _Harmonic(_Beam):
+    """The harmonic rotor: its own model and sweep; its check against the full eigenproblem
+    and its bearings' energy share are the beam rotor's (the same K, M, G, K_support
+    attributes, the same rule)."""
+
     def build(self, variant, o: RotorOptions):
         from shaftfe.rotordynamics import harmonic_rotor
         opts = harmonic_rotor.HarmonicOptions(level=o.level, coupling=o.coupling,
@@ -104,14 +108,6 @@ class _Harmonic:
         from shaftfe.rotordynamics import harmonic_rotor
         return harmonic_rotor.campbell(model, rpms, n_modes, orders=orders,
                                        keep_vectors=keep_vectors), None
-
-    def verify(self, model, res, provider):
-        from shaftfe.rotordynamics import beam_rotor
-        return beam_rotor.verify(model, res)
-
-    def support_energy_share(self, model, vecs):
-        from shaftfe.rotordynamics import beam_rotor  # K_support and K: the same rule
-        return beam_rotor.support_energy_share(model, vecs)
 
 
 KINDS: dict[str, RotorKind] = {"beam": _Beam(), "solid": _Solid(), "harmonic": _Harmonic()}

@@ -164,16 +164,6 @@ class Feature:
         """Not a body of revolution: the zoned solve meshes it in a 3D submodel."""
         return not self.round
 
-    def dim(self, name: str) -> float:
-        return dict(self.size)[name]
-
-    def holds(self, x: float, tol: float = 1e-9) -> bool:
-        """Is the axial station ``x`` inside the feature's extent?"""
-        return self.x_mm[0] - tol <= x <= self.x_mm[1] + tol
-
-    def in_zone(self, x: float, tol: float = 1e-9) -> bool:
-        return self.zone_mm[0] - tol <= x <= self.zone_mm[1] + tol
-
 
 def _segment_radius(sol: Solid, name: str) -> float:
     return sol.radii[sol.segment_names.index(name)]

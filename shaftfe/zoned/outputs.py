@@ -7,7 +7,6 @@ each written atomically into ``out`` (the command stages the whole directory).""
 
 from __future__ import annotations
 
-import json
 from dataclasses import asdict
 
 
@@ -19,9 +18,7 @@ def write_outputs(variant_arg: str, variant, opts, res, rpms, out) -> dict:
     from shaftfe.axisymmetric.outputs import SECTORS, write_surface_vtu
     from shaftfe.fe import recovery
     from shaftfe.io.vtu import write_fields_vtu
-    from shaftfe.util.atomic import write_atomic
-    from shaftfe.util.notices import collected
-    from shaftfe.util.versions import package_versions
+    from shaftfe.static.outputs import write_summary
     rpm_vtu = rpms[0]
     scale = res.case(rpm_vtu).scale
     path = write_surface_vtu(res.global_result.solution, scale, out / "result.vtu")
@@ -34,19 +31,11 @@ def write_outputs(variant_arg: str, variant, opts, res, rpms, out) -> dict:
             "max_principal": recovery.principal(stress)[0],
             "stress": stress.T.copy()})
         zones.append({"zone": sub.zone.name, "file": zone_file(k), "regions": regions})
-    summary = {
-        "inputs": {"variant": variant_arg, "rpm": rpms, "model": "zoned",
-                   "options": {**asdict(opts), "level": getattr(opts.level, "name",
-                                                                 opts.level)},
-                   "source_files": list(getattr(variant, "source_files", ())),
-                   "overrides": variant.overrides_map},
-        "versions": package_versions("pypardiso"),
-        "vtu": {"file": path.name, "rpm": rpm_vtu, "sectors": SECTORS, "zones": zones,
-                "note": "result.vtu: the global axisymmetric solution's outline revolved to 3D "
-                "(quads; the surface-recovered von Mises of its peaks); zone_<k>.vtu: "
-                "each 3D submodel's field; all at vtu.rpm"},
-        **res.to_dict(),
-        "warnings": collected(),
-    }
-    write_atomic(out / "summary.json", json.dumps(summary, indent=2, allow_nan=False) + "\n")
-    return summary
+    return write_summary(out, variant_arg, variant, rpms,
+                         {**asdict(opts), "level": getattr(opts.level, "name", opts.level)}, {
+                             "file": path.name, "rpm": rpm_vtu, "sectors": SECTORS,
+                             "zones": zones,
+                             "note": "result.vtu: the global axisymmetric solution's outline "
+                             "revolved to 3D (quads; the surface-recovered von Mises of its "
+                             "peaks); zone_<k>.vtu: each 3D submodel's field; all at vtu.rpm"},
+                         res.to_dict(), model="zoned", versions=("pypardiso",))

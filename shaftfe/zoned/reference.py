@@ -21,17 +21,15 @@ import numpy as np
 from shaftfe.axisymmetric.reference import static_reference as axi_reference
 from shaftfe.fe import assembly as fem
 from shaftfe.fe import recovery
-from shaftfe.solid.features import is_patch
 from shaftfe.static.cache import StaticReference
-from shaftfe.static.model import region_nodes
 from shaftfe.zoned.solve import CUT_CLEAR_D
-from shaftfe.zoned.zones import _diameter_at
+from shaftfe.zoned.zones import diameter_at
 
 
 def _interior(x: np.ndarray, zone, plan) -> np.ndarray:
     """Points of the zone's extent at least ``CUT_CLEAR_D`` local diameters from its cuts."""
-    lo = zone.x0 + (CUT_CLEAR_D * _diameter_at(plan, zone.x0) if zone.cut_left else -1e-9)
-    hi = zone.x1 - (CUT_CLEAR_D * _diameter_at(plan, zone.x1) if zone.cut_right else -1e-9)
+    lo = zone.x0 + (CUT_CLEAR_D * diameter_at(plan, zone.x0) if zone.cut_left else -1e-9)
+    hi = zone.x1 - (CUT_CLEAR_D * diameter_at(plan, zone.x1) if zone.cut_right else -1e-9)
     return (x >= lo) & (x <= hi)
 
 
@@ -53,25 +51,22 @@ def zoned_reference(res, seconds: float | None = None) -> StaticReference:
               g.face_groups, keep_g)]
     for sub, sf in res.fields:
         m = sub.shaft_mesh.mesh
-        regions = {k: v for k, v in region_nodes(m).items() if k not in sub.cut_groups}
         cut = [np.asarray(m.boundaries[c]) for c in sub.cut_groups]
         surf = fem.face_nodes(m, np.setdiff1d(m.boundary_facets(),
                                               np.concatenate(cut) if cut else []))
         keep = np.zeros(m.doflocs.shape[1], dtype=bool)
         keep[surf] = True
         keep &= _interior(m.doflocs[0], sub.zone, plan)
-        for name, ids in regions.items():
+        for name, ids in sub.regions.items():
             if name not in from_zone:
                 keep[ids] = False
-        patches = [np.asarray(f) for k, f in m.boundaries.items()
-                   if is_patch(k) or k in sub.cut_groups]
-        excl = recovery.excluded_nodes(m, patches, sub.options.exclude_mm)
         names = tuple(sorted(k for k in m.boundaries if k not in sub.cut_groups))
         fac = np.concatenate([np.asarray(m.boundaries[k]) for k in names])
         gid = np.concatenate([np.full(np.asarray(m.boundaries[k]).size, i, np.int32)
                               for i, k in enumerate(names)])
         tri = m.facets[:, fac].T.astype(np.int64)
-        parts.append((m.doflocs, sf.stress * scale, regions, excl, tri, gid, names, keep))
+        parts.append((m.doflocs, sf.stress * scale, sub.regions, sub.excluded, tri, gid, names,
+                      keep))
     return _merge(res, g, parts, seconds, t0)
 
 

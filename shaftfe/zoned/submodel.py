@@ -13,9 +13,10 @@ Submodeling as Ansys' and Abaqus' practice does it (cut-boundary displacement in
   factors at the speed or in the case;
 * a bearing inside the zone: the global model's reaction on the shaft, as a remote force on its
   contact band (its tilt spring's moment, zero on every shipped bearing, is left out);
-* spin softening: the co-rotating forces the global model applies, as loads: each spinning part
-  on a seat in the zone, ω² Σ wᵢ rᵢ (rᵢ · q) with q the seat's remote-point motion
-  (``spin.part_rows``) read from the global field on the submodel's seat (its RBE3 rows), and the
+* spin softening: the co-rotating forces the global model applies, as loads: the parts on each
+  seat in the zone, ω² Rᵀ diag(w) R u_g with the full 3D model's softening rows of the seat
+  (``static.model.spin_seats``: the parts' centroid and tilt rows on the seat's RBE3 rows) and
+  u_g the global field at the submodel's nodes, and the
   shaft's own mass, ω² ρ u⊥ (the consistent mass times the global transverse field, where the
   global model takes its Ritz projection on Legendre cubics: the difference is below the
   softening's own Ritz error, ``static.model.SHAFT_RITZ_DEGREE``).
@@ -38,11 +39,10 @@ import numpy as np
 from shaftfe.axisymmetric import pointeval
 from shaftfe.fe import assembly as fem
 from shaftfe.fe import recovery
-from shaftfe.model.spin import DEFAULT_PART_MODEL, part_rows, spinning_part
-from shaftfe.solid.features import END_LEFT, END_RIGHT, bearing_group, is_patch, seat_halves
+from shaftfe.solid.features import END_LEFT, END_RIGHT, bearing_group, is_patch
 from shaftfe.solid.mesh import build_solid_mesh
 from shaftfe.solid.plan import clip
-from shaftfe.static.model import load_patterns, mass_times, region_nodes, seat_rows
+from shaftfe.static.model import load_patterns, mass_times, region_nodes, seat_rows, spin_seats
 from shaftfe.util.units import omega, von_mises
 
 
@@ -60,8 +60,11 @@ class SubModel:
     solver: object = field(repr=False)              # K[free, free] factorised
     floating: object = None                          # FloatingCut of a zone with two cuts
     patterns: tuple = ()               # static.model.LoadPattern inside the zone
-    seats: tuple = ()                  # (R6 (6, ndof), parts) of the spinning parts' seats
+    seats: tuple = ()                  # static.model.SoftSeat of the spinning parts' seats
     bearings: tuple = ()               # (name, facets, x_mm) of bearings inside the zone
+    regions: dict = field(default_factory=dict, repr=False)   # region -> node ids (no cuts)
+    excluded: np.ndarray = field(default=None, repr=False)    # the singular-point rule's nodes
+    free_facets: np.ndarray = field(default=None, repr=False)  # traction-free boundary facets
     seconds: dict = field(default_factory=dict)
 
     @property
@@ -130,23 +133,13 @@ def build_submodel(variant, plan, zone, options, *, level=None, cache_dir=None) 
     ndof = 3 * m.doflocs.shape[1]
     cut = (3 * nodes[:, None] + np.arange(3)).ravel()
     free = np.setdiff1d(np.arange(ndof), cut)
-    K = _stiffness(sm, float(mat.E_MPa), float(mat.nu), cache_dir)
+    K = stiffness(sm, float(mat.E_MPa), float(mat.nu), cache_dir)
     t2 = time.perf_counter()
     rows: dict = {}
     _, _, patterns = load_patterns(variant, m, options, rows, keep=lambda a: _inside(zone, a))
-    seats = []
-    if options.spin_softening:
-        by_seat: dict = {}
-        for a in variant.attachments:
-            groups = [np.asarray(f) for g, f in m.boundaries.items()
-                      if g in seat_halves(a.name)]
-            if a.mass_kg > 0 and groups:
-                key = (a.seat_x_start_mm, a.seat_x_end_mm)
-                by_seat.setdefault(key, (np.concatenate(groups), []))[1].append(
-                    spinning_part(a, DEFAULT_PART_MODEL))
-        for (x0, x1), (facets, parts) in by_seat.items():
-            seats.append((seat_rows(m, facets, (0.5 * (x0 + x1), 0.0, 0.0), rows),
-                          tuple(parts)))
+    # the parts' softening terms of the seats in the zone, as the full 3D model makes them (the
+    # shaft's own mass is applied point by point instead: ``load_vector``)
+    seats = spin_seats(variant, m, shaft=False, rows=rows) if options.spin_softening else ()
     bearings = tuple((b.name, np.asarray(m.boundaries[bearing_group(b.name)]),
                       float(b.x_center_mm)) for b in variant.bearings
                      if bearing_group(b.name) in m.boundaries)
@@ -162,14 +155,21 @@ def build_submodel(variant, plan, zone, options, *, level=None, cache_dir=None) 
         K_FI = K[fdofs][:, free]
         S = Phi.T @ (K[fdofs][:, fdofs] @ Phi) - Phi.T @ (K_FI @ W)
         floating = FloatingCut(pos, Phi, W, S, K_FI)
+    # the singular-point rule's patches: the bearings, the pressed halves and the cut faces (a
+    # traction jump at their edges); every other boundary facet is traction-free
+    patches = [np.asarray(fc) for g, fc in m.boundaries.items()
+               if is_patch(g) or g in cut_groups]
+    excluded = recovery.excluded_nodes(m, patches, options.exclude_mm)
+    free_facets = np.setdiff1d(m.boundary_facets(), np.concatenate(patches))
+    regions = {k: v for k, v in region_nodes(m).items() if k not in cut_groups}
     t3 = time.perf_counter()
     return SubModel(zone, sm, variant, options, cut_groups, cut, free, K_IB, solver, floating,
-                    patterns, tuple(seats), bearings,
+                    patterns, tuple(seats), bearings, regions, excluded, free_facets,
                     {"mesh_seconds": t1 - t0, "mesh_from_cache": sm.from_cache,
                      "assembly_seconds": t2 - t1, "factor_seconds": t3 - t2})
 
 
-def _stiffness(sm, E: float, nu: float, cache_dir=None):
+def stiffness(sm, E: float, nu: float, cache_dir=None):
     """The submodel's stiffness, cached on disk by its mesh's content key (``zonek-*.npz``):
     loading a zone's K costs a fifth of assembling it (measured 0.05 against 0.25 s on x2_57's
     gear-seat zone)."""
@@ -201,13 +201,8 @@ def load_vector(sub: SubModel, gsol, rpm: float, case=None, ug=None) -> np.ndarr
     if sub.options.spin_softening and gsol.softening_N_per_mm:
         w2 = omega(gsol.rpm) ** 2
         ug = _global_field(sub, gsol) if ug is None else ug
-        for R6, parts in sub.seats:
-            q6 = R6 @ ug
-            g6 = np.zeros(6)
-            for p in parts:
-                rows, w = part_rows(np.eye(6), p)
-                g6 += (rows.T * w) @ (rows @ q6)
-            f += R6.T @ (w2 * g6)
+        for seat in sub.seats:                   # ω² Rᵀ diag(w) R u_g (``SoftSeat``)
+            f += w2 * (seat.R.T @ (seat.w * (seat.R @ ug)))
         rho = float(sub.variant.material.density_t_mm3)
         if rho > 0:
             U = ug.reshape(-1, 3)[:, 1:]
@@ -215,13 +210,6 @@ def load_vector(sub: SubModel, gsol, rpm: float, case=None, ug=None) -> np.ndarr
             f[1::3] += w2 * MU[:, 0]
             f[2::3] += w2 * MU[:, 1]
     return f
-
-
-def _free_facets(sub: SubModel) -> np.ndarray:
-    m = sub.shaft_mesh.mesh
-    skip = [np.asarray(f) for g, f in m.boundaries.items()
-            if is_patch(g) or g in sub.cut_groups]
-    return np.setdiff1d(m.boundary_facets(), np.concatenate(skip))
 
 
 def solve_speed(sub: SubModel, gsol, rpm: float, case=None) -> SubField:
@@ -239,15 +227,11 @@ def solve_speed(sub: SubModel, gsol, rpm: float, case=None) -> SubField:
     averaged = stress.copy()
     surf = None
     if fem.is_quadratic(m):
-        surf = surface.surface_stress(m, u, mat.E_MPa, mat.nu, _free_facets(sub))
+        surf = surface.surface_stress(m, u, mat.E_MPa, mat.nu, sub.free_facets)
         ok = np.isfinite(surf.stress[0])
         stress[:, surf.nodes[ok]] = surf.stress[:, ok]
-    patches = [np.asarray(fc) for g, fc in m.boundaries.items()
-               if is_patch(g) or g in sub.cut_groups]
-    excl = recovery.excluded_nodes(m, patches, sub.options.exclude_mm)
-    regions = {k: v for k, v in region_nodes(m).items() if k not in sub.cut_groups}
-    peaks = tuple(recovery.peak(stress, m.doflocs, nodes, excl, name, surf)
-                  for name, nodes in sorted(regions.items()))
+    peaks = tuple(recovery.peak(stress, m.doflocs, nodes, sub.excluded, name, surf)
+                  for name, nodes in sorted(sub.regions.items()))
     stress_g = recovery.nodal_stress(m, ug, mat.E_MPa, mat.nu)
     checks = tuple(cut_check(sub, g, averaged, stress_g) for g in sub.cut_groups)
     t2 = time.perf_counter()

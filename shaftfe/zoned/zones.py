@@ -44,9 +44,6 @@ class Zone:
     def cuts_mm(self) -> tuple[float, ...]:
         return tuple(x for x, c in ((self.x0, self.cut_left), (self.x1, self.cut_right)) if c)
 
-    def holds(self, x: float) -> bool:
-        return self.x0 - TOL <= x <= self.x1 + TOL
-
 
 def _forbidden(plan, feats, bands) -> list[tuple[float, float]]:
     """Intervals no cut may fall in: fillets, shoulder steps, seats, load bands, and every
@@ -75,7 +72,7 @@ def admissible_gaps(plan, feats, bands) -> list[tuple[float, float]]:
     return [(a, b) for a, b in gaps if b - a > TOL]
 
 
-def _diameter_at(plan, x: float) -> float:
+def diameter_at(plan, x: float) -> float:
     for (a, b), r in zip(plan.segment_x, plan.radii, strict=True):
         if a - TOL <= x <= b + TOL:
             return 2.0 * r
@@ -119,7 +116,7 @@ def plan_zones(plan, bands=()) -> tuple[Zone, ...]:
         hi = max(f.zone_mm[1] for f in g)
         ext0 = min(f.x_mm[0] for f in g)
         ext1 = max(f.x_mm[1] for f in g)
-        d0, d1 = _diameter_at(plan, ext0), _diameter_at(plan, ext1)
+        d0, d1 = diameter_at(plan, ext0), diameter_at(plan, ext1)
         x0 = _place(plan, gaps, lo, ext0 - MIN_DISTANCE_D * d0, -1)
         x1 = _place(plan, gaps, hi, ext1 + MIN_DISTANCE_D * d1, +1)
         if (x0 is None and lo > plan.x_left + TOL) or (x1 is None and hi < plan.x_right - TOL):

@@ -19,27 +19,9 @@ import math
 import numpy as np
 import pytest
 
-from shaftfe.model.examples import K_SEED, STEEL
-from shaftfe.model.loads import Load
-from shaftfe.model.variant import Bearing, Keyway, Segment, Variant
-
-F_N = 1000.0          # four-point bending: a force at x = 40 and x = 120 mm
-T_NMM = 50_000.0      # torsion: +T at x = 40, −T at x = 120
-
-
-def keyed_bar(kind: str) -> Variant:
-    """Ø20 × 160 mm bar, a 6 × 3.5 × 16 keyway at x = 80, rigid supports at 10 and 150 mm."""
-    kw = (Keyway(6.0, 3.5, 16.0, 80.0, 0.0),)
-    segs = (Segment("bar", 0.0, 160.0, 20.0, 0.0, keyways=kw),)
-    brg = (Bearing("L", "x", 10.0, 10.0, 14_400.0, 10_000.0, K_SEED, axial=True),
-           Bearing("R", "x", 150.0, 10.0, 14_400.0, 10_000.0, K_SEED))
-    if kind == "bending":
-        loads = (Load("p1", "force", 40.0, (38.0, 42.0), F_N, 0.0),
-                 Load("p2", "force", 120.0, (118.0, 122.0), F_N, 0.0))
-    else:
-        loads = (Load("t1", "torque", 40.0, (38.0, 42.0), T_NMM),
-                 Load("t2", "torque", 120.0, (118.0, 122.0), -T_NMM))
-    return Variant(f"keyed_{kind}", "keyed bar", segs, brg, (), STEEL, 0.0, loads=loads)
+from shaftfe.model.examples import KEYED_BAR_F_N as F_N
+from shaftfe.model.examples import KEYED_BAR_T_NMM as T_NMM
+from shaftfe.model.examples import STEEL, keyed_bar
 
 
 @pytest.fixture(scope="module", params=["bending", "torsion"])
@@ -63,11 +45,11 @@ def test_keyway_between_two_cuts_carries_the_section_forces_of_statics(keyed):
     keyway's softer section take less of the imposed twist and curvature (its peak came out
     10 % low in bending, 7 % in torsion): outside the bound."""
     from shaftfe.fe import assembly as fem
-    from shaftfe.zoned.submodel import _stiffness, load_vector
+    from shaftfe.zoned.submodel import load_vector, stiffness
     kind, z, _ = keyed
     sub, sf = z.fields[0]
     m = sub.shaft_mesh.mesh
-    K = _stiffness(sub.shaft_mesh, STEEL.E_MPa, STEEL.nu)
+    K = stiffness(sub.shaft_mesh, STEEL.E_MPa, STEEL.nu)
     r = K @ sf.u - load_vector(sub, z.global_result.solution, z.global_result.ref_rpm)
     nodes = fem.face_nodes(m, m.boundaries[sub.cut_groups[0]])
     dofs = (3 * nodes[:, None] + np.arange(3)).ravel()
