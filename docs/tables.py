@@ -178,11 +178,42 @@ def zoned_speed() -> str:
     return "\n".join(out)
 
 
+def fkm_gradient() -> str:
+    """FKM's stress gradient at x2_57's span fillets by model and level against the finest
+    axisymmetric value, and what it does to n_σ (benchmarks/bench_fkm_gradient.py)."""
+    import json
+    d = json.loads((ROOT / "reports" / "benchmarks" / "fkm_gradient.json").read_text())
+    x = d["x2_57"]
+    regs = list(x["converged"])
+    out = ["| model, level | " + " | ".join(f"`{r}` G /mm (error)" for r in regs)
+           + " | n_σ error |", "|---|" + "---|" * (len(regs) + 1)]
+    from shaftfe.fatigue import fkm
+    from shaftfe.fatigue.standards import StrengthOptions, strength_card
+    from shaftfe.model.loader import load_variant
+    g = fkm.GROUPS[strength_card(load_variant("x2_57"), StrengthOptions()).group]
+    for r in x["rows"]:
+        if r["level"] not in ("coarse", "default", "fine"):
+            continue
+        cells, dn = [], []
+        for reg in regs:
+            G, ref = r["fillets"][reg]["G"], x["converged"][reg]["value"]
+            cells.append(f"{G:.2f} ({100 * (G / ref - 1):+.0f} %)")
+            dn.append(100 * (r["fillets"][reg]["n_sigma"]
+                             / fkm.support_factor(ref, x["rm_MPa"], g) - 1))
+        out.append(f"| {r['model']}, `{r['level']}` | " + " | ".join(cells)
+                   + f" | {min(dn):+.2f} … {max(dn):+.2f} % |")
+    ref = ", ".join(f"{x['converged'][r]['value']:.2f} ± {x['converged'][r]['error']:.2f}"
+                    for r in regs)
+    out.append(f"\nReference: the axisymmetric `fine` level refined twice ({ref} /mm).")
+    return "\n".join(out)
+
+
 # table name -> (the file that quotes it, the function that computes it)
 TABLES = {"fatigue-x2_57": (DOCS / "VALIDATION.md", fatigue_x2_57),
           "truth-bars": (DOCS / "VALIDATION.md", truth_bars),
           "study-x2_tradeoff": (DOCS / "STUDIES.md", study_x2_tradeoff),
-          "zoned-speed": (DOCS / "PERFORMANCE.md", zoned_speed)}
+          "zoned-speed": (DOCS / "PERFORMANCE.md", zoned_speed),
+          "fkm-gradient": (DOCS / "STRENGTH.md", fkm_gradient)}
 
 
 def render(path: Path, text: str) -> str:

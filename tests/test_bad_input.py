@@ -581,7 +581,7 @@ def test_s2_study_folders_and_addresses(case, study_space, capsys, monkeypatch):
                                                                      monkeypatch)
 # --- slice f2-fatigue-fixes (issue #30 review of `shaftfe fatigue`) ---------------------------
 # one design-life rule in blocks and hours (one pass .. 1e9 blocks and 1e9 h, named in the unit
-# of the option typed); FKM's --model refusal as its help says; the sample rate by its option
+# of the option typed); an unknown --model as its help says; the sample rate by its option
 F2_CASES = {
     "fatigue_design_life_h_past_1e9_blocks": (["fatigue", "{RPM}", "--design-life-h", "1e8",
                                                "--out", "{W}/o"],
@@ -592,9 +592,8 @@ F2_CASES = {
                                               ["--design-life-h", "0.08333"]),
     "fatigue_design_life_past_1e9": (["fatigue", "{RPM}", "--design-life", "2e9", "--out",
                                       "{W}/o"], ["--design-life", "1e+09"]),
-    "fatigue_fkm_model_axisymmetric": (["fatigue", "{RPM}", "--model", "axisymmetric",
-                                        "--out", "{W}/o"],
-                                       ["--model", "solid with --method fkm", "--method seed"]),
+    "fatigue_fkm_model_bogus": (["fatigue", "{RPM}", "--model", "cylinder", "--out", "{W}/o"],
+                                ["--model", "zoned | solid | axisymmetric"]),
     "fatigue_seed_sample_rate_option": (["fatigue", "{RPM}", "--method", "seed",
                                          "--sample-rate", "0", "--out", "{W}/o"],
                                         ["command line: --sample-rate", "0.001"]),

@@ -200,13 +200,26 @@ def test_the_sample_rate_error_names_the_option_typed():
     check_job(FatigueJob("x", sample_rate=100.0))
 
 
-def test_model_help_and_fkm_refusal_agree():
-    """--model is tagged [seed, fkm: solid only] and FKM refuses axisymmetric with the same
-    words; the seed method takes either."""
+def test_model_applies_to_seed_and_fkm_on_every_model():
+    """--model is tagged [seed, fkm]: FKM takes its stress gradient from each field's own
+    DepthProbe, so it takes every static model the seed method takes."""
+    assert mo.applies_to("--model") == "[seed, fkm]"
+    for model in ("solid", "axisymmetric", "zoned"):
+        mo.check_method_options("fkm", {"--model": model})
+        mo.check_method_options("seed", {"--model": model})
+
+
+def test_a_narrowed_option_is_refused_with_its_reason(monkeypatch):
+    """A method that takes only some values of an option (its ``narrowed``) is tagged so in the
+    help, and refuses another value in one line that names the methods taking it."""
+    from types import MappingProxyType
+
+    from shaftfe.fatigue.methods import METHODS
+    monkeypatch.setattr(METHODS["fkm"], "narrowed", MappingProxyType(
+        {"--model": (("solid",), "a reason")}))
     assert mo.applies_to("--model") == "[seed, fkm: solid only]"
     assert "--model (solid only)" in mo.help_epilog().split("din743:")[0]
     mo.check_method_options("fkm", {"--model": "solid"})
-    mo.check_method_options("seed", {"--model": "axisymmetric"})
     with pytest.raises(InputError, match=r"--model = 'axisymmetric'.*solid with --method fkm"
                        r".*axisymmetric with --method seed"):
         mo.check_method_options("fkm", {"--model": "axisymmetric"})

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import json
+import math
 
 import pytest
 
@@ -86,8 +87,7 @@ def test_the_zoned_fatigue_reference_is_the_global_surface_plus_the_zones(cache)
 
 def test_fatigue_seed_method_runs_on_the_zoned_field(tmp_path, cache, monkeypatch):
     """`shaftfe fatigue --method seed --model zoned`: the hot spot is a span fillet of the
-    global model; FKM is refused with the zoned field in one line (its gradient is taken on a
-    3D volume field)."""
+    global model."""
     from shaftfe.cli import main
     from shaftfe.util.paths import GEOMETRY_DIR
     monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(cache))
@@ -98,8 +98,34 @@ def test_fatigue_seed_method_runs_on_the_zoned_field(tmp_path, cache, monkeypatc
     s = json.loads((out / "summary.json").read_text())
     assert s["static"]["options"]["model"] == "zoned"
     assert s["hot_spot"]["region"].startswith("fillet:")
-    assert main(["fatigue", rpm, "--method", "fkm", "--model", "zoned", "--out",
-                 str(tmp_path / "g")]) == 2
+
+
+def test_fkm_on_the_zoned_field_takes_each_points_own_model(tmp_path, cache, monkeypatch):
+    """`shaftfe fatigue --method fkm --model zoned`: every assessed region has a hot spot and a
+    finite gradient; a region of the global model is assessed at the same node, with the same
+    gradient (exact arithmetic: the same harmonic field and the same profile points) as
+    `--model axisymmetric` gives; the keyways' come from their 3D submodels."""
+    from shaftfe.cli import main
+    from shaftfe.util.paths import GEOMETRY_DIR
+    monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(cache))
+    rpm = str(GEOMETRY_DIR.parent / "loadspectra" / "rpm.dat")
+    runs = {}
+    # the zoned global model is the axisymmetric one at its default level, whatever the zones'
+    for model, level in (("zoned", "coarse"), ("axisymmetric", "default")):
+        out = tmp_path / model
+        assert main(["fatigue", rpm, "--method", "fkm", "--model", model, "--level", level,
+                     "--no-spin-softening", "--json", "--out", str(out)]) == 0
+        s = json.loads((out / "summary.json").read_text())
+        runs[model] = {r["region"]: r for r in s["regions"]}
+    z, a = runs["zoned"], runs["axisymmetric"]
+    assert {"keyway:gear_seat:0", "keyway:cw2_seat:0"} <= set(z)
+    for r in z.values():
+        assert math.isfinite(r["surface"]["G_per_mm"])
+    for name in ("fillet:bearing_seat_gear", "fillet:collar"):
+        assert z[name]["surface"]["sigma_ref_MPa"] == a[name]["surface"]["sigma_ref_MPa"]
+        assert z[name]["surface"]["G_per_mm"] == pytest.approx(a[name]["surface"]["G_per_mm"],
+                                                               rel=1e-12)
+        assert z[name]["surface"]["G_per_mm"] > 1.0       # a fillet's steep fall inward
 
 
 def test_a_cut_check_that_never_passes_is_warned(cache, monkeypatch):
@@ -117,3 +143,35 @@ def test_a_cut_check_that_never_passes_is_warned(cache, monkeypatch):
                        cache_dir=cache)
         warned = [w for w in collected() if w["code"] == "cut-check"]
     assert warned and "zone:keyway:bar:0" in warned[0]["where"]
+
+
+def test_the_report_on_the_zoned_model(tmp_path, cache, monkeypatch):
+    """`shaftfe report --model zoned`: the static section, fatigue and FKM on the zoned field;
+    one quantity, one value: the report's static peaks are those `shaftfe static` (zoned, the
+    same options) prints, and its VTU carries the static and fatigue fields on the zoned
+    surface's points."""
+    import meshio
+
+    from shaftfe.cli import main
+    monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(cache))
+    out = tmp_path / "rep"
+    assert main(["report", "--variant", "x2_57", "--level", "coarse", "--model", "zoned",
+                 "--no-pictures", "--no-spin-softening", "--json", "--out", str(out)]) == 0
+    s = json.loads((out / "summary.json").read_text())
+    st = s["static"]
+    assert st["model"] == "zoned" and [z["name"] for z in st["zones"]]
+    assert "fkm" in s["strength"] and s["strength"]["fkm"]["regions"]
+    assert main(["static", "--variant", "x2_57", "--level", "coarse", "--no-spin-softening",
+                 "--json", "--out", str(tmp_path / "st")]) == 0
+    z = json.loads((tmp_path / "st" / "summary.json").read_text())
+    zc = {c["rpm"]: c for c in z["cases"]}
+    both = [c for c in st["cases"] if c["rpm"] in zc]
+    assert both
+    for c in both:
+        want = {p["region"]: p["von_mises_MPa"] for p in zc[c["rpm"]]["peaks"]}
+        assert {p["region"]: p["von_mises_MPa"] for p in c["peaks"]} == want
+    m = meshio.read(out / "x2_57.vtu")
+    for name in ("displacement", "von_mises", "stress", "safety_factor", "life_blocks"):
+        assert name in m.point_data, name
+    html = (out / "index.html").read_text(encoding="utf-8")
+    assert "Zoned solve" in html

@@ -21,11 +21,17 @@ N_CANDIDATES = 12
 OUTSIDE_TOL = 1e-6        # barycentric: a point this far outside every triangle is "not found"
 
 
+def element_tree(mesh):
+    """A k-d tree of the meridian triangles' corner centroids (build once per mesh)."""
+    from scipy.spatial import cKDTree
+    X, R = mesh.xr[0][mesh.tri[:3]], mesh.xr[1][mesh.tri[:3]]
+    return cKDTree(np.stack([X.mean(0), R.mean(0)], 1))
+
+
 def locate(mesh, x: np.ndarray, r: np.ndarray, tree=None):
     """(element (k,), ξ (k,), η (k,), found (k,)) of the meridian points (x, r)."""
-    from scipy.spatial import cKDTree
     X, R = mesh.xr[0][mesh.tri], mesh.xr[1][mesh.tri]                 # (6, ne)
-    tree = tree if tree is not None else cKDTree(np.stack([X[:3].mean(0), R[:3].mean(0)], 1))
+    tree = tree if tree is not None else element_tree(mesh)
     k = min(N_CANDIDATES, mesh.n_elements)
     cand = np.asarray(tree.query(np.stack([x, r], 1), k)[1]).reshape(x.size, k)
     x0, r0 = X[0][cand], R[0][cand]
@@ -77,15 +83,32 @@ def displacement_at(sol, xyz: np.ndarray, loc=None) -> np.ndarray:
     return rc.displacement_at(amps, th)
 
 
+class StressField:
+    """The stress of a solved model ``sol`` at any points, with each harmonic's nodal averages
+    (``recovery.nodal_average``) and the element tree made once: for many calls on one solution
+    (the FKM stress profiles of ``axisymmetric.reference.SurfaceProbe``)."""
+
+    def __init__(self, sol):
+        E, nu = float(sol.variant.material.E_MPa), float(sol.variant.material.nu)
+        self.mesh = sol.mesh
+        self.tree = element_tree(sol.mesh)
+        self.amplitudes = [(h.n, rc.nodal_average(sol.mesh, h.sym, h.n, E, nu),
+                            None if h.anti is None else
+                            rc.nodal_average(sol.mesh, h.anti, h.n, E, nu))
+                           for h in sol.harmonics]
+
+    def at(self, xyz: np.ndarray, loc=None) -> tuple[np.ndarray, np.ndarray]:
+        """((6, k) cylindrical stress (xx, rr, θθ, xr, rθ, θx), found mask (k,)) at the points
+        (3, k): the amplitudes interpolated and synthesised at θ. σ_xx and von Mises are the
+        Cartesian ones (invariant under the rotation about x)."""
+        x, r, th = _cylindrical(xyz)
+        loc = loc if loc is not None else locate(self.mesh, x, r, self.tree)
+        parts = [(n, _interpolate(self.mesh, loc, sym),
+                  None if anti is None else _interpolate(self.mesh, loc, anti))
+                 for n, sym, anti in self.amplitudes]
+        return rc.synthesize_at(parts, th, rc.CYL_SHEAR), loc[3]
+
+
 def stress_at(sol, xyz: np.ndarray, loc=None) -> np.ndarray:
-    """(6, k) cylindrical stress (xx, rr, θθ, xr, rθ, θx) of ``sol`` at the points: the
-    nodally averaged amplitudes of each harmonic interpolated and synthesised at θ. σ_xx and
-    von Mises are the Cartesian ones (invariant under the rotation about x)."""
-    x, r, th = _cylindrical(xyz)
-    loc = loc if loc is not None else locate(sol.mesh, x, r)
-    E, nu = float(sol.variant.material.E_MPa), float(sol.variant.material.nu)
-    parts = [(h.n, _interpolate(sol.mesh, loc, rc.nodal_average(sol.mesh, h.sym, h.n, E, nu)),
-              None if h.anti is None else
-              _interpolate(sol.mesh, loc, rc.nodal_average(sol.mesh, h.anti, h.n, E, nu)))
-             for h in sol.harmonics]
-    return rc.synthesize_at(parts, th, rc.CYL_SHEAR)
+    """(6, k) cylindrical stress (``StressField.at``) of ``sol`` at the points."""
+    return StressField(sol).at(xyz, loc)[0]

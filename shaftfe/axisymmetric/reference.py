@@ -151,7 +151,42 @@ def static_reference(res, seconds: float | None = None):
         + time.perf_counter() - t0,
         notes=(*res.notes, f"axisymmetric model: fatigue on the revolved surface "
                f"({keep.size} outline nodes × {q} angles), surface-recovered stresses"),
-        relative_residual=res.run.get("relative_residual"))
+        relative_residual=res.run.get("relative_residual"),
+        depth_probe=SurfaceProbe(sol, keep, theta))
+
+
+class SurfaceProbe:
+    """FKM's stress profile below a point of the revolved surface (``fatigue.fkm_field.
+    DepthProbe``), from the harmonic field itself: the inward normal is the outline's at the
+    point's node (the surface recovery's tangent and side, ``recovery.Surface``) turned to the
+    point's angle; the stress at interior points is the harmonics' nodal stresses interpolated
+    in the meridian P2 mesh and synthesised at θ (``pointeval.StressField``), the same kind of
+    field the 3D profile interpolates. h is the mean length of the outline edges at the node
+    (their end-to-end chord), the element size the profile fits over. Point p is outline node
+    ``keep[p // q]`` at angle ``theta[p % q]`` (``static_reference``)."""
+
+    def __init__(self, sol, keep: np.ndarray, theta: np.ndarray):
+        from shaftfe.axisymmetric.pointeval import StressField
+        S = sol.surface
+        self.field = StressField(sol)
+        self.theta = np.asarray(theta, dtype=float)
+        tx, tr = S.tangent[0][keep], S.tangent[1][keep]
+        self.n_xr = np.stack([S.sign[keep] * tr, -S.sign[keep] * tx])     # outward (x, r)
+        X, R = sol.mesh.xr[0][S.e], sol.mesh.xr[1][S.e]                  # (3, m) ends, mid
+        chord = np.hypot(X[1] - X[0], R[1] - R[0])
+        total = np.zeros(S.nodes.size)
+        np.add.at(total, S.inv, np.repeat(chord, 3))
+        self.h = (total / S.count)[keep]
+
+    def normal(self, node: int) -> tuple[np.ndarray, float]:
+        j, i = divmod(int(node), self.theta.size)
+        nx, nr = self.n_xr[:, j]
+        th = self.theta[i]
+        return -np.array([nx, nr * np.cos(th), nr * np.sin(th)]), float(self.h[j])
+
+    def stress_at(self, node: int, pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        s, ok = self.field.at(pts)
+        return s.T, ok
 
 
 def surface_displacement(res, ref) -> np.ndarray:

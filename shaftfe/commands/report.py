@@ -41,7 +41,8 @@ def register(sub) -> None:
     p.add_argument("--level", default="default", help="mesh level: coarse | default | fine")
     p.add_argument("--model", default="solid",
                    help="static model: solid (3D P2 tets, default) | axisymmetric (Fourier "
-                   "harmonics on a meridian mesh; keyways and the hex socket left out)")
+                   "harmonics on a meridian mesh; keyways and the hex socket left out) | zoned "
+                   "(the axisymmetric model with 3D zones where the shaft is not round)")
     p.add_argument("--rotor-model", default="beam",
                    help="rotor model of the Campbell diagram: beam (default) | solid")
     p.add_argument("--campbell-step", type=float, default=500.0, metavar="RPM",

@@ -3,12 +3,15 @@
 At each named surface region (fillets, keyways, bearing seats) the candidate hot spots are the
 region's highest von Mises nodes outside the singular-point exclusion. At each:
 
-1. **Stress profile along the inward normal.** The normal is the mean of the adjacent boundary
-   triangles' normals, turned inward by locating a point just inside; the nodal stress field
-   (P2, nodal averages of the recovered stress) is interpolated at depths 0…T
-   (``fe.pointeval``). A least-squares quadratic over the first element depth gives the
-   surface slope, and the related stress gradient G = −(dσ/dt)/σ at t = 0; a quadratic over
-   ±½ element around the case depth gives the core's stress and gradient there.
+1. **Stress profile along the inward normal** (a ``DepthProbe`` of the field). On the 3D field
+   the normal is the mean of the adjacent boundary triangles' normals, turned inward by
+   locating a point just inside, and the nodal stress field (P2, nodal averages of the
+   recovered stress) is interpolated at depths 0…T (``fe.pointeval``); on the axisymmetric
+   field the normal is the outline's and the harmonics' nodal stresses are interpolated in the
+   meridian mesh and synthesised at the point's angle (``axisymmetric.pointeval``); the zoned
+   field takes each point's own model. A least-squares quadratic over the first element depth
+   gives the surface slope, and the related stress gradient G = −(dσ/dt)/σ at t = 0; a quadratic
+   over ±½ element around the case depth gives the core's stress and gradient there.
 2. **Two checks, as the guideline asks for surface-treated parts:** the surface layer (the
    core material's strength, the region's roughness R_z and the case-hardening factor K_V)
    and the core at the case depth (K_R = K_V = 1, its own gradient, the stress there).
@@ -28,6 +31,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Protocol
 
 import numpy as np
 
@@ -38,7 +42,10 @@ from shaftfe.solid.features import NOTCH_KINDS, is_notch, kind_of
 # the regions FKM assesses: the notches and the bearing seats (ground, press-fitted)
 ASSESSED_KINDS = NOTCH_KINDS | {"bearing_seat"}
 N_CANDIDATES = 3          # per region and sign: the highest-stress nodes assessed
-N_DEPTHS = 32             # profile samples
+N_DEPTHS = 32             # profile samples over the whole depth
+N_NEAR = 8                # and over the first element and the case-depth window: the fits'
+                          # samples whatever the element size against the depth (a fine mesh's
+                          # first element holds none of the 32 when h ≪ the case depth)
 
 
 @dataclass(frozen=True)
@@ -130,33 +137,24 @@ def k_v_case_hardening(d_mm: float, notched: bool) -> float:
     return 1.0
 
 
-def surface_normal(ref, node: int) -> tuple[np.ndarray, float]:
-    """Inward unit normal and the mean boundary edge length at a surface node: the mean of the
-    adjacent boundary triangles' normals, each turned outward by the element it bounds (away
-    from that tetrahedron's fourth corner), so that edges and corners (a keyway's floor and
-    wall) average correctly."""
-    fc = np.asarray(ref.face_cells)
-    tris = fc[np.any(fc == node, axis=1)][:, :3]
-    if tris.size == 0:
-        raise ValueError(f"node {node} is on no boundary face")
-    X = np.asarray(ref.xyz, dtype=float)
-    corners = np.asarray(ref.cells)[:, :4]
-    tets = corners[np.any(np.isin(corners, tris), axis=1)]
-    a, b, c = (X[:, tris[:, k]] for k in range(3))
-    nrm = np.cross((b - a).T, (c - a).T)                         # (nt, 3)
-    nrm /= np.linalg.norm(nrm, axis=1, keepdims=True)
-    for j, tri in enumerate(tris):
-        own = tets[np.isin(tets, tri).sum(axis=1) == 3]
-        if own.size:
-            fourth = own[0][~np.isin(own[0], tri)][0]
-            if (X[:, fourth] - a[:, j]) @ nrm[j] > 0:
-                nrm[j] = -nrm[j]
-    n = nrm.sum(axis=0)
-    n /= np.linalg.norm(n)
-    h = float(np.mean(np.concatenate([np.linalg.norm(b - a, axis=0),
-                                      np.linalg.norm(c - b, axis=0),
-                                      np.linalg.norm(a - c, axis=0)])))
-    return -n, h
+class DepthProbe(Protocol):
+    """Where a stress profile below a surface point of a reference comes from: one per field
+    kind, behind this protocol (``fe.pointeval.TetProbe`` for a 3D field; ``axisymmetric.reference.
+    SurfaceProbe`` and ``zoned.reference.ZonedProbe`` for the surface references)."""
+
+    def normal(self, node: int) -> tuple[np.ndarray, float]:
+        """(inward unit normal (3,), the local element size h in mm) at a surface point."""
+
+    def stress_at(self, node: int, pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """((k, 6) stress in MPa at the reference speed, found mask (k,)) at the points
+        (3, k) below the surface point ``node``."""
+
+
+def depth_probe(ref):
+    """The reference's own profile source (``StaticReference.depth_probe``: the axisymmetric
+    and zoned surface references carry one) or the 3D field's (``TetProbe``)."""
+    from shaftfe.fe.pointeval import TetProbe
+    return ref.depth_probe if getattr(ref, "depth_probe", None) is not None else TetProbe(ref)
 
 
 def _quad_fit(t: np.ndarray, v: np.ndarray, at: float) -> tuple[float, float, float]:
@@ -167,27 +165,37 @@ def _quad_fit(t: np.ndarray, v: np.ndarray, at: float) -> tuple[float, float, fl
     return float(c[0]), float(c[1]), float(np.sqrt(np.mean(res ** 2)))
 
 
-def profile(ref, node: int, tree, case_depth_mm: float | None) -> Profile:
-    """The von Mises profile along the inward normal at ``node`` and its gradients."""
+def profile(ref, node: int, probe, case_depth_mm: float | None) -> Profile:
+    """The von Mises profile along the inward normal at ``node`` of ``ref`` and its gradients;
+    ``probe``: the field's ``DepthProbe`` (``depth_probe(ref)``, made once per reference). The
+    profile, its surface value included, is the probe's one field, so that the relative
+    gradient −σ'/σ is of one field: on the axisymmetric surface the reference's own stress is
+    the surface recovery, which can differ from the interior field's surface value by ~1 %,
+    a jump a fit over a 0.05 mm element would read as a gradient."""
     from shaftfe.fatigue.kernels import von_mises
-    from shaftfe.fe.pointeval import interpolate
-    n, h = surface_normal(ref, node)
+    n, h = probe.normal(node)
     x = np.asarray(ref.xyz, dtype=float)[:, node]
     depth = max(2.0 * h, (case_depth_mm or 0.0) + h)
-    t = np.linspace(0.0, depth, N_DEPTHS + 1)[1:]
-    vals, ok = interpolate(ref.xyz, ref.cells, np.asarray(ref.stress_ref, float).T,
-                           x[:, None] + n[:, None] * t[None, :], tree)
-    s0 = float(von_mises(np.asarray(ref.stress_ref, float)[:, node]))
-    tt = np.concatenate([[0.0], t[ok]])
-    vm = np.concatenate([[s0], von_mises(vals[ok])])
-    near = tt <= h + 1e-12
+    grids = [np.linspace(0.0, h, N_NEAR + 1), np.linspace(0.0, depth, N_DEPTHS + 1)]
+    if case_depth_mm:
+        grids.append(case_depth_mm + np.linspace(-0.5 * h, 0.5 * h, N_NEAR + 1))
+    t = np.unique(np.concatenate(grids))
+    t = t[t >= 0.0]                 # a case depth under ½ element: its window starts at 0
+    vals, ok = probe.stress_at(node, x[:, None] + n[:, None] * t[None, :])
+    tt, vm = t[ok], von_mises(vals[ok])
+    if not ok[0]:        # the surface point itself not located (round-off): its nodal value
+        tt = np.concatenate([[0.0], tt])
+        vm = np.concatenate([[float(von_mises(np.asarray(ref.stress_ref, float)[:, node]))],
+                             vm])
+    s0 = float(vm[0])
+    near = tt <= h * (1.0 + 1e-9)
     G, rms = 0.0, math.nan
     if near.sum() >= 4 and s0 > 0:
         v0, slope, r = _quad_fit(tt[near], vm[near], 0.0)
         G, rms = -slope / v0, r / s0
     g_case, ratio = G, 1.0
     if case_depth_mm:
-        win = np.abs(tt - case_depth_mm) <= 0.5 * h + 1e-12
+        win = np.abs(tt - case_depth_mm) <= 0.5 * h * (1.0 + 1e-9)
         if win.sum() >= 4 and s0 > 0:
             vc, slope_c, _ = _quad_fit(tt[win], vm[win], case_depth_mm)
             ratio = vc / s0
@@ -250,7 +258,6 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
     from shaftfe.fatigue.counting import count_cycles
     from shaftfe.fatigue.field import softening_beta
     from shaftfe.fatigue.kernels import signed_von_mises, stress_cycles
-    from shaftfe.fe.pointeval import centroid_tree
     h = history.with_reference(ref.ref_rpm)
     if cycles is None:
         cyc = count_cycles(h.load_factor)
@@ -260,7 +267,7 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
     signed = signed_von_mises(S.T)
     excluded = np.zeros(signed.size, dtype=bool)
     excluded[np.asarray(ref.excluded, dtype=np.int64)] = True
-    tree = centroid_tree(ref.xyz, ref.cells)
+    probe = depth_probe(ref)
     rules = fkm.MINER
     out, notes, hints, assessed = [], [], {}, []   # hints: the last spectrum's order, per sign
     for name in sorted(ref.regions):
@@ -287,7 +294,7 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
             else:
                 s_lin = s_soft
             sa, sm = stress_cycles(s_lin, beta if beta else None, cyc)
-            prof = profile(ref, int(i), tree, card.case_depth_mm)
+            prof = profile(ref, int(i), probe, card.case_depth_mm)
             x = np.asarray(ref.xyz, float)[:, i]
             d_eff = fkm.effective_diameter(x[1], x[2])
             kv = k_v_case_hardening(d_eff, notched) if card.case_hardened else 1.0

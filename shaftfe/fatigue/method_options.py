@@ -15,7 +15,8 @@ Why each option belongs where:
 
 * the seed method (``fatigue.run``): von Mises / Soderberg / S-N card with Miner, on the 3D or
   axisymmetric field: ``--mean-stress``, ``--equivalent``, ``--material`` (S-N card), ``--kf``;
-* FKM (``fatigue.fkm_field``): the strength card, its Miner rule, j_D, D_M; on the 3D field;
+* FKM (``fatigue.fkm_field``): the strength card, its Miner rule, j_D, D_M; on the static
+  field of any model (its stress gradient from each field's ``DepthProbe``);
 * DIN 743 (``fatigue.standards.run_din743``): the strength card on the beam model: no mesh,
   no static 3D solution, no design life (a fatigue-limit check of the largest cycle);
 * both standards also compute the bearings' ISO 281 life (``--kappa``, ``--ec``); the seed
@@ -72,8 +73,8 @@ def table() -> dict[str, tuple[str, object, tuple[str, ...]]]:
 
 
 def _narrowed(option: str, method: str):
-    """(the values ``method`` takes of ``option``, why), where it takes only part of them (FKM's
-    stress gradient is taken along the normal of the 3D field: --model solid only); else None."""
+    """(the values ``method`` takes of ``option``, why), where it takes only part of them (a
+    method's ``narrowed``); else None."""
     return METHODS[method].narrowed.get(option)
 
 

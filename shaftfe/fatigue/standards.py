@@ -94,9 +94,6 @@ def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None, progress=None):
     from shaftfe.fatigue.fkm_field import assess_field
     from shaftfe.fatigue.run import load_inputs, resolve_design_life, static_reference
     check_options(opts)
-    if job.model != "solid":
-        raise InputError("command line", "--model", "solid (the FKM gradient is taken on the "
-                         "3D field)", got=job.model)
     inputs = inputs or load_inputs(job)
     job = resolve_design_life(job, inputs.history, inputs.variant.duty)
     card = strength_card(inputs.variant, opts)

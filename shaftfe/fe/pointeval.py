@@ -83,3 +83,52 @@ def interpolate(corners, cells, values, pts, tree=None) -> tuple[np.ndarray, np.
     out = np.einsum("an,anc->nc", N, V)
     out[~found] = np.nan
     return out, found
+
+
+def surface_normal(ref, node: int) -> tuple[np.ndarray, float]:
+    """Inward unit normal and the mean boundary edge length at a surface node: the mean of the
+    adjacent boundary triangles' normals, each turned outward by the element it bounds (away
+    from that tetrahedron's fourth corner), so that edges and corners (a keyway's floor and
+    wall) average correctly."""
+    fc = np.asarray(ref.face_cells)
+    tris = fc[np.any(fc == node, axis=1)][:, :3]
+    if tris.size == 0:
+        raise ValueError(f"node {node} is on no boundary face")
+    X = np.asarray(ref.xyz, dtype=float)
+    corners = np.asarray(ref.cells)[:, :4]
+    tets = corners[np.any(np.isin(corners, tris), axis=1)]
+    a, b, c = (X[:, tris[:, k]] for k in range(3))
+    nrm = np.cross((b - a).T, (c - a).T)                         # (nt, 3)
+    nrm /= np.linalg.norm(nrm, axis=1, keepdims=True)
+    for j, tri in enumerate(tris):
+        own = tets[np.isin(tets, tri).sum(axis=1) == 3]
+        if own.size:
+            fourth = own[0][~np.isin(own[0], tri)][0]
+            if (X[:, fourth] - a[:, j]) @ nrm[j] > 0:
+                nrm[j] = -nrm[j]
+    n = nrm.sum(axis=0)
+    n /= np.linalg.norm(n)
+    h = float(np.mean(np.concatenate([np.linalg.norm(b - a, axis=0),
+                                      np.linalg.norm(c - b, axis=0),
+                                      np.linalg.norm(a - c, axis=0)])))
+    return -n, h
+
+
+class TetProbe:
+    """The stress profile source of a 3D field (``fatigue.fkm_field.DepthProbe``): the inward
+    normal from the boundary triangles (``surface_normal``) and the P2 nodal stress
+    interpolated at interior points (``interpolate``). ``field``: anything with ``xyz`` (3, n),
+    ``cells`` (ne, 4 | 10),
+    ``face_cells`` (nf, 3 | 6) and ``stress_ref`` (6, n): a 3D ``StaticReference`` or a
+    submodel's field."""
+
+    def __init__(self, field):
+        self.field = field
+        self.stress = np.asarray(field.stress_ref, dtype=float).T
+        self.tree = centroid_tree(field.xyz, field.cells)
+
+    def normal(self, node: int) -> tuple[np.ndarray, float]:
+        return surface_normal(self.field, node)
+
+    def stress_at(self, node: int, pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return interpolate(self.field.xyz, self.field.cells, self.stress, pts, self.tree)

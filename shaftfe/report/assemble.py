@@ -49,6 +49,7 @@ from shaftfe.report.stages import (
     read_inputs,
     static_summary,
     static_summary_axisymmetric,
+    static_summary_zoned,
 )
 from shaftfe.static.benchmark import benchmark_errors
 from shaftfe.util.notices import collected
@@ -115,6 +116,23 @@ def _static(o: ReportOptions, variant, prog):
                                          cache_dir=o.cache_dir)
                 ref = dataclasses.replace(ref, stress_linear=static_reference(lin).stress_ref)
         return res, ref
+    if o.model == "zoned":
+        from shaftfe.fatigue.run import _surface_reference
+        from shaftfe.zoned.reference import zoned_reference
+        from shaftfe.zoned.solve import solve_zoned
+        with prog.stage("static (mesh + one solve)"):
+            zopts = StaticOptions(level=o.level, seed_load_case=o.seed_load_case,
+                                  spin_softening=o.spin_softening)
+            solved = {}
+
+            def make(opts):       # the design speeds' solve; the unsoftened one at the first
+                rpm = list(o.design_rpm) if opts.spin_softening == o.spin_softening \
+                    else float(o.design_rpm[0])
+                solved[opts.spin_softening] = solve_zoned(variant, rpm, opts,
+                                                          cache_dir=o.cache_dir)
+                return zoned_reference(solved[opts.spin_softening])
+            ref = _surface_reference(make, zopts)                   # the fatigue input
+        return solved[o.spin_softening], ref
     with prog.stage("static (mesh + one solve)"):
         sopts = StaticOptions(level=o.level, seed_load_case=o.seed_load_case,
                               spin_softening=o.spin_softening)
@@ -172,13 +190,15 @@ def _fatigue(o: ReportOptions, res, ref, history, material, variant=None):
     return fat, ff, scaled, bench
 
 
-def _axi_vtu(res, ref, ff, vtu: Path, rpm: float) -> list[str]:
-    """The axisymmetric run's VTU: the revolved surface with the static fields at ``rpm`` and
-    the fatigue fields (the same points)."""
+def _axi_vtu(res, ref, ff, vtu: Path, rpm: float, zoned: bool = False) -> list[str]:
+    """The axisymmetric or zoned run's VTU: the surface field's points (the revolved surface;
+    the zones' free surfaces) with the static fields at ``rpm`` and the fatigue fields."""
     import numpy as np
 
     from shaftfe.axisymmetric.recovery import principal_max_local
     from shaftfe.axisymmetric.reference import surface_displacement, write_surface_vtu
+    if zoned:
+        from shaftfe.zoned.reference import surface_displacement
     s = rpm2_scale(rpm, ref.ref_rpm)
     stress = np.asarray(ref.stress_ref) * s
     r = ff.result
@@ -197,9 +217,9 @@ def _vtu(o: ReportOptions, out: Path, variant, res, ref, ff, rotor_model, cres) 
     rpm_vtu = float(o.design_rpm[0])
     vtu = out / f"{variant.name}.vtu"
     r = ff.result
-    axi = o.model == "axisymmetric"
+    axi = o.model in ("axisymmetric", "zoned")          # a surface field
     if axi:
-        regions = _axi_vtu(res, ref, ff, vtu, rpm_vtu)
+        regions = _axi_vtu(res, ref, ff, vtu, rpm_vtu, zoned=o.model == "zoned")
     else:
         _, regions = export.write_vtu(res, vtu, rpm_vtu, extra_point_data={
             "safety_factor": r.safety_factor, "life_blocks": r.life_blocks,
@@ -218,7 +238,8 @@ def _vtu(o: ReportOptions, out: Path, variant, res, ref, ff, rotor_model, cres) 
             "figures_dir": "figures", "mode_fields": list(modes),
             "mode_rpm": float(cres.rpm[0]),
             "mode_note": ("mode shapes of the beam rotor model at mode_rpm mapped onto the "
-                          + ("revolved surface" if axi else "3D mesh")
+                          + ({"axisymmetric": "revolved surface", "zoned": "zoned surface"}
+                             .get(o.model, "3D mesh"))
                           + " (rigid cross-sections), largest displacement 1")
             if modes else "3D mode shapes of the solid rotor model on its own mesh",
             "modes_vtu": modes_vtu.name}
@@ -290,8 +311,8 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     with prog.stage("beam check"):
         beam_out, _ = beam_check(variant, o.design_rpm)
     res, ref = _static(o, variant, prog)
-    st = (static_summary_axisymmetric if o.model == "axisymmetric" else static_summary)(
-        res, variant)
+    st = {"axisymmetric": static_summary_axisymmetric, "zoned": static_summary_zoned}.get(
+        o.model, static_summary)(res, variant)
     _nodal_peak(st, ref)
     with prog.stage("fatigue"):
         fat, ff, scaled, bench = _fatigue(o, res, ref, history, material, variant)
@@ -325,7 +346,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
 
 
 def _strength(o: ReportOptions, variant, ref, history, cycles=None) -> dict:
-    """FKM on the same static reference (no second solve; 3D only) and the same rainflow count
+    """FKM on the same static reference (no second solve; any model) and the same rainflow count
     ``cycles`` (the fatigue stage's: counted once), DIN 743 on the beam, the bearings over the
     duty cycle and the seed's key and gear checks, with the defaults of
     ``shaftfe fatigue --method fkm | din743``."""
@@ -343,10 +364,9 @@ def _strength(o: ReportOptions, variant, ref, history, cycles=None) -> dict:
         warn("strength-material", "report", f"strength by standard left out: {exc}")
         return {}
     job = fatigue_job(o)
-    if o.model == "solid":
-        fkm = get_method("fkm").assess(AssessmentInputs.one_channel(
-            variant, history, field=ref, cycles=cycles), job)
-        out["fkm"] = so.fkm_summary(fkm.detail.result)
+    fkm = get_method("fkm").assess(AssessmentInputs.one_channel(
+        variant, history, field=ref, cycles=cycles), job)
+    out["fkm"] = so.fkm_summary(fkm.detail.result)
     beam = sd.beam_at_ref(variant)              # one beam solve for DIN 743 and the bearings
     din = get_method("din743").assess(AssessmentInputs.one_channel(variant, history, beam=beam),
                                       job)
@@ -436,12 +456,14 @@ def _other_plots(o, fig_dir, variant, res, ref, ff, history, material, cres, rpm
     from shaftfe.static.outputs import clearance_of
     from shaftfe.util.atomic import write_atomic
     clear = clearance_of(variant)
-    if o.model == "axisymmetric":
+    if o.model in ("axisymmetric", "zoned"):
         from shaftfe.axisymmetric.reference import surface_envelope
-        export.plot_png(res, fig_dir / "deflection.png", rpm_vtu,
-                        envelope=surface_envelope(ref), model="axisymmetric FE",
-                        clearance=clear)
-        what = "axisymmetric FE, bearing springs"
+        zoned = o.model == "zoned"
+        export.plot_png(res.global_result if zoned else res, fig_dir / "deflection.png",
+                        rpm_vtu, envelope=surface_envelope(ref),
+                        model="zoned FE" if zoned else "axisymmetric FE", clearance=clear)
+        what = ("zoned FE: the axisymmetric global model's axis, the stresses of the global "
+                "model and the 3D zones" if zoned else "axisymmetric FE") + ", bearing springs"
     else:
         export.plot_png(res, fig_dir / "deflection.png", rpm_vtu, clearance=clear)
         what = "3D FE and beam, bearing springs"

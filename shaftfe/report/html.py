@@ -300,6 +300,11 @@ def _balancing(r) -> str:
 
 
 def _mesh_row(st: dict) -> list[str]:
+    if st.get("model") == "zoned":
+        return ["meshes", f"meridian P2 {st['global_level']}, {num(st['n_nodes'])} nodes, "
+                f"harmonics n = {', '.join(str(n) for n in st['harmonics'])}; "
+                + "; ".join(f"3D zone {z['name']}: P2 {st['level']}, {num(z['n_dofs'])} dofs"
+                            for z in st["zones"])]
     if st.get("model") == "axisymmetric":
         return ["meridian mesh", f"P2 {st['level']}, {num(st['n_nodes'])} nodes, "
                 f"{num(st['n_elements'])} triangles, harmonics n = "
@@ -311,7 +316,22 @@ def _mesh_row(st: dict) -> list[str]:
 
 def _static(r) -> str:
     st = r.static
-    if st.get("model") == "axisymmetric":
+    if st.get("model") == "zoned":
+        zones = "; ".join(
+            f"{_e(z['name'])} (x {num(z['x_mm'][0])} to {num(z['x_mm'][1])} mm, "
+            f"{num(z['n_dofs'])} dofs, cut check {num(z['cut_check_percent'], 2)} %)"
+            for z in st["zones"])
+        head = (f"<p>Zoned solve at each design speed: the shaft as a body of revolution "
+                f"(Fourier harmonics n = 0 … {st['harmonics'][-1]} on a P2 meridian mesh, "
+                f"{st['global_level']}, {_e(st['solver'])}) gives the reactions, deflections "
+                "and every round notch; a 3D P2 submodel in each zone where the shaft is not "
+                f"round, driven at its cuts by the global field: {_e(zones)}. The cut check "
+                "compares the submodel's stresses at its cut with the global ones (a zone grows "
+                "while it exceeds 10 %). The keyways' and hex socket's effect on the stiffness "
+                f"is not in the global model. {_e(st['supports'])}; {_e(st['load_case'])}. "
+                "Peaks are located on the surface-recovered stress; the seat ends and the "
+                "pressure edges are left out.</p>")
+    elif st.get("model") == "axisymmetric":
         omitted = ", ".join(f"{f['feature']} (x {num(f['zone_mm'][0])} to "
                             f"{num(f['zone_mm'][1])} mm)" for f in st["omitted_features"])
         head = (f"<p>One axisymmetric solve at {num(st['ref_rpm'])} rpm: the shaft as a body "
@@ -343,8 +363,7 @@ def _static(r) -> str:
                          num(bb.get("F_N"), 5), num(b["C_N"], 5), num(b["L10h"], 4),
                          num(b["uy_mm"] * 1e3, 4)])
     s += table(["speed [rpm]", "bearing", "x [mm]",
-                f"radial load, {'axisymmetric' if st.get('model') == 'axisymmetric' else '3D'}"
-                " FE [N]",
+                f"radial load, {_LOAD_MODEL.get(st.get('model'), '3D')} FE [N]",
                 "radial load, beam [N]", "C [N]", "L10h [h]", "bearing u_y [µm]"], rows,
                numeric={0, 2, 3, 4, 5, 6, 7})
     s += "<h3>Deflections</h3>"
@@ -500,12 +519,18 @@ def _timing(r) -> str:
     return s
 
 
+_LOAD_MODEL = {"axisymmetric": "axisymmetric", "zoned": "zoned (axisymmetric global)"}
+
+
 def _files(r) -> str:
     f = r.files
     s = ('<h2 id="files">Result files</h2>'
          f"<p><code>{_e(f['vtu'])}</code>: "
-         + ("the revolved surface of the axisymmetric model (triangles; no volume)"
-            if r.static.get("model") == "axisymmetric" else "the 3D mesh")
+         + {"axisymmetric": "the revolved surface of the axisymmetric model (triangles; no "
+                            "volume)",
+            "zoned": "the zoned model's surface (the axisymmetric model's revolved surface, "
+                     "the 3D zones' free surfaces; triangles, no volume)"}.get(
+                r.static.get("model"), "the 3D mesh")
          + " with point data <code>displacement</code> "
          "[mm], <code>von_mises</code>, <code>max_principal</code>, <code>stress</code> (xx, yy, "
          f"zz, xy, yz, xz) [MPa] at {num(f['vtu_rpm'])} rpm, and <code>safety_factor</code> [-], "

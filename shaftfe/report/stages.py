@@ -251,6 +251,52 @@ def static_summary_axisymmetric(res, variant) -> dict:
             "cases": cases, "error_estimate": None, "notes": list(res.notes)}
 
 
+def static_summary_zoned(res, variant) -> dict:
+    """``static_summary`` of a ``ZonedResult`` (``shaftfe.zoned.solve``): the same keys; the
+    reactions and deflections are the global axisymmetric model's, each peak comes from the
+    model named in ``peaks[].model`` (the global model or a 3D zone), the whole shaft's peak is
+    the largest of them; ``zones`` lists the 3D submodels with their cut checks."""
+    from dataclasses import asdict
+
+    from shaftfe.zoned.submodel import cut_error
+    g = res.global_result
+    axi = static_summary_axisymmetric(g, variant)
+    by_rpm = {c["rpm"]: c for c in axi["cases"]}
+    cases = []
+    for c in res.cases:
+        peaks = [{**asdict(p), "von_mises_unfiltered_MPa": None} for p in c.peaks]
+        best = max((p for p in c.peaks if kind_of(p.region) != "end"),
+                   key=lambda p: p.von_mises_MPa)
+        a = by_rpm.get(c.rpm, axi["cases"][0])     # the global solve of the first speed
+        cases.append({
+            **_case_common(c, variant),
+            "max_deflection_mm": c.max_axis_deflection_mm,
+            "max_deflection_xyz_mm": a["max_deflection_xyz_mm"],
+            "peaks": peaks,
+            "peak_von_mises_MPa": best.von_mises_MPa,
+            "peak_von_mises_xyz_mm": best.xyz_mm,
+            "peak_region": best.region,
+            "peak_model": best.model,
+            "peak_von_mises_unfiltered_MPa": None,
+            "peak_von_mises_unfiltered_xyz_mm": None,
+            "beam_springs": {},
+        })
+    zones = [{"name": z.name, "features": list(z.features), "x_mm": list(z.x_mm),
+              "cuts_mm": list(z.cuts_mm), "grown": z.grown, "n_dofs": z.n_dofs,
+              "n_elements": z.n_elements,
+              "cut_check_percent": 100 * cut_error(z.cut_checks)}
+             for z in res.zones]
+    dofs = sum(z["n_dofs"] for z in zones)
+    return {**axi, "model": "zoned",
+            "model_label": f"zoned: axisymmetric global ({axi['level']}) + "
+                           f"{len(zones)} 3D P2 zones ({res.options.level})",
+            "level": getattr(res.options.level, "name", res.options.level),
+            "global_level": axi["level"], "zones": zones, "zone_dofs": dofs,
+            "n_dofs": axi["n_dofs"] + dofs,
+            "solver": f"{axi['solver']}; PARDISO per zone",
+            "mesh_from_cache": None, "cases": cases, "notes": list(res.notes)}
+
+
 def _region_of_peak(c) -> str:
     best = max((p for p in c.peaks if math.isfinite(p.von_mises_MPa)),
                key=lambda p: p.von_mises_MPa, default=None)

@@ -94,6 +94,10 @@ class StaticReference:
     # history is Σ_k factor_k(t) × pattern_stress[k] (empty when the solve did not recover them)
     patterns: tuple = ()
     pattern_stress: dict = field(default_factory=dict, repr=False)
+    # where FKM's stress profile below a surface point comes from (``fatigue.fkm_field.
+    # DepthProbe``) when the reference has no volume cells (the axisymmetric and zoned surface
+    # references); None: the 3D field's own cells. Not stored in the cache.
+    depth_probe: object = field(default=None, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         for name in ("stress_ref", "von_mises_ref", "xyz", "excluded", "cells", "face_cells",

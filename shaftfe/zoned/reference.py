@@ -10,18 +10,22 @@ nodes (the cut faces left out); stresses in Cartesian xx yy zz xy yz xz at the r
 (surface-recovered in both); the singular-point rule of each model (``solve.excluded_nodes``
 and the seats' θ-edge bands; ``fe.recovery.excluded_nodes`` with the cut faces as patches).
 Cells: the revolved outline's triangles and the submodels' facet corners (no volume cells: a
-surface field, as ``--model axisymmetric`` gives)."""
+surface field, as ``--model axisymmetric`` gives). FKM's stress profile below a point comes from
+the point's own model (``ZonedProbe``)."""
 
 from __future__ import annotations
 
 import time
+from dataclasses import replace
+from functools import cached_property
 
 import numpy as np
 
 from shaftfe.axisymmetric.reference import static_reference as axi_reference
 from shaftfe.fe import assembly as fem
 from shaftfe.fe import recovery
-from shaftfe.static.cache import StaticReference
+from shaftfe.fe.pointeval import TetProbe
+from shaftfe.static.cache import StaticReference, facet_cells
 from shaftfe.zoned.solve import CUT_CLEAR_D
 from shaftfe.zoned.zones import diameter_at
 
@@ -49,6 +53,7 @@ def zoned_reference(res, seconds: float | None = None) -> StaticReference:
             keep_g[np.asarray(ids, dtype=np.int64)] = True
     parts = [(g.xyz, g.stress_ref, g.regions, g.excluded, g.face_cells, g.face_group,
               g.face_groups, keep_g)]
+    probes = [g.depth_probe]
     for sub, sf in res.fields:
         m = sub.shaft_mesh.mesh
         cut = [np.asarray(m.boundaries[c]) for c in sub.cut_groups]
@@ -67,7 +72,52 @@ def zoned_reference(res, seconds: float | None = None) -> StaticReference:
         tri = m.facets[:, fac].T.astype(np.int64)
         parts.append((m.doflocs, sf.stress * scale, sub.regions, sub.excluded, tri, gid, names,
                       keep))
-    return _merge(res, g, parts, seconds, t0)
+        probes.append(_ZoneField(m, sf.stress * scale))
+    ref = _merge(res, g, parts, seconds, t0)
+    return replace(ref, depth_probe=ZonedProbe([p[-1] for p in parts], probes))
+
+
+class _ZoneField:
+    """A submodel's volume field as ``fatigue.fkm_field.TetProbe`` reads it (its own points,
+    P2 cells, boundary triangles and nodal stress), made only when FKM asks for a profile."""
+
+    def __init__(self, mesh, stress: np.ndarray):
+        self.mesh, self.stress = mesh, stress
+
+    @cached_property
+    def probe(self):
+        from types import SimpleNamespace
+
+        m = self.mesh
+        return TetProbe(SimpleNamespace(xyz=m.doflocs, stress_ref=self.stress,
+                                        cells=fem.element_nodes(m).T.astype(np.int64),
+                                        face_cells=facet_cells(m)[0]))
+
+
+class ZonedProbe:
+    """FKM's stress profile below a point of the zoned reference (``fatigue.fkm_field.
+    DepthProbe``): each point asks the model it came from, the global model's revolved surface
+    (``axisymmetric.reference.SurfaceProbe``, exact from the harmonic field) or its submodel's
+    3D field (``TetProbe``: the volume below a keyway is the submodel's). ``keeps``: each
+    part's mask of the points it gave, in the merged order (``_merge``)."""
+
+    def __init__(self, keeps, probes):
+        self.sizes = tuple(int(k.size) for k in keeps)      # each part's own point count
+        self.owner = np.concatenate([np.full(int(k.sum()), i) for i, k in enumerate(keeps)])
+        self.local = np.concatenate([np.flatnonzero(k) for k in keeps])
+        self.probes = probes
+
+    def _of(self, node: int):
+        p = self.probes[self.owner[node]]
+        return (p.probe if isinstance(p, _ZoneField) else p), int(self.local[node])
+
+    def normal(self, node: int) -> tuple[np.ndarray, float]:
+        p, j = self._of(node)
+        return p.normal(j)
+
+    def stress_at(self, node: int, pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        p, j = self._of(node)
+        return p.stress_at(j, pts)
 
 
 def _merge(res, g, parts, seconds, t0) -> StaticReference:
@@ -116,3 +166,22 @@ def _merge(res, g, parts, seconds, t0) -> StaticReference:
         notes=(*res.notes, f"zoned model: fatigue on the global model's revolved surface and "
                f"{len(res.fields)} submodels' free surfaces, surface-recovered stresses"),
         relative_residual=g.relative_residual)
+
+
+def surface_displacement(res, ref) -> np.ndarray:
+    """(n, 3) Cartesian displacement in mm at the points of ``ref`` (= ``zoned_reference(res)``)
+    at its speed: the global model's on its revolved surface (``axisymmetric.reference.
+    surface_displacement``), each submodel's own nodal values in its zone."""
+    from types import SimpleNamespace
+
+    from shaftfe.axisymmetric.reference import surface_displacement as axi_displacement
+    p = ref.depth_probe
+    out = np.empty((ref.n_nodes, 3))
+    on = p.owner == 0
+    g = axi_displacement(res.global_result, SimpleNamespace(n_nodes=p.sizes[0]))
+    out[on] = g[p.local[on]]
+    scale = res.cases[0].scale
+    for k, (_, sf) in enumerate(res.fields, start=1):
+        on = p.owner == k
+        out[on] = sf.u.reshape(-1, 3)[p.local[on]] * scale
+    return out

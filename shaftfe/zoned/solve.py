@@ -74,6 +74,7 @@ class ZonedCase:
     peaks: tuple[ZonedPeak, ...]
     equilibrium_residual: float
     case: str = ""
+    load_sum_N: tuple = ()              # the global model's (``AxiCase.load_sum_N``)
 
 
 @dataclass(frozen=True, eq=False)
@@ -234,7 +235,7 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
         cases.append(ZonedCase(r, gc.scale, gc.bearings, gc.stations,
                                gc.max_axis_deflection_mm,
                                tuple(peaks[k] for k in sorted(peaks)), gc.equilibrium_residual,
-                               gc.case))
+                               gc.case, gc.load_sum_N))
         if len(cases) == 1:
             first_global = g
     if grown_now != grown_before:
@@ -245,8 +246,8 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
                      r for z in zones for r in (f.region for f in z.features)))
     notes.append("the keyways' and the hex socket's effect on the shaft's stiffness is not in "
                  "the global model (reactions and deflections are the round shaft's)")
-    notes.append("shaftfe report, demo and fatigue with FKM (its default) take the full 3D "
-                 "model's field (--model solid): their peaks differ from these by what "
+    notes.append("shaftfe report, demo and fatigue take the full 3D model's field by default "
+                 "(--model zoned for this one): their peaks differ from these by what "
                  "reports/benchmarks/zoned.md measures")
     notes.append("no error bars: the 3D levels' bars were measured on whole-shaft meshes and "
                  "the axisymmetric model's error only on x2_57's span fillets "

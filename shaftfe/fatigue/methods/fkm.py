@@ -1,4 +1,5 @@
-"""FKM guideline (``fatigue.fkm``, ``fatigue.fkm_field``): local stresses on the 3D field, the
+"""FKM guideline (``fatigue.fkm``, ``fatigue.fkm_field``): local stresses on the static field (3D,
+axisymmetric or zoned; the stress gradient from each field's own ``DepthProbe``), the
 shaft's own strength card, the stress gradient's support factor, three Miner rules; the
 bearings' ISO 281 life and the seed's key and gear checks beside it (``fatigue.standards``,
 ``fatigue.standards_out``)."""
@@ -20,13 +21,12 @@ class FkmDetail:
 
 class Fkm:
     name = "fkm"
-    title = ("FKM guideline, local stresses on the 3D field, the shaft's real material and "
-             "surface")
+    title = ("FKM guideline, local stresses on the static field, the shaft's real material "
+             "and surface")
     options = ("--card", "--miner", "--consequences", "--inspection", "--damage-sum",
                "--kappa", "--ec", "--model", "--level", "--exclude-mm", "--seed-load-case",
                "--spin-softening", "--design-life", "--design-life-h")
-    narrowed = MappingProxyType(
-        {"--model": (("solid",), "the FKM stress gradient is taken on the 3D field")})
+    narrowed = MappingProxyType({})
     out_dir = "fatigue-fkm"
     files = ("fatigue.vtu", "haigh.png", "rainflow_matrix.png", "damage_matrix.png",
              "summary.json")
