@@ -79,9 +79,8 @@ def register(sub) -> None:
     opt("--kf", "fatigue strength factor in (0, 1] multiplying the S-N curve (default 1)",
         type=float)
     opt("--model", "static model: solid (3D P2 tets, default) | axisymmetric (Fourier "
-        "harmonics on the revolved surface; keyways and the hex socket left out; not FKM) | "
-        "zoned (the axisymmetric surface with 3D zones at the keyways and the hex socket; "
-        "the seed method only)")
+        "harmonics on the revolved surface; keyways and the hex socket left out) | zoned (the "
+        "axisymmetric surface with 3D zones at the keyways and the hex socket)")
     opt("--level", "mesh level: " + " | ".join(LEVEL_NAMES)
         + " (axisymmetric: coarse | default | fine; default: default)")
     opt("--exclude-mm", "exclude also nodes closer than this to a bearing / load patch edge "

@@ -78,7 +78,7 @@ class FatigueJob:
     exclude_mm: float = 0.0                # extra band around patch edges (filtered hot spot)
     seed_load_case: bool = False
     cache_dir: str | None = None
-    model: str = "solid"                   # static model: solid | axisymmetric (MODELS)
+    model: str = "solid"                   # static model: solid | axisymmetric | zoned
     spin_softening: bool = True            # the parts' m ω² u (static model; README)
     overrides: tuple[str, ...] = ()        # --set PATH=VALUE on the variant (model.overrides)
     design_life_h: float | None = None     # hours of riding; with design_life=None
