@@ -28,7 +28,7 @@ def cache(tmp_path_factory):
     return d
 
 
-SEED = ("--method", "seed")     # the seed method's outputs; fkm is the default (#14)
+SEED = ("--method", "seed", "--model", "solid")   # the seed method on the 3D model (its cache)
 
 
 def run(capsys, *argv):

@@ -31,8 +31,11 @@ def run(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("report")
     out = tmp / "rep"
     # the seed's load case, so that the seed figures compare like with like
+    # the full 3D model (its volume VTU, its level's error bars); the default, zoned, model's
+    # report is tests/test_zoned_cli.py's
     p = subprocess.run([sys.executable, "-m", "shaftfe", "report", "--variant", "x2_57",
-                        "--level", "coarse", "--seed-load-case", "--out", str(out), "--json"],
+                        "--level", "coarse", "--model", "solid", "--seed-load-case", "--out",
+                        str(out), "--json"],
                        capture_output=True, text=True, env=_env(tmp), cwd=ROOT)
     assert p.returncode == 0, p.stderr[-3000:]
     return out, p

@@ -175,3 +175,34 @@ def test_the_report_on_the_zoned_model(tmp_path, cache, monkeypatch):
         assert name in m.point_data, name
     html = (out / "index.html").read_text(encoding="utf-8")
     assert "Zoned solve" in html
+
+
+@pytest.mark.parametrize("model", ["axisymmetric", "zoned"])
+def test_a_surface_reference_at_a_design_speed_has_its_linear_stress_at_that_speed(
+        model, cache, monkeypatch):
+    """The report solves at the design speeds (6000 rpm here) with spin softening and the
+    unsoftened field once more: the two must be at one speed, or fatigue's softening
+    coefficient β = S_soft/S_lin − 1 reads (6000/10 000)² − 1 = −0.64 (the unsoftened solve
+    keeps its own reference speed). Bound: the softening at 6000 rpm is (0.6)² of x2_57's
+    ≈ 1.5 % at 10 000 rpm (fatigue.field.softening_beta); 5 % leaves room for the parts'
+    tilt terms, far from −0.64."""
+    import numpy as np
+
+    from shaftfe.fatigue.field import softening_beta
+    from shaftfe.model.loader import load_variant
+    from shaftfe.report.assemble import _surface_static
+    from shaftfe.report.options import ReportOptions
+    from shaftfe.static.cache import kept_nodes
+    from shaftfe.util.progress import Progress
+    monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(cache))
+    o = ReportOptions(variant="x2_57", level="coarse", model=model, design_rpm=(6000.0,))
+    _, ref = _surface_static(o, load_variant("x2_57"), Progress((), enabled=False))
+    assert ref.ref_rpm == 6000.0
+    vm = np.asarray(ref.von_mises_ref)
+    lin = np.sqrt(0.5 * ((ref.stress_linear[0] - ref.stress_linear[1]) ** 2
+                         + (ref.stress_linear[1] - ref.stress_linear[2]) ** 2
+                         + (ref.stress_linear[2] - ref.stress_linear[0]) ** 2)
+                  + 3 * (ref.stress_linear[3:] ** 2).sum(axis=0))
+    keep = kept_nodes(ref) & (vm > 0.1 * vm.max())
+    beta = softening_beta(vm[keep], lin[keep])
+    assert np.abs(beta).max() < 0.05

@@ -74,20 +74,6 @@ def _triangles(S, keep: np.ndarray, q: int) -> tuple[np.ndarray, np.ndarray]:
     return tri, cur
 
 
-def with_linear_stress(ref, variant, options, cache_dir=None):
-    """``ref`` (of a softened solve at ``ref.ref_rpm``) with the unsoftened stress at the same
-    speed (``StaticReference.stress_linear``: fatigue's S0 (λ + β λ²)), from a second solve
-    on the cached mesh; ``ref`` unchanged without spin softening."""
-    from dataclasses import replace
-
-    from shaftfe.axisymmetric.solve import solve_axisymmetric
-    if not options.spin_softening:
-        return ref
-    lin = solve_axisymmetric(variant, ref.ref_rpm, replace(options, spin_softening=False),
-                             cache_dir=cache_dir)
-    return replace(ref, stress_linear=static_reference(lin).stress_ref)
-
-
 def static_reference(res, seconds: float | None = None):
     """The ``StaticReference`` (see the module docstring) of an ``AxiResult`` at its
     reference speed."""

@@ -78,9 +78,10 @@ def register(sub) -> None:
                    help="average riding speed for the life in km (default 70)")
     opt("--kf", "fatigue strength factor in (0, 1] multiplying the S-N curve (default 1)",
         type=float)
-    opt("--model", "static model: solid (3D P2 tets, default) | axisymmetric (Fourier "
-        "harmonics on the revolved surface; keyways and the hex socket left out) | zoned (the "
-        "axisymmetric surface with 3D zones at the keyways and the hex socket)")
+    opt("--model", "static model: zoned (default: the axisymmetric surface with 3D zones at "
+        "the keyways and the hex socket; solid for a variant with a load not ∝ rpm², whose "
+        "per-pattern fields only the 3D model gives) | solid (3D P2 tets) | axisymmetric "
+        "(Fourier harmonics on the revolved surface; keyways and the hex socket left out)")
     opt("--level", "mesh level: " + " | ".join(LEVEL_NAMES)
         + " (axisymmetric: coarse | default | fine; default: default)")
     opt("--exclude-mm", "exclude also nodes closer than this to a bearing / load patch edge "
@@ -118,7 +119,7 @@ def run(args) -> int:
     from shaftfe.commands._common import out_name, print_json
     from shaftfe.fatigue.method_options import with_defaults
     from shaftfe.fatigue.methods import AssessmentInputs, get_method
-    from shaftfe.fatigue.run import check_job, load_inputs
+    from shaftfe.fatigue.run import check_job, load_inputs, resolve_model
     from shaftfe.util.atomic import staged_dir
     from shaftfe.util.progress import Progress
     method = get_method(args.method)
@@ -130,6 +131,7 @@ def run(args) -> int:
                     enabled=False if args.json else None)
     with prog.stage("history"):
         got = load_inputs(job)
+    job = resolve_model(job, got.variant)
     inputs = AssessmentInputs.one_channel(got.variant, got.history)
     v = inputs.variant
     out = Path(args.out) if args.out else \

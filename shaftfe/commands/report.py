@@ -39,10 +39,10 @@ def register(sub) -> None:
                    "(default: the variant's [duty] sn_curve, else the card of the shaft's "
                    "material)")
     p.add_argument("--level", default="default", help="mesh level: coarse | default | fine")
-    p.add_argument("--model", default="solid",
-                   help="static model: solid (3D P2 tets, default) | axisymmetric (Fourier "
-                   "harmonics on a meridian mesh; keyways and the hex socket left out) | zoned "
-                   "(the axisymmetric model with 3D zones where the shaft is not round)")
+    p.add_argument("--model", default="zoned",
+                   help="static model: zoned (default: the axisymmetric model with 3D zones "
+                   "where the shaft is not round) | solid (3D P2 tets) | axisymmetric (Fourier "
+                   "harmonics on a meridian mesh; keyways and the hex socket left out)")
     p.add_argument("--rotor-model", default="beam",
                    help="rotor model of the Campbell diagram: beam (default) | solid")
     p.add_argument("--campbell-step", type=float, default=500.0, metavar="RPM",

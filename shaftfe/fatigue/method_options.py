@@ -50,7 +50,8 @@ OPTIONS: dict[str, tuple[str, object]] = {
     "--equivalent": ("equivalent", "von_mises"),
     "--material": ("material", None),        # None: the variant's (sn.variant_card)
     "--kf": ("kf", 1.0),
-    "--model": ("model", "solid"),
+    "--model": ("model", None),              # None: fatigue.run.resolve_model (zoned, or
+    #                                          solid where a load is not ∝ rpm²)
     "--level": ("level", "default"),
     "--exclude-mm": ("exclude_mm", 0.0),
     "--seed-load-case": ("seed_load_case", False),

@@ -78,7 +78,8 @@ class FatigueJob:
     exclude_mm: float = 0.0                # extra band around patch edges (filtered hot spot)
     seed_load_case: bool = False
     cache_dir: str | None = None
-    model: str = "solid"                   # static model: solid | axisymmetric | zoned
+    model: str | None = None               # static model: zoned | solid | axisymmetric;
+    #                                        None: ``resolve_model`` once the variant is read
     spin_softening: bool = True            # the parts' m ω² u (static model; README)
     overrides: tuple[str, ...] = ()        # --set PATH=VALUE on the variant (model.overrides)
     design_life_h: float | None = None     # hours of riding; with design_life=None
@@ -215,6 +216,21 @@ def check_model_level(model: str, level: str, allowed: tuple[str, ...] = MODELS)
         raise InputError("command line", "--level", " | ".join(names), got=level)
 
 
+DEFAULT_MODEL = "zoned"
+
+
+def resolve_model(job: FatigueJob, variant) -> FatigueJob:
+    """``job`` with its static model when --model was not given: the zoned model, or the full
+    3D model for a variant with a load that does not scale with rpm² (the seed method then
+    assesses each load pattern with its own history, on the per-pattern fields only the 3D
+    model's reference holds, ``fatigue.channel_run``)."""
+    from dataclasses import replace
+    if job.model is not None:
+        return job
+    other = any(getattr(ld, "scales_with", "rpm2") != "rpm2" for ld in variant.loads)
+    return replace(job, model="solid" if other else DEFAULT_MODEL)
+
+
 def check_job(job: FatigueJob) -> None:
     if job.mean_stress not in MEAN_STRESS:
         raise InputError("command line", "--mean-stress", " | ".join(MEAN_STRESS),
@@ -222,7 +238,7 @@ def check_job(job: FatigueJob) -> None:
     if job.equivalent not in EQUIVALENT:
         raise InputError("command line", "--equivalent", " | ".join(EQUIVALENT),
                          got=job.equivalent)
-    check_model_level(job.model, job.level, STATIC_MODELS)
+    check_model_level(job.model or DEFAULT_MODEL, job.level, STATIC_MODELS)
     check_life_settings(job.design_life, job.speed_kmh, job.design_life_h)
     if not (math.isfinite(job.kf) and 0 < job.kf <= 1):
         raise InputError("command line", "--kf", "a number in (0, 1]", got=job.kf)
@@ -326,13 +342,14 @@ def static_reference(variant, job: FatigueJob):
     static cache (solved once when missing), or the axisymmetric one on its revolved surface
     (``shaftfe.axisymmetric.reference``; solved each time from the cached meridian mesh: a
     few seconds, no cache of its own)."""
+    job = resolve_model(job, variant)
     if job.model == "axisymmetric":
         from shaftfe.axisymmetric.model import AxiOptions
         from shaftfe.axisymmetric.reference import static_reference as axi_reference
         from shaftfe.axisymmetric.solve import solve_axisymmetric
         opts = AxiOptions(level=job.level, seed_load_case=job.seed_load_case,
                           exclude_mm=job.exclude_mm, spin_softening=job.spin_softening)
-        return _surface_reference(
+        return surface_reference(
             lambda o: axi_reference(solve_axisymmetric(variant, options=o,
                                                        cache_dir=job.cache_dir)), opts)
     if job.model == "zoned":
@@ -354,12 +371,12 @@ def zoned_static_reference(variant, job: FatigueJob):
     from shaftfe.zoned.solve import solve_zoned
     opts = StaticOptions(level=job.level, seed_load_case=job.seed_load_case,
                          exclude_mm=job.exclude_mm, spin_softening=job.spin_softening)
-    return _surface_reference(
+    return surface_reference(
         lambda o: zoned_reference(solve_zoned(variant, REF_RPM, o, cache_dir=job.cache_dir)),
         opts)
 
 
-def _surface_reference(make, opts):
+def surface_reference(make, opts):
     """``make(opts)`` (a surface reference of the axisymmetric or the zoned model, solved each
     time), with spin softening also the unsoftened stress on the same points (fatigue's
     S0 (λ + β λ²)): a second solve; the zoned one starts from the zones the first grew to, and
@@ -367,6 +384,8 @@ def _surface_reference(make, opts):
     from dataclasses import replace
 
     import numpy as np
+
+    from shaftfe.util.units import rpm2_scale
     t0 = time.perf_counter()
     ref = make(opts)
     if opts.spin_softening:
@@ -375,7 +394,10 @@ def _surface_reference(make, opts):
             raise SolverError("fatigue reference: the unsoftened solve's points differ from "
                               "the softened one's (the zones grew differently); use "
                               "--no-spin-softening or --model solid")
-        ref = replace(ref, stress_linear=lin.stress_ref)
+        # the unsoftened field is the linear one (∝ rpm²) at its own reference speed, which
+        # need not be the softened one's (a report at its design speed): taken to that speed
+        ref = replace(ref, stress_linear=lin.stress_ref * rpm2_scale(ref.ref_rpm,
+                                                                     lin.ref_rpm))
     return replace(ref, seconds=time.perf_counter() - t0)
 
 
@@ -396,7 +418,7 @@ def run_fatigue(job: FatigueJob, inputs: FatigueInputs | None = None,
             inputs = load_inputs(job)
     history, material, variant = inputs.history, inputs.material, inputs.variant
     from dataclasses import replace
-    job = replace(job, material=material.name)
+    job = replace(resolve_model(job, variant), material=material.name)
     given = ref is not None
     if not (given and job.design_life is not None):
         # a caller with its own field (the report, a study) has checked its design life

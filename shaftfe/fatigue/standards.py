@@ -92,10 +92,16 @@ def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None, progress=None):
 
     from shaftfe.fatigue.cards import load_surfaces
     from shaftfe.fatigue.fkm_field import assess_field
-    from shaftfe.fatigue.run import load_inputs, resolve_design_life, static_reference
+    from shaftfe.fatigue.run import (
+        load_inputs,
+        resolve_design_life,
+        resolve_model,
+        static_reference,
+    )
     check_options(opts)
     inputs = inputs or load_inputs(job)
-    job = resolve_design_life(job, inputs.history, inputs.variant.duty)
+    job = resolve_design_life(resolve_model(job, inputs.variant), inputs.history,
+                              inputs.variant.duty)
     card = strength_card(inputs.variant, opts)
     def stage(name):
         return progress.stage(name) if progress is not None else nullcontext()

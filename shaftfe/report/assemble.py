@@ -100,39 +100,8 @@ def _static(o: ReportOptions, variant, prog):
     from shaftfe.static import cache as static_cache
     from shaftfe.static.model import StaticOptions
     from shaftfe.static.solve import solve_static
-    if o.model == "axisymmetric":
-        from shaftfe.axisymmetric.model import AxiOptions
-        from shaftfe.axisymmetric.reference import static_reference
-        from shaftfe.axisymmetric.solve import solve_axisymmetric
-        with prog.stage("static (mesh + one solve)"):
-            aopts = AxiOptions(level=o.level, seed_load_case=o.seed_load_case,
-                               spin_softening=o.spin_softening)
-            res = solve_axisymmetric(variant, list(o.design_rpm), aopts,
-                                     cache_dir=o.cache_dir)
-            ref = static_reference(res)                             # the fatigue input
-            if o.spin_softening:      # fatigue's S0 (λ + β λ²): the unsoftened stress too
-                lin = solve_axisymmetric(variant, float(o.design_rpm[0]),
-                                         dataclasses.replace(aopts, spin_softening=False),
-                                         cache_dir=o.cache_dir)
-                ref = dataclasses.replace(ref, stress_linear=static_reference(lin).stress_ref)
-        return res, ref
-    if o.model == "zoned":
-        from shaftfe.fatigue.run import _surface_reference
-        from shaftfe.zoned.reference import zoned_reference
-        from shaftfe.zoned.solve import solve_zoned
-        with prog.stage("static (mesh + one solve)"):
-            zopts = StaticOptions(level=o.level, seed_load_case=o.seed_load_case,
-                                  spin_softening=o.spin_softening)
-            solved = {}
-
-            def make(opts):       # the design speeds' solve; the unsoftened one at the first
-                rpm = list(o.design_rpm) if opts.spin_softening == o.spin_softening \
-                    else float(o.design_rpm[0])
-                solved[opts.spin_softening] = solve_zoned(variant, rpm, opts,
-                                                          cache_dir=o.cache_dir)
-                return zoned_reference(solved[opts.spin_softening])
-            ref = _surface_reference(make, zopts)                   # the fatigue input
-        return solved[o.spin_softening], ref
+    if o.model in ("axisymmetric", "zoned"):
+        return _surface_static(o, variant, prog)
     with prog.stage("static (mesh + one solve)"):
         sopts = StaticOptions(level=o.level, seed_load_case=o.seed_load_case,
                               spin_softening=o.spin_softening)
@@ -146,6 +115,35 @@ def _static(o: ReportOptions, variant, prog):
                                 other_level=OTHER_LEVEL[o.level])
             res = dataclasses.replace(res, error_estimate=ee)
     return res, ref
+
+
+def _surface_static(o: ReportOptions, variant, prog):
+    """The axisymmetric or zoned solve at the design speeds and its surface reference, the
+    fatigue input (with spin softening also the unsoftened stress, ``fatigue.run.
+    surface_reference``: one more solve at the first design speed)."""
+    from shaftfe.fatigue.run import surface_reference
+    if o.model == "axisymmetric":
+        from shaftfe.axisymmetric.model import AxiOptions
+        from shaftfe.axisymmetric.reference import static_reference as reference
+        from shaftfe.axisymmetric.solve import solve_axisymmetric as solve
+        opts = AxiOptions(level=o.level, seed_load_case=o.seed_load_case,
+                          spin_softening=o.spin_softening)
+    else:
+        from shaftfe.static.model import StaticOptions
+        from shaftfe.zoned.reference import zoned_reference as reference
+        from shaftfe.zoned.solve import solve_zoned as solve
+        opts = StaticOptions(level=o.level, seed_load_case=o.seed_load_case,
+                             spin_softening=o.spin_softening)
+    solved = {}
+
+    def make(op):             # the design speeds' solve; the unsoftened one at the first
+        rpm = list(o.design_rpm) if op.spin_softening == o.spin_softening \
+            else float(o.design_rpm[0])
+        solved[op.spin_softening] = solve(variant, rpm, op, cache_dir=o.cache_dir)
+        return reference(solved[op.spin_softening])
+    with prog.stage("static (mesh + one solve)"):
+        ref = surface_reference(make, opts)
+    return solved[o.spin_softening], ref
 
 
 def _nodal_peak(st: dict, ref) -> None:
@@ -273,6 +271,11 @@ def _inputs_block(o: ReportOptions, variant, engine, fat: dict) -> dict:
 
 def _sub_timings(res, ff) -> dict:
     d = getattr(res, "run", {})
+    if "zones_seconds" in d:            # a zoned solve (``zoned.solve``): its own phases
+        return {"plan and zones": d.get("plan_seconds"),
+                "global axisymmetric solves": d.get("global_seconds"),
+                "3D zones (mesh, factorisation, solves, recovery)": d.get("zones_seconds"),
+                "static total": d.get("total_seconds"), "fatigue evaluation": ff.seconds}
     return {"mesh": d.get("mesh_seconds"), "mesh from cache": bool(d.get("mesh_from_cache")),
             "assembly": d.get("assembly_seconds"), "factorisation": d.get("factor_seconds"),
             "solves": d.get("solve_seconds"), "stress recovery": d.get("recovery_seconds"),

@@ -52,7 +52,7 @@ class ReportOptions:
     cache_dir: str | None = None
     pictures: bool = True                 # PyVista renders (off: no VTK import)
     seed_load_case: bool = False          # every part (as every command); True: the seed's F1+Fv2
-    model: str = "solid"                  # static model: solid | axisymmetric | zoned
+    model: str = "zoned"                  # static model: zoned | solid | axisymmetric
     #                                       (static.STATIC_MODELS)
     spin_softening: bool = True           # the parts' m ω² u (the seed's study had none)
     allow_overspeed: bool = False         # a spectrum above the engine's max_rpm (warned)

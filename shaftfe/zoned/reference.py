@@ -42,7 +42,8 @@ def zoned_reference(res, seconds: float | None = None) -> StaticReference:
     t0 = time.perf_counter()
     plan = res.plan
     g = axi_reference(res.global_result)
-    scale = res.cases[0].scale
+    # the submodels' fields are at the speed the global model's reference is at (``solve_zoned``
+    # solves a zone at the global solution's own speed, rpm_f): no scaling
     from_zone = {p.region for p in res.cases[0].peaks if p.model != "axisymmetric"}
     # the global part: outside every zone's interior, plus the regions it keeps
     keep_g = np.ones(g.n_nodes, dtype=bool)
@@ -70,9 +71,9 @@ def zoned_reference(res, seconds: float | None = None) -> StaticReference:
         gid = np.concatenate([np.full(np.asarray(m.boundaries[k]).size, i, np.int32)
                               for i, k in enumerate(names)])
         tri = m.facets[:, fac].T.astype(np.int64)
-        parts.append((m.doflocs, sf.stress * scale, sub.regions, sub.excluded, tri, gid, names,
+        parts.append((m.doflocs, sf.stress, sub.regions, sub.excluded, tri, gid, names,
                       keep))
-        probes.append(_ZoneField(m, sf.stress * scale))
+        probes.append(_ZoneField(m, sf.stress))
     ref = _merge(res, g, parts, seconds, t0)
     return replace(ref, depth_probe=ZonedProbe([p[-1] for p in parts], probes))
 
@@ -180,8 +181,7 @@ def surface_displacement(res, ref) -> np.ndarray:
     on = p.owner == 0
     g = axi_displacement(res.global_result, SimpleNamespace(n_nodes=p.sizes[0]))
     out[on] = g[p.local[on]]
-    scale = res.cases[0].scale
     for k, (_, sf) in enumerate(res.fields, start=1):
         on = p.owner == k
-        out[on] = sf.u.reshape(-1, 3)[p.local[on]] * scale
+        out[on] = sf.u.reshape(-1, 3)[p.local[on]]
     return out

@@ -97,8 +97,8 @@ class Fkm:
         from shaftfe.util.fmt import design_life, lives, table_lines
         res, ref, job = result.detail.result, result.detail.ref, options
         p = head_line(inputs, "FKM", res.card.name, job)
-        p.append(f"static: {'from cache' if ref.from_cache else 'solved'} ({ref.ref_rpm:g} rpm, "
-                 f"{ref.n_nodes} nodes, P2 {job.level}); design life "
+        p.append(f"static ({job.model} model): {'from cache' if ref.from_cache else 'solved'} "
+                 f"({ref.ref_rpm:g} rpm, {ref.n_nodes} points, P2 {job.level}); design life "
                  f"{design_life(res.design_life_blocks, res.block_seconds, job.speed_kmh)}; "
                  f"j_D {res.j_D:g}; D_M {res.damage_sum:g}; governing rule: {res.rule}")
         p += table_lines(so.FKM_HEAD, so.fkm_rows(res), title="FKM, local stresses, per region "
