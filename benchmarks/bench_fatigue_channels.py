@@ -71,7 +71,7 @@ def main() -> int:
     from shaftfe.fatigue.sn import load_material
     from shaftfe.model.loader import load_variant
     mat = load_material("structural_steel")
-    job = FatigueJob(spectrum="benchmark", design_life=1e3)
+    job = FatigueJob(spectrum="benchmark", design_life=1e3, model="solid")
     v1, v2 = load_variant("x2_57"), torque_variant()
     ref1, ref2 = static_reference(v1, job), static_reference(v2, job)
     rows, notes = [], []

@@ -144,7 +144,7 @@ def check_long(spectrum: Path) -> dict:
     from shaftfe.fatigue import standards as sd
     from shaftfe.fatigue.fkm_field import governing_cycles
     from shaftfe.fatigue.run import FatigueJob
-    job = FatigueJob(spectrum=str(spectrum), level="coarse")
+    job = FatigueJob(spectrum=str(spectrum), level="coarse", model="solid")
     res, _, _ = sd.run_fkm(job, sd.StrengthOptions())
     reg, chk = res.governing
     gc = governing_cycles(res)

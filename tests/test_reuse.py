@@ -15,7 +15,7 @@ def test_fatigue_reuses_the_static_solution_of_shaftfe_static(tmp_path):
                         env=env)
     assert st.returncode == 0, st.stderr
     fa = subprocess.run([sys.executable, "-m", "shaftfe", "fatigue", "--method", "seed",
-                         "loadspectra/rpm.dat",
+                         "--model", "solid", "loadspectra/rpm.dat",
                          *common, "--seed-load-case", "--out", str(tmp_path / "fatigue")],
                         capture_output=True, text=True, env=env,
                         cwd=os.path.dirname(os.path.dirname(__file__)))

@@ -89,10 +89,10 @@ def test_one_pattern_fe_field_equals_the_single_channel_path(tmp_path):
 
     v = load_variant("x2_57")
     h = read_history(DEFAULT_SPECTRUM)
-    job = resolve_design_life(FatigueJob(spectrum="rpm.dat", level="coarse",
+    job = resolve_design_life(FatigueJob(spectrum="rpm.dat", level="coarse", model="solid",
                                          spin_softening=False, equivalent="signed_von_mises",
                                          design_life=1e4), h, v.duty)
-    ref = static_reference(v, job)
+    ref = static_reference(v, job)           # the 3D model's: its per-pattern fields
     assert [p["scales_with"] for p in ref.patterns] == ["rpm2"] and ref.stress_linear is None
     run = channel_run.run_channels(job, v, h, STEEL, ref)
     hr = h.with_reference(ref.ref_rpm)
