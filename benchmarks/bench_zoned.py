@@ -111,36 +111,90 @@ def keyed_bar_rows() -> list[dict]:
     return rows
 
 
-def _static(tree: str, out: str, *extra: str) -> list[str]:
+def _shaftfe(tree: str, *args: str) -> list[str]:
+    """``shaftfe ARGS`` run from the package of ``tree``."""
     return ["env", f"PYTHONPATH={tree}", "MPLBACKEND=Agg", sys.executable, "-m", "shaftfe",
-            "static", "--variant", "x2_57", "--out", out, *extra]
+            *args]
+
+
+def _static(tree: str, out: str, *extra: str) -> list[str]:
+    return _shaftfe(tree, "static", "--variant", "x2_57", "--out", out, *extra)
+
+
+def commands(here: str, base: str, tmp: str) -> dict:
+    """The whole processes timed side by side: what each tree's default gives."""
+    rpm = str(HERE / "loadspectra" / "rpm.dat")
+    return {
+        "static": {"zoned (this tree, default)": _static(here, f"{tmp}/a"),
+                   "full 3D (baseline, its default)": _static(base, f"{tmp}/b"),
+                   "full 3D (this tree, --model solid)": _static(here, f"{tmp}/c", "--model",
+                                                                 "solid")},
+        "fatigue": {"FKM on the zoned model (this tree, default)":
+                    _shaftfe(here, "fatigue", rpm, "--out", f"{tmp}/fa"),
+                    "FKM on the full 3D model (baseline, its default; static from the cache "
+                    "when warm)": _shaftfe(base, "fatigue", rpm, "--out", f"{tmp}/fb")},
+        "demo": {"zoned (this tree, default)": _shaftfe(here, "demo", "--out", f"{tmp}/da"),
+                 "full 3D (baseline, its default)": _shaftfe(base, "demo", "--out",
+                                                             f"{tmp}/db")}}
 
 
 def speed() -> dict | None:
     base = os.environ.get("SHAFTFE_BASELINE")
     if not base:
         return None
-    here = str(HERE)
     out: dict = {}
     with tempfile.TemporaryDirectory() as tmp:
-        cmds = {"zoned (this tree, default)": _static(here, f"{tmp}/a"),
-                "full 3D (baseline, its default)": _static(base, f"{tmp}/b"),
-                "full 3D (this tree, --model solid)": _static(here, f"{tmp}/c", "--model",
-                                                              "solid")}
-        for name, cmd in cmds.items():                   # cold: an empty cache each
-            env = {"SHAFTFE_CACHE_DIR": f"{tmp}/cold-{len(out)}"}
-            out[name] = {"cold": process(cmd, tmp, env)}
-        env = {"SHAFTFE_CACHE_DIR": f"{tmp}/warm"}
-        for cmd in cmds.values():
-            process(cmd, tmp, env)                       # warm-up
-        runs: dict = {name: [] for name in cmds}
-        for _ in range(RUNS):
-            for name, cmd in cmds.items():
-                runs[name].append(process(cmd, tmp, env))
+        for what, cmds in commands(str(HERE), base, tmp).items():
+            out[what] = _time(cmds, tmp)
+    out["study design"] = study_design()
+    return out
+
+
+def _time(cmds: dict, tmp: str) -> dict:
+    """Cold (an empty cache each) and warm (one warm-up, then the median of ``RUNS``, the
+    commands in turn on one cache) of each command."""
+    out: dict = {}
+    for k, (name, cmd) in enumerate(cmds.items()):
+        out[name] = {"cold": process(cmd, tmp, {"SHAFTFE_CACHE_DIR": f"{tmp}/cold-{k}"})}
+    env = {"SHAFTFE_CACHE_DIR": f"{tmp}/warm"}
+    for cmd in cmds.values():
+        process(cmd, tmp, env)                           # warm-up
+    runs: dict = {name: [] for name in cmds}
+    for _ in range(RUNS):
+        for name, cmd in cmds.items():
+            runs[name].append(process(cmd, tmp, env))
     for name, rs in runs.items():
         out[name]["warm"] = {"wall_s": statistics.median(r["wall_s"] for r in rs),
                              "max_rss_MiB": max(r["max_rss_MiB"] for r in rs),
                              "all_wall_s": [r["wall_s"] for r in rs]}
+    return out
+
+
+STUDY_FILLETS_MM = (0.41, 0.43, 0.47, 0.49)     # a new collar fillet each run: a new solid
+
+
+def study_design() -> dict:
+    """One study design with a new solid at the ``default`` level (the collar fillet changed:
+    a new mesh for the full 3D model; for the zoned one a new meridian mesh, the zones' clips
+    from the cache as the collar lies outside them), the seed method's fatigue row included,
+    in this process after one design of each (imports, caches): ``study.evaluate.
+    evaluate_design`` with ``analyses.static.model`` solid and zoned, in turn."""
+    from shaftfe.study.evaluate import evaluate_design
+    from shaftfe.study.spec import Analyses
+    rpm = str(HERE / "loadspectra" / "rpm.dat")
+    out: dict = {}
+    for model in ("solid", "zoned"):
+        an = Analyses(static=True, static_model=model, level="default", fatigue=True,
+                      spectrum=rpm)
+        evaluate_design("x2_57", {}, an)                 # warm-up: imports, the zones' meshes
+        times = []
+        for r in STUDY_FILLETS_MM:
+            t0 = time.perf_counter()
+            row = evaluate_design("x2_57", {"segments.collar.fillet_mm": r}, an)
+            times.append(time.perf_counter() - t0)
+            assert row["status"] == "ok", row["error"]
+        out[model] = {"median_s": statistics.median(times), "all_s": times,
+                      "n_dofs": row["n_dofs"], "stress_max_MPa": row["stress_max_MPa"]}
     return out
 
 
@@ -214,17 +268,35 @@ def write(acc: dict, spd: dict | None) -> str:
                      f"{row['solid_same_s']:.2f} | {row['solid_fine_MPa']:.2f} | "
                      f"{_pct(row['zoned_MPa'], row['solid_fine_MPa'])} |")
     if spd:
-        lines += ["", "## `shaftfe static --variant x2_57`: whole processes, side by side", "",
-                  f"Warm: the median of {RUNS} runs after one warm-up, the three commands in "
-                  "turn on one warm cache; cold: an empty cache (every mesh made).", "",
-                  "| command | warm s | warm runs s | warm peak MiB | cold s | cold peak MiB |",
-                  "|---|---|---|---|---|---|"]
-        for name, d in spd.items():
-            w, c = d["warm"], d["cold"]
-            lines.append(f"| {name} | {w['wall_s']:.2f} | "
-                         f"{', '.join(f'{x:.2f}' for x in w['all_wall_s'])} | "
-                         f"{w['max_rss_MiB']:.0f} | {c['wall_s']:.2f} | "
-                         f"{c['max_rss_MiB']:.0f} |")
+        title = {"static": "`shaftfe static --variant x2_57`",
+                 "fatigue": "`shaftfe fatigue loadspectra/rpm.dat` (FKM, the default method)",
+                 "demo": "`shaftfe demo` (`make demo`)"}
+        for what, rows in spd.items():
+            if what not in title:
+                continue
+            lines += ["", f"## {title[what]}: whole processes, side by side", "",
+                      f"Warm: the median of {RUNS} runs after one warm-up, the commands in "
+                      "turn on one warm cache; cold: an empty cache (every mesh made).", "",
+                      "| command | warm s | warm runs s | warm peak MiB | cold s | cold peak "
+                      "MiB |", "|---|---|---|---|---|---|"]
+            for name, d in rows.items():
+                w, c = d["warm"], d["cold"]
+                lines.append(f"| {name} | {w['wall_s']:.2f} | "
+                             f"{', '.join(f'{x:.2f}' for x in w['all_wall_s'])} | "
+                             f"{w['max_rss_MiB']:.0f} | {c['wall_s']:.2f} | "
+                             f"{c['max_rss_MiB']:.0f} |")
+        sd = spd.get("study design")
+        if sd:
+            lines += ["", "## A study design with a new solid at `default` (in process)", "",
+                      "The collar fillet changed each run "
+                      f"({', '.join(f'{r:g}' for r in STUDY_FILLETS_MM)} mm), the seed "
+                      "method's fatigue row included, after one design of each model.", "",
+                      "| analyses.static.model | median s | runs s | dofs | stress_max MPa |",
+                      "|---|---|---|---|---|"]
+            for model, d in sd.items():
+                lines.append(f"| {model} | {d['median_s']:.2f} | "
+                             f"{', '.join(f'{x:.2f}' for x in d['all_s'])} | {d['n_dofs']} | "
+                             f"{d['stress_max_MPa']:.2f} |")
     else:
         lines += ["", "(speed part left out: SHAFTFE_BASELINE not set)"]
     return "\n".join(lines) + "\n"

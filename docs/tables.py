@@ -164,11 +164,18 @@ def zoned_speed() -> str:
     dofs = {"zoned (this tree, default)": sum(q["dofs"] for q in z["zones"]),
             "full 3D (this tree, --model solid)": acc["full"]["default"]["dofs"],
             "full 3D (baseline, its default)": acc["full"]["default"]["dofs"]}
-    out = ["| `shaftfe static --variant x2_57` | warm s | cold s | peak MiB (warm) | 3D dofs |",
-           "|---|---|---|---|---|"]
-    for name, r in spd.items():
-        out.append(f"| {name} | {r['warm']['wall_s']:.2f} | {r['cold']['wall_s']:.2f} | "
-                   f"{r['warm']['max_rss_MiB']:.0f} | {dofs.get(name, '-')} |")
+    out = ["| command | model | warm s | cold s | peak MiB (warm) | 3D dofs |",
+           "|---|---|---|---|---|---|"]
+    what = {"static": "`shaftfe static --variant x2_57`", "fatigue": "`shaftfe fatigue "
+            "loadspectra/rpm.dat`", "demo": "`make demo`"}
+    for key, label in what.items():
+        for name, r in spd.get(key, {}).items():
+            out.append(f"| {label} | {name} | {r['warm']['wall_s']:.2f} | "
+                       f"{r['cold']['wall_s']:.2f} | {r['warm']['max_rss_MiB']:.0f} | "
+                       f"{dofs.get(name, '-') if key == 'static' else '-'} |")
+    for model, r in spd.get("study design", {}).items():
+        out.append(f"| a study design, new solid, `default` (in process) | {model} | "
+                   f"{r['median_s']:.2f} | - | - | {r['n_dofs']} |")
     out += ["", "| peak (von Mises) | zoned MPa | full 3D fine MPa | difference |",
             "|---|---|---|---|"]
     for reg, (vm, _, model, kind) in z["peaks"].items():

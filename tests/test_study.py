@@ -613,3 +613,34 @@ def test_fatigue_numbers_name_their_method_and_card(tmp_path):
     assert "default method (FKM" in page
     shown = pd.read_csv(SHOWCASE / "results.csv")
     assert pd.read_csv(out / "results.csv").equals(shown)
+
+
+def test_a_zoned_design_row_is_the_zoned_solve_and_needs_no_shared_solid(cache, monkeypatch):
+    """``analyses.static.model = "zoned"``: a design's static columns are `shaftfe static`'s
+    (the zoned solve, the same options) number for number (the same code and inputs: exact),
+    its fatigue row is the seed method on the zoned surface reference, and the planner gives
+    every design a task of its own with no shared 3D mesh to build."""
+    from shaftfe.model.loader import load_variant
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.study.evaluate import evaluate_design
+    from shaftfe.study.runner import plan_tasks
+    from shaftfe.study.spec import Analyses
+    from shaftfe.zoned.solve import solve_zoned
+    monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(cache))
+    an = Analyses(static=True, static_model="zoned", level="coarse", spin_softening=False,
+                  fatigue=True, spectrum=str(ROOT / "loadspectra" / "rpm.dat"))
+    row = evaluate_design("x2_57", {}, an)
+    assert row["status"] == "ok", row["error"]
+    res = solve_zoned(load_variant("x2_57"), [10000.0, 7000.0],
+                      StaticOptions(level="coarse", spin_softening=False))
+    peaks = {p.region: p.von_mises_MPa for p in res.cases[0].peaks}
+    for region in ("keyway:gear_seat:0", "keyway:cw2_seat:0", "fillet:bearing_seat_gear"):
+        assert row[f"stress_{region}_MPa"] == peaks[region]
+    assert row["static_max_deflection_mm"] == res.cases[0].max_axis_deflection_mm
+    assert row["fatigue_hot_spot"].startswith("fillet:")
+    assert row["n_dofs"] > sum(z.n_dofs for z in res.zones)
+    assert "static_model" in an.options() and "static_model" not in Analyses().options()
+    from types import SimpleNamespace
+    todo = [(f"d{i}", SimpleNamespace(overrides={}, number=i)) for i in range(3)]
+    tasks = plan_tasks(SimpleNamespace(analyses=an, base="x2_57"), todo)
+    assert [g for g, _ in tasks] == [None, None, None]

@@ -29,7 +29,7 @@ import time
 from typing import Any
 
 from shaftfe.errors import InputError, ShaftfeError
-from shaftfe.solid.features import is_notch
+from shaftfe.solid.features import is_notch, kind_of
 from shaftfe.study.spec import Analyses
 
 # The Campbell sweep's default top: a stiff balancer shaft's first bending critical lies far
@@ -112,6 +112,8 @@ def static_rows(v, an: Analyses, shaft_mesh=None, cache_dir=None) -> tuple[dict,
     opts = StaticOptions(level=an.level, spin_softening=an.spin_softening,
                          seed_load_case=an.seed_load_case)
     rpms = [REF_RPM] if an.bearing_rpm == REF_RPM else [REF_RPM, an.bearing_rpm]
+    if an.static_model == "zoned":
+        return _zoned_rows(v, an, opts, rpms, cache_dir)
     res = solve_static(v, rpms, opts, shaft_mesh=shaft_mesh, cache_dir=cache_dir, beam=False,
                        linear_stress=an.fatigue)
     ref = res.cases[0]
@@ -126,20 +128,62 @@ def static_rows(v, an: Analyses, shaft_mesh=None, cache_dir=None) -> tuple[dict,
     return out, res
 
 
+def _zoned_rows(v, an: Analyses, opts, rpms, cache_dir) -> tuple[dict, Any]:
+    """``static_rows`` of the zoned model (``shaftfe.zoned``): the same columns; n_dofs is the
+    global model's and the zones' together, mesh_key the zones' (the global meridian mesh
+    follows from the same drawing)."""
+    from shaftfe.zoned.solve import solve_zoned
+    res = solve_zoned(v, rpms, opts, cache_dir=cache_dir)
+    c0 = res.cases[0]
+    g = res.global_result
+    out: dict[str, Any] = {
+        "n_dofs": 3 * g.n_nodes * len(g.harmonics) + sum(z.n_dofs for z in res.zones),
+        "mesh_key": "zoned:" + ",".join(f"{z.name}@{z.x_mm[0]:g}-{z.x_mm[1]:g}"
+                                        for z in res.zones)}
+    for p in c0.peaks:
+        if is_notch(p.region):
+            out[f"stress_{p.region}_MPa"] = _fin(p.von_mises_MPa)
+    out["stress_max_MPa"] = _fin(max((p.von_mises_MPa for p in c0.peaks
+                                      if kind_of(p.region) != "end"), default=None))
+    at = next(c for c in res.cases if c.rpm == an.bearing_rpm)
+    out.update(_bearing_cols(at.bearings, "static_"))
+    out["static_max_deflection_mm"] = c0.max_axis_deflection_mm
+    return out, res
+
+
+def _field(res, an: Analyses, variant, cache_dir=None):
+    """The fatigue input of a design's static result: the 3D one's reference, or the zoned
+    one's surface reference with its unsoftened stress (one more zoned solve at 10 000 rpm,
+    ``fatigue.run.surface_reference``)."""
+    from shaftfe.static.cache import from_result
+    if an.static_model != "zoned":
+        return from_result(res)
+    from shaftfe.fatigue.run import surface_reference
+    from shaftfe.util.units import REF_RPM
+    from shaftfe.zoned.reference import zoned_reference
+    from shaftfe.zoned.solve import solve_zoned
+
+    def make(o):
+        same = o.spin_softening == res.options.spin_softening
+        return zoned_reference(res if same else solve_zoned(variant, REF_RPM, o,
+                                                            cache_dir=cache_dir))
+    return surface_reference(make, res.options)
+
+
 def fatigue_row(res, an: Analyses, variant=None) -> dict:
     """The fatigue columns: the study's method (``analyses.fatigue.method``, by name from
     ``fatigue.methods``) on the design's static field; its governing location (a limit check
     such as DIN 743 has a safety and no life: the life columns are empty)."""
     from shaftfe.fatigue.methods import AssessmentInputs, get_method
     from shaftfe.fatigue.run import FatigueJob
-    from shaftfe.static.cache import from_result
     history, _ = _fatigue_inputs(an.spectrum, an.material)
     job = FatigueJob(spectrum=an.spectrum, material=an.material, mean_stress=an.mean_stress,
                      equivalent=an.equivalent, design_life=an.design_life,
                      speed_kmh=an.speed_kmh, level=an.level, spin_softening=an.spin_softening,
-                     engine=an.engine, seed_load_case=an.seed_load_case)
+                     engine=an.engine, seed_load_case=an.seed_load_case,
+                     model=an.static_model)
     got = get_method(an.fatigue_method, "study", "analyses.fatigue.method").assess(
-        AssessmentInputs.one_channel(variant, history, field=from_result(res)), job)
+        AssessmentInputs.one_channel(variant, history, field=_field(res, an, variant)), job)
     g = got.governing
     return {"fatigue_hot_spot": g.name, "fatigue_sf": _fin(g.safety),
             "life_blocks": _fin(g.life_blocks), "life_h": _fin(g.life_hours),

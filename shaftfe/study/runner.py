@@ -216,6 +216,8 @@ def plan_tasks(spec: StudySpec, todo: list[tuple[str, Design]], known=None):
     if not spec.analyses.static:
         items = [(k, d.overrides) for k, d in todo]
         return [(None, items[i:i + BEAM_CHUNK]) for i in range(0, len(items), BEAM_CHUNK)]
+    if spec.analyses.static_model == "zoned":    # no shared solid: each zone meshes (and
+        return [(None, [(k, d.overrides)]) for k, d in todo]    # caches) its own clip
     groups: dict[tuple, list] = {}
     for k, d in todo:
         g = (known or {}).get(d.number) or _group_key(spec.base, d, spec.analyses.level)

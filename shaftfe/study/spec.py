@@ -102,6 +102,7 @@ class Analyses:
     engine_rpm: float | None = None        # None: the engine file's rpm
     beam: bool = True
     static: bool = False
+    static_model: str = "solid"            # solid | zoned (shaftfe.zoned: 3D only in the zones)
     level: str = "coarse"
     spin_softening: bool = True
     seed_load_case: bool = False           # the seed's load model (parts F1, Fv2 at the seat
@@ -133,6 +134,8 @@ class Analyses:
             del d["fatigue_method"]           # existing studies stay as they were
         if not d["seed_load_case"]:           # likewise
             del d["seed_load_case"]
+        if d["static_model"] == "solid":      # likewise
+            del d["static_model"]
         d["spectrum"] = digest(self.spectrum) if self.spectrum else ""
         try:
             d["engine_file"] = digest(resolve_engine_path(self.engine))
@@ -286,9 +289,11 @@ def _analyses(t: dict, src: str, base_dir: Path) -> Analyses:
         kw["engine_rpm"] = _num(b, "rpm", src, "analyses.balance", None, lo=1, hi=20_000)
     kw["beam"] = sub("beam", set()) is not None if "beam" in t else True
     if (s := sub("static", {"model", "level", "spin_softening", "seed_load_case"})) is not None:
-        # the 3D solid only: the axisymmetric path has no bearing reactions per bearing
-        # springs in 3D nor the filtered region peaks the row reports
-        _str(s, "model", src, "analyses.static", "solid", ("solid",))
+        # the full 3D solid or the zoned model (its global axisymmetric model gives the
+        # reactions, its zones the keyways' peaks); the axisymmetric model alone has no
+        # keyway peaks for the row
+        kw["static_model"] = _str(s, "model", src, "analyses.static", "solid",
+                                  ("solid", "zoned"))
         kw.update(static=True,
                   level=_str(s, "level", src, "analyses.static", "coarse", LEVEL_NAMES))
         sp = s.get("spin_softening", True)
