@@ -12,7 +12,7 @@ else (examples/ has two short scripts)::
     v2 = shaftfe.load_variant("x2_57", {"segments.collar.fillet_mm": 0.5})  # = --set
     res = shaftfe.solve_static(v, [7000, 10000], shaftfe.StaticOptions(level="coarse"))
     run = shaftfe.analyse_rotor(v, range(0, 8001, 100))    # Campbell (beam rotor)
-    fat = shaftfe.run_fatigue(shaftfe.FatigueJob("loadspectra/rpm.dat"))
+    fat = shaftfe.run_fatigue(shaftfe.FatigueJob("loadspectra/rpm.dat"))   # zoned model
     fkm = shaftfe.get_fatigue_method("fkm")                # any method by name: one protocol
     a = fkm.assess(shaftfe.AssessmentInputs.one_channel(v, fat.history), fat.job)
     a.governing                                            # utilisation, safety, life (h, km)

@@ -127,7 +127,7 @@ def test_a_new_method_is_one_module_and_one_registry_line(tmp_path, capsys, monk
 def coarse(cache):
     """x2_57's inputs, the coarse static reference (this module's cache) and the job."""
     from shaftfe.fatigue.run import FatigueJob, load_inputs, static_reference
-    job = FatigueJob(str(RPM_DAT), level="coarse", cache_dir=str(cache))
+    job = FatigueJob(str(RPM_DAT), level="coarse", cache_dir=str(cache), model="solid")
     got = load_inputs(job)
     return job, got, static_reference(got.variant, job)
 

@@ -11,7 +11,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from shaftfe.fatigue.fkm_field import profile
+from shaftfe.fatigue.fkm_field import N_NEAR, profile
 from shaftfe.fe.pointeval import TetProbe, surface_normal
 
 
@@ -89,6 +89,10 @@ def test_axisymmetric_profile_of_saint_venant_fields_is_exact(case):
     assert nrm == pytest.approx([0.0, -1.0, 0.0], abs=1e-12)    # θ = 0: inward is −y
     assert probe.normal(2 * j + 1)[0] == pytest.approx([0.0, 0.0, -1.0], abs=1e-12)
     p = profile(ref, 2 * j, probe, case_depth_mm=1.0)
+    # the profile was sampled and fitted (G = 0 in tension is the field's, not a fallback)
+    assert p.depths_mm.size >= N_NEAR + 1 and np.isfinite(p.fit_residual)
+    assert p.von_mises[0] == pytest.approx(100.0 if case == "tension" else (
+        10.0 * R * (3 ** 0.5 if case == "torsion" else 1.0)), rel=1e-8)
     want = 0.0 if case == "tension" else 1.0 / R
     assert p.G_surface == pytest.approx(want, abs=1e-8)
     assert p.case_ratio == pytest.approx(1.0 if case == "tension" else (R - 1.0) / R, rel=1e-8)
