@@ -145,17 +145,18 @@ def speed() -> dict | None:
     out: dict = {}
     with tempfile.TemporaryDirectory() as tmp:
         for what, cmds in commands(str(HERE), base, tmp).items():
-            out[what] = _time(cmds, tmp)
+            out[what] = _time(cmds, tmp, what)
     out["study design"] = study_design()
     return out
 
 
-def _time(cmds: dict, tmp: str) -> dict:
-    """Cold (an empty cache each) and warm (one warm-up, then the median of ``RUNS``, the
-    commands in turn on one cache) of each command."""
+def _time(cmds: dict, tmp: str, what: str) -> dict:
+    """Cold (an empty cache of its own each: no mesh, no solution another command stored) and
+    warm (one warm-up, then the median of ``RUNS``, the commands in turn on one cache) of each
+    command."""
     out: dict = {}
     for k, (name, cmd) in enumerate(cmds.items()):
-        out[name] = {"cold": process(cmd, tmp, {"SHAFTFE_CACHE_DIR": f"{tmp}/cold-{k}"})}
+        out[name] = {"cold": process(cmd, tmp, {"SHAFTFE_CACHE_DIR": f"{tmp}/cold-{what}-{k}"})}
     env = {"SHAFTFE_CACHE_DIR": f"{tmp}/warm"}
     for cmd in cmds.values():
         process(cmd, tmp, env)                           # warm-up

@@ -18,6 +18,7 @@ axis (the centres of the end faces) are left out, so the end faces show a pinhol
 from __future__ import annotations
 
 import time
+from functools import cached_property
 
 import numpy as np
 
@@ -152,9 +153,8 @@ class SurfaceProbe:
     ``keep[p // q]`` at angle ``theta[p % q]`` (``static_reference``)."""
 
     def __init__(self, sol, keep: np.ndarray, theta: np.ndarray):
-        from shaftfe.axisymmetric.pointeval import StressField
         S = sol.surface
-        self.field = StressField(sol)
+        self.sol = sol
         self.theta = np.asarray(theta, dtype=float)
         tx, tr = S.tangent[0][keep], S.tangent[1][keep]
         self.n_xr = np.stack([S.sign[keep] * tr, -S.sign[keep] * tx])     # outward (x, r)
@@ -163,6 +163,13 @@ class SurfaceProbe:
         total = np.zeros(S.nodes.size)
         np.add.at(total, S.inv, np.repeat(chord, 3))
         self.h = (total / S.count)[keep]
+
+    @cached_property
+    def field(self):
+        """The harmonics' nodal stresses and the element tree, made when FKM first asks (the
+        seed method never does)."""
+        from shaftfe.axisymmetric.pointeval import StressField
+        return StressField(self.sol)
 
     def normal(self, node: int) -> tuple[np.ndarray, float]:
         j, i = divmod(int(node), self.theta.size)

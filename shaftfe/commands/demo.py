@@ -2,8 +2,9 @@
 
 The demo IS the assessment report of the default variant in the seed's load case
 (``shaftfe report --variant x2_57 --seed-load-case``): balancing of the VM 450 at its speed
-(crank C, X = 31.1 %, with the variant's X2), the beam check against the Inventor figures, ONE 3D
-static solve at 10 000 and 7000 rpm (bearing springs; the seed's F1 + Fv2, so that every seed
+(crank C, X = 31.1 %, with the variant's X2), the beam check against the Inventor figures, the
+static solve (the zoned model: axisymmetric with 3D zones at the keyways and the hex socket) at
+10 000 and 7000 rpm (bearing springs; the seed's F1 + Fv2, so that every seed
 figure is compared like with like: the one command that does not load every part by default,
 and its output says so), the fatigue life on ``loadspectra/rpm.dat`` reusing that solve, and the
 Campbell diagram from 0 to the engine's maximum speed; the seed figures next to ours. It writes

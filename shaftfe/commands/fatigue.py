@@ -22,10 +22,11 @@ def register(sub) -> None:
     from shaftfe.fatigue.methods import DEFAULT_METHOD, METHODS
     p = sub.add_parser(
         "fatigue", help="fatigue life and safety factor under an rpm history (rainflow, Miner)",
-        description="Fatigue of the balancer shaft under an engine-speed history: the 3D static "
-        "solution (cached) scaled by (rpm/ref)^2, rainflow counting of the load factor, a "
-        "mean-stress correction, the S-N curve and Miner's rule at every node. Prints the life "
-        "in blocks / hours / km, the safety factor at the design life and the hot spot "
+        description="Fatigue of the balancer shaft under an engine-speed history: the static "
+        "solution (--model: zoned by default; the full 3D one cached) scaled by (rpm/ref)^2, "
+        "rainflow counting of the load factor, a mean-stress correction, the S-N curve and "
+        "Miner's rule at every node. Prints the life in blocks / hours / km, the safety factor "
+        "at the design life and the hot spot "
         "(singular points at the bearing and load-patch edges excluded; the unfiltered minimum "
         "shown too). Writes into --out, per method: " + "; ".join(
             f"{n}: {m.files_help}" for n, m in METHODS.items()) + ".")

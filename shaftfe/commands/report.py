@@ -14,10 +14,11 @@ from shaftfe.commands._common import add_engine_option
 def register(sub) -> None:
     p = sub.add_parser(
         "report", help="run the whole assessment once and write an HTML report",
-        description="Balancing at the engine's speed, the 3D static solution at the design "
-        "speeds (one solve, scaled by rpm²), fatigue on the rpm history (reusing that solve, "
-        "rainflow counted once) and the Campbell diagram from 0 to the engine's maximum speed, "
-        "on one mesh and one model. Writes <out>/index.html (self-contained: images embedded; "
+        description="Balancing at the engine's speed, the static solution at the design "
+        "speeds (--model: the zoned model by default, the full 3D one with one solve scaled by "
+        "rpm²), fatigue and FKM on the rpm history (reusing that solve, rainflow counted "
+        "once) and the Campbell diagram from 0 to the engine's maximum speed, on one mesh and "
+        "one model. Writes <out>/index.html (self-contained: images embedded; "
         "also in <out>/figures/), <out>/summary.json and <out>/<variant>.vtu. A progress "
         "display of the stages goes to stderr on a terminal (not with --json).")
     p.add_argument("--variant", default="x2_57", help="variant name or path (default x2_57)")
@@ -39,18 +40,20 @@ def register(sub) -> None:
                    "(default: the variant's [duty] sn_curve, else the card of the shaft's "
                    "material)")
     p.add_argument("--level", default="default", help="mesh level: coarse | default | fine")
-    p.add_argument("--model", default="zoned",
+    p.add_argument("--model", default=None,
                    help="static model: zoned (default: the axisymmetric model with 3D zones "
-                   "where the shaft is not round) | solid (3D P2 tets) | axisymmetric (Fourier "
-                   "harmonics on a meridian mesh; keyways and the hex socket left out)")
+                   "where the shaft is not round; solid for a variant with a load not ∝ rpm²) "
+                   "| solid (3D P2 tets) | axisymmetric (Fourier harmonics on a meridian mesh; "
+                   "keyways and the hex socket left out)")
     p.add_argument("--rotor-model", default="beam",
                    help="rotor model of the Campbell diagram: beam (default) | solid")
     p.add_argument("--campbell-step", type=float, default=500.0, metavar="RPM",
                    help="speed step of the Campbell sweep in rpm (default 500)")
     p.add_argument("--estimate-error", action="store_true",
-                   help="solve a second mesh level (coarse for default, default for coarse "
-                   "and fine) for a Richardson estimate of the stress and deflection errors "
-                   "(default: the measured error of the level from reports/benchmarks)")
+                   help="with --model solid: solve a second mesh level (coarse for default, "
+                   "default for coarse and fine) for a Richardson estimate of the stress and "
+                   "deflection errors (default: the measured error of the level from "
+                   "reports/benchmarks)")
     p.add_argument("--seed-load-case", action="store_true",
                    help="load only the seed's forces F1 (gear + counterweight 1) and Fv2 "
                    "(counterweight 2), as the seed did (default: every part, as every command)")

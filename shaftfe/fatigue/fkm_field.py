@@ -1,4 +1,4 @@
-"""The FKM local-stress assessment on the 3D static field (``shaftfe fatigue --method fkm``).
+"""The FKM local-stress assessment on the static field (``shaftfe fatigue --method fkm``).
 
 At each named surface region (fillets, keyways, bearing seats) the candidate hot spots are the
 region's highest von Mises nodes outside the singular-point exclusion. At each:

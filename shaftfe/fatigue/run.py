@@ -219,16 +219,19 @@ def check_model_level(model: str, level: str, allowed: tuple[str, ...] = MODELS)
 DEFAULT_MODEL = "zoned"
 
 
-def resolve_model(job: FatigueJob, variant) -> FatigueJob:
-    """``job`` with its static model when --model was not given: the zoned model, or the full
-    3D model for a variant with a load that does not scale with rpm² (the seed method then
-    assesses each load pattern with its own history, on the per-pattern fields only the 3D
-    model's reference holds, ``fatigue.channel_run``)."""
-    from dataclasses import replace
-    if job.model is not None:
-        return job
+def default_model(variant) -> str:
+    """The static model of a run that names none (``shaftfe fatigue``, ``report``, ``demo``):
+    the zoned model, or the full 3D model for a variant with a load that does not scale with
+    rpm² (the seed method then assesses each load pattern with its own history, on the
+    per-pattern fields only the 3D model's reference holds, ``fatigue.channel_run``)."""
     other = any(getattr(ld, "scales_with", "rpm2") != "rpm2" for ld in variant.loads)
-    return replace(job, model="solid" if other else DEFAULT_MODEL)
+    return "solid" if other else DEFAULT_MODEL
+
+
+def resolve_model(job: FatigueJob, variant) -> FatigueJob:
+    """``job`` with its static model (``default_model``) when --model was not given."""
+    from dataclasses import replace
+    return job if job.model is not None else replace(job, model=default_model(variant))
 
 
 def check_job(job: FatigueJob) -> None:

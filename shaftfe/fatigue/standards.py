@@ -1,4 +1,4 @@
-"""Strength by standard as an API: ``run_fkm`` (FKM local stresses on the 3D field) and
+"""Strength by standard as an API: ``run_fkm`` (FKM local stresses on the static field) and
 ``run_din743`` (DIN 743 nominal stresses on the beam model), over the same history and the same
 rainflow count as the seed method (``shaftfe.fatigue.run``). ``shaftfe fatigue --method`` is a
 thin command over these.

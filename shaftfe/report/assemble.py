@@ -8,10 +8,13 @@
    X2 and the sweep over X2; the seed's mode-2 row X = 31 % (cylinder frame) for the comparison;
 3. beam check (milliseconds): the Inventor-style rigid-support beam (Euler-Bernoulli and
    Timoshenko) for the seed comparison of deflection and nominal stress;
-4. 3D static: ONE ``shaftfe.static.solve.solve_static`` at its reference speed, reported at every
-   design speed (loads ∝ ω²), stored in the static cache;
-5. fatigue on the rpm history: that same solution (``static_cache.from_result`` → no second
-   solve), rainflow counted once (``shaftfe.fatigue.field.evaluate``);
+4. static (``options.model``): the zoned solve at the design speeds (the default; the
+   axisymmetric one alike) with its surface reference, or ONE full 3D ``shaftfe.static.solve.
+   solve_static`` at its reference speed, reported at every design speed (loads ∝ ω²) and
+   stored in the static cache;
+5. fatigue on the rpm history and FKM: that same solution (no second solve of the softened
+   field; with spin softening the surface models solve the unsoftened one once more), rainflow
+   counted once (``shaftfe.fatigue.field.evaluate``);
 6. Campbell 0 … the engine's maximum speed (beam rotor model; ``rotor_model="solid"`` when the
    3D rotor builder exists), with the reduced-vs-full check at the top speed;
 7. the VTU of the run (static fields at the first design speed + the fatigue fields), the
@@ -286,6 +289,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     """Run every stage once (see the module docstring) and return the ``Report``. Writes the
     VTU, ``summary.json``'s sidecar data and the figures into ``out``; the HTML is rendered
     from the returned object (``shaftfe.report.html.render``) and written by the caller."""
+    import dataclasses
     import datetime
 
     from shaftfe.report import seed as seedmod
@@ -299,6 +303,9 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         from shaftfe.model.loader import load_variant
         variant = load_variant(o.variant, o.overrides)
         o = with_duty(o, variant)           # what the options leave open, from its [duty]
+        if o.model is None:                 # the static model by the variant's loads
+            from shaftfe.fatigue.run import default_model
+            o = dataclasses.replace(o, model=default_model(variant))
         check_options(o)
         engine, history, material = read_inputs(o, variant)
         o = _life_in_blocks(o, history)

@@ -42,8 +42,8 @@ def _benchmark_rows(report_static: dict, c0: dict, bench: dict | None) -> list[E
             "peak von Mises", c0["peak_von_mises_MPa"], "MPa", "not estimated in this run",
             f"the benchmark ({bench['source']}) was run on a {bench['level']} mesh of "
             f"{bench.get('dofs')} dofs, this run has {report_static['n_dofs']}: the mesh levels "
-            "changed since (re-run `make bench`); `shaftfe report --estimate-error` adds a "
-            "Richardson estimate from a second solve on the "
+            "changed since (re-run `make bench`); `shaftfe report --model solid "
+            "--estimate-error` adds a Richardson estimate from a second solve on the "
             f"{OTHER_LEVEL[report_static['level']]} level"))
     elif bench:
         mesh_note = (f"; benchmark mesh {bench.get('dofs')} dofs, this run "
@@ -73,8 +73,8 @@ def _benchmark_rows(report_static: dict, c0: dict, bench: dict | None) -> list[E
                                  "no measured error for this shaft (the level's fillet errors "
                                  "were measured on x2_57 as shipped, "
                                  "reports/benchmarks/truth.md); `shaftfe report "
-                                 "--estimate-error` adds a Richardson estimate from a second "
-                                 "mesh level"))
+                                 "--model solid --estimate-error` adds a Richardson "
+                                 "estimate from a second mesh level"))
     return out
 
 

@@ -597,7 +597,7 @@ def _strength(r) -> str:
     c0 = r.static["cases"][0]
     html = ('<h2 id="strength">Strength by standard</h2>'
             "<p>The default of <code>shaftfe fatigue</code> is <b>FKM</b>: it judges the local "
-            "stress of the 3D field with the shaft's own material (card "
+            "stress of the static field with the shaft's own material (card "
             f"{_e(s['din743']['card'])}), surface and stress gradient, as an FE user signs a "
             f"shaft. The seed method takes the S-N card {_e(st['material'])} (yield "
             f"{num(st['yield_MPa'])} MPa) with its {_e(st['mean_stress'])} correction; DIN 743 "

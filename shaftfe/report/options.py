@@ -52,8 +52,9 @@ class ReportOptions:
     cache_dir: str | None = None
     pictures: bool = True                 # PyVista renders (off: no VTK import)
     seed_load_case: bool = False          # every part (as every command); True: the seed's F1+Fv2
-    model: str = "zoned"                  # static model: zoned | solid | axisymmetric
-    #                                       (static.STATIC_MODELS)
+    model: str | None = None              # static model: zoned | solid | axisymmetric
+    #                                       (static.STATIC_MODELS); None: fatigue.run.
+    #                                       default_model once the variant is read
     spin_softening: bool = True           # the parts' m ω² u (the seed's study had none)
     allow_overspeed: bool = False         # a spectrum above the engine's max_rpm (warned)
 
@@ -66,13 +67,14 @@ CAMPBELL_STEP_MIN_RPM = 10.0     # ≤ 2000 speeds up to the rpm ceiling: second
 
 def check_options(o: ReportOptions) -> None:
     """Cheap checks of everything the user typed (before any computation or output)."""
-    from shaftfe.fatigue.run import check_model_level
+    from shaftfe.fatigue.run import DEFAULT_MODEL, check_model_level
     from shaftfe.static import STATIC_MODELS
-    check_model_level(o.model, o.level, STATIC_MODELS)
+    check_model_level(o.model or DEFAULT_MODEL, o.level, STATIC_MODELS)
     if o.model != "solid" and o.estimate_error:
-        raise InputError("command line", "--estimate-error", f"not with --model {o.model} "
-                         "(--model solid; the axisymmetric levels' errors are in "
-                         "reports/benchmarks/axisymmetric.md, the zoned model's in zoned.md)")
+        raise InputError("command line", "--estimate-error", "with --model solid (the "
+                         "axisymmetric levels' errors are in reports/benchmarks/"
+                         "axisymmetric.md, the zoned model's in zoned.md)",
+                         got=o.model or f"{DEFAULT_MODEL} (the default)")
     if o.rotor_model not in REPORT_ROTOR_MODELS:
         raise InputError("command line", "--rotor-model", " | ".join(REPORT_ROTOR_MODELS),
                          got=o.rotor_model)

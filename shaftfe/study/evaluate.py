@@ -7,9 +7,10 @@ Every number comes from the package's own analyses, the ones the commands use:
   (``balance.single.forces``, crank balance X of the seed's crank C unless given);
 * beam: the Euler-Bernoulli shaft on its bearing springs at ``bearing_rpm``: bearing loads and
   ISO 281 L10h, the largest Kt × nominal stress;
-* static: the 3D solid (``static.solve.solve_static``) at 10 000 rpm (the fatigue reference)
-  and ``bearing_rpm``: the filtered von Mises peak of every fillet and keyway, L10h from the 3D
-  reactions (replacing the beam's);
+* static: the 3D solid (``static.solve.solve_static``), or the zoned model with
+  ``analyses.static.model = "zoned"`` (``zoned.solve.solve_zoned``), at 10 000 rpm (the fatigue
+  reference) and ``bearing_rpm``: the filtered von Mises peak of every fillet and keyway, L10h
+  from the static reactions (replacing the beam's);
 * fatigue: the study's method (the seed's by default, ``fatigue.field.evaluate``) on that
   field: the governing place's safety factor and life in blocks, hours and km;
 * campbell: the beam rotor's first forward 1× critical speed and its margin over the engine's
@@ -170,7 +171,7 @@ def _field(res, an: Analyses, variant, cache_dir=None):
     return surface_reference(make, res.options)
 
 
-def fatigue_row(res, an: Analyses, variant=None) -> dict:
+def fatigue_row(res, an: Analyses, variant=None, cache_dir=None) -> dict:
     """The fatigue columns: the study's method (``analyses.fatigue.method``, by name from
     ``fatigue.methods``) on the design's static field; its governing location (a limit check
     such as DIN 743 has a safety and no life: the life columns are empty)."""
@@ -183,7 +184,8 @@ def fatigue_row(res, an: Analyses, variant=None) -> dict:
                      engine=an.engine, seed_load_case=an.seed_load_case,
                      model=an.static_model)
     got = get_method(an.fatigue_method, "study", "analyses.fatigue.method").assess(
-        AssessmentInputs.one_channel(variant, history, field=_field(res, an, variant)), job)
+        AssessmentInputs.one_channel(variant, history,
+                                     field=_field(res, an, variant, cache_dir)), job)
     g = got.governing
     return {"fatigue_hot_spot": g.name, "fatigue_sf": _fin(g.safety),
             "life_blocks": _fin(g.life_blocks), "life_h": _fin(g.life_hours),
@@ -228,7 +230,7 @@ def evaluate_design(base: str, overrides, an: Analyses, *, shaft_mesh=None,
             cols, res = static_rows(v, an, shaft_mesh, cache_dir)
             row.update(cols)
             if an.fatigue:
-                row.update(fatigue_row(res, an, v))
+                row.update(fatigue_row(res, an, v, cache_dir))
             del res
         if an.campbell:
             row.update(campbell_row(v, an))

@@ -246,8 +246,8 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
                      r for z in zones for r in (f.region for f in z.features)))
     notes.append("the keyways' and the hex socket's effect on the shaft's stiffness is not in "
                  "the global model (reactions and deflections are the round shaft's)")
-    notes.append("shaftfe report, demo and fatigue take the full 3D model's field by default "
-                 "(--model zoned for this one): their peaks differ from these by what "
+    notes.append("shaftfe report, demo and fatigue take this zoned field by default; "
+                 "--model solid gives the full 3D model, whose peaks differ from these by what "
                  "reports/benchmarks/zoned.md measures")
     notes.append("no error bars: the 3D levels' bars were measured on whole-shaft meshes and "
                  "the axisymmetric model's error only on x2_57's span fillets "

@@ -88,6 +88,9 @@ class Fkm:
         from shaftfe.fatigue import standards_out as so
         res, ref = result.detail.result, result.detail.ref
         summary = standard_summary(inputs, options, so.fkm_summary(res))
+        summary["static"] = {"model": options.model, "level": options.level,
+                             "ref_rpm": ref.ref_rpm, "points": ref.n_nodes,
+                             "from_cache": bool(ref.from_cache)}
         vtu, plots = so.write_fkm_files(res, ref, out)
         return so.write_outputs({**summary, "vtu": vtu, "plots": plots}, out)
 
