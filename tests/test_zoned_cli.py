@@ -208,3 +208,29 @@ def test_a_surface_reference_at_a_design_speed_has_its_linear_stress_at_that_spe
     keep = kept_nodes(ref) & (vm > 0.1 * vm.max())
     beta = softening_beta(vm[keep], lin[keep])
     assert np.abs(beta).max() < 0.05
+
+
+def test_the_surface_reference_is_read_back_from_its_cache(tmp_path, cache, monkeypatch):
+    """`shaftfe fatigue` on the zoned model keeps its surface reference and FKM's field below
+    it (``fatigue.surface_cache``): a second run reads them and assesses to the same bits
+    (exact: the arrays round-trip through .npz unchanged), a changed option solves again."""
+    from shaftfe.cli import main
+    from shaftfe.util.paths import GEOMETRY_DIR
+    monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(tmp_path / "c"))
+    import shutil
+    shutil.copytree(cache, tmp_path / "c",                 # the meshes, not the references
+                    ignore=shutil.ignore_patterns("surface-*"))
+    rpm = str(GEOMETRY_DIR.parent / "loadspectra" / "rpm.dat")
+    got = []
+    for k in range(2):
+        out = tmp_path / f"f{k}"
+        assert main(["fatigue", rpm, "--level", "coarse", "--no-spin-softening", "--json",
+                     "--out", str(out)]) == 0
+        got.append(json.loads((out / "summary.json").read_text()))
+    assert [g["static"]["from_cache"] for g in got] == [False, True]
+    assert got[0]["static"]["model"] == "zoned"
+    assert got[0]["regions"] == got[1]["regions"]
+    assert len(list((tmp_path / "c").glob("surface-*.probe.npz"))) == 1
+    assert main(["fatigue", rpm, "--level", "coarse", "--json", "--out",
+                 str(tmp_path / "f2")]) == 0                   # spin softening: a new entry
+    assert len(list((tmp_path / "c").glob("surface-*.probe.npz"))) == 2

@@ -88,14 +88,21 @@ class StressField:
     (``recovery.nodal_average``) and the element tree made once: for many calls on one solution
     (the FKM stress profiles of ``axisymmetric.reference.SurfaceProbe``)."""
 
-    def __init__(self, sol):
+    def __init__(self, mesh, amplitudes):
+        """``mesh``: anything with the meridian mesh's ``xr``, ``tri`` and ``n_elements``;
+        ``amplitudes``: [(n, sym (6, n_nodes), anti (6, n_nodes) | None)] per harmonic."""
+        self.mesh = mesh
+        self.tree = element_tree(mesh)
+        self.amplitudes = list(amplitudes)
+
+    @classmethod
+    def of(cls, sol) -> StressField:
+        """The field of a solved model ``sol`` (an ``AxiSolution``)."""
         E, nu = float(sol.variant.material.E_MPa), float(sol.variant.material.nu)
-        self.mesh = sol.mesh
-        self.tree = element_tree(sol.mesh)
-        self.amplitudes = [(h.n, rc.nodal_average(sol.mesh, h.sym, h.n, E, nu),
-                            None if h.anti is None else
-                            rc.nodal_average(sol.mesh, h.anti, h.n, E, nu))
-                           for h in sol.harmonics]
+        return cls(sol.mesh, [(h.n, rc.nodal_average(sol.mesh, h.sym, h.n, E, nu),
+                               None if h.anti is None else
+                               rc.nodal_average(sol.mesh, h.anti, h.n, E, nu))
+                              for h in sol.harmonics])
 
     def at(self, xyz: np.ndarray, loc=None) -> tuple[np.ndarray, np.ndarray]:
         """((6, k) cylindrical stress (xx, rr, θθ, xr, rθ, θx), found mask (k,)) at the points
@@ -111,4 +118,4 @@ class StressField:
 
 def stress_at(sol, xyz: np.ndarray, loc=None) -> np.ndarray:
     """(6, k) cylindrical stress (``StressField.at``) of ``sol`` at the points."""
-    return StressField(sol).at(xyz, loc)[0]
+    return StressField.of(sol).at(xyz, loc)[0]

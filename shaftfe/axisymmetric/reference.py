@@ -169,7 +169,32 @@ class SurfaceProbe:
         """The harmonics' nodal stresses and the element tree, made when FKM first asks (the
         seed method never does)."""
         from shaftfe.axisymmetric.pointeval import StressField
-        return StressField(self.sol)
+        return StressField.of(self.sol)
+
+    def arrays(self) -> dict[str, np.ndarray]:
+        """Everything ``from_arrays`` needs (the surface-reference cache, ``fatigue.
+        surface_cache``): the outline's normals and sizes, the meridian mesh, the amplitudes."""
+        f = self.field
+        out = {"theta": self.theta, "n_xr": self.n_xr, "h": self.h, "xr": f.mesh.xr,
+               "tri": f.mesh.tri, "harmonics": np.array([n for n, _, _ in f.amplitudes])}
+        for k, (_, sym, anti) in enumerate(f.amplitudes):
+            out[f"sym{k}"] = sym
+            if anti is not None:
+                out[f"anti{k}"] = anti
+        return out
+
+    @classmethod
+    def from_arrays(cls, a: dict) -> SurfaceProbe:
+        from types import SimpleNamespace
+
+        from shaftfe.axisymmetric.pointeval import StressField
+        self = cls.__new__(cls)
+        self.sol = None
+        self.theta, self.n_xr, self.h = a["theta"], a["n_xr"], a["h"]
+        mesh = SimpleNamespace(xr=a["xr"], tri=a["tri"], n_elements=int(a["tri"].shape[1]))
+        self.field = StressField(mesh, [(int(n), a[f"sym{k}"], a.get(f"anti{k}"))
+                                        for k, n in enumerate(a["harmonics"])])
+        return self
 
     def normal(self, node: int) -> tuple[np.ndarray, float]:
         j, i = divmod(int(node), self.theta.size)

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from shaftfe.errors import InputError, SolverError
 from shaftfe.fatigue.assess import DEFAULT_DESIGN_LIFE_BLOCKS
@@ -342,21 +342,12 @@ def sn_material(job: FatigueJob, variant):
 
 def static_reference(variant, job: FatigueJob):
     """The static solution at its reference speed that fatigue scales: the 3D one from the
-    static cache (solved once when missing), or the axisymmetric one on its revolved surface
-    (``shaftfe.axisymmetric.reference``; solved each time from the cached meridian mesh: a
-    few seconds, no cache of its own)."""
+    static cache (solved once when missing), or the axisymmetric or zoned one on its surface
+    (``axisymmetric.reference``, ``zoned.reference``) from the surface cache
+    (``fatigue.surface_cache``; solved, softened and unsoftened, when missing)."""
     job = resolve_model(job, variant)
-    if job.model == "axisymmetric":
-        from shaftfe.axisymmetric.model import AxiOptions
-        from shaftfe.axisymmetric.reference import static_reference as axi_reference
-        from shaftfe.axisymmetric.solve import solve_axisymmetric
-        opts = AxiOptions(level=job.level, seed_load_case=job.seed_load_case,
-                          exclude_mm=job.exclude_mm, spin_softening=job.spin_softening)
-        return surface_reference(
-            lambda o: axi_reference(solve_axisymmetric(variant, options=o,
-                                                       cache_dir=job.cache_dir)), opts)
-    if job.model == "zoned":
-        return zoned_static_reference(variant, job)
+    if job.model in ("axisymmetric", "zoned"):
+        return _cached_surface_reference(variant, job)
     from shaftfe.static import cache as static_cache
     from shaftfe.static.model import StaticOptions
     extra = {"exclude_mm": job.exclude_mm} if job.exclude_mm > 0 else {}
@@ -365,18 +356,31 @@ def static_reference(variant, job: FatigueJob):
     return static_cache.load_or_solve(variant, opts, job.cache_dir)
 
 
-def zoned_static_reference(variant, job: FatigueJob):
-    """The zoned solve's surface reference at REF_RPM (``zoned.reference``; solved each time
-    from the cached meshes, no cache of its own)."""
-    from shaftfe.static.model import StaticOptions
+def _cached_surface_reference(variant, job: FatigueJob):
+    """The axisymmetric or zoned surface reference at REF_RPM with its unsoftened stress: from
+    the surface cache, else solved (``surface_reference``) and stored."""
+    from shaftfe.fatigue import surface_cache
     from shaftfe.util.units import REF_RPM
-    from shaftfe.zoned.reference import zoned_reference
-    from shaftfe.zoned.solve import solve_zoned
-    opts = StaticOptions(level=job.level, seed_load_case=job.seed_load_case,
-                         exclude_mm=job.exclude_mm, spin_softening=job.spin_softening)
-    return surface_reference(
-        lambda o: zoned_reference(solve_zoned(variant, REF_RPM, o, cache_dir=job.cache_dir)),
-        opts)
+    if job.model == "axisymmetric":
+        from shaftfe.axisymmetric.model import AxiOptions
+        from shaftfe.axisymmetric.reference import static_reference as reference
+        from shaftfe.axisymmetric.solve import solve_axisymmetric as solve
+        opts = AxiOptions(level=job.level, seed_load_case=job.seed_load_case,
+                          exclude_mm=job.exclude_mm, spin_softening=job.spin_softening)
+    else:
+        from shaftfe.static.model import StaticOptions
+        from shaftfe.zoned.reference import zoned_reference as reference
+        from shaftfe.zoned.solve import solve_zoned as solve
+        opts = StaticOptions(level=job.level, seed_load_case=job.seed_load_case,
+                             exclude_mm=job.exclude_mm, spin_softening=job.spin_softening)
+    ref = surface_cache.load(job.model, variant, opts, REF_RPM, job.cache_dir)
+    if ref is not None:
+        return ref
+    t0 = time.perf_counter()
+    ref = surface_reference(lambda o: reference(solve(variant, REF_RPM, o,
+                                                      cache_dir=job.cache_dir)), opts)
+    ref = replace(ref, seconds=time.perf_counter() - t0)
+    return surface_cache.store(ref, job.model, variant, opts, job.cache_dir)
 
 
 def surface_reference(make, opts):

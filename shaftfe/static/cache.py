@@ -124,10 +124,10 @@ def _readonly(a) -> np.ndarray:
 
 # --------------------------------------------------------------------------- key
 
-def code_fingerprint() -> str:
-    """sha256 over the source files of ``FINGERPRINT_MODULES`` (found without importing)."""
+def code_fingerprint(modules: tuple[str, ...] = FINGERPRINT_MODULES) -> str:
+    """sha256 over the source files of ``modules`` (found without importing)."""
     h = hashlib.sha256()
-    for name in FINGERPRINT_MODULES:
+    for name in modules:
         spec = importlib.util.find_spec(name)
         origin = spec.origin if spec is not None else None
         h.update(name.encode())

@@ -112,6 +112,34 @@ class ZonedProbe:
         p = self.probes[self.owner[node]]
         return (p.probe if isinstance(p, _ZoneField) else p), int(self.local[node])
 
+    def arrays(self) -> dict[str, np.ndarray]:
+        """Everything ``from_arrays`` needs (the surface-reference cache, ``fatigue.
+        surface_cache``): the points' origin, the global probe's arrays, each zone's volume
+        field (points, P2 cells, boundary triangles, nodal stress)."""
+        out = {"owner": self.owner, "local": self.local, "sizes": np.array(self.sizes)}
+        out.update({f"g_{k}": v for k, v in self.probes[0].arrays().items()})
+        for i, z in enumerate(self.probes[1:], start=1):
+            f = z.probe.field
+            out.update({f"z{i}_xyz": f.xyz, f"z{i}_cells": f.cells,
+                        f"z{i}_face_cells": f.face_cells, f"z{i}_stress": f.stress_ref})
+        return out
+
+    @classmethod
+    def from_arrays(cls, a: dict) -> ZonedProbe:
+        from types import SimpleNamespace
+
+        from shaftfe.axisymmetric.reference import SurfaceProbe
+        self = cls.__new__(cls)
+        self.owner, self.local = a["owner"], a["local"]
+        self.sizes = tuple(int(s) for s in a["sizes"])
+        self.probes = [SurfaceProbe.from_arrays({k[2:]: v for k, v in a.items()
+                                                 if k.startswith("g_")})]
+        for i in range(1, len(self.sizes)):
+            self.probes.append(TetProbe(SimpleNamespace(
+                xyz=a[f"z{i}_xyz"], cells=a[f"z{i}_cells"], face_cells=a[f"z{i}_face_cells"],
+                stress_ref=a[f"z{i}_stress"])))
+        return self
+
     def normal(self, node: int) -> tuple[np.ndarray, float]:
         p, j = self._of(node)
         return p.normal(j)

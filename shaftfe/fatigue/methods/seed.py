@@ -122,14 +122,15 @@ def _lines(run, out, plots) -> list[str]:
     p.append(f"{variant.name} fatigue: {history.source} ({history.n_samples} samples, "
              f"{history.duration_s:g} s block, rpm {history.rpm.min():.0f}-"
              f"{history.rpm.max():.0f}, file reference {history.rpm_ref:g} rpm)")
+    how = f"{'read from the cache' if ref.from_cache else 'solved'} in {ref.seconds:.1f} s"
     if args.model == "axisymmetric":
-        p.append(f"static: axisymmetric, solved in {ref.seconds:.1f} s ({ref.ref_rpm:g} rpm, "
-                 f"harmonics n = 0..{ref.options['harmonics'][-1]}, {args.level}; "
-                 f"{ref.n_nodes} surface points)")
+        p.append(f"static: axisymmetric, {how} ({ref.ref_rpm:g} rpm, harmonics n = "
+                 f"0..{ref.options['harmonics'][-1]}, {args.level}; {ref.n_nodes} surface "
+                 "points)")
     elif args.model == "zoned":
         p.append(f"static: zoned (the axisymmetric global model and {len(ref.options['zones'])} "
-                 f"3D zones), solved in {ref.seconds:.1f} s ({ref.ref_rpm:g} rpm, {args.level}; "
-                 f"{ref.n_nodes} surface points)")
+                 f"3D zones), {how} ({ref.ref_rpm:g} rpm, {args.level}; {ref.n_nodes} surface "
+                 "points)")
     elif ref.from_cache:
         p.append(f"static: from cache ({ref.seconds:.2f} s; solved at {ref.ref_rpm:g} rpm, "
                  f"{ref.n_nodes} nodes, P2 {args.level})")
