@@ -272,3 +272,17 @@ def test_the_fkm_table_of_a_constant_speed_has_no_nan_and_says_no_load_cycles():
     (row,) = so.fkm_rows(_fkm_stub(3, 0.5))
     assert row[15] == so.NONE and row[16] == "∞" and row[4] == "0.500"
     assert so.FKM_G_NOTE not in so.fkm_notes(_fkm_stub(3, 0.5))
+
+
+def test_the_default_static_model_follows_the_variants_loads():
+    """Without --model: the zoned model, or the full 3D model for a variant with a load that
+    does not scale with rpm² (its per-pattern fields; geometry/examples/x2_57_driven.toml has
+    an alpha_rad_s2 mesh load); a model given is kept."""
+    from shaftfe.fatigue.run import default_model, resolve_model
+    from shaftfe.model.loader import load_variant
+    from shaftfe.util.paths import GEOMETRY_DIR
+    x257 = load_variant("x2_57")
+    driven = load_variant(str(GEOMETRY_DIR / "examples" / "x2_57_driven.toml"))
+    assert default_model(x257) == "zoned" and default_model(driven) == "solid"
+    assert resolve_model(FatigueJob("x"), driven).model == "solid"
+    assert resolve_model(FatigueJob("x", model="axisymmetric"), driven).model == "axisymmetric"
