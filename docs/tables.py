@@ -211,7 +211,10 @@ def fkm_gradient() -> str:
                    + f" | {min(dn):+.2f} … {max(dn):+.2f} % |")
     ref = ", ".join(f"{x['converged'][r]['value']:.2f} ± {x['converged'][r]['error']:.2f}"
                     for r in regs)
-    out.append(f"\nReference: the axisymmetric `fine` level refined twice ({ref} /mm).")
+    out.append(f"\nReference: the axisymmetric `fine` level refined twice ({ref} /mm): a "
+               "convergence measure of the discretisation, not an independent validation; "
+               "that is tests/validation/test_fkm_gradient.py (exact on the Saint-Venant bar, "
+               "DIN 743-2's shoulder formula as a 25 % band).")
     return "\n".join(out)
 
 

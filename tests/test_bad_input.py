@@ -742,6 +742,14 @@ FP_STUDY_CASES = {
 }
 STUDY_CASES.update(FP_STUDY_CASES)
 
+# a study's static model: the full 3D one or the zoned one (the axisymmetric model alone has no
+# keyway peaks for the row)
+STUDY_FILES["static_model_axi.toml"] = (STUDY_HEAD + '[analyses]\nstatic = { model = '
+                                         '"axisymmetric", level = "coarse" }\n')
+STUDY_CASES["study_static_model_axisymmetric"] = (
+    ["study", "run", "{W}/static_model_axi.toml", "--out", "{W}/o"],
+    ["analyses.static.model", "axisymmetric", "solid | zoned"])
+
 
 @pytest.mark.parametrize("case", sorted(FP_STUDY_CASES))
 def test_fp_study_fatigue_method(case, study_space, capsys, monkeypatch):

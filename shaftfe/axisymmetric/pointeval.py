@@ -115,7 +115,3 @@ class StressField:
                  for n, sym, anti in self.amplitudes]
         return rc.synthesize_at(parts, th, rc.CYL_SHEAR), loc[3]
 
-
-def stress_at(sol, xyz: np.ndarray, loc=None) -> np.ndarray:
-    """(6, k) cylindrical stress (``StressField.at``) of ``sol`` at the points."""
-    return StressField.of(sol).at(xyz, loc)[0]

@@ -361,18 +361,10 @@ def _cached_surface_reference(variant, job: FatigueJob):
     the surface cache, else solved (``surface_reference``) and stored."""
     from shaftfe.fatigue import surface_cache
     from shaftfe.util.units import REF_RPM
-    if job.model == "axisymmetric":
-        from shaftfe.axisymmetric.model import AxiOptions
-        from shaftfe.axisymmetric.reference import static_reference as reference
-        from shaftfe.axisymmetric.solve import solve_axisymmetric as solve
-        opts = AxiOptions(level=job.level, seed_load_case=job.seed_load_case,
-                          exclude_mm=job.exclude_mm, spin_softening=job.spin_softening)
-    else:
-        from shaftfe.static.model import StaticOptions
-        from shaftfe.zoned.reference import zoned_reference as reference
-        from shaftfe.zoned.solve import solve_zoned as solve
-        opts = StaticOptions(level=job.level, seed_load_case=job.seed_load_case,
-                             exclude_mm=job.exclude_mm, spin_softening=job.spin_softening)
+    opts, solve, reference = surface_model(job.model, level=job.level,
+                                           seed_load_case=job.seed_load_case,
+                                           spin_softening=job.spin_softening,
+                                           exclude_mm=job.exclude_mm)
     ref = surface_cache.load(job.model, variant, opts, REF_RPM, job.cache_dir)
     if ref is not None:
         return ref
@@ -381,6 +373,26 @@ def _cached_surface_reference(variant, job: FatigueJob):
                                                       cache_dir=job.cache_dir)), opts)
     ref = replace(ref, seconds=time.perf_counter() - t0)
     return surface_cache.store(ref, job.model, variant, opts, job.cache_dir)
+
+
+def surface_model(model: str, *, level: str, seed_load_case: bool, spin_softening: bool,
+                  exclude_mm: float = 0.0):
+    """(options, solve, reference) of a surface model (``fatigue.run.surface_reference``'s
+    ``make`` is ``reference(solve(variant, rpm, options))``): the axisymmetric one or the
+    zoned one."""
+    if model == "axisymmetric":
+        from shaftfe.axisymmetric.model import AxiOptions
+        from shaftfe.axisymmetric.reference import static_reference as reference
+        from shaftfe.axisymmetric.solve import solve_axisymmetric as solve
+        opts = AxiOptions(level=level, seed_load_case=seed_load_case, exclude_mm=exclude_mm,
+                          spin_softening=spin_softening)
+    else:
+        from shaftfe.static.model import StaticOptions
+        from shaftfe.zoned.reference import zoned_reference as reference
+        from shaftfe.zoned.solve import solve_zoned as solve
+        opts = StaticOptions(level=level, seed_load_case=seed_load_case,
+                             exclude_mm=exclude_mm, spin_softening=spin_softening)
+    return opts, solve, reference
 
 
 def surface_reference(make, opts):

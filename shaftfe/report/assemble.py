@@ -124,19 +124,10 @@ def _surface_static(o: ReportOptions, variant, prog):
     """The axisymmetric or zoned solve at the design speeds and its surface reference, the
     fatigue input (with spin softening also the unsoftened stress, ``fatigue.run.
     surface_reference``: one more solve at the first design speed)."""
-    from shaftfe.fatigue.run import surface_reference
-    if o.model == "axisymmetric":
-        from shaftfe.axisymmetric.model import AxiOptions
-        from shaftfe.axisymmetric.reference import static_reference as reference
-        from shaftfe.axisymmetric.solve import solve_axisymmetric as solve
-        opts = AxiOptions(level=o.level, seed_load_case=o.seed_load_case,
-                          spin_softening=o.spin_softening)
-    else:
-        from shaftfe.static.model import StaticOptions
-        from shaftfe.zoned.reference import zoned_reference as reference
-        from shaftfe.zoned.solve import solve_zoned as solve
-        opts = StaticOptions(level=o.level, seed_load_case=o.seed_load_case,
-                             spin_softening=o.spin_softening)
+    from shaftfe.fatigue.run import surface_model, surface_reference
+    opts, solve, reference = surface_model(o.model, level=o.level,
+                                           seed_load_case=o.seed_load_case,
+                                           spin_softening=o.spin_softening)
     solved = {}
 
     def make(op):             # the design speeds' solve; the unsoftened one at the first
@@ -196,10 +187,11 @@ def _axi_vtu(res, ref, ff, vtu: Path, rpm: float, zoned: bool = False) -> list[s
     the zones' free surfaces) with the static fields at ``rpm`` and the fatigue fields."""
     import numpy as np
 
+    from shaftfe.axisymmetric import reference as axi
     from shaftfe.axisymmetric.recovery import principal_max_local
-    from shaftfe.axisymmetric.reference import surface_displacement, write_surface_vtu
-    if zoned:
-        from shaftfe.zoned.reference import surface_displacement
+    from shaftfe.zoned import reference as zoned_ref
+    surface_displacement = (zoned_ref if zoned else axi).surface_displacement
+    write_surface_vtu = axi.write_surface_vtu
     s = rpm2_scale(rpm, ref.ref_rpm)
     stress = np.asarray(ref.stress_ref) * s
     r = ff.result

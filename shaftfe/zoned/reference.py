@@ -86,13 +86,17 @@ class _ZoneField:
         self.mesh, self.stress = mesh, stress
 
     @cached_property
-    def probe(self):
+    def field(self):
         from types import SimpleNamespace
 
         m = self.mesh
-        return TetProbe(SimpleNamespace(xyz=m.doflocs, stress_ref=self.stress,
-                                        cells=fem.element_nodes(m).T.astype(np.int64),
-                                        face_cells=facet_cells(m)[0]))
+        return SimpleNamespace(xyz=m.doflocs, stress_ref=self.stress,
+                               cells=fem.element_nodes(m).T.astype(np.int64),
+                               face_cells=facet_cells(m)[0])
+
+    @cached_property
+    def probe(self):
+        return TetProbe(self.field)
 
 
 class ZonedProbe:
@@ -119,7 +123,7 @@ class ZonedProbe:
         out = {"owner": self.owner, "local": self.local, "sizes": np.array(self.sizes)}
         out.update({f"g_{k}": v for k, v in self.probes[0].arrays().items()})
         for i, z in enumerate(self.probes[1:], start=1):
-            f = z.probe.field
+            f = z.field                  # a _ZoneField, or a TetProbe read from the cache
             out.update({f"z{i}_xyz": f.xyz, f"z{i}_cells": f.cells,
                         f"z{i}_face_cells": f.face_cells, f"z{i}_stress": f.stress_ref})
         return out
