@@ -746,9 +746,16 @@ STUDY_CASES.update(FP_STUDY_CASES)
 # keyway peaks for the row)
 STUDY_FILES["static_model_axi.toml"] = (STUDY_HEAD + '[analyses]\nstatic = { model = '
                                          '"axisymmetric", level = "coarse" }\n')
-STUDY_CASES["study_static_model_axisymmetric"] = (
+SM_STUDY_CASES = {"study_static_model_axisymmetric": (
     ["study", "run", "{W}/static_model_axi.toml", "--out", "{W}/o"],
-    ["analyses.static.model", "axisymmetric", "solid | zoned"])
+    ["analyses.static.model", "axisymmetric", "solid | zoned"])}
+STUDY_CASES.update(SM_STUDY_CASES)      # (the table's own test was parametrized above)
+
+
+@pytest.mark.parametrize("case", sorted(SM_STUDY_CASES))
+def test_study_static_model(case, study_space, capsys, monkeypatch):
+    test_bad_study_input_is_one_clear_line_exit_2_and_writes_nothing(case, study_space, capsys,
+                                                                     monkeypatch)
 
 
 @pytest.mark.parametrize("case", sorted(FP_STUDY_CASES))
