@@ -229,6 +229,36 @@ def test_cache_hit_returns_identical_mesh(coarse, cache):
     assert again.min_quality == coarse.min_quality
 
 
+def test_cached_topology_is_scikit_fems_own(coarse, cache, tmp_path):
+    """The facets, edges and their maps kept in a cache entry (``solid.mesh.TOPOLOGY``) equal
+    what scikit-fem derives from t on a mesh built without them (exact: the same integer
+    arrays); an entry written without them gets them on its first load."""
+    import shutil
+
+    from skfem import MeshTet2
+
+    from shaftfe.solid.mesh import TOPOLOGY, build_mesh, cache_path
+    again = build_mesh(make_variant(), "coarse", cache_dir=cache)
+    assert again.from_cache
+    m = again.mesh
+    bare = MeshTet2(m.doflocs, m.t)                   # scikit-fem derives everything itself
+    for name in TOPOLOGY:
+        assert hasattr(m, f"_{name}"), name           # loaded, not derived
+        assert np.array_equal(getattr(m, name), getattr(bare, name)), name
+    assert np.array_equal(m.boundary_facets(), bare.boundary_facets())
+    # an entry without topology (as written before it was kept): loaded, then completed
+    from shaftfe.solid import mesh as sm
+    path = cache_path(again.key, tmp_path)
+    shutil.copy(cache_path(again.key, cache), path)
+    data = sm._load(path, again.key)
+    data["topology"] = {}
+    sm._save(path, data)
+    assert sm._load(path, again.key)["topology"] == {}
+    old = build_mesh(make_variant(), "coarse", cache_dir=tmp_path)
+    assert old.from_cache and set(sm._load(path, again.key)["topology"]) == set(TOPOLOGY)
+    assert np.array_equal(old.mesh.facets, bare.facets)
+
+
 def test_key_depends_on_geometry_not_on_name():
     """The cache key changes with the seat angle and the level, not with the variant name."""
     from shaftfe.solid.mesh import mesh_key

@@ -432,3 +432,35 @@ def test_life_error_row_when_the_hot_spot_fails_in_the_first_block():
                         "basis_change": 1e-9, "description": "beam rotor"})
     life = next(r for r in rows if r.quantity == "fatigue life at the hot spot")
     assert "fails in the first block" in life.error
+
+
+def test_pictures_render_here_when_no_second_process_can(monkeypatch):
+    """``report.pictures``: where the second process cannot start (``start``) or dies
+    (BrokenProcessPool), the pictures are rendered in this process; an error of the rendering
+    itself is raised, not hidden."""
+    import concurrent.futures
+    from concurrent.futures.process import BrokenProcessPool
+
+    import numpy as np
+
+    from shaftfe.report import pictures
+    job = pictures.PictureJob("x.vtu", "figures", np.zeros(0, dtype=int), ())
+    here = ([("von_mises_3d", "t", "c")], 0.5)
+    monkeypatch.setattr(pictures, "render_all", lambda j: here if j is job else None)
+
+    class Broken:
+        def result(self):
+            raise BrokenProcessPool("killed")
+
+    class Failing:
+        def result(self):
+            raise ValueError("no such field")
+
+    assert pictures.Rendering(job, Broken()).result() is here
+    with pytest.raises(ValueError, match="no such field"):
+        pictures.Rendering(job, Failing()).result()
+
+    def refuse(*a, **k):
+        raise OSError("no processes here")
+    monkeypatch.setattr(concurrent.futures, "ProcessPoolExecutor", refuse)
+    assert pictures.start(job).result() is here

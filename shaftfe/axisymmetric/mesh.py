@@ -31,6 +31,7 @@ import numpy as np
 
 from shaftfe.errors import InputError
 from shaftfe.solid.features import END_LEFT, END_RIGHT, fillet_region, shoulder_region
+from shaftfe.solid.mesh import GMSH_LOCK, gmsh_version
 
 CACHE_FORMAT = 1
 
@@ -227,7 +228,6 @@ def mesh_key(geometry: MeridianGeometry, level: AxiLevel, refine: int, gmsh_vers
 def mesh_geometry(geometry: MeridianGeometry, level: str | AxiLevel = "default",
                   refine: int = 0, *, cache_dir=None, use_cache: bool = True) -> MeridianMesh:
     """Mesh the outline (cached, see the module docstring)."""
-    from shaftfe.solid.mesh import gmsh_version
     from shaftfe.util import cachefile, paths
     t0 = time.perf_counter()
     lv = axi_level(level)
@@ -240,7 +240,8 @@ def mesh_geometry(geometry: MeridianGeometry, level: str | AxiLevel = "default",
         if got is not None:
             z, _ = got
             return _mesh(z, geometry, lv, refine, key, True, t0)
-    arrays = _generate(geometry, lv, refine)
+    with GMSH_LOCK:
+        arrays = _generate(geometry, lv, refine)
     if use_cache:
         try:
             cachefile.save(path, arrays, {"key": key, "format": CACHE_FORMAT})

@@ -389,10 +389,24 @@ def surface_model(model: str, *, level: str, seed_load_case: bool, spin_softenin
     else:
         from shaftfe.static.model import StaticOptions
         from shaftfe.zoned.reference import zoned_reference as reference
-        from shaftfe.zoned.solve import solve_zoned as solve
         opts = StaticOptions(level=level, seed_load_case=seed_load_case,
                              exclude_mm=exclude_mm, spin_softening=spin_softening)
+        solve = ZonedSolves()
     return opts, solve, reference
+
+
+class ZonedSolves:
+    """``solve_zoned`` that hands each solve the one before as ``reuse``: the unsoftened solve
+    of ``surface_reference`` takes the softened one's submodels (the same zones, factorised
+    once)."""
+
+    def __init__(self) -> None:
+        self.last = None
+
+    def __call__(self, variant, rpm, options, **kw):
+        from shaftfe.zoned.solve import solve_zoned
+        self.last = solve_zoned(variant, rpm, options, reuse=self.last, **kw)
+        return self.last
 
 
 def surface_reference(make, opts):

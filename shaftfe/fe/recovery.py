@@ -89,14 +89,20 @@ def hooke_plane_stress(eps: np.ndarray, P: np.ndarray, E: float, nu: float) -> n
 
 # --------------------------------------------------------------------------- recovery
 
-def element_node_stress(mesh, u: np.ndarray, E: float, nu: float):
-    """Stress (6, nloc, ne) of every element evaluated at its own nodes, and the node numbers
-    (nloc, ne)."""
+def node_gradients(mesh):
+    """(∂φ at every element's own nodes (ne, nloc, nloc, 3), the node numbers (nloc, ne)): what
+    ``element_node_stress`` needs of the mesh, computed once for several fields on it."""
     from shaftfe.fe import assembly as fem
     e = fem.scalar_element(mesh)
     X = np.asarray(e.doflocs, dtype=float).T                # reference node coordinates
     dN, _ = fem.gradients_at(mesh, X)                        # (ne, nq, nloc, 3), q = nodes
-    nodes = fem.element_nodes(mesh)                          # (nloc, ne)
+    return dN, fem.element_nodes(mesh)                       # nodes (nloc, ne)
+
+
+def element_node_stress(mesh, u: np.ndarray, E: float, nu: float, grad=None):
+    """Stress (6, nloc, ne) of every element evaluated at its own nodes, and the node numbers
+    (nloc, ne). ``grad``: ``node_gradients(mesh)``, when it is reused."""
+    dN, nodes = grad if grad is not None else node_gradients(mesh)
     U = u.reshape(-1, 3)[nodes.T].transpose(0, 2, 1)          # (ne, 3, nloc): U[e, i, a]
     # grad[e, q, i, j] = Σ_a U[e, i, a] ∂_j φ_a(x_q), as (i, j, e, q) for hooke
     g = np.matmul(U[:, None], dN).transpose(2, 3, 0, 1)
@@ -104,9 +110,10 @@ def element_node_stress(mesh, u: np.ndarray, E: float, nu: float):
     return np.transpose(s, (0, 2, 1)), nodes
 
 
-def nodal_stress(mesh, u: np.ndarray, E: float, nu: float) -> np.ndarray:
-    """Averaged nodal stress (6, n_nodes), see the module docstring."""
-    s, nodes = element_node_stress(mesh, u, E, nu)
+def nodal_stress(mesh, u: np.ndarray, E: float, nu: float, grad=None) -> np.ndarray:
+    """Averaged nodal stress (6, n_nodes), see the module docstring (``grad``:
+    ``node_gradients(mesh)``, when it is reused)."""
+    s, nodes = element_node_stress(mesh, u, E, nu, grad)
     return average_to_nodes(mesh, s, nodes)
 
 

@@ -76,7 +76,9 @@ def write_point_fields(points, cells: list, region: list, path, point_data: dict
                       cell_data={"region": region})
     path = Path(path)
     with atomic_path(path) as tmp:
-        meshio.write(tmp, out, file_format="vtu")
+        # raw binary, not zlib: meshio compresses at zlib's default level, 90 % of the write
+        # (x2_57's larger zone: 0.061 s → 0.006 s, 1.7 → 2.7 MB); ParaView reads both
+        meshio.write(tmp, out, file_format="vtu", compression=None)
     return path
 
 

@@ -18,7 +18,8 @@
 6. Campbell 0 … the engine's maximum speed (beam rotor model; ``rotor_model="solid"`` when the
    3D rotor builder exists), with the reduced-vs-full check at the top speed;
 7. the VTU of the run (static fields at the first design speed + the fatigue fields), the
-   PyVista pictures rendered from it, the plots, and the seed comparison.
+   PyVista pictures rendered from it (in a second process, ``report.pictures``, while this one
+   computes the strength section by standard and draws the plots), and the seed comparison.
 
 Every number in the report comes from these computations; the seed figures come from
 ``shaftfe.report.seed`` (and the variant file's ``balance`` table). numpy / scikit-fem /
@@ -30,6 +31,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from shaftfe.fatigue.methods import DEFAULT_METHOD
+from shaftfe.report import pictures
 from shaftfe.report.comparisons import comparisons, error_estimates
 from shaftfe.report.options import (
     ERROR_STAGE,
@@ -302,6 +304,8 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         engine, history, material = read_inputs(o, variant)
         o = _life_in_blocks(o, history)
         prov = provenance_summary(variant)
+    # the pictures' process starts now: its start-up (VTK's import) runs beside the solve
+    renderer = pictures.Renderer() if o.pictures else None
     figs: list[Figure] = []
     fig_dir = out / "figures"
 
@@ -318,20 +322,27 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     _nodal_peak(st, ref)
     with prog.stage("fatigue"):
         fat, ff, scaled, bench = _fatigue(o, res, ref, history, material, variant)
-    with prog.stage("strength by standard"):
-        strength = _strength(o, variant, ref, history, ff.result.cycles)
     with prog.stage("Campbell"):
         camp, cres, rotor_model = campbell(variant, o)
     with prog.stage("VTU"):
         files = _vtu(o, out, variant, res, ref, ff, rotor_model, cres)
-    with prog.stage("3D pictures"):
-        pics = _pictures(o, out / files["vtu"], fig_dir, ff, files["vtu_rpm"], st) \
-            if o.pictures else []
-        for name, title, caption in pics:
-            add_fig(name, title, caption)
+        fig_dir.mkdir(parents=True, exist_ok=True)
+        # the pictures render in a second process beside the strength section and the plots
+        rendering = renderer.start(_picture_job(o, out / files["vtu"], fig_dir, ff,
+                                                files["vtu_rpm"], st)) if renderer else None
+    with prog.stage("strength by standard"):
+        strength = _strength(o, variant, ref, history, ff.result.cycles)
     with prog.stage("plots"):
         _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, cres,
                camp, files["vtu_rpm"], add_fig)
+    picture_seconds = None
+    with prog.stage("3D pictures"):           # what is left of them once the plots are done
+        if rendering is not None:
+            pics, picture_seconds = rendering.result()
+            n = len(figs)
+            for name, title, caption in pics:
+                add_fig(name, title, caption)
+            figs[:] = figs[n:] + figs[:n]     # the pictures first, as the report shows them
     errs = error_estimates(st, res, fat, scaled, bench, camp, beam_out,
                            seed=variant.name == seedmod.VARIANT)
     comps = comparisons(bal, beam_out, st, fat, camp, variant, seedmod,
@@ -342,7 +353,9 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
             "%Y-%m-%d %H:%M UTC"),
         inputs=_inputs_block(o, variant, engine, fat), provenance=prov, balancing=bal,
         beam=beam_out, static=st, fatigue=fat, campbell=camp, comparisons=tuple(comps),
-        errors=tuple(errs), timings=prog.timings, sub_timings=_sub_timings(res, ff),
+        errors=tuple(errs), timings=prog.timings,
+        sub_timings={**_sub_timings(res, ff), **({} if picture_seconds is None else {
+            "3D pictures (their own process, beside strength and plots)": picture_seconds})},
         figures=tuple(figs), files=files, notes=notes, machine=machine, strength=strength,
         warnings=tuple(collected()))
 
@@ -378,21 +391,17 @@ def _strength(o: ReportOptions, variant, ref, history, cycles=None) -> dict:
     return out
 
 
-def _pictures(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> list[tuple]:
+def _picture_job(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> pictures.PictureJob:
+    """The three pictures' job: their fields, titles and captions (``report.pictures``)."""
     import numpy as np
 
-    from shaftfe.io.render import render
-    from shaftfe.io.view import load
     from shaftfe.report.html import PEAK_FIT_LABEL, num
 
-    grid = load(vtu)                         # read once for the three pictures
     excl = np.flatnonzero(ff.excluded_mask)
-    size = (1000, 520)
     case = next((c for c in st["cases"] if c["rpm"] == rpm), st["cases"][0])
     head = f"{vtu.stem}, {num(rpm)} rpm"
     peak = f"peak {num(case['peak_von_mises_MPa'], 4)} MPa ({PEAK_FIT_LABEL})"
     hot = ff.hot_spot
-    out = []
     shots = (
         ("von_mises_3d", "von_mises", 0.0, "von Mises stress",
          f"{head}: von Mises stress [MPa]\n{peak} at {case['peak_region']}",
@@ -414,16 +423,8 @@ def _pictures(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> list[tup
          "above; hot spot = the minimum outside the singular points. The default method's "
          "(FKM) verdict is in Strength by standard."),
     )
-    for name, fld, warp, title, picture_title, caption in shots:
-        res = render(vtu, field=fld, warp=warp, screenshot=fig_dir / f"{name}.png",
-                     window_size=size, off_screen=True, hot_exclude=excl, zoom="fit",
-                     grid=grid, title=picture_title)
-        if res.hot is not None:
-            unit = f" {res.field.unit}" if res.field.unit not in ("-", "id") else ""
-            caption += (f" Marked: {res.hot.value:.4g}{unit} (nodal value) at x = "
-                        f"{res.hot.xyz[0]:.1f} mm.")
-        out.append((name, title, caption))
-    return out
+    return pictures.PictureJob(str(vtu), str(fig_dir), excl,
+                               tuple(pictures.Shot(*s) for s in shots))
 
 
 def _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, cres, camp,

@@ -9,8 +9,10 @@ from shaftfe.errors import InputError
 from shaftfe.rotordynamics.options import DEFAULT_ORDERS, ROTOR_MODELS
 from shaftfe.solid.levels import ESTIMATE_PAIR_CHEAP
 
+# in the order they run; "3D pictures": the wait for what is left of them after the plots
+# (they render in a second process from the VTU stage on, ``report.pictures``)
 STAGES = ("inputs", "balancing", "beam check", "static (mesh + one solve)", "fatigue",
-          "strength by standard", "Campbell", "VTU", "3D pictures", "plots")
+          "Campbell", "VTU", "strength by standard", "plots", "3D pictures")
 
 
 ERROR_STAGE = "error estimate (second mesh level)"

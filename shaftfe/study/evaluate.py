@@ -154,8 +154,8 @@ def _zoned_rows(v, an: Analyses, opts, rpms, cache_dir) -> tuple[dict, Any]:
 
 def _field(res, an: Analyses, variant, cache_dir=None):
     """The fatigue input of a design's static result: the 3D one's reference, or the zoned
-    one's surface reference with its unsoftened stress (one more zoned solve at 10 000 rpm,
-    ``fatigue.run.surface_reference``)."""
+    one's surface reference with its unsoftened stress (one more zoned solve at 10 000 rpm on
+    the same factorised zones, ``fatigue.run.surface_reference``)."""
     from shaftfe.static.cache import from_result
     if an.static_model != "zoned":
         return from_result(res)
@@ -167,7 +167,7 @@ def _field(res, an: Analyses, variant, cache_dir=None):
     def make(o):
         same = o.spin_softening == res.options.spin_softening
         return zoned_reference(res if same else solve_zoned(variant, REF_RPM, o,
-                                                            cache_dir=cache_dir))
+                                                            cache_dir=cache_dir, reuse=res))
     return surface_reference(make, res.options)
 
 

@@ -142,15 +142,59 @@ def _solve_zone(variant, plan, zone, options, gsol, rpm, case, cache_dir):
     return sub, sm.solve_speed(sub, gsol, rpm, case)
 
 
+def _prebuild(v, plan, zones, bands, grown_before, options, cache_dir):
+    """Start building each zone's submodel (mesh, stiffness, factorisation: nothing of the
+    global field) in a worker thread while the global model solves: (pool, {zone name:
+    (zone, grown, future)}), the zones at the size an earlier run's cut check grew them to."""
+    if not zones:
+        return None, {}
+    from concurrent.futures import ThreadPoolExecutor
+    # one worker: two (each factorisation on MKL's two threads) were slower on 2 cores
+    # (x2_57 warm: 2.18 s with one, 2.51 s with two; 2.13 s with none)
+    pool = ThreadPoolExecutor(1)
+    pre = {}
+    for z0 in zones:
+        z, grown = _grown(z0, plan, bands, grown_before.get(z0.name, 0))
+        pre[z0.name] = (z, grown, pool.submit(sm.build_submodel, v, plan, z, options,
+                                              cache_dir=cache_dir))
+    return pool, pre
+
+
+def _reusable(reuse, variant, options) -> dict:
+    """{zone name: (SubModel, times grown)} of ``reuse`` that a solve of ``variant`` with
+    ``options`` can take as they are: the same variant and options but spin softening (a
+    submodel's stiffness has none: its softening enters as loads from the global motion,
+    ``submodel.load_vector``), and a submodel built with softening (its seats' softening rows)
+    serves both ways."""
+    from dataclasses import replace
+    if reuse is None:
+        return {}
+    v = variant.with_seed_load_case() if options.seed_load_case else variant
+    out = {}
+    for (sub, _), info in zip(reuse.fields, reuse.zones, strict=True):
+        o = sub.options
+        # the variant itself compared (a Variant made in Python has no content hash)
+        if (sub.variant is v or sub.variant == v) \
+                and replace(o, spin_softening=options.spin_softening) == options \
+                and (o.spin_softening or not options.spin_softening):
+            out[sub.zone.name] = (sub, info.grown)
+    return out
+
+
 def _zone_peaks(sf: sm.SubField) -> dict:
     return {p.region: p for p in sf.peaks}
 
 
 def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), *,
                 axi_level: str = "default", case=None, cache_dir=None,
-                sensitivity: bool = False) -> ZonedResult:
+                sensitivity: bool = False, reuse: ZonedResult | None = None) -> ZonedResult:
     """Every speed in ``rpm`` (or the load case ``case``): the global axisymmetric solve, then
-    each zone's submodel (one factorisation per zone, every speed)."""
+    each zone's submodel (one factorisation per zone, every speed).
+
+    ``reuse``: an earlier zoned result of the same variant whose submodels this solve may take
+    as they are (``_reusable``: the same zone, the same options but spin softening, which
+    enters a submodel as loads, never in its stiffness): the unsoftened solve that fatigue's
+    reference needs beside the softened one then factorises no zone again."""
     from shaftfe.beam.planes import mesh_hot_axes
     from shaftfe.solid.mesh import mesh_plan
     t0 = time.perf_counter()
@@ -165,12 +209,17 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
     bands = _bands(variant, options)
     zones = plan_zones(plan, bands)
     t_plan = time.perf_counter() - t0
-    memo = _growth_file(plan, bands, options, cache_dir)
-    grown_before, grown_now = _read_growth(memo), {}
+    memo = _growth_file(plan, bands, zones, options, cache_dir)
+    grown_before = _read_growth(memo)
+    grown_now: dict = {}
     cases, infos, fields, notes = [], [], [], []
     t_global = t_zones = 0.0
     subs: dict = {}
     fields_of: dict = {}                  # (zone, global solution, speed) -> SubField
+    # the zones' submodels start building now, beside the global solve (``_prebuild``)
+    ready = _reusable(reuse, variant, options)
+    pool, pre = _prebuild(v, plan, [z for z in zones if z.name not in ready], bands,
+                          grown_before, options, cache_dir)
     # no softening and every load ∝ rpm² (or one case): one global solve serves every speed
     once = None
     if not options.spin_softening:
@@ -194,8 +243,18 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
                 sub = subs[z0.name]
                 sf = sm.solve_speed(sub, g.solution, rpm_f, case)
             else:
-                z, grown = _grown(z0, plan, bands, grown_before.get(z0.name, 0))
-                sub, sf = _solve_zone(v, plan, z, options, g.solution, rpm_f, case, cache_dir)
+                if z0.name in ready:              # an earlier solve's, as it was
+                    sub, grown = ready[z0.name]
+                    z = sub.zone
+                    sf = sm.solve_speed(sub, g.solution, rpm_f, case)
+                elif z0.name in pre:              # built beside the global solve
+                    z, grown, job = pre.pop(z0.name)
+                    sub = job.result()
+                    sf = sm.solve_speed(sub, g.solution, rpm_f, case)
+                else:
+                    z, grown = _grown(z0, plan, bands, grown_before.get(z0.name, 0))
+                    sub, sf = _solve_zone(v, plan, z, options, g.solution, rpm_f, case,
+                                          cache_dir)
                 while sm.cut_error(sf.cut_check) > CUT_TOL and grown < MAX_GROW:
                     bigger, n = _grown(z, plan, bands, 1)
                     if n == 0:
@@ -216,7 +275,9 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
                 infos.append(ZoneInfo(z.name, tuple(f.region for f in z.features),
                                       (z.x0, z.x1), z.cuts_mm, z.nominal_mm, grown,
                                       sub.n_dofs, sub.shaft_mesh.n_elements, sf.cut_check,
-                                      {**sub.seconds, **sf.seconds}, sens))
+                                      {**({"reused": True} if sub is ready.get(
+                                          z0.name, (None,))[0] else sub.seconds),
+                                       **sf.seconds}, sens))
                 fields.append((sub, sf))
             fields_of[key] = sf
             for p in sf.peaks:
@@ -238,6 +299,8 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
                                gc.case, gc.load_sum_N))
         if len(cases) == 1:
             first_global = g
+    if pool is not None:
+        pool.shutdown()
     if grown_now != grown_before:
         _write_growth(memo, grown_now)
     notes.append("global model: the axisymmetric harmonic model of the whole shaft (reactions, "
@@ -259,17 +322,18 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
                        tuple(cases), tuple(notes), run, first_global, plan, tuple(fields))
 
 
-def _growth_file(plan, bands, options, cache_dir):
-    """Where the zones' growth of an earlier run of the same plan, load bands, level and order
-    is kept (``zones-<key>.json``): a run starts from the zones that passed the cut check
-    before (and checks them again: a zone still grows if its check fails), instead of solving
-    each smaller zone again (0.7 s of x2_57's warm run). Starting larger only costs time; the
-    cut check and the peaks are those of the zone actually solved."""
+def _growth_file(plan, bands, zones, options, cache_dir):
+    """Where the zones' growth of an earlier run of the same plan, load bands, placed zones,
+    level and order is kept (``zones-<key>.json``): a run starts from the zones that passed the
+    cut check before (and checks them again: a zone still grows if its check fails), instead
+    of solving each smaller zone again. Starting larger only costs time; the cut check and the
+    peaks are those of the zone actually solved."""
     import hashlib
     import json
 
     from shaftfe.util import paths
-    payload = json.dumps([asdict(plan), list(bands), str(options.level), options.order],
+    payload = json.dumps([asdict(plan), list(bands), [(z.x0, z.x1) for z in zones],
+                          str(options.level), options.order],
                          sort_keys=True, default=repr)
     key = hashlib.sha256(payload.encode()).hexdigest()[:24]
     return paths.cache_dir(cache_dir) / f"zones-{key}.json"

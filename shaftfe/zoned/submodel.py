@@ -66,6 +66,7 @@ class SubModel:
     excluded: np.ndarray = field(default=None, repr=False)    # the singular-point rule's nodes
     free_facets: np.ndarray = field(default=None, repr=False)  # traction-free boundary facets
     seconds: dict = field(default_factory=dict)
+    cache_dir: object = None           # where its stiffness and node location are cached
 
     @property
     def n_dofs(self) -> int:
@@ -143,8 +144,12 @@ def build_submodel(variant, plan, zone, options, *, level=None, cache_dir=None) 
     bearings = tuple((b.name, np.asarray(m.boundaries[bearing_group(b.name)]),
                       float(b.x_center_mm)) for b in variant.bearings
                      if bearing_group(b.name) in m.boundaries)
-    solver = factorize(K[free][:, free], options.solver)
-    K_IB = K[free][:, cut]
+    # one row permutation, [free, cut], then column blocks (slicing K's rows once)
+    nf = free.size
+    Kp = K[np.concatenate([free, cut])]
+    K_I, K_B = Kp[:nf], Kp[nf:]
+    solver = factorize(K_I[:, free], options.solver)
+    K_IB = K_I[:, cut]
     floating = None
     if len(faces) == 2:
         fdofs = (3 * faces[1][:, None] + np.arange(3)).ravel()
@@ -152,8 +157,9 @@ def build_submodel(variant, plan, zone, options, *, level=None, cache_dir=None) 
         centre = (float(m.doflocs[0, faces[1]].mean()), 0.0, 0.0)
         Phi = fem.rigid_body_modes(m, centre)[fdofs]
         W = np.asarray(solver.solve(np.asarray(K_IB[:, pos] @ Phi)))
-        K_FI = K[fdofs][:, free]
-        S = Phi.T @ (K[fdofs][:, fdofs] @ Phi) - Phi.T @ (K_FI @ W)
+        K_F = K_B[pos]
+        K_FI = K_F[:, free]
+        S = Phi.T @ (K_F[:, fdofs] @ Phi) - Phi.T @ (K_FI @ W)
         floating = FloatingCut(pos, Phi, W, S, K_FI)
     # the singular-point rule's patches: the bearings, the pressed halves and the cut faces (a
     # traction jump at their edges); every other boundary facet is traction-free
@@ -166,7 +172,7 @@ def build_submodel(variant, plan, zone, options, *, level=None, cache_dir=None) 
     return SubModel(zone, sm, variant, options, cut_groups, cut, free, K_IB, solver, floating,
                     patterns, tuple(seats), bearings, regions, excluded, free_facets,
                     {"mesh_seconds": t1 - t0, "mesh_from_cache": sm.from_cache,
-                     "assembly_seconds": t2 - t1, "factor_seconds": t3 - t2})
+                     "assembly_seconds": t2 - t1, "factor_seconds": t3 - t2}, cache_dir)
 
 
 def stiffness(sm, E: float, nu: float, cache_dir=None):
@@ -182,9 +188,37 @@ def stiffness(sm, E: float, nu: float, cache_dir=None):
                                 lambda: fem.elasticity_stiffness(sm.mesh, E, nu))
 
 
+def located(sub: SubModel, mesh):
+    """The submodel's nodes located in the global meridian mesh ``mesh``
+    (``pointeval.locate``), cached on disk by both meshes' content keys (``zoneloc-*.npz``):
+    both meshes are cached by their keys, so the location is too; a warm run then needs no
+    k-d tree (its import, scipy.spatial, is 0.2 s of x2_57's warm static run)."""
+    import hashlib
+
+    from shaftfe.util import cachefile, paths
+    xyz = sub.shaft_mesh.mesh.doflocs
+    x, r = xyz[0], np.hypot(xyz[1], xyz[2])
+    if not (sub.shaft_mesh.key and mesh.key):
+        return pointeval.locate(mesh, x, r)
+    key = hashlib.sha256(f"{sub.shaft_mesh.key}|{mesh.key}|locate-1".encode()).hexdigest()
+    path = paths.cache_dir(sub.cache_dir) / f"zoneloc-{key[:24]}.npz"
+    got = cachefile.load(path, key, "zone location") if path.exists() else None
+    if got is not None:
+        z = got[0]
+        return z["e"], z["xi"], z["eta"], z["found"]
+    loc = pointeval.locate(mesh, x, r)
+    try:
+        cachefile.save(path, dict(zip(("e", "xi", "eta", "found"), loc, strict=True)),
+                       {"key": key})
+    except OSError:
+        pass                                   # a read-only cache only costs the time
+    return loc
+
+
 def _global_field(sub: SubModel, gsol) -> np.ndarray:
     """(3 N,) the global displacement at every submodel node (interleaved)."""
-    return pointeval.displacement_at(gsol, sub.shaft_mesh.mesh.doflocs).T.ravel()
+    return pointeval.displacement_at(gsol, sub.shaft_mesh.mesh.doflocs,
+                                     located(sub, gsol.mesh)).T.ravel()
 
 
 def load_vector(sub: SubModel, gsol, rpm: float, case=None, ug=None) -> np.ndarray:
@@ -223,7 +257,8 @@ def solve_speed(sub: SubModel, gsol, rpm: float, case=None) -> SubField:
     f = load_vector(sub, gsol, rpm, case, ug)
     u = displace(sub, ug, f)
     t1 = time.perf_counter()
-    stress = recovery.nodal_stress(m, u, mat.E_MPa, mat.nu)
+    grad = recovery.node_gradients(m)                 # one for both fields
+    stress = recovery.nodal_stress(m, u, mat.E_MPa, mat.nu, grad)
     averaged = stress.copy()
     surf = None
     if fem.is_quadratic(m):
@@ -232,7 +267,7 @@ def solve_speed(sub: SubModel, gsol, rpm: float, case=None) -> SubField:
         stress[:, surf.nodes[ok]] = surf.stress[:, ok]
     peaks = tuple(recovery.peak(stress, m.doflocs, nodes, sub.excluded, name, surf)
                   for name, nodes in sorted(sub.regions.items()))
-    stress_g = recovery.nodal_stress(m, ug, mat.E_MPa, mat.nu)
+    stress_g = recovery.nodal_stress(m, ug, mat.E_MPa, mat.nu, grad)
     checks = tuple(cut_check(sub, g, averaged, stress_g) for g in sub.cut_groups)
     t2 = time.perf_counter()
     return SubField(u, stress, peaks, checks, {"solve_seconds": t1 - t0,
@@ -282,4 +317,4 @@ def cut_error(checks) -> float:
 
 
 __all__ = ["CutCheck", "SubField", "SubModel", "build_submodel", "cut_check", "cut_error",
-           "load_vector", "solve_speed"]
+           "load_vector", "located", "solve_speed"]

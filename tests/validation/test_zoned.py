@@ -111,6 +111,71 @@ def test_pointeval_is_the_field_at_the_meridian_nodes(cache):
     assert np.max(np.abs(got - want)) <= 1e-10 * np.max(np.abs(want))
 
 
+def test_zone_node_location_from_the_cache_is_the_located_one(keyed, tmp_path):
+    """``submodel.located``: the submodel's nodes located in the global meridian mesh, kept
+    on disk by both meshes' keys, equal ``pointeval.locate`` computed afresh (exact: the same
+    arrays), on the first call (computed, stored) and the second (loaded)."""
+    import dataclasses
+
+    from shaftfe.axisymmetric import pointeval
+    from shaftfe.zoned.submodel import located
+    _, res, _ = keyed
+    sub, _ = res.fields[0]
+    sub = dataclasses.replace(sub, cache_dir=tmp_path)
+    mesh = res.global_result.solution.mesh
+    xyz = sub.shaft_mesh.mesh.doflocs
+    want = pointeval.locate(mesh, xyz[0], np.hypot(xyz[1], xyz[2]))
+    first = located(sub, mesh)
+    assert len(list(tmp_path.glob("zoneloc-*.npz"))) == 1
+    second = located(sub, mesh)
+    for a, b, c in zip(want, first, second, strict=True):
+        assert np.array_equal(a, b) and np.array_equal(a, c)
+    assert np.all(want[3])                        # every node of the zone lies in the shaft
+
+
+def test_a_cold_zoned_solve_meshes_its_zones_beside_the_global_model(keyed, tmp_path):
+    """On an empty cache the zones are meshed in a worker thread while the global model
+    meshes and solves (gmsh is not thread-safe: ``solid.mesh.GMSH_LOCK``). The meshes are the
+    warm run's (the same content keys: gmsh is deterministic, tests/test_mesh.py) and so are the
+    peaks, to 1e-9 (the same systems; PARDISO's threaded sums may round differently)."""
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.zoned.solve import solve_zoned
+    load, warm, _ = keyed
+    o = StaticOptions(level="coarse", rigid_supports=True, spin_softening=False)
+    cold = solve_zoned(keyed_bar(load), 1000.0, o, cache_dir=tmp_path)
+    assert not any(sub.shaft_mesh.from_cache for sub, _ in cold.fields)
+    assert [s.shaft_mesh.key for s, _ in cold.fields] == [s.shaft_mesh.key for s, _ in warm.fields]
+    for a, b in zip(cold.cases[0].peaks, warm.cases[0].peaks, strict=True):
+        assert a.region == b.region
+        assert a.von_mises_MPa == pytest.approx(b.von_mises_MPa, rel=1e-9)
+
+
+def test_the_unsoftened_solve_takes_the_softened_ones_zones(cache):
+    """``solve_zoned(..., reuse=)``: the unsoftened solve that fatigue's reference needs beside
+    the softened one takes its submodels as they are (spin softening enters a submodel as
+    loads, never in its stiffness): the same field as a solve of its own, exactly (the same
+    matrices, factorisation and right-hand sides). A submodel is not taken where it cannot
+    serve: built without softening for a softened solve, other options, another variant."""
+    import dataclasses
+
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.zoned.solve import _reusable, solve_zoned
+    v = keyed_bar("bending")
+    soft = StaticOptions(level="coarse", rigid_supports=True, spin_softening=True)
+    lin = dataclasses.replace(soft, spin_softening=False)
+    a = solve_zoned(v, 1000.0, soft, cache_dir=cache)
+    b = solve_zoned(v, 1000.0, lin, cache_dir=cache, reuse=a)
+    c = solve_zoned(v, 1000.0, lin, cache_dir=cache)
+    assert [s for s, _ in b.fields] == [s for s, _ in a.fields]          # the same objects
+    assert all(z.seconds.get("reused") for z in b.zones)
+    for (_, fb), (_, fc) in zip(b.fields, c.fields, strict=True):
+        assert np.array_equal(fb.u, fc.u) and np.array_equal(fb.stress, fc.stress)
+    assert _reusable(c, v, soft) == {}                     # no softening rows: not for soft
+    assert _reusable(a, v, dataclasses.replace(lin, exclude_mm=0.5)) == {}
+    assert _reusable(a, keyed_bar("torsion"), lin) == {}
+    assert set(_reusable(a, v, lin)) == {z.name for z in a.zones}
+
+
 def test_the_two_parts_of_a_clipped_plan_make_the_whole():
     """``solid.plan.clip``: the volumes of [x_left, c] and [c, x_right] add up to the whole
     shaft's (closed forms of ``solid.exact``: cylinders, fillet tori, keyway stadia, the hex
@@ -132,8 +197,10 @@ def test_x2_57_zones_follow_the_drawing():
     """x2_57 (geometry/x2_57.toml, seed 000): keyways on the gear seat (x 7…15) and the CW2
     seat (90.5…98.5), Ø17, the hex socket in the right end (104…114). The gear-seat zone
     reaches the left end and is cut between its hub and the bearing band; the CW2 keyway and
-    the hex socket share one zone reaching the right end, cut between the bearing and the CW2
-    seat. Every cut lies in an admissible gap."""
+    the hex socket share one zone reaching the right end, cut between the collar fillet and the
+    bearing band (the 1 mm gap between the bearing band and the CW2 seat lies within half a
+    diameter of the seat, ``SEAT_CLEAR_D``). Every cut lies in an admissible gap, at its
+    middle when the nominal end (the keyway ± Ø17) falls outside every gap."""
     from shaftfe.model.loader import load_variant
     from shaftfe.solid.features import features
     from shaftfe.solid.plan import prepare
@@ -148,5 +215,10 @@ def test_x2_57_zones_follow_the_drawing():
     gaps = admissible_gaps(plan, features(plan), ())
     for x in (*z1.cuts_mm, *z2.cuts_mm):
         assert any(a - 1e-9 <= x <= b + 1e-9 for a, b in gaps)
-    assert 16.0 < z1.x1 < 31.5 and 80.0 < z2.x0 < 82.0      # clear of the seats and bearings
-    assert math.isclose(z1.x1, 31.0)                        # the nearest to 15 + 17 = 32
+    # the gear-seat zone's cut: the gap (16 + 8.5 + 0.5, 31.5 − 0.5) = (25, 31) between the
+    # gear seat (x ≤ 16, Ø17: its half-diameter clearance, then the margin) and the bearing band
+    # (x ≥ 31.5) is the nearest to the nominal 15 + 17 = 32, which lies outside it: its middle
+    assert math.isclose(z1.x1, 28.0)
+    # the CW2 zone's: the nominal 90.5 − 17 = 73.5 lies in the bearing band; the gap
+    # (65.1 + 0.5, 66.5 − 0.5) between the collar fillet and the band: its middle
+    assert math.isclose(z2.x0, 65.8)
