@@ -27,6 +27,8 @@ Pieces
 
 from __future__ import annotations
 
+import threading
+
 import numpy as np
 import scipy.sparse as sp
 
@@ -149,6 +151,7 @@ def elasticity_stiffness(mesh, E: float, nu: float) -> sp.csr_matrix:
 # --------------------------------------------------------------------------- sparse pattern
 
 _PATTERNS: dict = {}      # id(mesh) -> (weakref to the mesh, pattern): one pattern per mesh
+_PATTERNS_LOCK = threading.Lock()   # the zoned solve assembles in a worker thread too
 
 
 def node_pattern(mesh):
@@ -160,7 +163,8 @@ def node_pattern(mesh):
     element-node incidence E and one ``searchsorted`` (0.26 s), shared by the stiffness and the
     mass matrices of one mesh."""
     import weakref
-    hit = _PATTERNS.get(id(mesh))
+    with _PATTERNS_LOCK:
+        hit = _PATTERNS.get(id(mesh))
     if hit is not None and hit[0]() is mesh:
         return hit[1]
     ed = element_nodes(mesh).T                                      # (ne, nloc)
@@ -178,9 +182,10 @@ def node_pattern(mesh):
         where = where.astype(np.int32)                              # −14 MB at 170k dofs
     pattern = (where, A.indptr.astype(np.int64),
                A.indices.astype(np.int32))
-    for key in [k for k, (ref, _) in _PATTERNS.items() if ref() is None]:
-        del _PATTERNS[key]
-    _PATTERNS[id(mesh)] = (weakref.ref(mesh), pattern)
+    with _PATTERNS_LOCK:
+        for key in [k for k, (ref, _) in _PATTERNS.items() if ref() is None]:
+            del _PATTERNS[key]
+        _PATTERNS[id(mesh)] = (weakref.ref(mesh), pattern)
     return pattern
 
 

@@ -312,24 +312,29 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     def add_fig(name: str, title: str, caption: str) -> None:
         figs.append(Figure(name, title, caption, (fig_dir / f"{name}.png").read_bytes()))
 
-    with prog.stage("balancing"):             # only for a shaft of a named engine
-        bal, fres, sw, _ = balancing(engine, variant, seedmod) if engine else (None,) * 4
-    with prog.stage("beam check"):
-        beam_out, _ = beam_check(variant, o.design_rpm)
-    res, ref = _static(o, variant, prog)
-    st = {"axisymmetric": static_summary_axisymmetric, "zoned": static_summary_zoned}.get(
-        o.model, static_summary)(res, variant)
-    _nodal_peak(st, ref)
-    with prog.stage("fatigue"):
-        fat, ff, scaled, bench = _fatigue(o, res, ref, history, material, variant)
-    with prog.stage("Campbell"):
-        camp, cres, rotor_model = campbell(variant, o)
-    with prog.stage("VTU"):
-        files = _vtu(o, out, variant, res, ref, ff, rotor_model, cres)
-        fig_dir.mkdir(parents=True, exist_ok=True)
-        # the pictures render in a second process beside the strength section and the plots
-        rendering = renderer.start(_picture_job(o, out / files["vtu"], fig_dir, ff,
-                                                files["vtu_rpm"], st)) if renderer else None
+    try:
+        with prog.stage("balancing"):             # only for a shaft of a named engine
+            bal, fres, sw, _ = balancing(engine, variant, seedmod) if engine else (None,) * 4
+        with prog.stage("beam check"):
+            beam_out, _ = beam_check(variant, o.design_rpm)
+        res, ref = _static(o, variant, prog)
+        st = {"axisymmetric": static_summary_axisymmetric, "zoned": static_summary_zoned}.get(
+            o.model, static_summary)(res, variant)
+        _nodal_peak(st, ref)
+        with prog.stage("fatigue"):
+            fat, ff, scaled, bench = _fatigue(o, res, ref, history, material, variant)
+        with prog.stage("Campbell"):
+            camp, cres, rotor_model = campbell(variant, o)
+        with prog.stage("VTU"):
+            files = _vtu(o, out, variant, res, ref, ff, rotor_model, cres)
+            fig_dir.mkdir(parents=True, exist_ok=True)
+            # the pictures render in a second process beside the strength section and the plots
+            rendering = renderer.start(_picture_job(o, out / files["vtu"], fig_dir, ff,
+                                                    files["vtu_rpm"], st)) if renderer else None
+    except BaseException:
+        if renderer is not None:          # no job will come: stop the second process
+            renderer.close()
+        raise
     with prog.stage("strength by standard"):
         strength = _strength(o, variant, ref, history, ff.result.cycles)
     with prog.stage("plots"):

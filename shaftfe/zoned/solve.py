@@ -15,6 +15,7 @@ other region the global model's. Reactions, deflections and L10h are the global 
 
 from __future__ import annotations
 
+import contextvars
 import math
 import time
 from dataclasses import asdict, dataclass, field
@@ -155,7 +156,9 @@ def _prebuild(v, plan, zones, bands, grown_before, options, cache_dir):
     pre = {}
     for z0 in zones:
         z, grown = _grown(z0, plan, bands, grown_before.get(z0.name, 0))
-        pre[z0.name] = (z, grown, pool.submit(sm.build_submodel, v, plan, z, options,
+        # in this run's context: a notice the build raises reaches its summary (util.notices)
+        pre[z0.name] = (z, grown, pool.submit(contextvars.copy_context().run,
+                                              sm.build_submodel, v, plan, z, options,
                                               cache_dir=cache_dir))
     return pool, pre
 
@@ -220,87 +223,89 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
     ready = _reusable(reuse, variant, options)
     pool, pre = _prebuild(v, plan, [z for z in zones if z.name not in ready], bands,
                           grown_before, options, cache_dir)
-    # no softening and every load ∝ rpm² (or one case): one global solve serves every speed
-    once = None
-    if not options.spin_softening:
-        once = solve_axisymmetric(variant, rpms, aopts, cache_dir=cache_dir, case=case)
-        if case is None and not all(c.scales_with == "rpm2"
-                                    for c in once.solution.columns.components):
-            once = None                   # constant or channel loads: each speed its fields
-    for r in rpms:
-        t1 = time.perf_counter()
-        g = once or solve_axisymmetric(variant, r, aopts, cache_dir=cache_dir, case=case)
-        gc = g.case(r) if case is None else g.cases[0]
-        rpm_f = r if math.isclose(gc.scale, 1.0) else g.ref_rpm
-        t_global += time.perf_counter() - t1
-        t1 = time.perf_counter()
-        peaks: dict[str, ZonedPeak] = {}
-        for z0 in zones:
-            key = (z0.name, id(g.solution), rpm_f)
-            if key in fields_of:
-                sub, sf = subs[z0.name], fields_of[key]
-            elif z0.name in subs:
-                sub = subs[z0.name]
-                sf = sm.solve_speed(sub, g.solution, rpm_f, case)
-            else:
-                if z0.name in ready:              # an earlier solve's, as it was
-                    sub, grown = ready[z0.name]
-                    z = sub.zone
-                    sf = sm.solve_speed(sub, g.solution, rpm_f, case)
-                elif z0.name in pre:              # built beside the global solve
-                    z, grown, job = pre.pop(z0.name)
-                    sub = job.result()
+    try:
+        # no softening and every load ∝ rpm² (or one case): one global solve serves each speed
+        once = None
+        if not options.spin_softening:
+            once = solve_axisymmetric(variant, rpms, aopts, cache_dir=cache_dir, case=case)
+            if case is None and not all(c.scales_with == "rpm2"
+                                        for c in once.solution.columns.components):
+                once = None                   # constant or channel loads: each speed its fields
+        for r in rpms:
+            t1 = time.perf_counter()
+            g = once or solve_axisymmetric(variant, r, aopts, cache_dir=cache_dir, case=case)
+            gc = g.case(r) if case is None else g.cases[0]
+            rpm_f = r if math.isclose(gc.scale, 1.0) else g.ref_rpm
+            t_global += time.perf_counter() - t1
+            t1 = time.perf_counter()
+            peaks: dict[str, ZonedPeak] = {}
+            for z0 in zones:
+                key = (z0.name, id(g.solution), rpm_f)
+                if key in fields_of:
+                    sub, sf = subs[z0.name], fields_of[key]
+                elif z0.name in subs:
+                    sub = subs[z0.name]
                     sf = sm.solve_speed(sub, g.solution, rpm_f, case)
                 else:
-                    z, grown = _grown(z0, plan, bands, grown_before.get(z0.name, 0))
-                    sub, sf = _solve_zone(v, plan, z, options, g.solution, rpm_f, case,
-                                          cache_dir)
-                while sm.cut_error(sf.cut_check) > CUT_TOL and grown < MAX_GROW:
-                    bigger, n = _grown(z, plan, bands, 1)
-                    if n == 0:
-                        break
-                    z, grown = bigger, grown + 1
-                    sub, sf = _solve_zone(v, plan, z, options, g.solution, rpm_f, case,
-                                          cache_dir)
-                if sm.cut_error(sf.cut_check) > CUT_TOL:
-                    from shaftfe.util.notices import warn
-                    warn("cut-check", z.name, f"the cut check reads "
-                         f"{100 * sm.cut_error(sf.cut_check):.1f} % (> {100 * CUT_TOL:g} %) "
-                         "after growing the zone as far as it goes: its peaks may carry the "
-                         "cut's error; compare with --model solid")
-                subs[z0.name] = sub
-                grown_now[z0.name] = grown
-                sens = _sensitivity(v, plan, z, options, g.solution, rpm_f, case, cache_dir,
-                                    sf, bands) if sensitivity else None
-                infos.append(ZoneInfo(z.name, tuple(f.region for f in z.features),
-                                      (z.x0, z.x1), z.cuts_mm, z.nominal_mm, grown,
-                                      sub.n_dofs, sub.shaft_mesh.n_elements, sf.cut_check,
-                                      {**({"reused": True} if sub is ready.get(
-                                          z0.name, (None,))[0] else sub.seconds),
-                                       **sf.seconds}, sens))
-                fields.append((sub, sf))
-            fields_of[key] = sf
-            for p in sf.peaks:
-                if not _from_zone(feats.get(p.region), sub.zone, plan):
-                    continue
-                peaks[p.region] = ZonedPeak(p.region, _kind(feats, p.region),
-                                            p.von_mises_MPa * gc.scale, p.xyz_mm,
-                                            p.max_principal_MPa * gc.scale,
-                                            p.max_principal_xyz_mm, sub.zone.name)
-        t_zones += time.perf_counter() - t1
-        for p in gc.peaks:
-            if p.region not in peaks and not _in_zone(feats.get(p.region), subs.values(), plan):
-                peaks[p.region] = ZonedPeak(p.region, _kind(feats, p.region), p.von_mises_MPa,
-                                            p.xyz_mm, p.max_principal_MPa,
-                                            p.max_principal_xyz_mm, "axisymmetric")
-        cases.append(ZonedCase(r, gc.scale, gc.bearings, gc.stations,
-                               gc.max_axis_deflection_mm,
-                               tuple(peaks[k] for k in sorted(peaks)), gc.equilibrium_residual,
-                               gc.case, gc.load_sum_N))
-        if len(cases) == 1:
-            first_global = g
-    if pool is not None:
-        pool.shutdown()
+                    if z0.name in ready:              # an earlier solve's, as it was
+                        sub, grown = ready[z0.name]
+                        z = sub.zone
+                        sf = sm.solve_speed(sub, g.solution, rpm_f, case)
+                    elif z0.name in pre:              # built beside the global solve
+                        z, grown, job = pre.pop(z0.name)
+                        sub = job.result()
+                        sf = sm.solve_speed(sub, g.solution, rpm_f, case)
+                    else:
+                        z, grown = _grown(z0, plan, bands, grown_before.get(z0.name, 0))
+                        sub, sf = _solve_zone(v, plan, z, options, g.solution, rpm_f, case,
+                                              cache_dir)
+                    while sm.cut_error(sf.cut_check) > CUT_TOL and grown < MAX_GROW:
+                        bigger, n = _grown(z, plan, bands, 1)
+                        if n == 0:
+                            break
+                        z, grown = bigger, grown + 1
+                        sub, sf = _solve_zone(v, plan, z, options, g.solution, rpm_f, case,
+                                              cache_dir)
+                    if sm.cut_error(sf.cut_check) > CUT_TOL:
+                        from shaftfe.util.notices import warn
+                        warn("cut-check", z.name, f"the cut check reads "
+                             f"{100 * sm.cut_error(sf.cut_check):.1f} % (> {100 * CUT_TOL:g} %) "
+                             "after growing the zone as far as it goes: its peaks may carry the "
+                             "cut's error; compare with --model solid")
+                    subs[z0.name] = sub
+                    grown_now[z0.name] = grown
+                    sens = _sensitivity(v, plan, z, options, g.solution, rpm_f, case, cache_dir,
+                                        sf, bands) if sensitivity else None
+                    infos.append(ZoneInfo(z.name, tuple(f.region for f in z.features),
+                                          (z.x0, z.x1), z.cuts_mm, z.nominal_mm, grown,
+                                          sub.n_dofs, sub.shaft_mesh.n_elements, sf.cut_check,
+                                          {**({"reused": True} if sub is ready.get(
+                                              z0.name, (None,))[0] else sub.seconds),
+                                           **sf.seconds}, sens))
+                    fields.append((sub, sf))
+                fields_of[key] = sf
+                for p in sf.peaks:
+                    if not _from_zone(feats.get(p.region), sub.zone, plan):
+                        continue
+                    peaks[p.region] = ZonedPeak(p.region, _kind(feats, p.region),
+                                                p.von_mises_MPa * gc.scale, p.xyz_mm,
+                                                p.max_principal_MPa * gc.scale,
+                                                p.max_principal_xyz_mm, sub.zone.name)
+            t_zones += time.perf_counter() - t1
+            for p in gc.peaks:
+                if p.region not in peaks and not _in_zone(feats.get(p.region), subs.values(), plan):
+                    peaks[p.region] = ZonedPeak(p.region, _kind(feats, p.region), p.von_mises_MPa,
+                                                p.xyz_mm, p.max_principal_MPa,
+                                                p.max_principal_xyz_mm, "axisymmetric")
+            cases.append(ZonedCase(r, gc.scale, gc.bearings, gc.stations,
+                                   gc.max_axis_deflection_mm,
+                                   tuple(peaks[k] for k in sorted(peaks)), gc.equilibrium_residual,
+                                   gc.case, gc.load_sum_N))
+            if len(cases) == 1:
+                first_global = g
+    finally:
+        if pool is not None:   # on an error too: no zone built for nothing; gmsh left whole
+            pool.shutdown(wait=True, cancel_futures=True)
     if grown_now != grown_before:
         _write_growth(memo, grown_now)
     notes.append("global model: the axisymmetric harmonic model of the whole shaft (reactions, "

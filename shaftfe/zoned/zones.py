@@ -91,8 +91,11 @@ def diameter_at(plan, x: float) -> float:
 
 
 def _place(plan, gaps, nominal: float, limit: float, side: int) -> float | None:
-    """The cut nearest to ``nominal`` on side ``side`` (−1: left cut, at most ``limit``; +1:
-    right cut, at least ``limit``), or None if the zone reaches the shaft end."""
+    """The cut on side ``side`` (−1: left cut, at most ``limit``; +1: right cut, at least
+    ``limit``) in the admissible gap nearest to ``nominal``: ``nominal`` itself when it lies in
+    the gap, else the gap's middle, at most ``MIN_DISTANCE_D`` local diameters from the gap's
+    station nearest to ``nominal`` (a long gap does not carry the cut far); None if the zone
+    reaches the shaft end."""
     if (side < 0 and nominal <= plan.x_left + TOL) or (side > 0 and nominal >= plan.x_right - TOL):
         return None
     best, dist = None, None
@@ -108,7 +111,11 @@ def _place(plan, gaps, nominal: float, limit: float, side: int) -> float | None:
             # inside the gap: the nominal cut; else the gap's middle, as far from the
             # fillet, step or band at either edge as the gap allows (x2_57's gear-seat zone:
             # its cut 3 mm inward at the middle, cut check 5.7 → 4.6 %)
-            best = near if a <= nominal <= b else 0.5 * (a + b)
+            if a <= nominal <= b:
+                best = near
+            else:
+                step = MIN_DISTANCE_D * diameter_at(plan, near)
+                best = near + max(-step, min(step, 0.5 * (a + b) - near))
             dist = abs(near - nominal)
     return best
 

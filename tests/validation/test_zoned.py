@@ -176,6 +176,22 @@ def test_the_unsoftened_solve_takes_the_softened_ones_zones(cache):
     assert set(_reusable(a, v, lin)) == {z.name for z in a.zones}
 
 
+def test_a_cut_outside_its_nominal_place_moves_at_most_half_a_diameter_into_its_gap():
+    """``zones._place`` (exact arithmetic): the nominal station when it lies in a gap; else the
+    gap's middle, capped at MIN_DISTANCE_D × the local diameter (here 0.5 × Ø20 = 10 mm) from the
+    gap's station nearest to the nominal."""
+    from types import SimpleNamespace
+
+    from shaftfe.zoned.zones import _place
+    plan = SimpleNamespace(x_left=0.0, x_right=300.0, segment_x=((0.0, 300.0),), radii=(10.0,),
+                           r_max=10.0)
+    assert _place(plan, [(90.0, 200.0)], 100.0, 100.0, +1) == 100.0        # inside: itself
+    assert _place(plan, [(110.0, 114.0)], 100.0, 100.0, +1) == 112.0       # short: the middle
+    assert _place(plan, [(110.0, 200.0)], 100.0, 100.0, +1) == 120.0       # long: capped
+    assert _place(plan, [(0.0, 50.0)], 80.0, 80.0, -1) == 40.0             # the left cut alike
+    assert _place(plan, [(0.0, 50.0)], 0.0, 80.0, -1) is None              # at the shaft end
+
+
 def test_the_two_parts_of_a_clipped_plan_make_the_whole():
     """``solid.plan.clip``: the volumes of [x_left, c] and [c, x_right] add up to the whole
     shaft's (closed forms of ``solid.exact``: cylinders, fillet tori, keyway stadia, the hex
