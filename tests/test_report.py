@@ -435,7 +435,7 @@ def test_life_error_row_when_the_hot_spot_fails_in_the_first_block():
 
 
 def test_pictures_render_here_when_no_second_process_can(monkeypatch):
-    """``report.pictures``: where the second process cannot start (``start``) or dies
+    """``report.pictures``: where the second process cannot start (``Renderer``) or dies
     (BrokenProcessPool), the pictures are rendered in this process; an error of the rendering
     itself is raised, not hidden."""
     import concurrent.futures
@@ -463,4 +463,4 @@ def test_pictures_render_here_when_no_second_process_can(monkeypatch):
     def refuse(*a, **k):
         raise OSError("no processes here")
     monkeypatch.setattr(concurrent.futures, "ProcessPoolExecutor", refuse)
-    assert pictures.start(job).result() is here
+    assert pictures.Renderer().start(job).result() is here

@@ -64,7 +64,7 @@ def render_all(job: PictureJob) -> tuple[list[tuple[str, str, str]], float]:
 
 
 class Rendering:
-    """The pictures of one job, being rendered in a second process (``start``)."""
+    """The pictures of one job, being rendered in a second process (``Renderer.start``)."""
 
     def __init__(self, job: PictureJob, future=None):
         self.job = job
@@ -123,10 +123,4 @@ class Renderer:
             self._pool.shutdown(wait=False, cancel_futures=True)
 
 
-def start(job: PictureJob) -> Rendering:
-    """Start rendering ``job`` in a second process (spawned: a fresh interpreter that
-    inherits none of this one's threads)."""
-    return Renderer().start(job)
-
-
-__all__ = ["PictureJob", "Renderer", "Rendering", "Shot", "render_all", "start"]
+__all__ = ["PictureJob", "Renderer", "Rendering", "Shot", "render_all"]

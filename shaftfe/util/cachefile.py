@@ -64,20 +64,30 @@ def _notice(what: str, path: Path, why: str) -> None:
           file=sys.stderr)
 
 
-def cached_csr(path: Path, key: str, what: str, make):
-    """The sparse CSR matrix ``make()`` cached at ``path`` under ``key`` (``save`` / ``load``:
+def cached(path: Path, key: str, what: str, make) -> tuple[dict[str, np.ndarray], dict]:
+    """(arrays, meta) of ``make()`` cached at ``path`` under ``key`` (``save`` / ``load``:
     checksummed, rebuilt when damaged or another entry's; a read-only cache only costs the
-    write)."""
-    import scipy.sparse as sp
+    write). ``make`` returns the arrays and the extra meta to keep beside them."""
     got = load(path, key, what) if Path(path).exists() else None
     if got is not None:
-        z, meta = got
-        return sp.csr_matrix((z["data"], z["indices"], z["indptr"]), shape=tuple(meta["shape"]),
-                             copy=False)
-    A = make().tocsr()
+        return got
+    arrays, meta = make()
+    meta = dict(meta, key=key)
     try:
-        save(path, {"data": A.data, "indices": A.indices, "indptr": A.indptr},
-             {"key": key, "shape": list(A.shape)})
+        save(path, arrays, meta)
     except OSError:
         pass
-    return A
+    return arrays, meta
+
+
+def cached_csr(path: Path, key: str, what: str, make):
+    """The sparse CSR matrix ``make()`` cached at ``path`` under ``key`` (``cached``)."""
+    import scipy.sparse as sp
+
+    def arrays():
+        A = make().tocsr()
+        return {"data": A.data, "indices": A.indices, "indptr": A.indptr}, \
+            {"shape": list(A.shape)}
+    z, meta = cached(path, key, what, arrays)
+    return sp.csr_matrix((z["data"], z["indices"], z["indptr"]), shape=tuple(meta["shape"]),
+                         copy=False)

@@ -164,7 +164,8 @@ def _prebuild(v, plan, zones, bands, grown_before, options, cache_dir):
 
 
 def _reusable(reuse, variant, options) -> dict:
-    """{zone name: (SubModel, times grown)} of ``reuse`` that a solve of ``variant`` with
+    """{zone name: (SubModel, times grown)} of ``reuse`` that a solve of ``variant`` (as the
+    submodels see it: with the seed's load case applied where ``options`` asks) with
     ``options`` can take as they are: the same variant and options but spin softening (a
     submodel's stiffness has none: its softening enters as loads from the global motion,
     ``submodel.load_vector``), and a submodel built with softening (its seats' softening rows)
@@ -172,12 +173,11 @@ def _reusable(reuse, variant, options) -> dict:
     from dataclasses import replace
     if reuse is None:
         return {}
-    v = variant.with_seed_load_case() if options.seed_load_case else variant
     out = {}
     for (sub, _), info in zip(reuse.fields, reuse.zones, strict=True):
         o = sub.options
         # the variant itself compared (a Variant made in Python has no content hash)
-        if (sub.variant is v or sub.variant == v) \
+        if sub.variant == variant \
                 and replace(o, spin_softening=options.spin_softening) == options \
                 and (o.spin_softening or not options.spin_softening):
             out[sub.zone.name] = (sub, info.grown)
@@ -220,7 +220,7 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
     subs: dict = {}
     fields_of: dict = {}                  # (zone, global solution, speed) -> SubField
     # the zones' submodels start building now, beside the global solve (``_prebuild``)
-    ready = _reusable(reuse, variant, options)
+    ready = _reusable(reuse, v, options)
     pool, pre = _prebuild(v, plan, [z for z in zones if z.name not in ready], bands,
                           grown_before, options, cache_dir)
     try:

@@ -201,18 +201,12 @@ def located(sub: SubModel, mesh):
     if not (sub.shaft_mesh.key and mesh.key):
         return pointeval.locate(mesh, x, r)
     key = hashlib.sha256(f"{sub.shaft_mesh.key}|{mesh.key}|locate-1".encode()).hexdigest()
-    path = paths.cache_dir(sub.cache_dir) / f"zoneloc-{key[:24]}.npz"
-    got = cachefile.load(path, key, "zone location") if path.exists() else None
-    if got is not None:
-        z = got[0]
-        return z["e"], z["xi"], z["eta"], z["found"]
-    loc = pointeval.locate(mesh, x, r)
-    try:
-        cachefile.save(path, dict(zip(("e", "xi", "eta", "found"), loc, strict=True)),
-                       {"key": key})
-    except OSError:
-        pass                                   # a read-only cache only costs the time
-    return loc
+    names = ("e", "xi", "eta", "found")
+    z, _ = cachefile.cached(paths.cache_dir(sub.cache_dir) / f"zoneloc-{key[:24]}.npz", key,
+                            "zone location",
+                            lambda: (dict(zip(names, pointeval.locate(mesh, x, r),
+                                              strict=True)), {}))
+    return tuple(z[n] for n in names)
 
 
 def _global_field(sub: SubModel, gsol) -> np.ndarray:
