@@ -194,6 +194,8 @@ CASES: dict[str, tuple[list[str], list[str]]] = {
                             "{W}/o"], ["--level"]),
     "static_zoned_estimate_error": (["static", "--variant", "x2_57", "--estimate-error",
                                      "--out", "{W}/o"], ["--estimate-error", "--model solid"]),
+    "report_default_zoned_estimate_error": (["report", "--estimate-error", "--out", "{W}/o"],
+                                             ["--estimate-error", "--model solid", "zoned"]),
     "static_zoned_body_force": (["static", "--variant", "x2_57", "--body-force", "--out",
                                  "{W}/o"], ["--body-force", "--model solid"]),
     "static_model_bogus": (["static", "--variant", "x2_57", "--model", "shell", "--out",

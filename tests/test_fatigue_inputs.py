@@ -272,17 +272,31 @@ def test_the_fkm_table_of_a_constant_speed_has_no_nan_and_says_no_load_cycles():
     (row,) = so.fkm_rows(_fkm_stub(3, 0.5))
     assert row[15] == so.NONE and row[16] == "∞" and row[4] == "0.500"
     assert so.FKM_G_NOTE not in so.fkm_notes(_fkm_stub(3, 0.5))
+    # the stub's region is a keyway: sharp-edged, its row marked and the mark explained
+    assert row[0] == "keyway:cw2_seat:0†" and so.FKM_KEYWAY_NOTE in notes
 
 
-def test_the_default_static_model_follows_the_variants_loads():
-    """Without --model: the zoned model, or the full 3D model for a variant with a load that
-    does not scale with rpm² (its per-pattern fields; geometry/examples/x2_57_driven.toml has
-    an alpha_rad_s2 mesh load); a model given is kept."""
-    from shaftfe.fatigue.run import default_model, resolve_model
+def test_the_seed_method_on_a_given_field_says_it_scales_every_load_with_rpm2(monkeypatch):
+    """The report hands the seed method its one static field, which is scaled by (rpm/ref)²
+    as a whole: for x2_57_driven (a run-up torque ∝ the angular acceleration) that is said, not
+    done silently (``shaftfe fatigue --method seed`` assesses the patterns one by one)."""
+    import shaftfe.fatigue.run as fr
+    from shaftfe.fatigue.methods import AssessmentInputs, get_method
     from shaftfe.model.loader import load_variant
-    from shaftfe.util.paths import GEOMETRY_DIR
-    x257 = load_variant("x2_57")
+    from shaftfe.util.notices import collecting
+    from shaftfe.util.paths import DEFAULT_SPECTRUM, GEOMETRY_DIR
+
+    class Reached(Exception):
+        pass
+
+    def stop(*args, **kwargs):
+        raise Reached
+
+    monkeypatch.setattr(fr, "run_fatigue", stop)            # the warning is all this test reads
     driven = load_variant(str(GEOMETRY_DIR / "examples" / "x2_57_driven.toml"))
-    assert default_model(x257) == "zoned" and default_model(driven) == "solid"
-    assert resolve_model(FatigueJob("x"), driven).model == "solid"
-    assert resolve_model(FatigueJob("x", model="axisymmetric"), driven).model == "axisymmetric"
+    history = fr.read_spectrum(str(DEFAULT_SPECTRUM), None, None)
+    inputs = AssessmentInputs.one_channel(driven, history, field=object())
+    with collecting(echo=False) as box, pytest.raises(Reached):
+        get_method("seed").assess(inputs, FatigueJob("x", model="zoned"))
+    (n,) = [n for n in box if n.code == "loads-scaled-as-rpm2"]
+    assert "mesh_run_up" in n.text and "scaled with rpm²" in n.text

@@ -155,10 +155,19 @@ def test_the_report_on_the_zoned_model(tmp_path, cache, monkeypatch):
     import meshio
 
     from shaftfe.cli import main
+    from shaftfe.util.paths import GEOMETRY_DIR
     monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(cache))
+    for f in cache.glob("surface-*"):               # the report's own entry is looked for below
+        f.unlink()
     out = tmp_path / "rep"
     assert main(["report", "--variant", "x2_57", "--level", "coarse", "--model", "zoned",
                  "--no-pictures", "--no-spin-softening", "--json", "--out", str(out)]) == 0
+    # compute once: `shaftfe fatigue` on the same model reads the report's surface reference
+    assert len(list(cache.glob("surface-*.npz"))) == 1
+    rpm = str(GEOMETRY_DIR.parent / "loadspectra" / "rpm.dat")
+    assert main(["fatigue", rpm, "--level", "coarse", "--no-spin-softening", "--method",
+                 "seed", "--json", "--out", str(tmp_path / "fat")]) == 0
+    assert json.loads((tmp_path / "fat" / "summary.json").read_text())["static"]["from_cache"]
     s = json.loads((out / "summary.json").read_text())
     st = s["static"]
     assert st["model"] == "zoned" and [z["name"] for z in st["zones"]]
@@ -230,7 +239,7 @@ def test_the_surface_reference_is_read_back_from_its_cache(tmp_path, cache, monk
     assert [g["static"]["from_cache"] for g in got] == [False, True]
     assert got[0]["static"]["model"] == "zoned"
     assert got[0]["regions"] == got[1]["regions"]
-    assert len(list((tmp_path / "c").glob("surface-*.probe.npz"))) == 1
+    assert len(list((tmp_path / "c").glob("surface-*.npz"))) == 1      # one file an entry
     assert main(["fatigue", rpm, "--level", "coarse", "--json", "--out",
                  str(tmp_path / "f2")]) == 0                   # spin softening: a new entry
-    assert len(list((tmp_path / "c").glob("surface-*.probe.npz"))) == 2
+    assert len(list((tmp_path / "c").glob("surface-*.npz"))) == 2

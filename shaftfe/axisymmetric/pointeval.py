@@ -12,6 +12,8 @@ FE field (it is the field), up to the point location's Newton tolerance (1e-12 o
 
 from __future__ import annotations
 
+from functools import cached_property
+
 import numpy as np
 
 from shaftfe.axisymmetric import kernels as kn
@@ -85,15 +87,20 @@ def displacement_at(sol, xyz: np.ndarray, loc=None) -> np.ndarray:
 
 class StressField:
     """The stress of a solved model ``sol`` at any points, with each harmonic's nodal averages
-    (``recovery.nodal_average``) and the element tree made once: for many calls on one solution
-    (the FKM stress profiles of ``axisymmetric.reference.SurfaceProbe``)."""
+    (``recovery.nodal_average``) and the element tree made once, when first needed: for many
+    calls on one solution (the FKM stress profiles of ``axisymmetric.reference.SurfaceProbe``)."""
 
     def __init__(self, mesh, amplitudes):
         """``mesh``: anything with the meridian mesh's ``xr``, ``tri`` and ``n_elements``;
         ``amplitudes``: [(n, sym (6, n_nodes), anti (6, n_nodes) | None)] per harmonic."""
         self.mesh = mesh
-        self.tree = element_tree(mesh)
         self.amplitudes = list(amplitudes)
+
+    @cached_property
+    def tree(self):
+        """The element tree, made on the first ``at`` (storing or reading the field needs
+        none: the seed method never asks, and scipy.spatial is then not imported)."""
+        return element_tree(self.mesh)
 
     @classmethod
     def of(cls, sol) -> StressField:

@@ -30,6 +30,7 @@ from shaftfe.axisymmetric.solve import (
     seat_edge_band,
     surface_sigma,
 )
+from shaftfe.model.loads import factored_loads, pattern_label, solve_pattern
 
 
 def local_to_cartesian(s: np.ndarray, tangent: np.ndarray, sign: np.ndarray,
@@ -75,26 +76,71 @@ def _triangles(S, keep: np.ndarray, q: int) -> tuple[np.ndarray, np.ndarray]:
     return tri, cur
 
 
+def pattern_groups(variant, components) -> tuple[tuple[tuple, np.ndarray, dict], ...]:
+    """(key, factors, info) of each load pattern of a static solve (``model.loads.
+    solve_pattern``: the full 3D model's ``static.model.LoadPattern`` keys) made of the
+    axisymmetric solve's components (``model.Component``, one column each): ``factors`` picks
+    the pattern's components at their written magnitudes (``model.superpose``); ``info`` is the
+    pattern as fatigue's per-pattern fields name it (``StaticReference.patterns``)."""
+    factored = factored_loads(variant)
+    keys: dict[tuple, list] = {}
+    for j, c in enumerate(components):
+        keys.setdefault(solve_pattern(c.pattern, c.factor_name, factored), []).append(j)
+    out = []
+    for key, js in keys.items():
+        c = components[js[0]]
+        f = np.zeros(len(components))
+        f[js] = 1.0
+        out.append((key, f, {"key": pattern_label(key), "scales_with": c.scales_with,
+                             "ref_rpm": c.ref_rpm, "channel_ref": c.channel_ref,
+                             "factor_name": c.factor_name if c.factor_name in factored
+                             else ""}))
+    return tuple(out)
+
+
+def cartesian_surface_stress(sol, keep: np.ndarray, theta: np.ndarray) -> np.ndarray:
+    """(6, k q) Cartesian surface stress of ``sol`` at outline nodes ``keep`` × angles
+    ``theta`` (point = j · q + i)."""
+    S = sol.surface
+    return local_to_cartesian(surface_sigma(sol, keep, theta), S.tangent[:, keep],
+                              S.sign[keep], theta).reshape(6, -1)
+
+
+def pattern_views(res) -> tuple[tuple, tuple]:
+    """(patterns, views) of an ``AxiResult``: every load pattern's info (``pattern_groups``),
+    and, where a pattern's law is not rpm² (fatigue's per-pattern path, ``fatigue.
+    channel_run``) and the solve is unsoftened, (key, info, the solution of that pattern alone
+    at its written magnitudes) for each (``model.superpose``); else no views. A softened
+    solve's columns are softened, so fatigue takes these from its unsoftened solve
+    (``fatigue.run.surface_reference``), as the full 3D model's reference holds unsoftened
+    per-pattern stresses."""
+    from shaftfe.axisymmetric.model import superpose
+    sol = res.solution
+    cols = getattr(sol, "columns", None)
+    if cols is None:
+        return (), ()
+    # the solved variant itself (``res.variant`` is its name): its load cases split patterns
+    groups = pattern_groups(sol.variant, cols.components)
+    infos = tuple(g[2] for g in groups)
+    if res.options.spin_softening or all(i["scales_with"] == "rpm2" for i in infos):
+        return infos, ()
+    return infos, tuple((key, info, superpose(sol, f)) for key, f, info in groups)
+
+
 def static_reference(res, seconds: float | None = None):
     """The ``StaticReference`` (see the module docstring) of an ``AxiResult`` at its
-    reference speed."""
+    reference speed, with the per-pattern fields of ``pattern_views``."""
     from shaftfe.static.cache import StaticReference
-    from shaftfe.util.notices import warn
     t0 = time.perf_counter()
     sol = res.solution
-    other = [c.factor_name for c in getattr(sol.columns, "components", ())
-             if c.scales_with != "rpm2"]
-    if other:        # the fatigue stage scales a reference ∝ rpm²: say what does not
-        warn("reference-not-rpm2", "axisymmetric fatigue reference", f"the loads "
-             f"{', '.join(other)} do not scale with rpm²; the reference holds them at their "
-             f"{res.ref_rpm:g} rpm values and a speed-scaled history scales them ∝ rpm² too")
     mesh, S = sol.mesh, sol.surface
     keep = np.nonzero(~S.on_axis)[0]
     theta = rc.theta_grid()
     q = theta.size
-    sig = local_to_cartesian(surface_sigma(sol, keep, theta), S.tangent[:, keep],
-                             S.sign[keep], theta)
-    stress = sig.reshape(6, -1)                                     # point = j · q + i
+    stress = cartesian_surface_stress(sol, keep, theta)
+    patterns, views = pattern_views(res)
+    pattern_stress = {info["key"]: cartesian_surface_stress(view, keep, theta)
+                      for _, info, view in views}
     x, r = mesh.xr[:, S.nodes[keep]]
     xyz = np.stack([np.repeat(x, q), (r[:, None] * np.cos(theta)).ravel(),
                     (r[:, None] * np.sin(theta)).ravel()])
@@ -139,7 +185,8 @@ def static_reference(res, seconds: float | None = None):
         notes=(*res.notes, f"axisymmetric model: fatigue on the revolved surface "
                f"({keep.size} outline nodes × {q} angles), surface-recovered stresses"),
         relative_residual=res.run.get("relative_residual"),
-        depth_probe=SurfaceProbe(sol, keep, theta))
+        depth_probe=SurfaceProbe(sol, keep, theta), patterns=patterns,
+        pattern_stress=pattern_stress)
 
 
 class SurfaceProbe:

@@ -400,7 +400,10 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
     if options.spin_softening:
         notes.append(f"spin softening included: each attachment's m ω² u at {ref_rpm:g} rpm "
                      "(its seat's translation; its tilt left out)")
-    return AxiResult(v.name, v.content_hash, options, ref_rpm, sol.mesh.n_nodes,
+    # the fields kept (``solution``, the axis) are the first speed's where the loads are not
+    # all ∝ rpm²: that speed is the result's reference, as its fatigue reference says
+    return AxiResult(v.name, v.content_hash, options, ref_rpm if proportional else rpms[0],
+                     sol.mesh.n_nodes,
                      sol.mesh.n_elements, tuple(h.n for h in sol.harmonics),
                      sol.truncation_change, omitted, tuple(cases), ax_x, ax_u, sol,
                      tuple(notes), run)

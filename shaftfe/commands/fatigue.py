@@ -80,8 +80,8 @@ def register(sub) -> None:
     opt("--kf", "fatigue strength factor in (0, 1] multiplying the S-N curve (default 1)",
         type=float)
     opt("--model", "static model: zoned (default: the axisymmetric surface with 3D zones at "
-        "the keyways and the hex socket; solid for a variant with a load not ∝ rpm², whose "
-        "per-pattern fields only the 3D model gives) | solid (3D P2 tets) | axisymmetric "
+        "the keyways and the hex socket; per-pattern fields for loads not ∝ rpm²) | solid "
+        "(3D P2 tets) | axisymmetric "
         "(Fourier harmonics on the revolved surface; keyways and the hex socket left out)")
     opt("--level", "mesh level: " + " | ".join(LEVEL_NAMES)
         + " (axisymmetric: coarse | default | fine; default: default)")
@@ -132,7 +132,7 @@ def run(args) -> int:
                     enabled=False if args.json else None)
     with prog.stage("history"):
         got = load_inputs(job)
-    job = resolve_model(job, got.variant)
+    job = resolve_model(job)
     inputs = AssessmentInputs.one_channel(got.variant, got.history)
     v = inputs.variant
     out = Path(args.out) if args.out else \

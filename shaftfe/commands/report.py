@@ -42,7 +42,7 @@ def register(sub) -> None:
     p.add_argument("--level", default="default", help="mesh level: coarse | default | fine")
     p.add_argument("--model", default=None,
                    help="static model: zoned (default: the axisymmetric model with 3D zones "
-                   "where the shaft is not round; solid for a variant with a load not ∝ rpm²) "
+                   "where the shaft is not round) "
                    "| solid (3D P2 tets) | axisymmetric (Fourier harmonics on a meridian mesh; "
                    "keyways and the hex socket left out)")
     p.add_argument("--rotor-model", default="beam",

@@ -182,7 +182,7 @@ def _run_axisymmetric(args, rpms, variant) -> int:
         res = solve_axisymmetric(variant, rpms, opts, case=getattr(args, "case", None))
         summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
     return _report(args, summary, lambda: (_print_overrides(variant),
-                                           _print_axi(res, opts, out, _corners(variant))))
+                                           _print_axi(res, opts, out, _shoulders(variant))))
 
 
 def _options(args):
@@ -222,7 +222,7 @@ def _run_zoned(args, rpms, variant) -> int:
 
 
 def _print_zoned(res, opts, out, corners=()) -> None:
-    from shaftfe.solid.plan import sharp_mark
+    from shaftfe.solid.plan import SharpKeywayEdge, sharp_mark
     g = res.global_result
     print(f"variant {res.variant}: zoned — axisymmetric global ({g.n_nodes} meridian nodes, "
           f"harmonics n = 0..{g.harmonics[-1]}) + {len(res.zones)} 3D P{opts.order} submodel"
@@ -248,7 +248,9 @@ def _print_zoned(res, opts, out, corners=()) -> None:
         print_table(["station", "x mm", "deflection µm"],
                     [r[:3] for r in _station_rows(c.stations, {})])
         rows = [[p.region, p.model, p.von_mises_MPa, p.max_principal_MPa, p.xyz_mm[0],
-                 sharp_mark(corners, p.xyz_mm)]
+                 sharp_mark(corners if p.model != "axisymmetric" else
+                            [c for c in corners if not isinstance(c, SharpKeywayEdge)],
+                            p.xyz_mm)]
                 for p in c.peaks if p.kind not in ("end", "seat", "bearing_seat")
                 and p.region != "surface"]
         print_table(["region", "model", "von Mises MPa", "max principal MPa", "x mm", "note"],
@@ -294,13 +296,24 @@ def _at_rest(rpm: float) -> None:
         print(f"note: {AT_REST_NOTE}")
 
 
-def _corners(variant) -> tuple:
+def _shoulders(variant) -> tuple:
+    """The sharp shoulder corners alone (the axisymmetric model has no keyway)."""
     from shaftfe.solid.plan import sharp_corners
     return sharp_corners(variant)
 
 
+def _corners(variant) -> tuple:
+    """What a printed peak may sit on and be no converged stress: the sharp shoulder corners
+    and the keyways' sharp bottom edges (``solid.plan.sharp_mark``)."""
+    from shaftfe.solid.plan import sharp_corners, sharp_keyway_edges
+    return (*sharp_corners(variant), *sharp_keyway_edges(variant))
+
+
 def _whole_mark(corners) -> str:
-    """The whole-shaft peak's mark: not the shaft's maximum when a corner is singular."""
+    """The whole-shaft peak's mark: not the shaft's maximum when a corner is singular (a
+    sharp shoulder: unbounded; a keyway edge only marks a peak on it)."""
+    from shaftfe.solid.plan import SharpCorner
+    corners = [c for c in corners if isinstance(c, SharpCorner)]
     if not corners:
         return ""
     return "not bounded: sharp corner " + ", ".join(c.region for c in corners)
@@ -356,8 +369,8 @@ def _print_tables(res, opts, out, corners=()) -> None:
                 for p in c.peaks if kind_of(p.region) != "end"]
         rows.append(["whole shaft", c.peak_von_mises_MPa, "-", c.peak_von_mises_xyz_mm[0],
                      c.peak_von_mises_unfiltered_MPa, "-",
-                     _whole_mark(corners) or ("not bounded: a fillet not resolved"
-                                              if unresolved else "")])
+                     _whole_mark(corners) or sharp_mark(corners, c.peak_von_mises_xyz_mm)
+                     or ("not bounded: a fillet not resolved" if unresolved else "")])
         print_table(["region", "von Mises MPa", "max principal MPa", "x mm",
                      "unfiltered MPa", "error vs truth %", "note"], rows)
         print(f"peaks: the {PEAK_FIT_LABEL} (result.vtu, `shaftfe view` and the pictures hold "

@@ -50,8 +50,7 @@ OPTIONS: dict[str, tuple[str, object]] = {
     "--equivalent": ("equivalent", "von_mises"),
     "--material": ("material", None),        # None: the variant's (sn.variant_card)
     "--kf": ("kf", 1.0),
-    "--model": ("model", None),              # None: fatigue.run.resolve_model (zoned, or
-    #                                          solid where a load is not ∝ rpm²)
+    "--model": ("model", None),              # None: fatigue.run.resolve_model (zoned)
     "--level": ("level", "default"),
     "--exclude-mm": ("exclude_mm", 0.0),
     "--seed-load-case": ("seed_load_case", False),

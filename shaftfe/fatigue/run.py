@@ -79,7 +79,7 @@ class FatigueJob:
     seed_load_case: bool = False
     cache_dir: str | None = None
     model: str | None = None               # static model: zoned | solid | axisymmetric;
-    #                                        None: ``resolve_model`` once the variant is read
+    #                                        None: ``resolve_model`` (zoned)
     spin_softening: bool = True            # the parts' m ω² u (static model; README)
     overrides: tuple[str, ...] = ()        # --set PATH=VALUE on the variant (model.overrides)
     design_life_h: float | None = None     # hours of riding; with design_life=None
@@ -160,7 +160,6 @@ def resolve_design_life(job: FatigueJob, history, duty=None) -> FatigueJob:
     history's block length, each within ``design_life_range`` of this history; when neither is
     given, the variant's ``duty`` design life, else 1e7 blocks (the seed's, said in a
     warning)."""
-    from dataclasses import replace
     if job.design_life is None and job.design_life_h is None:
         if duty is not None and (duty.design_life_blocks or duty.design_life_h):
             job = replace(job, design_life=duty.design_life_blocks,
@@ -219,19 +218,12 @@ def check_model_level(model: str, level: str, allowed: tuple[str, ...] = MODELS)
 DEFAULT_MODEL = "zoned"
 
 
-def default_model(variant) -> str:
-    """The static model of a run that names none (``shaftfe fatigue``, ``report``, ``demo``):
-    the zoned model, or the full 3D model for a variant with a load that does not scale with
-    rpm² (the seed method then assesses each load pattern with its own history, on the
-    per-pattern fields only the 3D model's reference holds, ``fatigue.channel_run``)."""
-    other = any(getattr(ld, "scales_with", "rpm2") != "rpm2" for ld in variant.loads)
-    return "solid" if other else DEFAULT_MODEL
-
-
-def resolve_model(job: FatigueJob, variant) -> FatigueJob:
-    """``job`` with its static model (``default_model``) when --model was not given."""
-    from dataclasses import replace
-    return job if job.model is not None else replace(job, model=default_model(variant))
+def resolve_model(job: FatigueJob) -> FatigueJob:
+    """``job`` with its static model, ``DEFAULT_MODEL`` when --model was not given: the zoned
+    model for every variant (a load that does not scale with rpm² too: its reference holds the
+    per-pattern fields the seed method assesses, ``fatigue.channel_run``, as the full 3D
+    model's does)."""
+    return job if job.model is not None else replace(job, model=DEFAULT_MODEL)
 
 
 def check_job(job: FatigueJob) -> None:
@@ -345,7 +337,7 @@ def static_reference(variant, job: FatigueJob):
     static cache (solved once when missing), or the axisymmetric or zoned one on its surface
     (``axisymmetric.reference``, ``zoned.reference``) from the surface cache
     (``fatigue.surface_cache``; solved, softened and unsoftened, when missing)."""
-    job = resolve_model(job, variant)
+    job = resolve_model(job)
     if job.model in ("axisymmetric", "zoned"):
         return _cached_surface_reference(variant, job)
     from shaftfe.static import cache as static_cache
@@ -368,10 +360,8 @@ def _cached_surface_reference(variant, job: FatigueJob):
     ref = surface_cache.load(job.model, variant, opts, REF_RPM, job.cache_dir)
     if ref is not None:
         return ref
-    t0 = time.perf_counter()
     ref = surface_reference(lambda o: reference(solve(variant, REF_RPM, o,
                                                       cache_dir=job.cache_dir)), opts)
-    ref = replace(ref, seconds=time.perf_counter() - t0)
     return surface_cache.store(ref, job.model, variant, opts, job.cache_dir)
 
 
@@ -414,7 +404,6 @@ def surface_reference(make, opts):
     time), with spin softening also the unsoftened stress on the same points (fatigue's
     S0 (λ + β λ²)): a second solve; the zoned one starts from the zones the first grew to, and
     points that differ anyway are refused in one line."""
-    from dataclasses import replace
 
     import numpy as np
 
@@ -429,8 +418,11 @@ def surface_reference(make, opts):
                               "--no-spin-softening or --model solid")
         # the unsoftened field is the linear one (∝ rpm²) at its own reference speed, which
         # need not be the softened one's (a report at its design speed): taken to that speed
+        # and each load pattern's stress is the unsoftened solve's (at its written
+        # magnitudes, as the full 3D reference holds it: ``fatigue.channel_run``)
         ref = replace(ref, stress_linear=lin.stress_ref * rpm2_scale(ref.ref_rpm,
-                                                                     lin.ref_rpm))
+                                                                     lin.ref_rpm),
+                      patterns=lin.patterns, pattern_stress=lin.pattern_stress)
     return replace(ref, seconds=time.perf_counter() - t0)
 
 
@@ -450,8 +442,7 @@ def run_fatigue(job: FatigueJob, inputs: FatigueInputs | None = None,
         with stage("history"):
             inputs = load_inputs(job)
     history, material, variant = inputs.history, inputs.material, inputs.variant
-    from dataclasses import replace
-    job = replace(resolve_model(job, variant), material=material.name)
+    job = replace(resolve_model(job), material=material.name)
     given = ref is not None
     if not (given and job.design_life is not None):
         # a caller with its own field (the report, a study) has checked its design life

@@ -100,7 +100,7 @@ def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None, progress=None):
     )
     check_options(opts)
     inputs = inputs or load_inputs(job)
-    job = resolve_design_life(resolve_model(job, inputs.variant), inputs.history,
+    job = resolve_design_life(resolve_model(job), inputs.history,
                               inputs.variant.duty)
     card = strength_card(inputs.variant, opts)
     def stage(name):

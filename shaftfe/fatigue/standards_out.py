@@ -8,6 +8,7 @@ import math
 from shaftfe.fatigue import din743 as din
 from shaftfe.fatigue.assess import life_hours
 from shaftfe.fatigue.methods import METHODS
+from shaftfe.solid.features import kind_of
 from shaftfe.util.fmt import NO_FINITE_LIFE, big, json_clean, life, life_h_km, life_reason
 
 NONE = "—"        # a value the assessment has not got (nan): printed as this, never as "nan"
@@ -40,6 +41,11 @@ def _g(G: float) -> str:
     return f"{G:.3f}" + ("*" if G < 0 else "")
 
 
+def _region(name: str) -> str:
+    """A region's name, marked '†' on a sharp-edged keyway (``FKM_KEYWAY_NOTE``)."""
+    return name + ("†" if kind_of(name) == "keyway" else "")
+
+
 def fkm_rows(res) -> list[list]:
     """The FKM table's rows; with no load cycles the columns of the cycles (K_AK of the largest
     cycle, the safeties, the utilisation, the life) are ``NONE``."""
@@ -53,7 +59,8 @@ def fkm_rows(res) -> list[list]:
                    [_f(c.K_AK_largest, ".3f"), *(_f(c.safety[k]) for k in
                                           ("elementary", "modified", "consistent")),
                     _f(c.utilisation[res.rule]), life(c.life_blocks[res.rule])])
-            rows.append([r.region, c.layer, f"{r.xyz_mm[0]:.2f}", f"{c.sigma_ref_MPa:+.1f}",
+            rows.append([_region(r.region), c.layer, f"{r.xyz_mm[0]:.2f}",
+                         f"{c.sigma_ref_MPa:+.1f}",
                          _g(c.G_per_mm), f"{c.n:.3f}", f"{c.K_d:.3f}", f"{c.R_m_MPa:.0f}",
                          f"{c.sigma_W_zd_MPa:.0f}", f"{c.Rz_um:g}", f"{c.K_R:.3f}",
                          f"{c.K_V:g}", f"{c.K_WK:.3f}", f"{c.sigma_WK_MPa:.0f}",
@@ -75,11 +82,20 @@ FKM_G_NOTE = ("G* < 0: the von Mises stress rises inward from the surface (the n
               "n_σ = 1 (FKM: n_σ ≥ 1 only for a stress falling inward)")
 
 
+FKM_KEYWAY_NOTE = ("† a sharp-edged keyway (no bottom radius is modelled): its local stress "
+                   "grows with mesh refinement (reports/benchmarks/keyway_edge.md), so the row "
+                   "is a value of the mesh, not a converged assessment; --method din743 "
+                   "assesses a keyway by its notch factor")
+
+
 def fkm_notes(res) -> list[str]:
-    """The lines under the FKM table: the sign convention and what a negative gradient does."""
+    """The lines under the FKM table: the sign convention, what a negative gradient does, and
+    what a keyway's row is."""
     out = [FKM_SIGN_NOTE]
     if any(c is not None and c.G_per_mm < 0 for r in res.regions for c in (r.surface, r.core)):
         out.append(FKM_G_NOTE)
+    if any(kind_of(r.region) == "keyway" for r in res.regions):
+        out.append(FKM_KEYWAY_NOTE)
     return out
 
 

@@ -105,8 +105,8 @@ class _vtk_quiet:
     """Silence VTK's own error printing (we report errors ourselves)."""
 
     def __enter__(self):
-        import vtk
-        self._obj = vtk.vtkObject
+        from vtkmodules.vtkCommonCore import vtkObject  # not `import vtk`: all of VTK, 0.6 s
+        self._obj = vtkObject
         self._prev = self._obj.GetGlobalWarningDisplay()
         self._obj.GlobalWarningDisplayOff()
         return self

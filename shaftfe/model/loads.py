@@ -286,6 +286,23 @@ def pattern_key(item: Action | BodyAction | Load) -> tuple:
     return (item.scales_with, float(item.channel_ref))
 
 
+def factored_loads(variant) -> frozenset:
+    """The loads a load case factors on its own (each then a pattern of its own)."""
+    return frozenset(k for c in getattr(variant, "load_cases", ()) for k, _ in c.factors)
+
+
+def solve_pattern(pattern: tuple, own: str, factored) -> tuple:
+    """The key of one right-hand side of a static solve: the law's ``pattern_key``, split by
+    the load's name ``own`` where a case factors it alone (``factored_loads``)."""
+    return (*pattern, "load", own) if own in factored else tuple(pattern)
+
+
+def pattern_label(key: tuple) -> str:
+    """A readable, unique name of a pattern key (summary.json, the caches, fatigue's
+    per-pattern fields: the full 3D, axisymmetric and zoned models name them alike)."""
+    return ":".join(f"{k:g}" if isinstance(k, float) else str(k) for k in key)
+
+
 def quadrature(a: Action) -> Action:
     """The action turned by +90° about the axis: with ``a`` it spans every phase of a load
     fixed in space (σ(φ) = cos φ σ(a) + sin φ σ(quadrature(a)), linear elasticity)."""

@@ -28,6 +28,7 @@ matplotlib / pyvista are imported inside the functions.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 from shaftfe.fatigue.methods import DEFAULT_METHOD
@@ -59,7 +60,7 @@ from shaftfe.report.stages import (
 from shaftfe.static.benchmark import benchmark_errors
 from shaftfe.util.notices import collected
 from shaftfe.util.paths import repo_relative
-from shaftfe.util.units import rpm2_scale
+from shaftfe.util.units import REF_RPM, rpm2_scale
 
 # --------------------------------------------------------------------------- validation
 
@@ -125,7 +126,9 @@ def _static(o: ReportOptions, variant, prog):
 def _surface_static(o: ReportOptions, variant, prog):
     """The axisymmetric or zoned solve at the design speeds and its surface reference, the
     fatigue input (with spin softening also the unsoftened stress, ``fatigue.run.
-    surface_reference``: one more solve at the first design speed)."""
+    surface_reference``: one more solve at the first design speed), stored in the surface
+    cache when it is at the speed ``shaftfe fatigue`` reads (as ``_static`` stores the full 3D
+    model's)."""
     from shaftfe.fatigue.run import surface_model, surface_reference
     opts, solve, reference = surface_model(o.model, level=o.level,
                                            seed_load_case=o.seed_load_case,
@@ -139,6 +142,9 @@ def _surface_static(o: ReportOptions, variant, prog):
         return reference(solved[op.spin_softening])
     with prog.stage("static (mesh + one solve)"):
         ref = surface_reference(make, opts)
+        if math.isclose(ref.ref_rpm, REF_RPM):  # what ``shaftfe fatigue`` reads next
+            from shaftfe.fatigue import surface_cache
+            ref = surface_cache.store(ref, o.model, variant, opts, o.cache_dir)
     return solved[o.spin_softening], ref
 
 
@@ -297,10 +303,10 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         from shaftfe.model.loader import load_variant
         variant = load_variant(o.variant, o.overrides)
         o = with_duty(o, variant)           # what the options leave open, from its [duty]
-        if o.model is None:                 # the static model by the variant's loads
-            from shaftfe.fatigue.run import default_model
-            o = dataclasses.replace(o, model=default_model(variant))
-        check_options(o)
+        if o.model is None:                 # the zoned model, as every command
+            from shaftfe.fatigue.run import DEFAULT_MODEL
+            o = dataclasses.replace(o, model=DEFAULT_MODEL)
+        check_options(o)                    # again: what [duty] filled in
         engine, history, material = read_inputs(o, variant)
         o = _life_in_blocks(o, history)
         prov = provenance_summary(variant)

@@ -56,7 +56,7 @@ class ReportOptions:
     seed_load_case: bool = False          # every part (as every command); True: the seed's F1+Fv2
     model: str | None = None              # static model: zoned | solid | axisymmetric
     #                                       (static.STATIC_MODELS); None: fatigue.run.
-    #                                       default_model once the variant is read
+    #                                       DEFAULT_MODEL (zoned)
     spin_softening: bool = True           # the parts' m ω² u (the seed's study had none)
     allow_overspeed: bool = False         # a spectrum above the engine's max_rpm (warned)
 

@@ -89,6 +89,7 @@ def _warm_up() -> str:
     from shaftfe.io.render import use_offscreen_egl
     use_offscreen_egl()
     import pyvista
+    import pyvista.plotting
     return str(pyvista.__version__)
 
 

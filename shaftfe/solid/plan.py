@@ -484,10 +484,58 @@ def warn_sharp_corners(variant) -> tuple[SharpCorner, ...]:
     return corners
 
 
+@dataclass(frozen=True)
+class SharpKeywayEdge:
+    """A keyway modelled with sharp edges: the variant gives no bottom radius (DIN 6885's r1
+    is not modelled yet). Its bottom edge is re-entrant, where linear elasticity has no finite
+    stress; a peak on the keyway is a value of the mesh. Measured on x2_57's gear-seat keyway
+    (benchmarks/bench_keyway_edge.py → reports/benchmarks/keyway_edge.md): as the keyway
+    edges' element size goes from the default level's down to 1/16 of it, the zoned von Mises
+    peak goes from the top edge of the slot's end to its bottom edge and keeps growing. It is
+    not refused (a keyway is assessed by its notch factor, DIN 743), but a peak on the keyway
+    is marked in ``shaftfe static``'s tables, and FKM's keyway rows are (``fatigue.
+    standards_out``)."""
+    slot: Slot
+    tol_mm: float            # how near the slot a peak is the slot's
+
+    @property
+    def region(self) -> str:
+        return keyway_region(self.slot.segment, self.slot.index)
+
+    @property
+    def mark(self) -> str:
+        return "on a sharp-edged keyway: grows with refinement (not a converged stress)"
+
+    def near(self, xyz) -> bool:
+        """Is the point (x, y, z) on the slot: within ``tol_mm`` of its stadium planform, and
+        no deeper than its bottom plane less ``tol_mm`` (``Slot``)?"""
+        k = self.slot
+        x, y, z = (float(c) for c in xyz)
+        n = y * math.cos(k.angle) + z * math.sin(k.angle)          # along the slot's depth
+        t = -y * math.sin(k.angle) + z * math.cos(k.angle)         # across it
+        if n < k.r - k.depth - self.tol_mm:
+            return False
+        half = 0.5 * k.width
+        ends = (k.x0 + half, k.x1 - half)                          # the round ends' centres
+        xe = min(max(x, ends[0]), ends[1])
+        return math.hypot(x - xe, t) <= half + self.tol_mm
+
+
+def sharp_keyway_edges(variant) -> tuple[SharpKeywayEdge, ...]:
+    """Every keyway, sharp-edged (``SharpKeywayEdge``): every keyway today."""
+    # the tolerance below the 0.5 mm a slot keeps from its segment's ends (``_slots``): a
+    # fillet's peak next to a slot end is the fillet's
+    return tuple(SharpKeywayEdge(k, min(0.2 * k.width, 0.45)) for k in prepare(variant).slots)
+
+
 def sharp_mark(corners, xyz) -> str:
-    """The mark of a printed peak at ``xyz``: "" or why it is not a stress."""
+    """The mark of a printed peak at ``xyz``: "" or why it is not a stress (``corners``: the
+    ``SharpCorner``s and ``SharpKeywayEdge``s of the variant)."""
     hit = next((c for c in corners if c.near(xyz)), None)
-    return f"sharp corner {hit.region}: not a stress" if hit is not None else ""
+    if hit is None:
+        return ""
+    return hit.mark if isinstance(hit, SharpKeywayEdge) else \
+        f"sharp corner {hit.region}: not a stress"
 
 
 def refuse_sharp_corners(variant, what: str) -> None:

@@ -146,11 +146,15 @@ def predicted_mesh_key(variant, options) -> str:
     return mesh_mod.mesh_key(plan, options.level, options.order, mesh_mod.gmsh_version())
 
 
-def static_key(variant, options, mesh_key: str, ref_rpm: float) -> str:
+def static_key(variant, options, mesh_key: str, ref_rpm: float, *,
+               modules: tuple[str, ...] = FINGERPRINT_MODULES, extra: dict | None = None) -> str:
+    """The key of a cache entry: the variant's content, the options, the mesh, the reference
+    speed and the code of ``modules``; ``extra`` adds what tells another kind of entry apart
+    (``fatigue.surface_cache``: its model and format)."""
     opts = {k: v for k, v in dataclasses.asdict(options).items() if k not in _KEY_SKIP_OPTIONS}
     payload = {"format": STATIC_CACHE_FORMAT, "variant_hash": variant_hash(variant),
                "options": opts, "mesh_key": mesh_key, "ref_rpm": float(ref_rpm),
-               "code": code_fingerprint()}
+               "code": code_fingerprint(modules), **(extra or {})}
     text = json.dumps(payload, sort_keys=True, separators=(",", ":"), default=repr)
     return hashlib.sha256(text.encode()).hexdigest()
 
@@ -163,8 +167,8 @@ def variant_hash(variant) -> str:
     return content_hash(variant)
 
 
-def cache_path(key: str, cache_dir=None) -> Path:
-    return paths.cache_dir(cache_dir) / f"static-{key[:24]}.npz"
+def cache_path(key: str, cache_dir=None, kind: str = "static") -> Path:
+    return paths.cache_dir(cache_dir) / f"{kind}-{key[:24]}.npz"
 
 
 def singular_patches(mesh) -> list[np.ndarray]:
@@ -322,7 +326,13 @@ def _float_or_none(v) -> float | None:
     return float(v) if isinstance(v, int | float) and math.isfinite(v) else None
 
 
-def _save(path: Path, ref: StaticReference) -> None:
+EXTRA_PREFIX = "x_"        # arrays another kind of entry stores beside the reference's own
+
+
+def _save(path: Path, ref: StaticReference, extra: dict | None = None,
+          extra_meta: dict | None = None) -> None:
+    """Write ``ref`` as one checksummed file; ``extra``: more arrays in the same file (read
+    back by ``_load_entry``), ``extra_meta`` their description."""
     from shaftfe.util import cachefile
     names = sorted(ref.regions)
     meta = {"format": STATIC_CACHE_FORMAT, "key": ref.key, "variant": ref.variant,
@@ -340,17 +350,33 @@ def _save(path: Path, ref: StaticReference) -> None:
         arrays[f"r{i}"] = ref.regions[n]
     for i, k in enumerate(ref.pattern_stress):
         arrays[f"p{i}"] = ref.pattern_stress[k]
-    cachefile.save(path, arrays, meta)
+    arrays.update({EXTRA_PREFIX + k: v for k, v in (extra or {}).items()})
+    cachefile.save(path, arrays, {**meta, "extra": extra_meta or {}})
 
 
 def _load(path: Path, key: str, name: str, t0: float) -> StaticReference | None:
     """Read a cache file; None (→ recompute) if it is unreadable, truncated, foreign or
     inconsistent."""
+    got = _load_entry(path, key, name, t0)
+    return None if got is None else got[0]
+
+
+def _load_entry(path: Path, key: str, name: str, t0: float, what: str = "static"):
+    """(reference, extra arrays, extra meta) of a cache file (``_save``), or None."""
     from shaftfe.util import cachefile
-    got = cachefile.load(path, key, "static")
+    got = cachefile.load(path, key, what)
     if got is None:
         return None
     z, meta = got
+    ref = _reference(z, meta, key, name, t0)
+    if ref is None:
+        return None
+    extra = {k[len(EXTRA_PREFIX):]: z[k] for k in z if k.startswith(EXTRA_PREFIX)}
+    return ref, extra, dict(meta.get("extra") or {})
+
+
+def _reference(z, meta: dict, key: str, name: str, t0: float) -> StaticReference | None:
+    """The reference of a cache file's arrays and meta; None where they are inconsistent."""
     try:
         if meta.get("format") != STATIC_CACHE_FORMAT:
             return None

@@ -98,7 +98,7 @@ class LoadPattern:
     @property
     def label(self) -> str:
         """A readable, unique name of the pattern (summary.json, the cache)."""
-        return ":".join(f"{k:g}" if isinstance(k, float) else str(k) for k in self.key)
+        return loadmodel.pattern_label(self.key)
 
     def factor(self, rpm: float, case=None) -> float:
         """The pattern's factor in ``case`` (a ``LoadCase``), or at the plain speed ``rpm``:
@@ -366,7 +366,7 @@ def load_patterns(variant, m, options: StaticOptions, rows: dict | None = None, 
     acts, body = loadmodel.actions(variant, seed_placement=options.seed_load_case)
     if keep is not None:
         acts = [a for a in acts if keep(a)]
-    factored = {k for c in getattr(variant, "load_cases", ()) for k, _ in c.factors}
+    factored = loadmodel.factored_loads(variant)
     loads, forces = {}, {}
     vec: dict[tuple, np.ndarray] = {}
     meta: dict[tuple, tuple] = {}
@@ -375,9 +375,7 @@ def load_patterns(variant, m, options: StaticOptions, rows: dict | None = None, 
 
     def add(item, name: str, v: np.ndarray) -> None:
         own = getattr(item, "factor_name", item.name)
-        key = loadmodel.pattern_key(item)
-        if own in factored:
-            key = (*key, "load", own)
+        key = loadmodel.solve_pattern(loadmodel.pattern_key(item), own, factored)
         if key not in vec:
             vec[key] = np.zeros_like(v)
             meta[key] = (item.scales_with, float(item.ref_rpm), float(item.channel_ref),

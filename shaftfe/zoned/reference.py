@@ -21,6 +21,7 @@ from functools import cached_property
 
 import numpy as np
 
+from shaftfe.axisymmetric.reference import pattern_views
 from shaftfe.axisymmetric.reference import static_reference as axi_reference
 from shaftfe.fe import assembly as fem
 from shaftfe.fe import recovery
@@ -75,15 +76,36 @@ def zoned_reference(res, seconds: float | None = None) -> StaticReference:
                       keep))
         probes.append(_ZoneField(m, sf.stress))
     ref = _merge(res, g, parts, seconds, t0)
-    return replace(ref, depth_probe=ZonedProbe([p[-1] for p in parts], probes))
+    keeps = [p[-1] for p in parts]
+    return replace(ref, depth_probe=ZonedProbe(keeps, probes), patterns=g.patterns,
+                   pattern_stress=_pattern_stress(res, g, keeps))
+
+
+def _pattern_stress(res, g, keeps) -> dict:
+    """{label: stress} of each load pattern on the merged points, where the global reference
+    has them (``axisymmetric.reference.pattern_views``): the global model's outside the zones,
+    each submodel's solved for the pattern alone inside (``submodel.pattern_stress``, on its
+    factorised stiffness)."""
+    if not g.pattern_stress:
+        return {}
+    from shaftfe.zoned.submodel import pattern_stress
+    out = {}
+    for key, info, view in pattern_views(res.global_result)[1]:
+        parts = [g.pattern_stress[info["key"]]]
+        parts += [pattern_stress(sub, view, key) for sub, _ in res.fields]
+        out[info["key"]] = np.concatenate([S[:, k] for S, k in zip(parts, keeps, strict=True)],
+                                          axis=1)
+    return out
 
 
 class _ZoneField:
     """A submodel's volume field as ``fatigue.fkm_field.TetProbe`` reads it (its own points,
     P2 cells, boundary triangles and nodal stress), made only when FKM asks for a profile."""
 
-    def __init__(self, mesh, stress: np.ndarray):
+    def __init__(self, mesh=None, stress: np.ndarray | None = None, field=None):
         self.mesh, self.stress = mesh, stress
+        if field is not None:             # read from the surface cache: the arrays as they are
+            self.__dict__["field"] = field
 
     @cached_property
     def field(self):
@@ -123,7 +145,7 @@ class ZonedProbe:
         out = {"owner": self.owner, "local": self.local, "sizes": np.array(self.sizes)}
         out.update({f"g_{k}": v for k, v in self.probes[0].arrays().items()})
         for i, z in enumerate(self.probes[1:], start=1):
-            f = z.field                  # a _ZoneField, or a TetProbe read from the cache
+            f = z.field
             out.update({f"z{i}_xyz": f.xyz, f"z{i}_cells": f.cells,
                         f"z{i}_face_cells": f.face_cells, f"z{i}_stress": f.stress_ref})
         return out
@@ -138,8 +160,8 @@ class ZonedProbe:
         self.sizes = tuple(int(s) for s in a["sizes"])
         self.probes = [SurfaceProbe.from_arrays({k[2:]: v for k, v in a.items()
                                                  if k.startswith("g_")})]
-        for i in range(1, len(self.sizes)):
-            self.probes.append(TetProbe(SimpleNamespace(
+        for i in range(1, len(self.sizes)):       # each TetProbe made when FKM first asks
+            self.probes.append(_ZoneField(field=SimpleNamespace(
                 xyz=a[f"z{i}_xyz"], cells=a[f"z{i}_cells"], face_cells=a[f"z{i}_face_cells"],
                 stress_ref=a[f"z{i}_stress"])))
         return self

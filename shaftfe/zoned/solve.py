@@ -320,6 +320,11 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
     notes.append("no error bars: the 3D levels' bars were measured on whole-shaft meshes and "
                  "the axisymmetric model's error only on x2_57's span fillets "
                  "(reports/benchmarks/zoned.md compares every peak with the full 3D model)")
+    if plan.slots:
+        notes.append("the keyways are sharp-edged (no bottom radius is modelled): a peak on "
+                     "a keyway is a value of the mesh that grows with refinement, not a "
+                     "converged stress (marked where printed; reports/benchmarks/"
+                     "keyway_edge.md)")
     notes += [n for n in first_global.notes if "is not modelled" not in n]
     run = {"plan_seconds": t_plan, "global_seconds": t_global, "zones_seconds": t_zones,
            "total_seconds": time.perf_counter() - t0}

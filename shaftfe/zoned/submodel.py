@@ -215,17 +215,24 @@ def _global_field(sub: SubModel, gsol) -> np.ndarray:
                                      located(sub, gsol.mesh)).T.ravel()
 
 
+def _bearing_loads(sub: SubModel, gsol) -> np.ndarray:
+    """The load vector of the bearings inside the zone: their reactions in ``gsol``."""
+    m = sub.shaft_mesh.mesh
+    f = np.zeros(3 * m.doflocs.shape[1])
+    for name, facets, x in sub.bearings:
+        Fx, Fy, Fz = gsol.reactions[name][:3]
+        f += seat_rows(m, facets, (x, 0.0, 0.0)).T @ np.array([Fx, Fy, Fz, 0.0, 0.0, 0.0])
+    return f
+
+
 def load_vector(sub: SubModel, gsol, rpm: float, case=None, ug=None) -> np.ndarray:
     """The submodel's load vector at the speed ``rpm`` (or in ``case``) for the global
     solution ``gsol`` at that speed: its loads × factors, the bearings' global reactions and
     the spin softening's forces from the global motion."""
     m = sub.shaft_mesh.mesh
-    f = np.zeros(3 * m.doflocs.shape[1])
+    f = _bearing_loads(sub, gsol)
     for p in sub.patterns:
         f += p.factor(rpm, case) * p.f
-    for name, facets, x in sub.bearings:
-        Fx, Fy, Fz = gsol.reactions[name][:3]
-        f += seat_rows(m, facets, (x, 0.0, 0.0)).T @ np.array([Fx, Fy, Fz, 0.0, 0.0, 0.0])
     if sub.options.spin_softening and gsol.softening_N_per_mm:
         w2 = omega(gsol.rpm) ** 2
         ug = _global_field(sub, gsol) if ug is None else ug
@@ -243,7 +250,6 @@ def load_vector(sub: SubModel, gsol, rpm: float, case=None, ug=None) -> np.ndarr
 def solve_speed(sub: SubModel, gsol, rpm: float, case=None) -> SubField:
     """The submodel's field at one speed: cut faces from ``gsol`` (the global solution at
     that speed), loads inside, then stresses, peaks and the cut check."""
-    from shaftfe.fe import surface
     t0 = time.perf_counter()
     m = sub.shaft_mesh.mesh
     mat = sub.variant.material
@@ -252,13 +258,7 @@ def solve_speed(sub: SubModel, gsol, rpm: float, case=None) -> SubField:
     u = displace(sub, ug, f)
     t1 = time.perf_counter()
     grad = recovery.node_gradients(m)                 # one for both fields
-    stress = recovery.nodal_stress(m, u, mat.E_MPa, mat.nu, grad)
-    averaged = stress.copy()
-    surf = None
-    if fem.is_quadratic(m):
-        surf = surface.surface_stress(m, u, mat.E_MPa, mat.nu, sub.free_facets)
-        ok = np.isfinite(surf.stress[0])
-        stress[:, surf.nodes[ok]] = surf.stress[:, ok]
+    stress, averaged, surf = _recover(sub, u, grad)
     peaks = tuple(recovery.peak(stress, m.doflocs, nodes, sub.excluded, name, surf)
                   for name, nodes in sorted(sub.regions.items()))
     stress_g = recovery.nodal_stress(m, ug, mat.E_MPa, mat.nu, grad)
@@ -266,6 +266,35 @@ def solve_speed(sub: SubModel, gsol, rpm: float, case=None) -> SubField:
     t2 = time.perf_counter()
     return SubField(u, stress, peaks, checks, {"solve_seconds": t1 - t0,
                                                "recovery_seconds": t2 - t1})
+
+
+def _recover(sub: SubModel, u: np.ndarray, grad=None):
+    """(stress, averaged, surface) of the submodel's displacement ``u``: the nodal stresses
+    with the free surface's surface-recovered ones (P2), the averaged nodal stresses alone,
+    and the surface recovery (None for P1)."""
+    from shaftfe.fe import surface
+    m = sub.shaft_mesh.mesh
+    mat = sub.variant.material
+    stress = recovery.nodal_stress(m, u, mat.E_MPa, mat.nu, grad)
+    averaged = stress.copy()
+    surf = None
+    if fem.is_quadratic(m):
+        surf = surface.surface_stress(m, u, mat.E_MPa, mat.nu, sub.free_facets)
+        ok = np.isfinite(surf.stress[0])
+        stress[:, surf.nodes[ok]] = surf.stress[:, ok]
+    return stress, averaged, surf
+
+
+def pattern_stress(sub: SubModel, gsol, key: tuple) -> np.ndarray:
+    """(6, N) the submodel's stress under one load pattern alone (``key``: ``model.loads.
+    solve_pattern``) at its written magnitudes, unsoftened: the cut faces from ``gsol`` (the
+    global solution of that pattern alone, ``axisymmetric.model.superpose``), the pattern's
+    loads inside the zone and the bearings' reactions in ``gsol``."""
+    f = _bearing_loads(sub, gsol)
+    for p in sub.patterns:
+        if tuple(p.key) == tuple(key):
+            f += p.f
+    return _recover(sub, displace(sub, _global_field(sub, gsol), f))[0]
 
 
 def displace(sub: SubModel, ug: np.ndarray, f: np.ndarray) -> np.ndarray:
@@ -311,4 +340,4 @@ def cut_error(checks) -> float:
 
 
 __all__ = ["CutCheck", "SubField", "SubModel", "build_submodel", "cut_check", "cut_error",
-           "load_vector", "located", "solve_speed"]
+           "load_vector", "located", "pattern_stress", "solve_speed"]
