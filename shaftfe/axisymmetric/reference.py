@@ -127,9 +127,10 @@ def pattern_views(res) -> tuple[tuple, tuple]:
     return infos, tuple((key, info, superpose(sol, f)) for key, f, info in groups)
 
 
-def static_reference(res, seconds: float | None = None):
+def static_reference(res, seconds: float | None = None, views=None):
     """The ``StaticReference`` (see the module docstring) of an ``AxiResult`` at its
-    reference speed, with the per-pattern fields of ``pattern_views``."""
+    reference speed, with the per-pattern fields of ``pattern_views`` (``views``: its result,
+    when the caller has it already)."""
     from shaftfe.static.cache import StaticReference
     t0 = time.perf_counter()
     sol = res.solution
@@ -138,7 +139,7 @@ def static_reference(res, seconds: float | None = None):
     theta = rc.theta_grid()
     q = theta.size
     stress = cartesian_surface_stress(sol, keep, theta)
-    patterns, views = pattern_views(res)
+    patterns, views = pattern_views(res) if views is None else views
     pattern_stress = {info["key"]: cartesian_surface_stress(view, keep, theta)
                       for _, info, view in views}
     x, r = mesh.xr[:, S.nodes[keep]]

@@ -195,15 +195,16 @@ def lines(run: ChannelRun, summary_: dict, out, files) -> list[str]:
     return p
 
 
-def warn_rpm2_only(variant, method: str) -> None:
-    """A method that scales one field (or one beam solution) by (rpm/ref)²: the variant's loads
-    of other laws are then taken at their reference values and scaled like the rest. Said
-    once, naming them (the seed method assesses them per pattern: ``run_channels``)."""
+def warn_rpm2_only(variant, who: str) -> None:
+    """``who`` (a method, or the seed method on one field a caller gives it: the report, a
+    study) scales one field (or one beam solution) by (rpm/ref)²: the variant's loads of other
+    laws are then taken at their reference values and scaled like the rest. Said once, naming
+    them (``shaftfe fatigue --method seed`` assesses them per pattern: ``run_channels``)."""
     from shaftfe.util.notices import warn
     other = [ld.name for ld in variant.loads if ld.scales_with != "rpm2"]
     if other:
-        warn("loads-scaled-as-rpm2", "fatigue", f"--method {method} scales one stress field by "
+        warn("loads-scaled-as-rpm2", "fatigue", f"{who} scales one stress field by "
              f"(rpm/ref)²: the loads {', '.join(other)} (laws other than rpm2) are taken at "
-             "their reference value and scaled with rpm² too; --method seed assesses each load "
-             "pattern with its own history")
+             "their reference value and scaled with rpm² too; `shaftfe fatigue --method seed` "
+             "assesses each load pattern with its own history")
 

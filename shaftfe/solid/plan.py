@@ -442,6 +442,10 @@ class SharpCorner:
         beyond a few step heights the nominal field of the smaller section is recovered)."""
         return self.r_large - self.r_small
 
+    @property
+    def mark(self) -> str:
+        return f"sharp corner {self.region}: not a stress"
+
     def near(self, xyz) -> bool:
         """Is the point (x, y, z) within ``zone_mm`` of the corner's edge (x, r_small)?"""
         x, y, z = (float(c) for c in xyz)
@@ -532,10 +536,7 @@ def sharp_mark(corners, xyz) -> str:
     """The mark of a printed peak at ``xyz``: "" or why it is not a stress (``corners``: the
     ``SharpCorner``s and ``SharpKeywayEdge``s of the variant)."""
     hit = next((c for c in corners if c.near(xyz)), None)
-    if hit is None:
-        return ""
-    return hit.mark if isinstance(hit, SharpKeywayEdge) else \
-        f"sharp corner {hit.region}: not a stress"
+    return "" if hit is None else hit.mark
 
 
 def refuse_sharp_corners(variant, what: str) -> None:

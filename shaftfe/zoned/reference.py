@@ -42,7 +42,8 @@ def zoned_reference(res, seconds: float | None = None) -> StaticReference:
     """The ``StaticReference`` of a ``ZonedResult`` at its first speed (module docstring)."""
     t0 = time.perf_counter()
     plan = res.plan
-    g = axi_reference(res.global_result)
+    views = pattern_views(res.global_result)        # once, for the global and the zones
+    g = axi_reference(res.global_result, views=views)
     # the submodels' fields are at the speed the global model's reference is at (``solve_zoned``
     # solves a zone at the global solution's own speed, rpm_f): no scaling
     from_zone = {p.region for p in res.cases[0].peaks if p.model != "axisymmetric"}
@@ -78,21 +79,23 @@ def zoned_reference(res, seconds: float | None = None) -> StaticReference:
     ref = _merge(res, g, parts, seconds, t0)
     keeps = [p[-1] for p in parts]
     return replace(ref, depth_probe=ZonedProbe(keeps, probes), patterns=g.patterns,
-                   pattern_stress=_pattern_stress(res, g, keeps))
+                   pattern_stress=_pattern_stress(res, g, keeps, views[1]))
 
 
-def _pattern_stress(res, g, keeps) -> dict:
+def _pattern_stress(res, g, keeps, views) -> dict:
     """{label: stress} of each load pattern on the merged points, where the global reference
-    has them (``axisymmetric.reference.pattern_views``): the global model's outside the zones,
-    each submodel's solved for the pattern alone inside (``submodel.pattern_stress``, on its
-    factorised stiffness)."""
+    has them (``views``: ``axisymmetric.reference.pattern_views``): the global model's outside
+    the zones, each submodel's solved for the pattern alone inside (``submodel.
+    pattern_stress``, on its factorised stiffness, one gradient operator per zone)."""
     if not g.pattern_stress:
         return {}
     from shaftfe.zoned.submodel import pattern_stress
+    grads = [recovery.node_gradients(sub.shaft_mesh.mesh) for sub, _ in res.fields]
     out = {}
-    for key, info, view in pattern_views(res.global_result)[1]:
+    for key, info, view in views:
         parts = [g.pattern_stress[info["key"]]]
-        parts += [pattern_stress(sub, view, key) for sub, _ in res.fields]
+        parts += [pattern_stress(sub, view, key, grad)
+                  for (sub, _), grad in zip(res.fields, grads, strict=True)]
         out[info["key"]] = np.concatenate([S[:, k] for S, k in zip(parts, keeps, strict=True)],
                                           axis=1)
     return out

@@ -61,7 +61,7 @@ class SubModel:
     floating: object = None                          # FloatingCut of a zone with two cuts
     patterns: tuple = ()               # static.model.LoadPattern inside the zone
     seats: tuple = ()                  # static.model.SoftSeat of the spinning parts' seats
-    bearings: tuple = ()               # (name, facets, x_mm) of bearings inside the zone
+    bearings: tuple = ()               # (name, RBE3 rows (6, ndof)) of bearings inside the zone
     regions: dict = field(default_factory=dict, repr=False)   # region -> node ids (no cuts)
     excluded: np.ndarray = field(default=None, repr=False)    # the singular-point rule's nodes
     free_facets: np.ndarray = field(default=None, repr=False)  # traction-free boundary facets
@@ -141,9 +141,9 @@ def build_submodel(variant, plan, zone, options, *, level=None, cache_dir=None) 
     # the parts' softening terms of the seats in the zone, as the full 3D model makes them (the
     # shaft's own mass is applied point by point instead: ``load_vector``)
     seats = spin_seats(variant, m, shaft=False, rows=rows) if options.spin_softening else ()
-    bearings = tuple((b.name, np.asarray(m.boundaries[bearing_group(b.name)]),
-                      float(b.x_center_mm)) for b in variant.bearings
-                     if bearing_group(b.name) in m.boundaries)
+    bearings = tuple((b.name, seat_rows(m, np.asarray(m.boundaries[bearing_group(b.name)]),
+                                        (float(b.x_center_mm), 0.0, 0.0), rows))
+                     for b in variant.bearings if bearing_group(b.name) in m.boundaries)
     # one row permutation, [free, cut], then column blocks (slicing K's rows once)
     nf = free.size
     Kp = K[np.concatenate([free, cut])]
@@ -217,11 +217,10 @@ def _global_field(sub: SubModel, gsol) -> np.ndarray:
 
 def _bearing_loads(sub: SubModel, gsol) -> np.ndarray:
     """The load vector of the bearings inside the zone: their reactions in ``gsol``."""
-    m = sub.shaft_mesh.mesh
-    f = np.zeros(3 * m.doflocs.shape[1])
-    for name, facets, x in sub.bearings:
+    f = np.zeros(3 * sub.shaft_mesh.mesh.doflocs.shape[1])
+    for name, R in sub.bearings:
         Fx, Fy, Fz = gsol.reactions[name][:3]
-        f += seat_rows(m, facets, (x, 0.0, 0.0)).T @ np.array([Fx, Fy, Fz, 0.0, 0.0, 0.0])
+        f += R.T @ np.array([Fx, Fy, Fz, 0.0, 0.0, 0.0])
     return f
 
 
@@ -285,16 +284,17 @@ def _recover(sub: SubModel, u: np.ndarray, grad=None):
     return stress, averaged, surf
 
 
-def pattern_stress(sub: SubModel, gsol, key: tuple) -> np.ndarray:
+def pattern_stress(sub: SubModel, gsol, key: tuple, grad=None) -> np.ndarray:
     """(6, N) the submodel's stress under one load pattern alone (``key``: ``model.loads.
     solve_pattern``) at its written magnitudes, unsoftened: the cut faces from ``gsol`` (the
     global solution of that pattern alone, ``axisymmetric.model.superpose``), the pattern's
-    loads inside the zone and the bearings' reactions in ``gsol``."""
+    loads inside the zone and the bearings' reactions in ``gsol``. ``grad``: the mesh's
+    ``recovery.node_gradients``, when several patterns share it."""
     f = _bearing_loads(sub, gsol)
     for p in sub.patterns:
         if tuple(p.key) == tuple(key):
             f += p.f
-    return _recover(sub, displace(sub, _global_field(sub, gsol), f))[0]
+    return _recover(sub, displace(sub, _global_field(sub, gsol), f), grad)[0]
 
 
 def displace(sub: SubModel, ug: np.ndarray, f: np.ndarray) -> np.ndarray:

@@ -48,7 +48,7 @@ class Din743:
         from shaftfe.fatigue.channel_run import warn_rpm2_only
         from shaftfe.util.notices import raised
         ch = inputs.single(self.name)
-        warn_rpm2_only(inputs.variant, self.name)
+        warn_rpm2_only(inputs.variant, f"--method {self.name}")
         with raised() as warned, (progress.stage(self.stages[0]) if progress is not None
                                   else nullcontext()):
             # one beam solve for DIN 743 and the bearings

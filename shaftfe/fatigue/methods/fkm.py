@@ -50,7 +50,7 @@ class Fkm:
         from shaftfe.fatigue.run import FatigueInputs, resolve_design_life
         from shaftfe.util.notices import raised
         ch = inputs.single(self.name)
-        warn_rpm2_only(inputs.variant, self.name)
+        warn_rpm2_only(inputs.variant, f"--method {self.name}")
         opts = sd.strength_options(options)
 
         def stage(name):

@@ -60,8 +60,8 @@ class Seed:
                     locs = tuple(_channel_location(crun, i) for i in range(lv.nodes.size))
                     return FatigueAssessment(self.name, locs, locs[crun.hot], tuple(warned),
                                              tuple(ref.notes), crun)
-            if ch.field is not None and inputs.variant is not None:
-                _warn_one_field(inputs.variant)
+            if ch.field is not None and inputs.variant is not None:     # the report's, a study's
+                cr.warn_rpm2_only(inputs.variant, "the seed method on one given field")
             run = run_fatigue(options, FatigueInputs(ch.history, material, inputs.variant),
                               progress, ref=ref)
         ff = run.field
@@ -86,19 +86,6 @@ class Seed:
 
 
 METHOD = Seed()
-
-
-def _warn_one_field(variant) -> None:
-    """A caller's one field (the report's) is scaled by (rpm/ref)² as a whole: said where the
-    variant has loads of other laws, which ``shaftfe fatigue --method seed`` assesses pattern
-    by pattern (``channel_run``)."""
-    from shaftfe.util.notices import warn
-    other = [ld.name for ld in variant.loads if ld.scales_with != "rpm2"]
-    if other:
-        warn("loads-scaled-as-rpm2", "fatigue", "the seed method on one given stress field "
-             f"scales it by (rpm/ref)²: the loads {', '.join(other)} (laws other than rpm2) are "
-             "taken at their reference value and scaled with rpm² too; `shaftfe fatigue "
-             "--method seed` assesses each load pattern with its own history")
 
 
 def _location(h) -> Location:
