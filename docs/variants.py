@@ -74,6 +74,27 @@ def keys() -> list[tuple[str, str, str, str]]:
          "axial centre of the keyway"),
         ("segments.<seg>.keyways.<i>.angle_deg", "deg", "number (default 0)",
          "angular position; 0 = in line with the loads at 0°"),
+        ("segments.<seg>.grooves.<i>.kind", "—", "u | din471 (din509_e, din509_f: named, not "
+         "built yet)", "a circumferential groove: a U groove, or a DIN 471 retaining-ring "
+         "groove whose width and depth the standard fixes from the segment's diameter"),
+        ("segments.<seg>.grooves.<i>.x_center_mm", "mm", "on the segment's straight part with "
+         "0.5 mm to spare; clear of seats, keyways, the hex socket and other grooves by 0.5 mm",
+         "axial centre of the groove"),
+        ("segments.<seg>.grooves.<i>.width_mm", "mm", "> 0 (u); not given for din471",
+         "groove width at the surface (DIN 471: m)"),
+        ("segments.<seg>.grooves.<i>.depth_mm", "mm", "0 < depth < diameter / 4 (u); not given "
+         "for din471", "groove depth below the surface (DIN 471: (d1 − d2)/2)"),
+        ("segments.<seg>.grooves.<i>.radius_mm", "mm", f"≥ {FILLET_MIN_MM:g}, ≤ min(width / 2, "
+         "depth); default the full round (u), 0.1 (din471, an assumption: the standard bounds "
+         "it)", "the bottom corners' radius"),
+        ("segments.<seg>.cross_holes.<i>.diameter_mm", "mm", "0 < diameter ≤ 0.4 × the "
+         "segment's diameter (the charts' range)", "a transverse hole straight through the "
+         "axis (an oil hole); meshed in a 3D zone of the zoned solve"),
+        ("segments.<seg>.cross_holes.<i>.x_center_mm", "mm", "on the segment's straight part "
+         "with 0.5 mm to spare; clear of seats, keyways, grooves, the hex socket and other "
+         "holes by 0.5 mm", "axial position of the hole's axis"),
+        ("segments.<seg>.cross_holes.<i>.angle_deg", "deg", "number (default 0)",
+         "the hole's direction in the y-z plane; 0 = in line with the loads at 0°"),
         ("shaft.hex_socket.end", "—", "left | right", "end face with the hexagon socket"),
         ("shaft.hex_socket.across_flats_mm", "mm", "> 0, corners inside the end segment",
          "socket size"),

@@ -33,8 +33,50 @@ FREE_X = 'name = "free_side"\ntype = "zkl_3203"\nx_center_mm = 73.25'
 CW2 = "mass_kg = 0.24\neccentricity_mm = 20.23"
 K = "K_N_per_mm = [[35030.0, 8756.0], [8756.0, 35030.0]]"
 
+# a groove table appended to the collar's segment (Ø22, straight on [47, 64.5]) or to the
+# free bearing's seat (Ø17, the ring on [64.5, 82])
+COLLAR_END = 'spot (§8.3)."""\n'
+FREE_END = 'axially free."\n'
+
+
+def _groove(at: str, body: str, table: str = "grooves") -> tuple[str, str, str]:
+    """One or more groove (or ``table``) tables after ``at``, each with its numbers'
+    provenance."""
+    head = f"[[shaft.segments.{table}]]\n"
+    tables = []
+    for t in body.split(head):
+        keys = [ln.split(" = ")[0] for ln in t.strip().splitlines() if ln.split(" = ")[0]
+                not in ("kind",)]
+        tables.append(t.strip() + "\nreconstructed = [" + ", ".join(f'"{k}"' for k in keys)
+                      + "]")
+    return (SHAFT, at, at + "".join(f"{head}{t}\n" for t in tables))
+
+
 # id -> (file, old text, new text): one edit of the copied x2_57 files
 VARIANT_EDITS = {
+    "groove_deeper_than_allowed": _groove(COLLAR_END, 'kind = "u"\nx_center_mm = 55.0\n'
+                                          'width_mm = 3.0\ndepth_mm = 6.0'),
+    "groove_radius_larger_than_groove": _groove(COLLAR_END, 'kind = "u"\nx_center_mm = 55.0\n'
+                                                'width_mm = 2.0\ndepth_mm = 1.0\n'
+                                                'radius_mm = 1.5'),
+    "groove_under_bearing_seat": _groove(FREE_END, 'kind = "din471"\nx_center_mm = 73.0'),
+    "groove_onto_the_shoulder": _groove(COLLAR_END, 'kind = "u"\nx_center_mm = 48.0\n'
+                                  'width_mm = 2.0\ndepth_mm = 1.0'),
+    "grooves_overlapping": _groove(COLLAR_END, 'kind = "u"\nx_center_mm = 55.0\n'
+                                   'width_mm = 2.0\ndepth_mm = 1.0\n'
+                                   '[[shaft.segments.grooves]]\nkind = "u"\n'
+                                   'x_center_mm = 56.0\nwidth_mm = 2.0\ndepth_mm = 1.0'),
+    "din471_on_a_diameter_not_in_its_table": _groove(COLLAR_END,
+                                                     'kind = "din471"\nx_center_mm = 55.0\n'
+                                                     'depth_mm = 0.4'),
+    "din509_not_built": _groove(COLLAR_END, 'kind = "din509_e"\nx_center_mm = 55.0'),
+    "cross_hole_too_large": _groove(COLLAR_END, 'diameter_mm = 12.0\nx_center_mm = 55.0',
+                                    "cross_holes"),
+    "cross_hole_under_bearing_seat": _groove(FREE_END, 'diameter_mm = 3.0\n'
+                                             'x_center_mm = 73.0', "cross_holes"),
+    "cross_hole_on_a_groove": (SHAFT, COLLAR_END, _groove(
+        COLLAR_END, 'kind = "u"\nx_center_mm = 55.0\nwidth_mm = 2.0\ndepth_mm = 1.0')[2]
+        + _groove("", 'diameter_mm = 3.0\nx_center_mm = 56.0', "cross_holes")[2]),
     "diameter_in_metres": (SHAFT, COLLAR, COLLAR.replace("22.0", "0.022")),
     "boss_diameter_in_metres": (SHAFT, BOSS, BOSS.replace("17.0", "0.017")),
     "mass_in_grams": ("x2_57.toml", CW2, CW2.replace("0.24", "240.0")),
@@ -75,6 +117,20 @@ VARIANT_EDITS = {
 }
 # id -> what the one stderr line must name (file and field)
 VARIANT_EXPECT = {
+    "groove_deeper_than_allowed": ["x2_57.toml", "segments[4].grooves[0].depth_mm",
+                                   "radius / 2"],
+    "groove_radius_larger_than_groove": ["x2_57.toml", "grooves[0].radius_mm"],
+    "groove_under_bearing_seat": ["x2_57.toml", "segments[5].grooves[0].x_center_mm",
+                                  "bearing:free_side"],
+    "groove_onto_the_shoulder": ["x2_57.toml", "grooves[0].x_center_mm", "0.5 mm to spare"],
+    "grooves_overlapping": ["x2_57.toml", "grooves[1].x_center_mm", "another notch"],
+    "din471_on_a_diameter_not_in_its_table": ["shaft_c.toml", "grooves[0].depth_mm",
+                                              "DIN 471 fixes it"],
+    "din509_not_built": ["shaft_c.toml", "grooves[0].kind", "not built yet"],
+    "cross_hole_too_large": ["x2_57.toml", "cross_holes[0].diameter_mm", "0.4"],
+    "cross_hole_under_bearing_seat": ["x2_57.toml", "cross_holes[0].x_center_mm",
+                                      "bearing:free_side"],
+    "cross_hole_on_a_groove": ["x2_57.toml", "cross_holes[0].x_center_mm", "another notch"],
     "diameter_in_metres": ["shaft_c.toml", "segments[4].diameter_mm", "metres"],
     "boss_diameter_in_metres": ["shaft_c.toml", "segments[2].diameter_mm", "metres"],
     "mass_in_grams": ["x2_57.toml", "mass_kg", "grams"],

@@ -282,6 +282,45 @@ def test_standard_methods_write_their_summary(cache, tmp_path, capsys, method):
     assert "key gear_seat" in text
 
 
+def test_din743_plot_gives_the_safety_along_the_shaft(tmp_path, capsys):
+    """``--method din743 --plot``: din743_along.png beside the method's files, and the safety
+    of the unnotched section at every cross-section in summary.json, the shaft's whole length
+    every 0.25 mm. S_F in the collar by hand (DIN 743-1/-2, an unnotched section: α = 1 so
+    γ_F = 1; K2F = 1.2 in bending and torsion, 1.0 with a hard surface layer as the case
+    hardened 14220 has): S_F = 1/√((σ_b,max/σ_bFK)² + (τ_max/τ_tFK)²),
+    σ_bFK = K1(d) · K2F · R_p, τ_tFK = σ_bFK/√3, the nominal stresses from the beam's moment
+    and torque at x × the cycle's highest load factor (exact arithmetic: 1e-9). ``--plot`` with
+    another method is refused."""
+    import numpy as np
+
+    from shaftfe.fatigue import din743 as din
+    from shaftfe.fatigue.standards import StrengthOptions, beam_at_ref, din743_card
+    from shaftfe.model.loader import load_variant
+    out = tmp_path / "d"
+    rc, text, err = run(capsys, RPM_DAT, "--method", "din743", "--plot", "--out", out)
+    assert rc == 0, err
+    assert (out / "din743_along.png").stat().st_size > 0
+    assert "along the shaft" in text
+    s = json.loads((out / "summary.json").read_text())
+    a = s["along"]
+    x = np.array(a["x_mm"])
+    assert x[0] == 0.0 and x[-1] == pytest.approx(114.0) and np.diff(x).max() <= 0.25 + 1e-9
+    v = load_variant("x2_57")
+    card = din743_card(v, StrengthOptions())
+    beam = beam_at_ref(v)
+    hi = (s["cycle_rpm"][1] / 10_000.0) ** 2
+    for i in np.flatnonzero((x > 50) & (x < 60))[::8]:
+        d = a["d_mm"][i]
+        sb = 32 * abs(np.interp(x[i], beam.x_sec, beam.M)) / (math.pi * d ** 3) * hi
+        tt = 16 * abs(np.interp(x[i], beam.x_sec, beam.T)) / (math.pi * d ** 3) * hi
+        fk = din.k1(d, card.group, "yield") * (1.0 if card.case_hardened else 1.2) \
+            * card.rp_n_MPa
+        want = 1 / math.hypot(sb / fk, tt / (fk / math.sqrt(3)))
+        assert a["S_F"][i] == pytest.approx(want, rel=1e-9)
+    rc, _, err = run(capsys, RPM_DAT, "--method", "seed", "--plot", "--out", tmp_path / "s")
+    assert rc == 2 and "--plot" in err and "din743" in err
+
+
 def test_help_names_every_file_of_each_method(capsys):
     """`fatigue --help` tells the truth per method: every file a method writes
     (``standards_out.OUTPUT_FILES``, which the runs above check against the folder) is named

@@ -16,9 +16,10 @@ from shaftfe.model.variant import Variant
 
 def make_variant(**kwargs) -> Variant:
     """The four-step test shaft (``shaftfe.model.examples``) with a thread end and a washer sharing
-    the hub's seat: Ø15 (sharp step up) Ø17 (fillet, keyway) Ø22 (fillet, step down) Ø17."""
+    the hub's seat: Ø15 (sharp step up) Ø17 (fillet, keyway) Ø22 (fillet, U groove, step down)
+    Ø17 (a cross hole)."""
     kwargs = {"name": "syn", "description": "synthetic test shaft", "washer": True,
-              "thread_end": True, **kwargs}
+              "thread_end": True, "groove": True, "cross_hole": True, **kwargs}
     return four_step_shaft(**kwargs)
 
 
@@ -178,7 +179,7 @@ def test_chamfered_ring_contact_band_must_clear_the_fillet():
 
     from shaftfe.solid.exact import expected_areas
     from shaftfe.solid.plan import prepare
-    v = make_variant(bearing=(74.0, 8.0))           # ring [70, 78] on Ø17 against the step
+    v = make_variant(bearing=(74.0, 8.0), cross_hole=False)   # ring [70, 78] on Ø17 at the step
     v = dataclasses.replace(v, bearings=(dataclasses.replace(v.bearings[0], chamfer_mm=0.5),))
     with pytest.raises(InputError) as exc:
         prepare(v)
@@ -274,7 +275,7 @@ def test_key_depends_on_geometry_not_on_name():
 def test_corrupt_cache_is_rebuilt(tmp_path):
     """A truncated / garbage cache file is rebuilt (from_cache False) and replaced."""
     from shaftfe.solid.mesh import build_mesh, cache_path, mesh_key, mesh_plan
-    v = make_variant(keyway=False, hex_socket=False)
+    v = make_variant(keyway=False, hex_socket=False, groove=False, cross_hole=False)
     first = build_mesh(v, "coarse", order=1, cache_dir=tmp_path)
     path = cache_path(first.key, tmp_path)
     assert path.exists()
@@ -303,7 +304,7 @@ def test_meshing_is_deterministic():
     """Two cold builds of the same input IN ONE PROCESS give the same mesh bit for bit (1
     thread); across processes see the next test."""
     from shaftfe.solid.mesh import build_mesh
-    v = make_variant(hex_socket=False)
+    v = make_variant(hex_socket=False, groove=False, cross_hole=False)
     a = build_mesh(v, "coarse", use_cache=False)
     b = build_mesh(v, "coarse", use_cache=False)
     assert a.mesh.doflocs.tobytes() == b.mesh.doflocs.tobytes()

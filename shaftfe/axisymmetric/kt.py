@@ -34,7 +34,13 @@ from shaftfe.axisymmetric.mesh import (
     arc_length_angle,
     mesh_geometry,
 )
-from shaftfe.solid.features import END_LEFT, END_RIGHT, fillet_region, shoulder_region
+from shaftfe.solid.features import (
+    END_LEFT,
+    END_RIGHT,
+    fillet_region,
+    groove_region,
+    shoulder_region,
+)
 
 # the bar's mesh: fillet elements 0.1 ρ (at 0.2 ρ the first level is still pre-asymptotic:
 # measured on D/d 1.5, r/d 0.1, the three levels then spread 5e-3 against 1.6e-4)
@@ -44,6 +50,8 @@ LOADS = ("tension", "bending", "torsion")
 # points, h⁴ at best for the surface values of smooth fields); beyond, the "order" is noise
 P_MAX = 4.0
 FILLET = fillet_region("step")      # the bar's fillet (its shoulder segment is "step")
+GROOVE = groove_region("bar", 0)    # the grooved bar's groove
+SHAPES = ("step", "groove")
 
 
 def stepped_bar(D: float, d: float, rho: float) -> MeridianGeometry:
@@ -59,6 +67,36 @@ def stepped_bar(D: float, d: float, rho: float) -> MeridianGeometry:
             Curve((L1 + L2, 0.0), (0.0, 0.0), ("axis",))]
     return MeridianGeometry(f"step_{D:g}_{d:g}_{rho:g}", tuple(cur), d,
                             bands=((0.0, L1, d), (L1, L1 + L2, D)))
+
+
+def grooved_bar(D: float, d: float, rho: float) -> MeridianGeometry:
+    """A round bar of diameter D, 8 D long, with a U groove at its middle: bottom diameter d,
+    bottom one arc of radius ρ (width 2ρ), straight flanks of height (D − d)/2 − ρ above it
+    (issue #33: the groove's Kt; the stepped bar's counterpart)."""
+    R, rb, L = 0.5 * D, 0.5 * d, 8.0 * D
+    if not 0 < rho <= R - rb + 1e-12:
+        raise ValueError(f"a U groove's radius {rho:g} in (0, its depth {R - rb:g}]")
+    xa, xb, rc = 0.5 * L - rho, 0.5 * L + rho, rb + rho
+    cur = [Curve((0.0, 0.0), (0.0, R), (END_LEFT,)), Curve((0.0, R), (xa, R), ("surface",))]
+    if R - rc > 1e-9:
+        cur.append(Curve((xa, R), (xa, rc), (GROOVE,)))
+    cur += [Curve((xa, rc), (0.5 * L, rb), (GROOVE,), (0.5 * L, rc), rho),
+            Curve((0.5 * L, rb), (xb, rc), (GROOVE,), (0.5 * L, rc), rho)]
+    if R - rc > 1e-9:
+        cur.append(Curve((xb, rc), (xb, R), (GROOVE,)))
+    cur += [Curve((xb, R), (L, R), ("surface",)), Curve((L, R), (L, 0.0), (END_RIGHT,)),
+            Curve((L, 0.0), (0.0, 0.0), ("axis",))]
+    return MeridianGeometry(f"groove_{D:g}_{d:g}_{rho:g}", tuple(cur), d,
+                            bands=((0.0, L, D),))
+
+
+def _bar(shape: str, D: float, d: float, rho: float):
+    """(geometry, the hot region's name, left end radius, right end radius)."""
+    if shape == "step":
+        return stepped_bar(D, d, rho), FILLET, 0.5 * d, 0.5 * D
+    if shape == "groove":
+        return grooved_bar(D, d, rho), GROOVE, 0.5 * D, 0.5 * D
+    raise ValueError(f"shape {shape!r}: one of {SHAPES}")
 
 
 @dataclass(frozen=True)
@@ -80,6 +118,7 @@ class BarSolution:
     disp: dict                # load -> displacement vector
     E: float
     nu: float
+    hot: str = FILLET         # the notch's region (the fillet's, the groove's)
 
     def amplitudes(self, load: str, where: np.ndarray | None = None) -> np.ndarray:
         """(6, k) surface-local stress amplitudes (``recovery.LOCAL``) of ``load`` at the
@@ -90,26 +129,30 @@ class BarSolution:
 
 
 def solve_bar(D: float, d: float, rho: float, refine: int = 0, level: AxiLevel = LEVEL,
-              E: float = 210000.0, nu: float = 0.3, cache_dir=None) -> BarSolution:
-    """The bar of ``stepped_bar`` under the three end loads of the module docstring."""
-    geo = stepped_bar(D, d, rho)
+              E: float = 210000.0, nu: float = 0.3, cache_dir=None,
+              shape: str = "step") -> BarSolution:
+    """The bar of ``stepped_bar`` (``shape`` "groove": ``grooved_bar``) under the three end
+    loads of the module docstring, the nominal stresses on d."""
+    geo, hot, r, R = _bar(shape, D, d, rho)
     mesh = mesh_geometry(geo, level, refine, cache_dir=cache_dir)
     h = hm.assemble(mesh, E, nu, cache_dir=cache_dir)
     left, right = mesh.group_edges(END_LEFT), mesh.group_edges(END_RIGHT)
     S = rc.Surface(mesh)
-    fil = [i for i, c in enumerate(geo.curves) if FILLET in c.groups]
+    # the notch's arcs (a groove's flanks excluded: mapped onto the arc's angle they would sit
+    # among its nodes in the peak fit)
+    fil = [i for i, c in enumerate(geo.curves) if hot in c.groups and c.center is not None]
     on = np.nonzero(np.isin(S.curve, fil) & ~S.kink)[0]
     ax = mesh.axis_nodes()
     a0, a1 = ax[np.argmin(mesh.xr[0][ax])], ax[np.argmax(mesh.xr[0][ax])]
     far = int(np.argmax(mesh.xr[1]))
-    r = 0.5 * d
-    R = 0.5 * D
-    # the small end (x = 0) carries the nominal field; the large end the same resultant.
-    # tension σ_x = 1: σ_nom = 4P/(πd²) = 1; bending σ_x = r cos θ (k = 1): M = π r⁴/4,
-    # 32M/(πd³) = r; torsion τ_xθ = r (g = 1): T = π r⁴/2, 16T/(πd³) = r
-    cases = {"tension": (0, (lambda x, rr: (1.0, 0.0, 0.0)), (r / R) ** 2, 1.0),
-             "bending": (1, (lambda x, rr: (rr, 0.0, 0.0)), (r / R) ** 4, r),
-             "torsion": (0, (lambda x, rr: (0.0, 0.0, rr)), (r / R) ** 4, r)}
+    rn = 0.5 * d
+    # the left end (radius r) carries the unit field; the right end (radius R) the same
+    # resultant. Tension σ_x = 1: P = π r², σ_nom = 4P/(πd²) = r²/rn²; bending σ_x = r cos θ
+    # (k = 1): M = π r⁴/4, 32M/(πd³) = r⁴/rn³; torsion τ_xθ = r (g = 1): T = π r⁴/2,
+    # 16T/(πd³) = r⁴/rn³ (the stepped bar: r = rn, so 1, r, r)
+    cases = {"tension": (0, (lambda x, rr: (1.0, 0.0, 0.0)), (r / R) ** 2, (r / rn) ** 2),
+             "bending": (1, (lambda x, rr: (rr, 0.0, 0.0)), (r / R) ** 4, r ** 4 / rn ** 3),
+             "torsion": (0, (lambda x, rr: (0.0, 0.0, rr)), (r / R) ** 4, r ** 4 / rn ** 3)}
     pins = {0: [3 * a0, 3 * far + 2], 1: [3 * a0 + 1, 3 * a1 + 1]}
     disp = {}
     for n in (0, 1):                   # one factorisation per harmonic, its loads as columns
@@ -122,19 +165,22 @@ def solve_bar(D: float, d: float, rho: float, refine: int = 0, level: AxiLevel =
         u = hm.solve(h.K(n), f, h.reduction(n), hard=H).u
         disp.update({ld: u[:, j] for j, ld in enumerate(loads)})
     return BarSolution(geo, mesh, S, on, {ld: c[0] for ld, c in cases.items()},
-                       {ld: c[3] for ld, c in cases.items()}, disp, E, nu)
+                       {ld: c[3] for ld, c in cases.items()}, disp, E, nu, hot)
 
 
 def fillet_peak(bar: BarSolution, values: np.ndarray) -> tuple[float, float]:
-    """(peak, angle along the arc °) of ``values`` at the fillet nodes (``_arc_peak``)."""
-    c = next(c for c in bar.geometry.curves if FILLET in c.groups)
+    """(peak, angle along the arc °) of ``values`` at the notch's arc nodes (``_arc_peak``):
+    on the fillet from its small-diameter tangent point, in a groove from its left flank (its
+    two arcs share one centre)."""
+    arcs = [c for c in bar.geometry.curves if bar.hot in c.groups and c.center is not None]
+    c = Curve(arcs[0].start, arcs[-1].end, arcs[0].groups, arcs[0].center, arcs[0].size)
     return _arc_peak(c, bar.mesh.xr[:, bar.surface.nodes[bar.fillet]], values)
 
 
 def kt_once(D: float, d: float, rho: float, refine: int = 0, level: AxiLevel = LEVEL,
-            E: float = 210000.0, nu: float = 0.3, cache_dir=None):
+            E: float = 210000.0, nu: float = 0.3, cache_dir=None, shape: str = "step"):
     """Kt in tension, bending and torsion on one mesh: ({load: KtValue}, nodes)."""
-    bar = solve_bar(D, d, rho, refine, level, E, nu, cache_dir)
+    bar = solve_bar(D, d, rho, refine, level, E, nu, cache_dir, shape)
     out = {}
     for load in LOADS:
         s1 = _principal_over_theta(bar.amplitudes(load), bar.harmonic[load])
@@ -195,16 +241,16 @@ def richardson(values) -> dict:
 
 
 def converged(D: float, d: float, rho: float, levels: int = 3, level: AxiLevel = LEVEL,
-              cache_dir=None) -> dict:
+              cache_dir=None, shape: str = "step") -> dict:
     """{load: {"kt", "error", "order", "angle_deg", "values"}} from ``levels`` uniform
-    refinements (≥ 3)."""
+    refinements (≥ 3) of the stepped bar (``shape`` "groove": the grooved bar)."""
     import time
     vals = {ld: [] for ld in LOADS}
     angles = {}
     nodes, secs = [], []
     for ref in range(levels):
         t0 = time.perf_counter()
-        res, nn = kt_once(D, d, rho, ref, level, cache_dir=cache_dir)
+        res, nn = kt_once(D, d, rho, ref, level, cache_dir=cache_dir, shape=shape)
         secs.append(time.perf_counter() - t0)
         nodes.append(nn)
         for ld in LOADS:

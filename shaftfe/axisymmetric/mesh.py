@@ -30,7 +30,13 @@ from types import MappingProxyType
 import numpy as np
 
 from shaftfe.errors import InputError
-from shaftfe.solid.features import END_LEFT, END_RIGHT, fillet_region, shoulder_region
+from shaftfe.solid.features import (
+    END_LEFT,
+    END_RIGHT,
+    fillet_region,
+    groove_region,
+    shoulder_region,
+)
 from shaftfe.solid.mesh import GMSH_LOCK, gmsh_version
 
 CACHE_FORMAT = 1
@@ -124,8 +130,9 @@ class MeridianMesh:
 def shaft_geometry(sol, bands=()) -> MeridianGeometry:
     """The outline of a solid plan ``sol`` (``solid.plan.prepare(variant)``): the profile the
     3D solid revolves (``solid.plan.profile``), with the 3D
-    face-group names on its curves. Hot curves: every fillet (size factor ρ), every sharp
-    concave shoulder corner (a hot point, size factor r_small / 10).
+    face-group names on its curves. Hot curves: every fillet and every groove's corner arcs
+    (size factor ρ), every sharp concave shoulder corner (a hot point, size factor
+    r_small / 10).
 
     ``bands``: (group, x0, x1) surface bands a remote load is delivered through (a
     ``[[loads]]`` entry that is not a part's seat): the straight outline is split at their ends
@@ -139,9 +146,19 @@ def shaft_geometry(sol, bands=()) -> MeridianGeometry:
     curves: list[Curve] = []
     prev = (sol.x_left, 0.0)
     points = []
+    def groove_of(xm: float, rm: float):
+        """The groove whose outline holds the piece with middle (xm, rm), or None."""
+        return next((g for g in sol.grooves if g.x0 - TOL <= xm <= g.x1 + TOL
+                     and rm < g.r - TOL), None)
+
     for kind, data in prof:
         end = (float(data[0]), float(data[1]))
-        if kind == "arc":
+        g = groove_of(0.5 * (prev[0] + end[0]), min(prev[1], end[1]))
+        if g is not None:            # a groove's flank, corner arc or bottom (hot: its arcs)
+            name = (groove_region(g.segment, g.index),)
+            curves.append(Curve(prev, end, name, (float(data[2]), float(data[3])), g.rho)
+                          if kind == "arc" else Curve(prev, end, name))
+        elif kind == "arc":
             xc, rc = float(data[2]), float(data[3])
             f = next(f for f in sol.fillets if abs(abs(xc - f.x_shoulder) - f.rho) < 1e-6)
             curves.append(Curve(prev, end, (fillet_region(f.segment),), (xc, rc), f.rho))

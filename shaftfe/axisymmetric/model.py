@@ -69,7 +69,13 @@ from shaftfe.axisymmetric.mesh import (
 from shaftfe.errors import InputError, SolverError
 from shaftfe.model.loads import actions, check_torque_path, law_factor, pattern_key
 from shaftfe.model.validate import validate_variant
-from shaftfe.solid.features import bearing_group, cuts, kind_of, seat_group
+from shaftfe.solid.features import (
+    ROUND_NOTCH_KINDS,
+    bearing_group,
+    cuts,
+    kind_of,
+    seat_group,
+)
 from shaftfe.static.model import DISTRIBUTIONS, load_case_label
 from shaftfe.util.units import REF_RPM, omega, von_mises
 
@@ -657,7 +663,7 @@ class _PeakTracker:
         ids = {}
         for i, c in enumerate(mesh.geometry.curves):
             for g in c.groups:
-                if kind_of(g) == "fillet":
+                if kind_of(g) in ROUND_NOTCH_KINDS:
                     ids.setdefault(g, []).append(i)
         sets = {g: np.nonzero(np.isin(surface.curve, v) & ~surface.kink)[0]
                 for g, v in ids.items()}

@@ -26,6 +26,7 @@ from shaftfe.axisymmetric.model import AxiOptions, AxiSolution, solve_model, sup
 from shaftfe.errors import InputError
 from shaftfe.model.bearing_life import l10h
 from shaftfe.solid.features import (
+    ROUND_NOTCH_KINDS,
     SEAT_KINDS,
     bearing_group,
     cuts,
@@ -385,7 +386,7 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
              f"[{f['zone_mm'][0]:g}, {f['zone_mm'][1]:g}] mm lie in its zone of influence: "
              "use the 3D path there" for f in omitted]
     notes.append("threads are plain cylinders at their modelled diameter (as in the 3D path)")
-    others = sorted(p.region for p in cases[0].peaks if kind_of(p.region) == "fillet"
+    others = sorted(p.region for p in cases[0].peaks if kind_of(p.region) in ROUND_NOTCH_KINDS
                     and p.region not in sol.truncation_fillets)
     if others and sol.loads:
         notes.append(f"harmonic series cut at n = {sol.n_used} when the fillets "

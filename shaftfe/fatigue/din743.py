@@ -23,6 +23,17 @@ their comments) and reproduces a published exam solution (tests/validation/test_
               for d/D > 0.67, else 0
   α           shoulder, when no converged value is given: 1 + 1/√(A r/t + 2B r/d (1 + 2r/d)²
               + C (r/t)^z d/D) (A, B, C, z per load)
+  groove      round (U) groove, DIN 743-2 tables 2, 3 ("Rundnut"): α of the shoulder's form with
+              A, B = 0.22, 1.37 (tension), 0.2, 2.75 (bending), 0.7, 10.3 (torsion), C = 0;
+              G' = 2 (1 + φ)/r (tension, bending), 1/r (torsion). Retaining-ring groove
+              (DIN 743-2 §4.2.4): β measured at d_BK = 30 mm and R_z 20 (``beta_ring_groove``)
+              with ρ* = 10^−(0.514 + 0.00152 σ_S) mm. These constants were read from the open
+              implementation named below (its ρ* has a sign slip, "0.00152 − σ_S", corrected
+              here to Neuber's form); checked against a hand calculation only
+  cross hole  DIN 743-2: α 3 − d_h/d (tension), 3 + 1.4 d_h/d − 2.8 √(d_h/d) (bending),
+              2.023 − 1.125 √(d_h/d) (torsion), on the net section (A = πd²/4 − d_h d,
+              W = πd³/32 (16) − d_h d²/6); G' 2.3/r, 2.3/r + 2/d, 1.15/r + 2/d (r = d_h/2);
+              read from the same open implementation
   β           α/n; keyway β_σ(40 mm) = 3.0 (σ_B(d)/1000)^0.38, β_τ = 0.56 β_σ + 0.1; press fit
               β_σ(40 mm) = 2.7 (σ_B(d)/1000)^0.43, β_τ = 0.65 β_σ (roughness included: K_F = 1)
   K_F         K_Fσ = 1 − 0.22 lg(R_z) (lg(σ_B(d)/20 MPa) − 1), K_Fτ = 0.575 K_Fσ + 0.425
@@ -47,6 +58,11 @@ D_B = 16.0
 D_BK = 40.0
 _SHOULDER_ALPHA = {"tension": (0.62, 3.5, 0.0, 0.0), "bending": (0.62, 5.8, 0.2, 3.0),
                    "torsion": (3.4, 19.0, 1.0, 2.0)}
+# a round (U) groove, DIN 743-2 table 2 "Rundnut": the same form as the shoulder's, C = 0
+_GROOVE_ALPHA = {"tension": (0.22, 1.37, 0.0, 0.0), "bending": (0.2, 2.75, 0.0, 0.0),
+                 "torsion": (0.7, 10.3, 0.0, 0.0)}
+D_BK_RING = 30.0          # the reference diameter of the ring groove's measured β
+RZ_RING = 20.0            # the roughness the ring groove's β was measured at (µm)
 
 
 def k1(d_eff_mm: float, group: str, strength: str = "ultimate") -> float:
@@ -92,13 +108,92 @@ def gradient_shoulder(d_mm: float, D_mm: float, r_mm: float, load: str) -> float
     return 2.3 * (1.0 + phi(d_mm, D_mm, r_mm)) / r_mm
 
 
-def alpha_shoulder(d_mm: float, D_mm: float, r_mm: float, load: str) -> float:
-    """DIN 743-2's own α of a shoulder fillet (used where no converged Kt is given)."""
-    A, B, C, z = _SHOULDER_ALPHA[load]
+def _alpha(coef, d_mm: float, D_mm: float, r_mm: float) -> float:
+    A, B, C, z = coef
     t = 0.5 * (D_mm - d_mm)
     q = A * r_mm / t + 2.0 * B * r_mm / d_mm * (1.0 + 2.0 * r_mm / d_mm) ** 2 \
         + C * (r_mm / t) ** z * d_mm / D_mm
     return 1.0 + 1.0 / math.sqrt(q)
+
+
+def alpha_shoulder(d_mm: float, D_mm: float, r_mm: float, load: str) -> float:
+    """DIN 743-2's own α of a shoulder fillet (used where no converged Kt is given)."""
+    return _alpha(_SHOULDER_ALPHA[load], d_mm, D_mm, r_mm)
+
+
+def alpha_groove(d_mm: float, D_mm: float, r_mm: float, load: str) -> float:
+    """DIN 743-2's α of a round groove (table 2, "Rundnut"): d the groove's bottom diameter,
+    D the shaft's, r the groove's radius; valid for r/t ≥ 0.03, d/D ≤ 0.98."""
+    return _alpha(_GROOVE_ALPHA[load], d_mm, D_mm, r_mm)
+
+
+def groove_in_range(notch) -> bool:
+    """Is a groove inside the range DIN 743-2 gives its α for (r/t ≥ 0.03, d/D ≤ 0.98)?"""
+    t = 0.5 * (notch.D_mm - notch.d_mm)
+    return notch.r_mm / t >= 0.03 and notch.d_mm / notch.D_mm <= 0.98
+
+
+def gradient_groove(d_mm: float, D_mm: float, r_mm: float, load: str) -> float:
+    """Related stress gradient G' (1/mm) of a round groove (DIN 743-2 table 3): 2 (1 + φ)/r
+    in tension and bending, 1/r in torsion."""
+    if load == "torsion":
+        return 1.0 / r_mm
+    return 2.0 * (1.0 + phi(d_mm, D_mm, r_mm)) / r_mm
+
+
+def alpha_cross_hole(d_mm: float, dh_mm: float, load: str) -> float:
+    """DIN 743-2's α of a transverse hole of diameter d_h through a shaft of diameter d
+    (nominal stresses on the net section, ``net_section_scale``): tension 3 − d_h/d, bending
+    3 + 1.4 d_h/d − 2.8 √(d_h/d), torsion 2.023 − 1.125 √(d_h/d) (of the largest shear
+    stress)."""
+    q = dh_mm / d_mm
+    return {"tension": 3.0 - q, "bending": 3.0 + 1.4 * q - 2.8 * math.sqrt(q),
+            "torsion": 2.023 - 1.125 * math.sqrt(q)}[load]
+
+
+def gradient_cross_hole(d_mm: float, dh_mm: float, load: str) -> float:
+    """G' (1/mm) at a transverse hole of radius r = d_h/2 (DIN 743-2): 2.3/r in tension,
+    2.3/r + 2/d in bending, 1.15/r + 2/d in torsion."""
+    r = 0.5 * dh_mm
+    return {"tension": 2.3 / r, "bending": 2.3 / r + 2.0 / d_mm,
+            "torsion": 1.15 / r + 2.0 / d_mm}[load]
+
+
+def net_section_scale(notch) -> tuple[float, float, float]:
+    """(tension, bending, torsion) factors from the full round section's nominal stresses to
+    the notch's own: 1 except at a transverse hole, whose section loses d_h d (area) and
+    d_h d²/6 (both moduli): A = πd²/4 − d_h d, W_b = πd³/32 − d_h d²/6,
+    W_t = πd³/16 − d_h d²/6 (DIN 743-2)."""
+    if notch.kind != "cross_hole":
+        return 1.0, 1.0, 1.0
+    d, h = notch.d_mm, notch.hole_mm
+    a, wb, wt = math.pi * d * d / 4, math.pi * d ** 3 / 32, math.pi * d ** 3 / 16
+    return (a / (a - h * d), wb / (wb - h * d * d / 6), wt / (wt - h * d * d / 6))
+
+
+def rho_star(sigma_s_d_MPa: float) -> float:
+    """Neuber's substitute micro-support length ρ* (mm) of steel, 10^−(0.514 + 0.00152 σ_S)
+    (DIN 743-2 §4.2.4, the ring groove's fictitious radius)."""
+    return 10.0 ** -(0.514 + 0.00152 * sigma_s_d_MPa)
+
+
+def beta_ring_groove(t_mm: float, r_mm: float, m_mm: float, sigma_s_d_MPa: float,
+                     d_mm: float) -> dict[str, float]:
+    """β per load of a retaining-ring (rectangular) groove at diameter d (DIN 743-2 §4.2.4),
+    measured at d_BK = 30 mm: tension 0.9 (1.27 + 1.17 √(t/r_f)), bending
+    0.9 (1.14 + 1.08 √(t/r_f)), both ≤ 4 with r_f = r + 2.9 ρ*; torsion 1.48 + 0.45 √(t/r_f)
+    ≤ 2.5 with r_f = r + ρ*; each × 1.08 (m/t)^−0.2 for a narrow groove (m/t < 1.4), then
+    converted to d by K3."""
+    rs = rho_star(sigma_s_d_MPa)
+    q_n, q_t = math.sqrt(t_mm / (r_mm + 2.9 * rs)), math.sqrt(t_mm / (r_mm + rs))
+    raw = {"tension": (0.9 * (1.27 + 1.17 * q_n), 4.0), "bending": (0.9 * (1.14 + 1.08 * q_n), 4.0),
+           "torsion": (1.48 + 0.45 * q_t, 2.5)}
+    narrow = 1.08 * (m_mm / t_mm) ** -0.2 if m_mm / t_mm < 1.4 else 1.0
+    out = {}
+    for load, (b, cap) in raw.items():
+        b = min(min(b, cap) * narrow, cap)
+        out[load] = b * k3(D_BK_RING, b) / k3(d_mm, b)
+    return out
 
 
 def support_number(G_per_mm: float, sigma_s_d_MPa: float, hard_layer: bool) -> float:
@@ -155,8 +250,10 @@ def amplitude_strength(s_wk: float, psi: float, s_fk: float, s_mv: float, s_a: f
 
 @dataclass(frozen=True)
 class Notch:
-    """A notch: kind shoulder | keyway | press_fit, diameters, radius, and α per load where
-    known (None → DIN 743's formula for a shoulder)."""
+    """A notch: kind shoulder | groove (a round U groove) | ring_groove (a retaining-ring
+    groove) | cross_hole | keyway | press_fit, or plain (an unnotched section: α = β = 1);
+    diameters (d at the notch, D the shaft's beside it), radius, a groove's width, a hole's
+    diameter, and α per load where known (None → DIN 743's formula)."""
     name: str
     kind: str
     d_mm: float
@@ -167,6 +264,8 @@ class Notch:
     rz_um: float = 1.0
     d_eff_mm: float = 0.0               # heat-treatment diameter for K1 (0: the default,
     #                                     ``heat_treatment_diameter``)
+    width_mm: float = 0.0               # a ring groove's width m
+    hole_mm: float = 0.0                # a transverse hole's diameter d_h
 
 
 @dataclass(frozen=True)
@@ -216,16 +315,35 @@ def assess(notch: Notch, st: Stresses, rm_n: float, rp_n: float, group: str, *,
         bs, bt = beta_keyway(sB, notch.d_mm)
     elif notch.kind == "press_fit":
         bs, bt = beta_press_fit(sB, notch.d_mm)
+    elif notch.kind == "ring_groove":
+        ring = beta_ring_groove(0.5 * (notch.D_mm - notch.d_mm), notch.r_mm, notch.width_mm,
+                                sS, notch.d_mm)
     f = {}
     for load, (a, _m) in loads.items():
         shear = load == "torsion"
         kF = roughness(notch.rz_um, sB)[1 if shear else 0]
-        if notch.kind == "shoulder":
-            al = (notch.alpha or {}).get(load) or alpha_shoulder(notch.d_mm, notch.D_mm,
-                                                                 notch.r_mm, load)
-            G = gradient_shoulder(notch.d_mm, notch.D_mm, notch.r_mm, load)
+        if notch.kind == "plain":
+            # an unnotched section: no stress concentration (α = β = 1, no support effect)
+            al, G, n, beta = 1.0, 0.0, 1.0, 1.0
+        elif notch.kind in ("shoulder", "groove", "cross_hole"):
+            if notch.kind == "cross_hole":
+                al = (notch.alpha or {}).get(load) or alpha_cross_hole(notch.d_mm,
+                                                                       notch.hole_mm, load)
+                G = gradient_cross_hole(notch.d_mm, notch.hole_mm, load)
+            else:
+                formula, grad = ((alpha_shoulder, gradient_shoulder)
+                                 if notch.kind == "shoulder" else (alpha_groove, gradient_groove))
+                al = (notch.alpha or {}).get(load) or formula(notch.d_mm, notch.D_mm,
+                                                              notch.r_mm, load)
+                G = grad(notch.d_mm, notch.D_mm, notch.r_mm, load)
             n = min(support_number(G, sS, hard_layer), al)
             beta = al / n
+        elif notch.kind == "ring_groove":
+            # β measured on grooves turned to R_z 20: K_F relative to that roughness
+            al, G, n = math.nan, math.nan, math.nan
+            # (capped at 1: a surface finer than the test pieces' is given no credit)
+            kF = min(kF / roughness(RZ_RING, sB)[1 if shear else 0], 1.0)
+            beta = ring[load]
         else:
             al, G, n, kF = math.nan, math.nan, math.nan, 1.0
             beta = bt if shear else bs
@@ -233,8 +351,10 @@ def assess(notch: Notch, st: Stresses, rm_n: float, rp_n: float, group: str, *,
         K = (beta / K2 + 1.0 / kF - 1.0) / k_v
         wk = W[load] * K1B / K
         psi = wk / (2.0 * K1B * rm_n - wk)
-        fk = K1S * k2f(load, hard_layer) * gamma_f(al if al == al else 1.0, load,
-                                                  hard_layer) * rp_n
+        # γ_F raises the yield limit of a circumferential notch only (DIN 743-1): not at a
+        # transverse hole (nor a keyway or a press fit, whose α is not known)
+        circ = al == al and notch.kind != "cross_hole"
+        fk = K1S * k2f(load, hard_layer) * gamma_f(al if circ else 1.0, load, hard_layer) * rp_n
         if shear:
             fk /= math.sqrt(3.0)
         mv = s_mv / math.sqrt(3.0) if shear else s_mv

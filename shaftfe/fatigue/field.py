@@ -43,7 +43,8 @@ from shaftfe.fatigue.sn import FatigueMaterial
 from shaftfe.solid.features import kind_of
 
 # a node on several regions is labelled by the first of its regions' kinds in this order
-_KIND_PRIORITY = {"fillet": 0, "keyway": 1, "shoulder": 2, "seat": 3, "bearing_seat": 3}
+_KIND_PRIORITY = {"fillet": 0, "groove": 0, "keyway": 1, "cross_hole": 1, "shoulder": 2,
+                  "seat": 3, "bearing_seat": 3}
 
 
 @dataclass(frozen=True)

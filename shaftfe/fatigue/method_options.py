@@ -19,6 +19,8 @@ Why each option belongs where:
   field of any model (its stress gradient from each field's ``DepthProbe``);
 * DIN 743 (``fatigue.standards.run_din743``): the strength card on the beam model: no mesh,
   no static 3D solution, no design life (a fatigue-limit check of the largest cycle);
+* DIN 743's safety at every cross-section along the shaft, plotted (``--plot``): a beam
+  quantity, so DIN 743's alone;
 * both standards also compute the bearings' ISO 281 life (``--kappa``, ``--ec``); the seed
   method does not;
 * the 3D / axisymmetric static solution (seed, FKM): ``--model``, ``--level``, ``--exclude-mm``,
@@ -58,6 +60,7 @@ OPTIONS: dict[str, tuple[str, object]] = {
     "--design-life": ("design_life", None),  # None: run.DEFAULT_DESIGN_LIFE_BLOCKS
     "--design-life-h": ("design_life_h", None),
     "--case": ("case", None),                # a [[load_cases]] name: DIN 743 S_F on it
+    "--plot": ("plot", False),               # DIN 743 at every cross-section, plotted
 }
 
 

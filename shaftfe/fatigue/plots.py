@@ -266,3 +266,48 @@ def plot_din743_safeties(rows: list[dict], s_min: float, path, title: str = "") 
     ax.grid(axis="x", which="both", alpha=0.3)
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3, fontsize=8)
     return _save(fig, path)
+
+
+def plot_din743_along(along: dict, notches: list[dict], s_min: float, outline, path,
+                      title: str = "") -> Path:
+    """DIN 743 along the shaft: S_D and S_F of the unnotched section at every cross-section
+    (lines, log scale), each notch's S_D and S_F (markers, named), S_min, and the shaft's
+    outline below (``outline``: (x0, x1, d) per segment). A section without stress (safety
+    ∞) is drawn at the top of the axis."""
+    plt = _plt()
+    x = np.asarray(along["x_mm"], dtype=float)
+    vals = {k: np.array([np.inf if v is None else v for v in along[k]], dtype=float)
+            for k in ("S_D", "S_F")}
+    pts = {k: np.array([np.inf if n[k] is None else n[k] for n in notches], dtype=float)
+           for k in ("S_D", "S_F")}
+    finite = np.concatenate([v[np.isfinite(v)] for v in (*vals.values(), *pts.values())]
+                            + [np.array([s_min])])
+    lo, top = max(float(finite.min()) * 0.7, 1e-2), min(float(finite.max()) * 1.5, 1e3)
+    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(10, 5.6), sharex=True,
+                                  gridspec_kw={"height_ratios": [4, 1]})
+    # where the yield limit bounds the amplitude (DIN 743 case 2), S_D = S_F: S_D dashed on top
+    for k, color, label, ls in (("S_F", "tab:orange", "S_F (yield), unnotched section", "-"),
+                                ("S_D", "tab:blue", "S_D (fatigue), unnotched section", "--")):
+        ax.plot(x, np.minimum(vals[k], top), color=color, lw=1.2, ls=ls, label=label)
+    nx = np.array([n["x_mm"] for n in notches], dtype=float)
+    for k, color, mk in (("S_D", "tab:blue", "o"), ("S_F", "tab:orange", "^")):
+        ax.scatter(nx, np.minimum(pts[k], top), color=color, marker=mk, zorder=3, s=28,
+                   edgecolors="k", linewidths=0.5, label=f"{k} at a notch")
+    for n, xx, yy in zip(notches, nx, np.minimum(pts["S_D"], pts["S_F"]), strict=True):
+        ax.annotate(n["name"], (xx, min(yy, top)), textcoords="offset points", xytext=(2, -9),
+                    fontsize=6, rotation=-35, ha="left", va="top")
+    ax.axhline(s_min, color="r", lw=1.2, label=f"S_min = {s_min:g}")
+    ax.set_yscale("log")
+    ax.set_ylim(lo, top * 1.05)
+    ax.set_ylabel("safety [-] (log scale)")
+    ax.grid(which="both", alpha=0.3)
+    ax.legend(fontsize=7, ncol=3, loc="upper center")
+    ax.set_title(title or "DIN 743 safety along the shaft")
+    for x0, x1, d in outline:
+        ax2.fill_between([x0, x1], [-d / 2, -d / 2], [d / 2, d / 2], color="0.75",
+                         edgecolor="0.3", lw=0.6)
+    for xx in nx:
+        ax2.axvline(xx, color="k", lw=0.5, ls=":")
+    ax2.set_ylabel("Ø mm")
+    ax2.set_xlabel("x [mm]")
+    return _save(fig, path)

@@ -95,6 +95,7 @@ class FatigueJob:
     kappa: float | None = None             # ISO 281 κ of the bearings (None: the default)
     ec: float | None = None                # ISO 281 e_C (None: the default)
     case: str | None = None                # a [[load_cases]] name: static S_F on it (DIN 743)
+    plot: bool = False                     # DIN 743: the safety at every cross-section
 
 
 @dataclass(frozen=True, eq=False)

@@ -18,7 +18,7 @@ import numpy as np
 
 from shaftfe.errors import InputError
 from shaftfe.fatigue import din743, fkm
-from shaftfe.solid.features import fillet_region
+from shaftfe.solid.features import fillet_region, groove_region, hole_region
 from shaftfe.util.units import REF_RPM
 
 
@@ -120,17 +120,24 @@ def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None, progress=None):
 KT_TABLE = "reports/benchmarks/kt_reference.json"
 
 
+KT_GROOVES = "reports/benchmarks/kt_grooves.json"
+
+
 def converged_kt() -> dict:
-    """(D, d, ρ) rounded to 1e-6 mm -> {load: α} from the committed table of converged Kt
-    (``benchmarks/bench_axisymmetric.py``: 3 uniform refinements, Richardson)."""
+    """(D, d, ρ) rounded to 1e-6 mm -> {load: α} from the committed tables of converged Kt
+    (3 uniform refinements, Richardson): the shoulders' (``benchmarks/bench_axisymmetric.py``)
+    and, keyed ("groove", D, d, ρ), the U grooves' (``benchmarks/bench_grooves.py``)."""
     from shaftfe.util.paths import REPO_DIR
-    try:
-        t = json.loads((REPO_DIR / KT_TABLE).read_text())
-    except (OSError, ValueError):
-        return {}
-    return {(round(r["D_mm"], 6), round(r["d_mm"], 6), round(r["rho_mm"], 6)):
-            {ld: r[ld]["kt"] for ld in ("tension", "bending", "torsion")}
-            for r in t.get("fillets", [])}
+    out = {}
+    for name, rows, tag in ((KT_TABLE, "fillets", ()), (KT_GROOVES, "grooves", ("groove",))):
+        try:
+            t = json.loads((REPO_DIR / name).read_text())
+        except (OSError, ValueError):
+            continue
+        out.update({(*tag, round(r["D_mm"], 6), round(r["d_mm"], 6), round(r["rho_mm"], 6)):
+                    {ld: r[ld]["kt"] for ld in ("tension", "bending", "torsion")}
+                    for r in t.get(rows, [])})
+    return out
 
 
 @dataclass(frozen=True)
@@ -138,6 +145,20 @@ class Din743Row:
     x_mm: float
     result: din743.Result
     stresses: din743.Stresses
+
+
+@dataclass(frozen=True, eq=False)
+class Din743Along:
+    """DIN 743 at every cross-section of the shaft (``din743_along``): the unnotched section
+    of the local diameter on a grid of ``ALONG_STEP_MM``; the notches are the run's rows."""
+    x_mm: np.ndarray
+    d_mm: np.ndarray
+    S_D: np.ndarray
+    S_F: np.ndarray
+
+
+ALONG_STEP_MM = 0.25       # the cross-sections' spacing (the beam's moment is linear between
+#                            its stations: a finer grid adds nothing but points)
 
 
 @dataclass(frozen=True)
@@ -148,6 +169,7 @@ class Din743Run:
     rpm_max: float
     rows: tuple[Din743Row, ...]
     notes: tuple[str, ...]
+    along: Din743Along | None = None        # every cross-section (``--plot``), or None
 
     @property
     def governing(self) -> Din743Row:
@@ -174,7 +196,7 @@ def section_stresses(beam, x: float, d: float, span: float) -> tuple[float, floa
 
 def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
     """(x, Notch, d for the nominal stress, half-span judged around x) at every shoulder,
-    keyway and bearing seat."""
+    groove, keyway and bearing seat."""
     from shaftfe.fatigue.cards import region_rz
     gf = ground_fillets(variant)
     out = []
@@ -195,6 +217,31 @@ def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
             out.append((kw.x_center_mm, din743.Notch(f"keyway {s.name}", "keyway",
                                                      s.diameter_mm, d_eff_mm=s.diameter_mm),
                         s.diameter_mm, 0.5 * kw.length_mm))
+        for j, g in enumerate(s.grooves):
+            # a U groove by its α (DIN 743-2 "Rundnut"); a retaining-ring groove by its
+            # measured β (§4.2.4); the nominal stresses on the groove's bottom diameter
+            d = s.diameter_mm - 2.0 * g.depth_mm
+            kind = "ring_groove" if g.kind == "din471" else "groove"
+            # the table's grooves are one arc (width 2ρ, ``axisymmetric.kt.grooved_bar``): a
+            # flat-bottomed groove takes the standard's α
+            one_arc = abs(g.width_mm - 2.0 * g.radius_mm) <= 1e-6
+            al = table.get(("groove", round(s.diameter_mm, 6), round(d, 6),
+                            round(g.radius_mm, 6))) if kind == "groove" and one_arc else None
+            src = ("DIN 743-2 §4.2.4 β (ring groove)" if kind == "ring_groove" else
+                   f"converged Kt ({KT_GROOVES})" if al else
+                   "DIN 743-2 formula (round groove; no converged Kt for this geometry)")
+            out.append((g.x_center_mm, din743.Notch(
+                f"groove {s.name}:{j}", kind, d, s.diameter_mm, g.radius_mm, al, src,
+                region_rz(groove_region(s.name, j), surfaces, gf), s.diameter_mm,
+                width_mm=g.width_mm), d, 0.0))
+        for j, h in enumerate(s.cross_holes):
+            # DIN 743-2's α of a transverse hole; the nominal stresses on the net section
+            # (din743.net_section_scale)
+            out.append((h.x_center_mm, din743.Notch(
+                f"cross hole {s.name}:{j}", "cross_hole", s.diameter_mm, s.diameter_mm,
+                0.5 * h.diameter_mm, None, "DIN 743-2 formula (transverse hole)",
+                region_rz(hole_region(s.name, j), surfaces, gf), s.diameter_mm,
+                hole_mm=h.diameter_mm), s.diameter_mm, 0.0))
         if s.name.startswith("bearing_seat"):
             for x in (s.x_start_mm, s.x_end_mm):
                 out.append((x, din743.Notch(f"press fit {s.name} @{x:g}", "press_fit",
@@ -203,6 +250,47 @@ def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
     return sorted(out, key=lambda r: r[0])
 
 
+
+
+def notch_stresses(beam, x: float, notch, d: float, span: float) -> tuple[float, float, float]:
+    """The nominal stresses a notch is judged by: ``section_stresses`` on the full round
+    section, times the notch's own section's factors (a transverse hole's net section,
+    ``din743.net_section_scale``)."""
+    return tuple(v * k for v, k in zip(section_stresses(beam, x, d, span),
+                                       din743.net_section_scale(notch), strict=True))
+
+
+def _stresses(zd: float, sb: float, tt: float, lo: float, hi: float) -> din743.Stresses:
+    """The cycle lo → hi (load factors) of the nominal stresses at the reference speed."""
+    a, m = (hi - lo) / 2, (hi + lo) / 2
+    return din743.Stresses(zd_a=zd * a, zd_m=zd * m, b_a=sb * a, b_m=sb * m, t_a=tt * a,
+                           t_m=tt * m)
+
+
+def din743_along(variant, beam, card, surfaces, lo: float, hi: float,
+                 step_mm: float = ALONG_STEP_MM) -> Din743Along:
+    """S_D and S_F of the unnotched section at every cross-section x (step ``step_mm``, and
+    each segment's ends): DIN 743 with α = β = 1, the local diameter for K1, K2 and the
+    nominal stresses, the turned (or a bearing seat's ground) surface for K_F, K_V of an
+    unnotched case-hardened section. The load cycle lo → hi is the notches' (``run_din743``)."""
+    from shaftfe.fatigue.fkm_field import k_v_case_hardening
+    xs, ds, rzs = [], [], []
+    for s in variant.segments:
+        n = max(2, math.ceil(s.length_mm / step_mm) + 1)
+        xs.append(np.linspace(s.x_start_mm, s.x_end_mm, n))
+        ds.append(np.full(n, s.diameter_mm))
+        rzs.append(np.full(n, surfaces.seat_rz_um if s.name.startswith("bearing_seat")
+                           else surfaces.turned_rz_um))
+    x, d, rz_all = np.concatenate(xs), np.concatenate(ds), np.concatenate(rzs)
+    sd, sf = np.empty(x.size), np.empty(x.size)
+    for i, (xi, di, rz) in enumerate(zip(x, d, rz_all, strict=True)):
+        kv = k_v_case_hardening(di, False) if card.case_hardened else 1.0
+        notch = din743.Notch("plain", "plain", float(di), rz_um=float(rz), d_eff_mm=float(di))
+        res = din743.assess(notch, _stresses(*section_stresses(beam, xi, di, 0.0), lo, hi),
+                            card.rm_n_MPa, card.rp_n_MPa, card.group, k_v=kv,
+                            hard_layer=card.case_hardened, case=2)
+        sd[i], sf[i] = res.S_D, res.S_F
+    return Din743Along(x, d, sd, sf)
 
 
 def size_diameters_note(rows) -> str:
@@ -249,15 +337,20 @@ def run_din743(job, opts: StrengthOptions, inputs=None, beam=None) -> Din743Run:
         lo, hi = float(cyc.minimum[k]), float(cyc.maximum[k])
     rows, notes = [], []
     table = converged_kt()
-    for x, notch, d, span in din743_notches(inputs.variant, beam, card, load_surfaces(), table):
-        zd, sb, tt = section_stresses(beam, x, d, span)
-        st = din743.Stresses(zd_a=zd * (hi - lo) / 2, zd_m=zd * (hi + lo) / 2,
-                             b_a=sb * (hi - lo) / 2, b_m=sb * (hi + lo) / 2,
-                             t_a=tt * (hi - lo) / 2, t_m=tt * (hi + lo) / 2)
+    surfaces = load_surfaces()
+    for x, notch, d, span in din743_notches(inputs.variant, beam, card, surfaces, table):
+        st = _stresses(*notch_stresses(beam, x, notch, d, span), lo, hi)
         kv = k_v_case_hardening(notch.d_mm, True) if card.case_hardened else 1.0
         res = din743.assess(notch, st, card.rm_n_MPa, card.rp_n_MPa, card.group, k_v=kv,
                             hard_layer=card.case_hardened, case=2)
         rows.append(Din743Row(x, res, st))
     notes.append(size_diameters_note(rows))
+    out = [r.result.notch.name for r in rows if r.result.notch.kind == "groove"
+           and not r.result.notch.alpha and not din743.groove_in_range(r.result.notch)]
+    if out:
+        notes.append("outside the range of DIN 743-2's groove formula (r/t ≥ 0.03, d/D ≤ "
+                     f"0.98): {', '.join(out)}; its α is extrapolated there")
     rpm = h.rpm_ref * math.sqrt(hi), h.rpm_ref * math.sqrt(lo)
-    return Din743Run(card, ref_rpm, rpm[1], rpm[0], tuple(rows), tuple(notes))
+    along = (din743_along(inputs.variant, beam, card, surfaces, lo, hi)
+             if getattr(job, "plot", False) else None)
+    return Din743Run(card, ref_rpm, rpm[1], rpm[0], tuple(rows), tuple(notes), along)

@@ -157,7 +157,22 @@ def din_summary(run) -> dict:
                          "factors": {ld: {k: _num(v) for k, v in f.items()}
                                      for ld, f in w.result.factors.items()}}
                         for w in run.rows],
-            "notes": list(run.notes)}
+            "notes": list(run.notes),
+            **({"along": {"x_mm": [float(x) for x in run.along.x_mm],
+                          "d_mm": [float(d) for d in run.along.d_mm],
+                          "S_D": [_num(float(v)) for v in run.along.S_D],
+                          "S_F": [_num(float(v)) for v in run.along.S_F],
+                          "governing_unnotched": _along_min(run.along)}}
+               if run.along is not None else {})}
+
+
+def _along_min(along) -> dict:
+    """The lowest safety of an unnotched section and where."""
+    import numpy as np
+    s = np.minimum(along.S_D, along.S_F)
+    i = int(np.argmin(s))
+    return {"x_mm": float(along.x_mm[i]), "S_D": _num(float(along.S_D[i])),
+            "S_F": _num(float(along.S_F[i]))}
 
 
 def elements_summary(bearings, keys, gear_chk, kappa: float, e_c: float, *,
@@ -294,12 +309,20 @@ def write_fkm_files(res, ref, out) -> tuple[dict, dict]:
                  "damage_matrix": "damage_matrix.png"}
 
 
-def write_din_files(summary: dict, out) -> dict:
-    """DIN 743's plot into ``out``: S_D and S_F per notch against S_min."""
+def write_din_files(summary: dict, out, outline=()) -> dict:
+    """DIN 743's plots into ``out``: S_D and S_F per notch against S_min; with the safety at
+    every cross-section in the summary (``--plot``), the safety along the shaft too, over the
+    shaft's ``outline`` ((x0, x1, d) per segment)."""
     from shaftfe.fatigue import plots as fp
     fp.plot_din743_safeties(summary["notches"], summary["S_min"], out / "din743_safety.png",
                             title=f"DIN 743 safeties per notch, card {summary['card']}")
-    return {"din743_safety": "din743_safety.png"}
+    files = {"din743_safety": "din743_safety.png"}
+    if summary.get("along"):
+        fp.plot_din743_along(summary["along"], summary["notches"], summary["S_min"], outline,
+                             out / "din743_along.png",
+                             title=f"DIN 743 safety along the shaft, card {summary['card']}")
+        files["din743_along"] = "din743_along.png"
+    return files
 
 
 def write_outputs(summary: dict, out) -> tuple[dict, list[str]]:

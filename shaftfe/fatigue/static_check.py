@@ -67,7 +67,7 @@ def din743_static(variant, case_name: str, opts) -> StaticCheck:
         converged_kt,
         din743_card,
         din743_notches,
-        section_stresses,
+        notch_stresses,
     )
     case = case_of(variant, case_name)
     card = din743_card(variant, opts)
@@ -75,7 +75,7 @@ def din743_static(variant, case_name: str, opts) -> StaticCheck:
     rows = []
     for x, notch, d, span in din743_notches(variant, beam, card, load_surfaces(),
                                             converged_kt()):
-        zd, sb, tt = section_stresses(beam, x, d, span)
+        zd, sb, tt = notch_stresses(beam, x, notch, d, span)
         res = din743.assess(notch, din743.Stresses(zd_m=zd, b_m=sb, t_m=tt), card.rm_n_MPa,
                             card.rp_n_MPa, card.group, hard_layer=card.case_hardened)
         rows.append(StaticRow(x, notch.name, zd, sb, tt, res.S_F))

@@ -2,14 +2,25 @@
 
 ``four_step_shaft``: Ø15 | Ø17 (fillet, 5×3×14 keyway) | Ø22 (fillet, bearing) | Ø17 (seat,
 hex socket in the right end), 100 mm long, steel; a counterweight 'cw' on the keyed Ø17 and a
-'hub' on the last Ø17. It has every feature the mesher names (fillets, shoulders, keyway, hex
-socket, split load seats, a bearing seat) at a size that meshes in seconds.
+'hub' on the last Ø17; optionally a U groove in the Ø22. With it, it has every feature the
+mesher names (fillets, shoulders, a groove, keyway, hex socket, split load seats, a bearing
+seat) at a size that meshes in seconds.
 """
 
 from __future__ import annotations
 
 from shaftfe.model.loads import Load
-from shaftfe.model.variant import Attachment, Bearing, HexSocket, Keyway, Material, Segment, Variant
+from shaftfe.model.variant import (
+    Attachment,
+    Bearing,
+    CrossHole,
+    Groove,
+    HexSocket,
+    Keyway,
+    Material,
+    Segment,
+    Variant,
+)
 
 STEEL = Material("steel", 210_000.0, 0.3, 7.85e-9, 540.0, 800.0)
 K_SEED = ((35_030.0, 8_756.0), (8_756.0, 35_030.0))     # seed 000 §8.3 bearing stiffness, N/mm
@@ -19,18 +30,24 @@ def four_step_shaft(*, name: str = "four_step", description: str = "synthetic fo
                     fillet_b: float = 1.0, fillet_c: float = 1.0, keyway: bool = True,
                     keyway_x: float = 35.0, keyway_angle: float = 0.0, hex_socket: bool = True,
                     hex_end: str = "right", cw_angle: float = 30.0, hub_angle: float = 0.0,
-                    washer: bool = False, thread_end: bool = False,
+                    washer: bool = False, thread_end: bool = False, groove: bool = False,
+                    cross_hole: bool = False,
                     bearing: tuple[float, float] = (60.0, 8.0),
                     cw_seat: tuple[float, float] = (25.0, 45.0),
                     hub_seat: tuple[float, float] = (75.0, 85.0)) -> Variant:
     """The four-step test shaft; ``washer`` adds a part sharing the hub's seat, ``thread_end``
-    marks the Ø15 end as a thread (informational)."""
+    marks the Ø15 end as a thread (informational), ``groove`` turns a U groove (2 wide,
+    0.8 deep, corner radius 0.8, a 0.4 mm flat bottom) into the Ø22 at x = 53 mm, beside the
+    bearing, ``cross_hole``
+    drills a Ø2 hole through the last Ø17 at x = 72.5 mm (at 90°)."""
     kw = (Keyway(5.0, 3.0, 14.0, keyway_x, keyway_angle),) if keyway else ()
     segs = (
         Segment("a", 0.0, 20.0, 15.0, 0.0, kind="thread" if thread_end else "plain"),
         Segment("b", 20.0, 30.0, 17.0, fillet_b, keyways=kw),
-        Segment("c", 50.0, 20.0, 22.0, fillet_c),
-        Segment("d", 70.0, 30.0, 17.0, 0.0),
+        Segment("c", 50.0, 20.0, 22.0, fillet_c,
+                grooves=(Groove("u", 53.0, 2.0, 0.8, 0.8),) if groove else ()),
+        Segment("d", 70.0, 30.0, 17.0, 0.0,
+                cross_holes=(CrossHole(2.0, 72.5, 90.0),) if cross_hole else ()),
     )
     brg = (Bearing("mid", "ZKL 3203", bearing[0], bearing[1], 14_400.0, 10_000.0, K_SEED),)
     att = [
@@ -64,3 +81,32 @@ def keyed_bar(kind: str) -> Variant:
         loads = (Load("t1", "torque", 40.0, (38.0, 42.0), KEYED_BAR_T_NMM),
                  Load("t2", "torque", 120.0, (118.0, 122.0), -KEYED_BAR_T_NMM))
     return Variant(f"keyed_{kind}", "keyed bar", segs, brg, (), STEEL, 0.0, loads=loads)
+
+
+HOLED_BAR_F_N = 1000.0         # four-point bending, as keyed_bar: M = F · 30 mm between the forces
+HOLED_BAR_T_NMM = 50_000.0     # torsion between x = 40 and x = 120 mm
+HOLED_BAR_P_N = 10_000.0       # tension between x = 40 and x = 120 mm
+
+
+def holed_bar(kind: str, hole_mm: float = 4.0) -> Variant:
+    """Ø20 × 160 mm bar with a transverse hole of ``hole_mm`` at x = 80 (along +y), supports
+    at 10 and 150 mm (the left one axial), loaded between x = 40 and x = 120 mm: ``kind``
+    "bending" (F at 40 and 120 mm: M = F · 30 mm), "torsion" (+T at 40, −T at 120) or
+    "tension" (−P at 40, +P at 120): the cross hole's validation case (issue #33,
+    tests/validation/test_cross_hole.py, benchmarks/bench_cross_hole.py)."""
+    segs = (Segment("bar", 0.0, 160.0, 20.0, 0.0,
+                    cross_holes=(CrossHole(hole_mm, 80.0, 0.0),)),)
+    brg = (Bearing("L", "x", 10.0, 10.0, 14_400.0, 10_000.0, K_SEED, axial=True),
+           Bearing("R", "x", 150.0, 10.0, 14_400.0, 10_000.0, K_SEED))
+    if kind == "bending":
+        loads = (Load("p1", "force", 40.0, (38.0, 42.0), HOLED_BAR_F_N, 0.0),
+                 Load("p2", "force", 120.0, (118.0, 122.0), HOLED_BAR_F_N, 0.0))
+    elif kind == "torsion":
+        loads = (Load("t1", "torque", 40.0, (38.0, 42.0), HOLED_BAR_T_NMM),
+                 Load("t2", "torque", 120.0, (118.0, 122.0), -HOLED_BAR_T_NMM))
+    elif kind == "tension":
+        loads = (Load("a1", "axial_force", 40.0, (38.0, 42.0), -HOLED_BAR_P_N),
+                 Load("a2", "axial_force", 120.0, (118.0, 122.0), HOLED_BAR_P_N))
+    else:
+        raise ValueError(f"kind {kind!r}: bending | torsion | tension")
+    return Variant(f"holed_{kind}", "holed bar", segs, brg, (), STEEL, 0.0, loads=loads)

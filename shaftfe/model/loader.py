@@ -13,6 +13,7 @@ from pathlib import Path
 from types import MappingProxyType
 
 from shaftfe.errors import InputError
+from shaftfe.model import grooves
 from shaftfe.model.fields import (
     FILLET_MIN_MM,
     PROV_KEYS,
@@ -33,7 +34,9 @@ from shaftfe.model.variant import (
     Attachment,
     BalanceTarget,
     Bearing,
+    CrossHole,
     Duty,
+    Groove,
     HexSocket,
     Keyway,
     Material,
@@ -215,7 +218,7 @@ def _segments(shaft: dict, src: str, ctx: Ctx, stock: float | None) -> tuple[Seg
         fld = f"segments[{i}]"
         t = table(t, src, fld)
         check_keys(t, {"name", "length_mm", "diameter_mm", "fillet_mm", "kind", "keyways",
-                        "thread"}, src, fld)
+                        "thread", "grooves", "cross_holes"}, src, fld)
         name = text(t, "name", src, fld)
         need(name not in names, src, f"{fld}.name", "unique segment names", name)
         names.add(name)
@@ -261,8 +264,11 @@ def _segments(shaft: dict, src: str, ctx: Ctx, stock: float | None) -> tuple[Seg
                   f"slot [{lo:g}, {hi:g}] inside the segment [{x:g}, {x + length:g}]",
                   kw.x_center_mm)
             kws.append(kw)
+        grooves = _grooves(t, src, fld, name, dia, ctx)
+        holes = _cross_holes(t, src, fld, name, ctx)
         segs.append(Segment(name=name, x_start_mm=x, length_mm=length, diameter_mm=dia,
-                            fillet_mm=fil, keyways=tuple(kws), kind=kind))
+                            fillet_mm=fil, keyways=tuple(kws), kind=kind, grooves=grooves,
+                            cross_holes=holes))
         x += length
     # fillets: a shoulder fillet must fit the step height and the smaller segment's length
     for i in range(len(segs) - 1):
@@ -278,6 +284,57 @@ def _segments(shaft: dict, src: str, ctx: Ctx, stock: float | None) -> tuple[Seg
               f"<= step height {step:g} and <= length of the smaller segment "
               f"{small.length_mm:g}", a.fillet_mm)
     return tuple(segs)
+
+
+def _grooves(t: dict, src: str, fld: str, name: str, dia: float,
+             ctx: Ctx) -> tuple[Groove, ...]:
+    """A segment's ``[[shaft.segments.grooves]]``: the kind, the centre and the dimensions the
+    kind's standard does not fix (``shaftfe.model.grooves``)."""
+    raw = t.get("grooves", [])
+    need(isinstance(raw, list), src, f"{fld}.grooves", "a list of [[...grooves]] tables", raw)
+    out: list[Groove] = []
+    for j, g in enumerate(raw):
+        gf = f"{fld}.grooves[{j}]"
+        g = table(g, src, gf)
+        check_keys(g, {"kind", "x_center_mm", "width_mm", "depth_mm", "radius_mm"}, src, gf)
+        provenance(g, src, gf, f"segments.{name}.grooves[{j}]", ctx)
+        kind = text(g, "kind", src, gf)
+        need(kind in grooves.KINDS, src, f"{gf}.kind", " | ".join(grooves.KINDS), kind)
+        need(kind in grooves.BUILT, src, f"{gf}.kind", " | ".join(grooves.BUILT) +
+              " (DIN 509 relief grooves are named by the format but not built yet)", kind)
+        xc = num(g, "x_center_mm", src, gf)
+        if kind == "din471":
+            for key in ("width_mm", "depth_mm"):
+                need(key not in g, src, f"{gf}.{key}", "not given: DIN 471 fixes it from the "
+                     f"segment's diameter {dia:g} mm", g.get(key))
+            std = grooves.din471(dia)
+            need(std is not None, src, f"{gf}.kind", "din471 on a segment whose diameter is "
+                 "in DIN 471's table (" + ", ".join(f"{d:g}" for d in grooves.DIN471) +
+                 " mm)", f"din471 on diameter {dia:g}")
+            w, dep = std
+            rad = num(g, "radius_mm", src, gf, default=grooves.DIN471_CORNER_MM)
+        else:
+            w, dep = num(g, "width_mm", src, gf), num(g, "depth_mm", src, gf)
+            rad = num(g, "radius_mm", src, gf, default=grooves.full_round(w, dep))
+        # the ranges (depth, radius, inside the segment): model.validate, for every Variant
+        out.append(Groove(kind, xc, w, dep, rad))
+    return tuple(out)
+
+
+def _cross_holes(t: dict, src: str, fld: str, name: str, ctx: Ctx) -> tuple[CrossHole, ...]:
+    """A segment's ``[[shaft.segments.cross_holes]]`` (their ranges: ``model.validate``)."""
+    raw = t.get("cross_holes", [])
+    need(isinstance(raw, list), src, f"{fld}.cross_holes", "a list of [[...cross_holes]] "
+         "tables", raw)
+    out: list[CrossHole] = []
+    for j, h in enumerate(raw):
+        hf = f"{fld}.cross_holes[{j}]"
+        h = table(h, src, hf)
+        check_keys(h, {"diameter_mm", "x_center_mm", "angle_deg"}, src, hf)
+        provenance(h, src, hf, f"segments.{name}.cross_holes[{j}]", ctx)
+        out.append(CrossHole(num(h, "diameter_mm", src, hf), num(h, "x_center_mm", src, hf),
+                             num(h, "angle_deg", src, hf, default=0.0) or 0.0))
+    return tuple(out)
 
 
 def _stiffness_matrix(bt: dict, tsrc: str, tf: str):

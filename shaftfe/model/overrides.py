@@ -4,6 +4,7 @@ Paths name what a person sees in the files, tables of lists by their ``name``:
 
 * ``segments.<segment>.<key>``                 e.g. ``segments.collar.fillet_mm=1.0``
 * ``segments.<segment>.keyways.<i>.<key>``     (i = 0, 1, … in file order)
+* ``segments.<segment>.grooves.<i>.<key>``     (likewise; ``cross_holes.<i>``)
 * ``bearings.<bearing>.<key>``                 the [[shaft.bearings]] entries
 * ``attachments.<part>.<key>`` and ``attachments.<part>.shape.<key>`` (the variant's own parts)
 * ``parts.<part>.<key>``, ``materials.<name>.<key>``, ``bearing_types.<type>.<key>``
@@ -214,11 +215,12 @@ def _locate(merged: dict, o: Override) -> tuple[dict, str, str]:
 
 def provenance_path(path: str) -> str:
     """The key of ``Variant.provenance.source`` that a canonical --set path changes: a used
-    part's keys are recorded as ``attachments.<part>.<key>``, keyways as ``keyways[i]``, the
-    hex socket's without ``shaft.``."""
+    part's keys are recorded as ``attachments.<part>.<key>``, keyways, grooves and cross
+    holes as ``keyways[i]``, ``grooves[i]``, ``cross_holes[i]``, the hex socket's without
+    ``shaft.``."""
     p = re.sub(r"^parts\.", "attachments.", path)
     p = re.sub(r"^shaft\.hex_socket\.", "hex_socket.", p)
-    return re.sub(r"\.keyways\.(\d+)\.", r".keyways[\1].", p)
+    return re.sub(r"\.(keyways|grooves|cross_holes)\.(\d+)\.", r".\1[\2].", p)
 
 
 def attribute(exc: InputError, overrides: tuple[Override, ...]) -> InputError:

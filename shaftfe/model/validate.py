@@ -5,9 +5,11 @@ length and diameter, a material with E > 0 and −1 < ν < 0.5, unique non-empty
 inside the shaft (a width of 0 is a point support: the beam's idealisation) with a symmetric
 positive-definite 2×2 radial stiffness (a bearing that gives no stiffness in some direction
 leaves the shaft free there: refused as input, in the beam and in 3D alike), attachments inside
-the shaft with mass and eccentricity ≥ 0, keyways of positive size, and a hex socket at one
-end, shorter than the shaft. The loader (``shaftfe.model.loader.load_variant``) calls it after
-parsing; the beam, the solid plan and the static model call it on the variant they are given.
+the shaft with mass and eccentricity ≥ 0, keyways of positive size, grooves inside their
+segment with a depth below a quarter of its diameter and a corner radius the groove holds, and a
+hex socket at one end, shorter than the shaft. The loader
+(``shaftfe.model.loader.load_variant``) calls it after parsing; the beam, the solid plan and
+the static model call it on the variant they are given.
 The rules that need the solid's plan (a ring of positive width with a chamfer below a quarter
 of it, a keyway inside the straight part of its segment, a contact band clear of the fillets,
 the hex socket's corners) are the solid's construction rules: ``shaftfe.solid.plan.prepare``.
@@ -23,6 +25,8 @@ import math
 import numpy as np
 
 from shaftfe.errors import InputError
+from shaftfe.model import grooves
+from shaftfe.model.fields import FILLET_MIN_MM
 from shaftfe.model.loads import check_torque_path
 
 TOL_X_MM = 1e-6       # mm: segment ends closer than this are the same station
@@ -87,7 +91,56 @@ def _segments(v, src: str) -> tuple[float, float]:
             if k.length_mm < k.width_mm + TOL_X_MM:
                 raise InputError(src, f"{kf}.length_mm", f">= width ({k.width_mm:g})",
                                  got=k.length_mm)
+        for j, g in enumerate(s.grooves):
+            _groove(src, f"{f}.grooves[{j}]", s, g)
+        for j, h in enumerate(s.cross_holes):
+            _cross_hole(src, f"{f}.cross_holes[{j}]", s, h)
     return segs[0].x_start_mm, segs[-1].x_end_mm
+
+
+def _groove(src: str, gf: str, s, g) -> None:
+    """A groove's own rules (``model.grooves``); its place among the other features is the
+    solid plan's (``solid.plan``)."""
+    if g.kind not in grooves.BUILT:
+        raise InputError(src, f"{gf}.kind", " | ".join(grooves.BUILT), got=g.kind)
+    for name in ("width_mm", "depth_mm", "radius_mm", "x_center_mm"):
+        if not _finite(getattr(g, name)):
+            raise InputError(src, f"{gf}.{name}", "a finite number", got=getattr(g, name))
+    _positive(src, f"{gf}.width_mm", g.width_mm)
+    d = s.diameter_mm
+    if not 0 < g.depth_mm < 0.25 * d:
+        raise InputError(src, f"{gf}.depth_mm", f"0 < depth < radius / 2 ({0.25 * d:g}): a "
+                         "deeper groove leaves a neck the shaft's models are not made for",
+                         got=g.depth_mm)
+    top = grooves.full_round(g.width_mm, g.depth_mm)
+    if not FILLET_MIN_MM <= g.radius_mm <= top + TOL_X_MM:
+        raise InputError(src, f"{gf}.radius_mm", f">= {FILLET_MIN_MM:g} and <= min(width / 2, "
+                         f"depth) ({top:g})", got=g.radius_mm)
+    lo, hi = g.x_center_mm - 0.5 * g.width_mm, g.x_center_mm + 0.5 * g.width_mm
+    if lo < s.x_start_mm - TOL_X_MM or hi > s.x_end_mm + TOL_X_MM:
+        raise InputError(src, f"{gf}.x_center_mm", f"groove [{lo:g}, {hi:g}] inside its "
+                         f"segment [{s.x_start_mm:g}, {s.x_end_mm:g}]", got=g.x_center_mm)
+
+
+# a cross hole wider than this × the shaft's diameter leaves the charts (Peterson's and
+# DIN 743-2's α of a transverse hole are given to d_h/d ≈ 0.3-0.4) and a shaft no one designs
+CROSS_HOLE_MAX = 0.4
+
+
+def _cross_hole(src: str, hf: str, s, h) -> None:
+    for name in ("diameter_mm", "x_center_mm", "angle_deg"):
+        if not _finite(getattr(h, name)):
+            raise InputError(src, f"{hf}.{name}", "a finite number", got=getattr(h, name))
+    d = s.diameter_mm
+    if not 0 < h.diameter_mm <= CROSS_HOLE_MAX * d:
+        raise InputError(src, f"{hf}.diameter_mm", f"0 < diameter <= {CROSS_HOLE_MAX:g} × the "
+                         f"segment's diameter ({CROSS_HOLE_MAX * d:g}: the charts' range)",
+                         got=h.diameter_mm)
+    a = 0.5 * h.diameter_mm
+    if h.x_center_mm - a < s.x_start_mm - TOL_X_MM or h.x_center_mm + a > s.x_end_mm + TOL_X_MM:
+        raise InputError(src, f"{hf}.x_center_mm", f"hole [{h.x_center_mm - a:g}, "
+                         f"{h.x_center_mm + a:g}] inside its segment [{s.x_start_mm:g}, "
+                         f"{s.x_end_mm:g}]", got=h.x_center_mm)
 
 
 def _material(v, src: str) -> None:

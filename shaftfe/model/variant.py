@@ -59,6 +59,28 @@ class Keyway:
 
 
 @dataclass(frozen=True)
+class Groove:
+    """A circumferential groove turned into a segment (``shaftfe.model.grooves``): a flat
+    bottom ``depth_mm`` below the surface, ``width_mm`` wide, bottom corners of ``radius_mm``
+    (half the width: a full round U groove). The loader resolves a standard groove's
+    dimensions from the segment's diameter; ``kind`` says which standard they came from."""
+    kind: str                 # one of model.grooves.BUILT
+    x_center_mm: float        # axial centre (absolute x)
+    width_mm: float
+    depth_mm: float
+    radius_mm: float
+
+
+@dataclass(frozen=True)
+class CrossHole:
+    """A transverse hole drilled through a segment (issue #33): straight through the axis,
+    its direction ``angle_deg`` in the y-z plane (0° = +y, as a keyway's)."""
+    diameter_mm: float
+    x_center_mm: float        # axial position of the hole's axis (absolute x)
+    angle_deg: float = 0.0
+
+
+@dataclass(frozen=True)
 class Segment:
     """A cylindrical step of the shaft. Segments are contiguous: x_start of segment i+1 equals
     x_end of segment i. ``fillet_mm`` is the radius of the fillet at this segment's RIGHT end
@@ -70,6 +92,11 @@ class Segment:
     fillet_mm: float = 0.0
     keyways: tuple[Keyway, ...] = ()
     kind: str = "plain"       # "plain" | "seat" | "thread" (threads modelled at minor diameter)
+    # added later: left out of the content hash while empty, so a shaft without grooves
+    # keeps its hash (and its cached meshes and solutions)
+    grooves: tuple[Groove, ...] = dataclasses.field(default=(), metadata={"omit_empty": True})
+    cross_holes: tuple[CrossHole, ...] = dataclasses.field(default=(),
+                                                           metadata={"omit_empty": True})
 
     @property
     def x_end_mm(self) -> float:
@@ -291,7 +318,8 @@ class Variant:
 
 def _canonical(obj: Any) -> Any:
     if dataclasses.is_dataclass(obj):
-        return {f.name: _canonical(getattr(obj, f.name)) for f in dataclasses.fields(obj)}
+        return {f.name: _canonical(getattr(obj, f.name)) for f in dataclasses.fields(obj)
+                if getattr(obj, f.name) or not f.metadata.get("omit_empty")}
     if isinstance(obj, tuple | list):
         return [_canonical(e) for e in obj]
     if isinstance(obj, bool) or obj is None or isinstance(obj, str):

@@ -346,6 +346,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     with prog.stage("plots"):
         _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, cres,
                camp, files["vtu_rpm"], add_fig)
+        _din743_along_plot(variant, strength, fig_dir, add_fig)
     picture_seconds = None
     with prog.stage("3D pictures"):           # what is left of them once the plots are done
         if rendering is not None:
@@ -376,6 +377,8 @@ def _strength(o: ReportOptions, variant, ref, history, cycles=None) -> dict:
     ``cycles`` (the fatigue stage's: counted once), DIN 743 on the beam, the bearings over the
     duty cycle and the seed's key and gear checks, with the defaults of
     ``shaftfe fatigue --method fkm | din743``."""
+    import dataclasses
+
     from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
     from shaftfe.errors import InputError
     from shaftfe.fatigue import standards as sd
@@ -394,8 +397,9 @@ def _strength(o: ReportOptions, variant, ref, history, cycles=None) -> dict:
         variant, history, field=ref, cycles=cycles), job)
     out["fkm"] = so.fkm_summary(fkm.detail.result)
     beam = sd.beam_at_ref(variant)              # one beam solve for DIN 743 and the bearings
+    # DIN 743 with its safety at every cross-section (the report plots it along the shaft)
     din = get_method("din743").assess(AssessmentInputs.one_channel(variant, history, beam=beam),
-                                      job)
+                                      dataclasses.replace(job, plot=True))
     out["din743"] = so.din_summary(din.detail.run)
     out["elements"] = so.compute_elements(variant, history, KAPPA_DEFAULT, EC_DEFAULT,
                                           o.speed_kmh, beam)
@@ -443,6 +447,22 @@ def _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, 
     if fres is not None:                      # a shaft of a named engine
         _balance_plots(fres, sw, fig_dir, add_fig)
     _other_plots(o, fig_dir, variant, res, ref, ff, history, material, cres, rpm_vtu, add_fig)
+
+
+def _din743_along_plot(variant, strength: dict, fig_dir, add_fig) -> None:
+    """DIN 743's safety along the shaft (``shaftfe fatigue --method din743 --plot``'s)."""
+    din = strength.get("din743")
+    if not din or "along" not in din:
+        return
+    from shaftfe.fatigue import plots as fp
+    outline = [(s.x_start_mm, s.x_end_mm, s.diameter_mm) for s in variant.segments]
+    fp.plot_din743_along(din["along"], din["notches"], din["S_min"], outline,
+                         fig_dir / "din743_along.png",
+                         title=f"DIN 743 safety along the shaft, card {din['card']}")
+    add_fig("din743_along", "DIN 743 safety along the shaft",
+            "S_D and S_F of the unnotched section at every cross-section (every 0.25 mm, "
+            "the beam's nominal stresses over the history's largest cycle) and at each notch "
+            "(markers, named), against S_min; the shaft's outline below")
 
 
 def _balance_plots(fres, sw, fig_dir, add_fig) -> None:

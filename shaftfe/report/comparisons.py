@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from shaftfe.report.options import OTHER_LEVEL
 from shaftfe.report.results import Comparison, ErrorEstimate
-from shaftfe.solid.features import kind_of
+from shaftfe.solid.features import ROUND_NOTCH_KINDS, kind_of
 from shaftfe.static.benchmark import MEASURED_FILLETS, bench_matches
 
 
@@ -23,7 +23,7 @@ def _richardson_rows(c0: dict, ee: dict) -> list[ErrorEstimate]:
     mine = {p["region"]: p["von_mises_MPa"] for p in c0["peaks"]}
     items += [(f"{region} peak, {c0['rpm']:g} rpm", mine.get(region), "MPa", e)
               for region, e in sorted(ec["region_peaks"].items())
-              if kind_of(region) == "fillet"]
+              if kind_of(region) in ROUND_NOTCH_KINDS]
     for label, val, unit, e in items:
         if e and val and e["extrapolated"]:
             rel = val / e["extrapolated"] - 1.0

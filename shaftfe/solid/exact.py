@@ -1,4 +1,5 @@
-"""Exact volume and face areas of the solid plan (closed forms: Pappus for the fillet rings,
+"""Exact volume and face areas of the solid plan (closed forms: Pappus for the fillet rings and
+the grooves,
 one-dimensional quadrature for the round ends of a keyway seat): the independent check of every
 mesh's volume and face groups."""
 
@@ -12,11 +13,13 @@ from shaftfe.solid.features import (
     HEX_SOCKET,
     SEAT_HALVES,
     fillet_region,
+    groove_region,
     half_group,
+    hole_region,
     keyway_region,
     shoulder_region,
 )
-from shaftfe.solid.plan import TOL, Fillet, Slot, Solid, prepare
+from shaftfe.solid.plan import TOL, Fillet, Groove, Hole, Slot, Solid, prepare
 
 
 def _quad(f, a: float, b: float) -> float:
@@ -98,11 +101,52 @@ def slot_hole_area(k: Slot, window: tuple[float, float] | None = None) -> float:
     return tot
 
 
+def groove_volume(g: Groove) -> float:
+    """The volume a groove removes (Pappus): the ring w × t less its two corner spandrels
+    (the material the corner radius leaves, a square ρ² less a quarter disc each)."""
+    rb, rho = g.r_bottom, g.rho
+    ring = math.pi * (g.r ** 2 - rb ** 2) * g.width
+    # 2π × (first moment about the axis of the square less that of the quarter disc, whose
+    # centroid lies 4ρ/(3π) from its centre towards the bottom)
+    spandrel = 2.0 * math.pi * (rho * rho * (rb + 0.5 * rho)
+                                - 0.25 * math.pi * rho * rho * (rb + rho) + rho ** 3 / 3.0)
+    return ring - 2.0 * spandrel
+
+
+def groove_area(g: Groove) -> float:
+    """The groove's faces: two flank annuli, two corner arcs revolved (a quarter circle of
+    radius ρ about (·, r_b + ρ): 2πρ (r_c π/2 − ρ) each), the bottom cylinder."""
+    rb, rho = g.r_bottom, g.rho
+    rc = rb + rho
+    flanks = 2.0 * math.pi * (g.r ** 2 - rc ** 2)
+    corners = 2.0 * 2.0 * math.pi * rho * (0.5 * math.pi * rc - rho)
+    bottom = 2.0 * math.pi * rb * max(g.width - 2.0 * rho, 0.0)
+    return flanks + corners + bottom
+
+
+def hole_volume(h: Hole) -> float:
+    """The volume a cross hole removes: over the hole's section (a disc of radius a, z across
+    it) the shaft's chord 2√(R² − z²): ∫ 2√(a² − z²) · 2√(R² − z²) dz."""
+    a, R = h.a, h.r
+    return _quad(lambda z: 4.0 * math.sqrt(max(a * a - z * z, 0.0))
+                 * math.sqrt(R * R - z * z), -a, a)
+
+
+def hole_area(h: Hole) -> float:
+    """The hole's wall: around the hole (angle φ) its length across the shaft,
+    2√(R² − a² sin²φ), times a dφ."""
+    a, R = h.a, h.r
+    return _quad(lambda p: 2.0 * a * math.sqrt(R * R - (a * math.sin(p)) ** 2),
+                 0.0, 2.0 * math.pi)
+
+
 def analytic_volume_of(sol: Solid) -> float:
     vol = sum(math.pi * r * r * (x1 - x0) for r, (x0, x1) in zip(sol.radii, sol.segment_x,
                                                                 strict=True))
     vol += sum(fillet_volume(f) for f in sol.fillets)
     vol -= sum(slot_volume(k) for k in sol.slots)
+    vol -= sum(groove_volume(g) for g in sol.grooves)
+    vol -= sum(hole_volume(h) for h in sol.holes)
     if sol.hex is not None:
         vol -= sol.hex.area * sol.hex.depth
     return vol
@@ -128,6 +172,10 @@ def expected_areas_of(sol: Solid) -> dict[str, float]:
         out[shoulder_region(s.segment)] = math.pi * (s.r_out ** 2 - s.r_in ** 2)
     for k in sol.slots:
         out[keyway_region(k.segment, k.index)] = slot_area(k)
+    for g in sol.grooves:
+        out[groove_region(g.segment, g.index)] = groove_area(g)
+    for h in sol.holes:
+        out[hole_region(h.segment, h.index)] = hole_area(h)
     hx = sol.hex
     left = math.pi * sol.radii[0] ** 2
     right = math.pi * sol.radii[-1] ** 2
@@ -143,7 +191,8 @@ def expected_areas_of(sol: Solid) -> dict[str, float]:
 
 
 def analytic_volume(variant) -> float:
-    """Exact volume (mm³): cylinders + fillet spandrel rings (Pappus) − keyways − hex socket."""
+    """Exact volume (mm³): cylinders + fillet spandrel rings (Pappus) − keyways − grooves −
+    hex socket."""
     return analytic_volume_of(prepare(variant))
 
 

@@ -26,9 +26,11 @@ if TYPE_CHECKING:       # the plan builds its group names from the scheme below
 # the kinds, in the order they are listed; NOTCH: the kinds a fatigue check assesses (a stress
 # raiser of the outline), CUT: the kinds that are not bodies of revolution, SEAT: the seats
 # (a part's, a bearing's), OUTLINE: the faces of the outline that no load band covers
-KINDS = ("fillet", "shoulder", "keyway", "hex_socket", "seat", "bearing_seat", "end")
-NOTCH_KINDS = frozenset({"fillet", "keyway"})
-CUT_KINDS = frozenset({"keyway", "hex_socket"})
+KINDS = ("fillet", "shoulder", "groove", "keyway", "cross_hole", "hex_socket", "seat",
+         "bearing_seat", "end")
+NOTCH_KINDS = frozenset({"fillet", "groove", "keyway", "cross_hole"})
+CUT_KINDS = frozenset({"keyway", "cross_hole", "hex_socket"})
+ROUND_NOTCH_KINDS = NOTCH_KINDS - CUT_KINDS          # the notches a body of revolution holds
 SEAT_KINDS = frozenset({"seat", "bearing_seat"})
 OUTLINE_KINDS = frozenset(KINDS) - SEAT_KINDS
 
@@ -48,6 +50,14 @@ def fillet_region(segment: str) -> str:
 
 def shoulder_region(segment: str) -> str:
     return f"shoulder:{segment}"
+
+
+def groove_region(segment: str, index: int) -> str:
+    return f"groove:{segment}:{index}"
+
+
+def hole_region(segment: str, index: int) -> str:
+    return f"cross_hole:{segment}:{index}"
 
 
 def keyway_region(segment: str, index: int) -> str:
@@ -82,6 +92,7 @@ def bearing_group(bearing: str) -> str:
 
 # (prefix, kind): the regions' (the longer prefix first), and the seats' mesh groups'
 _REGION_KIND = (("fillet:", "fillet"), ("shoulder:", "shoulder"), ("keyway:", "keyway"),
+                ("groove:", "groove"), ("cross_hole:", "cross_hole"),
                 ("end:", "end"), ("seat:bearing:", "bearing_seat"), ("seat:", "seat"))
 _GROUP_KIND = (("bearing:", "bearing_seat"), ("load:", "seat"))
 
@@ -156,7 +167,8 @@ class Feature:
 
     @property
     def notch(self) -> bool:
-        """A stress raiser that the fatigue methods assess (fillets, keyways)."""
+        """A stress raiser that the fatigue methods assess (fillets, grooves, keyways, cross
+        holes)."""
         return self.kind in NOTCH_KINDS
 
     @property
@@ -181,6 +193,17 @@ def features(sol: Solid) -> tuple[Feature, ...]:
     for s in sol.shoulders:
         out.append(Feature("shoulder", shoulder_region(s.segment), s.segment, (s.x, s.x),
                            (s.x, s.x), (("r_in", s.r_in), ("r_out", s.r_out))))
+    for g in sol.grooves:
+        out.append(Feature("groove", groove_region(g.segment, g.index), g.segment,
+                           (g.x0, g.x1), (g.x0, g.x1),
+                           (("rho", g.rho), ("depth", g.depth), ("width", g.width),
+                            ("r", g.r))))
+    for h in sol.holes:
+        d = 2.0 * h.r
+        out.append(Feature("cross_hole", hole_region(h.segment, h.index), h.segment,
+                           (h.x0, h.x1), (h.x0 - d, h.x1 + d),
+                           (("diameter", 2.0 * h.a), ("r", h.r)), round=False,
+                           angle_deg=math.degrees(h.angle)))
     for k in sol.slots:
         d = 2.0 * k.r
         out.append(Feature("keyway", keyway_region(k.segment, k.index), k.segment, (k.x0, k.x1),

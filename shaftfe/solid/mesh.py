@@ -56,9 +56,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from shaftfe.errors import InputError, SolverError
-from shaftfe.solid.features import kind_of, segment_of
+from shaftfe.solid.features import groove_region, hole_region, kind_of, segment_of
 from shaftfe.solid.levels import DEFAULT_LEVEL, MeshLevel, mesh_level
-from shaftfe.solid.plan import Solid, prepare
+from shaftfe.solid.plan import Solid, plan_payload, prepare, seat_span
 from shaftfe.util import paths
 
 __all__ = ["ShaftMesh", "build_mesh", "build_solid_mesh", "cache_path", "mesh_key", "mesh_plan"]
@@ -110,8 +110,19 @@ def _check_order(order: int) -> None:
 
 def mesh_key(sol: Solid, level: str | MeshLevel, order: int, gmsh_version: str) -> str:
     lv = mesh_level(level)
-    plan = dataclasses.asdict(sol)
+    plan = plan_payload(sol)            # (a plan without the late fields keeps its key)
     plan.pop("name")
+    if not sol.grooves:                 # a zone meshes its grooves coarsely: a key of its own
+        plan.pop("clipped", None)
+    # the whole shaft's seat range matters only where it makes a fillet a span fillet that the
+    # clipped plan's own seats would call an end fillet (the mesh's only use of it)
+    plan.pop("seat_span", None)
+    own = [st for st in sol.seats if st.loaded]
+    own_span = (min(st.x0 for st in own), max(st.x1 for st in own)) if own else None
+    if sol.seat_span is not None and any(
+            end_fillet(sol, fl) != (own_span is not None and end_fillet(sol, fl, own_span))
+            for fl in sol.fillets):
+        plan["seat_span"] = list(sol.seat_span)
     payload = {"solid": plan, "level": lv.name, "settings": lv.settings(bool(sol.fillets)),
                "order": order,
                "gmsh": gmsh_version, "options": GMSH_OPTIONS, "q_linear": Q_LINEAR,
@@ -399,17 +410,17 @@ def _untangle(gmsh) -> int:
     return len(moved)
 
 
-def end_fillet(sol: Solid, fl) -> bool:
+def end_fillet(sol: Solid, fl, span: tuple[float, float] | None = None) -> bool:
     """True for a fillet outboard of every bearing seat and every loaded attachment seat (an
     attachment with m e ≠ 0): between it and the shaft end there is neither a load nor a
     support, so the beam bending moment and shear force there are zero and only the local seat
     pressure reaches it (x2_57: the thread-end fillets carry 28-48 MPa against 430-500 MPa in
-    the fillets inside the bearing span)."""
-    seats = [st for st in sol.seats if st.loaded]
-    if not seats:
+    the fillets inside the bearing span). The seats are the whole shaft's (a 3D zone's clipped
+    plan carries their range, ``Solid.seat_span``); ``span`` overrides it."""
+    span = span or seat_span(sol)
+    if span is None:
         return False
-    lo = min(st.x0 for st in seats)
-    hi = max(st.x1 for st in seats)
+    lo, hi = span
     xa, xb = (fl.x_shoulder - fl.rho, fl.x_shoulder) if fl.side < 0 else \
         (fl.x_shoulder, fl.x_shoulder + fl.rho)
     return xb <= lo + TOL_X or xa >= hi - TOL_X
@@ -534,6 +545,31 @@ def _size_fields(gmsh, sol: Solid, level: MeshLevel, cls: dict) -> None:
         f.setNumbers(d, "CurvesList", curves)
         f.setNumber(d, "Sampling", max(20, math.ceil(2 * math.pi * fl.r_large / h_loc)))
         fields.append(threshold(h_loc, cfg["k_global"] * 2.0 * fl.r_large, d, 0.8 * fl.rho))
+    for g in sol.grooves:
+        # a groove's corner arcs as a fillet's ring (their radius ρ sets the size), the
+        # distance to all its edges (the corners' circles and the flanks' outer ones); in a 3D
+        # zone (a clipped plan) only its geometry: the groove's stresses are the global
+        # model's there (``zoned.solve._from_zone``), so no smaller than its depth
+        h_loc = (cfg["k_ring"] if local else cfg["k_fillet"]) * g.rho
+        if sol.clipped:
+            h_loc = max(h_loc, g.depth)
+        curves = sorted({abs(c) for _, c in gmsh.model.getBoundary(
+            [(2, t) for t in cls["faces"][groove_region(g.segment, g.index)]],
+            combined=False, oriented=False)})
+        d = f.add("Distance")
+        f.setNumbers(d, "CurvesList", curves)
+        f.setNumber(d, "Sampling", max(20, math.ceil(2 * math.pi * g.r / h_loc)))
+        fields.append(threshold(h_loc, cfg["k_global"] * 2.0 * g.r, d, 0.8 * g.rho))
+    for h in sol.holes:
+        # a cross hole's bore and its edges on the shaft (the peaks: in bending and torsion at
+        # the edge, in tension inside the bore): at the hot-spot size k_fillet a, growing
+        # from there
+        h_loc = cfg["k_fillet"] * h.a
+        surfs = cls["faces"][hole_region(h.segment, h.index)]
+        d = f.add("Distance")
+        f.setNumbers(d, "SurfacesList", surfs)
+        f.setNumber(d, "Sampling", max(20, math.ceil(4 * math.pi * h.a / h_loc)))
+        fields.append(threshold(h_loc, cfg["k_global"] * 2.0 * h.r, d, 0.3 * h.a))
     if cls["sharp_curves"]:
         # keyway edges / sharp shoulders; no larger than the fillet size on the slot's round
         # ends (radius w/2) so that curved P2 faces there stay valid

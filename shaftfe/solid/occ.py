@@ -13,11 +13,13 @@ from shaftfe.solid.features import (
     HEX_SOCKET,
     SEAT_HALVES,
     fillet_region,
+    groove_region,
     half_group,
+    hole_region,
     keyway_region,
     shoulder_region,
 )
-from shaftfe.solid.plan import Slot, Solid, profile
+from shaftfe.solid.plan import Hole, Slot, Solid, profile
 
 
 def build_occ(gmsh, sol: Solid) -> dict:
@@ -49,11 +51,16 @@ def build_occ(gmsh, sol: Solid) -> dict:
     occ.remove([(2, face)], recursive=True)
     splits = _split_lines(sol)
     # put the revolution seam where no split line runs (coincident edges are fragile)
-    occ.rotate(vols, 0, 0, 0, 1, 0, 0, _seam_angle([ang for _, _, _, ang in splits]))
+    # (and where no cross hole opens: its two openings at its angle and opposite)
+    holes = [a for h in sol.holes for a in (h.angle, h.angle + math.pi)]
+    occ.rotate(vols, 0, 0, 0, 1, 0, 0,
+               _seam_angle([ang for _, _, _, ang in splits] + holes))
 
     tools = []
     for k in sol.slots:
         tools.append(_slot_tool(occ, k))
+    for h in sol.holes:
+        tools.append(_hole_tool(occ, h))
     if sol.hex is not None:
         tools.append(_hex_tool(occ, sol))
     if tools:
@@ -117,6 +124,13 @@ def _slot_tool(occ, k: Slot) -> int:
     tag = out[0][1]
     occ.rotate([(3, tag)], 0, 0, 0, 1, 0, 0, k.angle)
     return tag
+
+
+def _hole_tool(occ, h: Hole) -> int:
+    """A cylinder of the hole's radius through the shaft along (0, cos angle, sin angle)."""
+    L = h.r + 1.0
+    c, s = math.cos(h.angle), math.sin(h.angle)
+    return occ.addCylinder(h.x_center, -L * c, -L * s, 0.0, 2 * L * c, 2 * L * s, h.a)
 
 
 def _hex_tool(occ, sol: Solid) -> int:
@@ -208,6 +222,26 @@ def _fillet_group(sol: Solid, com, eps: float) -> str | None:
     return None
 
 
+def _groove_group(sol: Solid, bbox, com, eps: float) -> str | None:
+    """The groove whose axial range holds the face (its flanks, corner tori and bottom
+    cylinder; the straight parts' cylinders and the keyways are never in that range). OCC's
+    torus bounding box is loose: the centre of mass decides, the box only within ρ."""
+    for g in sol.grooves:
+        if g.x0 - eps < com[0] < g.x1 + eps and bbox[0] > g.x0 - g.rho - eps \
+                and bbox[3] < g.x1 + g.rho + eps:
+            return groove_region(g.segment, g.index)
+    return None
+
+
+def _hole_group(sol: Solid, bbox, eps: float) -> str | None:
+    """The cross hole whose axial range holds the face (its wall: the shaft's own cylinders
+    were classified before)."""
+    for h in sol.holes:
+        if bbox[0] > h.x0 - eps and bbox[3] < h.x1 + eps:
+            return hole_region(h.segment, h.index)
+    return None
+
+
 def _keyway_group(sol: Solid, bbox, com, eps: float) -> str | None:
     """The keyway whose box holds the face and whose open side faces it best."""
     best, score = None, -2.0
@@ -244,8 +278,9 @@ def classify(gmsh, sol: Solid) -> dict:
     CAD faces are exact entities, so each test below is exact up to the tolerance of the
     kernel: a shaft cylinder has every point of its underlying surface at r = R; a fillet is a
     torus inside the fillet's axial range; end / shoulder / hex-bottom faces are planes normal
-    to x at their station; whatever else lies in a keyway's or the hex socket's box belongs to
-    it. Raises RuntimeError for a face that fits nothing (a bug, not a user error).
+    to x at their station; a groove's faces lie in its axial range below its segment's
+    radius; whatever else lies in a keyway's or the hex socket's box belongs to it. Raises
+    RuntimeError for a face that fits nothing (a bug, not a user error).
 
     Returns {"faces": {group: [surface tags]}, "fillet_faces": [...], "sharp_curves": [...]}.
     """
@@ -267,6 +302,14 @@ def classify(gmsh, sol: Solid) -> dict:
             g = _fillet_group(sol, com, eps)
             if g is not None:
                 groups, fillet_faces = [g], [*fillet_faces, s]
+        if not groups:
+            g = _groove_group(sol, bbox, com, eps)
+            if g is not None:
+                groups = [g]
+        if not groups:
+            g = _hole_group(sol, bbox, eps)
+            if g is not None:
+                groups = [g]
         if not groups:
             g = _keyway_group(sol, bbox, com, eps)
             if g is not None:

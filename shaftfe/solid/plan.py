@@ -31,7 +31,9 @@ from shaftfe.solid.features import (
     SEAT_HALVES,
     bearing_group,
     fillet_region,
+    groove_region,
     half_group,
+    hole_region,
     keyway_region,
     seat_group,
     shoulder_region,
@@ -91,6 +93,49 @@ class Slot:
 
 
 @dataclass(frozen=True)
+class Groove:
+    """A circumferential groove (``model.variant.Groove``) on the straight part of segment
+    ``segment`` of radius ``r``: flanks at x0 and x1, a flat bottom at r − depth, bottom
+    corners of radius ``rho`` (ρ = width/2: one arc, a U groove)."""
+    segment: str
+    index: int
+    kind: str
+    r: float
+    x0: float
+    x1: float
+    depth: float
+    rho: float
+
+    @property
+    def width(self) -> float:
+        return self.x1 - self.x0
+
+    @property
+    def r_bottom(self) -> float:
+        return self.r - self.depth
+
+
+@dataclass(frozen=True)
+class Hole:
+    """A transverse hole (``model.variant.CrossHole``) through segment ``segment`` of radius
+    ``r``: radius ``a``, its axis through (x_center, 0, 0) along (0, cos angle, sin angle)."""
+    segment: str
+    index: int
+    r: float
+    a: float
+    x_center: float
+    angle: float        # rad
+
+    @property
+    def x0(self) -> float:
+        return self.x_center - self.a
+
+    @property
+    def x1(self) -> float:
+        return self.x_center + self.a
+
+
+@dataclass(frozen=True)
 class Seat:
     """A named cylindrical face group on [x0, x1] of segment ``part``; ``angle`` is the force
     direction (rad) for a split seat, None for an unsplit one (bearing)."""
@@ -137,6 +182,13 @@ class Solid:
     # line along which its bending stress peaks, or None (the whole ring); set by
     # ``shaftfe.solid.mesh.build_mesh`` (part of the mesh key), () in a bare plan
     hot_axes_deg: tuple[tuple[str, float | None], ...] = ()
+    grooves: tuple[Groove, ...] = ()
+    holes: tuple[Hole, ...] = ()
+    # a clipped plan's (a 3D zone's): the x-range of the WHOLE shaft's loaded seats, so a
+    # fillet inside the zone is an end fillet only if it is one of the whole shaft
+    # (``solid.mesh.end_fillet``); None: the plan's own seats
+    seat_span: tuple[float, float] | None = None
+    clipped: bool = False        # a 3D zone's plan (``clip``): its grooves are meshed coarsely
 
     @property
     def r_max(self) -> float:
@@ -156,6 +208,8 @@ class Solid:
         names += [fillet_region(f.segment) for f in self.fillets]
         names += [shoulder_region(s.segment) for s in self.shoulders]
         names += [keyway_region(k.segment, k.index) for k in self.slots]
+        names += [groove_region(g.segment, g.index) for g in self.grooves]
+        names += [hole_region(h.segment, h.index) for h in self.holes]
         names += [END_LEFT, END_RIGHT]
         if self.hex is not None:
             names.append(HEX_SOCKET)
@@ -232,6 +286,88 @@ def _slots(segs, radii, parts, src: str) -> list[Slot]:
             slots.append(Slot(s.name, j, radii[i], float(k.width_mm), float(k.depth_mm), ln,
                               xc, math.radians(float(k.angle_deg))))
     return slots
+
+
+def _grooves(segs, radii, parts, slots, src: str) -> list[Groove]:
+    """Grooves, each on the straight part of its segment with 0.5 mm to spare (its flank
+    never meets a fillet or a shoulder), clear of the keyways and of one another."""
+    out: list[Groove] = []
+    for i, s in enumerate(segs):
+        p = parts[i]
+        for j, g in enumerate(s.grooves):
+            fld = f"segments[{i}].grooves[{j}].x_center_mm"
+            x0, x1 = g.x_center_mm - 0.5 * g.width_mm, g.x_center_mm + 0.5 * g.width_mm
+            if x0 < p.x0 + 0.5 or x1 > p.x1 - 0.5:
+                raise InputError(src, fld, "groove inside the cylindrical part of its segment "
+                                 f"with 0.5 mm to spare ([{p.x0:g}, {p.x1:g}])",
+                                 got=g.x_center_mm)
+            gr = Groove(s.name, j, g.kind, radii[i], x0, x1, float(g.depth_mm),
+                        float(g.radius_mm))
+            for k in slots:
+                if k.segment == s.name and k.x0 < x1 + TOL and x0 < k.x1 + TOL:
+                    raise InputError(src, fld, f"clear of keyway {k.segment}:{k.index} "
+                                     f"[{k.x0:g}, {k.x1:g}]", got=g.x_center_mm,
+                                     reason="overlaps another notch")
+            for o in out:
+                if o.x0 < x1 + 0.5 and x0 < o.x1 + 0.5:
+                    raise InputError(src, fld, f"clear of groove {o.segment}:{o.index} "
+                                     f"[{o.x0:g}, {o.x1:g}] by 0.5 mm", got=g.x_center_mm,
+                                     reason="overlaps another notch")
+            out.append(gr)
+    return out
+
+
+def _holes(segs, radii, parts, slots, grooves, src: str) -> list[Hole]:
+    """Cross holes, each on the straight part of its segment with 0.5 mm to spare, clear of
+    the keyways, the grooves and one another by 0.5 mm (a hole through a keyway, or two
+    notches' fields on top of each other, is outside every chart)."""
+    out: list[Hole] = []
+    for i, s in enumerate(segs):
+        p = parts[i]
+        for j, h in enumerate(s.cross_holes):
+            fld = f"segments[{i}].cross_holes[{j}].x_center_mm"
+            hl = Hole(s.name, j, radii[i], 0.5 * float(h.diameter_mm), float(h.x_center_mm),
+                      math.radians(float(h.angle_deg)))
+            if hl.x0 < p.x0 + 0.5 or hl.x1 > p.x1 - 0.5:
+                raise InputError(src, fld, "hole on the cylindrical part of its segment with "
+                                 f"0.5 mm to spare ([{p.x0:g}, {p.x1:g}])", got=h.x_center_mm)
+            others = [(f"keyway {k.segment}:{k.index}", k.x0, k.x1) for k in slots
+                      if k.segment == s.name]
+            others += [(f"groove {g.segment}:{g.index}", g.x0, g.x1) for g in grooves]
+            others += [(f"cross hole {o.segment}:{o.index}", o.x0, o.x1) for o in out]
+            for what, a, b in others:
+                if a < hl.x1 + 0.5 and hl.x0 < b + 0.5:
+                    raise InputError(src, fld, f"clear of {what} [{a:g}, {b:g}] by 0.5 mm",
+                                     got=h.x_center_mm, reason="overlaps another notch")
+            out.append(hl)
+    return out
+
+
+def _clear_of_seats(variant, seats, notches, hx: Hex | None, xs, src: str) -> None:
+    """No groove or cross hole under a seat (a ring or a hub bears on the full diameter), under
+    a ``[[loads]]`` band, or over the hex socket."""
+    for g in notches:
+        i = next(i for i, s in enumerate(variant.segments) if s.name == g.segment)
+        what = "grooves" if isinstance(g, Groove) else "cross_holes"
+        fld = f"segments[{i}].{what}[{g.index}].x_center_mm"
+        for st in seats:
+            if st.x0 < g.x1 - TOL and g.x0 < st.x1 - TOL:
+                raise InputError(src, fld, f"clear of the seat {st.name} [{st.x0:g}, "
+                                 f"{st.x1:g}]", got=0.5 * (g.x0 + g.x1),
+                                 reason=f"puts a {what[:-1].replace('_', ' ')} under a seat")
+        for ld in getattr(variant, "loads", ()):
+            a, b = ld.band_mm
+            if ld.kind != "gravity" and a < g.x1 - TOL and g.x0 < b - TOL:
+                raise InputError(src, fld, f"clear of the band [{a:g}, {b:g}] of load "
+                                 f"{ld.name!r}", got=0.5 * (g.x0 + g.x1),
+                                 reason="puts a notch under a load's band (the two models "
+                                 "would deliver it differently)")
+        if hx is not None:
+            lo, hi = ((xs[0][0], xs[0][0] + hx.depth) if hx.end == "left"
+                      else (xs[-1][1] - hx.depth, xs[-1][1]))
+            if g.x0 < hi and lo < g.x1:
+                raise InputError(src, fld, f"clear of the hex socket [{lo:g}, {hi:g}]",
+                                 got=0.5 * (g.x0 + g.x1), reason="overlaps another notch")
 
 
 def _seat(src: str, field: str, name: str, a: float, b: float, angle: float | None,
@@ -319,10 +455,14 @@ def prepare(variant) -> Solid:
     slots = _slots(segs, radii, parts, src)
     seats = _seats(variant, xs, parts, slots, src)
     hx = _hex(variant, radii, xs, names, slots, src)
+    grooves = _grooves(segs, radii, parts, slots, src)
+    holes = _holes(segs, radii, parts, slots, grooves, src)
+    _clear_of_seats(variant, seats, [*grooves, *holes], hx, xs, src)
     prof = sorted({round(x, 9) for st in seats for x in (st.x0, st.x1)})
     return Solid(variant.name, xs[-1][1] - xs[0][0], xs[0][0], xs[-1][1], tuple(radii),
                  tuple(names), tuple(xs), tuple(fillets), tuple(shoulders), tuple(parts),
-                 tuple(slots), tuple(seats), hx, tuple(prof))
+                 tuple(slots), tuple(seats), hx, tuple(prof), grooves=tuple(grooves),
+                 holes=tuple(holes))
 
 
 def clip(sol: Solid, x0: float, x1: float) -> Solid:
@@ -357,6 +497,10 @@ def clip(sol: Solid, x0: float, x1: float) -> Solid:
             seats.append(dataclasses.replace(st, part=new_part[st.part]))
         elif across(st.x0, st.x1):
             raise ValueError(f"cut through seat {st.name}")
+    for g in (*sol.grooves, *sol.holes):
+        if across(g.x0, g.x1):
+            raise ValueError(f"cut through the {type(g).__name__.lower()} "
+                             f"{g.segment}:{g.index}")
     fillets = tuple(f for f in sol.fillets if x0 + TOL < f.x_shoulder < x1 - TOL)
     keep = {f.segment for f in fillets}
     hx = sol.hex
@@ -364,7 +508,7 @@ def clip(sol: Solid, x0: float, x1: float) -> Solid:
                                or (hx.end == "right" and x1 >= sol.x_right - TOL)):
         hx = None
     return dataclasses.replace(
-        sol, length=x1 - x0, x_left=x0, x_right=x1,
+        sol, length=x1 - x0, x_left=x0, x_right=x1, seat_span=seat_span(sol), clipped=True,
         radii=tuple(sol.radii[i] for i in idx),
         segment_names=tuple(sol.segment_names[i] for i in idx),
         segment_x=tuple((max(sol.segment_x[i][0], x0), min(sol.segment_x[i][1], x1))
@@ -373,9 +517,38 @@ def clip(sol: Solid, x0: float, x1: float) -> Solid:
         shoulders=tuple(s for s in sol.shoulders if x0 + TOL < s.x < x1 - TOL),
         parts=tuple(parts),
         slots=tuple(k for k in sol.slots if inside(k.x0, k.x1)),
+        grooves=tuple(g for g in sol.grooves if inside(g.x0, g.x1)),
+        holes=tuple(h for h in sol.holes if inside(h.x0, h.x1)),
         seats=tuple(seats), hex=hx,
         profile_x=tuple(x for x in sol.profile_x if x0 + TOL < x < x1 - TOL),
         hot_axes_deg=tuple(h for h in sol.hot_axes_deg if h[0] in keep))
+
+
+# fields added to the plan after its keys were first used: dropped from a key while they hold
+# their defaults, so a plan without them keeps its mesh, zone and cache keys
+LATE_FIELDS = ("grooves", "holes", "seat_span", "clipped")
+
+
+def plan_payload(sol: Solid) -> dict:
+    """``dataclasses.asdict(sol)`` without the ``LATE_FIELDS`` at their defaults: what a cache
+    key hashes of a plan."""
+    import dataclasses
+    d = dataclasses.asdict(sol)
+    for k in LATE_FIELDS:
+        if not d[k]:
+            d.pop(k)
+    return d
+
+
+def seat_span(sol: Solid) -> tuple[float, float] | None:
+    """The x-range of the loaded seats (a bearing's, a part's with m e ≠ 0) of the whole shaft
+    ``sol`` was clipped from (or of ``sol``); None without any."""
+    if sol.seat_span is not None:
+        return sol.seat_span
+    seats = [st for st in sol.seats if st.loaded]
+    if not seats:
+        return None
+    return min(st.x0 for st in seats), max(st.x1 for st in seats)
 
 
 def profile(sol: Solid) -> list[tuple[str, tuple]]:
@@ -389,9 +562,17 @@ def profile(sol: Solid) -> list[tuple[str, tuple]]:
     for i in range(n):
         r = sol.radii[i]
         part = sol.parts[i]
-        for x in sol.profile_x:
-            if part.x0 + TOL < x < part.x1 - TOL:
-                pts.append(("line", (x, r)))
+        stations = [(x, None) for x in sol.profile_x if part.x0 + TOL < x < part.x1 - TOL]
+        stations += [(g.x0, g) for g in sol.grooves if g.segment == part.segment]
+        for x, g in sorted(stations, key=lambda e: e[0]):
+            if g is None:
+                if abs(pts[-1][1][0] - x) > TOL:       # (a seat's end on a groove's flank)
+                    pts.append(("line", (x, r)))
+            else:
+                piece = _groove_profile(g)
+                if abs(pts[-1][1][0] - g.x0) <= TOL:      # a seat ends on the groove's edge
+                    piece = piece[1:]
+                pts += piece
         if i == n - 1:
             pts.append(("line", (sol.x_right, r)))
             break
@@ -414,6 +595,22 @@ def profile(sol: Solid) -> list[tuple[str, tuple]]:
                 pts.append(("line", (xe, r1 + f.rho)))
             pts.append(("arc", (xe + f.rho, r1, xe + f.rho, r1 + f.rho)))
     return pts
+
+
+def _groove_profile(g: Groove) -> list[tuple[str, tuple]]:
+    """A groove's outline from its left edge (x0, r) to its right edge (x1, r): flank, corner
+    arc, bottom, corner arc, flank (the pieces of zero length left out)."""
+    r, rb, rho = g.r, g.r_bottom, g.rho
+    out: list[tuple[str, tuple]] = [("line", (g.x0, r))]
+    if rb + rho < r - TOL:
+        out.append(("line", (g.x0, rb + rho)))
+    out.append(("arc", (g.x0 + rho, rb, g.x0 + rho, rb + rho)))
+    if g.x1 - rho > g.x0 + rho + TOL:
+        out.append(("line", (g.x1 - rho, rb)))
+    out.append(("arc", (g.x1, rb + rho, g.x1 - rho, rb + rho)))
+    if rb + rho < r - TOL:
+        out.append(("line", (g.x1, r)))
+    return out
 
 
 # --------------------------------------------------------------------------------------

@@ -23,11 +23,12 @@ class DinDetail:
 class Din743:
     name = "din743"
     title = "DIN 743, nominal stresses on the beam"
-    options = ("--card", "--kappa", "--ec", "--case")
+    options = ("--card", "--kappa", "--ec", "--case", "--plot")
     narrowed = MappingProxyType({})
     out_dir = "fatigue-din743"
-    files = ("din743_safety.png", "summary.json")
-    files_help = "din743_safety.png (S_D, S_F per notch), summary.json"
+    files = ("din743_safety.png", "summary.json")       # (+ din743_along.png with --plot)
+    files_help = ("din743_safety.png (S_D, S_F per notch), din743_along.png (with --plot: "
+                  "the safety along the shaft), summary.json")
     stages = ("beam + DIN 743",)
 
     def check(self, options) -> None:
@@ -78,7 +79,9 @@ class Din743:
                 "rows": [{"notch": r.notch, "x_mm": r.x_mm, "sigma_zd_MPa": r.sigma_zd_MPa,
                           "sigma_b_MPa": r.sigma_b_MPa, "tau_t_MPa": r.tau_t_MPa,
                           "S_F": r.S_F} for r in st.rows]}
-        return so.write_outputs({**summary, "plots": so.write_din_files(summary, out)}, out)
+        outline = [(s.x_start_mm, s.x_end_mm, s.diameter_mm) for s in inputs.variant.segments]
+        return so.write_outputs({**summary, "plots": so.write_din_files(summary, out, outline)},
+                                out)
 
     def lines(self, result, inputs, options, summary, out, files) -> list[str]:
         from shaftfe.fatigue import din743
@@ -93,6 +96,13 @@ class Din743:
         g = res.governing
         p.append(f"governing: {g.result.notch.name} at x = {g.x_mm:g} mm: S_D "
                  f"{so._f(g.result.S_D)}, S_F {so._f(g.result.S_F)} (S_min {din743.S_MIN})")
+        if res.along is not None:
+            i = int(res.along.S_D.argmin())
+            j = int(res.along.S_F.argmin())
+            p.append(f"along the shaft (unnotched sections every 0.25 mm, din743_along.png): "
+                     f"lowest S_D {so._f(float(res.along.S_D[i]))} at x = "
+                     f"{res.along.x_mm[i]:.2f} mm, lowest S_F "
+                     f"{so._f(float(res.along.S_F[j]))} at x = {res.along.x_mm[j]:.2f} mm")
         p += [f"note: {note}" for note in res.notes]
         st = result.detail.static
         if st is not None:

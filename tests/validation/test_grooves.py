@@ -1,0 +1,108 @@
+"""Circumferential grooves (issue #33): the groove's stress concentration, its DIN 743 factors
+and its exact geometry, each against an independent reference.
+
+* Kt of a U groove in a round bar (``axisymmetric.kt.grooved_bar``: the harmonic solver on the
+  bar of diameter D with a groove of bottom diameter d and radius ρ, free ends loaded by the
+  exact Saint-Venant fields) against DIN 743-2:2012 table 2 ("Rundnut", a Neuber-type fit of
+  measured and computed notch factors). Nominal stresses on the groove's bottom diameter.
+* DIN 743-2's groove factors, written out by hand (the formulas as the standard prints them).
+* The groove's volume and face area against numerical quadrature of its outline.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from shaftfe.axisymmetric import kt
+from shaftfe.fatigue import din743 as din
+from shaftfe.solid.exact import groove_area, groove_volume
+from shaftfe.solid.plan import Groove, _groove_profile
+
+# DIN 743-2's fits are checked here as a chart is: as a band. Neuber-type fits of notch
+# factors reproduce the data they were fitted to within several per cent, and the shoulder
+# charts are known to lie up to 20 % off converged FE in places (FINDINGS, "On the charts");
+# 10 % is the band. What the test can catch: a wrong nominal section, a wrong load, a groove
+# meshed with the wrong radius (Kt ∝ ~1/√ρ: a factor 2 in ρ moves Kt by 20-40 %).
+CHART_BAND = 0.10
+GROOVES = [(22.0, 20.0, 1.0), (20.0, 18.0, 0.5)]      # (D, d, ρ): shallow, sharper
+
+
+@pytest.mark.parametrize("D,d,rho", GROOVES)
+def test_u_groove_kt_within_the_din743_band(D, d, rho, cache):
+    """Kt in tension, bending and torsion on the second mesh level (its distance to the
+    three-level Richardson value: measured ≤ 3e-4 on these grooves, reports/benchmarks/
+    grooves.md) within CHART_BAND of DIN 743-2's α; the peak at the groove's bottom (90° along
+    the semicircle from the left flank: the bar and its loads are symmetric about the
+    groove's mid-plane, so the peak lies on it; 1° is the peak fit's resolution)."""
+    res, _ = kt.kt_once(D, d, rho, refine=1, cache_dir=cache, shape="groove")
+    for load in kt.LOADS:
+        want = din.alpha_groove(d, D, rho, load)
+        assert res[load].kt == pytest.approx(want, rel=CHART_BAND), load
+        assert res[load].angle_deg == pytest.approx(90.0, abs=1.0), load
+
+
+def test_groove_factors_by_hand():
+    """DIN 743-2 table 2/3 (round groove) and §4.2.4 (ring groove), the numbers written out
+    (exact arithmetic: 1e-12)."""
+    # α bending of d 16, D 20, r 1: t = 2
+    q = 0.2 * 1 / 2 + 2 * 2.75 * (1 / 16) * (1 + 2 / 16) ** 2
+    assert din.alpha_groove(16.0, 20.0, 1.0, "bending") == pytest.approx(1 + 1 / math.sqrt(q),
+                                                                         rel=1e-12)
+    # G' of that groove: φ = 1/(4√(t/r) + 2) (d/D = 0.8 > 0.67)
+    ph = 1 / (4 * math.sqrt(2.0) + 2)
+    assert din.gradient_groove(16.0, 20.0, 1.0, "bending") == pytest.approx(2 * (1 + ph),
+                                                                            rel=1e-12)
+    assert din.gradient_groove(16.0, 20.0, 1.0, "torsion") == pytest.approx(1.0, rel=1e-12)
+    # ρ* at σ_S = 600 MPa
+    rs = 10 ** -(0.514 + 0.00152 * 600)
+    assert din.rho_star(600.0) == pytest.approx(rs, rel=1e-12)
+    # ring groove t 0.4, r 0.1, m 1.1 (m/t = 2.75 ≥ 1.4: no narrow-groove factor), d = 30 mm
+    # (d_BK: K3 cancels)
+    b = din.beta_ring_groove(0.4, 0.1, 1.1, 600.0, 30.0)
+    assert b["bending"] == pytest.approx(0.9 * (1.14 + 1.08 * math.sqrt(0.4 / (0.1 + 2.9 * rs))),
+                                         rel=1e-12)
+    assert b["tension"] == pytest.approx(0.9 * (1.27 + 1.17 * math.sqrt(0.4 / (0.1 + 2.9 * rs))),
+                                         rel=1e-12)
+    assert b["torsion"] == pytest.approx(1.48 + 0.45 * math.sqrt(0.4 / (0.1 + rs)), rel=1e-12)
+    # a narrow groove (m/t = 1.0): × 1.08 (m/t)^−0.2 = 1.08, capped at 2.5 in torsion
+    n = din.beta_ring_groove(1.0, 0.1, 1.0, 600.0, 30.0)
+    assert n["torsion"] == pytest.approx(min(1.08 * (1.48 + 0.45 * math.sqrt(1.0 / (0.1 + rs))),
+                                             2.5), rel=1e-12)
+
+
+def _outline(g: Groove, n: int = 20001):
+    """Dense points (x, r) along the groove's outline from its left edge to its right."""
+    pts = [(g.x0, g.r)]
+    for kind, data in _groove_profile(g)[1:]:
+        x1, r1 = data[0], data[1]
+        x0, r0 = pts[-1]
+        if kind == "line":
+            t = np.linspace(0, 1, n)[1:]
+            pts += list(zip(x0 + t * (x1 - x0), r0 + t * (r1 - r0), strict=True))
+        else:
+            xc, rc = data[2], data[3]
+            a0, a1 = math.atan2(r0 - rc, x0 - xc), math.atan2(r1 - rc, x1 - xc)
+            if a1 < a0:
+                a1 += 2 * math.pi
+            if a1 - a0 > math.pi:
+                a0, a1 = a0 + 2 * math.pi, a1
+            t = np.linspace(a0, a1, n)[1:]
+            rho = math.hypot(x0 - xc, r0 - rc)
+            pts += list(zip(xc + rho * np.cos(t), rc + rho * np.sin(t), strict=True))
+    return np.array(pts).T
+
+
+@pytest.mark.parametrize("w,t,rho", [(3.0, 1.0, 1.0), (2.0, 1.5, 1.0), (1.1, 0.4, 0.1),
+                                     (4.0, 1.0, 0.5)])
+def test_groove_volume_and_area_against_quadrature(w, t, rho):
+    """Pappus closed forms against the trapezoidal rule on 20 000 points a piece: the removed
+    volume π ∫ (R² − r²) dx (the outline is a function of x between the flanks, the flanks
+    add nothing) and the area ∫ 2π r ds (trapezoid error O(h²) ≈ 1e-9 relative: 1e-6)."""
+    g = Groove("s", 0, "u", 10.0, 5.0, 5.0 + w, t, rho)
+    x, r = _outline(g)
+    vol = math.pi * np.trapezoid(g.r ** 2 - r ** 2, x)
+    ds = np.hypot(np.diff(x), np.diff(r))
+    area = np.sum(2 * math.pi * 0.5 * (r[1:] + r[:-1]) * ds)
+    assert groove_volume(g) == pytest.approx(vol, rel=1e-6)
+    assert groove_area(g) == pytest.approx(area, rel=1e-6)
