@@ -74,6 +74,13 @@ def keys() -> list[tuple[str, str, str, str]]:
          "axial centre of the keyway"),
         ("segments.<seg>.keyways.<i>.angle_deg", "deg", "number (default 0)",
          "angular position; 0 = in line with the loads at 0°"),
+        ("segments.<seg>.chamfer_left_mm", "mm", "0 (none), or > 0 on an outer edge (the "
+         "shaft's end, < radius / 2, or a step down to a smaller segment, < the shoulder's "
+         "flat height); leaves a straight part", "45° chamfer of the segment's left edge "
+         "(axial = radial size); in the solid and the axisymmetric model, not in the beam "
+         "or the mass properties"),
+        ("segments.<seg>.chamfer_right_mm", "mm", "as chamfer_left_mm", "45° chamfer of the "
+         "segment's right edge"),
         ("segments.<seg>.grooves.<i>.kind", "—", "u | din471 (din509_e, din509_f: named, not "
          "built yet)", "a circumferential groove: a U groove, or a DIN 471 retaining-ring "
          "groove whose width and depth the standard fixes from the segment's diameter"),

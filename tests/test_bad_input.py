@@ -52,6 +52,12 @@ def _groove(at: str, body: str, table: str = "grooves") -> tuple[str, str, str]:
     return (SHAFT, at, at + "".join(f"{head}{t}\n" for t in tables))
 
 
+COLLAR_CHAMFER = ('diameter_mm = 22.0\nfillet_mm = 0.6\n'
+                  'reconstructed = ["length_mm", "diameter_mm", "fillet_mm"]')
+SEAT_G_CHAMFER = ('diameter_mm = 17.0\nfillet_mm = 0.6\nseed = ["length_mm", "diameter_mm"]\n'
+                  'reconstructed = ["fillet_mm"]')
+
+
 # id -> (file, old text, new text): one edit of the copied x2_57 files
 VARIANT_EDITS = {
     "groove_deeper_than_allowed": _groove(COLLAR_END, 'kind = "u"\nx_center_mm = 55.0\n'
@@ -70,6 +76,12 @@ VARIANT_EDITS = {
                                                      'kind = "din471"\nx_center_mm = 55.0\n'
                                                      'depth_mm = 0.4'),
     "din509_not_built": _groove(COLLAR_END, 'kind = "din509_e"\nx_center_mm = 55.0'),
+    "chamfer_deeper_than_the_shoulder": (SHAFT, COLLAR_CHAMFER, COLLAR_CHAMFER.replace(
+        "fillet_mm = 0.6\n", "fillet_mm = 0.6\nchamfer_left_mm = 2.0\n").replace(
+        '"fillet_mm"]', '"fillet_mm", "chamfer_left_mm"]')),
+    "chamfer_on_an_inner_edge": (SHAFT, SEAT_G_CHAMFER, SEAT_G_CHAMFER.replace(
+        "diameter_mm = 17.0\n", "diameter_mm = 17.0\nchamfer_right_mm = 0.5\n").replace(
+        'reconstructed = ["', 'reconstructed = ["chamfer_right_mm", "')),
     "cross_hole_too_large": _groove(COLLAR_END, 'diameter_mm = 12.0\nx_center_mm = 55.0',
                                     "cross_holes"),
     "cross_hole_under_bearing_seat": _groove(FREE_END, 'diameter_mm = 3.0\n'
@@ -127,6 +139,10 @@ VARIANT_EXPECT = {
     "din471_on_a_diameter_not_in_its_table": ["shaft_c.toml", "grooves[0].depth_mm",
                                               "DIN 471 fixes it"],
     "din509_not_built": ["shaft_c.toml", "grooves[0].kind", "not built yet"],
+    "chamfer_deeper_than_the_shoulder": ["x2_57.toml", "segments[4].chamfer_left_mm",
+                                         "flat height"],
+    "chamfer_on_an_inner_edge": ["x2_57.toml", "segments[3].chamfer_right_mm",
+                                 "outer edge"],
     "cross_hole_too_large": ["x2_57.toml", "cross_holes[0].diameter_mm", "0.4"],
     "cross_hole_under_bearing_seat": ["x2_57.toml", "cross_holes[0].x_center_mm",
                                       "bearing:free_side"],

@@ -16,10 +16,11 @@ from shaftfe.model.variant import Variant
 
 def make_variant(**kwargs) -> Variant:
     """The four-step test shaft (``shaftfe.model.examples``) with a thread end and a washer sharing
-    the hub's seat: Ø15 (sharp step up) Ø17 (fillet, keyway) Ø22 (fillet, U groove, step down)
-    Ø17 (a cross hole)."""
+    the hub's seat: Ø15 (chamfered end, sharp step up) Ø17 (fillet, keyway) Ø22 (fillet, U
+    groove, chamfered step down) Ø17 (a cross hole)."""
     kwargs = {"name": "syn", "description": "synthetic test shaft", "washer": True,
-              "thread_end": True, "groove": True, "cross_hole": True, **kwargs}
+              "thread_end": True, "groove": True, "cross_hole": True, "chamfers": True,
+              **kwargs}
     return four_step_shaft(**kwargs)
 
 

@@ -243,3 +243,22 @@ def test_the_surface_reference_is_read_back_from_its_cache(tmp_path, cache, monk
     assert main(["fatigue", rpm, "--level", "coarse", "--json", "--out",
                  str(tmp_path / "f2")]) == 0                   # spin softening: a new entry
     assert len(list((tmp_path / "c").glob("surface-*.npz"))) == 2
+
+
+def test_zones_covering_the_whole_shaft_are_refused_in_one_clear_error(tmp_path):
+    """A short shaft whose cut features' zones grow over its whole length leaves no global
+    model to drive them (no cut): a SolverError naming the features and --model solid, not a
+    crash (it was a ValueError from numpy)."""
+    import dataclasses
+
+    from shaftfe.errors import SolverError
+    from shaftfe.model.examples import K_SEED, four_step_shaft
+    from shaftfe.model.variant import Bearing
+    from shaftfe.static.model import StaticOptions
+    from shaftfe.zoned.solve import solve_zoned
+    v = four_step_shaft(washer=True, thread_end=True)
+    v = dataclasses.replace(v, bearings=(dataclasses.replace(v.bearings[0], axial=True),
+                                         Bearing("b2", "x", 10.0, 6.0, 14_400.0, 10_000.0,
+                                                 K_SEED)))
+    with pytest.raises(SolverError, match=r"cover the whole shaft.*--model solid"):
+        solve_zoned(v, 10_000.0, StaticOptions(level="coarse"), cache_dir=tmp_path)

@@ -33,6 +33,7 @@ from shaftfe.errors import InputError
 from shaftfe.solid.features import (
     END_LEFT,
     END_RIGHT,
+    chamfer_region,
     fillet_region,
     groove_region,
     shoulder_region,
@@ -162,6 +163,10 @@ def shaft_geometry(sol, bands=()) -> MeridianGeometry:
             xc, rc = float(data[2]), float(data[3])
             f = next(f for f in sol.fillets if abs(abs(xc - f.x_shoulder) - f.rho) < 1e-6)
             curves.append(Curve(prev, end, (fillet_region(f.segment),), (xc, rc), f.rho))
+        elif abs(end[1] - prev[1]) > TOL and abs(end[0] - prev[0]) > TOL:     # a chamfer
+            xm = 0.5 * (prev[0] + end[0])
+            c = next(c for c in sol.chamfers if c.x0 - TOL <= xm <= c.x1 + TOL)
+            curves.append(Curve(prev, end, (chamfer_region(c.segment, c.side),)))
         elif abs(end[0] - prev[0]) <= TOL:           # vertical: an end face or a shoulder
             if abs(prev[0] - sol.x_left) <= TOL:
                 g = (END_LEFT,)

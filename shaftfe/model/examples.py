@@ -31,7 +31,7 @@ def four_step_shaft(*, name: str = "four_step", description: str = "synthetic fo
                     keyway_x: float = 35.0, keyway_angle: float = 0.0, hex_socket: bool = True,
                     hex_end: str = "right", cw_angle: float = 30.0, hub_angle: float = 0.0,
                     washer: bool = False, thread_end: bool = False, groove: bool = False,
-                    cross_hole: bool = False,
+                    cross_hole: bool = False, chamfers: bool = False,
                     bearing: tuple[float, float] = (60.0, 8.0),
                     cw_seat: tuple[float, float] = (25.0, 45.0),
                     hub_seat: tuple[float, float] = (75.0, 85.0)) -> Variant:
@@ -39,13 +39,16 @@ def four_step_shaft(*, name: str = "four_step", description: str = "synthetic fo
     marks the Ø15 end as a thread (informational), ``groove`` turns a U groove (2 wide,
     0.8 deep, corner radius 0.8, a 0.4 mm flat bottom) into the Ø22 at x = 53 mm, beside the
     bearing, ``cross_hole``
-    drills a Ø2 hole through the last Ø17 at x = 72.5 mm (at 90°)."""
+    drills a Ø2 hole through the last Ø17 at x = 72.5 mm (at 90°), ``chamfers`` breaks the
+    left end's edge (0.5 mm) and the Ø22's edge at its step down (0.5 mm)."""
     kw = (Keyway(5.0, 3.0, 14.0, keyway_x, keyway_angle),) if keyway else ()
     segs = (
-        Segment("a", 0.0, 20.0, 15.0, 0.0, kind="thread" if thread_end else "plain"),
+        Segment("a", 0.0, 20.0, 15.0, 0.0, kind="thread" if thread_end else "plain",
+                chamfer_left_mm=0.5 if chamfers else 0.0),
         Segment("b", 20.0, 30.0, 17.0, fillet_b, keyways=kw),
         Segment("c", 50.0, 20.0, 22.0, fillet_c,
-                grooves=(Groove("u", 53.0, 2.0, 0.8, 0.8),) if groove else ()),
+                grooves=(Groove("u", 53.0, 2.0, 0.8, 0.8),) if groove else (),
+                chamfer_right_mm=0.5 if chamfers else 0.0),
         Segment("d", 70.0, 30.0, 17.0, 0.0,
                 cross_holes=(CrossHole(2.0, 72.5, 90.0),) if cross_hole else ()),
     )

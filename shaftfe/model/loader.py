@@ -218,7 +218,8 @@ def _segments(shaft: dict, src: str, ctx: Ctx, stock: float | None) -> tuple[Seg
         fld = f"segments[{i}]"
         t = table(t, src, fld)
         check_keys(t, {"name", "length_mm", "diameter_mm", "fillet_mm", "kind", "keyways",
-                        "thread", "grooves", "cross_holes"}, src, fld)
+                        "thread", "grooves", "cross_holes", "chamfer_left_mm",
+                        "chamfer_right_mm"}, src, fld)
         name = text(t, "name", src, fld)
         need(name not in names, src, f"{fld}.name", "unique segment names", name)
         names.add(name)
@@ -268,7 +269,10 @@ def _segments(shaft: dict, src: str, ctx: Ctx, stock: float | None) -> tuple[Seg
         holes = _cross_holes(t, src, fld, name, ctx)
         segs.append(Segment(name=name, x_start_mm=x, length_mm=length, diameter_mm=dia,
                             fillet_mm=fil, keyways=tuple(kws), kind=kind, grooves=grooves,
-                            cross_holes=holes))
+                            cross_holes=holes,
+                            chamfer_left_mm=num(t, "chamfer_left_mm", src, fld, default=0.0),
+                            chamfer_right_mm=num(t, "chamfer_right_mm", src, fld,
+                                                 default=0.0)))
         x += length
     # fillets: a shoulder fillet must fit the step height and the smaller segment's length
     for i in range(len(segs) - 1):

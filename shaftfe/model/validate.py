@@ -91,6 +91,15 @@ def _segments(v, src: str) -> tuple[float, float]:
             if k.length_mm < k.width_mm + TOL_X_MM:
                 raise InputError(src, f"{kf}.length_mm", f">= width ({k.width_mm:g})",
                                  got=k.length_mm)
+        for side, c in (("left", s.chamfer_left_mm), ("right", s.chamfer_right_mm)):
+            if not (_finite(c) and c >= 0):
+                raise InputError(src, f"{f}.chamfer_{side}_mm", ">= 0", got=c)
+            nb = (segs[i - 1] if i else None) if side == "left" else \
+                (segs[i + 1] if i + 1 < len(segs) else None)
+            if c > 0 and nb is not None and nb.diameter_mm >= s.diameter_mm - TOL_X_MM:
+                raise InputError(src, f"{f}.chamfer_{side}_mm", "0 where the neighbouring "
+                                 "segment is not smaller (a chamfer breaks an outer edge: the "
+                                 "shaft's end or a step down)", got=c)
         for j, g in enumerate(s.grooves):
             _groove(src, f"{f}.grooves[{j}]", s, g)
         for j, h in enumerate(s.cross_holes):

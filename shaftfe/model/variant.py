@@ -97,6 +97,10 @@ class Segment:
     grooves: tuple[Groove, ...] = dataclasses.field(default=(), metadata={"omit_empty": True})
     cross_holes: tuple[CrossHole, ...] = dataclasses.field(default=(),
                                                            metadata={"omit_empty": True})
+    # 45° chamfers on the segment's outer edge at its left / right end (mm along the axis and
+    # radially): only where that edge is convex, the shaft's end or a step down to the next
+    chamfer_left_mm: float = dataclasses.field(default=0.0, metadata={"omit_empty": True})
+    chamfer_right_mm: float = dataclasses.field(default=0.0, metadata={"omit_empty": True})
 
     @property
     def x_end_mm(self) -> float:

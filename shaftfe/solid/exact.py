@@ -12,6 +12,7 @@ from shaftfe.solid.features import (
     END_RIGHT,
     HEX_SOCKET,
     SEAT_HALVES,
+    chamfer_region,
     fillet_region,
     groove_region,
     half_group,
@@ -147,6 +148,8 @@ def analytic_volume_of(sol: Solid) -> float:
     vol -= sum(slot_volume(k) for k in sol.slots)
     vol -= sum(groove_volume(g) for g in sol.grooves)
     vol -= sum(hole_volume(h) for h in sol.holes)
+    # a 45° chamfer removes a triangle c²/2 whose centroid is at r − c/3 (Pappus)
+    vol -= sum(math.pi * c.c * c.c * (c.r - c.c / 3.0) for c in sol.chamfers)
     if sol.hex is not None:
         vol -= sol.hex.area * sol.hex.depth
     return vol
@@ -176,9 +179,11 @@ def expected_areas_of(sol: Solid) -> dict[str, float]:
         out[groove_region(g.segment, g.index)] = groove_area(g)
     for h in sol.holes:
         out[hole_region(h.segment, h.index)] = hole_area(h)
+    for c in sol.chamfers:          # a cone between r − c and r, slant c √2
+        out[chamfer_region(c.segment, c.side)] = math.pi * (2.0 * c.r - c.c) * c.c * math.sqrt(2.0)
     hx = sol.hex
-    left = math.pi * sol.radii[0] ** 2
-    right = math.pi * sol.radii[-1] ** 2
+    left = math.pi * (sol.radii[0] - sol.chamfer(sol.segment_names[0], "left")) ** 2
+    right = math.pi * (sol.radii[-1] - sol.chamfer(sol.segment_names[-1], "right")) ** 2
     if hx is not None:
         if hx.end == "left":
             left -= hx.area

@@ -27,7 +27,7 @@ if TYPE_CHECKING:       # the plan builds its group names from the scheme below
 # raiser of the outline), CUT: the kinds that are not bodies of revolution, SEAT: the seats
 # (a part's, a bearing's), OUTLINE: the faces of the outline that no load band covers
 KINDS = ("fillet", "shoulder", "groove", "keyway", "cross_hole", "hex_socket", "seat",
-         "bearing_seat", "end")
+         "bearing_seat", "chamfer", "end")
 NOTCH_KINDS = frozenset({"fillet", "groove", "keyway", "cross_hole"})
 CUT_KINDS = frozenset({"keyway", "cross_hole", "hex_socket"})
 ROUND_NOTCH_KINDS = NOTCH_KINDS - CUT_KINDS          # the notches a body of revolution holds
@@ -54,6 +54,10 @@ def shoulder_region(segment: str) -> str:
 
 def groove_region(segment: str, index: int) -> str:
     return f"groove:{segment}:{index}"
+
+
+def chamfer_region(segment: str, side: str) -> str:
+    return f"chamfer:{segment}:{side}"
 
 
 def hole_region(segment: str, index: int) -> str:
@@ -92,7 +96,7 @@ def bearing_group(bearing: str) -> str:
 
 # (prefix, kind): the regions' (the longer prefix first), and the seats' mesh groups'
 _REGION_KIND = (("fillet:", "fillet"), ("shoulder:", "shoulder"), ("keyway:", "keyway"),
-                ("groove:", "groove"), ("cross_hole:", "cross_hole"),
+                ("groove:", "groove"), ("cross_hole:", "cross_hole"), ("chamfer:", "chamfer"),
                 ("end:", "end"), ("seat:bearing:", "bearing_seat"), ("seat:", "seat"))
 _GROUP_KIND = (("bearing:", "bearing_seat"), ("load:", "seat"))
 
@@ -198,6 +202,9 @@ def features(sol: Solid) -> tuple[Feature, ...]:
                            (g.x0, g.x1), (g.x0, g.x1),
                            (("rho", g.rho), ("depth", g.depth), ("width", g.width),
                             ("r", g.r))))
+    for c in sol.chamfers:
+        out.append(Feature("chamfer", chamfer_region(c.segment, c.side), c.segment,
+                           (c.x0, c.x1), (c.x0, c.x1), (("c", c.c), ("r", c.r))))
     for h in sol.holes:
         d = 2.0 * h.r
         out.append(Feature("cross_hole", hole_region(h.segment, h.index), h.segment,

@@ -56,7 +56,13 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from shaftfe.errors import InputError, SolverError
-from shaftfe.solid.features import groove_region, hole_region, kind_of, segment_of
+from shaftfe.solid.features import (
+    chamfer_region,
+    groove_region,
+    hole_region,
+    kind_of,
+    segment_of,
+)
 from shaftfe.solid.levels import DEFAULT_LEVEL, MeshLevel, mesh_level
 from shaftfe.solid.plan import Solid, plan_payload, prepare, seat_span
 from shaftfe.util import paths
@@ -560,6 +566,15 @@ def _size_fields(gmsh, sol: Solid, level: MeshLevel, cls: dict) -> None:
         f.setNumbers(d, "CurvesList", curves)
         f.setNumber(d, "Sampling", max(20, math.ceil(2 * math.pi * g.r / h_loc)))
         fields.append(threshold(h_loc, cfg["k_global"] * 2.0 * g.r, d, 0.8 * g.rho))
+    for c in sol.chamfers:
+        # a chamfer is no stress raiser, but a cone one slant wide: elements of about its slant
+        # (an element as wide as a coarse level's would span it and misplace its curved facets:
+        # measured +38 % on a 0.5 mm chamfer's area at coarse)
+        h_loc = 2.0 * math.sqrt(2.0) * c.c
+        d = f.add("Distance")
+        f.setNumbers(d, "SurfacesList", cls["faces"][chamfer_region(c.segment, c.side)])
+        f.setNumber(d, "Sampling", max(20, math.ceil(2 * math.pi * c.r / h_loc)))
+        fields.append(threshold(h_loc, cfg["k_global"] * 2.0 * c.r, d, c.c))
     for h in sol.holes:
         # a cross hole's bore and its edges on the shaft (the peaks: in bending and torsion at
         # the edge, in tension inside the bore): at the hot-spot size k_fillet a, growing

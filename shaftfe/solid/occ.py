@@ -12,6 +12,7 @@ from shaftfe.solid.features import (
     END_RIGHT,
     HEX_SOCKET,
     SEAT_HALVES,
+    chamfer_region,
     fillet_region,
     groove_region,
     half_group,
@@ -233,6 +234,14 @@ def _groove_group(sol: Solid, bbox, com, eps: float) -> str | None:
     return None
 
 
+def _chamfer_group(sol: Solid, com, eps: float) -> str | None:
+    """The chamfer (a cone) whose axial range holds the face's centre of mass."""
+    for c in sol.chamfers:
+        if c.x0 - eps < com[0] < c.x1 + eps:
+            return chamfer_region(c.segment, c.side)
+    return None
+
+
 def _hole_group(sol: Solid, bbox, eps: float) -> str | None:
     """The cross hole whose axial range holds the face (its wall: the shaft's own cylinders
     were classified before)."""
@@ -302,6 +311,10 @@ def classify(gmsh, sol: Solid) -> dict:
             g = _fillet_group(sol, com, eps)
             if g is not None:
                 groups, fillet_faces = [g], [*fillet_faces, s]
+        if not groups and kind == "Cone":
+            g = _chamfer_group(sol, com, eps)
+            if g is not None:
+                groups = [g]
         if not groups:
             g = _groove_group(sol, bbox, com, eps)
             if g is not None:

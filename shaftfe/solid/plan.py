@@ -30,6 +30,7 @@ from shaftfe.solid.features import (
     HEX_SOCKET,
     SEAT_HALVES,
     bearing_group,
+    chamfer_region,
     fillet_region,
     groove_region,
     half_group,
@@ -136,6 +137,25 @@ class Hole:
 
 
 @dataclass(frozen=True)
+class Chamfer:
+    """A 45° chamfer ``c`` on the outer edge of segment ``segment`` (radius ``r``) at its
+    ``side`` end: the cone from (x_edge, r − c) to (x_edge ∓ c, r)."""
+    segment: str
+    side: str           # "left" | "right"
+    r: float
+    c: float
+    x_edge: float       # the segment's end the chamfer breaks
+
+    @property
+    def x0(self) -> float:
+        return self.x_edge if self.side == "left" else self.x_edge - self.c
+
+    @property
+    def x1(self) -> float:
+        return self.x_edge + self.c if self.side == "left" else self.x_edge
+
+
+@dataclass(frozen=True)
 class Seat:
     """A named cylindrical face group on [x0, x1] of segment ``part``; ``angle`` is the force
     direction (rad) for a split seat, None for an unsplit one (bearing)."""
@@ -189,6 +209,12 @@ class Solid:
     # (``solid.mesh.end_fillet``); None: the plan's own seats
     seat_span: tuple[float, float] | None = None
     clipped: bool = False        # a 3D zone's plan (``clip``): its grooves are meshed coarsely
+    chamfers: tuple[Chamfer, ...] = ()
+
+    def chamfer(self, segment: str, side: str) -> float:
+        """The chamfer (mm) of ``segment``'s ``side`` edge, 0 without one."""
+        return next((c.c for c in self.chamfers if c.segment == segment and c.side == side),
+                    0.0)
 
     @property
     def r_max(self) -> float:
@@ -210,6 +236,7 @@ class Solid:
         names += [keyway_region(k.segment, k.index) for k in self.slots]
         names += [groove_region(g.segment, g.index) for g in self.grooves]
         names += [hole_region(h.segment, h.index) for h in self.holes]
+        names += [chamfer_region(c.segment, c.side) for c in self.chamfers]
         names += [END_LEFT, END_RIGHT]
         if self.hex is not None:
             names.append(HEX_SOCKET)
@@ -230,8 +257,11 @@ def _stations(segs) -> tuple[list[float], list[tuple[float, float]]]:
 
 
 def _fillets(segs, radii, xs, src: str):
-    """Fillets, shoulder annuli and the straight (fillet-free) part of every segment."""
+    """Fillets, shoulder annuli, chamfers and the straight (fillet- and chamfer-free) part of
+    every segment."""
     n = len(segs)
+    cham = {(i, side): float(getattr(s, f"chamfer_{side}_mm", 0.0) or 0.0)
+            for i, s in enumerate(segs) for side in ("left", "right")}
     fillets: list[Fillet] = []
     shoulders: list[Shoulder] = []
     eat_left = [0.0] * n
@@ -260,17 +290,36 @@ def _fillets(segs, radii, xs, src: str):
             eat_left[i + 1] = rho
         if rho > 0:
             fillets.append(Fillet(s.name, xe, small, large, rho, side))
-        if large - (small + rho) > TOL:          # else a full-height fillet: no flat annulus
-            shoulders.append(Shoulder(s.name, xe, small + rho, large))
+        # the larger segment's chamfer on this shoulder's outer edge
+        ci, cside = (i + 1, "left") if side < 0 else (i, "right")
+        c = cham[(ci, cside)]
+        if c > 0 and c >= large - (small + rho) - TOL:
+            raise InputError(src, f"segments[{ci}].chamfer_{cside}_mm", f"< the shoulder's "
+                             f"flat height {large - (small + rho):g} mm (the step less the "
+                             "fillet)", got=c)
+        if large - c - (small + rho) > TOL:      # else a full-height fillet: no flat annulus
+            shoulders.append(Shoulder(s.name, xe, small + rho, large - c))
+    for side, i in (("left", 0), ("right", n - 1)):      # the shaft's ends
+        c = cham[(i, side)]
+        if c >= 0.5 * radii[i]:
+            raise InputError(src, f"segments[{i}].chamfer_{side}_mm", f"< half the radius "
+                             f"({0.5 * radii[i]:g} mm)", got=c)
     parts: list[CylPart] = []
+    chamfers: list[Chamfer] = []
     for i, s in enumerate(segs):
-        a, b = xs[i][0] + eat_left[i], xs[i][1] - eat_right[i]
+        cl, cr = cham[(i, "left")], cham[(i, "right")]
+        a, b = xs[i][0] + eat_left[i] + cl, xs[i][1] - eat_right[i] - cr
         if b - a <= TOL:
-            raise InputError(src, f"segments[{i}].length_mm",
-                             f"> the fillets it carries ({eat_left[i] + eat_right[i]:g} mm)",
-                             got=s.length_mm)
+            what = "fillets and chamfers" if cl or cr else "fillets"
+            raise InputError(src, f"segments[{i}].length_mm", f"> the {what} it carries "
+                             f"({eat_left[i] + eat_right[i] + cl + cr:g} mm)",
+                             got=s.length_mm,
+                             reason="leaves no straight part (a chamfer longer than the "
+                             "segment?)" if cl or cr else "")
         parts.append(CylPart(s.name, i, a, b, radii[i]))
-    return fillets, shoulders, parts
+        chamfers += [Chamfer(s.name, "left", radii[i], cl, xs[i][0])] if cl > 0 else []
+        chamfers += [Chamfer(s.name, "right", radii[i], cr, xs[i][1])] if cr > 0 else []
+    return fillets, shoulders, parts, chamfers
 
 
 def _slots(segs, radii, parts, src: str) -> list[Slot]:
@@ -451,10 +500,17 @@ def prepare(variant) -> Solid:
     segs = tuple(variant.segments)
     names = [s.name for s in segs]
     radii, xs = _stations(segs)
-    fillets, shoulders, parts = _fillets(segs, radii, xs, src)
+    fillets, shoulders, parts, chamfers = _fillets(segs, radii, xs, src)
     slots = _slots(segs, radii, parts, src)
     seats = _seats(variant, xs, parts, slots, src)
     hx = _hex(variant, radii, xs, names, slots, src)
+    if hx is not None:
+        i = 0 if hx.end == "left" else len(segs) - 1
+        c = next((ch.c for ch in chamfers if ch.segment == names[i] and ch.side == hx.end), 0.0)
+        if c > 0 and hx.circumradius > 0.8 * (radii[i] - c):
+            raise InputError(src, f"segments[{i}].chamfer_{hx.end}_mm", "a chamfer leaving "
+                             "the end face around the hex socket's corners (corner radius < "
+                             "0.8 × (radius − chamfer))", got=c)
     grooves = _grooves(segs, radii, parts, slots, src)
     holes = _holes(segs, radii, parts, slots, grooves, src)
     _clear_of_seats(variant, seats, [*grooves, *holes], hx, xs, src)
@@ -462,7 +518,7 @@ def prepare(variant) -> Solid:
     return Solid(variant.name, xs[-1][1] - xs[0][0], xs[0][0], xs[-1][1], tuple(radii),
                  tuple(names), tuple(xs), tuple(fillets), tuple(shoulders), tuple(parts),
                  tuple(slots), tuple(seats), hx, tuple(prof), grooves=tuple(grooves),
-                 holes=tuple(holes))
+                 holes=tuple(holes), chamfers=tuple(chamfers))
 
 
 def clip(sol: Solid, x0: float, x1: float) -> Solid:
@@ -519,6 +575,7 @@ def clip(sol: Solid, x0: float, x1: float) -> Solid:
         slots=tuple(k for k in sol.slots if inside(k.x0, k.x1)),
         grooves=tuple(g for g in sol.grooves if inside(g.x0, g.x1)),
         holes=tuple(h for h in sol.holes if inside(h.x0, h.x1)),
+        chamfers=tuple(c for c in sol.chamfers if inside(c.x0, c.x1)),
         seats=tuple(seats), hex=hx,
         profile_x=tuple(x for x in sol.profile_x if x0 + TOL < x < x1 - TOL),
         hot_axes_deg=tuple(h for h in sol.hot_axes_deg if h[0] in keep))
@@ -526,7 +583,7 @@ def clip(sol: Solid, x0: float, x1: float) -> Solid:
 
 # fields added to the plan after its keys were first used: dropped from a key while they hold
 # their defaults, so a plan without them keeps its mesh, zone and cache keys
-LATE_FIELDS = ("grooves", "holes", "seat_span", "clipped")
+LATE_FIELDS = ("grooves", "holes", "seat_span", "clipped", "chamfers")
 
 
 def plan_payload(sol: Solid) -> dict:
@@ -556,12 +613,18 @@ def profile(sol: Solid) -> list[tuple[str, tuple]]:
     ("line", (x, r)) points and ("arc", (x_end, r_end, xc, rc)) pieces, starting from
     (x_left, 0). The 3D solid revolves it (``solid.occ``); the axisymmetric solver meshes it
     (``axisymmetric.mesh``)."""
-    pts: list[tuple[str, tuple]] = [("line", (sol.x_left, sol.radii[0]))]
+    names = sol.segment_names
+    c0 = sol.chamfer(names[0], "left")
+    pts: list[tuple[str, tuple]] = [("line", (sol.x_left, sol.radii[0] - c0))]
+    if c0 > 0:
+        pts.append(("line", (sol.x_left + c0, sol.radii[0])))
     fil = {round(f.x_shoulder, 9): f for f in sol.fillets}
     n = len(sol.radii)
     for i in range(n):
         r = sol.radii[i]
         part = sol.parts[i]
+        cr = sol.chamfer(names[i], "right")                 # this segment's right edge
+        cl = sol.chamfer(names[i + 1], "left") if i + 1 < n else 0.0   # the next one's left
         stations = [(x, None) for x in sol.profile_x if part.x0 + TOL < x < part.x1 - TOL]
         stations += [(g.x0, g) for g in sol.grooves if g.segment == part.segment]
         for x, g in sorted(stations, key=lambda e: e[0]):
@@ -574,23 +637,31 @@ def profile(sol: Solid) -> list[tuple[str, tuple]]:
                     piece = piece[1:]
                 pts += piece
         if i == n - 1:
-            pts.append(("line", (sol.x_right, r)))
+            if cr > 0:
+                pts.append(("line", (sol.x_right - cr, r)))
+            pts.append(("line", (sol.x_right, r - cr)))
             break
         xe = sol.segment_x[i][1]
         r1 = sol.radii[i + 1]
         if abs(r1 - r) <= TOL:
             pts.append(("line", (xe, r)))     # keep a face edge between equal segments
             continue
+        # a step down's outer edge: this segment's right chamfer; a step up's: the next one's
+        # left chamfer (a cone from the shoulder's top to the larger diameter)
+        down = [("line", (xe - cr, r)), ("line", (xe, r - cr))] if cr > 0 else \
+            [("line", (xe, r))]
+        up_top = [("line", (xe, r1 - cl)), ("line", (xe + cl, r1))] if cl > 0 else \
+            [("line", (xe, r1))]
         f = fil.get(round(xe, 9))
         if f is None:
-            pts += [("line", (xe, r)), ("line", (xe, r1))]
+            pts += [*down, ("line", (xe, r1))] if r > r1 else [("line", (xe, r)), *up_top]
         elif f.side < 0:      # step up: arc on the left of the shoulder
             pts.append(("line", (xe - f.rho, r)))
             pts.append(("arc", (xe, r + f.rho, xe - f.rho, r + f.rho)))
             if r1 - (r + f.rho) > TOL:
-                pts.append(("line", (xe, r1)))
+                pts += up_top
         else:                 # step down: arc on the right of the shoulder
-            pts.append(("line", (xe, r)))
+            pts += down
             if r - (r1 + f.rho) > TOL:
                 pts.append(("line", (xe, r1 + f.rho)))
             pts.append(("arc", (xe + f.rho, r1, xe + f.rho, r1 + f.rho)))

@@ -129,6 +129,12 @@ def build_submodel(variant, plan, zone, options, *, level=None, cache_dir=None) 
     mat = variant.material
     cut_groups = tuple(g for g, on in ((END_LEFT, zone.cut_left), (END_RIGHT, zone.cut_right))
                        if on)
+    if not cut_groups:
+        # a zone with no cut is the whole shaft: nothing drives it (its rigid motions are free)
+        from shaftfe.errors import SolverError
+        raise SolverError(f"{variant.name}: the 3D zones of the features that are not round "
+                          f"({', '.join(f.region for f in zone.features)}) cover the whole "
+                          "shaft, so there is no global model to drive them: use --model solid")
     faces = [fem.face_nodes(m, m.boundaries[g]) for g in cut_groups]
     nodes = np.unique(np.concatenate(faces))
     ndof = 3 * m.doflocs.shape[1]
