@@ -106,3 +106,43 @@ def test_groove_volume_and_area_against_quadrature(w, t, rho):
     area = np.sum(2 * math.pi * 0.5 * (r[1:] + r[:-1]) * ds)
     assert groove_volume(g) == pytest.approx(vol, rel=1e-6)
     assert groove_area(g) == pytest.approx(area, rel=1e-6)
+
+
+def test_din743_takes_the_converged_kt_only_for_a_one_arc_groove():
+    """``fatigue.standards.din743_notches``: a U groove whose D, d, ρ the committed table holds
+    AND whose bottom is one arc (width 2ρ, the table's bar, ``kt.grooved_bar``) takes the
+    converged Kt; the same D, d, ρ with a flat bottom (width 3) takes DIN 743-2's formula; the
+    row names its source either way."""
+    import dataclasses
+
+    from shaftfe.fatigue.cards import load_surfaces
+    from shaftfe.fatigue.standards import beam_at_ref, converged_kt, din743_notches
+    from shaftfe.model.examples import holed_bar
+    from shaftfe.model.variant import Groove
+    table = converged_kt()
+    key = ("groove", 22.0, 20.0, 1.0)
+    assert key in table                      # reports/benchmarks/kt_grooves.json holds it
+    for width, want in ((2.0, "converged Kt"), (3.0, "DIN 743-2 formula")):
+        v = holed_bar("bending")             # a Ø22 bar on two bearings, the groove at x = 80
+        seg = dataclasses.replace(v.segments[0], diameter_mm=22.0, cross_holes=(),
+                                  grooves=(Groove("u", 80.0, width, 1.0, 1.0),))
+        v = dataclasses.replace(v, segments=(seg,))
+        rows = [r for r in din743_notches(v, beam_at_ref(v), None, load_surfaces(), table)
+                if r[1].kind == "groove"]
+        assert len(rows) == 1 and rows[0][1].alpha_source.startswith(want), width
+        assert (rows[0][1].alpha == table[key]) == (width == 2.0)
+
+
+def test_a_notch_under_a_load_band_is_refused():
+    """A groove under a ``[[loads]]`` band would be loaded by the axisymmetric model (the band
+    covers its faces) and not by the 3D one: refused, naming the load (solid.plan)."""
+    import dataclasses
+
+    from shaftfe.errors import InputError
+    from shaftfe.model.examples import four_step_shaft
+    from shaftfe.model.loads import Load
+    from shaftfe.solid.plan import prepare
+    v = four_step_shaft(groove=True)
+    v = dataclasses.replace(v, loads=(Load("push", "force", 53.0, (51.0, 55.0), 100.0, 0.0),))
+    with pytest.raises(InputError, match="push"):
+        prepare(v)
