@@ -143,10 +143,11 @@ def test_staged_outputs_are_all_or_nothing(tmp_path):
 def test_ctrl_c_at_any_stage_leaves_no_partial_output(tmp_path):
     """SIGINT to `shaftfe static` at several moments of a run (import, meshing, solve,
     writing): the --out directory is either absent or complete, never partial, and no staging
-    directory is left. Delays spread over one coarse run (about 5-10 s on 2 cores)."""
+    directory is left. Delays spread over one coarse run (about 5-10 s on 2 cores): during the
+    imports, the meshing and solve, and near the writing."""
     complete = {"result.vtu", "summary.json", "deflection.png"}
     seen_interrupted = 0
-    for k, delay in enumerate((0.5, 1.5, 3.0, 4.5, 6.0)):
+    for k, delay in enumerate((0.5, 3.0, 6.0)):
         out = tmp_path / f"out{k}"
         p = _shaftfe("static", "--model", "solid", "--variant", "x2_57", "--level", "coarse",
                      "--no-beam",
