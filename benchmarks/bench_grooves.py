@@ -18,12 +18,12 @@
 from __future__ import annotations
 
 import json
-import shutil
 import statistics
 import sys
 import tempfile
 from pathlib import Path
 
+from benchmarks._shaft_files import write_report, x2_57_with
 from benchmarks._timing import process
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -47,21 +47,6 @@ BOSS_471 = ('[[shaft.segments.grooves]]\nkind = "din471"\nx_center_mm = 27.0\n'
             'note = "issue #33 benchmark: a DIN 471 ring groove on the gear hub boss"\n\n')
 
 
-def grooved_geometry(where: Path) -> Path:
-    """A copy of geometry/ whose x2_57 has the two grooves; the variant file's path."""
-    g = where / "geometry"
-    shutil.copytree(ROOT / "geometry", g)
-    p = g / "common" / "shaft_c.toml"
-    s = p.read_text(encoding="utf-8")
-    end = 'spot (§8.3)."""\n'
-    assert s.count(end) == 1
-    s = s.replace(end, end + COLLAR_U)
-    i = s.index('name = "gear_hub_boss"')
-    j = s.index("[[shaft.segments]]", i)
-    p.write_text(s[:j] + BOSS_471 + s[j:], encoding="utf-8")
-    return g / "x2_57.toml"
-
-
 def kt_grid() -> list[dict]:
     from shaftfe.axisymmetric import kt
     from shaftfe.fatigue import din743
@@ -83,7 +68,7 @@ def kt_grid() -> list[dict]:
 def shaft_runs() -> dict:
     out = {}
     with tempfile.TemporaryDirectory() as tmp:
-        var = grooved_geometry(Path(tmp))
+        var = x2_57_with(Path(tmp), collar=COLLAR_U, boss=BOSS_471)
         for model in ("zoned", "axisymmetric"):
             cmd = [sys.executable, "-m", "shaftfe", "static", "--variant", str(var), "--model",
                    model, "--out", f"{tmp}/{model}"]
@@ -163,8 +148,7 @@ def main() -> None:
               "its peak and fatigue field come from the global model, which meshes its "
               "radius; the run warns (`groove-in-zone`) that the keyway's own field at "
               "the groove is left out."]
-    OUT.with_suffix(".md").write_text("\n".join(lines) + "\n", encoding="utf-8")
-    print("\n".join(lines))
+    write_report(OUT, lines)
 
 
 if __name__ == "__main__":

@@ -17,6 +17,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from benchmarks._shaft_files import write_report
+
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "reports" / "benchmarks" / "keyway_edge"
 SCALES = (1.0, 0.5, 0.25, 0.125, 0.0625)        # × the default level's k_sharp
@@ -62,8 +64,7 @@ def main() -> None:
               "elasticity has no finite stress, and grows with every refinement. A keyway peak "
               "is therefore marked wherever it is printed; a converged one needs the keyway's "
               "bottom radius (DIN 6885)."]
-    OUT.with_suffix(".md").write_text("\n".join(lines) + "\n", encoding="utf-8")
-    print("\n".join(lines))
+    write_report(OUT, lines)
 
 
 if __name__ == "__main__":

@@ -14,6 +14,7 @@ import statistics
 import tempfile
 from pathlib import Path
 
+from benchmarks._shaft_files import write_report
 from benchmarks._timing import process
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -68,8 +69,7 @@ def main() -> None:
               f"{z['wall_s'] / f['wall_s']:.2f}. Both are this project's FE models of one "
               "shaft (a consistency check); the per-pattern fields' independent checks are "
               "tests/validation/test_pattern_fields.py (closed forms, superposition)."]
-    OUT.with_suffix(".md").write_text("\n".join(lines) + "\n", encoding="utf-8")
-    print("\n".join(lines))
+    write_report(OUT, lines)
 
 
 if __name__ == "__main__":

@@ -268,12 +268,12 @@ def plot_din743_safeties(rows: list[dict], s_min: float, path, title: str = "") 
     return _save(fig, path)
 
 
-def plot_din743_along(along: dict, notches: list[dict], s_min: float, outline, path,
+def plot_din743_along(along: dict, notches: list[dict], s_min: float, path,
                       title: str = "") -> Path:
     """DIN 743 along the shaft: S_D and S_F of the unnotched section at every cross-section
     (lines, log scale), each notch's S_D and S_F (markers, named), S_min, and the shaft's
-    outline below (``outline``: (x0, x1, d) per segment). A section without stress (safety
-    ∞) is drawn at the top of the axis."""
+    outline below (the sections' diameters ``along["d_mm"]``). A section without stress
+    (safety ∞) is drawn at the top of the axis."""
     plt = _plt()
     x = np.asarray(along["x_mm"], dtype=float)
     vals = {k: np.array([np.inf if v is None else v for v in along[k]], dtype=float)
@@ -303,9 +303,8 @@ def plot_din743_along(along: dict, notches: list[dict], s_min: float, outline, p
     ax.grid(which="both", alpha=0.3)
     ax.legend(fontsize=7, ncol=3, loc="upper center")
     ax.set_title(title or "DIN 743 safety along the shaft")
-    for x0, x1, d in outline:
-        ax2.fill_between([x0, x1], [-d / 2, -d / 2], [d / 2, d / 2], color="0.75",
-                         edgecolor="0.3", lw=0.6)
+    r = 0.5 * np.asarray(along["d_mm"], dtype=float)
+    ax2.fill_between(x, -r, r, color="0.75", edgecolor="0.3", lw=0.6)
     for xx in nx:
         ax2.axvline(xx, color="k", lw=0.5, ls=":")
     ax2.set_ylabel("Ø mm")

@@ -309,18 +309,22 @@ def write_fkm_files(res, ref, out) -> tuple[dict, dict]:
                  "damage_matrix": "damage_matrix.png"}
 
 
-def write_din_files(summary: dict, out, outline=()) -> dict:
+def plot_din_along(summary: dict, path) -> None:
+    """DIN 743's safety along the shaft (``summary``: ``din_summary`` with "along")."""
+    from shaftfe.fatigue import plots as fp
+    fp.plot_din743_along(summary["along"], summary["notches"], summary["S_min"], path,
+                         title=f"DIN 743 safety along the shaft, card {summary['card']}")
+
+
+def write_din_files(summary: dict, out) -> dict:
     """DIN 743's plots into ``out``: S_D and S_F per notch against S_min; with the safety at
-    every cross-section in the summary (``--plot``), the safety along the shaft too, over the
-    shaft's ``outline`` ((x0, x1, d) per segment)."""
+    every cross-section in the summary (``--plot``), the safety along the shaft too."""
     from shaftfe.fatigue import plots as fp
     fp.plot_din743_safeties(summary["notches"], summary["S_min"], out / "din743_safety.png",
                             title=f"DIN 743 safeties per notch, card {summary['card']}")
     files = {"din743_safety": "din743_safety.png"}
     if summary.get("along"):
-        fp.plot_din743_along(summary["along"], summary["notches"], summary["S_min"], outline,
-                             out / "din743_along.png",
-                             title=f"DIN 743 safety along the shaft, card {summary['card']}")
+        plot_din_along(summary, out / "din743_along.png")
         files["din743_along"] = "din743_along.png"
     return files
 

@@ -346,7 +346,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     with prog.stage("plots"):
         _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, cres,
                camp, files["vtu_rpm"], add_fig)
-        _din743_along_plot(variant, strength, fig_dir, add_fig)
+        _din743_along_plot(strength, fig_dir, add_fig)
     picture_seconds = None
     with prog.stage("3D pictures"):           # what is left of them once the plots are done
         if rendering is not None:
@@ -449,16 +449,13 @@ def _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, 
     _other_plots(o, fig_dir, variant, res, ref, ff, history, material, cres, rpm_vtu, add_fig)
 
 
-def _din743_along_plot(variant, strength: dict, fig_dir, add_fig) -> None:
+def _din743_along_plot(strength: dict, fig_dir, add_fig) -> None:
     """DIN 743's safety along the shaft (``shaftfe fatigue --method din743 --plot``'s)."""
     din = strength.get("din743")
     if not din or "along" not in din:
         return
-    from shaftfe.fatigue import plots as fp
-    outline = [(s.x_start_mm, s.x_end_mm, s.diameter_mm) for s in variant.segments]
-    fp.plot_din743_along(din["along"], din["notches"], din["S_min"], outline,
-                         fig_dir / "din743_along.png",
-                         title=f"DIN 743 safety along the shaft, card {din['card']}")
+    from shaftfe.fatigue import standards_out as so
+    so.plot_din_along(din, fig_dir / "din743_along.png")
     add_fig("din743_along", "DIN 743 safety along the shaft",
             "S_D and S_F of the unnotched section at every cross-section (every 0.25 mm, "
             "the beam's nominal stresses over the history's largest cycle) and at each notch "

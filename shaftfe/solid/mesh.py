@@ -123,11 +123,9 @@ def mesh_key(sol: Solid, level: str | MeshLevel, order: int, gmsh_version: str) 
     # the whole shaft's seat range matters only where it makes a fillet a span fillet that the
     # clipped plan's own seats would call an end fillet (the mesh's only use of it)
     plan.pop("seat_span", None)
-    own = [st for st in sol.seats if st.loaded]
-    own_span = (min(st.x0 for st in own), max(st.x1 for st in own)) if own else None
+    own = seat_span(sol, own=True)
     if sol.seat_span is not None and any(
-            end_fillet(sol, fl) != (own_span is not None and end_fillet(sol, fl, own_span))
-            for fl in sol.fillets):
+            _outboard(fl, sol.seat_span) != _outboard(fl, own) for fl in sol.fillets):
         plan["seat_span"] = list(sol.seat_span)
     payload = {"solid": plan, "level": lv.name, "settings": lv.settings(bool(sol.fillets)),
                "order": order,
@@ -416,14 +414,18 @@ def _untangle(gmsh) -> int:
     return len(moved)
 
 
-def end_fillet(sol: Solid, fl, span: tuple[float, float] | None = None) -> bool:
+def end_fillet(sol: Solid, fl) -> bool:
     """True for a fillet outboard of every bearing seat and every loaded attachment seat (an
     attachment with m e ≠ 0): between it and the shaft end there is neither a load nor a
     support, so the beam bending moment and shear force there are zero and only the local seat
     pressure reaches it (x2_57: the thread-end fillets carry 28-48 MPa against 430-500 MPa in
     the fillets inside the bearing span). The seats are the whole shaft's (a 3D zone's clipped
-    plan carries their range, ``Solid.seat_span``); ``span`` overrides it."""
-    span = span or seat_span(sol)
+    plan carries their range, ``Solid.seat_span``)."""
+    return _outboard(fl, seat_span(sol))
+
+
+def _outboard(fl, span: tuple[float, float] | None) -> bool:
+    """Is fillet ``fl`` outside the seats' x-range ``span`` (None: no loaded seat, False)?"""
     if span is None:
         return False
     lo, hi = span
@@ -531,6 +533,18 @@ def _size_fields(gmsh, sol: Solid, level: MeshLevel, cls: dict) -> None:
         f.setNumber(th, "DistMax", d_min + max(h_glob - h_loc, 0.0) / cfg["grad"])
         return th
 
+    def near(what: str, tags, h_loc: float, h_glob: float, d_min: float, length: float) -> int:
+        """h_loc within d_min of the curves or surfaces ``tags`` (``what``: "CurvesList" |
+        "SurfacesList"), growing to h_glob; sampled every h_loc along ``length``."""
+        d = f.add("Distance")
+        f.setNumbers(d, what, tags)
+        f.setNumber(d, "Sampling", max(20, math.ceil(length / h_loc)))
+        return threshold(h_loc, h_glob, d, d_min)
+
+    def edges(surfs) -> list[int]:
+        return sorted({abs(c) for _, c in gmsh.model.getBoundary(
+            [(2, t) for t in surfs], combined=False, oriented=False)})
+
     local = "k_ring" in cfg             # levels with a local hot-spot field (see LEVELS)
     axes = {seg: (None if a is None else math.radians(a)) for seg, a in sol.hot_axes_deg}
     for seg, surfs in tag_of.items():
@@ -545,12 +559,8 @@ def _size_fields(gmsh, sol: Solid, level: MeshLevel, cls: dict) -> None:
             h_loc = cfg["k_fillet"] * fl.rho
         # distance to the fillet's two boundary circles (1D sampling: cheap to evaluate; on
         # the fillet itself the distance stays below ρ·0.77, inside DistMin + one size step)
-        curves = sorted({abs(c) for _, c in gmsh.model.getBoundary(
-            [(2, t) for t in surfs], combined=False, oriented=False)})
-        d = f.add("Distance")
-        f.setNumbers(d, "CurvesList", curves)
-        f.setNumber(d, "Sampling", max(20, math.ceil(2 * math.pi * fl.r_large / h_loc)))
-        fields.append(threshold(h_loc, cfg["k_global"] * 2.0 * fl.r_large, d, 0.8 * fl.rho))
+        fields.append(near("CurvesList", edges(surfs), h_loc, cfg["k_global"] * 2.0 * fl.r_large,
+                           0.8 * fl.rho, 2 * math.pi * fl.r_large))
     for g in sol.grooves:
         # a groove's corner arcs as a fillet's ring (their radius ρ sets the size), the
         # distance to all its edges (the corners' circles and the flanks' outer ones); in a 3D
@@ -559,41 +569,29 @@ def _size_fields(gmsh, sol: Solid, level: MeshLevel, cls: dict) -> None:
         h_loc = (cfg["k_ring"] if local else cfg["k_fillet"]) * g.rho
         if sol.clipped:
             h_loc = max(h_loc, g.depth)
-        curves = sorted({abs(c) for _, c in gmsh.model.getBoundary(
-            [(2, t) for t in cls["faces"][groove_region(g.segment, g.index)]],
-            combined=False, oriented=False)})
-        d = f.add("Distance")
-        f.setNumbers(d, "CurvesList", curves)
-        f.setNumber(d, "Sampling", max(20, math.ceil(2 * math.pi * g.r / h_loc)))
-        fields.append(threshold(h_loc, cfg["k_global"] * 2.0 * g.r, d, 0.8 * g.rho))
+        fields.append(near("CurvesList", edges(cls["faces"][groove_region(g.segment, g.index)]),
+                           h_loc, cfg["k_global"] * 2.0 * g.r, 0.8 * g.rho, 2 * math.pi * g.r))
     for c in sol.chamfers:
         # a chamfer is no stress raiser, but a cone one slant wide: elements of about its slant
         # (an element as wide as a coarse level's would span it and misplace its curved facets:
         # measured +38 % on a 0.5 mm chamfer's area at coarse)
-        h_loc = 2.0 * math.sqrt(2.0) * c.c
-        d = f.add("Distance")
-        f.setNumbers(d, "SurfacesList", cls["faces"][chamfer_region(c.segment, c.side)])
-        f.setNumber(d, "Sampling", max(20, math.ceil(2 * math.pi * c.r / h_loc)))
-        fields.append(threshold(h_loc, cfg["k_global"] * 2.0 * c.r, d, c.c))
+        fields.append(near("SurfacesList", cls["faces"][chamfer_region(c.segment, c.side)],
+                           2.0 * math.sqrt(2.0) * c.c, cfg["k_global"] * 2.0 * c.r, c.c,
+                           2 * math.pi * c.r))
     for h in sol.holes:
         # a cross hole's bore and its edges on the shaft (the peaks: in bending and torsion at
         # the edge, in tension inside the bore): at the hot-spot size k_fillet a, growing
         # from there
-        h_loc = cfg["k_fillet"] * h.a
-        surfs = cls["faces"][hole_region(h.segment, h.index)]
-        d = f.add("Distance")
-        f.setNumbers(d, "SurfacesList", surfs)
-        f.setNumber(d, "Sampling", max(20, math.ceil(4 * math.pi * h.a / h_loc)))
-        fields.append(threshold(h_loc, cfg["k_global"] * 2.0 * h.r, d, 0.3 * h.a))
+        fields.append(near("SurfacesList", cls["faces"][hole_region(h.segment, h.index)],
+                           cfg["k_fillet"] * h.a, cfg["k_global"] * 2.0 * h.r, 0.3 * h.a,
+                           4 * math.pi * h.a))
     if cls["sharp_curves"]:
         # keyway edges / sharp shoulders; no larger than the fillet size on the slot's round
         # ends (radius w/2) so that curved P2 faces there stay valid
         k_slot = cfg["k_ring"] if local else cfg["k_fillet"]
         h_loc = min([cfg["k_sharp"] * rho_ref] + [k_slot * 0.5 * k.width for k in sol.slots])
-        d = f.add("Distance")
-        f.setNumbers(d, "CurvesList", cls["sharp_curves"])
-        f.setNumber(d, "Sampling", max(20, (math.ceil(2 * math.pi * sol.r_max / h_loc))))
-        fields.append(threshold(h_loc, h_max, d, 0.5 * rho_ref))
+        fields.append(near("CurvesList", cls["sharp_curves"], h_loc, h_max, 0.5 * rho_ref,
+                           2 * math.pi * sol.r_max))
     mn = f.add("Min")
     f.setNumbers(mn, "FieldsList", fields)
     f.setAsBackgroundMesh(mn)

@@ -311,18 +311,10 @@ def classify(gmsh, sol: Solid) -> dict:
             g = _fillet_group(sol, com, eps)
             if g is not None:
                 groups, fillet_faces = [g], [*fillet_faces, s]
-        if not groups and kind == "Cone":
-            g = _chamfer_group(sol, com, eps)
-            if g is not None:
-                groups = [g]
-        if not groups:
-            g = _groove_group(sol, bbox, com, eps)
-            if g is not None:
-                groups = [g]
-        if not groups:
-            g = _hole_group(sol, bbox, eps)
-            if g is not None:
-                groups = [g]
+        if not groups:            # a chamfer's cone, a groove's or a cross hole's faces
+            g = ((kind == "Cone" and _chamfer_group(sol, com, eps))
+                 or _groove_group(sol, bbox, com, eps) or _hole_group(sol, bbox, eps))
+            groups = [g] if g else []
         if not groups:
             g = _keyway_group(sol, bbox, com, eps)
             if g is not None:

@@ -23,6 +23,7 @@ import math
 from dataclasses import dataclass
 
 from shaftfe.errors import InputError
+from shaftfe.model.grooves import DIN471_RECONSTRUCTED_FROM
 from shaftfe.model.validate import source_of, validate_variant
 from shaftfe.solid.features import (
     END_LEFT,
@@ -39,6 +40,7 @@ from shaftfe.solid.features import (
     seat_group,
     shoulder_region,
 )
+from shaftfe.util.notices import warn
 
 TOL = 1e-6          # mm, geometric tolerance for coincident x-stations
 SQRT3 = math.sqrt(3.0)
@@ -337,57 +339,58 @@ def _slots(segs, radii, parts, src: str) -> list[Slot]:
     return slots
 
 
+def _place(src: str, fld: str, noun: str, got, x0: float, x1: float, part: CylPart,
+           others) -> None:
+    """A notch on [x0, x1]: on the straight part ``part`` of its segment with 0.5 mm to spare
+    (its flank never meets a fillet, a chamfer or a shoulder), and clear of each of ``others``
+    ((label, a, b, gap mm)) by its gap."""
+    if x0 < part.x0 + 0.5 or x1 > part.x1 - 0.5:
+        raise InputError(src, fld, f"{noun} on the cylindrical part of its segment with 0.5 mm "
+                         f"to spare ([{part.x0:g}, {part.x1:g}])", got=got)
+    for label, a, b, gap in others:
+        if a < x1 + gap and x0 < b + gap:
+            by = f" by {gap:g} mm" if gap > TOL else ""
+            raise InputError(src, fld, f"clear of {label} [{a:g}, {b:g}]{by}", got=got,
+                             reason="overlaps another notch")
+
+
 def _grooves(segs, radii, parts, slots, src: str) -> list[Groove]:
-    """Grooves, each on the straight part of its segment with 0.5 mm to spare (its flank
-    never meets a fillet or a shoulder), clear of the keyways and of one another."""
+    """Grooves (``_place``), clear of the keyways and by 0.5 mm of one another."""
     out: list[Groove] = []
     for i, s in enumerate(segs):
-        p = parts[i]
         for j, g in enumerate(s.grooves):
-            fld = f"segments[{i}].grooves[{j}].x_center_mm"
             x0, x1 = g.x_center_mm - 0.5 * g.width_mm, g.x_center_mm + 0.5 * g.width_mm
-            if x0 < p.x0 + 0.5 or x1 > p.x1 - 0.5:
-                raise InputError(src, fld, "groove inside the cylindrical part of its segment "
-                                 f"with 0.5 mm to spare ([{p.x0:g}, {p.x1:g}])",
-                                 got=g.x_center_mm)
-            gr = Groove(s.name, j, g.kind, radii[i], x0, x1, float(g.depth_mm),
-                        float(g.radius_mm))
-            for k in slots:
-                if k.segment == s.name and k.x0 < x1 + TOL and x0 < k.x1 + TOL:
-                    raise InputError(src, fld, f"clear of keyway {k.segment}:{k.index} "
-                                     f"[{k.x0:g}, {k.x1:g}]", got=g.x_center_mm,
-                                     reason="overlaps another notch")
-            for o in out:
-                if o.x0 < x1 + 0.5 and x0 < o.x1 + 0.5:
-                    raise InputError(src, fld, f"clear of groove {o.segment}:{o.index} "
-                                     f"[{o.x0:g}, {o.x1:g}] by 0.5 mm", got=g.x_center_mm,
-                                     reason="overlaps another notch")
-            out.append(gr)
+            others = [(f"keyway {k.segment}:{k.index}", k.x0, k.x1, TOL) for k in slots
+                      if k.segment == s.name]
+            others += [(f"groove {o.segment}:{o.index}", o.x0, o.x1, 0.5) for o in out]
+            _place(src, f"segments[{i}].grooves[{j}].x_center_mm", "groove", g.x_center_mm,
+                   x0, x1, parts[i], others)
+            if g.kind == "din471" and s.diameter_mm >= DIN471_RECONSTRUCTED_FROM:
+                warn("din471-reconstructed", f"segments[{i}].grooves[{j}]",
+                     f"DIN 471's groove for Ø{s.diameter_mm:g} comes from the table rows from "
+                     f"{DIN471_RECONSTRUCTED_FROM:g} mm on, which were reconstructed "
+                     "(model/grooves.py): give width_mm, depth_mm from the standard as a "
+                     "u groove to be sure")
+            out.append(Groove(s.name, j, g.kind, radii[i], x0, x1, float(g.depth_mm),
+                              float(g.radius_mm)))
     return out
 
 
 def _holes(segs, radii, parts, slots, grooves, src: str) -> list[Hole]:
-    """Cross holes, each on the straight part of its segment with 0.5 mm to spare, clear of
-    the keyways, the grooves and one another by 0.5 mm (a hole through a keyway, or two
-    notches' fields on top of each other, is outside every chart)."""
+    """Cross holes (``_place``), clear of the keyways, the grooves and one another by 0.5 mm
+    (a hole through a keyway, or two notches' fields on top of each other, is outside every
+    chart)."""
     out: list[Hole] = []
     for i, s in enumerate(segs):
-        p = parts[i]
         for j, h in enumerate(s.cross_holes):
-            fld = f"segments[{i}].cross_holes[{j}].x_center_mm"
             hl = Hole(s.name, j, radii[i], 0.5 * float(h.diameter_mm), float(h.x_center_mm),
                       math.radians(float(h.angle_deg)))
-            if hl.x0 < p.x0 + 0.5 or hl.x1 > p.x1 - 0.5:
-                raise InputError(src, fld, "hole on the cylindrical part of its segment with "
-                                 f"0.5 mm to spare ([{p.x0:g}, {p.x1:g}])", got=h.x_center_mm)
-            others = [(f"keyway {k.segment}:{k.index}", k.x0, k.x1) for k in slots
+            others = [(f"keyway {k.segment}:{k.index}", k.x0, k.x1, 0.5) for k in slots
                       if k.segment == s.name]
-            others += [(f"groove {g.segment}:{g.index}", g.x0, g.x1) for g in grooves]
-            others += [(f"cross hole {o.segment}:{o.index}", o.x0, o.x1) for o in out]
-            for what, a, b in others:
-                if a < hl.x1 + 0.5 and hl.x0 < b + 0.5:
-                    raise InputError(src, fld, f"clear of {what} [{a:g}, {b:g}] by 0.5 mm",
-                                     got=h.x_center_mm, reason="overlaps another notch")
+            others += [(f"groove {g.segment}:{g.index}", g.x0, g.x1, 0.5) for g in grooves]
+            others += [(f"cross hole {o.segment}:{o.index}", o.x0, o.x1, 0.5) for o in out]
+            _place(src, f"segments[{i}].cross_holes[{j}].x_center_mm", "hole", h.x_center_mm,
+                   hl.x0, hl.x1, parts[i], others)
             out.append(hl)
     return out
 
@@ -597,10 +600,10 @@ def plan_payload(sol: Solid) -> dict:
     return d
 
 
-def seat_span(sol: Solid) -> tuple[float, float] | None:
+def seat_span(sol: Solid, own: bool = False) -> tuple[float, float] | None:
     """The x-range of the loaded seats (a bearing's, a part's with m e ≠ 0) of the whole shaft
-    ``sol`` was clipped from (or of ``sol``); None without any."""
-    if sol.seat_span is not None:
+    ``sol`` was clipped from (``own``: of ``sol``'s own seats); None without any."""
+    if sol.seat_span is not None and not own:
         return sol.seat_span
     seats = [st for st in sol.seats if st.loaded]
     if not seats:
@@ -749,7 +752,6 @@ def sharp_corners(variant) -> tuple[SharpCorner, ...]:
 
 def warn_sharp_corners(variant) -> tuple[SharpCorner, ...]:
     """``sharp_corners`` with a visible warning for each (``shaftfe.util.notices``)."""
-    from shaftfe.util.notices import warn
     corners = sharp_corners(variant)
     for c in corners:
         warn("sharp-corner", c.region, c.describe())

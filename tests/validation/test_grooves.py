@@ -146,3 +146,23 @@ def test_a_notch_under_a_load_band_is_refused():
     v = dataclasses.replace(v, loads=(Load("push", "force", 53.0, (51.0, 55.0), 100.0, 0.0),))
     with pytest.raises(InputError, match="push"):
         prepare(v)
+
+
+def test_a_din471_groove_from_a_reconstructed_table_row_is_warned():
+    """DIN 471's rows from 20 mm on were reconstructed (``model.grooves``): a din471 groove of
+    that size says so in a warning; one from the read rows (Ø17) does not."""
+    import dataclasses
+
+    from shaftfe.model.examples import holed_bar
+    from shaftfe.model.grooves import din471
+    from shaftfe.model.variant import Groove
+    from shaftfe.solid.plan import prepare
+    from shaftfe.util.notices import collecting
+    for dia, warned in ((22.0, True), (17.0, False)):
+        m, t = din471(dia)
+        v = holed_bar("bending")
+        seg = dataclasses.replace(v.segments[0], diameter_mm=dia, cross_holes=(),
+                                  grooves=(Groove("din471", 80.0, m, t, 0.1),))
+        with collecting(echo=False) as got:
+            prepare(dataclasses.replace(v, segments=(seg,)))
+        assert any(n.code == "din471-reconstructed" for n in got) == warned, dia

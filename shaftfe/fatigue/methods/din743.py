@@ -79,9 +79,7 @@ class Din743:
                 "rows": [{"notch": r.notch, "x_mm": r.x_mm, "sigma_zd_MPa": r.sigma_zd_MPa,
                           "sigma_b_MPa": r.sigma_b_MPa, "tau_t_MPa": r.tau_t_MPa,
                           "S_F": r.S_F} for r in st.rows]}
-        outline = [(s.x_start_mm, s.x_end_mm, s.diameter_mm) for s in inputs.variant.segments]
-        return so.write_outputs({**summary, "plots": so.write_din_files(summary, out, outline)},
-                                out)
+        return so.write_outputs({**summary, "plots": so.write_din_files(summary, out)}, out)
 
     def lines(self, result, inputs, options, summary, out, files) -> list[str]:
         from shaftfe.fatigue import din743
