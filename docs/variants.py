@@ -81,19 +81,28 @@ def keys() -> list[tuple[str, str, str, str]]:
          "or the mass properties"),
         ("segments.<seg>.chamfer_right_mm", "mm", "as chamfer_left_mm", "45° chamfer of the "
          "segment's right edge"),
-        ("segments.<seg>.grooves.<i>.kind", "—", "u | din471 (din509_e, din509_f: named, not "
-         "built yet)", "a circumferential groove: a U groove, or a DIN 471 retaining-ring "
-         "groove whose width and depth the standard fixes from the segment's diameter"),
+        ("segments.<seg>.grooves.<i>.kind", "—", "u | din471 | din509_e | din509_f",
+         "a circumferential groove: a U groove, a DIN 471 retaining-ring groove whose width "
+         "and depth the standard fixes from the segment's diameter, or a DIN 509 undercut "
+         "(form E, or F with its recess into the face) at a shoulder, sized by the standard "
+         "from the segment's diameter (model/grooves.py: the table, and the outline's "
+         "interpretation)"),
+        ("segments.<seg>.grooves.<i>.side", "—", "left | right (din509 only): the segment's "
+         "end at a step up to a larger segment, whose shoulder has fillet_mm 0",
+         "where the undercut sits: in this segment's cylinder beside the larger one's face "
+         "(a bearing ring may reach over it to the face)"),
         ("segments.<seg>.grooves.<i>.x_center_mm", "mm", "on the segment's straight part with "
-         "0.5 mm to spare; clear of seats, keyways, the hex socket and other grooves by 0.5 mm",
-         "axial centre of the groove"),
-        ("segments.<seg>.grooves.<i>.width_mm", "mm", "> 0 (u); not given for din471",
-         "groove width at the surface (DIN 471: m)"),
+         "0.5 mm to spare; clear of seats, keyways, the hex socket and other grooves by 0.5 mm;"
+         " not given for din509 (side places it)", "axial centre of the groove"),
+        ("segments.<seg>.grooves.<i>.width_mm", "mm", "> 0 (u); not given for din471 and "
+         "din509", "groove width at the surface (DIN 471: m; DIN 509: f)"),
         ("segments.<seg>.grooves.<i>.depth_mm", "mm", "0 < depth < diameter / 4 (u); not given "
-         "for din471", "groove depth below the surface (DIN 471: (d1 − d2)/2)"),
+         "for din471 and din509", "groove depth below the surface (DIN 471: (d1 − d2)/2; "
+         "DIN 509: t1)"),
         ("segments.<seg>.grooves.<i>.radius_mm", "mm", f"≥ {FILLET_MIN_MM:g}, ≤ min(width / 2, "
          "depth); default the full round (u), 0.1 (din471, an assumption: the standard bounds "
-         "it)", "the bottom corners' radius"),
+         "it); din509: a radius of the standard's rows for the diameter (default the row for "
+         "usual loading)", "the bottom corners' radius"),
         ("segments.<seg>.cross_holes.<i>.diameter_mm", "mm", "0 < diameter ≤ 0.4 × the "
          "segment's diameter (the charts' range)", "a transverse hole straight through the "
          "axis (an oil hole); meshed in a 3D zone of the zoned solve"),

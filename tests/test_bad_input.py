@@ -46,7 +46,7 @@ def _groove(at: str, body: str, table: str = "grooves") -> tuple[str, str, str]:
     tables = []
     for t in body.split(head):
         keys = [ln.split(" = ")[0] for ln in t.strip().splitlines() if ln.split(" = ")[0]
-                not in ("kind",)]
+                not in ("kind", "side")]
         tables.append(t.strip() + "\nreconstructed = [" + ", ".join(f'"{k}"' for k in keys)
                       + "]")
     return (SHAFT, at, at + "".join(f"{head}{t}\n" for t in tables))
@@ -75,7 +75,11 @@ VARIANT_EDITS = {
     "din471_on_a_diameter_not_in_its_table": _groove(COLLAR_END,
                                                      'kind = "din471"\nx_center_mm = 55.0\n'
                                                      'depth_mm = 0.4'),
-    "din509_not_built": _groove(COLLAR_END, 'kind = "din509_e"\nx_center_mm = 55.0'),
+    "din509_given_a_position": _groove(COLLAR_END, 'kind = "din509_e"\nx_center_mm = 55.0'),
+    "din509_at_a_step_down": _groove(COLLAR_END, 'kind = "din509_e"\nside = "left"'),
+    "din509_beside_a_fillet": _groove(FREE_END, 'kind = "din509_f"\nside = "left"'),
+    "din509_radius_not_in_its_table": _groove(FREE_END, 'kind = "din509_e"\nside = "left"\n'
+                                              'radius_mm = 0.7'),
     "chamfer_deeper_than_the_shoulder": (SHAFT, COLLAR_CHAMFER, COLLAR_CHAMFER.replace(
         "fillet_mm = 0.6\n", "fillet_mm = 0.6\nchamfer_left_mm = 2.0\n").replace(
         '"fillet_mm"]', '"fillet_mm", "chamfer_left_mm"]')),
@@ -138,7 +142,12 @@ VARIANT_EXPECT = {
     "grooves_overlapping": ["x2_57.toml", "grooves[1].x_center_mm", "another notch"],
     "din471_on_a_diameter_not_in_its_table": ["shaft_c.toml", "grooves[0].depth_mm",
                                               "DIN 471 fixes it"],
-    "din509_not_built": ["shaft_c.toml", "grooves[0].kind", "not built yet"],
+    "din509_given_a_position": ["shaft_c.toml", "grooves[0].x_center_mm",
+                                "DIN 509 places the undercut"],
+    "din509_at_a_step_down": ["x2_57.toml", "segments[4].grooves[0].side", "step up"],
+    "din509_beside_a_fillet": ["x2_57.toml", "segments[4].fillet_mm", "undercut"],
+    "din509_radius_not_in_its_table": ["shaft_c.toml", "grooves[0].radius_mm",
+                                       "0.4, 0.6"],
     "chamfer_deeper_than_the_shoulder": ["x2_57.toml", "segments[4].chamfer_left_mm",
                                          "flat height"],
     "chamfer_on_an_inner_edge": ["x2_57.toml", "segments[3].chamfer_right_mm",

@@ -289,8 +289,9 @@ def test_din743_plot_gives_the_safety_along_the_shaft(tmp_path, capsys):
     γ_F = 1; K2F = 1.2 in bending and torsion, 1.0 with a hard surface layer as the case
     hardened 14220 has): S_F = 1/√((σ_b,max/σ_bFK)² + (τ_max/τ_tFK)²),
     σ_bFK = K1(d) · K2F · R_p, τ_tFK = σ_bFK/√3, the nominal stresses from the beam's moment
-    and torque at x × the cycle's highest load factor (exact arithmetic: 1e-9). ``--plot`` with
-    another method is refused."""
+    and torque at x × the cycle's highest load factor (exact arithmetic: 1e-9). A run without
+    ``--plot`` into the same folder leaves no din743_along.png there (the earlier run's would
+    sit beside a summary without "along"). ``--plot`` with another method is refused."""
     import numpy as np
 
     from shaftfe.fatigue import din743 as din
@@ -317,6 +318,11 @@ def test_din743_plot_gives_the_safety_along_the_shaft(tmp_path, capsys):
             * card.rp_n_MPa
         want = 1 / math.hypot(sb / fk, tt / (fk / math.sqrt(3)))
         assert a["S_F"][i] == pytest.approx(want, rel=1e-9)
+    (out / "mine.png").write_bytes(b"x")                 # a user's file is not the run's
+    rc, _, err = run(capsys, RPM_DAT, "--method", "din743", "--out", out)
+    assert rc == 0, err
+    assert not (out / "din743_along.png").exists() and (out / "mine.png").exists()
+    assert "along" not in json.loads((out / "summary.json").read_text())
     rc, _, err = run(capsys, RPM_DAT, "--method", "seed", "--plot", "--out", tmp_path / "s")
     assert rc == 2 and "--plot" in err and "din743" in err
 

@@ -42,8 +42,8 @@ MEMBERS = ("check", "assess", "write", "lines")
 
 def test_every_registered_method_answers_the_protocol():
     attrs = {k for k in FatigueMethod.__annotations__}
-    assert attrs == {"name", "title", "options", "narrowed", "out_dir", "files", "files_help",
-                     "stages"}
+    assert attrs == {"name", "title", "options", "narrowed", "out_dir", "files",
+                     "optional_files", "files_help", "stages"}
     assert list(METHODS) == ["seed", "fkm", "din743"]
     outs = set()
     for name, m in METHODS.items():
@@ -53,6 +53,7 @@ def test_every_registered_method_answers_the_protocol():
         assert set(m.options) <= set(mo.OPTIONS), name           # rows of the one table
         assert set(m.narrowed) <= set(m.options), name
         assert "summary.json" in m.files and all(f in m.files_help for f in m.files)
+        assert all(f in m.files_help and f not in m.files for f in m.optional_files), name
         outs.add(m.out_dir)
     assert len(outs) == len(METHODS)                   # no two methods write one folder
 
@@ -77,6 +78,7 @@ class Toy:
     narrowed = MappingProxyType({})
     out_dir = "fatigue-toy"
     files = ("summary.json",)
+    optional_files = ()
     files_help = "summary.json"
     stages = ("toy",)
 

@@ -140,6 +140,24 @@ def test_staged_outputs_are_all_or_nothing(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
 
 
+def test_a_run_removes_the_optional_files_an_earlier_run_left(tmp_path):
+    """``replaces``: files matching the patterns that this run did not write are an earlier
+    run's (a plot an option asked for, another shaft's 3D zones) and go; this run's files and
+    files matching no pattern stay; a failed run removes nothing."""
+    out = tmp_path / "run"
+    out.mkdir()
+    for name in ("zone_a.vtu", "zone_b.vtu", "along.png", "mine.txt"):
+        (out / name).write_text("old")
+    with pytest.raises(RuntimeError), staged_dir(out, replaces=("zone_*.vtu",)) as stage:
+        (stage / "zone_a.vtu").write_text("new")
+        raise RuntimeError("a failing solve")
+    assert sorted(os.listdir(out)) == ["along.png", "mine.txt", "zone_a.vtu", "zone_b.vtu"]
+    with staged_dir(out, replaces=("zone_*.vtu", "along.png")) as stage:
+        (stage / "zone_a.vtu").write_text("new")
+    assert sorted(os.listdir(out)) == ["mine.txt", "zone_a.vtu"]
+    assert (out / "zone_a.vtu").read_text() == "new"
+
+
 def test_ctrl_c_at_any_stage_leaves_no_partial_output(tmp_path):
     """SIGINT to `shaftfe static` at several moments of a run (import, meshing, solve,
     writing): the --out directory is either absent or complete, never partial, and no staging

@@ -142,6 +142,7 @@ def shaft_geometry(sol, bands=()) -> MeridianGeometry:
     from shaftfe.solid.plan import TOL, profile
     prof = profile(sol)
     fil = {round(f.x_shoulder, 9): f for f in sol.fillets}
+    undercut = {round(g.x_face, 9) for g in sol.grooves if g.undercut}
     shoulder_at = {round(s.x, 9): s for s in sol.shoulders}
     seats = [(s.name, s.x0, s.x1, s.part.r) for s in sol.seats]
     curves: list[Curve] = []
@@ -150,7 +151,7 @@ def shaft_geometry(sol, bands=()) -> MeridianGeometry:
     def groove_of(xm: float, rm: float):
         """The groove whose outline holds the piece with middle (xm, rm), or None."""
         return next((g for g in sol.grooves if g.x0 - TOL <= xm <= g.x1 + TOL
-                     and rm < g.r - TOL), None)
+                     and rm < g.r_top - TOL), None)
 
     for kind, data in prof:
         end = (float(data[0]), float(data[1]))
@@ -173,7 +174,8 @@ def shaft_geometry(sol, bands=()) -> MeridianGeometry:
             else:
                 s = shoulder_at.get(round(prev[0], 9))
                 g = (shoulder_region(s.segment),) if s else ("shoulder",)
-                if round(prev[0], 9) not in fil:       # a sharp concave corner
+                if round(prev[0], 9) not in fil and round(prev[0], 9) not in undercut:
+                    # a sharp concave corner
                     rs = min(prev[1], end[1])
                     points.append((prev[0], rs, 0.1 * rs))
             curves.append(Curve(prev, end, g))

@@ -68,6 +68,7 @@ from shaftfe.beam.elements import (
 )
 from shaftfe.beam.scf import kt_shoulder
 from shaftfe.errors import InputError, SolverError
+from shaftfe.model.grooves import undercut_at
 from shaftfe.model.loads import actions, check_torque_path, pattern_key
 from shaftfe.model.validate import source_of, validate_variant
 
@@ -122,6 +123,9 @@ class Shoulder:
     kt_torsion_in_range: bool = True
     kt_tension_note: str = ""
     kt_torsion_note: str = ""
+    # a DIN 509 undercut's kind when it is the shoulder's transition (``model.grooves``): d_mm
+    # is then its bottom diameter and r_mm its radius, the shoulder DIN 743-2 assesses it as
+    undercut: str = ""
 
 
 @dataclass(frozen=True, eq=False)
@@ -361,14 +365,20 @@ def _shoulders(segs, x: np.ndarray, kt_fit: str) -> tuple[Shoulder, ...]:
     """A ``Shoulder`` with its Kt in bending, tension and torsion at every diameter step
     between adjacent segments."""
     shoulders = []
-    for s0, s1 in itertools.pairwise(segs):
+    for i, (s0, s1) in enumerate(itertools.pairwise(segs)):
         if abs(s0.diameter_mm - s1.diameter_mm) < 1e-12:
             continue
         Dm, dm = max(s0.diameter_mm, s1.diameter_mm), min(s0.diameter_mm, s1.diameter_mm)
-        k, kn, kt = (kt_shoulder(Dm, dm, s0.fillet_mm, kt_fit, load)
+        rho, kind = s0.fillet_mm, ""
+        u = undercut_at(segs, i)
+        if u is not None:        # a DIN 509 undercut: the shoulder of its bottom diameter
+            g = u[2]
+            dm, rho, kind = dm - 2.0 * g.depth_mm, g.radius_mm, g.kind
+        k, kn, kt = (kt_shoulder(Dm, dm, rho, kt_fit, load)
                      for load in ("bending", "tension", "torsion"))
         shoulders.append(Shoulder(
-            x_mm=s0.x_end_mm, node=_node(x, s0.x_end_mm), D_mm=Dm, d_mm=dm, r_mm=s0.fillet_mm,
+            x_mm=s0.x_end_mm, node=_node(x, s0.x_end_mm), D_mm=Dm, d_mm=dm, r_mm=rho,
+            undercut=kind,
             kt=k.kt, kt_in_range=k.in_range, kt_fit=kt_fit, kt_note=k.note,
             small_side="left" if s0.diameter_mm < s1.diameter_mm else "right",
             kt_tension=kn.kt, kt_torsion=kt.kt, kt_tension_in_range=kn.in_range,

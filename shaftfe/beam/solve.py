@@ -230,6 +230,7 @@ class NotchResult:
     M_Nmm: float = 0.0        # bending moment on the smaller diameter at the shoulder
     N_N: float = 0.0          # axial force there
     T_Nmm: float = 0.0        # torque there
+    undercut: str = ""        # a DIN 509 undercut's kind (``beam.model.Shoulder.undercut``)
 
 
 @dataclass(frozen=True, eq=False)
@@ -401,12 +402,18 @@ def result_at(sol: UnitSolution, rpm: float, case=None) -> BeamResult:
         # element on the small-diameter side of the shoulder node
         e = sh.node - 1 if sh.small_side == "left" else sh.node
         k = 2 * e + (1 if sh.small_side == "left" else 0)
-        peak = von_mises((sh.kt * sigma[k] + sh.kt_tension * abs(sigma_N[k]), 0.0, 0.0,
-                          sh.kt_torsion * tau[k], 0.0, 0.0))
+        sb, sn, tt, nom = sigma[k], sigma_N[k], tau[k], vm[k]
+        if sh.undercut:     # its Kt is on the undercut's bottom diameter: the nominal there
+            d = sh.d_mm
+            sb, sn, tt = (32.0 * M[k] / (np.pi * d ** 3), 4.0 * N[k] / (np.pi * d ** 2),
+                          16.0 * abs(T[k]) / (np.pi * d ** 3))
+            nom = von_mises((abs(sn) + sb, 0.0, 0.0, tt, 0.0, 0.0))
+        peak = von_mises((sh.kt * sb + sh.kt_tension * abs(sn), 0.0, 0.0,
+                          sh.kt_torsion * tt, 0.0, 0.0))
         notches.append(NotchResult(sh.x_mm, sh.D_mm, sh.d_mm, sh.r_mm, sh.kt, sh.kt_in_range,
-                                   _kt_note(sh, sigma_N[k], tau[k]), float(vm[k]), float(peak),
+                                   _kt_note(sh, sn, tt), float(nom), float(peak),
                                    sh.kt_tension, sh.kt_torsion, float(M[k]), float(N[k]),
-                                   float(T[k])))
+                                   float(T[k]), sh.undercut))
     clr = stations.get("clearance")
     where = f"beam, {case.name}" if case is not None else f"beam, {rpm:g} rpm"
     check_deflection(where, float(m.x[-1] - m.x[0]), float(umag.max()),
@@ -437,6 +444,9 @@ def _kt_note(sh, sigma_N: float, tau: float) -> str:
     """The shoulder's Kt notes of the loads it carries (bending always; tension and torsion
     where they are non-zero)."""
     out = [sh.kt_note] if sh.kt_note else []
+    if sh.undercut:
+        out.insert(0, f"DIN 509 {sh.undercut[-1].upper()} undercut: Kt of a shoulder to its "
+                   f"bottom Ø{sh.d_mm:g} with its radius {sh.r_mm:g}")
     if sigma_N and sh.kt_tension_note:
         out.append(f"tension: {sh.kt_tension_note}")
     if tau and sh.kt_torsion_note:

@@ -140,7 +140,7 @@ def run(args) -> int:
     v = inputs.variant
     out = Path(args.out) if args.out else \
         Path("reports") / out_name(v.name, v.overrides) / method.out_dir
-    with staged_dir(out) as stage:             # every file or none
+    with staged_dir(out, replaces=method.optional_files) as stage:    # every file or none
         result = method.assess(inputs, job, progress=prog)
         with prog.stage("outputs"):
             summary, files = method.write(result, inputs, job, stage)

@@ -128,7 +128,8 @@ def run(args) -> int:
     out = _out(args, variant)
     from shaftfe.util.progress import Progress
     prog = Progress(["mesh + solve", "outputs"], enabled=False if args.json else None)
-    with staged_dir(out) as stage:             # all three files or none
+    # a zone's field per file: another shaft's zones left in the folder are removed
+    with staged_dir(out, replaces=("zone_*.vtu",)) as stage:     # every file or none
         with prog.stage("mesh + solve"):
             # with spin softening `shaftfe fatigue` also needs the unsoftened stress at
             # REF_RPM (its S0 (λ + β λ²)): recovered too when this run can be cached for it

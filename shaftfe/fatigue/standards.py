@@ -18,6 +18,7 @@ import numpy as np
 
 from shaftfe.errors import InputError
 from shaftfe.fatigue import din743, fkm
+from shaftfe.model.grooves import UNDERCUTS, undercut_at
 from shaftfe.solid.features import fillet_region, groove_region, hole_region
 from shaftfe.util.units import REF_RPM
 
@@ -121,20 +122,27 @@ KT_TABLE = "reports/benchmarks/kt_reference.json"
 
 
 KT_GROOVES = "reports/benchmarks/kt_grooves.json"
+KT_UNDERCUTS = "reports/benchmarks/kt_undercuts.json"
 
 
 def converged_kt() -> dict:
     """(D, d, ρ) rounded to 1e-6 mm -> {load: α} from the committed tables of converged Kt
-    (3 uniform refinements, Richardson): the shoulders' (``benchmarks/bench_axisymmetric.py``)
-    and, keyed ("groove", D, d, ρ), the U grooves' (``benchmarks/bench_grooves.py``)."""
+    (3 uniform refinements, Richardson): the shoulders' (``benchmarks/bench_axisymmetric.py``),
+    keyed ("groove", D, d, ρ) the U grooves' (``benchmarks/bench_grooves.py``) and keyed
+    (kind, D, d, r) the DIN 509 undercuts' (d the shaft's, the nominal stresses on the
+    undercut's bottom diameter; ``benchmarks/bench_undercuts.py``)."""
     from shaftfe.util.paths import REPO_DIR
     out = {}
-    for name, rows, tag in ((KT_TABLE, "fillets", ()), (KT_GROOVES, "grooves", ("groove",))):
+    for name, rows in ((KT_TABLE, "fillets"), (KT_GROOVES, "grooves"),
+                       (KT_UNDERCUTS, "undercuts")):
         try:
             t = json.loads((REPO_DIR / name).read_text())
         except (OSError, ValueError):
             continue
-        out.update({(*tag, round(r["D_mm"], 6), round(r["d_mm"], 6), round(r["rho_mm"], 6)):
+        tag = {"fillets": lambda r: (), "grooves": lambda r: ("groove",),
+               "undercuts": lambda r: (r["kind"],)}[rows]
+        out.update({(*tag(r), round(r["D_mm"], 6), round(r["d_mm"], 6),
+                     round(r["rho_mm"], 6)):
                     {ld: r[ld]["kt"] for ld in ("tension", "bending", "torsion")}
                     for r in t.get(rows, [])})
     return out
@@ -200,16 +208,31 @@ def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
     from shaftfe.fatigue.cards import region_rz
     gf = ground_fillets(variant)
     out = []
+    segs = variant.segments
     for nt in beam.notches:
-        seg = next(s for s in variant.segments if abs(s.x_end_mm - nt.x_mm) < 1e-6)
-        key = (round(nt.D_mm, 6), round(nt.d_mm, 6), round(nt.r_mm, 6))
-        al = table.get(key)
-        src = "converged Kt (reports/benchmarks/kt_reference.json)" if al else \
-            "DIN 743-2 formula (no converged Kt for this geometry)"
-        out.append((nt.x_mm, din743.Notch(f"shoulder {seg.name}", "shoulder", nt.d_mm,
-                                          nt.D_mm, nt.r_mm, al, src,
-                                          region_rz(fillet_region(seg.name), surfaces, gf),
-                                          nt.D_mm), nt.d_mm, 0.0))
+        i = next(i for i, s in enumerate(segs) if abs(s.x_end_mm - nt.x_mm) < 1e-6)
+        u = undercut_at(segs, i) if nt.undercut else None
+        if u is not None:
+            # a DIN 509 undercut: its converged Kt (nominal on its bottom diameter) where the
+            # table holds it, else DIN 743-2's α of the shoulder from its bottom diameter with
+            # its radius (the beam's notch), which lies below the converged Kt over the
+            # table's grid (reports/benchmarks/undercuts.md)
+            k, j, g = u
+            name, region = f"undercut {segs[k].name}:{j}", groove_region(segs[k].name, j)
+            al = table.get((g.kind, round(nt.D_mm, 6), round(segs[k].diameter_mm, 6),
+                            round(g.radius_mm, 6)))
+            src = (f"converged Kt ({KT_UNDERCUTS})" if al else
+                   f"DIN 743-2 formula (a shoulder to the DIN 509 {g.kind[-1].upper()} "
+                   f"undercut's bottom diameter with R{g.radius_mm:g}; below the converged Kt, "
+                   "reports/benchmarks/undercuts.md)")
+        else:
+            name, region = f"shoulder {segs[i].name}", fillet_region(segs[i].name)
+            al = table.get((round(nt.D_mm, 6), round(nt.d_mm, 6), round(nt.r_mm, 6)))
+            src = "converged Kt (reports/benchmarks/kt_reference.json)" if al else \
+                "DIN 743-2 formula (no converged Kt for this geometry)"
+        out.append((nt.x_mm, din743.Notch(name, "shoulder", nt.d_mm, nt.D_mm, nt.r_mm, al, src,
+                                          region_rz(region, surfaces, gf), nt.D_mm),
+                    nt.d_mm, 0.0))
     for s in variant.segments:
         for kw in s.keyways:
             # a hub's load is spread over its seat: the keyway is judged at its more loaded
@@ -218,6 +241,8 @@ def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
                                                      s.diameter_mm, d_eff_mm=s.diameter_mm),
                         s.diameter_mm, 0.5 * kw.length_mm))
         for j, g in enumerate(s.grooves):
+            if g.kind in UNDERCUTS:       # assessed as its shoulder (above)
+                continue
             # a U groove by its α (DIN 743-2 "Rundnut"); a retaining-ring groove by its
             # measured β (§4.2.4); the nominal stresses on the groove's bottom diameter
             d = s.diameter_mm - 2.0 * g.depth_mm

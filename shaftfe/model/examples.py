@@ -9,6 +9,7 @@ seat) at a size that meshes in seconds.
 
 from __future__ import annotations
 
+from shaftfe.model.grooves import din509
 from shaftfe.model.loads import Load
 from shaftfe.model.variant import (
     Attachment,
@@ -31,7 +32,7 @@ def four_step_shaft(*, name: str = "four_step", description: str = "synthetic fo
                     keyway_x: float = 35.0, keyway_angle: float = 0.0, hex_socket: bool = True,
                     hex_end: str = "right", cw_angle: float = 30.0, hub_angle: float = 0.0,
                     washer: bool = False, thread_end: bool = False, groove: bool = False,
-                    cross_hole: bool = False, chamfers: bool = False,
+                    cross_hole: bool = False, chamfers: bool = False, undercut: str = "",
                     bearing: tuple[float, float] = (60.0, 8.0),
                     cw_seat: tuple[float, float] = (25.0, 45.0),
                     hub_seat: tuple[float, float] = (75.0, 85.0)) -> Variant:
@@ -40,12 +41,15 @@ def four_step_shaft(*, name: str = "four_step", description: str = "synthetic fo
     0.8 deep, corner radius 0.8, a 0.4 mm flat bottom) into the Ø22 at x = 53 mm, beside the
     bearing, ``cross_hole``
     drills a Ø2 hole through the last Ø17 at x = 72.5 mm (at 90°), ``chamfers`` breaks the
-    left end's edge (0.5 mm) and the Ø22's edge at its step down (0.5 mm)."""
+    left end's edge (0.5 mm) and the Ø22's edge at its step down (0.5 mm), ``undercut``
+    ("din509_e" | "din509_f") puts a DIN 509 undercut at the Ø17's right end, beside the
+    Ø22's face, in place of the fillet there."""
     kw = (Keyway(5.0, 3.0, 14.0, keyway_x, keyway_angle),) if keyway else ()
     segs = (
         Segment("a", 0.0, 20.0, 15.0, 0.0, kind="thread" if thread_end else "plain",
                 chamfer_left_mm=0.5 if chamfers else 0.0),
-        Segment("b", 20.0, 30.0, 17.0, fillet_b, keyways=kw),
+        Segment("b", 20.0, 30.0, 17.0, 0.0 if undercut else fillet_b, keyways=kw,
+                grooves=(_undercut(undercut, 17.0, 50.0, "right"),) if undercut else ()),
         Segment("c", 50.0, 20.0, 22.0, fillet_c,
                 grooves=(Groove("u", 53.0, 2.0, 0.8, 0.8),) if groove else (),
                 chamfer_right_mm=0.5 if chamfers else 0.0),
@@ -62,6 +66,15 @@ def four_step_shaft(*, name: str = "four_step", description: str = "synthetic fo
                               angle_deg=hub_angle))
     hx = HexSocket(hex_end, 8.0, 10.0) if hex_socket else None
     return Variant(name, description, segs, brg, tuple(att), STEEL, 0.0, hex_socket=hx)
+
+
+def _undercut(kind: str, d_mm: float, x_end_mm: float, side: str) -> Groove:
+    """The DIN 509 undercut ``kind`` of default size on a Ø``d_mm`` segment whose ``side``
+    end is at ``x_end_mm`` (what the loader makes of ``kind`` and ``side``)."""
+    u = din509(d_mm)
+    xc = x_end_mm - 0.5 * u.f if side == "right" else x_end_mm + 0.5 * u.f
+    return Groove(kind, xc, u.f, u.t1, u.r, side=side,
+                  face_depth_mm=u.t2 if kind == "din509_f" else 0.0)
 
 
 KEYED_BAR_F_N = 1000.0        # four-point bending: a force at x = 40 and x = 120 mm

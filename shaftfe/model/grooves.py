@@ -14,16 +14,25 @@ Kinds (the file-level names are fixed by issue #33 so other tools can write them
   type): width m (H13) and groove diameter d2 from ``DIN471`` below, depth (d1 − d2)/2; the
   standard leaves the bottom corners' radius to the drawing (it bounds it), so ``radius_mm``
   may be given and is ``DIN471_CORNER_MM`` otherwise.
-* ``din509_e``, ``din509_f`` (DIN 509 relief grooves at a shoulder) are named by the file
-  format but not built yet: refused with a clear error.
+* ``din509_e``, ``din509_f``: a DIN 509 undercut (relief groove) at a shoulder, in the smaller
+  segment's cylinder next to the larger one's face (``side``: the segment's end at the step
+  up). Radius r, depth t1, width f and (form F) the face recess t2 come from ``DIN509`` by the
+  segment's diameter; ``radius_mm`` picks another row the table holds for that diameter.
+  The undercut is the shoulder's transition: that shoulder's ``fillet_mm`` is 0. Its outline
+  (``solid.plan``; GEOMETRY AS INTERPRETED, see ``DIN509_RAMP_DEG``): from the face plane, the
+  corner arc r down to the flat bottom at depth t1, the bottom, then a 15° run-out ramp up to
+  the cylinder at f from the face; form F also cuts t2 into the face, its wall at 8° to it.
 """
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
 from types import MappingProxyType
 
 KINDS = ("u", "din471", "din509_e", "din509_f")
-BUILT = ("u", "din471")
+BUILT = ("u", "din471", "din509_e", "din509_f")
+UNDERCUTS = ("din509_e", "din509_f")     # at a shoulder, not on a straight part
 
 # DIN 471:2011-04, table 1, normal type: shaft d1 -> (groove diameter d2, groove width m), mm.
 # Rows 10…19 read from the table as reprinted by suppliers (capitalbolts.in/din-471, nutbolt.org
@@ -61,3 +70,78 @@ def full_round(width_mm: float, depth_mm: float) -> float:
     """The radius of a U groove whose bottom is one arc (or whose corners are as round as
     the depth allows)."""
     return min(0.5 * float(width_mm), float(depth_mm))
+
+
+# DIN 509:1998-06 table "Maße für Freistiche", forms E and F (r, t1, f, t2 and the diameter
+# range (over d_lo, up to d_hi] of the cylinder d1 they are assigned to, for usual loading or
+# for increased fatigue strength), as read from the table's public excerpt (de.scribd.com
+# document 415623829, "DIN 509: Freistiche (Auszug) (Juni 1998)", 2026-11-28; its layout is
+# garbled in places: the R0.8 row's f and t2 are taken from the merged cells of the R0.6 × 0.3
+# row above it). The default row per diameter (``DIN509_DEFAULT``) is the one the HEIDENHAIN
+# CNC PILOT 4290 control's undercut cycle takes (operation manual p. 686, "Undercut DIN 509 E /
+# F, parameters": depth I, width K, radius R, 15° angle W; form F: face depth P at 8°), which
+# agrees with these rows for d1 over 10 mm. Forms G and H are not built.
+DIN509 = (
+    # r,   t1,  f,   t2,  d_lo,  d_hi,  duty
+    (0.2, 0.1, 1.0, 0.1, 1.6, 3.0, "usual"),
+    (0.4, 0.2, 2.0, 0.1, 3.0, 18.0, "usual"),
+    (0.6, 0.2, 2.0, 0.1, 10.0, 18.0, "usual"),
+    (0.6, 0.3, 2.5, 0.2, 18.0, 80.0, "usual"),
+    (0.8, 0.3, 2.5, 0.2, 18.0, 80.0, "usual"),
+    (1.0, 0.2, 2.5, 0.1, 18.0, 50.0, "fatigue"),
+    (1.0, 0.4, 4.0, 0.3, 80.0, math.inf, "usual"),
+    (1.2, 0.2, 2.5, 0.1, 18.0, 50.0, "fatigue"),
+    (1.2, 0.4, 4.0, 0.3, 80.0, math.inf, "usual"),
+    (1.6, 0.3, 4.0, 0.2, 50.0, 80.0, "fatigue"),
+    (2.5, 0.4, 5.0, 0.3, 80.0, 125.0, "fatigue"),
+    (4.0, 0.5, 7.0, 0.3, 125.0, math.inf, "fatigue"),
+)
+# the default radius by diameter range (the CNC cycle's choice, above): (d_lo, d_hi] -> r
+DIN509_DEFAULT = ((1.6, 3.0, 0.2), (3.0, 10.0, 0.4), (10.0, 18.0, 0.6), (18.0, 80.0, 0.6),
+                  (80.0, math.inf, 1.0))
+# The outline's angles. INTERPRETED: the standard's figure is not at hand; the run-out ramp of
+# the undercut's bottom to the cylinder is at 15° to the axis and form F's face wall at 8° to
+# the face, as the CNC cycle's parameters W and A say. f is measured on the cylinder from the
+# face plane to the ramp's end, t1 from the cylinder to the flat bottom, t2 into the face at
+# the bottom's level; the corner arc r joins the face (form E) or the wall (form F) to the
+# bottom, tangent to both.
+DIN509_RAMP_DEG = 15.0
+DIN509_FACE_DEG = 8.0
+
+
+@dataclass(frozen=True)
+class Undercut:
+    """One DIN 509 row: radius r, depth t1, width f, face recess t2 (form F), mm."""
+    r: float
+    t1: float
+    f: float
+    t2: float
+
+
+def din509_rows(d1_mm: float) -> tuple[Undercut, ...]:
+    """The rows DIN 509 assigns to a cylinder of diameter ``d1_mm`` (usual loading and
+    increased fatigue strength)."""
+    d = float(d1_mm)
+    return tuple(Undercut(r, t1, f, t2) for r, t1, f, t2, lo, hi, _ in DIN509
+                 if lo < d <= hi)
+
+
+def din509(d1_mm: float, radius_mm: float | None = None) -> Undercut | None:
+    """The DIN 509 undercut of a cylinder of diameter ``d1_mm``: the default row, or the row of
+    radius ``radius_mm``; None where the table holds none."""
+    d = float(d1_mm)
+    if radius_mm is None:
+        radius_mm = next((r for lo, hi, r in DIN509_DEFAULT if lo < d <= hi), None)
+        if radius_mm is None:
+            return None
+    return next((u for u in din509_rows(d) if abs(u.r - float(radius_mm)) <= 1e-9), None)
+
+
+def undercut_at(segments, i: int):
+    """The DIN 509 undercut at the shoulder between ``segments[i]`` and ``segments[i + 1]``:
+    (index of its segment, index of the groove, the ``model.variant.Groove``), or None."""
+    for k, side in ((i, "right"), (i + 1, "left")):
+        for j, g in enumerate(segments[k].grooves):
+            if g.kind in UNDERCUTS and g.side == side:
+                return k, j, g
+    return None

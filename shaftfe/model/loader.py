@@ -265,7 +265,7 @@ def _segments(shaft: dict, src: str, ctx: Ctx, stock: float | None) -> tuple[Seg
                   f"slot [{lo:g}, {hi:g}] inside the segment [{x:g}, {x + length:g}]",
                   kw.x_center_mm)
             kws.append(kw)
-        grooves = _grooves(t, src, fld, name, dia, ctx)
+        grooves = _grooves(t, src, fld, name, dia, ctx, (x, x + length))
         holes = _cross_holes(t, src, fld, name, ctx)
         segs.append(Segment(name=name, x_start_mm=x, length_mm=length, diameter_mm=dia,
                             fillet_mm=fil, keyways=tuple(kws), kind=kind, grooves=grooves,
@@ -291,21 +291,25 @@ def _segments(shaft: dict, src: str, ctx: Ctx, stock: float | None) -> tuple[Seg
 
 
 def _grooves(t: dict, src: str, fld: str, name: str, dia: float,
-             ctx: Ctx) -> tuple[Groove, ...]:
+             ctx: Ctx, ends: tuple[float, float]) -> tuple[Groove, ...]:
     """A segment's ``[[shaft.segments.grooves]]``: the kind, the centre and the dimensions the
-    kind's standard does not fix (``shaftfe.model.grooves``)."""
+    kind's standard does not fix (``shaftfe.model.grooves``); ``ends``: the segment's x."""
     raw = t.get("grooves", [])
     need(isinstance(raw, list), src, f"{fld}.grooves", "a list of [[...grooves]] tables", raw)
     out: list[Groove] = []
     for j, g in enumerate(raw):
         gf = f"{fld}.grooves[{j}]"
         g = table(g, src, gf)
-        check_keys(g, {"kind", "x_center_mm", "width_mm", "depth_mm", "radius_mm"}, src, gf)
+        check_keys(g, {"kind", "x_center_mm", "width_mm", "depth_mm", "radius_mm", "side"},
+                   src, gf)
         provenance(g, src, gf, f"segments.{name}.grooves[{j}]", ctx)
         kind = text(g, "kind", src, gf)
         need(kind in grooves.KINDS, src, f"{gf}.kind", " | ".join(grooves.KINDS), kind)
-        need(kind in grooves.BUILT, src, f"{gf}.kind", " | ".join(grooves.BUILT) +
-              " (DIN 509 relief grooves are named by the format but not built yet)", kind)
+        need(kind in grooves.UNDERCUTS or "side" not in g, src, f"{gf}.side", "not given: "
+             "only a DIN 509 undercut sits at a segment's end", g.get("side"))
+        if kind in grooves.UNDERCUTS:
+            out.append(_undercut(g, src, gf, kind, dia, ends))
+            continue
         xc = num(g, "x_center_mm", src, gf)
         if kind == "din471":
             for key in ("width_mm", "depth_mm"):
@@ -323,6 +327,28 @@ def _grooves(t: dict, src: str, fld: str, name: str, dia: float,
         # the ranges (depth, radius, inside the segment): model.validate, for every Variant
         out.append(Groove(kind, xc, w, dep, rad))
     return tuple(out)
+
+
+def _undercut(g: dict, src: str, gf: str, kind: str, dia: float,
+              ends: tuple[float, float]) -> Groove:
+    """A DIN 509 undercut: ``side`` (the segment's end at the shoulder) and optionally
+    ``radius_mm`` (another row of the table); the rest is the standard's."""
+    for key in ("x_center_mm", "width_mm", "depth_mm"):
+        need(key not in g, src, f"{gf}.{key}", "not given: DIN 509 places the undercut at the "
+             "shoulder (side) and fixes its size from the segment's diameter", g.get(key))
+    side = text(g, "side", src, gf)
+    need(side in ("left", "right"), src, f"{gf}.side", "left | right (the segment's end at "
+         "the step up to the larger segment)", side)
+    rows = grooves.din509_rows(dia)
+    need(bool(rows), src, f"{gf}.kind", "a DIN 509 undercut on a diameter DIN 509 assigns one "
+         "(over 1.6 mm)", f"{kind} on diameter {dia:g}")
+    rad = num(g, "radius_mm", src, gf, default=None) if "radius_mm" in g else None
+    u = grooves.din509(dia, rad)
+    need(u is not None, src, f"{gf}.radius_mm", "a radius DIN 509 gives for diameter "
+         f"{dia:g}: " + ", ".join(f"{r.r:g}" for r in rows), rad)
+    xc = ends[1] - 0.5 * u.f if side == "right" else ends[0] + 0.5 * u.f
+    return Groove(kind, xc, u.f, u.t1, u.r, side=side,
+                  face_depth_mm=u.t2 if kind == "din509_f" else 0.0)
 
 
 def _cross_holes(t: dict, src: str, fld: str, name: str, ctx: Ctx) -> tuple[CrossHole, ...]:

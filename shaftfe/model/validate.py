@@ -6,8 +6,9 @@ inside the shaft (a width of 0 is a point support: the beam's idealisation) with
 positive-definite 2×2 radial stiffness (a bearing that gives no stiffness in some direction
 leaves the shaft free there: refused as input, in the beam and in 3D alike), attachments inside
 the shaft with mass and eccentricity ≥ 0, keyways of positive size, grooves inside their
-segment with a depth below a quarter of its diameter and a corner radius the groove holds, and a
-hex socket at one end, shorter than the shaft. The loader
+segment with a depth below a quarter of its diameter and a corner radius the groove holds, DIN
+509 undercuts of the standard's size at a step up whose fillet is 0, and a hex socket at one
+end, shorter than the shaft. The loader
 (``shaftfe.model.loader.load_variant``) calls it after parsing; the beam, the solid plan and
 the static model call it on the variant they are given.
 The rules that need the solid's plan (a ring of positive width with a chamfer below a quarter
@@ -101,7 +102,10 @@ def _segments(v, src: str) -> tuple[float, float]:
                                  "segment is not smaller (a chamfer breaks an outer edge: the "
                                  "shaft's end or a step down)", got=c)
         for j, g in enumerate(s.grooves):
-            _groove(src, f"{f}.grooves[{j}]", s, g)
+            if g.kind in grooves.UNDERCUTS:
+                _undercut(src, f"{f}.grooves[{j}]", segs, i, g)
+            else:
+                _groove(src, f"{f}.grooves[{j}]", s, g)
         for j, h in enumerate(s.cross_holes):
             _cross_hole(src, f"{f}.cross_holes[{j}]", s, h)
     return segs[0].x_start_mm, segs[-1].x_end_mm
@@ -129,6 +133,41 @@ def _groove(src: str, gf: str, s, g) -> None:
     if lo < s.x_start_mm - TOL_X_MM or hi > s.x_end_mm + TOL_X_MM:
         raise InputError(src, f"{gf}.x_center_mm", f"groove [{lo:g}, {hi:g}] inside its "
                          f"segment [{s.x_start_mm:g}, {s.x_end_mm:g}]", got=g.x_center_mm)
+
+
+def _undercut(src: str, gf: str, segs, i: int, g) -> None:
+    """A DIN 509 undercut's own rules: at the segment's ``side`` end, next to a larger
+    segment, that shoulder without a fillet (the undercut is its transition), its size a row
+    of the standard's table for the segment's diameter, its centre where that places it."""
+    s = segs[i]
+    if g.side not in ("left", "right"):
+        raise InputError(src, f"{gf}.side", "left | right", got=g.side)
+    if sum(h.kind in grooves.UNDERCUTS and h.side == g.side for h in s.grooves) > 1:
+        raise InputError(src, f"{gf}.side", f"one undercut at the segment's {g.side} end",
+                         got=g.side, reason="repeats another undercut there")
+    k = i - 1 if g.side == "left" else i + 1
+    if not 0 <= k < len(segs) or segs[k].diameter_mm <= s.diameter_mm + TOL_X_MM:
+        raise InputError(src, f"{gf}.side", "the segment's end at a step up to a larger "
+                         "segment (DIN 509 undercuts the smaller cylinder at the larger one's "
+                         "face)", got=g.side)
+    owner = min(i, k)                       # the segment whose fillet_mm is that shoulder's
+    if segs[owner].fillet_mm > 0:
+        raise InputError(src, f"segments[{owner}].fillet_mm", "0 where a DIN 509 undercut is "
+                         "the shoulder's transition (its radius is the undercut's)",
+                         got=segs[owner].fillet_mm)
+    u = grooves.din509(s.diameter_mm, g.radius_mm)
+    t2 = u.t2 if u is not None and g.kind == "din509_f" else 0.0
+    if u is None or any(abs(a - b) > 1e-9 for a, b in ((g.width_mm, u.f), (g.depth_mm, u.t1),
+                                                       (g.face_depth_mm, t2))):
+        rows = ", ".join(f"R{r.r:g}×{r.t1:g} f {r.f:g}" for r in grooves.din509_rows(
+            s.diameter_mm)) or "none"
+        raise InputError(src, f"{gf}.radius_mm", f"a row of DIN 509 for diameter "
+                         f"{s.diameter_mm:g} ({rows}), with its t1, f and t2",
+                         got=(g.radius_mm, g.depth_mm, g.width_mm, g.face_depth_mm))
+    xc = s.x_end_mm - 0.5 * u.f if g.side == "right" else s.x_start_mm + 0.5 * u.f
+    if abs(g.x_center_mm - xc) > TOL_X_MM:
+        raise InputError(src, f"{gf}.x_center_mm", f"{xc:g}: the middle of the undercut's "
+                         f"opening f at the {g.side} end", got=g.x_center_mm)
 
 
 # a cross hole wider than this × the shaft's diameter leaves the charts (Peterson's and

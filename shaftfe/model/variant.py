@@ -65,10 +65,15 @@ class Groove:
     (half the width: a full round U groove). The loader resolves a standard groove's
     dimensions from the segment's diameter; ``kind`` says which standard they came from."""
     kind: str                 # one of model.grooves.BUILT
-    x_center_mm: float        # axial centre (absolute x)
-    width_mm: float
-    depth_mm: float
+    x_center_mm: float        # axial centre (absolute x); an undercut's: of its opening f
+    width_mm: float           # an undercut's: f, on the cylinder from the face plane
+    depth_mm: float           # an undercut's: t1
     radius_mm: float
+    # a DIN 509 undercut's (``model.grooves.UNDERCUTS``): the segment's end it sits at, next to
+    # the larger segment's face ("left" | "right"), and form F's recess t2 into that face;
+    # empty for a groove on a straight part (and out of the content hash)
+    side: str = dataclasses.field(default="", metadata={"omit_empty": True})
+    face_depth_mm: float = dataclasses.field(default=0.0, metadata={"omit_empty": True})
 
 
 @dataclass(frozen=True)

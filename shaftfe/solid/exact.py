@@ -20,7 +20,16 @@ from shaftfe.solid.features import (
     keyway_region,
     shoulder_region,
 )
-from shaftfe.solid.plan import TOL, Fillet, Groove, Hole, Slot, Solid, prepare
+from shaftfe.solid.plan import (
+    TOL,
+    Fillet,
+    Groove,
+    Hole,
+    Slot,
+    Solid,
+    groove_pieces,
+    prepare,
+)
 
 
 def _quad(f, a: float, b: float) -> float:
@@ -102,9 +111,45 @@ def slot_hole_area(k: Slot, window: tuple[float, float] | None = None) -> float:
     return tot
 
 
+def _arc_prim(t: float, rc: float, rho: float) -> float:
+    """∫ (rc + ρ sin t)² (−ρ sin t) dt: the volume under an arc, per π."""
+    return -rho * (-rc * rc * math.cos(t) + 2.0 * rc * rho * (0.5 * t - 0.25 * math.sin(2.0 * t))
+                   + rho * rho * (-math.cos(t) + math.cos(t) ** 3 / 3.0))
+
+
+def outline_integrals(pieces) -> tuple[float, float]:
+    """(∫ π r² dx, ∫ 2π r ds) along an outline in the (x, r) half plane (``solid.plan.
+    profile``'s pieces; the first piece's end is the start): the volume under it, signed by
+    the direction of x (Pappus, exact for lines and arcs), and the area it sweeps."""
+    x0, r0 = pieces[0][1][:2]
+    vol = area = 0.0
+    for kind, data in pieces[1:]:
+        x1, r1 = data[0], data[1]
+        if kind == "line":
+            vol += math.pi * (x1 - x0) * (r0 * r0 + r0 * r1 + r1 * r1) / 3.0
+            area += math.pi * (r0 + r1) * math.hypot(x1 - x0, r1 - r0)
+        else:       # the minor arc about (xc, rc): x = xc + ρ cos θ, r = rc + ρ sin θ
+            xc, rc = data[2], data[3]
+            rho = math.hypot(x0 - xc, r0 - rc)
+            a0 = math.atan2(r0 - rc, x0 - xc)
+            da = math.remainder(math.atan2(r1 - rc, x1 - xc) - a0, 2.0 * math.pi)
+            a1 = a0 + da
+
+            vol += math.pi * (_arc_prim(a1, rc, rho) - _arc_prim(a0, rc, rho))
+            area += 2.0 * math.pi * rho * abs(rc * da - rho * (math.cos(a1) - math.cos(a0)))
+        x0, r0 = x1, r1
+    return vol, area
+
+
 def groove_volume(g: Groove) -> float:
     """The volume a groove removes (Pappus): the ring w × t less its two corner spandrels
-    (the material the corner radius leaves, a square ρ² less a quarter disc each)."""
+    (the material the corner radius leaves, a square ρ² less a quarter disc each). A DIN 509
+    undercut's: against the sharp step it replaces, π R² f (the cylinder to the face plane)
+    less the volume under its outline (``outline_integrals``; negative where its corner arc
+    rises above the cylinder into the step's corner)."""
+    if g.undercut:
+        return math.pi * g.r ** 2 * (g.x1 - g.x0 - g.t2) - outline_integrals(
+            groove_pieces(g))[0]
     rb, rho = g.r_bottom, g.rho
     ring = math.pi * (g.r ** 2 - rb ** 2) * g.width
     # 2π × (first moment about the axis of the square less that of the quarter disc, whose
@@ -116,7 +161,10 @@ def groove_volume(g: Groove) -> float:
 
 def groove_area(g: Groove) -> float:
     """The groove's faces: two flank annuli, two corner arcs revolved (a quarter circle of
-    radius ρ about (·, r_b + ρ): 2πρ (r_c π/2 − ρ) each), the bottom cylinder."""
+    radius ρ about (·, r_b + ρ): 2πρ (r_c π/2 − ρ) each), the bottom cylinder. A DIN 509
+    undercut's: its outline swept (``outline_integrals``), up to the face's flat."""
+    if g.undercut:
+        return outline_integrals(groove_pieces(g))[1]
     rb, rho = g.r_bottom, g.rho
     rc = rb + rho
     flanks = 2.0 * math.pi * (g.r ** 2 - rc ** 2)

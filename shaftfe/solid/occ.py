@@ -234,10 +234,13 @@ def _groove_group(sol: Solid, bbox, com, eps: float) -> str | None:
     return None
 
 
-def _chamfer_group(sol: Solid, com, eps: float) -> str | None:
-    """The chamfer (a cone) whose axial range holds the face's centre of mass."""
+def _chamfer_group(sol: Solid, bbox, com, eps: float) -> str | None:
+    """The chamfer (a cone) whose axial range holds the face's centre of mass and whose
+    outer radius is the face's (a DIN 509 form F undercut's wall is a cone in the same axial
+    range, below the shoulder's flat)."""
+    r_out = max(abs(v) for v in (bbox[1], bbox[2], bbox[4], bbox[5]))
     for c in sol.chamfers:
-        if c.x0 - eps < com[0] < c.x1 + eps:
+        if c.x0 - eps < com[0] < c.x1 + eps and abs(r_out - c.r) < 1e-3 * c.r:
             return chamfer_region(c.segment, c.side)
     return None
 
@@ -271,7 +274,8 @@ def _sharp_curves(gmsh, sol: Solid, faces: dict, keyway_faces: list[int], eps: f
         for _, c in gmsh.model.getBoundary([(2, s)], oriented=False):
             sharp.add(abs(c))
     for sh in sol.shoulders:
-        if any(abs(f.x_shoulder - sh.x) < eps for f in sol.fillets):
+        if any(abs(f.x_shoulder - sh.x) < eps for f in sol.fillets) or \
+                any(abs(g.x_face - sh.x) < eps for g in sol.grooves if g.undercut):
             continue
         for s in faces[shoulder_region(sh.segment)]:
             for _, c in gmsh.model.getBoundary([(2, s)], oriented=False):
@@ -312,7 +316,7 @@ def classify(gmsh, sol: Solid) -> dict:
             if g is not None:
                 groups, fillet_faces = [g], [*fillet_faces, s]
         if not groups:            # a chamfer's cone, a groove's or a cross hole's faces
-            g = ((kind == "Cone" and _chamfer_group(sol, com, eps))
+            g = ((kind == "Cone" and _chamfer_group(sol, bbox, com, eps))
                  or _groove_group(sol, bbox, com, eps) or _hole_group(sol, bbox, eps))
             groups = [g] if g else []
         if not groups:

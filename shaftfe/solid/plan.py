@@ -23,7 +23,13 @@ import math
 from dataclasses import dataclass
 
 from shaftfe.errors import InputError
-from shaftfe.model.grooves import DIN471_RECONSTRUCTED_FROM
+from shaftfe.model.grooves import (
+    DIN471_RECONSTRUCTED_FROM,
+    DIN509_FACE_DEG,
+    DIN509_RAMP_DEG,
+    UNDERCUTS,
+    undercut_at,
+)
 from shaftfe.model.validate import source_of, validate_variant
 from shaftfe.solid.features import (
     END_LEFT,
@@ -99,7 +105,11 @@ class Slot:
 class Groove:
     """A circumferential groove (``model.variant.Groove``) on the straight part of segment
     ``segment`` of radius ``r``: flanks at x0 and x1, a flat bottom at r − depth, bottom
-    corners of radius ``rho`` (ρ = width/2: one arc, a U groove)."""
+    corners of radius ``rho`` (ρ = width/2: one arc, a U groove).
+
+    A DIN 509 undercut (``side`` "left" | "right": the segment's end at the shoulder) spans
+    [x0, x1] = its opening f on the cylinder and, form F, its recess ``t2`` into the face
+    (``_undercut_profile``)."""
     segment: str
     index: int
     kind: str
@@ -108,6 +118,8 @@ class Groove:
     x1: float
     depth: float
     rho: float
+    side: str = ""
+    t2: float = 0.0
 
     @property
     def width(self) -> float:
@@ -116,6 +128,24 @@ class Groove:
     @property
     def r_bottom(self) -> float:
         return self.r - self.depth
+
+    @property
+    def undercut(self) -> bool:
+        return self.kind in UNDERCUTS
+
+    @property
+    def x_face(self) -> float:
+        """An undercut's shoulder plane (the larger segment's face)."""
+        return self.x1 - self.t2 if self.side == "right" else self.x0 + self.t2
+
+    @property
+    def r_top(self) -> float:
+        """The outline's highest point: a groove's surface; an undercut's top on the face,
+        where the shoulder's flat annulus begins (form E: the corner arc's end, form F: the
+        8° wall's)."""
+        if not self.undercut:
+            return self.r
+        return self.r_bottom + self.rho + self.t2 / math.tan(math.radians(DIN509_FACE_DEG))
 
 
 @dataclass(frozen=True)
@@ -258,10 +288,26 @@ def _stations(segs) -> tuple[list[float], list[tuple[float, float]]]:
     return [0.5 * float(s.diameter_mm) for s in segs], xs
 
 
-def _fillets(segs, radii, xs, src: str):
+def _undercuts(segs, radii, xs) -> list[Groove]:
+    """The DIN 509 undercuts (``model.grooves``; their rules: ``model.validate``)."""
+    out = []
+    for i, s in enumerate(segs):
+        for j, g in enumerate(s.grooves):
+            if g.kind not in UNDERCUTS:
+                continue
+            t2 = float(g.face_depth_mm)
+            x0, x1 = ((xs[i][1] - g.width_mm, xs[i][1] + t2) if g.side == "right"
+                      else (xs[i][0] - t2, xs[i][0] + g.width_mm))
+            out.append(Groove(s.name, j, g.kind, radii[i], x0, x1, float(g.depth_mm),
+                              float(g.radius_mm), g.side, t2))
+    return out
+
+
+def _fillets(segs, radii, xs, src: str, undercuts=()):
     """Fillets, shoulder annuli, chamfers and the straight (fillet- and chamfer-free) part of
-    every segment."""
+    every segment; a DIN 509 undercut is its shoulder's transition (``undercuts``)."""
     n = len(segs)
+    cut_at = {round(u.x_face, 9): u for u in undercuts}
     cham = {(i, side): float(getattr(s, f"chamfer_{side}_mm", 0.0) or 0.0)
             for i, s in enumerate(segs) for side in ("left", "right")}
     fillets: list[Fillet] = []
@@ -284,23 +330,32 @@ def _fillets(segs, radii, xs, src: str):
                              reason="is larger than the step")
         rho = min(rho, step)
         xe = xs[i][1]
+        u = cut_at.get(round(xe, 9))
+        # what the transition takes of the smaller segment, and where the face's flat begins
+        eat, top = (u.x1 - u.x0 - u.t2, u.r_top) if u is not None else (rho, None)
         if r0 < r1:
             side, small, large = -1, r0, r1
-            eat_right[i] = rho
+            eat_right[i] = eat
         else:
             side, small, large = +1, r1, r0
-            eat_left[i + 1] = rho
+            eat_left[i + 1] = eat
+        if u is not None and top >= large - TOL:
+            j = next(k for k in (i, i + 1) if segs[k].name == u.segment)
+            raise InputError(src, f"segments[{j}].grooves[{u.index}].kind", "an undercut "
+                             f"whose face top (Ø{2 * top:g}, {u.kind}) stays below the step "
+                             f"to Ø{2 * large:g} (form E is lower than form F)", got=u.kind)
+        top = small + rho if top is None else top
         if rho > 0:
             fillets.append(Fillet(s.name, xe, small, large, rho, side))
         # the larger segment's chamfer on this shoulder's outer edge
         ci, cside = (i + 1, "left") if side < 0 else (i, "right")
         c = cham[(ci, cside)]
-        if c > 0 and c >= large - (small + rho) - TOL:
+        if c > 0 and c >= large - top - TOL:
             raise InputError(src, f"segments[{ci}].chamfer_{cside}_mm", f"< the shoulder's "
-                             f"flat height {large - (small + rho):g} mm (the step less the "
-                             "fillet)", got=c)
-        if large - c - (small + rho) > TOL:      # else a full-height fillet: no flat annulus
-            shoulders.append(Shoulder(s.name, xe, small + rho, large - c))
+                             f"flat height {large - top:g} mm (the step less the "
+                             f"{'undercut' if u is not None else 'fillet'})", got=c)
+        if large - c - top > TOL:      # else a full-height fillet: no flat annulus
+            shoulders.append(Shoulder(s.name, xe, top, large - c))
     for side, i in (("left", 0), ("right", n - 1)):      # the shaft's ends
         c = cham[(i, side)]
         if c >= 0.5 * radii[i]:
@@ -312,7 +367,7 @@ def _fillets(segs, radii, xs, src: str):
         cl, cr = cham[(i, "left")], cham[(i, "right")]
         a, b = xs[i][0] + eat_left[i] + cl, xs[i][1] - eat_right[i] - cr
         if b - a <= TOL:
-            what = "fillets and chamfers" if cl or cr else "fillets"
+            what = "fillets, undercuts and chamfers" if cl or cr else "fillets and undercuts"
             raise InputError(src, f"segments[{i}].length_mm", f"> the {what} it carries "
                              f"({eat_left[i] + eat_right[i] + cl + cr:g} mm)",
                              got=s.length_mm,
@@ -359,6 +414,8 @@ def _grooves(segs, radii, parts, slots, src: str) -> list[Groove]:
     out: list[Groove] = []
     for i, s in enumerate(segs):
         for j, g in enumerate(s.grooves):
+            if g.kind in UNDERCUTS:          # at a shoulder: ``_undercuts``
+                continue
             x0, x1 = g.x_center_mm - 0.5 * g.width_mm, g.x_center_mm + 0.5 * g.width_mm
             others = [(f"keyway {k.segment}:{k.index}", k.x0, k.x1, TOL) for k in slots
                       if k.segment == s.name]
@@ -423,8 +480,11 @@ def _clear_of_seats(variant, seats, notches, hx: Hex | None, xs, src: str) -> No
 
 
 def _seat(src: str, field: str, name: str, a: float, b: float, angle: float | None,
-          xs, parts, slots, inset: float = 0.0, loaded: bool = True) -> Seat:
-    """The face-group interval of a bearing ring or an attachment on one straight part."""
+          xs, parts, slots, inset: float = 0.0, loaded: bool = True, open_ends=()) -> Seat:
+    """The face-group interval of a bearing ring or an attachment on one straight part.
+    ``open_ends``: the x of straight parts' ends at a DIN 509 undercut's opening; a ring may
+    reach over the undercut to the shoulder's face (what the undercut is for), and bears on the
+    straight part only."""
     if b - a <= TOL:
         raise InputError(src, field, "start < end", got=(a, b))
     k = next((i for i in range(len(xs)) if xs[i][0] - TOL <= a and b <= xs[i][1] + TOL), None)
@@ -436,6 +496,9 @@ def _seat(src: str, field: str, name: str, a: float, b: float, angle: float | No
         # seat: a shaft fillet no larger than the ring chamfer (ISO 582: the shaft fillet
         # radius r_as max = the ring's r_s min), so the contact edge never falls in a fillet
         a, b = a + inset, b - inset
+        near = [round(x, 9) for x in open_ends]
+        a = p.x0 if a < p.x0 and round(p.x0, 9) in near else a
+        b = p.x1 if b > p.x1 and round(p.x1, 9) in near else b
         if a < p.x0 - TOL or b > p.x1 + TOL:
             raise InputError(src, field, f"a contact band [{a:g}, {b:g}] (ring minus its "
                              f"chamfer {inset:g} mm) on the straight part [{p.x0:g}, "
@@ -455,7 +518,8 @@ def _seat(src: str, field: str, name: str, a: float, b: float, angle: float | No
     return Seat(name, p, a2, b2, angle, loaded)
 
 
-def _seats(variant, xs, parts, slots, src: str) -> list[Seat]:
+def _seats(variant, xs, parts, slots, src: str, undercuts=()) -> list[Seat]:
+    ends = [u.x0 if u.side == "right" else u.x1 for u in undercuts]
     seats = []
     for i, b in enumerate(variant.bearings):
         xc, w, c = float(b.x_center_mm), float(b.width_mm), float(b.chamfer_mm)
@@ -465,7 +529,7 @@ def _seats(variant, xs, parts, slots, src: str) -> list[Seat]:
             raise InputError(src, f"bearings[{i}].chamfer_mm", f">= 0 and < width / 4 "
                              f"({0.25 * w:g})", got=b.chamfer_mm)
         seats.append(_seat(src, f"bearings[{i}].seat", bearing_group(b.name), xc - 0.5 * w,
-                           xc + 0.5 * w, None, xs, parts, slots, c))
+                           xc + 0.5 * w, None, xs, parts, slots, c, open_ends=ends))
     for i, at in enumerate(variant.attachments):
         me = abs(float(at.mass_kg) * float(at.eccentricity_mm))
         seats.append(_seat(src, f"attachments[{i}].seat_x", seat_group(at.name),
@@ -503,9 +567,10 @@ def prepare(variant) -> Solid:
     segs = tuple(variant.segments)
     names = [s.name for s in segs]
     radii, xs = _stations(segs)
-    fillets, shoulders, parts, chamfers = _fillets(segs, radii, xs, src)
+    undercuts = _undercuts(segs, radii, xs)
+    fillets, shoulders, parts, chamfers = _fillets(segs, radii, xs, src, undercuts)
     slots = _slots(segs, radii, parts, src)
-    seats = _seats(variant, xs, parts, slots, src)
+    seats = _seats(variant, xs, parts, slots, src, undercuts)
     hx = _hex(variant, radii, xs, names, slots, src)
     if hx is not None:
         i = 0 if hx.end == "left" else len(segs) - 1
@@ -516,6 +581,7 @@ def prepare(variant) -> Solid:
                              "0.8 × (radius − chamfer))", got=c)
     grooves = _grooves(segs, radii, parts, slots, src)
     holes = _holes(segs, radii, parts, slots, grooves, src)
+    grooves = sorted([*grooves, *undercuts], key=lambda g: (g.x0, g.segment, g.index))
     _clear_of_seats(variant, seats, [*grooves, *holes], hx, xs, src)
     prof = sorted({round(x, 9) for st in seats for x in (st.x0, st.x1)})
     return Solid(variant.name, xs[-1][1] - xs[0][0], xs[0][0], xs[-1][1], tuple(radii),
@@ -622,6 +688,7 @@ def profile(sol: Solid) -> list[tuple[str, tuple]]:
     if c0 > 0:
         pts.append(("line", (sol.x_left + c0, sol.radii[0])))
     fil = {round(f.x_shoulder, 9): f for f in sol.fillets}
+    cut = {round(g.x_face, 9): g for g in sol.grooves if g.undercut}
     n = len(sol.radii)
     for i in range(n):
         r = sol.radii[i]
@@ -629,7 +696,8 @@ def profile(sol: Solid) -> list[tuple[str, tuple]]:
         cr = sol.chamfer(names[i], "right")                 # this segment's right edge
         cl = sol.chamfer(names[i + 1], "left") if i + 1 < n else 0.0   # the next one's left
         stations = [(x, None) for x in sol.profile_x if part.x0 + TOL < x < part.x1 - TOL]
-        stations += [(g.x0, g) for g in sol.grooves if g.segment == part.segment]
+        stations += [(g.x0, g) for g in sol.grooves if g.segment == part.segment
+                     and not g.undercut]
         for x, g in sorted(stations, key=lambda e: e[0]):
             if g is None:
                 if abs(pts[-1][1][0] - x) > TOL:       # (a seat's end on a groove's flank)
@@ -656,7 +724,12 @@ def profile(sol: Solid) -> list[tuple[str, tuple]]:
         up_top = [("line", (xe, r1 - cl)), ("line", (xe + cl, r1))] if cl > 0 else \
             [("line", (xe, r1))]
         f = fil.get(round(xe, 9))
-        if f is None:
+        u = cut.get(round(xe, 9))
+        if u is not None and r < r1:     # an undercut in this segment, the face on its right
+            pts += [*_undercut_profile(u), *up_top]
+        elif u is not None:              # an undercut in the next segment, below this face
+            pts += [*down, ("line", (xe, u.r_top)), *_undercut_profile(u)[1:]]
+        elif f is None:
             pts += [*down, ("line", (xe, r1))] if r > r1 else [("line", (xe, r)), *up_top]
         elif f.side < 0:      # step up: arc on the left of the shoulder
             pts.append(("line", (xe - f.rho, r)))
@@ -669,6 +742,12 @@ def profile(sol: Solid) -> list[tuple[str, tuple]]:
                 pts.append(("line", (xe, r1 + f.rho)))
             pts.append(("arc", (xe + f.rho, r1, xe + f.rho, r1 + f.rho)))
     return pts
+
+
+def groove_pieces(g: Groove) -> list[tuple[str, tuple]]:
+    """A groove's outline pieces, left to right (``_groove_profile``, an undercut's
+    ``_undercut_profile``)."""
+    return _undercut_profile(g) if g.undercut else _groove_profile(g)
 
 
 def _groove_profile(g: Groove) -> list[tuple[str, tuple]]:
@@ -684,6 +763,37 @@ def _groove_profile(g: Groove) -> list[tuple[str, tuple]]:
     out.append(("arc", (g.x1, rb + rho, g.x1 - rho, rb + rho)))
     if rb + rho < r - TOL:
         out.append(("line", (g.x1, r)))
+    return out
+
+
+def _undercut_profile(g: Groove) -> list[tuple[str, tuple]]:
+    """A DIN 509 undercut's outline (``model.grooves``: the interpreted geometry) from left to
+    right, from the cylinder's edge at the opening to the top of the face (side "right"), or
+    from the face's top (its first point, for the caller to reach) to the opening's edge
+    (side "left"): the 15° run-out ramp, the flat bottom at depth t1, the corner arc ρ, which
+    ends tangent to the face plane (form E) or to a plane t2 into the face (form F), from where
+    the 8° wall rises back to the face plane."""
+    r, rb, rho, xf = g.r, g.r_bottom, g.rho, g.x_face
+    s = 1.0 if g.side == "right" else -1.0          # from the face into the small segment: −s
+    f = g.x1 - g.x0 - g.t2
+    ramp = g.depth / math.tan(math.radians(DIN509_RAMP_DEG))
+    xd = xf + s * g.t2                               # the arc's deepest x, in the face
+    xc, rc = xd - s * rho, rb + rho
+    right = [("line", (xf - s * f, r)), ("line", (xf - s * (f - ramp), rb))]
+    if abs(xc - (xf - s * (f - ramp))) > TOL:
+        right.append(("line", (xc, rb)))
+    right.append(("arc", (xd, rc, xc, rc)))
+    if g.t2 > 0:
+        right.append(("line", (xf, g.r_top)))
+    if s > 0:
+        return right
+    # mirrored: the same points in the reverse order, each arc's centre kept
+    pts = [p[1][:2] for p in right]
+    out: list[tuple[str, tuple]] = [("line", pts[-1])]
+    for k in range(len(right) - 1, 0, -1):
+        kind, data = right[k]
+        out.append(("arc", (*pts[k - 1], data[2], data[3])) if kind == "arc"
+                   else ("line", pts[k - 1]))
     return out
 
 
@@ -731,7 +841,8 @@ class SharpCorner:
 
 
 def sharp_corners(variant) -> tuple[SharpCorner, ...]:
-    """The loaded sharp corners of a variant: every diameter step with ``fillet_mm = 0`` that
+    """The loaded sharp corners of a variant: every diameter step with ``fillet_mm = 0`` (and
+    no DIN 509 undercut, whose corner arc is its transition) that
     has a force on both sides (a bearing or a part with m e > 0; a step with nothing beyond it
     carries no moment and is harmless). The one rule static, fatigue (every method) and the
     report read."""
@@ -740,9 +851,10 @@ def sharp_corners(variant) -> tuple[SharpCorner, ...]:
     forces += [float(a.seat_center_mm) for a in variant.attachments
                if float(a.mass_kg) * float(a.eccentricity_mm) != 0.0]
     out = []
-    for i, s in enumerate(tuple(variant.segments)[:-1]):
+    segs = tuple(variant.segments)
+    for i, s in enumerate(segs[:-1]):
         r0, r1 = radii[i], radii[i + 1]
-        if abs(r0 - r1) <= TOL or float(s.fillet_mm) > 0:
+        if abs(r0 - r1) <= TOL or float(s.fillet_mm) > 0 or undercut_at(segs, i):
             continue
         x = xs[i][1]
         if any(f < x for f in forces) and any(f > x for f in forces):

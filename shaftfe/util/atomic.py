@@ -95,7 +95,8 @@ def check_output_file(path: str | os.PathLike | None, option: str) -> Path | Non
 
 
 @contextmanager
-def staged_dir(out: str | os.PathLike, option: str = "--out") -> Iterator[Path]:
+def staged_dir(out: str | os.PathLike, option: str = "--out",
+               replaces: tuple[str, ...] = ()) -> Iterator[Path]:
     """All the files of one run, or none: yields a hidden staging directory, created now (so an
     unwritable ``out`` fails before any work), into which the run writes everything. On success
     the files move into ``out``; on any error or Ctrl-C the staging directory is removed and
@@ -105,7 +106,12 @@ def staged_dir(out: str | os.PathLike, option: str = "--out") -> Iterator[Path]:
     every rename on its file system, a mount point included), else beside it, and then the
     whole directory is renamed into place. Moving into an existing ``out`` is one rename per
     file, after checking that no output lands on a directory: a crash in those microseconds can
-    leave some new files beside old ones, never a half-written file."""
+    leave some new files beside old ones, never a half-written file.
+
+    ``replaces``: glob patterns of files the command writes only in some runs (a plot an
+    option asks for, one file per 3D zone): after the move, a file in ``out`` that matches one
+    and that this run did not write is an earlier run's, and is removed, so the folder never
+    shows a file beside a summary that does not account for it."""
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise _not_writable(option, out, "it is a file; give a directory")
@@ -129,7 +135,7 @@ def staged_dir(out: str | os.PathLike, option: str = "--out") -> Iterator[Path]:
         raise _not_writable(option, out, exc) from None
     try:
         yield stage
-        _commit(stage, out, option)
+        _commit(stage, out, option, replaces)
     except BaseException:
         shutil.rmtree(stage, ignore_errors=True)
         _remove_dirs(created)
@@ -144,7 +150,7 @@ def _remove_dirs(created: list[Path]) -> None:
             pass
 
 
-def _commit(stage: Path, out: Path, option: str) -> None:
+def _commit(stage: Path, out: Path, option: str, replaces: tuple[str, ...] = ()) -> None:
     umask = os.umask(0)
     os.umask(umask)
     if stage.parent != out:                      # staged beside a new out: one rename
@@ -167,3 +173,8 @@ def _commit(stage: Path, out: Path, option: str) -> None:
         (out / rel).parent.mkdir(parents=True, exist_ok=True)
         os.replace(stage / rel, out / rel)
     shutil.rmtree(stage, ignore_errors=True)
+    written = set(files)
+    for pattern in replaces:
+        for old in out.glob(pattern):
+            if old.is_file() and old.relative_to(out) not in written:
+                old.unlink(missing_ok=True)

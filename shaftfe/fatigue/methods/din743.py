@@ -27,6 +27,7 @@ class Din743:
     narrowed = MappingProxyType({})
     out_dir = "fatigue-din743"
     files = ("din743_safety.png", "summary.json")       # (+ din743_along.png with --plot)
+    optional_files = ("din743_along.png",)
     files_help = ("din743_safety.png (S_D, S_F per notch), din743_along.png (with --plot: "
                   "the safety along the shaft), summary.json")
     stages = ("beam + DIN 743",)

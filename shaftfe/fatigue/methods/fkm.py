@@ -30,6 +30,7 @@ class Fkm:
     out_dir = "fatigue-fkm"
     files = ("fatigue.vtu", "haigh.png", "rainflow_matrix.png", "damage_matrix.png",
              "summary.json")
+    optional_files = ()
     files_help = ("fatigue.vtu (fkm_utilisation, fkm_safety at the assessed surface nodes), "
                   "haigh.png (F2, the governing spot's cycles), rainflow_matrix.png, "
                   "damage_matrix.png, summary.json")

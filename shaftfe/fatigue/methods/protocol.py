@@ -106,6 +106,9 @@ class FatigueMethod(Protocol):
     narrowed: Mapping               # option -> (the values it takes, why), where not all
     out_dir: str                    # default folder under reports/<variant>/
     files: tuple[str, ...]          # the files ``write`` puts in the folder
+    # files ``write`` puts there only with some options: one left by an earlier run into the
+    # same folder is removed (``util.atomic.staged_dir``), so the folder holds one run's files
+    optional_files: tuple[str, ...]
     files_help: str                 # the files with what they hold, for --help
     stages: tuple[str, ...]         # progress stages of ``assess`` (after "history")
 

@@ -23,6 +23,7 @@ class Seed:
     out_dir = "fatigue"
     files = ("fatigue.vtu", "haigh.png", "rainflow_matrix.png", "damage_matrix.png",
              "summary.json")
+    optional_files = ()
     files_help = ("fatigue.vtu (life, damage, safety factor at every node), haigh.png, "
                   "rainflow_matrix.png, damage_matrix.png, summary.json")
     stages = ("static", "rainflow + life")
