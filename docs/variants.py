@@ -59,10 +59,16 @@ def keys() -> list[tuple[str, str, str, str]]:
         ("segments.<seg>.length_mm", "mm", _p("length_mm"),
          "segments follow each other from x_start_mm in file order"),
         ("segments.<seg>.diameter_mm", "mm", _p("diameter_mm") + ", ≤ stock",
-         "outer diameter"),
+         "outer diameter (a conical segment's at its left end)"),
+        ("segments.<seg>.diameter_right_mm", "mm", _p("diameter_mm") + ", ≤ stock; absent: a "
+         "cylinder", "a conical (tapered) segment's diameter at its right end: a plain "
+         "transition (no keyway, groove, hole, chamfer, seat or load band on it; fillet 0 at "
+         "a step beside it); in every model (the beam cuts it into elements 2 % apart in "
+         "diameter)"),
         ("segments.<seg>.fillet_mm", "mm",
          f"0 (sharp) or ≥ {FILLET_MIN_MM:g}; ≤ the step height and the smaller segment's "
-         "length; ≤ r_s_min_mm of a bearing abutting the shoulder (ISO 582)",
+         "length; ≤ r_s_min_mm of a bearing abutting the shoulder (ISO 582); 0 at a step "
+         "beside a conical segment or a DIN 509 undercut",
          "fillet radius at the segment's RIGHT end (the step to the next segment)"),
         ("segments.<seg>.thread", "—", "string (kind = thread)",
          "thread designation, e.g. M10x0.75"),

@@ -80,6 +80,10 @@ VARIANT_EDITS = {
     "din509_beside_a_fillet": _groove(FREE_END, 'kind = "din509_f"\nside = "left"'),
     "din509_radius_not_in_its_table": _groove(FREE_END, 'kind = "din509_e"\nside = "left"\n'
                                               'radius_mm = 0.7'),
+    "fillet_beside_a_cone": (SHAFT, 'name = "gear_seat"\nkind = "seat"\nlength_mm = 10.0\n'
+                         'diameter_mm = 17.0', 'name = "gear_seat"\nkind = "seat"\n'
+                         'length_mm = 10.0\ndiameter_mm = 17.0\ndiameter_right_mm = 16.0\n'
+                         'derived = ["diameter_right_mm"]'),
     "chamfer_deeper_than_the_shoulder": (SHAFT, COLLAR_CHAMFER, COLLAR_CHAMFER.replace(
         "fillet_mm = 0.6\n", "fillet_mm = 0.6\nchamfer_left_mm = 2.0\n").replace(
         '"fillet_mm"]', '"fillet_mm", "chamfer_left_mm"]')),
@@ -148,6 +152,7 @@ VARIANT_EXPECT = {
     "din509_beside_a_fillet": ["x2_57.toml", "segments[4].fillet_mm", "undercut"],
     "din509_radius_not_in_its_table": ["shaft_c.toml", "grooves[0].radius_mm",
                                        "0.4, 0.6"],
+    "fillet_beside_a_cone": ["x2_57.toml", "segments[0].fillet_mm", "conical"],
     "chamfer_deeper_than_the_shoulder": ["x2_57.toml", "segments[4].chamfer_left_mm",
                                          "flat height"],
     "chamfer_on_an_inner_edge": ["x2_57.toml", "segments[3].chamfer_right_mm",

@@ -37,6 +37,7 @@ from shaftfe.solid.features import (
     fillet_region,
     groove_region,
     shoulder_region,
+    taper_region,
 )
 from shaftfe.solid.mesh import GMSH_LOCK, gmsh_version
 
@@ -164,10 +165,12 @@ def shaft_geometry(sol, bands=()) -> MeridianGeometry:
             xc, rc = float(data[2]), float(data[3])
             f = next(f for f in sol.fillets if abs(abs(xc - f.x_shoulder) - f.rho) < 1e-6)
             curves.append(Curve(prev, end, (fillet_region(f.segment),), (xc, rc), f.rho))
-        elif abs(end[1] - prev[1]) > TOL and abs(end[0] - prev[0]) > TOL:     # a chamfer
+        elif abs(end[1] - prev[1]) > TOL and abs(end[0] - prev[0]) > TOL:  # a chamfer, a cone
             xm = 0.5 * (prev[0] + end[0])
-            c = next(c for c in sol.chamfers if c.x0 - TOL <= xm <= c.x1 + TOL)
-            curves.append(Curve(prev, end, (chamfer_region(c.segment, c.side),)))
+            t = next((t for t in sol.tapers if t.x0 - TOL <= xm <= t.x1 + TOL), None)
+            c = None if t else next(c for c in sol.chamfers if c.x0 - TOL <= xm <= c.x1 + TOL)
+            curves.append(Curve(prev, end, (taper_region(t.segment),) if t else
+                                (chamfer_region(c.segment, c.side),)))
         elif abs(end[0] - prev[0]) <= TOL:           # vertical: an end face or a shoulder
             if abs(prev[0] - sol.x_left) <= TOL:
                 g = (END_LEFT,)
@@ -197,7 +200,8 @@ def shaft_geometry(sol, bands=()) -> MeridianGeometry:
     for c in curves:               # a load band's ends are traction jumps as well
         if any(g.startswith(BAND_PREFIX) for g in c.groups):
             points += [(*c.start, rho), (*c.end, rho)]
-    bands = tuple((a, b, 2 * r) for (a, b), r in zip(sol.segment_x, sol.radii, strict=True))
+    bands = tuple((a, b, 2 * max(r, sol.r_right(i))) for i, ((a, b), r)
+                  in enumerate(zip(sol.segment_x, sol.radii, strict=True)))
     return MeridianGeometry(sol.name, tuple(curves), 2 * sol.r_max, tuple(points), bands)
 
 

@@ -47,6 +47,7 @@ Units: mm, N, MPa, t/mm³. Pure functions; NumPy only.
 from __future__ import annotations
 
 import itertools
+import math
 from dataclasses import dataclass, replace
 from types import MappingProxyType
 
@@ -71,6 +72,11 @@ from shaftfe.errors import InputError, SolverError
 from shaftfe.model.grooves import undercut_at
 from shaftfe.model.loads import actions, check_torque_path, pattern_key
 from shaftfe.model.validate import source_of, validate_variant
+
+# a conical segment is cut into elements whose end diameters differ by at most this fraction,
+# each with its midpoint's section: the midpoint rule on the flexibility ∫ dx / I(x), I ∝ D⁴,
+# errs by about (4 ΔD/D)²/24 ≈ 3e-4 per element at 2 % (tests/validation/test_tapers.py)
+TAPER_STEP = 0.02
 
 # --------------------------------------------------------------------------- model
 
@@ -239,6 +245,11 @@ def _node_positions(variant, max_element_mm: float, acts) -> np.ndarray:
         key.append(x0 + hs.depth_mm if hs.end == "left" else x1 - hs.depth_mm)
     for a in acts:               # on the shaft: checked by the loader (model.loads)
         key += [a.x_mm, *a.band_mm]
+    for s in segs:               # a cone: elements whose diameters differ by ≤ TAPER_STEP
+        if s.conical:
+            n = math.ceil(abs(s.d_right_mm - s.diameter_mm)
+                          / (TAPER_STEP * min(s.diameter_mm, s.d_right_mm)))
+            key += list(np.linspace(s.x_start_mm, s.x_end_mm, n + 1))
     return _mesh(np.clip(np.asarray(key, dtype=float), x0, x1), max_element_mm)
 
 
@@ -252,6 +263,8 @@ def _element_sections(variant, x: np.ndarray, shear_deformation: bool) -> Sectio
     bounds = np.array([s.x_start_mm for s in segs] + [x1])
     iseg = np.clip(np.searchsorted(bounds, xm, side="right") - 1, 0, len(segs) - 1)
     D = np.array([s.diameter_mm for s in segs])[iseg]
+    for k in np.nonzero([segs[i].conical for i in iseg])[0]:    # a cone: its midpoint's
+        D[k] = segs[iseg[k]].diameter_at(xm[k])
     hex_af = np.zeros(ne)
     hs = variant.hex_socket
     if hs is not None:
@@ -366,9 +379,9 @@ def _shoulders(segs, x: np.ndarray, kt_fit: str) -> tuple[Shoulder, ...]:
     between adjacent segments."""
     shoulders = []
     for i, (s0, s1) in enumerate(itertools.pairwise(segs)):
-        if abs(s0.diameter_mm - s1.diameter_mm) < 1e-12:
+        if abs(s0.d_right_mm - s1.diameter_mm) < 1e-12:
             continue
-        Dm, dm = max(s0.diameter_mm, s1.diameter_mm), min(s0.diameter_mm, s1.diameter_mm)
+        Dm, dm = max(s0.d_right_mm, s1.diameter_mm), min(s0.d_right_mm, s1.diameter_mm)
         rho, kind = s0.fillet_mm, ""
         u = undercut_at(segs, i)
         if u is not None:        # a DIN 509 undercut: the shoulder of its bottom diameter
@@ -380,7 +393,7 @@ def _shoulders(segs, x: np.ndarray, kt_fit: str) -> tuple[Shoulder, ...]:
             x_mm=s0.x_end_mm, node=_node(x, s0.x_end_mm), D_mm=Dm, d_mm=dm, r_mm=rho,
             undercut=kind,
             kt=k.kt, kt_in_range=k.in_range, kt_fit=kt_fit, kt_note=k.note,
-            small_side="left" if s0.diameter_mm < s1.diameter_mm else "right",
+            small_side="left" if s0.d_right_mm < s1.diameter_mm else "right",
             kt_tension=kn.kt, kt_torsion=kt.kt, kt_tension_in_range=kn.in_range,
             kt_torsion_in_range=kt.in_range, kt_tension_note=kn.note,
             kt_torsion_note=kt.note))

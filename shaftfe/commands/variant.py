@@ -156,7 +156,9 @@ def _report(v, rpms: list[float]) -> dict:
     mp = mass_properties(v)
     tgt = v.balance_target
     segs = [{"name": s.name, "kind": s.kind, "x_start_mm": s.x_start_mm, "x_end_mm": s.x_end_mm,
-             "length_mm": s.length_mm, "diameter_mm": s.diameter_mm, "fillet_mm": s.fillet_mm,
+             "length_mm": s.length_mm, "diameter_mm": s.diameter_mm,
+             **({"diameter_right_mm": s.d_right_mm} if s.conical else {}),
+             "fillet_mm": s.fillet_mm,
              "keyways": [{"width_mm": k.width_mm, "depth_mm": k.depth_mm,
                           "length_mm": k.length_mm, "x_center_mm": k.x_center_mm,
                           "angle_deg": k.angle_deg} for k in s.keyways],
@@ -233,8 +235,9 @@ def run_show(args) -> int:
           f"{v.clearance_station_x_mm}")
     print()
     print_table(["segment", "kind", "x0", "x1", "Ø mm", "fillet", "keyway", "source L/Ø/r"],
-                [[s["name"], s["kind"], s["x_start_mm"], s["x_end_mm"], s["diameter_mm"],
-                  s["fillet_mm"],
+                [[s["name"], s["kind"], s["x_start_mm"], s["x_end_mm"],
+                  f"{s['diameter_mm']:.2f}→{s['diameter_right_mm']:.2f}"
+                  if "diameter_right_mm" in s else s["diameter_mm"], s["fillet_mm"],
                   ", ".join(f"{k['width_mm']:g}×{k['depth_mm']:g}×{k['length_mm']:g}"
                             f"@{k['x_center_mm']:g}" for k in s["keyways"]) or "-",
                   "/".join(s["source"][f] for f in ("length_mm", "diameter_mm", "fillet_mm"))]

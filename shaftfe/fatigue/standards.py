@@ -303,7 +303,7 @@ def din743_along(variant, beam, card, surfaces, lo: float, hi: float,
     for s in variant.segments:
         n = max(2, math.ceil(s.length_mm / step_mm) + 1)
         xs.append(np.linspace(s.x_start_mm, s.x_end_mm, n))
-        ds.append(np.full(n, s.diameter_mm))
+        ds.append(s.diameter_at(xs[-1]))         # (linear along a cone)
         rzs.append(np.full(n, surfaces.seat_rz_um if s.name.startswith("bearing_seat")
                            else surfaces.turned_rz_um))
     x, d, rz_all = np.concatenate(xs), np.concatenate(ds), np.concatenate(rzs)

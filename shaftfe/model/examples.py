@@ -33,6 +33,7 @@ def four_step_shaft(*, name: str = "four_step", description: str = "synthetic fo
                     hex_end: str = "right", cw_angle: float = 30.0, hub_angle: float = 0.0,
                     washer: bool = False, thread_end: bool = False, groove: bool = False,
                     cross_hole: bool = False, chamfers: bool = False, undercut: str = "",
+                    taper: bool = False,
                     bearing: tuple[float, float] = (60.0, 8.0),
                     cw_seat: tuple[float, float] = (25.0, 45.0),
                     hub_seat: tuple[float, float] = (75.0, 85.0)) -> Variant:
@@ -43,11 +44,13 @@ def four_step_shaft(*, name: str = "four_step", description: str = "synthetic fo
     drills a Ø2 hole through the last Ø17 at x = 72.5 mm (at 90°), ``chamfers`` breaks the
     left end's edge (0.5 mm) and the Ø22's edge at its step down (0.5 mm), ``undercut``
     ("din509_e" | "din509_f") puts a DIN 509 undercut at the Ø17's right end, beside the
-    Ø22's face, in place of the fillet there."""
+    Ø22's face, in place of the fillet there, ``taper`` makes the Ø15 a cone from Ø15 to
+    Ø17 (no step at x = 20; its end chamfer off)."""
     kw = (Keyway(5.0, 3.0, 14.0, keyway_x, keyway_angle),) if keyway else ()
     segs = (
         Segment("a", 0.0, 20.0, 15.0, 0.0, kind="thread" if thread_end else "plain",
-                chamfer_left_mm=0.5 if chamfers else 0.0),
+                chamfer_left_mm=0.5 if chamfers and not taper else 0.0,
+                diameter_right_mm=17.0 if taper else 0.0),
         Segment("b", 20.0, 30.0, 17.0, 0.0 if undercut else fillet_b, keyways=kw,
                 grooves=(_undercut(undercut, 17.0, 50.0, "right"),) if undercut else ()),
         Segment("c", 50.0, 20.0, 22.0, fillet_c,

@@ -219,7 +219,7 @@ def _segments(shaft: dict, src: str, ctx: Ctx, stock: float | None) -> tuple[Seg
         t = table(t, src, fld)
         check_keys(t, {"name", "length_mm", "diameter_mm", "fillet_mm", "kind", "keyways",
                         "thread", "grooves", "cross_holes", "chamfer_left_mm",
-                        "chamfer_right_mm"}, src, fld)
+                        "chamfer_right_mm", "diameter_right_mm"}, src, fld)
         name = text(t, "name", src, fld)
         need(name not in names, src, f"{fld}.name", "unique segment names", name)
         names.add(name)
@@ -230,6 +230,12 @@ def _segments(shaft: dict, src: str, ctx: Ctx, stock: float | None) -> tuple[Seg
         kind = text(t, "kind", src, fld, default="plain")
         plausible(length, "length_mm", src, f"{fld}.length_mm")
         plausible(dia, "diameter_mm", src, f"{fld}.diameter_mm")
+        dia_r = num(t, "diameter_right_mm", src, fld, default=0.0)
+        if dia_r:
+            plausible(dia_r, "diameter_mm", src, f"{fld}.diameter_right_mm")
+            if stock is not None:
+                need(dia_r <= stock + 1e-9, src, f"{fld}.diameter_right_mm",
+                     f"<= stock diameter {stock:g} mm", dia_r)
         if stock is not None:
             need(dia <= stock + 1e-9, src, f"{fld}.diameter_mm",
                   f"<= stock diameter {stock:g} mm", dia)
@@ -272,17 +278,18 @@ def _segments(shaft: dict, src: str, ctx: Ctx, stock: float | None) -> tuple[Seg
                             cross_holes=holes,
                             chamfer_left_mm=num(t, "chamfer_left_mm", src, fld, default=0.0),
                             chamfer_right_mm=num(t, "chamfer_right_mm", src, fld,
-                                                 default=0.0)))
+                                                 default=0.0),
+                            diameter_right_mm=dia_r))
         x += length
     # fillets: a shoulder fillet must fit the step height and the smaller segment's length
     for i in range(len(segs) - 1):
         a, b = segs[i], segs[i + 1]
         fld = f"segments[{i}].fillet_mm"
-        step = 0.5 * abs(a.diameter_mm - b.diameter_mm)
+        step = 0.5 * abs(a.d_right_mm - b.diameter_mm)
         if step < 1e-9:
             need(a.fillet_mm == 0, src, fld, "0 (no step to the next segment)", a.fillet_mm)
             continue
-        small = a if a.diameter_mm < b.diameter_mm else b
+        small = a if a.d_right_mm < b.diameter_mm else b
         limit = min(step, small.length_mm)
         need(a.fillet_mm <= limit + 1e-12, src, fld,
               f"<= step height {step:g} and <= length of the smaller segment "

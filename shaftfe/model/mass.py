@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from shaftfe.model.variant import Keyway, MassProperties, Variant
 
 
@@ -37,12 +39,29 @@ def hexagon_polar_moment_mm4(across_flats_mm: float) -> float:
     return 5.0 * math.sqrt(3.0) / 8.0 * a**4
 
 
+def _frustum(s, rho: float) -> tuple[float, float, float, float]:
+    """(m, m x̄, J_polar, Σ(m x² + I_d)) of a conical segment of density ``rho`` (kg/mm³), the
+    sums over its thin discs: ∫ ρ π r² {1, x, r²/2, r²/4 + x²} dx, r linear in x. The
+    integrands are polynomials of degree ≤ 4 in x: 4-point Gauss-Legendre is exact (to
+    degree 7)."""
+    t, w = np.polynomial.legendre.leggauss(4)
+    x = s.x_start_mm + 0.5 * s.length_mm * (t + 1.0)
+    r = 0.5 * s.diameter_at(x)
+    disc = rho * math.pi * r * r * 0.5 * s.length_mm * w
+    return (float(disc.sum()), float(disc @ x), float(disc @ (0.5 * r * r)),
+            float(disc @ (0.25 * r * r + x * x)))
+
+
 def shaft_body_properties(v: Variant) -> tuple[float, float, float, float, float, float]:
     """(mass kg, x·mass kg·mm, m·e_y, m·e_z kg·mm, polar J kg·mm², Σ(m x² + Id) kg·mm² about
     x = 0) of the shaft body: cylinders minus keyways minus the hex socket."""
     rho = v.material.density_t_mm3 * 1e3                         # kg/mm³
     m = mx = qy = qz = jp = jd = 0.0
     for s in v.segments:
+        if s.conical:            # a frustum: the integrals of its discs, exactly (below)
+            dm, dmx, djp, djd = _frustum(s, rho)
+            m, mx, jp, jd = m + dm, mx + dmx, jp + djp, jd + djd
+            continue
         r = 0.5 * s.diameter_mm
         mi = rho * math.pi * r * r * s.length_mm
         xc = s.x_start_mm + 0.5 * s.length_mm

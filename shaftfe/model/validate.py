@@ -97,10 +97,12 @@ def _segments(v, src: str) -> tuple[float, float]:
                 raise InputError(src, f"{f}.chamfer_{side}_mm", ">= 0", got=c)
             nb = (segs[i - 1] if i else None) if side == "left" else \
                 (segs[i + 1] if i + 1 < len(segs) else None)
-            if c > 0 and nb is not None and nb.diameter_mm >= s.diameter_mm - TOL_X_MM:
+            if c > 0 and nb is not None and (nb.d_right_mm if side == "left" else
+                                             nb.diameter_mm) >= s.diameter_mm - TOL_X_MM:
                 raise InputError(src, f"{f}.chamfer_{side}_mm", "0 where the neighbouring "
                                  "segment is not smaller (a chamfer breaks an outer edge: the "
                                  "shaft's end or a step down)", got=c)
+        _conical(src, f, segs, i)
         for j, g in enumerate(s.grooves):
             if g.kind in grooves.UNDERCUTS:
                 _undercut(src, f"{f}.grooves[{j}]", segs, i, g)
@@ -135,6 +137,57 @@ def _groove(src: str, gf: str, s, g) -> None:
                          f"segment [{s.x_start_mm:g}, {s.x_end_mm:g}]", got=g.x_center_mm)
 
 
+def _conical(src: str, f: str, segs, i: int) -> None:
+    """A conical segment (``diameter_right_mm``) is a plain transition: nothing cut into it
+    (keyways, grooves, holes, chamfers) and no fillet where it meets a step (a fillet against a
+    cone is not built); its seats and loads are refused by ``_off_cones``."""
+    s = segs[i]
+    if s.diameter_right_mm and not (_finite(s.diameter_right_mm) and s.diameter_right_mm > 0):
+        raise InputError(src, f"{f}.diameter_right_mm", "> 0 (or absent: a cylinder)",
+                         got=s.diameter_right_mm)
+    if s.conical:
+        for name, what in (("keyways", "keyways"), ("grooves", "grooves"),
+                           ("cross_holes", "cross holes")):
+            if getattr(s, name):
+                raise InputError(src, f"{f}.{name}", f"no {what} on a conical segment (only "
+                                 "on a cylinder)", got=len(getattr(s, name)))
+        for side in ("left", "right"):
+            if getattr(s, f"chamfer_{side}_mm"):
+                raise InputError(src, f"{f}.chamfer_{side}_mm", "0 on a conical segment",
+                                 got=getattr(s, f"chamfer_{side}_mm"))
+    for k in (i - 1, i):                  # the steps at this segment's ends
+        if 0 <= k < len(segs) - 1 and (segs[k].conical or segs[k + 1].conical) \
+                and abs(segs[k].d_right_mm - segs[k + 1].diameter_mm) > TOL_X_MM \
+                and segs[k].fillet_mm > 0:
+            raise InputError(src, f"segments[{k}].fillet_mm", "0 at a step beside a conical "
+                             "segment (a fillet against a cone is not built)",
+                             got=segs[k].fillet_mm)
+
+
+def _off_cones(v, src: str) -> None:
+    """No bearing, part seat, ``[[loads]]`` band or hex socket on a conical segment: a seat
+    is a cylinder here (a tapered fit is not built)."""
+    cones = [(s.x_start_mm, s.x_end_mm, s.name) for s in v.segments if s.conical]
+    if not cones:
+        return
+    spans = [(f"bearings[{i}].x_center_mm", b.x_center_mm - 0.5 * b.width_mm,
+              b.x_center_mm + 0.5 * b.width_mm) for i, b in enumerate(v.bearings)]
+    spans += [(f"attachments[{i}].seat_x", *sorted((a.seat_x_start_mm, a.seat_x_end_mm)))
+              for i, a in enumerate(v.attachments)]
+    spans += [(f"loads[{i}].band_mm", *ld.band_mm) for i, ld in enumerate(v.loads)
+              if ld.kind != "gravity"]
+    h = v.hex_socket
+    if h is not None:
+        x0, x1 = v.segments[0].x_start_mm, v.segments[-1].x_end_mm
+        spans.append(("hex_socket.depth_mm", *((x0, x0 + h.depth_mm) if h.end == "left"
+                                               else (x1 - h.depth_mm, x1))))
+    for fld, a, b in spans:
+        for c0, c1, name in cones:
+            if a < c1 - TOL_X_MM and c0 < b - TOL_X_MM:
+                raise InputError(src, fld, f"clear of the conical segment {name!r} [{c0:g}, "
+                                 f"{c1:g}] (a seat is a cylinder)", got=(a, b))
+
+
 def _undercut(src: str, gf: str, segs, i: int, g) -> None:
     """A DIN 509 undercut's own rules: at the segment's ``side`` end, next to a larger
     segment, that shoulder without a fillet (the undercut is its transition), its size a row
@@ -146,7 +199,8 @@ def _undercut(src: str, gf: str, segs, i: int, g) -> None:
         raise InputError(src, f"{gf}.side", f"one undercut at the segment's {g.side} end",
                          got=g.side, reason="repeats another undercut there")
     k = i - 1 if g.side == "left" else i + 1
-    if not 0 <= k < len(segs) or segs[k].diameter_mm <= s.diameter_mm + TOL_X_MM:
+    if not 0 <= k < len(segs) or (segs[k].d_right_mm if k < i else segs[k].diameter_mm) \
+            <= s.diameter_mm + TOL_X_MM:
         raise InputError(src, f"{gf}.side", "the segment's end at a step up to a larger "
                          "segment (DIN 509 undercuts the smaller cylinder at the larger one's "
                          "face)", got=g.side)
@@ -272,6 +326,7 @@ def validate_variant(variant, *, springs: bool = True) -> None:
     _attachments(variant, src, x0, x1)
     _loads(variant, src, x0, x1)
     _hex_socket(variant, src, x0, x1)
+    _off_cones(variant, src)
     cs = variant.clearance_station_x_mm
     if cs is not None and not (x0 - 1e-9 <= cs <= x1 + 1e-9):
         raise InputError(src, "clearance_station_x_mm", f"in [{x0:g}, {x1:g}]", got=cs)

@@ -106,10 +106,30 @@ class Segment:
     # radially): only where that edge is convex, the shaft's end or a step down to the next
     chamfer_left_mm: float = dataclasses.field(default=0.0, metadata={"omit_empty": True})
     chamfer_right_mm: float = dataclasses.field(default=0.0, metadata={"omit_empty": True})
+    # a conical (tapered) segment: its diameter at the right end, ``diameter_mm`` being the
+    # left end's; 0: a cylinder (issue #33)
+    diameter_right_mm: float = dataclasses.field(default=0.0, metadata={"omit_empty": True})
 
     @property
     def x_end_mm(self) -> float:
         return self.x_start_mm + self.length_mm
+
+    @property
+    def conical(self) -> bool:
+        return bool(self.diameter_right_mm) and abs(self.diameter_right_mm
+                                                    - self.diameter_mm) > 1e-9
+
+    @property
+    def d_right_mm(self) -> float:
+        """The diameter at the right end (``diameter_mm`` for a cylinder)."""
+        return self.diameter_right_mm if self.conical else self.diameter_mm
+
+    def diameter_at(self, x_mm):
+        """The diameter at ``x_mm`` (a number or an array; linear along a conical segment)."""
+        if not self.conical:
+            return self.diameter_mm + 0.0 * x_mm
+        t = (x_mm - self.x_start_mm) / self.length_mm
+        return self.diameter_mm + t * (self.diameter_right_mm - self.diameter_mm)
 
 
 @dataclass(frozen=True)

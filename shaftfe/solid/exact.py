@@ -19,6 +19,7 @@ from shaftfe.solid.features import (
     hole_region,
     keyway_region,
     shoulder_region,
+    taper_region,
 )
 from shaftfe.solid.plan import (
     TOL,
@@ -192,6 +193,9 @@ def hole_area(h: Hole) -> float:
 def analytic_volume_of(sol: Solid) -> float:
     vol = sum(math.pi * r * r * (x1 - x0) for r, (x0, x1) in zip(sol.radii, sol.segment_x,
                                                                 strict=True))
+    # a cone: the frustum π L (r0² + r0 r1 + r1²)/3 in place of the cylinder π r0² L
+    vol += sum(math.pi * (t.x1 - t.x0) * (t.r0 * t.r1 + t.r1 * t.r1 - 2.0 * t.r0 * t.r0) / 3.0
+               for t in sol.tapers)
     vol += sum(fillet_volume(f) for f in sol.fillets)
     vol -= sum(slot_volume(k) for k in sol.slots)
     vol -= sum(groove_volume(g) for g in sol.grooves)
@@ -227,11 +231,15 @@ def expected_areas_of(sol: Solid) -> dict[str, float]:
         out[groove_region(g.segment, g.index)] = groove_area(g)
     for h in sol.holes:
         out[hole_region(h.segment, h.index)] = hole_area(h)
+    for t in sol.tapers:            # a frustum's side: π (r0 + r1) × its slant
+        out[taper_region(t.segment)] = math.pi * (t.r0 + t.r1) * math.hypot(t.x1 - t.x0,
+                                                                          t.r1 - t.r0)
     for c in sol.chamfers:          # a cone between r − c and r, slant c √2
         out[chamfer_region(c.segment, c.side)] = math.pi * (2.0 * c.r - c.c) * c.c * math.sqrt(2.0)
     hx = sol.hex
     left = math.pi * (sol.radii[0] - sol.chamfer(sol.segment_names[0], "left")) ** 2
-    right = math.pi * (sol.radii[-1] - sol.chamfer(sol.segment_names[-1], "right")) ** 2
+    right = math.pi * (sol.r_right(len(sol.radii) - 1)
+                       - sol.chamfer(sol.segment_names[-1], "right")) ** 2
     if hx is not None:
         if hx.end == "left":
             left -= hx.area

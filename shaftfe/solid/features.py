@@ -27,7 +27,7 @@ if TYPE_CHECKING:       # the plan builds its group names from the scheme below
 # raiser of the outline), CUT: the kinds that are not bodies of revolution, SEAT: the seats
 # (a part's, a bearing's), OUTLINE: the faces of the outline that no load band covers
 KINDS = ("fillet", "shoulder", "groove", "keyway", "cross_hole", "hex_socket", "seat",
-         "bearing_seat", "chamfer", "end")
+         "bearing_seat", "chamfer", "taper", "end")
 NOTCH_KINDS = frozenset({"fillet", "groove", "keyway", "cross_hole"})
 CUT_KINDS = frozenset({"keyway", "cross_hole", "hex_socket"})
 ROUND_NOTCH_KINDS = NOTCH_KINDS - CUT_KINDS          # the notches a body of revolution holds
@@ -58,6 +58,11 @@ def groove_region(segment: str, index: int) -> str:
 
 def chamfer_region(segment: str, side: str) -> str:
     return f"chamfer:{segment}:{side}"
+
+
+def taper_region(segment: str) -> str:
+    """A conical segment's surface."""
+    return f"taper:{segment}"
 
 
 def hole_region(segment: str, index: int) -> str:
@@ -97,7 +102,8 @@ def bearing_group(bearing: str) -> str:
 # (prefix, kind): the regions' (the longer prefix first), and the seats' mesh groups'
 _REGION_KIND = (("fillet:", "fillet"), ("shoulder:", "shoulder"), ("keyway:", "keyway"),
                 ("groove:", "groove"), ("cross_hole:", "cross_hole"), ("chamfer:", "chamfer"),
-                ("end:", "end"), ("seat:bearing:", "bearing_seat"), ("seat:", "seat"))
+                ("taper:", "taper"), ("end:", "end"), ("seat:bearing:", "bearing_seat"),
+                ("seat:", "seat"))
 _GROUP_KIND = (("bearing:", "bearing_seat"), ("load:", "seat"))
 
 
@@ -202,6 +208,9 @@ def features(sol: Solid) -> tuple[Feature, ...]:
                            (g.x0, g.x1), (g.x0, g.x1),
                            (("rho", g.rho), ("depth", g.depth), ("width", g.width),
                             ("r", g.r))))
+    for t in sol.tapers:
+        out.append(Feature("taper", taper_region(t.segment), t.segment, (t.x0, t.x1),
+                           (t.x0, t.x1), (("r_left", t.r0), ("r_right", t.r1))))
     for c in sol.chamfers:
         out.append(Feature("chamfer", chamfer_region(c.segment, c.side), c.segment,
                            (c.x0, c.x1), (c.x0, c.x1), (("c", c.c), ("r", c.r))))

@@ -516,7 +516,8 @@ def _size_fields(gmsh, sol: Solid, level: MeshLevel, cls: dict) -> None:
     fields: list[int] = []
     h_max = cfg["k_global"] * 2.0 * sol.r_max
     big = 2.0 * sol.r_max + 10.0
-    for (x0, x1), r in zip(sol.segment_x, sol.radii, strict=True):
+    for i, ((x0, x1), r) in enumerate(zip(sol.segment_x, sol.radii, strict=True)):
+        r = max(r, sol.r_right(i))          # (a cone's larger end)
         b = f.add("Box")
         f.setNumber(b, "VIn", cfg["k_global"] * 2.0 * r)
         f.setNumber(b, "VOut", h_max)

@@ -19,6 +19,7 @@ from shaftfe.solid.features import (
     hole_region,
     keyway_region,
     shoulder_region,
+    taper_region,
 )
 from shaftfe.solid.plan import Hole, Slot, Solid, profile
 
@@ -245,6 +246,15 @@ def _chamfer_group(sol: Solid, bbox, com, eps: float) -> str | None:
     return None
 
 
+def _taper_group(sol: Solid, com, eps: float) -> str | None:
+    """The conical segment whose axial range holds the face's centre of mass (a cone: nothing
+    else is cut into a taper)."""
+    for t in sol.tapers:
+        if t.x0 - eps < com[0] < t.x1 + eps:
+            return taper_region(t.segment)
+    return None
+
+
 def _hole_group(sol: Solid, bbox, eps: float) -> str | None:
     """The cross hole whose axial range holds the face (its wall: the shaft's own cylinders
     were classified before)."""
@@ -316,7 +326,8 @@ def classify(gmsh, sol: Solid) -> dict:
             if g is not None:
                 groups, fillet_faces = [g], [*fillet_faces, s]
         if not groups:            # a chamfer's cone, a groove's or a cross hole's faces
-            g = ((kind == "Cone" and _chamfer_group(sol, bbox, com, eps))
+            g = ((kind == "Cone" and (_chamfer_group(sol, bbox, com, eps)
+                                      or _taper_group(sol, com, eps)))
                  or _groove_group(sol, bbox, com, eps) or _hole_group(sol, bbox, eps))
             groups = [g] if g else []
         if not groups:

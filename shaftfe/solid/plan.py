@@ -45,6 +45,7 @@ from shaftfe.solid.features import (
     keyway_region,
     seat_group,
     shoulder_region,
+    taper_region,
 )
 from shaftfe.util.notices import warn
 
@@ -188,6 +189,20 @@ class Chamfer:
 
 
 @dataclass(frozen=True)
+class Taper:
+    """A conical segment: its surface from (x0, r0) to (x1, r1), a plain transition (nothing
+    cut into it, no seat on it: ``model.validate``)."""
+    segment: str
+    x0: float
+    x1: float
+    r0: float
+    r1: float
+
+    def r_at(self, x: float) -> float:
+        return self.r0 + (x - self.x0) / (self.x1 - self.x0) * (self.r1 - self.r0)
+
+
+@dataclass(frozen=True)
 class Seat:
     """A named cylindrical face group on [x0, x1] of segment ``part``; ``angle`` is the force
     direction (rad) for a split seat, None for an unsplit one (bearing)."""
@@ -242,6 +257,12 @@ class Solid:
     seat_span: tuple[float, float] | None = None
     clipped: bool = False        # a 3D zone's plan (``clip``): its grooves are meshed coarsely
     chamfers: tuple[Chamfer, ...] = ()
+    tapers: tuple[Taper, ...] = ()
+
+    def r_right(self, i: int) -> float:
+        """Segment ``i``'s radius at its right end (``radii`` holds the left ends')."""
+        t = next((t for t in self.tapers if t.segment == self.segment_names[i]), None)
+        return self.radii[i] if t is None else t.r1
 
     def chamfer(self, segment: str, side: str) -> float:
         """The chamfer (mm) of ``segment``'s ``side`` edge, 0 without one."""
@@ -250,11 +271,11 @@ class Solid:
 
     @property
     def r_max(self) -> float:
-        return max(self.radii)
+        return max(self.radii + tuple(t.r1 for t in self.tapers))
 
     @property
     def r_min(self) -> float:
-        return min(self.radii)
+        return min(self.radii + tuple(t.r1 for t in self.tapers))
 
     def groups(self) -> tuple[str, ...]:
         names: list[str] = []
@@ -269,6 +290,7 @@ class Solid:
         names += [groove_region(g.segment, g.index) for g in self.grooves]
         names += [hole_region(h.segment, h.index) for h in self.holes]
         names += [chamfer_region(c.segment, c.side) for c in self.chamfers]
+        names += [taper_region(t.segment) for t in self.tapers]
         names += [END_LEFT, END_RIGHT]
         if self.hex is not None:
             names.append(HEX_SOCKET)
@@ -316,7 +338,7 @@ def _fillets(segs, radii, xs, src: str, undercuts=()):
     eat_right = [0.0] * n
     for i in range(n - 1):
         s = segs[i]
-        r0, r1 = radii[i], radii[i + 1]
+        r0, r1 = 0.5 * float(s.d_right_mm), radii[i + 1]
         rho = float(s.fillet_mm)
         if abs(r0 - r1) <= TOL:
             if rho > 0:
@@ -358,7 +380,7 @@ def _fillets(segs, radii, xs, src: str, undercuts=()):
             shoulders.append(Shoulder(s.name, xe, top, large - c))
     for side, i in (("left", 0), ("right", n - 1)):      # the shaft's ends
         c = cham[(i, side)]
-        if c >= 0.5 * radii[i]:
+        if c >= 0.5 * radii[i]:           # (no chamfer on a cone: its radii[i] is the end's)
             raise InputError(src, f"segments[{i}].chamfer_{side}_mm", f"< half the radius "
                              f"({0.5 * radii[i]:g} mm)", got=c)
     parts: list[CylPart] = []
@@ -584,10 +606,12 @@ def prepare(variant) -> Solid:
     grooves = sorted([*grooves, *undercuts], key=lambda g: (g.x0, g.segment, g.index))
     _clear_of_seats(variant, seats, [*grooves, *holes], hx, xs, src)
     prof = sorted({round(x, 9) for st in seats for x in (st.x0, st.x1)})
+    tapers = tuple(Taper(s.name, *xs[i], radii[i], 0.5 * float(s.d_right_mm))
+                   for i, s in enumerate(segs) if s.conical)
     return Solid(variant.name, xs[-1][1] - xs[0][0], xs[0][0], xs[-1][1], tuple(radii),
                  tuple(names), tuple(xs), tuple(fillets), tuple(shoulders), tuple(parts),
                  tuple(slots), tuple(seats), hx, tuple(prof), grooves=tuple(grooves),
-                 holes=tuple(holes), chamfers=tuple(chamfers))
+                 holes=tuple(holes), chamfers=tuple(chamfers), tapers=tapers)
 
 
 def clip(sol: Solid, x0: float, x1: float) -> Solid:
@@ -601,7 +625,8 @@ def clip(sol: Solid, x0: float, x1: float) -> Solid:
     idx = [i for i, (a, b) in enumerate(sol.segment_x) if b > x0 + TOL and a < x1 - TOL]
     for x in (x0, x1):
         inner = sol.x_left + TOL < x < sol.x_right - TOL
-        if inner and not any(p.x0 + TOL < x < p.x1 - TOL for p in sol.parts):
+        cone = any(t.x0 - TOL < x < t.x1 + TOL for t in sol.tapers)
+        if inner and (cone or not any(p.x0 + TOL < x < p.x1 - TOL for p in sol.parts)):
             raise ValueError(f"cut at x = {x:g} mm not on a straight part")
     parts, new_part = [], {}
     for k, i in enumerate(idx):
@@ -645,6 +670,7 @@ def clip(sol: Solid, x0: float, x1: float) -> Solid:
         grooves=tuple(g for g in sol.grooves if inside(g.x0, g.x1)),
         holes=tuple(h for h in sol.holes if inside(h.x0, h.x1)),
         chamfers=tuple(c for c in sol.chamfers if inside(c.x0, c.x1)),
+        tapers=tuple(t for t in sol.tapers if inside(t.x0, t.x1)),
         seats=tuple(seats), hex=hx,
         profile_x=tuple(x for x in sol.profile_x if x0 + TOL < x < x1 - TOL),
         hot_axes_deg=tuple(h for h in sol.hot_axes_deg if h[0] in keep))
@@ -652,7 +678,7 @@ def clip(sol: Solid, x0: float, x1: float) -> Solid:
 
 # fields added to the plan after its keys were first used: dropped from a key while they hold
 # their defaults, so a plan without them keeps its mesh, zone and cache keys
-LATE_FIELDS = ("grooves", "holes", "seat_span", "clipped", "chamfers")
+LATE_FIELDS = ("grooves", "holes", "seat_span", "clipped", "chamfers", "tapers")
 
 
 def plan_payload(sol: Solid) -> dict:
@@ -693,6 +719,9 @@ def profile(sol: Solid) -> list[tuple[str, tuple]]:
     for i in range(n):
         r = sol.radii[i]
         part = sol.parts[i]
+        if sol.tapers:      # a cone (no stations on it): its end point at its right radius,
+            r = sol.r_right(i)  # the sloped line from the left one
+
         cr = sol.chamfer(names[i], "right")                 # this segment's right edge
         cl = sol.chamfer(names[i + 1], "left") if i + 1 < n else 0.0   # the next one's left
         stations = [(x, None) for x in sol.profile_x if part.x0 + TOL < x < part.x1 - TOL]
@@ -853,7 +882,7 @@ def sharp_corners(variant) -> tuple[SharpCorner, ...]:
     out = []
     segs = tuple(variant.segments)
     for i, s in enumerate(segs[:-1]):
-        r0, r1 = radii[i], radii[i + 1]
+        r0, r1 = 0.5 * s.d_right_mm, radii[i + 1]
         if abs(r0 - r1) <= TOL or float(s.fillet_mm) > 0 or undercut_at(segs, i):
             continue
         x = xs[i][1]

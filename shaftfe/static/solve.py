@@ -252,7 +252,7 @@ def axis_deflection(variant, mesh, u: np.ndarray, xs) -> np.ndarray:
     out, ok = probe(mesh, u, np.array([xs, 0 * xs, 0 * xs]), tree)
     for k in np.nonzero(~ok)[0]:
         x = xs[k]
-        r = 0.8 * 0.5 * variant.segment_at(x).diameter_mm
+        r = 0.8 * 0.5 * variant.segment_at(x).diameter_at(x)
         a = np.linspace(0, 2 * np.pi, 8, endpoint=False)
         val, ok2 = probe(mesh, u, np.array([np.full(8, x), r * np.cos(a), r * np.sin(a)]), tree)
         out[k] = val[ok2].mean(axis=0) if ok2.any() else np.nan

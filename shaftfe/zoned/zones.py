@@ -65,7 +65,7 @@ def _forbidden(plan, feats, bands) -> list[tuple[float, float]]:
             out.append(f.x_mm)
     out += [tuple(b) for b in bands]
     for i in range(len(plan.radii) - 1):
-        if abs(plan.radii[i] - plan.radii[i + 1]) > 1e-9:
+        if abs(plan.r_right(i) - plan.radii[i + 1]) > 1e-9:
             x = plan.segment_x[i][1]
             out.append((x, x))
     return sorted((a - CUT_MARGIN_MM, b + CUT_MARGIN_MM) for a, b in out)
@@ -84,9 +84,9 @@ def admissible_gaps(plan, feats, bands) -> list[tuple[float, float]]:
 
 
 def diameter_at(plan, x: float) -> float:
-    for (a, b), r in zip(plan.segment_x, plan.radii, strict=True):
+    for i, ((a, b), r) in enumerate(zip(plan.segment_x, plan.radii, strict=True)):
         if a - TOL <= x <= b + TOL:
-            return 2.0 * r
+            return 2.0 * (r + (x - a) / (b - a) * (plan.r_right(i) - r))
     return 2.0 * plan.r_max
 
 
