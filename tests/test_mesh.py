@@ -64,7 +64,8 @@ def test_every_face_group_names_one_feature(coarse):
     assert seen == set(by)
     for g in coarse.mesh.boundaries:
         assert F.kind_of(g) == by[F.region_of(g)].kind, g
-    assert {f.kind for f in by.values()} == set(F.KINDS)
+    # every kind but a cone's (this shaft's Ø15 steps up; tests/validation/test_tapers.py)
+    assert {f.kind for f in by.values()} == set(F.KINDS) - {"taper"}
 
 
 def test_group_areas_coarse(coarse):

@@ -48,6 +48,22 @@ def test_the_default_static_model_is_zoned_and_writes_every_file(zoned_run):
     assert set(g.point_data) == {"displacement_mm", "von_mises_MPa"}
 
 
+def test_a_run_into_the_folder_of_a_zoned_one_leaves_no_zone_files(zoned_run, tmp_path,
+                                                                    cache, monkeypatch):
+    """An axisymmetric run into a copy of the zoned run's folder: the earlier run's zone files
+    go (they would sit beside a summary without zones); its own files replace the others."""
+    import shutil
+
+    from shaftfe.cli import main
+    out = tmp_path / "o"
+    shutil.copytree(zoned_run[1], out)
+    monkeypatch.setenv("SHAFTFE_CACHE_DIR", str(cache))
+    assert main(["static", "--variant", "x2_57", "--model", "axisymmetric", "--level",
+                 "coarse", "--json", "--out", str(out)]) == 0
+    assert not list(out.glob("zone_*.vtu"))
+    assert json.loads((out / "summary.json").read_text())["model"] == "axisymmetric"
+
+
 def test_the_zoned_fatigue_reference_is_the_global_surface_plus_the_zones(cache):
     """``zoned.reference``: the regions the zoned peaks take from the global model hold the
     global model's surface points and stresses exactly (the same field: the axisymmetric

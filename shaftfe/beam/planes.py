@@ -23,6 +23,7 @@ moment must not change the mesh).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -57,14 +58,26 @@ def hot_axes(variant, fillets) -> dict[str, float | None]:
     return out
 
 
+@dataclass(frozen=True)
+class _Spot:
+    """A groove's hot spot for ``hot_axes``: keyed by its region, at its middle."""
+    segment: str
+    x_shoulder: float
+
+
 def mesh_hot_axes(variant) -> dict[str, float | None]:
-    """``hot_axes`` of every fillet of ``variant``'s solid plan: what the pipeline passes to
-    ``build_mesh`` (static, rotor, ``shaftfe mesh``, the static cache's key). A variant the
-    beam cannot solve (no axial bearing: a geometry-only study) gets {} and so the mesher's
-    geometric rule; every caller gets the same answer, hence one mesh per variant and level."""
+    """``hot_axes`` of every fillet of ``variant``'s solid plan (keyed by segment) and every
+    groove's (keyed by its region, at its middle): what the pipeline passes to ``build_mesh``
+    (static, rotor, ``shaftfe mesh``, the static cache's key). A variant the beam cannot solve
+    (no axial bearing: a geometry-only study) gets {} and so the mesher's geometric rule;
+    every caller gets the same answer, hence one mesh per variant and level."""
     from shaftfe.errors import InputError, SolverError
+    from shaftfe.solid.features import groove_region
     from shaftfe.solid.plan import prepare
     try:
-        return hot_axes(variant, prepare(variant).fillets)
+        plan = prepare(variant)
+        return hot_axes(variant, [*plan.fillets, *(
+            _Spot(groove_region(g.segment, g.index), 0.5 * (g.x0 + g.x1))
+            for g in plan.grooves)])
     except (InputError, SolverError):
         return {}

@@ -297,6 +297,7 @@ class BeamResult:
                          "kt": fin(n.kt), "kt_in_range": n.kt_in_range, "kt_note": n.kt_note,
                          "kt_tension": fin(n.kt_tension), "kt_torsion": fin(n.kt_torsion),
                          "M_Nmm": n.M_Nmm, "N_N": n.N_N, "T_Nmm": n.T_Nmm,
+                         **({"undercut": n.undercut} if n.undercut else {}),
                          "sigma_nom_MPa": n.sigma_nom_MPa, "sigma_peak_MPa": fin(n.sigma_peak_MPa)}
                         for n in self.notches],
             "max_abs_N_N": self.max_abs("N"), "max_abs_T_Nmm": self.max_abs("T"),

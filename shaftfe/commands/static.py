@@ -25,6 +25,10 @@ from shaftfe.solid.levels import LEVEL_NAMES
 from shaftfe.static import STATIC_MODELS
 from shaftfe.util.fmt import life
 
+# a 3D zone's field per file (the zoned solve): zone files an earlier run left in the folder
+# (another shaft's zones, or another model's run) are removed by every model's run
+ZONE_FILES = ("zone_*.vtu",)
+
 
 def register(sub) -> None:
     p = sub.add_parser(
@@ -128,8 +132,7 @@ def run(args) -> int:
     out = _out(args, variant)
     from shaftfe.util.progress import Progress
     prog = Progress(["mesh + solve", "outputs"], enabled=False if args.json else None)
-    # a zone's field per file: another shaft's zones left in the folder are removed
-    with staged_dir(out, replaces=("zone_*.vtu",)) as stage:     # every file or none
+    with staged_dir(out, replaces=ZONE_FILES) as stage:     # every file or none
         with prog.stage("mesh + solve"):
             # with spin softening `shaftfe fatigue` also needs the unsoftened stress at
             # REF_RPM (its S0 (λ + β λ²)): recovered too when this run can be cached for it
@@ -179,7 +182,7 @@ def _run_axisymmetric(args, rpms, variant) -> int:
                       seed_load_case=args.seed_load_case, exclude_mm=args.exclude_mm,
                       spin_softening=args.spin_softening)
     out = _out(args, variant)
-    with staged_dir(out) as stage:             # both files or none
+    with staged_dir(out, replaces=ZONE_FILES) as stage:     # both files or none
         res = solve_axisymmetric(variant, rpms, opts, case=getattr(args, "case", None))
         summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
     return _report(args, summary, lambda: (_print_overrides(variant),
@@ -215,7 +218,7 @@ def _run_zoned(args, rpms, variant) -> int:
     opts = _options(args)
     out = _out(args, variant)
     case = getattr(args, "case", None)
-    with staged_dir(out) as stage:             # every file or none
+    with staged_dir(out, replaces=ZONE_FILES) as stage:     # every file or none
         res = solve_zoned(variant, rpms, opts, case=case)
         summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
     return _report(args, summary, lambda: (_print_overrides(variant),

@@ -20,6 +20,7 @@ from shaftfe.errors import InputError
 from shaftfe.fatigue import din743, fkm
 from shaftfe.model.grooves import UNDERCUTS, undercut_at
 from shaftfe.solid.features import fillet_region, groove_region, hole_region
+from shaftfe.util.notices import warn
 from shaftfe.util.units import REF_RPM
 
 
@@ -225,6 +226,13 @@ def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
                    f"DIN 743-2 formula (a shoulder to the DIN 509 {g.kind[-1].upper()} "
                    f"undercut's bottom diameter with R{g.radius_mm:g}; below the converged Kt, "
                    "reports/benchmarks/undercuts.md)")
+            if not al:
+                warn("undercut-kt-formula", region, f"DIN 743 takes the shoulder formula for "
+                     f"this undercut (D {nt.D_mm:g}, d {segs[k].diameter_mm:g}, "
+                     f"R{g.radius_mm:g}: not in {KT_UNDERCUTS}); over that table's grid it "
+                     "reads below the converged Kt in every row (reports/benchmarks/"
+                     "undercuts.md), so S_D comes out high; outside the grid no bound is "
+                     "measured: add the undercut to benchmarks/bench_undercuts.py's grid")
         else:
             name, region = f"shoulder {segs[i].name}", fillet_region(segs[i].name)
             al = table.get((round(nt.D_mm, 6), round(nt.d_mm, 6), round(nt.r_mm, 6)))

@@ -245,8 +245,9 @@ class Solid:
     seats: tuple[Seat, ...]
     hex: Hex | None
     profile_x: tuple[float, ...]   # extra x-stations (seat interval ends) on the profile
-    # per span fillet (segment name): the angle (deg, 0 = +y, in [0, 180), 0.1° steps) of the
-    # line along which its bending stress peaks, or None (the whole ring); set by
+    # per span fillet (segment name) and groove (its region): the angle (deg, 0 = +y, in
+    # [0, 180), 0.1° steps) of the line along which its bending stress peaks, or None (the
+    # whole ring); set by
     # ``shaftfe.solid.mesh.build_mesh`` (part of the mesh key), () in a bare plan
     hot_axes_deg: tuple[tuple[str, float | None], ...] = ()
     grooves: tuple[Groove, ...] = ()
@@ -689,6 +690,10 @@ def plan_payload(sol: Solid) -> dict:
     for k in LATE_FIELDS:
         if not d[k]:
             d.pop(k)
+    for g in d.get("grooves", ()):      # an undercut's fields, out of other grooves' keys
+        for k, empty in (("side", ""), ("t2", 0.0)):
+            if g[k] == empty:
+                g.pop(k)
     return d
 
 

@@ -69,11 +69,15 @@ def test_taper_mesh_against_exact_geometry(tmp_path):
     tolerances of tests/validation/test_mesh_geometry.py: P2 interpolation of curved faces)."""
     from test_mesh_geometry import _check  # (pytest puts this folder on sys.path)
 
+    from shaftfe.solid import features as F
     from shaftfe.solid.mesh import build_mesh
     v = four_step_shaft(taper=True, chamfers=True)
     sm = build_mesh(v, "coarse", cache_dir=tmp_path)
     assert "taper:a" in sm.groups and "shoulder:a" not in sm.groups
     _check(sm, v)
+    by = F.by_region(F.features(prepare(v)))       # the cone reads back as its feature
+    assert by["taper:a"].kind == F.kind_of("taper:a") == "taper"
+    assert by["taper:a"].x_mm == (0.0, 20.0)
 
 
 def test_beam_on_a_cone_against_the_unit_load_integral():

@@ -184,7 +184,7 @@ def test_a_cut_outside_its_nominal_place_moves_at_most_half_a_diameter_into_its_
 
     from shaftfe.zoned.zones import _place
     plan = SimpleNamespace(x_left=0.0, x_right=300.0, segment_x=((0.0, 300.0),), radii=(10.0,),
-                           r_max=10.0)
+                           r_max=10.0, r_right=lambda i: 10.0)
     assert _place(plan, [(90.0, 200.0)], 100.0, 100.0, +1) == 100.0        # inside: itself
     assert _place(plan, [(110.0, 114.0)], 100.0, 100.0, +1) == 112.0       # short: the middle
     assert _place(plan, [(110.0, 200.0)], 100.0, 100.0, +1) == 120.0       # long: capped
