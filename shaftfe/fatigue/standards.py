@@ -276,7 +276,10 @@ def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
                 region_rz(hole_region(s.name, j), surfaces, gf), s.diameter_mm,
                 hole_mm=h.diameter_mm), s.diameter_mm, 0.0))
         if s.name.startswith("bearing_seat"):
-            for x in (s.x_start_mm, s.x_end_mm):
+            # the hub's edge: the seat's end, or an undercut's opening there (the ring reaches
+            # over the undercut and bears on the cylinder only)
+            cut = {g.side: g.width_mm for g in s.grooves if g.kind in UNDERCUTS}
+            for x in (s.x_start_mm + cut.get("left", 0.0), s.x_end_mm - cut.get("right", 0.0)):
                 out.append((x, din743.Notch(f"press fit {s.name} @{x:g}", "press_fit",
                                             s.diameter_mm, d_eff_mm=s.diameter_mm),
                             s.diameter_mm, 0.0))

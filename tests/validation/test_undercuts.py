@@ -148,9 +148,10 @@ def test_undercut_mesh_against_exact_geometry(kind, side, tmp_path):
 
 
 def test_undercut_rules():
-    """The shoulder's fillet must be 0; the face must hold form F's recess below the step; the
-    undercut is the shoulder's transition, so no sharp-corner warning, and a bearing ring may
-    reach over it to the face (its contact band then ends at the undercut)."""
+    """The shoulder's fillet must be 0; one undercut per segment end; the face must hold form
+    F's recess below the step; the undercut is the shoulder's transition, so no sharp-corner
+    warning, and a bearing ring may reach over it to the face (its contact band then ends at
+    the undercut)."""
     from shaftfe.errors import InputError
     from shaftfe.solid.plan import sharp_corners
     v = four_step_shaft(undercut="din509_e")
@@ -159,6 +160,10 @@ def test_undercut_rules():
         v.segments[1], fillet_mm=1.0), *v.segments[2:]))
     with pytest.raises(InputError, match="fillet_mm"):
         prepare(bad)
+    twice = dataclasses.replace(v, segments=(v.segments[0], dataclasses.replace(
+        v.segments[1], grooves=v.segments[1].grooves * 2), *v.segments[2:]))
+    with pytest.raises(InputError, match="one undercut"):
+        prepare(twice)
     # a step Ø17 → Ø19: form F's face top (Ø17 − 0.4 + 1.2 + 2 × 0.1/tan 8° = Ø19.22) is above
     segs = list(four_step_shaft(undercut="din509_f").segments)
     segs[2] = dataclasses.replace(segs[2], diameter_mm=19.0)
@@ -193,6 +198,8 @@ def test_din743_assesses_an_undercut_as_its_table_kt_or_the_shoulder_formula():
     x, n, d = rows["undercut bearing_seat_gear:0"]
     assert x == 47.0 and d == pytest.approx(16.6) and n.r_mm == 0.6 and n.D_mm == 22.0
     assert "shoulder bearing_seat_gear" not in rows
+    # the press fit's edge: where the ring's contact ends, at the undercut's opening (47 − f)
+    assert rows["press fit bearing_seat_gear @45"][0] == 45.0
     key = ("din509_e", 22.0, 17.0, 0.6)
     assert key in table and n.alpha == table[key] and "converged" in n.alpha_source
     # a radius the table does not hold: the formula (DIN 743-2 table 2, shoulder, bending),
