@@ -280,9 +280,9 @@ def _levels_lines(rows: list[dict]) -> list[str]:
         out.append(f"| {r['case']} | {r['region']} | {r['quantity'].replace('_', ' ')} | "
                    f"{r['truth']:.2f} ± {r['truth_bar']:.2f} | {r['level']} | {r['dofs']} | "
                    f"{r['seconds']:.1f} | {r['solid']:.2f} | {100 * r['rel']:+.2f} % |")
+    out.append("")
     for lv in ("coarse", "default", "fine"):
         e = [r["rel"] for r in rows if r["level"] == lv]
-        out.append("")
         out.append(f"- {lv}: {100 * min(e):+.2f} … {100 * max(e):+.2f} % over these grooves "
                    "(three grooves on one shaft: a measurement, not an error bar for others)")
     return out
