@@ -23,6 +23,7 @@
     python -m benchmarks.bench_undercuts     # writes reports/benchmarks/undercuts.md / .json
     python -m benchmarks.bench_undercuts --shaft    # part 2 only, the Kt table kept
     python -m benchmarks.bench_undercuts --levels   # part 3 only
+    python -m benchmarks.bench_undercuts --kt       # part 1 only (and the Kt table)
 """
 
 from __future__ import annotations
@@ -43,7 +44,13 @@ KT_TABLE = ROOT / "reports" / "benchmarks" / "kt_undercuts.json"
 GRID = ([(k, round(d * q, 6), d, None) for k in ("din509_e", "din509_f")
          for d in (12.0, 17.0, 25.0, 40.0) for q in (1.3, 1.6)]
         + [("din509_e", 32.5, 25.0, r) for r in (0.8, 1.0, 1.2)]
-        + [(k, 22.0, 17.0, None) for k in ("din509_e", "din509_f")])
+        + [(k, 22.0, 17.0, None) for k in ("din509_e", "din509_f")]
+        # shallow steps (D/d 1.15; form F's face needs the step above its top: not at d 12)
+        + [("din509_e", round(d * 1.15, 6), d, None) for d in (12.0, 17.0, 25.0, 40.0)]
+        + [("din509_f", round(d * 1.15, 6), d, None) for d in (17.0, 25.0, 40.0)]
+        # the other row of d over 3 (10) to 18: R0.4 × 0.2
+        + [(k, round(d * 1.3, 6), d, 0.4) for k in ("din509_e", "din509_f")
+           for d in (12.0, 17.0)])
 RUNS = 3
 
 SEAT_G = 'name = "bearing_seat_gear"'
@@ -171,6 +178,14 @@ def _angle(a: float) -> str:
 
 
 def main() -> None:
+    if "--kt" in sys.argv:              # part 1 only (the table), parts 2 and 3 kept
+        data = json.loads(OUT.with_suffix(".json").read_text(encoding="utf-8"))
+        data["kt"] = kt_grid()
+        write_table(data["kt"])
+        OUT.with_suffix(".json").write_text(json.dumps(data, indent=1) + "\n",
+                                            encoding="utf-8")
+        render(data)
+        return
     if {"--render", "--shaft", "--levels"} & set(sys.argv):
         # the page again from the committed numbers (--shaft, --levels: that part measured)
         data = json.loads(OUT.with_suffix(".json").read_text(encoding="utf-8"))
@@ -184,6 +199,14 @@ def main() -> None:
         render(data)
         return
     rows = kt_grid()
+    write_table(rows)
+    data = {"kt": rows, "shaft": shaft_runs(), "levels": solid_levels()}
+    OUT.with_suffix(".json").write_text(json.dumps(data, indent=1) + "\n", encoding="utf-8")
+    render(data)
+
+
+def write_table(rows: list[dict]) -> None:
+    """The converged Kt table DIN 743 reads (``fatigue.standards.converged_kt``)."""
     table: dict = {}
     for r in rows:
         key = (r["kind"], r["D_mm"], r["d_mm"], r["rho_mm"])
@@ -194,9 +217,6 @@ def main() -> None:
                                     "+ Richardson; nominal stresses on the bottom diameter",
                                     "undercuts": list(table.values())}, indent=1) + "\n",
                         encoding="utf-8")
-    data = {"kt": rows, "shaft": shaft_runs(), "levels": solid_levels()}
-    OUT.with_suffix(".json").write_text(json.dumps(data, indent=1) + "\n", encoding="utf-8")
-    render(data)
 
 
 def render(data: dict) -> None:
@@ -233,7 +253,7 @@ def render(data: dict) -> None:
               f"{100 * min(rel):+.1f} … {100 * max(rel):+.1f} % over the grid: it "
               "underestimates an undercut's notch effect. DIN 743 therefore takes the "
               "converged Kt of this table where it holds the undercut, and the formula "
-              "otherwise, with a note.",
+              "otherwise, with a warning.",
               f"- Peaks on the corner arc ({len(on)} of {len(rows)}): bars ≤ "
               f"{100 * max(bars):.3f} % of Kt; the second level within "
               f"{100 * max(abs(r['second_level_rel']) for r in on):.3f} % of the converged "
