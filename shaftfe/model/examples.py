@@ -9,7 +9,7 @@ seat) at a size that meshes in seconds.
 
 from __future__ import annotations
 
-from shaftfe.model.grooves import din509
+from shaftfe.model.grooves import din509_groove
 from shaftfe.model.loads import Load
 from shaftfe.model.variant import (
     Attachment,
@@ -52,7 +52,8 @@ def four_step_shaft(*, name: str = "four_step", description: str = "synthetic fo
                 chamfer_left_mm=0.5 if chamfers and not taper else 0.0,
                 diameter_right_mm=17.0 if taper else 0.0),
         Segment("b", 20.0, 30.0, 17.0, 0.0 if undercut else fillet_b, keyways=kw,
-                grooves=(_undercut(undercut, 17.0, 50.0, "right"),) if undercut else ()),
+                grooves=(din509_groove(undercut, 17.0, "right", (20.0, 50.0)),)
+                if undercut else ()),
         Segment("c", 50.0, 20.0, 22.0, fillet_c,
                 grooves=(Groove("u", 53.0, 2.0, 0.8, 0.8),) if groove else (),
                 chamfer_right_mm=0.5 if chamfers else 0.0),
@@ -69,15 +70,6 @@ def four_step_shaft(*, name: str = "four_step", description: str = "synthetic fo
                               angle_deg=hub_angle))
     hx = HexSocket(hex_end, 8.0, 10.0) if hex_socket else None
     return Variant(name, description, segs, brg, tuple(att), STEEL, 0.0, hex_socket=hx)
-
-
-def _undercut(kind: str, d_mm: float, x_end_mm: float, side: str) -> Groove:
-    """The DIN 509 undercut ``kind`` of default size on a Ø``d_mm`` segment whose ``side``
-    end is at ``x_end_mm`` (what the loader makes of ``kind`` and ``side``)."""
-    u = din509(d_mm)
-    xc = x_end_mm - 0.5 * u.f if side == "right" else x_end_mm + 0.5 * u.f
-    return Groove(kind, xc, u.f, u.t1, u.r, side=side,
-                  face_depth_mm=u.t2 if kind == "din509_f" else 0.0)
 
 
 KEYED_BAR_F_N = 1000.0        # four-point bending: a force at x = 40 and x = 120 mm

@@ -30,6 +30,8 @@ import math
 from dataclasses import dataclass
 from types import MappingProxyType
 
+from shaftfe.model.variant import Groove
+
 KINDS = ("u", "din471", "din509_e", "din509_f")
 BUILT = ("u", "din471", "din509_e", "din509_f")
 UNDERCUTS = ("din509_e", "din509_f")     # at a shoulder, not on a straight part
@@ -145,3 +147,17 @@ def undercut_at(segments, i: int):
             if g.kind in UNDERCUTS and g.side == side:
                 return k, j, g
     return None
+
+
+def din509_groove(kind: str, d_mm: float, side: str, ends: tuple[float, float],
+                  radius_mm: float | None = None):
+    """The ``model.variant.Groove`` of the DIN 509 undercut ``kind`` of radius ``radius_mm``
+    (None: the default row) on a cylinder of diameter ``d_mm`` spanning ``ends`` (x), at its
+    ``side`` end: its centre the middle of its opening f; None where the table holds no such
+    row. What the loader builds and ``model.validate`` holds a Variant's undercuts to."""
+    u = din509(d_mm, radius_mm)
+    if u is None:
+        return None
+    xc = ends[1] - 0.5 * u.f if side == "right" else ends[0] + 0.5 * u.f
+    return Groove(kind, xc, u.f, u.t1, u.r, side=side,
+                  face_depth_mm=u.t2 if kind == "din509_f" else 0.0)

@@ -350,12 +350,10 @@ def _undercut(g: dict, src: str, gf: str, kind: str, dia: float,
     need(bool(rows), src, f"{gf}.kind", "a DIN 509 undercut on a diameter DIN 509 assigns one "
          "(over 1.6 mm)", f"{kind} on diameter {dia:g}")
     rad = num(g, "radius_mm", src, gf, default=None) if "radius_mm" in g else None
-    u = grooves.din509(dia, rad)
-    need(u is not None, src, f"{gf}.radius_mm", "a radius DIN 509 gives for diameter "
+    out = grooves.din509_groove(kind, dia, side, ends, rad)
+    need(out is not None, src, f"{gf}.radius_mm", "a radius DIN 509 gives for diameter "
          f"{dia:g}: " + ", ".join(f"{r.r:g}" for r in rows), rad)
-    xc = ends[1] - 0.5 * u.f if side == "right" else ends[0] + 0.5 * u.f
-    return Groove(kind, xc, u.f, u.t1, u.r, side=side,
-                  face_depth_mm=u.t2 if kind == "din509_f" else 0.0)
+    return out
 
 
 def _cross_holes(t: dict, src: str, fld: str, name: str, ctx: Ctx) -> tuple[CrossHole, ...]:

@@ -146,6 +146,12 @@ def _conical(src: str, f: str, segs, i: int) -> None:
         raise InputError(src, f"{f}.diameter_right_mm", "> 0 (or absent: a cylinder)",
                          got=s.diameter_right_mm)
     if s.conical:
+        half = math.degrees(math.atan(0.5 * abs(s.d_right_mm - s.diameter_mm) / s.length_mm))
+        if half > TAPER_MAX_DEG:
+            raise InputError(src, f"{f}.diameter_right_mm", f"a cone of half-angle <= "
+                             f"{TAPER_MAX_DEG:g}° over its length {s.length_mm:g} mm (a steeper "
+                             "one is a step: give a step with its fillet)",
+                             got=s.diameter_right_mm, reason=f"makes a {half:.1f}° cone")
         for name, what in (("keyways", "keyways"), ("grooves", "grooves"),
                            ("cross_holes", "cross holes")):
             if getattr(s, name):
@@ -162,6 +168,11 @@ def _conical(src: str, f: str, segs, i: int) -> None:
             raise InputError(src, f"segments[{k}].fillet_mm", "0 at a step beside a conical "
                              "segment (a fillet against a cone is not built)",
                              got=segs[k].fillet_mm)
+
+
+# a cone steeper than this is a step whose concave kink (180° + the half-angle) is as strong a
+# singularity as a sharp shoulder's is not far from: give it as a step with its fillet
+TAPER_MAX_DEG = 30.0
 
 
 def _off_cones(v, src: str) -> None:
@@ -209,19 +220,18 @@ def _undercut(src: str, gf: str, segs, i: int, g) -> None:
         raise InputError(src, f"segments[{owner}].fillet_mm", "0 where a DIN 509 undercut is "
                          "the shoulder's transition (its radius is the undercut's)",
                          got=segs[owner].fillet_mm)
-    u = grooves.din509(s.diameter_mm, g.radius_mm)
-    t2 = u.t2 if u is not None and g.kind == "din509_f" else 0.0
-    if u is None or any(abs(a - b) > 1e-9 for a, b in ((g.width_mm, u.f), (g.depth_mm, u.t1),
-                                                       (g.face_depth_mm, t2))):
+    want = grooves.din509_groove(g.kind, s.diameter_mm, g.side, (s.x_start_mm, s.x_end_mm),
+                                 g.radius_mm)
+    if want is None or any(abs(getattr(g, k) - getattr(want, k)) > 1e-9
+                           for k in ("width_mm", "depth_mm", "face_depth_mm")):
         rows = ", ".join(f"R{r.r:g}×{r.t1:g} f {r.f:g}" for r in grooves.din509_rows(
             s.diameter_mm)) or "none"
         raise InputError(src, f"{gf}.radius_mm", f"a row of DIN 509 for diameter "
                          f"{s.diameter_mm:g} ({rows}), with its t1, f and t2",
                          got=(g.radius_mm, g.depth_mm, g.width_mm, g.face_depth_mm))
-    xc = s.x_end_mm - 0.5 * u.f if g.side == "right" else s.x_start_mm + 0.5 * u.f
-    if abs(g.x_center_mm - xc) > TOL_X_MM:
-        raise InputError(src, f"{gf}.x_center_mm", f"{xc:g}: the middle of the undercut's "
-                         f"opening f at the {g.side} end", got=g.x_center_mm)
+    if abs(g.x_center_mm - want.x_center_mm) > TOL_X_MM:
+        raise InputError(src, f"{gf}.x_center_mm", f"{want.x_center_mm:g}: the middle of the "
+                         f"undercut's opening f at the {g.side} end", got=g.x_center_mm)
 
 
 # a cross hole wider than this × the shaft's diameter leaves the charts (Peterson's and

@@ -143,35 +143,17 @@ def outline_integrals(pieces) -> tuple[float, float]:
 
 
 def groove_volume(g: Groove) -> float:
-    """The volume a groove removes (Pappus): the ring w × t less its two corner spandrels
-    (the material the corner radius leaves, a square ρ² less a quarter disc each). A DIN 509
-    undercut's: against the sharp step it replaces, π R² f (the cylinder to the face plane)
-    less the volume under its outline (``outline_integrals``; negative where its corner arc
+    """The volume a groove removes (Pappus, ``outline_integrals``): the cylinder over its
+    opening, π R² × (its width on the cylinder), less the volume under its outline. For a DIN
+    509 undercut that is against the sharp step it replaces (negative where its corner arc
     rises above the cylinder into the step's corner)."""
-    if g.undercut:
-        return math.pi * g.r ** 2 * (g.x1 - g.x0 - g.t2) - outline_integrals(
-            groove_pieces(g))[0]
-    rb, rho = g.r_bottom, g.rho
-    ring = math.pi * (g.r ** 2 - rb ** 2) * g.width
-    # 2π × (first moment about the axis of the square less that of the quarter disc, whose
-    # centroid lies 4ρ/(3π) from its centre towards the bottom)
-    spandrel = 2.0 * math.pi * (rho * rho * (rb + 0.5 * rho)
-                                - 0.25 * math.pi * rho * rho * (rb + rho) + rho ** 3 / 3.0)
-    return ring - 2.0 * spandrel
+    return math.pi * g.r ** 2 * (g.x1 - g.x0 - g.t2) - outline_integrals(groove_pieces(g))[0]
 
 
 def groove_area(g: Groove) -> float:
-    """The groove's faces: two flank annuli, two corner arcs revolved (a quarter circle of
-    radius ρ about (·, r_b + ρ): 2πρ (r_c π/2 − ρ) each), the bottom cylinder. A DIN 509
-    undercut's: its outline swept (``outline_integrals``), up to the face's flat."""
-    if g.undercut:
-        return outline_integrals(groove_pieces(g))[1]
-    rb, rho = g.r_bottom, g.rho
-    rc = rb + rho
-    flanks = 2.0 * math.pi * (g.r ** 2 - rc ** 2)
-    corners = 2.0 * 2.0 * math.pi * rho * (0.5 * math.pi * rc - rho)
-    bottom = 2.0 * math.pi * rb * max(g.width - 2.0 * rho, 0.0)
-    return flanks + corners + bottom
+    """The groove's faces (an undercut's up to the face's flat): its outline swept,
+    ``outline_integrals``."""
+    return outline_integrals(groove_pieces(g))[1]
 
 
 def hole_volume(h: Hole) -> float:

@@ -198,9 +198,6 @@ class Taper:
     r0: float
     r1: float
 
-    def r_at(self, x: float) -> float:
-        return self.r0 + (x - self.x0) / (self.x1 - self.x0) * (self.r1 - self.r0)
-
 
 @dataclass(frozen=True)
 class Seat:
@@ -609,10 +606,31 @@ def prepare(variant) -> Solid:
     prof = sorted({round(x, 9) for st in seats for x in (st.x0, st.x1)})
     tapers = tuple(Taper(s.name, *xs[i], radii[i], 0.5 * float(s.d_right_mm))
                    for i, s in enumerate(segs) if s.conical)
+    _warn_kinks(segs, tapers)
     return Solid(variant.name, xs[-1][1] - xs[0][0], xs[0][0], xs[-1][1], tuple(radii),
                  tuple(names), tuple(xs), tuple(fillets), tuple(shoulders), tuple(parts),
                  tuple(slots), tuple(seats), hx, tuple(prof), grooves=tuple(grooves),
                  holes=tuple(holes), chamfers=tuple(chamfers), tapers=tapers)
+
+
+def _warn_kinks(segs, tapers) -> None:
+    """A cone meets the cylinder at its small end without a step in a concave kink (interior
+    angle 180° + its half-angle): a weak stress singularity, whose FE value grows slowly with
+    refinement. Said in a warning: the cone's own peak there is not a converged stress."""
+    names = [s.name for s in segs]
+    for t in tapers:
+        i = names.index(t.segment)
+        k, x, r = (i - 1, t.x0, t.r0) if t.r0 < t.r1 else (i + 1, t.x1, t.r1)
+        if not 0 <= k < len(segs):
+            continue
+        rk = 0.5 * (segs[k].d_right_mm if k < i else segs[k].diameter_mm)
+        if abs(rk - r) <= TOL:
+            half = math.degrees(math.atan(abs(t.r1 - t.r0) / (t.x1 - t.x0)))
+            warn("taper-kink", taper_region(t.segment),
+                 f"the cone meets the cylinder at x = {x:g} mm in a concave kink (180° + "
+                 f"{half:.1f}°): a weak stress singularity, so the FE peak of "
+                 f"{taper_region(t.segment)} there grows slowly with refinement and is no "
+                 "converged stress (a blend radius is not built)")
 
 
 def clip(sol: Solid, x0: float, x1: float) -> Solid:

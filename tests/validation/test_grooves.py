@@ -71,23 +71,22 @@ def test_groove_factors_by_hand():
                                              2.5), rel=1e-12)
 
 
-def _outline(g: Groove, n: int = 20001):
-    """Dense points (x, r) along the groove's outline from its left edge to its right."""
-    pts = [(g.x0, g.r)]
-    for kind, data in _groove_profile(g)[1:]:
-        x1, r1 = data[0], data[1]
+def dense_outline(pieces, n: int = 20001):
+    """Points (x, r) along an outline (``solid.plan`` pieces, the first one's end the start),
+    20 000 a piece: a line's by linear steps, an arc's (the minor one about its centre) by
+    equal angles."""
+    pts = [tuple(pieces[0][1][:2])]
+    for kind, data in pieces[1:]:
         x0, r0 = pts[-1]
+        x1, r1 = data[0], data[1]
         if kind == "line":
             t = np.linspace(0, 1, n)[1:]
             pts += list(zip(x0 + t * (x1 - x0), r0 + t * (r1 - r0), strict=True))
         else:
             xc, rc = data[2], data[3]
-            a0, a1 = math.atan2(r0 - rc, x0 - xc), math.atan2(r1 - rc, x1 - xc)
-            if a1 < a0:
-                a1 += 2 * math.pi
-            if a1 - a0 > math.pi:
-                a0, a1 = a0 + 2 * math.pi, a1
-            t = np.linspace(a0, a1, n)[1:]
+            a0 = math.atan2(r0 - rc, x0 - xc)
+            da = math.remainder(math.atan2(r1 - rc, x1 - xc) - a0, 2 * math.pi)
+            t = a0 + da * np.linspace(0, 1, n)[1:]
             rho = math.hypot(x0 - xc, r0 - rc)
             pts += list(zip(xc + rho * np.cos(t), rc + rho * np.sin(t), strict=True))
     return np.array(pts).T
@@ -100,7 +99,7 @@ def test_groove_volume_and_area_against_quadrature(w, t, rho):
     volume π ∫ (R² − r²) dx (the outline is a function of x between the flanks, the flanks
     add nothing) and the area ∫ 2π r ds (trapezoid error O(h²) ≈ 1e-9 relative: 1e-6)."""
     g = Groove("s", 0, "u", 10.0, 5.0, 5.0 + w, t, rho)
-    x, r = _outline(g)
+    x, r = dense_outline(_groove_profile(g))
     vol = math.pi * np.trapezoid(g.r ** 2 - r ** 2, x)
     ds = np.hypot(np.diff(x), np.diff(r))
     area = np.sum(2 * math.pi * 0.5 * (r[1:] + r[:-1]) * ds)

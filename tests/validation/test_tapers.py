@@ -135,6 +135,24 @@ def test_rules_of_a_cone():
     band = dataclasses.replace(v, loads=(Load("p", "force", 40.0, (38.0, 42.0), 1.0, 0.0),))
     with pytest.raises(InputError, match=r"loads\[0\]"):
         prepare(band)
+    # steeper than 30°: Ø15 → Ø40 over 20 mm is 32°
+    steep = dataclasses.replace(v, segments=(v.segments[0], dataclasses.replace(
+        cone, diameter_right_mm=40.0), dataclasses.replace(v.segments[2], diameter_mm=40.0)))
+    with pytest.raises(InputError, match="30°"):
+        prepare(steep)
+
+
+def test_a_cones_concave_kink_is_warned():
+    """The cone Ø15 → Ø22 meets the Ø15 at x = 30 without a step: a concave kink (a weak
+    singularity), warned with its place; its convex end (x = 50) is not."""
+    from shaftfe.util.notices import collecting
+    v = _cone_shaft()
+    v = dataclasses.replace(v, bearings=tuple(dataclasses.replace(b, width_mm=4.0)
+                                              for b in v.bearings))
+    with collecting(echo=False) as got:
+        prepare(v)
+    kinks = [n for n in got if n.code == "taper-kink"]
+    assert len(kinks) == 1 and "x = 30 mm" in kinks[0].text
 
 
 def test_the_meridian_carries_the_cone():

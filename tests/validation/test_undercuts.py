@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 from shaftfe.model import grooves
-from shaftfe.model.examples import _undercut, four_step_shaft
+from shaftfe.model.examples import four_step_shaft
 from shaftfe.solid.exact import groove_area, groove_volume
 from shaftfe.solid.plan import Groove, _undercut_profile, prepare
 
@@ -83,25 +83,6 @@ def test_outline_follows_the_interpretation(kind):
     assert np.allclose(pts_l, mirrored, atol=1e-12)
 
 
-def _dense(pieces, n: int = 20001):
-    """Points (x, r) along an outline, 20 000 a piece."""
-    pts = [tuple(pieces[0][1][:2])]
-    for kind, data in pieces[1:]:
-        x0, r0 = pts[-1]
-        x1, r1 = data[0], data[1]
-        if kind == "line":
-            t = np.linspace(0, 1, n)[1:]
-            pts += list(zip(x0 + t * (x1 - x0), r0 + t * (r1 - r0), strict=True))
-        else:
-            xc, rc = data[2], data[3]
-            a0 = math.atan2(r0 - rc, x0 - xc)
-            da = math.remainder(math.atan2(r1 - rc, x1 - xc) - a0, 2 * math.pi)
-            t = a0 + da * np.linspace(0, 1, n)[1:]
-            rho = math.hypot(x0 - xc, r0 - rc)
-            pts += list(zip(xc + rho * np.cos(t), rc + rho * np.sin(t), strict=True))
-    return np.array(pts).T
-
-
 @pytest.mark.parametrize("kind,side,d,rho", [("din509_e", "right", 17.0, None),
                                              ("din509_f", "right", 17.0, None),
                                              ("din509_e", "left", 25.0, 1.2),
@@ -110,8 +91,9 @@ def test_undercut_volume_and_area_against_quadrature(kind, side, d, rho):
     """The removed volume against the sharp step, π R² f − ∫ π r² dx along the outline (signed
     by dx: form F's outline turns back in x), and the swept area ∫ 2π r ds, against the
     trapezoidal rule on 20 000 points a piece (error O(h²) ≈ 1e-9 relative: 1e-6)."""
+    from test_grooves import dense_outline  # (pytest puts this folder on sys.path)
     g = _pieces(kind, side, d, rho)
-    x, r = _dense(_undercut_profile(g))
+    x, r = dense_outline(_undercut_profile(g))
     f = g.x1 - g.x0 - g.t2
     vol = math.pi * g.r ** 2 * f - math.pi * np.sum(0.5 * (r[1:] ** 2 + r[:-1] ** 2)
                                                     * np.diff(x))
@@ -126,7 +108,8 @@ def _left_undercut(kind: str):
     v = four_step_shaft(chamfers=True)
     segs = list(v.segments)
     segs[2] = dataclasses.replace(segs[2], fillet_mm=0.0)
-    segs[3] = dataclasses.replace(segs[3], grooves=(_undercut(kind, 17.0, 70.0, "left"),))
+    segs[3] = dataclasses.replace(segs[3], grooves=(
+        grooves.din509_groove(kind, 17.0, "left", (70.0, 100.0)),))
     return dataclasses.replace(v, segments=tuple(segs))
 
 
@@ -191,7 +174,8 @@ def test_din743_assesses_an_undercut_as_its_table_kt_or_the_shoulder_formula():
     segs = list(v.segments)
     i = [s.name for s in segs].index("bearing_seat_gear")
     segs[i] = dataclasses.replace(segs[i], fillet_mm=0.0, grooves=(
-        _undercut("din509_e", 17.0, segs[i].x_end_mm, "right"),))
+        grooves.din509_groove("din509_e", 17.0, "right", (segs[i].x_start_mm,
+                                                            segs[i].x_end_mm)),))
     v = dataclasses.replace(v, segments=tuple(segs))
     rows = {n.name: (x, n, d) for x, n, d, _ in din743_notches(v, beam_at_ref(v), None,
                                                                load_surfaces(), table)}
