@@ -34,3 +34,17 @@ def write_report(out: Path, lines: list[str], data=None) -> None:
                                             encoding="utf-8")
     out.with_suffix(".md").write_text("\n".join(lines) + "\n", encoding="utf-8")
     print("\n".join(lines))
+
+
+def write_kt_table(path: Path, rows: list[dict], fields: tuple[str, ...], source: str,
+                   name: str) -> None:
+    """A converged Kt table (``beam.scf.converged_kt`` reads it) at ``path``: one entry per
+    geometry (the values of ``fields``) with its loads' {"kt", "bar"}, under ``name``."""
+    import json
+    table: dict = {}
+    for r in rows:
+        key = tuple(r[k] for k in fields)
+        table.setdefault(key, {k: r[k] for k in fields})
+        table[key][r["load"]] = {"kt": r["kt"], "bar": r["bar"]}
+    path.write_text(json.dumps({"source": source, name: list(table.values())}, indent=1)
+                    + "\n", encoding="utf-8")

@@ -32,7 +32,7 @@ D_BAR = 20.0
 # d/D 0.8 and 0.9 (depth t = 2 and 1 mm), ρ/t 0.25, 0.5, 1 (1: the bottom one semicircle)
 GRID = [(D_BAR, D_BAR * q, 0.5 * D_BAR * (1 - q) * k) for q in (0.8, 0.9)
         for k in (0.25, 0.5, 1.0)]
-# the converged Kt of these grooves go into the table DIN 743 reads (fatigue.standards.
+# the converged Kt of these grooves go into the table DIN 743 and the beam read (beam.scf.
 # converged_kt, as the shoulders' kt_reference.json; one-arc grooves only, width 2ρ): the grid
 # and a groove of the collar's D, d and ρ
 KT_TABLE = ROOT / "reports" / "benchmarks" / "kt_grooves.json"
@@ -89,16 +89,10 @@ def _peaks(summary: dict) -> dict:
 
 
 def main() -> None:
+    from benchmarks._shaft_files import write_kt_table
     rows = kt_grid()
-    table: dict = {}
-    for r in rows:
-        key = (r["D_mm"], r["d_mm"], r["rho_mm"])
-        table.setdefault(key, {"D_mm": r["D_mm"], "d_mm": r["d_mm"], "rho_mm": r["rho_mm"]})
-        table[key][r["load"]] = {"kt": r["kt"], "bar": r["bar"]}
-    KT_TABLE.write_text(json.dumps({"source": "benchmarks/bench_grooves.py: U grooves in a "
-                                    "round bar, three refinements + Richardson",
-                                    "grooves": list(table.values())}, indent=1) + "\n",
-                        encoding="utf-8")
+    write_kt_table(KT_TABLE, rows, ("D_mm", "d_mm", "rho_mm"), "benchmarks/bench_grooves.py: "
+                   "U grooves in a round bar, three refinements + Richardson", "grooves")
     runs = shaft_runs()
     OUT.with_suffix(".json").write_text(json.dumps({"kt": rows, "shaft": {
         m: {k: v for k, v in r.items() if k != "summary"} for m, r in runs.items()}},

@@ -9,7 +9,7 @@
    radii the table gives for d = 25 (form E), and x2_57's Ø17/Ø22 shoulders. Against DIN 743-2's
    α of a shoulder from d − 2 t1 to D with the undercut's radius: how DIN 743 is applied to an
    undercut when no better Kt is at hand. The converged values go into the table DIN 743 reads
-   (``reports/benchmarks/kt_undercuts.json``, ``fatigue.standards.converged_kt``).
+   (``reports/benchmarks/kt_undercuts.json``, ``beam.scf.converged_kt``).
 2. **x2_57 with DIN 509 E undercuts** in place of its two 0.6 mm span fillets (the gear-side
    bearing seat's right end, the free bearing seat's left end; the rings reach over them to
    the collar's faces): ``shaftfe static`` (the zoned default) warm, its undercut peaks against
@@ -206,17 +206,12 @@ def main() -> None:
 
 
 def write_table(rows: list[dict]) -> None:
-    """The converged Kt table DIN 743 reads (``fatigue.standards.converged_kt``)."""
-    table: dict = {}
-    for r in rows:
-        key = (r["kind"], r["D_mm"], r["d_mm"], r["rho_mm"])
-        table.setdefault(key, {k: r[k] for k in ("kind", "D_mm", "d_mm", "rho_mm")})
-        table[key][r["load"]] = {"kt": r["kt"], "bar": r["bar"]}
-    KT_TABLE.write_text(json.dumps({"source": "benchmarks/bench_undercuts.py: DIN 509 "
-                                    "undercuts at the step of a round bar, three refinements "
-                                    "+ Richardson; nominal stresses on the bottom diameter",
-                                    "undercuts": list(table.values())}, indent=1) + "\n",
-                        encoding="utf-8")
+    """The converged Kt table DIN 743 reads (``beam.scf.converged_kt``)."""
+    from benchmarks._shaft_files import write_kt_table
+    write_kt_table(KT_TABLE, rows, ("kind", "D_mm", "d_mm", "rho_mm"),
+                   "benchmarks/bench_undercuts.py: DIN 509 undercuts at the step of a round "
+                   "bar, three refinements + Richardson; nominal stresses on the bottom "
+                   "diameter", "undercuts")
 
 
 def render(data: dict) -> None:

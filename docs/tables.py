@@ -219,11 +219,34 @@ def fkm_gradient() -> str:
 
 
 # table name -> (the file that quotes it, the function that computes it)
+def groove_kt_fits() -> str:
+    """The chart fits against the converged Kt of grooves: the ranges of
+    reports/benchmarks/ring_grooves.json (benchmarks/bench_ring_grooves.py)."""
+    import json
+    d = json.loads((ROOT / "reports" / "benchmarks" / "ring_grooves.json").read_text(
+        encoding="utf-8"))
+
+    def span(rows, key) -> str:
+        v = [100 * r[key] for r in rows]
+        return f"{min(v):+.1f} … {max(v):+.1f} %"
+    ring, u = d["ring"], d["u"]
+    n_ring = len({(r["D_mm"], r["rho_mm"]) for r in ring})
+    n_u = len({(r["D_mm"], r["d_mm"], r["rho_mm"]) for r in u})
+    return "\n".join([
+        "| grooves (tension, bending, torsion) | Roark shoulder fit | Roark U-notch fit | "
+        "DIN 743-2 α (round groove) |", "|---|---|---|---|",
+        f"| {n_u} U grooves (`kt_grooves.json`) | - | {span(u, 'roark_rel')} | "
+        f"{span(u, 'din743_rel')} |",
+        f"| {n_ring} DIN 471 grooves (`kt_ring_grooves.json`) | {span(ring, 'shoulder_rel')} | "
+        f"{span(ring, 'roark_rel')} | {span(ring, 'din743_rel')} |"])
+
+
 TABLES = {"fatigue-x2_57": (DOCS / "VALIDATION.md", fatigue_x2_57),
           "truth-bars": (DOCS / "VALIDATION.md", truth_bars),
           "study-x2_tradeoff": (DOCS / "STUDIES.md", study_x2_tradeoff),
           "zoned-speed": (DOCS / "PERFORMANCE.md", zoned_speed),
-          "fkm-gradient": (DOCS / "STRENGTH.md", fkm_gradient)}
+          "fkm-gradient": (DOCS / "STRENGTH.md", fkm_gradient),
+          "groove-kt-fits": (DOCS / "STRENGTH.md", groove_kt_fits)}
 
 
 def render(path: Path, text: str) -> str:

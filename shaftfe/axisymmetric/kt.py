@@ -53,7 +53,7 @@ P_MAX = 4.0
 FILLET = fillet_region("step")      # the bar's fillet (its shoulder segment is "step")
 GROOVE = groove_region("bar", 0)    # the grooved bar's groove
 UNDERCUT = groove_region("step", 0)  # the undercut bar's DIN 509 undercut
-SHAPES = ("step", "groove", "din509_e", "din509_f")
+SHAPES = ("step", "groove", "din471", "din509_e", "din509_f")
 
 
 def stepped_bar(D: float, d: float, rho: float) -> MeridianGeometry:
@@ -89,6 +89,33 @@ def grooved_bar(D: float, d: float, rho: float) -> MeridianGeometry:
     cur += [Curve((xb, R), (L, R), ("surface",)), Curve((L, R), (L, 0.0), (END_RIGHT,)),
             Curve((L, 0.0), (0.0, 0.0), ("axis",))]
     return MeridianGeometry(f"groove_{D:g}_{d:g}_{rho:g}", tuple(cur), d,
+                            bands=((0.0, L, D),))
+
+
+def ring_groove_bar(D: float, rho: float) -> MeridianGeometry:
+    """A round bar of diameter D, 8 D long, with DIN 471's retaining-ring groove for D at its
+    middle (width m and depth t from ``model.grooves.din471``), flat-bottomed, its two bottom
+    corners of radius ρ: the groove's outline as the shaft's (``solid.plan._groove_profile``)."""
+    from shaftfe.model.grooves import din471
+    from shaftfe.solid.plan import Groove, groove_pieces
+    mt = din471(D)
+    if mt is None:
+        raise ValueError(f"DIN 471 has no groove for diameter {D:g}")
+    m, t = mt
+    if not 0 < rho <= min(0.5 * m, t):
+        raise ValueError(f"a ring groove's corner radius {rho:g} in (0, {min(0.5 * m, t):g}]")
+    R, L = 0.5 * D, 8.0 * D
+    g = Groove("bar", 0, "din471", R, 0.5 * (L - m), 0.5 * (L + m), t, rho)
+    cur = [Curve((0.0, 0.0), (0.0, R), (END_LEFT,)), Curve((0.0, R), (g.x0, R), ("surface",))]
+    prev = (g.x0, R)
+    for kind_, data in groove_pieces(g)[1:]:
+        end = (float(data[0]), float(data[1]))
+        cur.append(Curve(prev, end, (GROOVE,), (float(data[2]), float(data[3])), rho)
+                   if kind_ == "arc" else Curve(prev, end, (GROOVE,)))
+        prev = end
+    cur += [Curve(prev, (L, R), ("surface",)), Curve((L, R), (L, 0.0), (END_RIGHT,)),
+            Curve((L, 0.0), (0.0, 0.0), ("axis",))]
+    return MeridianGeometry(f"din471_{D:g}_{rho:g}", tuple(cur), D - 2.0 * t,
                             bands=((0.0, L, D),))
 
 
@@ -132,6 +159,9 @@ def _bar(shape: str, D: float, d: float, rho: float):
         return stepped_bar(D, d, rho), FILLET, 0.5 * d, 0.5 * D, d
     if shape == "groove":
         return grooved_bar(D, d, rho), GROOVE, 0.5 * D, 0.5 * D, d
+    if shape == "din471":          # D the shaft's diameter (the groove's from DIN 471's row)
+        geo = ring_groove_bar(D, rho)            # (its d_ref: the groove's bottom diameter)
+        return geo, GROOVE, 0.5 * D, 0.5 * D, geo.d_ref
     if shape in ("din509_e", "din509_f"):       # nominal on the undercut's bottom diameter
         geo, g = undercut_bar(D, d, shape, rho)
         return geo, UNDERCUT, 0.5 * d, 0.5 * D, 2.0 * g.r_bottom
@@ -217,11 +247,22 @@ def solve_bar(D: float, d: float, rho: float, refine: int = 0, level: AxiLevel =
 
 def fillet_peak(bar: BarSolution, values: np.ndarray) -> tuple[float, float]:
     """(peak, angle along the arc °) of ``values`` at the notch's arc nodes (``_arc_peak``):
-    on the fillet from its small-diameter tangent point, in a groove from its left flank (its
-    two arcs share one centre)."""
-    arcs = [c for c in bar.geometry.curves if bar.hot in c.groups and c.center is not None]
-    c = Curve(arcs[0].start, arcs[-1].end, arcs[0].groups, arcs[0].center, arcs[0].size)
-    return _arc_peak(c, bar.mesh.xr[:, bar.surface.nodes[bar.fillet]], values)
+    on the fillet from its small-diameter tangent point, in a U groove from its left flank
+    (its two arcs share one centre); a flat-bottomed groove's corners (two centres) each on
+    its own, the larger peak (its angle on that corner's arc)."""
+    idx = [i for i, c in enumerate(bar.geometry.curves)
+           if bar.hot in c.groups and c.center is not None]
+    by_centre: dict = {}
+    for i in idx:
+        by_centre.setdefault(bar.geometry.curves[i].center, []).append(i)
+    best = (-math.inf, math.nan)
+    for arcs in by_centre.values():
+        first, last = bar.geometry.curves[arcs[0]], bar.geometry.curves[arcs[-1]]
+        c = Curve(first.start, last.end, first.groups, first.center, first.size)
+        on = np.isin(bar.surface.curve[bar.fillet], arcs)
+        pk = _arc_peak(c, bar.mesh.xr[:, bar.surface.nodes[bar.fillet[on]]], values[on])
+        best = max(best, pk)
+    return best
 
 
 def kt_once(D: float, d: float, rho: float, refine: int = 0, level: AxiLevel = LEVEL,

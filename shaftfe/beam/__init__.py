@@ -8,7 +8,7 @@ Modules, in pipeline order:
 * ``scf``: stress-concentration factors Kt of the shoulder fillets (bending, tension and
   torsion fits).
 * ``model``: ``build_model`` (nodes, sections, supports, every load of the variant as load
-  columns from ``shaftfe.model.loads.actions``, stations, shoulders) into a ``BeamModel``;
+  columns from ``shaftfe.model.loads.actions``, stations, notches) into a ``BeamModel``;
   assembled stiffness, mass and support matrices, rigid-body modes and the support check.
 * ``solve``: one factorisation and one solve per load column (``solve_unit``), superposed per
   rpm or load case (``result_at``, ``solve``, ``solve_cases``, ``analyse``) into ``BeamResult``

@@ -38,8 +38,11 @@ mass as a line load ρ A g per element. Actions are grouped into load columns (o
 pattern ``pattern_key`` and load name, so that a case's per-load factors stay exact), solved
 from one factorisation (``shaftfe.beam.solve``) and superposed per speed or load case.
 
-Shoulders carry their Kt for bending, tension and torsion (``shaftfe.beam.scf``) for the
-post-processing.
+Notches carry their Kt for bending, tension and torsion (``shaftfe.beam.scf``) for the
+post-processing: every shoulder (a DIN 509 undercut as the shoulder to its bottom diameter),
+every groove (Roark's U-notch fit, a DIN 471 ring groove with its corner radius) and every
+transverse hole (the Peterson-chart fit DIN 743-2 prints, nominal stresses on the net
+section). Grooves and holes are not in the sections' stiffness (like keyways).
 
 Units: mm, N, MPa, t/mm³. Pure functions; NumPy only.
 """
@@ -67,9 +70,17 @@ from shaftfe.beam.elements import (
     element_stiffness,
     section_properties,
 )
-from shaftfe.beam.scf import kt_shoulder
+from shaftfe.beam.scf import (
+    KT_GROOVES,
+    KT_RING_GROOVES,
+    KtResult,
+    converged_kt,
+    kt_cross_hole,
+    kt_shoulder,
+    kt_u_notch,
+)
 from shaftfe.errors import InputError, SolverError
-from shaftfe.model.grooves import undercut_at
+from shaftfe.model.grooves import UNDERCUTS, undercut_at
 from shaftfe.model.loads import actions, check_torque_path, pattern_key
 from shaftfe.model.validate import source_of, validate_variant
 
@@ -112,7 +123,12 @@ class Support:
 
 
 @dataclass(frozen=True)
-class Shoulder:
+class BeamNotch:
+    """A notch the beam reports Kt × nominal at: a shoulder (``kind`` "shoulder"; a DIN 509
+    undercut is one, ``undercut`` its kind), a circumferential groove ("groove"; "ring_groove"
+    a DIN 471 one: D its segment's diameter, d its bottom's, r its corner radius) or a
+    transverse hole ("cross_hole": D = d the segment's diameter, ``hole_mm`` the hole's; the
+    nominal stresses on the net section)."""
     x_mm: float
     node: int
     D_mm: float
@@ -122,7 +138,8 @@ class Shoulder:
     kt_in_range: bool
     kt_fit: str
     kt_note: str
-    small_side: str      # "left" | "right": side of the smaller diameter
+    small_side: str      # "left" | "right": side of the smaller diameter ("": a groove's or
+    #                      hole's node inside its segment, both sides judged)
     kt_tension: float = 1.0
     kt_torsion: float = 1.0
     kt_tension_in_range: bool = True
@@ -132,6 +149,9 @@ class Shoulder:
     # a DIN 509 undercut's kind when it is the shoulder's transition (``model.grooves``): d_mm
     # is then its bottom diameter and r_mm its radius, the shoulder DIN 743-2 assesses it as
     undercut: str = ""
+    kind: str = "shoulder"
+    hole_mm: float = 0.0
+    name: str = ""       # "groove <segment>:<i>", "cross hole <segment>:<i>" ("" a shoulder)
 
 
 @dataclass(frozen=True, eq=False)
@@ -150,7 +170,7 @@ class BeamModel:
     f: np.ndarray                  # (ndof, n_col) nodal loads per column, N and N·mm
     q: np.ndarray                  # (n_col, n_el, 2) element line loads in (y, z), N/mm
     stations: MappingProxyType     # name -> node index
-    shoulders: tuple[Shoulder, ...]
+    notches: tuple[BeamNotch, ...]
     spread_loads: bool
     seed_placement: bool = False
     notes: tuple[str, ...] = ()
@@ -217,12 +237,13 @@ def build_model(variant, *, rigid_supports: bool = False, max_element_mm: float 
     supports, torsion_node = _supports(variant, x, rigid_supports)
     columns, f, q = _loads(acts, body, x, sec.A * float(mat.density_t_mm3), spread_loads)
     stations = _stations(variant, x)
-    shoulders = _shoulders(variant.segments, x, kt_fit)
+    notches = tuple(sorted(_shoulders(variant.segments, x, kt_fit)
+                           + _grooves_and_holes(variant.segments, x), key=lambda n: n.x_mm))
     return BeamModel(
         name=variant.name, x=x, sections=sec, E=float(mat.E_MPa), G=float(G), nu=float(mat.nu),
         density=float(mat.density_t_mm3), supports=supports,
         rigid_supports=bool(rigid_supports), torsion_node=torsion_node, columns=columns, f=f,
-        q=q, stations=MappingProxyType(stations), shoulders=shoulders,
+        q=q, stations=MappingProxyType(stations), notches=notches,
         spread_loads=bool(spread_loads), seed_placement=bool(seed_placement),
         notes=_notes(variant, shear_deformation), clearance_mm=variant.clearance_mm)
 
@@ -243,6 +264,9 @@ def _node_positions(variant, max_element_mm: float, acts) -> np.ndarray:
     hs = variant.hex_socket
     if hs is not None:
         key.append(x0 + hs.depth_mm if hs.end == "left" else x1 - hs.depth_mm)
+    for s in segs:               # a node at every groove's and hole's centre (its notch)
+        key += [g.x_center_mm for g in s.grooves if g.kind not in UNDERCUTS]
+        key += [h.x_center_mm for h in s.cross_holes]
     for a in acts:               # on the shaft: checked by the loader (model.loads)
         key += [a.x_mm, *a.band_mm]
     for s in segs:               # a cone: elements whose diameters differ by ≤ TAPER_STEP
@@ -374,8 +398,8 @@ def _stations(variant, x: np.ndarray) -> dict[str, int]:
     return stations
 
 
-def _shoulders(segs, x: np.ndarray, kt_fit: str) -> tuple[Shoulder, ...]:
-    """A ``Shoulder`` with its Kt in bending, tension and torsion at every diameter step
+def _shoulders(segs, x: np.ndarray, kt_fit: str) -> tuple[BeamNotch, ...]:
+    """A shoulder's ``BeamNotch`` with its Kt in bending, tension and torsion at every diameter step
     between adjacent segments."""
     shoulders = []
     for i, (s0, s1) in enumerate(itertools.pairwise(segs)):
@@ -389,7 +413,7 @@ def _shoulders(segs, x: np.ndarray, kt_fit: str) -> tuple[Shoulder, ...]:
             dm, rho, kind = dm - 2.0 * g.depth_mm, g.radius_mm, g.kind
         k, kn, kt = (kt_shoulder(Dm, dm, rho, kt_fit, load)
                      for load in ("bending", "tension", "torsion"))
-        shoulders.append(Shoulder(
+        shoulders.append(BeamNotch(
             x_mm=s0.x_end_mm, node=_node(x, s0.x_end_mm), D_mm=Dm, d_mm=dm, r_mm=rho,
             undercut=kind,
             kt=k.kt, kt_in_range=k.in_range, kt_fit=kt_fit, kt_note=k.note,
@@ -400,9 +424,71 @@ def _shoulders(segs, x: np.ndarray, kt_fit: str) -> tuple[Shoulder, ...]:
     return tuple(shoulders)
 
 
+def _groove_kt(D: float, g) -> dict:
+    """{load: KtResult} of groove ``g`` in a Ø``D`` segment, nominal stresses on its bottom
+    diameter: the converged Kt where the committed tables hold it (``scf.converged_kt``: a
+    one-arc U groove of its D, d, ρ; a DIN 471 groove of its D and corner radius), else
+    Roark's U-notch fit of its depth and corner radius, which for a flat-bottomed DIN 471
+    groove reads above the converged Kt of every one measured (reports/benchmarks/
+    ring_grooves.md: the U-notch is the narrowest groove of that radius)."""
+    d = D - 2.0 * g.depth_mm
+    key = (round(D, 6), round(d, 6), round(g.radius_mm, 6))
+    if g.kind == "din471":
+        row, src = converged_kt().get(("din471", *key)), KT_RING_GROOVES
+    elif abs(g.width_mm - 2.0 * g.radius_mm) <= 1e-6:
+        row, src = converged_kt().get(("groove", *key)), KT_GROOVES
+    else:
+        row, src = None, ""
+    if row is not None:
+        return {ld: KtResult(row[ld], True, f"converged ({src})") for ld in row}
+    note = ("a flat-bottomed DIN 471 groove taken as the U-notch of its depth and corner "
+            f"radius: above its converged Kt (not in {KT_RING_GROOVES})"
+            if g.kind == "din471" else "")
+    out = {}
+    for ld in ("bending", "tension", "torsion"):
+        k = kt_u_notch(D, g.depth_mm, g.radius_mm, ld)
+        first = note if ld == "bending" else ""        # said once (the bending note)
+        out[ld] = replace(k, note="; ".join(n for n in (first, k.note) if n))
+    return out
+
+
+def _grooves_and_holes(segs, x: np.ndarray) -> tuple[BeamNotch, ...]:
+    """A ``BeamNotch`` at every groove's centre (a DIN 509 undercut is its shoulder's) with
+    its Kt (``_groove_kt``), and at every transverse hole's centre (``scf.kt_cross_hole``)."""
+    out = []
+    for s in segs:
+        D = s.diameter_mm
+        for j, g in enumerate(s.grooves):
+            if g.kind in UNDERCUTS:
+                continue
+            k = _groove_kt(D, g)
+            out.append(_mid_notch(f"groove {s.name}:{j}",
+                                  "ring_groove" if g.kind == "din471" else "groove",
+                                  g.x_center_mm, x, D, D - 2.0 * g.depth_mm, g.radius_mm, k))
+        for j, h in enumerate(s.cross_holes):
+            k = {ld: kt_cross_hole(D, h.diameter_mm, ld) for ld in
+                 ("bending", "tension", "torsion")}
+            out.append(_mid_notch(f"cross hole {s.name}:{j}", "cross_hole", h.x_center_mm, x,
+                                  D, D, 0.5 * h.diameter_mm, k, h.diameter_mm))
+    return tuple(out)
+
+
+def _mid_notch(name, kind, x_mm, x, D, d, r, k, hole_mm=0.0) -> BeamNotch:
+    b, n, t = k["bending"], k["tension"], k["torsion"]
+    return BeamNotch(x_mm=x_mm, node=_node(x, x_mm), D_mm=D, d_mm=d, r_mm=r, kt=b.kt,
+                     kt_in_range=b.in_range, kt_fit=b.fit, kt_note=b.note, small_side="",
+                     kt_tension=n.kt, kt_torsion=t.kt, kt_tension_in_range=n.in_range,
+                     kt_torsion_in_range=t.in_range, kt_tension_note=n.note,
+                     kt_torsion_note=t.note, kind=kind, hole_mm=hole_mm, name=name)
+
+
 def _notes(variant, shear_deformation: bool) -> tuple[str, ...]:
     """The model's simplifications, reported with every result."""
-    notes = ["keyways ignored in the stiffness"] if any(s.keyways for s in variant.segments) else []
+    segs = variant.segments
+    notes = ["keyways ignored in the stiffness"] if any(s.keyways for s in segs) else []
+    if any(s.cross_holes or any(g.kind not in UNDERCUTS for g in s.grooves) for s in segs):
+        notes.append("grooves and transverse holes ignored in the stiffness (their Kt at "
+                     "their centres)")
     if not shear_deformation:
         notes.append("Euler-Bernoulli limit: shear deformation off")
     if variant.hex_socket is not None:

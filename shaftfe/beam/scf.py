@@ -60,9 +60,14 @@ Everything is vectorised over NumPy arrays; no import side effects.
 
 from __future__ import annotations
 
+import functools
+import json
+import math
 from dataclasses import dataclass
 
 import numpy as np
+
+from shaftfe.util.paths import REPO_DIR
 
 # (a, b, c) for C1..C4, C_i = a + b √(h/r) + c (h/r); rows: C1, C2, C3, C4.
 _ROARK_LOW = np.array([[0.927, 1.149, -0.086],
@@ -167,6 +172,110 @@ def kt_shoulder_fit(D, d, r, fit: str = "roark", load: str = "bending"):
     kt[m] = np.maximum(val, 1.0)
     ok[m] = (hr >= lo) & (hr <= hi)
     return kt, ok
+
+
+# U-notch (circumferential groove) in a circular shaft, nominal stresses on the notch diameter
+# d = D − 2h: Roark 7th ed. Table 17.1 case 6a (tension), 6b (bending), 6c (torsion), the same
+# C_i form in h/r with two branches (0.25 ≤ h/r ≤ 2, 2 < h/r ≤ 50) and the polynomial in 2h/D.
+# (Transcribed from the printed equations as reproduced by eng-calculations.com's Table 17.1
+# pages; one transcription, checked against this project's converged Kt of U grooves,
+# reports/benchmarks/kt_grooves.json, in tests/validation/test_scf.py.)
+_ROARK_U = {
+    "tension": (np.array([[0.455, 3.354, -0.769], [3.129, -15.955, 7.404],
+                          [-6.909, 29.286, -16.104], [4.325, -16.685, 9.469]]),
+                np.array([[0.935, 1.922, 0.004], [0.537, -3.708, 0.040],
+                          [-2.538, 3.438, -0.012], [2.066, -1.652, -0.031]])),
+    "bending": (np.array([[0.455, 3.354, -0.769], [0.891, -12.721, 4.593],
+                          [0.286, 15.481, -6.392], [-0.632, -6.115, 2.568]]),
+                np.array([[0.935, 1.922, 0.004], [-0.552, -5.327, 0.086],
+                          [0.754, 6.281, -0.121], [-0.138, -2.876, 0.031]])),
+    "torsion": (np.array([[1.245, 0.264, 0.491], [-3.030, 3.269, -3.633],
+                          [7.199, -11.286, 8.318], [-4.414, 7.753, -5.176]]),
+                np.array([[1.651, 0.614, 0.040], [-4.794, -0.314, -0.217],
+                          [8.457, -0.962, 0.389], [-4.314, 0.662, -0.212]])),
+}
+U_NOTCH_RANGE = (0.25, 2.0, 50.0)       # h/r: lower bound, branch switch, upper bound
+
+
+def kt_u_notch(D: float, h: float, r: float, load: str = "bending") -> KtResult:
+    """Kt of a U-notch (a circumferential groove of depth h and bottom radius r) in a shaft of
+    diameter D, nominal stresses on d = D − 2h (Roark 7th ed. Table 17.1 cases 6a–6c). Outside
+    0.25 ≤ h/r ≤ 50 the nearest branch is evaluated (``in_range`` False, a note says so);
+    clamped to Kt ≥ 1."""
+    if load not in LOADS:
+        raise ValueError(f"unknown Kt load {load!r}; choose one of {LOADS}")
+    if not (D > 0 and 0 < h < 0.5 * D and r > 0):
+        raise ValueError("a U-notch's Kt needs D > 0, 0 < h < D/2 and r > 0")
+    lo, mid, hi = U_NOTCH_RANGE
+    hr = h / r
+    tab = _ROARK_U[load][0 if hr <= mid else 1]
+    C = tab[:, 0] + tab[:, 1] * math.sqrt(hr) + tab[:, 2] * hr
+    t = 2.0 * h / D
+    kt = max(float(C[0] + C[1] * t + C[2] * t * t + C[3] * t ** 3), 1.0)
+    ok = lo <= hr <= hi
+    note = "" if ok else f"h/r = {hr:.3g} outside [{lo}, {hi}]: extrapolated"
+    return KtResult(kt=kt, in_range=ok, fit="roark U-notch", note=note)
+
+
+def kt_cross_hole(d: float, dh: float, load: str = "bending") -> KtResult:
+    """Kt of a transverse hole of diameter d_h through a shaft of diameter d, nominal stresses
+    on the net section (``net_section_moduli``): DIN 743-2's fits of Peterson's charts
+    (Pilkey & Pilkey, Peterson's SCF 3rd ed., Charts 4.66–4.68, as DIN 743-2:2012 prints
+    them): tension 3 − d_h/d, bending 3 + 1.4 d_h/d − 2.8 √(d_h/d), torsion
+    2.023 − 1.125 √(d_h/d) (of the largest shear stress). In range for d_h/d ≤ 0.4 (the
+    loader's bound)."""
+    if load not in LOADS:
+        raise ValueError(f"unknown Kt load {load!r}; choose one of {LOADS}")
+    q = dh / d
+    kt = {"tension": 3.0 - q, "bending": 3.0 + 1.4 * q - 2.8 * math.sqrt(q),
+          "torsion": 2.023 - 1.125 * math.sqrt(q)}[load]
+    ok = 0.0 < q <= 0.4
+    return KtResult(kt=kt, in_range=ok, fit="DIN 743-2 (Peterson) transverse hole",
+                    note="" if ok else f"d_h/d = {q:.3g} outside (0, 0.4]")
+
+
+def net_section_moduli(d: float, dh: float) -> tuple[float, float, float]:
+    """(A, W_b, W_t) of a round section of diameter d through a transverse hole d_h
+    (DIN 743-2): A = πd²/4 − d_h d, W_b = πd³/32 − d_h d²/6, W_t = πd³/16 − d_h d²/6."""
+    return (math.pi * d * d / 4 - dh * d, math.pi * d ** 3 / 32 - dh * d * d / 6,
+            math.pi * d ** 3 / 16 - dh * d * d / 6)
+
+
+# the committed tables of converged Kt (the harmonic axisymmetric model, 3 uniform refinements
+# and Richardson), each written by its benchmark
+KT_TABLE = "reports/benchmarks/kt_reference.json"
+KT_GROOVES = "reports/benchmarks/kt_grooves.json"
+KT_UNDERCUTS = "reports/benchmarks/kt_undercuts.json"
+KT_RING_GROOVES = "reports/benchmarks/kt_ring_grooves.json"
+
+
+def converged_kt() -> dict:
+    """(D, d, ρ) rounded to 1e-6 mm -> {load: α} from the committed tables of converged Kt:
+    the shoulders' (``benchmarks/bench_axisymmetric.py``), keyed ("groove", D, d, ρ) the
+    one-arc U grooves' (``benchmarks/bench_grooves.py``), keyed ("din471", D, d, ρ) the DIN 471
+    ring grooves' (``benchmarks/bench_ring_grooves.py``; d the bottom diameter) and keyed
+    (kind, D, d, r) the DIN 509 undercuts' (d the shaft's, the nominal stresses on the
+    undercut's bottom diameter; ``benchmarks/bench_undercuts.py``). The files are read once
+    per process; each call returns its own copy."""
+    return {k: dict(v) for k, v in _tables()}
+
+
+@functools.cache
+def _tables() -> tuple:
+    out = []
+    for name, rows in ((KT_TABLE, "fillets"), (KT_GROOVES, "grooves"),
+                       (KT_UNDERCUTS, "undercuts"), (KT_RING_GROOVES, "ring_grooves")):
+        try:
+            t = json.loads((REPO_DIR / name).read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            continue
+        tag = {"fillets": lambda r: (), "grooves": lambda r: ("groove",),
+               "undercuts": lambda r: (r["kind"],),
+               "ring_grooves": lambda r: ("din471",)}[rows]
+        out += [((*tag(r), round(r["D_mm"], 6), round(r["d_mm"], 6), round(r["rho_mm"], 6)),
+                 tuple((ld, r[ld]["kt"]) for ld in ("tension", "bending", "torsion")))
+                for r in t.get(rows, [])]
+    return tuple(out)
 
 
 def kt_shoulder(D: float, d: float, r: float, fit: str = "roark",

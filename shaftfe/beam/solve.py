@@ -44,6 +44,7 @@ from shaftfe.beam.model import (
     build_model,
     check_supports,
 )
+from shaftfe.beam.scf import net_section_moduli
 from shaftfe.errors import InputError, SolverError
 from shaftfe.model.bearing_life import l10h
 from shaftfe.model.loads import law_factor
@@ -223,14 +224,18 @@ class NotchResult:
     kt: float
     kt_in_range: bool
     kt_note: str
-    sigma_nom_MPa: float      # von Mises nominal on the smaller diameter at the shoulder
-    sigma_peak_MPa: float     # von Mises of (Kt_b σ_b + Kt_N |σ_N|, Kt_T τ)
+    sigma_nom_MPa: float      # von Mises nominal on the smaller diameter at the shoulder (a
+    #                           groove's bottom diameter, a hole's net section)
+    sigma_peak_MPa: float     # von Mises of (Kt_b σ_b + Kt_N |σ_N|, Kt_T τ) (``_peak``)
     kt_tension: float = 1.0
     kt_torsion: float = 1.0
     M_Nmm: float = 0.0        # bending moment on the smaller diameter at the shoulder
     N_N: float = 0.0          # axial force there
     T_Nmm: float = 0.0        # torque there
-    undercut: str = ""        # a DIN 509 undercut's kind (``beam.model.Shoulder.undercut``)
+    undercut: str = ""        # a DIN 509 undercut's kind (``beam.model.BeamNotch.undercut``)
+    kind: str = "shoulder"    # ``BeamNotch.kind``: shoulder | groove | ring_groove | cross_hole
+    name: str = ""
+    hole_mm: float = 0.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -256,7 +261,7 @@ class BeamResult:
     max_sigma_vm_MPa: float
     x_max_sigma_vm_mm: float
     notches: tuple[NotchResult, ...]
-    max_peak_MPa: float       # max(nominal von Mises, Kt × nominal at shoulders)
+    max_peak_MPa: float       # max(nominal von Mises, Kt × nominal at the notches)
     x_max_peak_mm: float
     notes: tuple[str, ...] = field(default_factory=tuple)
     relative_residual: float = 0.0    # of the one supported solve (UnitSolution)
@@ -298,6 +303,8 @@ class BeamResult:
                          "kt_tension": fin(n.kt_tension), "kt_torsion": fin(n.kt_torsion),
                          "M_Nmm": n.M_Nmm, "N_N": n.N_N, "T_Nmm": n.T_Nmm,
                          **({"undercut": n.undercut} if n.undercut else {}),
+                         **({"kind": n.kind, "name": n.name} if n.kind != "shoulder" else {}),
+                         **({"hole_mm": n.hole_mm} if n.kind == "cross_hole" else {}),
                          "sigma_nom_MPa": n.sigma_nom_MPa, "sigma_peak_MPa": fin(n.sigma_peak_MPa)}
                         for n in self.notches],
             "max_abs_N_N": self.max_abs("N"), "max_abs_T_Nmm": self.max_abs("T"),
@@ -399,22 +406,14 @@ def result_at(sol: UnitSolution, rpm: float, case=None) -> BeamResult:
     vm = von_mises((sigma_x, zero, zero, tau, zero, zero))
     imax = int(np.argmax(vm))
     notches = []
-    for sh in m.shoulders:
-        # element on the small-diameter side of the shoulder node
-        e = sh.node - 1 if sh.small_side == "left" else sh.node
-        k = 2 * e + (1 if sh.small_side == "left" else 0)
-        sb, sn, tt, nom = sigma[k], sigma_N[k], tau[k], vm[k]
-        if sh.undercut:     # its Kt is on the undercut's bottom diameter: the nominal there
-            d = sh.d_mm
-            sb, sn, tt = (32.0 * M[k] / (np.pi * d ** 3), 4.0 * N[k] / (np.pi * d ** 2),
-                          16.0 * abs(T[k]) / (np.pi * d ** 3))
-            nom = von_mises((abs(sn) + sb, 0.0, 0.0, tt, 0.0, 0.0))
-        peak = von_mises((sh.kt * sb + sh.kt_tension * abs(sn), 0.0, 0.0,
-                          sh.kt_torsion * tt, 0.0, 0.0))
-        notches.append(NotchResult(sh.x_mm, sh.D_mm, sh.d_mm, sh.r_mm, sh.kt, sh.kt_in_range,
-                                   _kt_note(sh, sn, tt), float(nom), float(peak),
-                                   sh.kt_tension, sh.kt_torsion, float(M[k]), float(N[k]),
-                                   float(T[k]), sh.undercut))
+    for sh in m.notches:
+        # the element end on the small-diameter side of a shoulder's node; both sides of a
+        # groove's or hole's node (a point load there: the worse)
+        ks = ([2 * (sh.node - 1) + 1] if sh.small_side == "left" else [2 * sh.node]
+              if sh.small_side == "right" else [2 * (sh.node - 1) + 1, 2 * sh.node])
+        nt = max((_notch_at(sh, k, M, N, T, sigma, sigma_N, tau, vm) for k in ks),
+                 key=lambda r: r.sigma_peak_MPa)
+        notches.append(nt)
     clr = stations.get("clearance")
     where = f"beam, {case.name}" if case is not None else f"beam, {rpm:g} rpm"
     check_deflection(where, float(m.x[-1] - m.x[0]), float(umag.max()),
@@ -441,10 +440,45 @@ def result_at(sol: UnitSolution, rpm: float, case=None) -> BeamResult:
         case="" if case is None else case.name, torsion_gauge_Nmm=gauge)
 
 
+def _notch_at(sh, k: int, M, N, T, sigma, sigma_N, tau, vm) -> NotchResult:
+    """The notch ``sh`` judged at element end ``k``: the nominal stresses on its own section
+    (a shoulder's smaller diameter, an undercut's or a groove's bottom diameter, a hole's net
+    section, ``scf.net_section_moduli``) and the peak ``_peak``."""
+    sb, sn, tt, nom = sigma[k], sigma_N[k], tau[k], vm[k]
+    if sh.kind == "cross_hole":
+        a, wb, wt = net_section_moduli(sh.d_mm, sh.hole_mm)
+        sb, sn, tt = M[k] / wb, N[k] / a, abs(T[k]) / wt
+    elif sh.undercut or sh.kind != "shoulder":      # on the bottom diameter
+        d = sh.d_mm
+        sb, sn, tt = (32.0 * M[k] / (np.pi * d ** 3), 4.0 * N[k] / (np.pi * d ** 2),
+                      16.0 * abs(T[k]) / (np.pi * d ** 3))
+    if sh.undercut or sh.kind != "shoulder":
+        nom = von_mises((abs(sn) + sb, 0.0, 0.0, tt, 0.0, 0.0))
+    return NotchResult(sh.x_mm, sh.D_mm, sh.d_mm, sh.r_mm, sh.kt, sh.kt_in_range,
+                       _kt_note(sh, sn, tt), float(nom), float(_peak(sh, sb, sn, tt)),
+                       sh.kt_tension, sh.kt_torsion, float(M[k]), float(N[k]), float(T[k]),
+                       sh.undercut, sh.kind, sh.name, sh.hole_mm)
+
+
+def _peak(sh, sb: float, sn: float, tt: float) -> float:
+    """von Mises of (Kt_b σ_b + Kt_N |σ_N|, Kt_T τ): each load's peak added as if at one
+    point (conservative where they are not). A load that is zero contributes nothing, also
+    where its Kt is infinite (a sharp corner). At a transverse hole torsion's peak is the
+    bore's uniaxial stress 2 τ_max = 2 Kt_T τ (Kt_T of the largest shear stress), so its
+    shear enters as (2/√3) Kt_T τ."""
+    def part(kt: float, s: float) -> float:
+        return kt * s if s else 0.0
+    shear = part(sh.kt_torsion, tt) * (2.0 / math.sqrt(3.0) if sh.kind == "cross_hole" else 1)
+    return von_mises((part(sh.kt, sb) + part(sh.kt_tension, abs(sn)), 0.0, 0.0, shear, 0.0,
+                      0.0))
+
+
 def _kt_note(sh, sigma_N: float, tau: float) -> str:
     """The shoulder's Kt notes of the loads it carries (bending always; tension and torsion
     where they are non-zero)."""
     out = [sh.kt_note] if sh.kt_note else []
+    if sh.kind != "shoulder":
+        out.insert(0, f"{sh.name}: Kt {sh.kt_fit}")
     if sh.undercut:
         out.insert(0, f"DIN 509 {sh.undercut[-1].upper()} undercut: Kt of a shoulder to its "
                    f"bottom Ø{sh.d_mm:g} with its radius {sh.r_mm:g}")

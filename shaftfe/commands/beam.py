@@ -117,15 +117,20 @@ def run(args) -> int:
                     title="deflection")
         tens, tors = r.max_abs("N") > 0, r.max_abs("T") > 0
         if r.notches:
-            print_table(["shoulder x mm", "D/d mm", "r mm", "Kt"] + ["Kt_N"] * tens
+            mixed = any(n.kind != "shoulder" for n in r.notches)
+            print_table(["notch"] * mixed + ["shoulder x mm" if not mixed else "x mm",
+                                             "D/d mm", "r mm", "Kt"] + ["Kt_N"] * tens
                         + ["Kt_T"] * tors + ["sigma_nom MPa", "peak MPa", "note"],
-                        [[f"{n.x_mm:.2f}", f"{n.D_mm:g}/{n.d_mm:g}", f"{n.r_mm:g}",
+                        [[n.name or "shoulder"] * mixed
+                         + [f"{n.x_mm:.2f}", f"{n.D_mm:g}/{n.d_mm:g}", f"{n.r_mm:g}",
                           f"{n.kt:.3f}"] + [f"{n.kt_tension:.3f}"] * tens
                          + [f"{n.kt_torsion:.3f}"] * tors
                          + [f"{n.sigma_nom_MPa:.1f}", f"{n.sigma_peak_MPa:.1f}", n.kt_note]
                          for n in r.notches],
-                        title="shoulders (von Mises on the smaller diameter, nominal and "
-                        "with Kt)")
+                        title="notches (von Mises on the notch's section: a shoulder's "
+                        "smaller diameter, a groove's bottom, a hole's net section; nominal "
+                        "and with Kt)" if mixed else "shoulders (von Mises on the smaller "
+                        "diameter, nominal and with Kt)")
         if tens or tors:
             print(f"axial force max |N| {r.max_abs('N'):.4g} N (max |N/A| "
                   f"{r.max_abs('sigma_N'):.4g} MPa); torque max |T| {r.max_abs('T'):.4g} N·mm "

@@ -53,6 +53,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from shaftfe.beam.scf import kt_cross_hole, net_section_moduli
+
 S_MIN = 1.2
 D_B = 16.0
 D_BK = 40.0
@@ -143,12 +145,10 @@ def gradient_groove(d_mm: float, D_mm: float, r_mm: float, load: str) -> float:
 
 def alpha_cross_hole(d_mm: float, dh_mm: float, load: str) -> float:
     """DIN 743-2's α of a transverse hole of diameter d_h through a shaft of diameter d
-    (nominal stresses on the net section, ``net_section_scale``): tension 3 − d_h/d, bending
-    3 + 1.4 d_h/d − 2.8 √(d_h/d), torsion 2.023 − 1.125 √(d_h/d) (of the largest shear
-    stress)."""
-    q = dh_mm / d_mm
-    return {"tension": 3.0 - q, "bending": 3.0 + 1.4 * q - 2.8 * math.sqrt(q),
-            "torsion": 2.023 - 1.125 * math.sqrt(q)}[load]
+    (nominal stresses on the net section, ``net_section_scale``): ``beam.scf.kt_cross_hole``
+    (tension 3 − d_h/d, bending 3 + 1.4 d_h/d − 2.8 √(d_h/d), torsion 2.023 − 1.125 √(d_h/d),
+    of the largest shear stress)."""
+    return kt_cross_hole(d_mm, dh_mm, load).kt
 
 
 def gradient_cross_hole(d_mm: float, dh_mm: float, load: str) -> float:
@@ -162,13 +162,13 @@ def gradient_cross_hole(d_mm: float, dh_mm: float, load: str) -> float:
 def net_section_scale(notch) -> tuple[float, float, float]:
     """(tension, bending, torsion) factors from the full round section's nominal stresses to
     the notch's own: 1 except at a transverse hole, whose section loses d_h d (area) and
-    d_h d²/6 (both moduli): A = πd²/4 − d_h d, W_b = πd³/32 − d_h d²/6,
-    W_t = πd³/16 − d_h d²/6 (DIN 743-2)."""
+    d_h d²/6 (both moduli; ``beam.scf.net_section_moduli``, DIN 743-2)."""
     if notch.kind != "cross_hole":
         return 1.0, 1.0, 1.0
-    d, h = notch.d_mm, notch.hole_mm
-    a, wb, wt = math.pi * d * d / 4, math.pi * d ** 3 / 32, math.pi * d ** 3 / 16
-    return (a / (a - h * d), wb / (wb - h * d * d / 6), wt / (wt - h * d * d / 6))
+    d = notch.d_mm
+    full = (math.pi * d * d / 4, math.pi * d ** 3 / 32, math.pi * d ** 3 / 16)
+    return tuple(f / n for f, n in zip(full, net_section_moduli(d, notch.hole_mm),
+                                       strict=True))
 
 
 def rho_star(sigma_s_d_MPa: float) -> float:

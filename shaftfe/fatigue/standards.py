@@ -10,12 +10,12 @@ constant: DIN 743 case 2) for S_D, and the highest speed of the history for S_F.
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
+from shaftfe.beam.scf import KT_GROOVES, KT_UNDERCUTS, converged_kt
 from shaftfe.errors import InputError
 from shaftfe.fatigue import din743, fkm
 from shaftfe.model.grooves import UNDERCUTS, undercut_at
@@ -119,36 +119,6 @@ def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None, progress=None):
 
 # --------------------------------------------------------------------------- DIN 743, beam
 
-KT_TABLE = "reports/benchmarks/kt_reference.json"
-
-
-KT_GROOVES = "reports/benchmarks/kt_grooves.json"
-KT_UNDERCUTS = "reports/benchmarks/kt_undercuts.json"
-
-
-def converged_kt() -> dict:
-    """(D, d, ρ) rounded to 1e-6 mm -> {load: α} from the committed tables of converged Kt
-    (3 uniform refinements, Richardson): the shoulders' (``benchmarks/bench_axisymmetric.py``),
-    keyed ("groove", D, d, ρ) the U grooves' (``benchmarks/bench_grooves.py``) and keyed
-    (kind, D, d, r) the DIN 509 undercuts' (d the shaft's, the nominal stresses on the
-    undercut's bottom diameter; ``benchmarks/bench_undercuts.py``)."""
-    from shaftfe.util.paths import REPO_DIR
-    out = {}
-    for name, rows in ((KT_TABLE, "fillets"), (KT_GROOVES, "grooves"),
-                       (KT_UNDERCUTS, "undercuts")):
-        try:
-            t = json.loads((REPO_DIR / name).read_text())
-        except (OSError, ValueError):
-            continue
-        tag = {"fillets": lambda r: (), "grooves": lambda r: ("groove",),
-               "undercuts": lambda r: (r["kind"],)}[rows]
-        out.update({(*tag(r), round(r["D_mm"], 6), round(r["d_mm"], 6),
-                     round(r["rho_mm"], 6)):
-                    {ld: r[ld]["kt"] for ld in ("tension", "bending", "torsion")}
-                    for r in t.get(rows, [])})
-    return out
-
-
 @dataclass(frozen=True)
 class Din743Row:
     x_mm: float
@@ -211,6 +181,8 @@ def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
     out = []
     segs = variant.segments
     for nt in beam.notches:
+        if nt.kind != "shoulder":       # grooves and holes: from the variant (below)
+            continue
         i = next(i for i, s in enumerate(segs) if abs(s.x_end_mm - nt.x_mm) < 1e-6)
         u = undercut_at(segs, i) if nt.undercut else None
         if u is not None:

@@ -61,10 +61,10 @@ def din743_static(variant, case_name: str, opts) -> StaticCheck:
     """S_F per notch of ``variant`` in its load case ``case_name`` (``opts``: the strength
     options that choose the material card, ``fatigue.standards.StrengthOptions``)."""
     from shaftfe.beam.model import build_model
+    from shaftfe.beam.scf import converged_kt
     from shaftfe.beam.solve import solve_cases
     from shaftfe.fatigue.cards import load_surfaces
     from shaftfe.fatigue.standards import (
-        converged_kt,
         din743_card,
         din743_notches,
         notch_stresses,
