@@ -33,6 +33,7 @@ def keys() -> list[tuple[str, str, str, str]]:
     from shaftfe.model import loads as ld
     from shaftfe.model.fields import FILLET_MIN_MM
     from shaftfe.model.loader import BALANCE_MASS_RTOL, BALANCE_X2_TOL_POINTS
+    from shaftfe.model.validate import TAPER_MAX_DEG
     from shaftfe.util.units import REF_RPM
     return [
         # top level
@@ -60,8 +61,9 @@ def keys() -> list[tuple[str, str, str, str]]:
          "segments follow each other from x_start_mm in file order"),
         ("segments.<seg>.diameter_mm", "mm", _p("diameter_mm") + ", ≤ stock",
          "outer diameter (a conical segment's at its left end)"),
-        ("segments.<seg>.diameter_right_mm", "mm", _p("diameter_mm") + ", ≤ stock; absent: a "
-         "cylinder", "a conical (tapered) segment's diameter at its right end: a plain "
+        ("segments.<seg>.diameter_right_mm", "mm", _p("diameter_mm") + ", ≤ stock; a half-angle "
+         f"≤ {TAPER_MAX_DEG:g}° over the segment's length; absent: a cylinder",
+         "a conical (tapered) segment's diameter at its right end: a plain "
          "transition (no keyway, groove, hole, chamfer, seat or load band on it; fillet 0 at "
          "a step beside it); in every model (the beam cuts it into elements 2 % apart in "
          "diameter)"),

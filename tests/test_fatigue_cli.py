@@ -397,3 +397,44 @@ def test_fkm_on_a_constant_speed_says_no_load_cycles_at_the_loaded_hot_spots(cac
     near_tie = {"keyway:gear_seat:0"}
     assert {r["region"]: r["node"] for r in const["regions"] if r["region"] not in near_tie} \
         == {r["region"]: r["node"] for r in loaded["regions"] if r["region"] not in near_tie}
+
+
+def test_fkm_plot_gives_the_utilisation_along_the_shaft(cache, tmp_path, capsys):
+    """``--method fkm --plot`` on the coarse mesh: fkm_along.png beside FKM's files, and the
+    degree of utilisation at every 1 mm of the surface in summary.json, over the shaft's whole
+    length. A consistency check with the regions' own assessment (the same per-node code;
+    FKM's factors are validated in tests/validation/test_fkm.py): a slice's value is the worse
+    of its highest tensile and compressive node, so the slice that holds the governing hot spot
+    (the most stressed node there) reads at least the governing utilisation, and no slice
+    reads more than the worst node assessed anywhere would allow: the curve's maximum is the
+    governing utilisation or above, and it is reached in a slice within 1 mm of the hot
+    spot or in a region's own slice."""
+    import numpy as np
+    out = tmp_path / "f"
+    rc, text, err = run(capsys, RPM_DAT, "--method", "fkm", "--level", "coarse", "--plot",
+                        "--cache-dir", cache, "--out", out)
+    assert rc == 0, err
+    assert (out / "fkm_along.png").stat().st_size > 0 and "fkm_along.png" in text
+    s = json.loads((out / "summary.json").read_text())
+    a = s["along"]
+    x, u = np.array(a["x_mm"]), np.array(a["utilisation"], dtype=float)
+    assert x[0] == pytest.approx(0.5) and x[-1] == pytest.approx(113.5)
+    # 1 mm slices (one without a surface node left out: the coarse surface's rings lie up to
+    # 2 mm apart in the plain parts)
+    assert np.diff(x).min() == pytest.approx(1.0) and np.diff(x).max() <= 3.0 + 1e-9
+    assert np.allclose((x - 0.5) % 1.0, 0.0) and len(a["region"]) == x.size
+    # a slice wholly inside the singular-point exclusion (a ring's or a patch's edges) has no
+    # value (null)
+    gap = np.isnan(u)
+    assert [a["region"][i] for i in np.flatnonzero(gap)] == ["excluded"] * gap.sum()
+    assert gap.sum() < 0.15 * x.size
+    g = s["governing"]["utilisation"]["modified"]
+    gx = next(r["xyz_mm"][0] for r in s["regions"] if r["region"] == s["governing"]["region"])
+    assert np.nanmax(u) >= g * (1 - 1e-12)
+    assert abs(x[np.nanargmax(u)] - gx) <= 1.0 or a["governing"]["region"] != "surface"
+    assert a["governing"]["utilisation"] == pytest.approx(np.nanmax(u), rel=1e-15)
+    rc, _, err = run(capsys, RPM_DAT, "--method", "fkm", "--level", "coarse", "--cache-dir",
+                     cache, "--out", out)
+    assert rc == 0, err
+    assert not (out / "fkm_along.png").exists() and "along" not in json.loads(
+        (out / "summary.json").read_text())

@@ -363,9 +363,10 @@ def test_order_one_volume(tmp_path):
     assert 0.0 < deficit < 1.0 - 7.0 * math.sin(2 * math.pi / 7) / (2 * math.pi)
 
 
-def test_cli_mesh_json_and_vtu(monkeypatch, tmp_path, capsys):
+def test_cli_mesh_json_and_vtu(monkeypatch, tmp_path, capsys, coarse, cache):
     """`shaftfe mesh --json --out x.vtu` prints the summary and writes a VTU whose tetra10
-    count equals the element count and whose triangles carry the group ids."""
+    count equals the element count and whose triangles carry the group ids (the module's
+    coarse mesh, read from its cache: the command's mesh key is the fixture's)."""
     import meshio
 
     import shaftfe.model.loader
@@ -375,17 +376,18 @@ def test_cli_mesh_json_and_vtu(monkeypatch, tmp_path, capsys):
                         raising=False)
     out = tmp_path / "syn.vtu"
     rc = main(["mesh", "--variant", "syn", "--level", "coarse", "--cache-dir",
-               str(tmp_path / "c"), "--out", str(out), "--json"])
+               str(cache), "--out", str(out), "--json"])
     assert rc == 0
     s = json.loads(capsys.readouterr().out)
     from shaftfe.solid.mesh import Q_CURVED
-    assert s["from_cache"] is False and s["nodes"] > 0 and s["min_quality_minSICN"] > Q_CURVED
+    assert s["from_cache"] is True and coarse.key.startswith(s["key"])
+    assert s["nodes"] > 0 and s["min_quality_minSICN"] > Q_CURVED
     m = meshio.read(out)
     assert m.cells_dict["tetra10"].shape[0] == s["elements"]
     ids = np.concatenate(m.cell_data["group"])
     assert set(np.unique(ids)) == set(range(len(s["groups"])))   # 0 = volume, 1.. = faces
     rc = main(["mesh", "--variant", "syn", "--level", "coarse", "--cache-dir",
-               str(tmp_path / "c"), "--out", str(tmp_path / "syn.msh")])
+               str(cache), "--out", str(tmp_path / "syn.msh")])
     assert rc == 0
     assert "from cache" in capsys.readouterr().out
     assert meshio.read(tmp_path / "syn.msh").cells_dict["tetra10"].shape[0] == s["elements"]

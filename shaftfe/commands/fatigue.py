@@ -50,9 +50,11 @@ def register(sub) -> None:
     opt("--damage-sum", "FKM effective damage sum D_M (default 0.3, steel)", type=float)
     opt("--case", "a [[load_cases]] name of the variant: DIN 743's static check S_F on that "
         "case (its speed, factors and channels), beside the fatigue check")
-    opt("--plot", "DIN 743's S_D and S_F at every cross-section of the shaft (the unnotched "
-        "section, every 0.25 mm) with each notch's, plotted along the shaft with its outline: "
-        "din743_along.png, and 'along' in summary.json", action="store_true")
+    opt("--plot", "the safety along the shaft, plotted with its outline, and 'along' in "
+        "summary.json: DIN 743's S_D and S_F at every cross-section (the unnotched section, "
+        "every 0.25 mm) with each notch's (din743_along.png); FKM's degree of utilisation "
+        "at every 1 mm of the surface (the worse of each slice's highest tensile and "
+        "compressive node, fkm_along.png)", action="store_true")
     opt("--kappa", "ISO 281 viscosity ratio κ of the bearings (default 1.0)", type=float)
     opt("--ec", "ISO 281 contamination factor e_C (default 0.3)", type=float)
     p.add_argument("spectrum", help="rpm history: normalised rpm²/ref² (seed rpm.dat), rpm, or "

@@ -256,8 +256,7 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
     ``cycles``: the rainflow count of ``history`` re-referenced to ``ref.ref_rpm`` where the
     caller has it (the seed method's, ``FatigueField.result.cycles``): counted once."""
     from shaftfe.fatigue.counting import count_cycles
-    from shaftfe.fatigue.field import softening_beta
-    from shaftfe.fatigue.kernels import signed_von_mises, stress_cycles
+    from shaftfe.fatigue.kernels import signed_von_mises
     h = history.with_reference(ref.ref_rpm)
     if cycles is None:
         cyc = count_cycles(h.load_factor)
@@ -270,6 +269,9 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
     probe = depth_probe(ref)
     rules = fkm.MINER
     out, notes, hints, assessed = [], [], {}, []   # hints: the last spectrum's order, per sign
+    node = _NodeAssessment(ref, cyc, card, probe, S, dict(rules=rules, j_D=j_D,
+                                                          damage_sum=damage_sum,
+                                                          design_life=design_life_blocks), rule)
     for name in sorted(ref.regions):
         if kind_of(name) not in ASSESSED_KINDS:
             continue
@@ -281,40 +283,12 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
         sv = signed[nodes]              # the highest tensile and the highest compressive
         cand = np.unique(np.concatenate([nodes[np.argsort(-sv)[:N_CANDIDATES]],
                                          nodes[np.argsort(sv)[:N_CANDIDATES]]]))
-        notched = is_notch(name)
         rz = region_rz(name, surfaces, ground_fillets)
         best = None
         for i in cand:
-            s_soft = float(signed_von_mises(S[:, i]))
-            beta = 0.0
-            if ref.stress_linear is not None:
-                s_lin_v = float(signed_von_mises(np.asarray(ref.stress_linear, float)[:, i]))
-                beta = float(softening_beta(np.array([s_soft]), np.array([s_lin_v]))[0])
-                s_lin = s_lin_v
-            else:
-                s_lin = s_soft
-            sa, sm = stress_cycles(s_lin, beta if beta else None, cyc)
-            prof = profile(ref, int(i), probe, card.case_depth_mm)
-            x = np.asarray(ref.xyz, float)[:, i]
-            d_eff = fkm.effective_diameter(x[1], x[2])
-            kv = k_v_case_hardening(d_eff, notched) if card.case_hardened else 1.0
-            common = dict(rules=rules, j_D=j_D, damage_sum=damage_sum,
-                          design_life=design_life_blocks)
-            sign = s_lin >= 0
-            surf, spec = check("surface", 0.0, (sa, sm), cyc.count, s_soft, prof.G_surface,
-                               d_eff, card, rz, kv, hint=hints.get(sign), **common)
-            hints[sign] = spec.order
-            core = None
-            if card.case_hardened:
-                r = prof.case_ratio
-                core, _ = check("core", card.case_depth_mm, (r * sa, r * sm), cyc.count,
-                                r * s_soft, prof.G_case, d_eff, card, 1.0, 1.0,
-                                under=(spec, surf.sigma_WK_MPa, r), **common)
-            res = RegionResult(name, int(i), tuple(float(c) for c in x), notched, prof, surf,
-                               core, s_lin, beta)
-            u = max(surf.utilisation[rule], core.utilisation[rule] if core else 0.0)
-            assessed.append((int(i), u, min(surf.safety[rule],
-                                            core.safety[rule] if core else math.inf)))
+            res, u, s_min = node(name, int(i), rz, hints)
+            surf, s_soft = res.surface, res.surface.sigma_ref_MPa
+            assessed.append((int(i), u, s_min))
             # the worst node; among equal utilisations (a history without load cycles: all 0)
             # the one a start-stop cycle 0 → its reference stress would load most (relative
             # amplitude, F2 Haigh: tension counts more than compression), so that the hot spot
@@ -325,6 +299,121 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
         out.append(best[1])
     return FkmResult(card, rule, j_D, damage_sum, float(design_life_blocks), float(h.duration_s),
                      tuple(out), tuple(notes), cyc, tuple(assessed))
+
+
+class _NodeAssessment:
+    """One surface node's FKM assessment (its stress cycles with spin softening, its profile,
+    the surface and core checks) on one reference and count: ``__call__(region, node, rz,
+    hints)`` -> (RegionResult, utilisation, safety) under ``rule``, the worse layer's."""
+
+    def __init__(self, ref, cyc, card, probe, S, common: dict, rule: str):
+        self.ref, self.cyc, self.card, self.probe, self.common, self.rule = \
+            ref, cyc, card, probe, common, rule
+        self.S = S
+        self.linear = (None if ref.stress_linear is None else
+                       np.asarray(ref.stress_linear, float))
+        self.xyz = np.asarray(ref.xyz, float)
+
+    def __call__(self, name: str, i: int, rz: float, hints: dict):
+        from shaftfe.fatigue.field import softening_beta
+        from shaftfe.fatigue.kernels import signed_von_mises, stress_cycles
+        card, cyc, common = self.card, self.cyc, self.common
+        s_soft = float(signed_von_mises(self.S[:, i]))
+        beta, s_lin = 0.0, s_soft
+        if self.linear is not None:
+            s_lin = float(signed_von_mises(self.linear[:, i]))
+            beta = float(softening_beta(np.array([s_soft]), np.array([s_lin]))[0])
+        sa, sm = stress_cycles(s_lin, beta if beta else None, cyc)
+        prof = profile(self.ref, i, self.probe, card.case_depth_mm)
+        x = self.xyz[:, i]
+        d_eff = fkm.effective_diameter(x[1], x[2])
+        notched = is_notch(name)
+        kv = k_v_case_hardening(d_eff, notched) if card.case_hardened else 1.0
+        sign = s_lin >= 0
+        surf, spec = check("surface", 0.0, (sa, sm), cyc.count, s_soft, prof.G_surface,
+                           d_eff, card, rz, kv, hint=hints.get(sign), **common)
+        hints[sign] = spec.order
+        core = None
+        if card.case_hardened:
+            r = prof.case_ratio
+            core, _ = check("core", card.case_depth_mm, (r * sa, r * sm), cyc.count,
+                            r * s_soft, prof.G_case, d_eff, card, 1.0, 1.0,
+                            under=(spec, surf.sigma_WK_MPa, r), **common)
+        res = RegionResult(name, i, tuple(float(c) for c in x), notched, prof, surf, core,
+                           s_lin, beta)
+        rule = self.rule
+        u = max(surf.utilisation[rule], core.utilisation[rule] if core else 0.0)
+        return res, u, min(surf.safety[rule], core.safety[rule] if core else math.inf)
+
+
+@dataclass(frozen=True, eq=False)
+class FkmAlong:
+    """FKM at every cross-section of the shaft (``assess_along``): per axial bin of
+    ``ALONG_STEP_MM`` the worse of its highest tensile and highest compressive surface node
+    (outside the singular-point exclusion), its utilisation and safety under the governing
+    rule (the worse layer) and the region it lies in ("surface": none); a slice whose surface
+    nodes all lie in the exclusion (a bearing's or a load patch's edges): NaN, region
+    "excluded"; a slice without a surface node (a coarse surface's rings can lie further
+    apart than a slice) is left out."""
+    x_mm: np.ndarray
+    utilisation: np.ndarray
+    safety: np.ndarray
+    region: tuple[str, ...]
+
+
+ALONG_STEP_MM = 1.0      # FKM's cross-sections (each bin: two nodes with a stress profile)
+
+
+def assess_along(ref, history, card: StrengthCard, surfaces: Surfaces, res: FkmResult, *,
+                 ground_fillets: frozenset[str], step_mm: float = ALONG_STEP_MM) -> FkmAlong:
+    """FKM at every cross-section: the surface nodes (the reference's face triangles') in
+    bins of ``step_mm`` along x, each bin judged by its highest tensile and highest
+    compressive node as ``assess_field`` judges a region's candidates (the same count, card,
+    j_D, rule, design life and Miner sum as ``res``); a node's roughness and K_V are its
+    region's (notches first, then the seats; the rest turned)."""
+    from shaftfe.fatigue.kernels import signed_von_mises
+    S = np.asarray(ref.stress_ref, dtype=float)
+    signed = signed_von_mises(S.T)
+    surf = np.unique(np.asarray(ref.face_cells, dtype=np.int64))
+    excluded = np.zeros(signed.size, dtype=bool)
+    excluded[np.asarray(ref.excluded, dtype=np.int64)] = True
+    region = np.full(signed.size, "surface", dtype=object)
+    # the seats first, the notches over them (a fillet's node beside a seat is the fillet's)
+    for name in sorted(ref.regions, key=lambda n: (is_notch(n), n)):
+        if kind_of(name) in ASSESSED_KINDS:
+            region[np.asarray(ref.regions[name], dtype=np.int64)] = name
+    x = np.asarray(ref.xyz, float)[0, surf]
+    lo, hi = float(x.min()), float(x.max())
+    nb = max(1, math.ceil((hi - lo) / step_mm))
+    b = np.minimum(((x - lo) / step_mm).astype(np.int64), nb - 1)
+    node = _NodeAssessment(ref, res.cycles, card, depth_probe(ref),
+                           S, dict(rules=fkm.MINER, j_D=res.j_D, damage_sum=res.damage_sum,
+                                   design_life=res.design_life_blocks), res.rule)
+    xs, us, ss, names, hints = [], [], [], [], {}
+    order = np.argsort(b, kind="stable")
+    starts = np.searchsorted(b[order], np.arange(nb + 1))
+    for k in range(nb):
+        idx = surf[order[starts[k]:starts[k + 1]]]
+        if idx.size == 0:
+            continue
+        xs.append(lo + (k + 0.5) * step_mm)
+        idx = idx[~excluded[idx]]
+        if idx.size == 0:
+            us.append(math.nan)
+            ss.append(math.nan)
+            names.append("excluded")
+            continue
+        sv = signed[idx]
+        worst = None
+        for i in {int(idx[np.argmax(sv)]), int(idx[np.argmin(sv)])}:
+            name = str(region[i])
+            r, u, s = node(name, i, region_rz(name, surfaces, ground_fillets), hints)
+            if worst is None or u > worst[0]:
+                worst = (u, s, name, r.xyz_mm[0])
+        us.append(worst[0])
+        ss.append(worst[1])
+        names.append(worst[2])
+    return FkmAlong(np.array(xs), np.array(us), np.array(ss), tuple(names))
 
 
 def governing_cycles(res: FkmResult) -> dict:

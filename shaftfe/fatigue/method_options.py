@@ -60,7 +60,7 @@ OPTIONS: dict[str, tuple[str, object]] = {
     "--design-life": ("design_life", None),  # None: run.DEFAULT_DESIGN_LIFE_BLOCKS
     "--design-life-h": ("design_life_h", None),
     "--case": ("case", None),                # a [[load_cases]] name: DIN 743 S_F on it
-    "--plot": ("plot", False),               # DIN 743 at every cross-section, plotted
+    "--plot": ("plot", False),               # DIN 743 / FKM at every cross-section, plotted
 }
 
 

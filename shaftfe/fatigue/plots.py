@@ -303,10 +303,51 @@ def plot_din743_along(along: dict, notches: list[dict], s_min: float, path,
     ax.grid(which="both", alpha=0.3)
     ax.legend(fontsize=7, ncol=3, loc="upper center")
     ax.set_title(title or "DIN 743 safety along the shaft")
-    r = 0.5 * np.asarray(along["d_mm"], dtype=float)
-    ax2.fill_between(x, -r, r, color="0.75", edgecolor="0.3", lw=0.6)
-    for xx in nx:
-        ax2.axvline(xx, color="k", lw=0.5, ls=":")
-    ax2.set_ylabel("Ø mm")
-    ax2.set_xlabel("x [mm]")
+    _outline_panel(ax2, x, along["d_mm"], nx)
+    return _save(fig, path)
+
+
+def _outline_panel(ax, x, d_mm, marks) -> None:
+    """The shaft's outline (diameters ``d_mm`` at ``x``) below an along-the-shaft plot, the
+    x of each of ``marks`` dotted."""
+    r = 0.5 * np.asarray(d_mm, dtype=float)
+    ax.fill_between(x, -r, r, color="0.75", edgecolor="0.3", lw=0.6)
+    for xx in marks:
+        ax.axvline(xx, color="k", lw=0.5, ls=":")
+    ax.set_ylabel("Ø mm")
+    ax.set_xlabel("x [mm]")
+
+
+def plot_fkm_along(along: dict, regions: list[dict], rule: str, d_mm, path,
+                   title: str = "") -> Path:
+    """FKM along the shaft: the degree of utilisation at every cross-section (``along``: the
+    summary's, a line), each assessed region's governing node (``regions``: the summary's, the
+    worse layer, named markers), the limit 1, and the shaft's outline ``d_mm`` at
+    ``along["x_mm"]`` below."""
+    plt = _plt()
+    x = np.asarray(along["x_mm"], dtype=float)
+    u = np.array([np.nan if v is None else v for v in along["utilisation"]], dtype=float)
+
+    def worse(r) -> float:
+        vals = [r[k]["utilisation"][rule] for k in ("surface", "core") if k in r]
+        vals = [np.inf if v is None else v for v in vals]
+        return max(vals)
+    rx = np.array([r["xyz_mm"][0] for r in regions], dtype=float)
+    ru = np.array([worse(r) for r in regions], dtype=float)
+    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(10, 5.6), sharex=True,
+                                  gridspec_kw={"height_ratios": [4, 1]})
+    ax.plot(x, u, color="tab:blue", lw=1.2, label="every 1 mm of the surface")
+    ax.scatter(rx, ru, color="tab:red", marker="o", zorder=3, s=28, edgecolors="k",
+               linewidths=0.5, label="a region's hot spot")
+    for r, xx, yy in zip(regions, rx, ru, strict=True):
+        ax.annotate(r["region"], (xx, yy), textcoords="offset points", xytext=(2, 4),
+                    fontsize=6, rotation=35, ha="left", va="bottom")
+    ax.axhline(1.0, color="r", lw=1.2, label="limit 1 (passes below)")
+    top = float(np.nanmax(np.concatenate([u, ru[np.isfinite(ru)], [1.0]])))
+    ax.set_ylim(0.0, 1.25 * top)
+    ax.set_ylabel(f"degree of utilisation [-] ({rule} Miner)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, ncol=3, loc="upper center")
+    ax.set_title(title or "FKM degree of utilisation along the shaft")
+    _outline_panel(ax2, x, d_mm, rx)
     return _save(fig, path)

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from shaftfe.fatigue import din743 as din
 from shaftfe.fatigue.assess import life_hours
 from shaftfe.fatigue.methods import METHODS
@@ -117,7 +119,8 @@ DIN_HEAD = ["notch", "x mm", "kind", "α_σ", "n", "β_σ", "K2", "K_Fσ", "K_V"
             "σ_bWK", "ψ", "σ_bADK", "σ_bFK", "σ_ba", "σ_bm", "S_D", "S_F"]
 
 
-def fkm_summary(res) -> dict:
+def fkm_summary(res, along=None) -> dict:
+    """FKM's block of summary.json (``along``: ``fkm_field.FkmAlong`` with ``--plot``)."""
     reg, c = res.governing
     return {"method": "fkm", "card": res.card.name, "rule": res.rule, "j_D": res.j_D,
             "damage_sum": res.damage_sum, "design_life_blocks": res.design_life_blocks,
@@ -139,7 +142,38 @@ def fkm_summary(res) -> dict:
                             for c in (r.surface, r.core) if c is not None}}
                         for r in res.regions],
             "no_load_cycles": no_load_cycles(res),
-            "notes": list(res.notes) + ([NO_LOAD_CYCLES] if no_load_cycles(res) else [])}
+            "notes": list(res.notes) + ([NO_LOAD_CYCLES] if no_load_cycles(res) else []),
+            **({"along": _fkm_along(along)} if along is not None else {})}
+
+
+def _fkm_along(along) -> dict:
+    i = int(np.nanargmax(along.utilisation))
+    return {"x_mm": [float(x) for x in along.x_mm],
+            "utilisation": [_num(float(u)) for u in along.utilisation],
+            "safety": [_num(float(s)) for s in along.safety], "region": list(along.region),
+            "governing": {"x_mm": float(along.x_mm[i]),
+                          "utilisation": _num(float(along.utilisation[i])),
+                          "region": along.region[i]}}
+
+
+def plot_fkm_along(summary: dict, variant, path) -> None:
+    """FKM's degree of utilisation along the shaft (``summary``: the FKM summary with
+    "along"), each region's governing node marked, the shaft's outline below."""
+    from shaftfe.fatigue import plots as fp
+    x = np.asarray(summary["along"]["x_mm"], dtype=float)
+    fp.plot_fkm_along(summary["along"], summary["regions"], summary["rule"],
+                      shaft_diameters(variant, x), path,
+                      title=f"FKM degree of utilisation along the shaft, card "
+                      f"{summary['card']}, j_D {summary['j_D']:g}")
+
+
+def shaft_diameters(variant, x) -> np.ndarray:
+    """The shaft's outer diameter at each x (a cone's linear; between segments the left's)."""
+    segs = variant.segments
+    starts = np.array([s.x_start_mm for s in segs])
+    k = np.clip(np.searchsorted(starts, x, side="right") - 1, 0, len(segs) - 1)
+    return np.array([segs[j].diameter_at(xx) for j, xx in zip(k, x, strict=True)],
+                    dtype=float)
 
 
 def din_summary(run) -> dict:

@@ -347,6 +347,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, cres,
                camp, files["vtu_rpm"], add_fig)
         _din743_along_plot(strength, fig_dir, add_fig)
+        _fkm_along_plot(strength, variant, fig_dir, add_fig)
     picture_seconds = None
     with prog.stage("3D pictures"):           # what is left of them once the plots are done
         if rendering is not None:
@@ -393,9 +394,10 @@ def _strength(o: ReportOptions, variant, ref, history, cycles=None) -> dict:
         warn("strength-material", "report", f"strength by standard left out: {exc}")
         return {}
     job = fatigue_job(o)
+    # FKM with its utilisation at every cross-section (the report plots it along the shaft)
     fkm = get_method("fkm").assess(AssessmentInputs.one_channel(
-        variant, history, field=ref, cycles=cycles), job)
-    out["fkm"] = so.fkm_summary(fkm.detail.result)
+        variant, history, field=ref, cycles=cycles), dataclasses.replace(job, plot=True))
+    out["fkm"] = so.fkm_summary(fkm.detail.result, fkm.detail.along)
     beam = sd.beam_at_ref(variant)              # one beam solve for DIN 743 and the bearings
     # DIN 743 with its safety at every cross-section (the report plots it along the shaft)
     din = get_method("din743").assess(AssessmentInputs.one_channel(variant, history, beam=beam),
@@ -460,6 +462,20 @@ def _din743_along_plot(strength: dict, fig_dir, add_fig) -> None:
             "S_D and S_F of the unnotched section at every cross-section (every 0.25 mm, "
             "the beam's nominal stresses over the history's largest cycle) and at each notch "
             "(markers, named), against S_min; the shaft's outline below")
+
+
+def _fkm_along_plot(strength: dict, variant, fig_dir, add_fig) -> None:
+    """FKM's degree of utilisation along the shaft (``shaftfe fatigue --method fkm --plot``'s)."""
+    fkm = strength.get("fkm")
+    if not fkm or "along" not in fkm:
+        return
+    from shaftfe.fatigue import standards_out as so
+    so.plot_fkm_along(fkm, variant, fig_dir / "fkm_along.png")
+    add_fig("fkm_along", "FKM degree of utilisation along the shaft",
+            "FKM on the static field at every 1 mm of the surface (the worse of each slice's "
+            "highest tensile and compressive node outside the singular points, its region's "
+            "roughness, the governing Miner rule) and each region's hot spot (markers, "
+            "named), against the limit 1; the shaft's outline below")
 
 
 def _balance_plots(fres, sw, fig_dir, add_fig) -> None:

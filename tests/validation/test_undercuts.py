@@ -102,31 +102,31 @@ def test_undercut_volume_and_area_against_quadrature(kind, side, d, rho):
     assert groove_area(g) == pytest.approx(area, rel=1e-6)
 
 
-def _left_undercut(kind: str):
-    """The four-step shaft with the undercut on the last Ø17's left end, beside the Ø22's face
-    (its fillet 0; no cross hole), and the Ø22's chamfer at that step."""
-    v = four_step_shaft(chamfers=True)
+def _both_undercuts():
+    """The four-step shaft with a DIN 509 E undercut on the Ø17's right end (below the Ø22's
+    face) and an F undercut on the last Ø17's left end, beside the Ø22's other face (its
+    fillet 0; no cross hole), and the Ø22's chamfer at that step."""
+    v = four_step_shaft(undercut="din509_e", chamfers=True)
     segs = list(v.segments)
     segs[2] = dataclasses.replace(segs[2], fillet_mm=0.0)
     segs[3] = dataclasses.replace(segs[3], grooves=(
-        grooves.din509_groove(kind, 17.0, "left", (70.0, 100.0)),))
+        grooves.din509_groove("din509_f", 17.0, "left", (70.0, 100.0)),))
     return dataclasses.replace(v, segments=tuple(segs))
 
 
-@pytest.mark.parametrize("kind,side", [("din509_e", "right"), ("din509_f", "left")])
-def test_undercut_mesh_against_exact_geometry(kind, side, tmp_path):
-    """Coarse 3D mesh of the four-step shaft with an undercut (and chamfers: form F's wall is a
-    cone beside the Ø22's chamfer cone, which the faces must not swap): volume and every face
-    group against the exact values, the tolerances of tests/validation/test_mesh_geometry.py
-    (P2 interpolation of curved faces)."""
+def test_undercut_mesh_against_exact_geometry(tmp_path):
+    """Coarse 3D mesh of the four-step shaft with both forms, E on a right end and F on a left
+    one (and chamfers: form F's wall is a cone beside the Ø22's chamfer cone, which the faces
+    must not swap): volume and every face group against the exact values, the tolerances of
+    tests/validation/test_mesh_geometry.py (P2 interpolation of curved faces). One mesh for
+    both (the suite's time)."""
     from test_mesh_geometry import _check  # (pytest puts this folder on sys.path)
 
     from shaftfe.solid.mesh import build_mesh
-    v = (four_step_shaft(undercut=kind, chamfers=True) if side == "right"
-         else _left_undercut(kind))
+    v = _both_undercuts()
     sm = build_mesh(v, "coarse", cache_dir=tmp_path)
-    seg = "b" if side == "right" else "d"
-    assert f"groove:{seg}:0" in sm.groups and "fillet:" + seg not in sm.groups
+    for seg in ("b", "d"):
+        assert f"groove:{seg}:0" in sm.groups and "fillet:" + seg not in sm.groups
     _check(sm, v)
 
 

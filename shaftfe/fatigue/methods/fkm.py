@@ -17,6 +17,7 @@ class FkmDetail:
     result: object                   # fatigue.fkm_field.FkmResult
     ref: object                      # the static reference it assessed
     speed_kmh: float
+    along: object = None             # fatigue.fkm_field.FkmAlong (``--plot``), or None
 
 
 class Fkm:
@@ -25,15 +26,16 @@ class Fkm:
              "and surface")
     options = ("--card", "--miner", "--consequences", "--inspection", "--damage-sum",
                "--kappa", "--ec", "--model", "--level", "--exclude-mm", "--seed-load-case",
-               "--spin-softening", "--design-life", "--design-life-h")
+               "--spin-softening", "--design-life", "--design-life-h", "--plot")
     narrowed = MappingProxyType({})
     out_dir = "fatigue-fkm"
     files = ("fatigue.vtu", "haigh.png", "rainflow_matrix.png", "damage_matrix.png",
              "summary.json")
-    optional_files = ()
+    optional_files = ("fkm_along.png",)
     files_help = ("fatigue.vtu (fkm_utilisation, fkm_safety at the assessed surface nodes), "
                   "haigh.png (F2, the governing spot's cycles), rainflow_matrix.png, "
-                  "damage_matrix.png, summary.json")
+                  "damage_matrix.png, fkm_along.png (with --plot: the utilisation along the "
+                  "shaft), summary.json")
     stages = ("static", "FKM")
 
     def check(self, options) -> None:
@@ -73,6 +75,12 @@ class Fkm:
                                        j_D=sd.fkm.J_D[(opts.consequences, opts.inspection)],
                                        damage_sum=opts.damage_sum,
                                        design_life_blocks=job.design_life, cycles=ch.cycles)
+            along = None
+            if getattr(options, "plot", False):
+                from shaftfe.fatigue.fkm_field import assess_along
+                with stage("FKM"):
+                    along = assess_along(ref, ch.history, res.card, load_surfaces(), res,
+                                         ground_fillets=sd.ground_fillets(inputs.variant))
         rule, bs, v = res.rule, res.block_seconds, options.speed_kmh
 
         def loc(r, c):
@@ -83,16 +91,20 @@ class Fkm:
         return FatigueAssessment(self.name, tuple(loc(r, c) for r, c in zip(res.regions, worst,
                                                                              strict=True)),
                                  loc(*res.governing), tuple(warned), tuple(res.notes),
-                                 FkmDetail(res, ref, v))
+                                 FkmDetail(res, ref, v, along))
 
     def write(self, result, inputs, options, out) -> tuple[dict, list[str]]:
         from shaftfe.fatigue import standards_out as so
         res, ref = result.detail.result, result.detail.ref
-        summary = standard_summary(inputs, options, so.fkm_summary(res))
+        along = result.detail.along
+        summary = standard_summary(inputs, options, so.fkm_summary(res, along))
         summary["static"] = {"model": options.model, "level": options.level,
                              "ref_rpm": ref.ref_rpm, "points": ref.n_nodes,
                              "from_cache": bool(ref.from_cache)}
         vtu, plots = so.write_fkm_files(res, ref, out)
+        if along is not None:
+            so.plot_fkm_along(summary, inputs.variant, out / "fkm_along.png")
+            plots["fkm_along"] = "fkm_along.png"
         return so.write_outputs({**summary, "vtu": vtu, "plots": plots}, out)
 
     def lines(self, result, inputs, options, summary, out, files) -> list[str]:
