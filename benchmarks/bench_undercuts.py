@@ -24,6 +24,14 @@
     python -m benchmarks.bench_undercuts --shaft    # part 2 only, the Kt table kept
     python -m benchmarks.bench_undercuts --levels   # part 3 only
     python -m benchmarks.bench_undercuts --kt       # part 1 only (and the Kt table)
+    python -m benchmarks.bench_undercuts --interp   # part 4 only
+    python -m benchmarks.bench_undercuts --interp-again   # part 4's interpolation again, its
+                                                          # converged values kept
+
+4. **Interpolating the table** (``beam.scf.undercut_kt``, what DIN 743 takes for an undercut
+   the table does not hold): converged Kt (as part 1) at points between the grid's, in both
+   DIN 509 rows the grid spans twice in d (R0.6 × 0.2 at d 12 and 17, R0.6 × 0.3 at d 25 and
+   40), at D/d 1.22 and 1.45, forms E and F, against the interpolation of the committed table.
 """
 
 from __future__ import annotations
@@ -52,6 +60,9 @@ GRID = ([(k, round(d * q, 6), d, None) for k in ("din509_e", "din509_f")
         + [(k, round(d * 1.3, 6), d, 0.4) for k in ("din509_e", "din509_f")
            for d in (12.0, 17.0)])
 RUNS = 3
+# part 4: (kind, d, D/d) between the grid's points
+INTERP = [(k, d, q) for k in ("din509_e", "din509_f") for d in (14.5, 32.0)
+          for q in (1.22, 1.45)]
 
 SEAT_G = 'name = "bearing_seat_gear"'
 COLLAR = 'name = "collar"'
@@ -173,6 +184,36 @@ def solid_levels() -> list[dict]:
     return rows
 
 
+def interp_check(prev=()) -> list[dict]:
+    """Part 4: the converged Kt at ``INTERP`` against ``beam.scf.undercut_kt``'s interpolation
+    of the committed table (``prev``: earlier rows whose converged Kt is taken, not solved
+    again: ``--interp-again``)."""
+    from shaftfe.axisymmetric import kt
+    from shaftfe.beam.scf import undercut_kt
+    rows = []
+    with tempfile.TemporaryDirectory() as cache:
+        for kind, d, q in INTERP:
+            D = round(d * q, 6)
+            _, g = kt.undercut_bar(D, d, kind, None)
+            hit = undercut_kt(kind, D, d, g.rho)
+            if hit is None:       # outside the measured points (form F: no D/d 1.15 at d 12)
+                rows += [{"kind": kind, "D_mm": D, "d_mm": d, "rho_mm": g.rho,
+                          "t1_mm": g.depth, "load": ld, "how": "outside"} for ld in kt.LOADS]
+                continue
+            got, how = hit
+            old = {r["load"]: {"kt": r["kt"], "error": r["bar"]} for r in prev
+                   if (r["kind"], r["D_mm"], r["d_mm"]) == (kind, D, d) and "kt" in r}
+            c = old if len(old) == 3 else kt.converged(D, d, g.rho, cache_dir=cache,
+                                                        shape=kind)
+            for ld in kt.LOADS:
+                rows.append({"kind": kind, "D_mm": D, "d_mm": d, "rho_mm": g.rho,
+                             "t1_mm": g.depth, "load": ld, "kt": c[ld]["kt"],
+                             "bar": c[ld]["error"], "interpolated": got[ld], "how": how,
+                             "rel": got[ld] / c[ld]["kt"] - 1.0})
+                print(rows[-1], flush=True)
+    return rows
+
+
 def _angle(a: float) -> str:
     return "off the arc" if a != a else f"{a:.1f}"
 
@@ -182,6 +223,14 @@ def main() -> None:
         data = json.loads(OUT.with_suffix(".json").read_text(encoding="utf-8"))
         data["kt"] = kt_grid()
         write_table(data["kt"])
+        OUT.with_suffix(".json").write_text(json.dumps(data, indent=1) + "\n",
+                                            encoding="utf-8")
+        render(data)
+        return
+    if {"--interp", "--interp-again"} & set(sys.argv):     # part 4 only, the rest kept
+        data = json.loads(OUT.with_suffix(".json").read_text(encoding="utf-8"))
+        data["interp"] = interp_check(data.get("interp", ()) if "--interp-again" in sys.argv
+                                      else ())
         OUT.with_suffix(".json").write_text(json.dumps(data, indent=1) + "\n",
                                             encoding="utf-8")
         render(data)
@@ -200,7 +249,8 @@ def main() -> None:
         return
     rows = kt_grid()
     write_table(rows)
-    data = {"kt": rows, "shaft": shaft_runs(), "levels": solid_levels()}
+    data = {"kt": rows, "shaft": shaft_runs(), "levels": solid_levels(),
+            "interp": interp_check()}
     OUT.with_suffix(".json").write_text(json.dumps(data, indent=1) + "\n", encoding="utf-8")
     render(data)
 
@@ -276,6 +326,7 @@ def render(data: dict) -> None:
         lines.append(f"| {fil.split(':')[1]} | {a:.1f} | {b:.1f} ({b / a - 1:+.1%}) | "
                      f"{c:.1f} | {c / b - 1:+.2%} |")
     lines += _levels_lines(data.get("levels", []))
+    lines += _interp_lines(data.get("interp", []))
     lines += ["", "The full 3D model sizes a groove's corner arcs as a span fillet's (the hot-spot "
               "field, `solid.mesh`); before that, its default level read the undercuts 15 % "
               "low (0.54 mm elements on a 0.6 mm radius)."]
@@ -300,6 +351,35 @@ def _levels_lines(rows: list[dict]) -> list[str]:
         e = [r["rel"] for r in rows if r["level"] == lv]
         out.append(f"- {lv}: {100 * min(e):+.2f} … {100 * max(e):+.2f} % over these grooves "
                    "(three grooves on one shaft: a measurement, not an error bar for others)")
+    return out
+
+
+def _interp_lines(rows: list[dict]) -> list[str]:
+    if not rows:
+        return []
+    out = ["", "## 4. The table interpolated between its points", "",
+           "What DIN 743 takes for an undercut the table does not hold (`beam.scf.undercut_kt`): "
+           "at each measured d of the same DIN 509 row the parabola through the three nearest "
+           "D/d (linear between two), then linear in d between the two that bracket it; none "
+           "outside. Against the converged Kt (as §1) at points between the grid's.", "",
+           "| form | d mm | D/d | r × t1 mm | load | Kt converged | ± bar | interpolated | "
+           "error |", "|---|---|---|---|---|---|---|---|---|"]
+    outside = sorted({(r["kind"][-1].upper(), r["d_mm"], round(r["D_mm"] / r["d_mm"], 2))
+                      for r in rows if r["how"] == "outside"})
+    rows = [r for r in rows if r["how"] != "outside"]
+    for r in rows:
+        out.append(f"| {r['kind'][-1].upper()} | {r['d_mm']:g} | {r['D_mm'] / r['d_mm']:.2f} | "
+                   f"{r['rho_mm']:g} × {r['t1_mm']:g} | {r['load']} | {r['kt']:.4f} | "
+                   f"{r['bar']:.1e} | {r['interpolated']:.4f} | {100 * r['rel']:+.2f} % |")
+    e = [100 * r["rel"] for r in rows]
+    out += ["", f"Interpolation error {min(e):+.2f} … {max(e):+.2f} % at these "
+            f"{len(rows) // 3} points × 3 loads (a measurement between the grid's points; no "
+            "bar is claimed beyond them). Negative: the interpolation reads low, so S_D comes "
+            "out that much high."]
+    if outside:
+        out.append("Outside the measured points (no interpolation; DIN 743 takes the formula "
+                   "with its warning): " + ", ".join(f"{k} d {d:g} D/d {q:g}"
+                                                    for k, d, q in outside) + ".")
     return out
 
 

@@ -260,6 +260,65 @@ def converged_kt() -> dict:
     return {k: dict(v) for k, v in _tables()}
 
 
+def undercut_kt(kind: str, D: float, d: float, r: float, table: dict | None = None):
+    """{load: Kt} of the DIN 509 undercut ``kind`` of radius ``r`` in a Ø``d`` at a step to
+    Ø``D`` (nominal stresses on its bottom diameter) from the converged table
+    (``converged_kt``, or ``table``): the entry itself, else interpolated between the measured
+    undercuts of the same DIN 509 row (the same r, t1, f, t2): in D/d at each measured d (the
+    parabola through the three nearest D/d, points closer than 0.02 merged; linear between
+    two), then linear in d between the two measured d that bracket it. None outside the
+    measured points' range (no extrapolation). The interpolation's error, measured at points
+    between the grid's: reports/benchmarks/undercuts.md §4 (Kt is concave in D/d: a linear
+    interpolation read 0.7-1.8 % low there). Returns (values, "table" | "interpolated") or
+    None."""
+    from shaftfe.model.grooves import din509
+    table = converged_kt() if table is None else table
+    exact = table.get((kind, round(D, 6), round(d, 6), round(r, 6)))
+    if exact:
+        return exact, "table"
+    row = din509(d, r)
+    if row is None:
+        return None
+    pts: dict = {}
+    for k, v in table.items():
+        if len(k) == 4 and k[0] == kind and abs(k[3] - r) <= 1e-9 and din509(k[2], r) == row:
+            pts.setdefault(k[2], []).append((k[1] / k[2], v))
+    q = D / d
+    below = [x for x in pts if x <= d]
+    above = [x for x in pts if x >= d]
+    if not below or not above:
+        return None
+    d0, d1 = max(below), min(above)
+    at = []
+    for dd in dict.fromkeys((d0, d1)):
+        qs = []
+        for p in sorted(pts[dd], key=lambda p: p[0]):
+            if not qs or p[0] - qs[-1][0] >= 0.02:
+                qs.append(p)
+        qq = np.array([p[0] for p in qs])
+        if len(qs) < 2 or not qq[0] - 1e-9 <= q <= qq[-1] + 1e-9:
+            return None
+        near = np.sort(np.argsort(np.abs(qq - q), kind="stable")[:3])
+        at.append({ld: _through(qq[near], np.array([qs[i][1][ld] for i in near]), q)
+                   for ld in LOADS})
+    if len(at) == 1:
+        return at[0], "interpolated"
+    w = (d - d0) / (d1 - d0)
+    return {ld: (1 - w) * at[0][ld] + w * at[1][ld] for ld in LOADS}, "interpolated"
+
+
+def _through(x: np.ndarray, y: np.ndarray, at: float) -> float:
+    """The polynomial through the 2 or 3 points (x, y) at ``at`` (Lagrange)."""
+    out = 0.0
+    for i in range(x.size):
+        w = 1.0
+        for j in range(x.size):
+            if j != i:
+                w *= (at - x[j]) / (x[i] - x[j])
+        out += w * y[i]
+    return float(out)
+
+
 @functools.cache
 def _tables() -> tuple:
     out = []

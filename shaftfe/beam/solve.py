@@ -20,9 +20,13 @@ stress σ_b = M/W (32 M/(π d³) for a solid section; at a shoulder each side us
 diameter, so the maximum is on the smaller one), σ_N = N/A, τ = |T| (D/2)/J (16 T/(π d³)
 solid), the combined normal stress of the worst fibre σ = |σ_N| + σ_b (the fibre where bending
 adds to the axial stress) and von Mises of (σ, τ) (``shaftfe.util.units.von_mises``), its
-maximum and x; at each shoulder the peak von Mises of (Kt_b σ_b + Kt_N |σ_N|, Kt_T τ) on the
-smaller diameter (``shaftfe.beam.scf``: bending, tension and torsion fits). Reactions are the
-forces the supports exert ON the shaft (bearing load = −reaction); L10h from the radial load.
+maximum and x; at each notch (``beam.model.BeamNotch``) the peak von Mises of
+(Kt_b σ_b + Kt_N |σ_N|, Kt_T τ) on the notch's own section: a shoulder's smaller diameter, a
+groove's (or an undercut's) bottom diameter, a transverse hole's net section, where torsion's
+peak is the bore's uniaxial 2 Kt_T τ (its shear enters as (2/√3) Kt_T τ); a load that is zero
+adds nothing, even under an infinite Kt (``shaftfe.beam.scf``: the fits and the converged
+tables). Reactions are the forces the supports exert ON the shaft (bearing load = −reaction);
+L10h from the radial load.
 
 Units: mm, N, MPa, t/mm³; rpm for speeds. Pure functions; SciPy is imported inside the solve.
 """

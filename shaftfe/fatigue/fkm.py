@@ -209,6 +209,8 @@ class Spectrum:
         c = np.asarray(count, dtype=float).ravel()
         keep = (s > 0) & (c > 0)
         o = np.flatnonzero(keep) if hint is None else hint[keep[hint]]
+        if o.size != np.count_nonzero(keep):        # the hint's node kept fewer classes
+            o = np.flatnonzero(keep)
         o = o[np.argsort(-s[o], kind="stable")]
         self.order, self.k, self.n_knee = o, float(k), float(n_knee)
         self.s = s[o]

@@ -369,8 +369,10 @@ def assess_along(ref, history, card: StrengthCard, surfaces: Surfaces, res: FkmR
     """FKM at every cross-section: the surface nodes (the reference's face triangles') in
     bins of ``step_mm`` along x, each bin judged by its highest tensile and highest
     compressive node as ``assess_field`` judges a region's candidates (the same count, card,
-    j_D, rule, design life and Miner sum as ``res``); a node's roughness and K_V are its
-    region's (notches first, then the seats; the rest turned)."""
+    j_D, rule, design life and Miner sum as ``res``), and by the nodes ``res`` assessed in it
+    (its regions' candidates: so no slice reads below a hot spot in it); the worst kept (among
+    equal utilisations, as ``assess_field``: the one a start-stop cycle loads most). A node's
+    roughness and K_V are its region's (notches first, then the seats; the rest turned)."""
     from shaftfe.fatigue.kernels import signed_von_mises
     S = np.asarray(ref.stress_ref, dtype=float)
     signed = signed_von_mises(S.T)
@@ -390,6 +392,12 @@ def assess_along(ref, history, card: StrengthCard, surfaces: Surfaces, res: FkmR
                            S, dict(rules=fkm.MINER, j_D=res.j_D, damage_sum=res.damage_sum,
                                    design_life=res.design_life_blocks), res.rule)
     xs, us, ss, names, hints = [], [], [], [], {}
+    ax = np.asarray(ref.xyz, float)[0]
+    own = {r.node: r.region for r in res.regions}
+    done: dict = {}                                  # slice -> [(u, safety, region)] of res's
+    for i, u, sf in res.assessed:
+        k = min(max(int((ax[i] - lo) / step_mm), 0), nb - 1)
+        done.setdefault(k, []).append((u, sf, own.get(i, str(region[i]))))
     order = np.argsort(b, kind="stable")
     starts = np.searchsorted(b[order], np.arange(nb + 1))
     for k in range(nb):
@@ -405,14 +413,19 @@ def assess_along(ref, history, card: StrengthCard, surfaces: Surfaces, res: FkmR
             continue
         sv = signed[idx]
         worst = None
-        for i in {int(idx[np.argmax(sv)]), int(idx[np.argmin(sv)])}:
+        for i in sorted({int(idx[np.argmax(sv)]), int(idx[np.argmin(sv)])}):
             name = str(region[i])
-            r, u, s = node(name, i, region_rz(name, surfaces, ground_fillets), hints)
-            if worst is None or u > worst[0]:
-                worst = (u, s, name, r.xyz_mm[0])
-        us.append(worst[0])
-        ss.append(worst[1])
-        names.append(worst[2])
+            r, u, sf = node(name, i, region_rz(name, surfaces, ground_fillets), hints)
+            key = (u, _start_stop(r.surface.sigma_ref_MPa, r.surface))
+            if worst is None or key > worst[0]:
+                worst = (key, sf, name)
+        (u, _), sf, name = worst
+        for u_r, sf_r, name_r in done.get(k, ()):
+            if u_r > u:
+                u, sf, name = u_r, sf_r, name_r
+        us.append(u)
+        ss.append(sf)
+        names.append(name)
     return FkmAlong(np.array(xs), np.array(us), np.array(ss), tuple(names))
 
 

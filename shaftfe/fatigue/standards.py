@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from shaftfe.beam.scf import KT_GROOVES, KT_UNDERCUTS, converged_kt
+from shaftfe.beam.scf import KT_GROOVES, KT_UNDERCUTS, converged_kt, undercut_kt
 from shaftfe.errors import InputError
 from shaftfe.fatigue import din743, fkm
 from shaftfe.model.grooves import UNDERCUTS, undercut_at
@@ -187,24 +187,28 @@ def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
         u = undercut_at(segs, i) if nt.undercut else None
         if u is not None:
             # a DIN 509 undercut: its converged Kt (nominal on its bottom diameter) where the
-            # table holds it, else DIN 743-2's α of the shoulder from its bottom diameter with
-            # its radius (the beam's notch), which lies below the converged Kt over the
-            # table's grid (reports/benchmarks/undercuts.md)
+            # table holds it or interpolated between its points (``scf.undercut_kt``), else
+            # DIN 743-2's α of the shoulder from its bottom diameter with its radius (the
+            # beam's notch), which lies below the converged Kt over the table's grid
+            # (reports/benchmarks/undercuts.md)
             k, j, g = u
             name, region = f"undercut {segs[k].name}:{j}", groove_region(segs[k].name, j)
-            al = table.get((g.kind, round(nt.D_mm, 6), round(segs[k].diameter_mm, 6),
-                            round(g.radius_mm, 6)))
-            src = (f"converged Kt ({KT_UNDERCUTS})" if al else
+            hit = undercut_kt(g.kind, nt.D_mm, segs[k].diameter_mm, g.radius_mm, table)
+            al = hit[0] if hit else None
+            src = (f"converged Kt ({KT_UNDERCUTS})" if hit and hit[1] == "table" else
+                   f"converged Kt interpolated between the undercuts of {KT_UNDERCUTS} (its "
+                   "error between them: reports/benchmarks/undercuts.md §4)" if hit else
                    f"DIN 743-2 formula (a shoulder to the DIN 509 {g.kind[-1].upper()} "
                    f"undercut's bottom diameter with R{g.radius_mm:g}; below the converged Kt, "
                    "reports/benchmarks/undercuts.md)")
             if not al:
                 warn("undercut-kt-formula", region, f"DIN 743 takes the shoulder formula for "
                      f"this undercut (D {nt.D_mm:g}, d {segs[k].diameter_mm:g}, "
-                     f"R{g.radius_mm:g}: not in {KT_UNDERCUTS}); over that table's grid it "
-                     "reads below the converged Kt in every row (reports/benchmarks/"
-                     "undercuts.md), so S_D comes out high; outside the grid no bound is "
-                     "measured: add the undercut to benchmarks/bench_undercuts.py's grid")
+                     f"R{g.radius_mm:g}: neither in {KT_UNDERCUTS} nor between its points); "
+                     "over that table's grid it reads below the converged Kt in every row "
+                     "(reports/benchmarks/undercuts.md), so S_D comes out high; outside the "
+                     "grid no bound is measured: add the undercut to benchmarks/"
+                     "bench_undercuts.py's grid")
         else:
             name, region = f"shoulder {segs[i].name}", fillet_region(segs[i].name)
             al = table.get((round(nt.D_mm, 6), round(nt.d_mm, 6), round(nt.r_mm, 6)))

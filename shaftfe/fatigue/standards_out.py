@@ -147,13 +147,14 @@ def fkm_summary(res, along=None) -> dict:
 
 
 def _fkm_along(along) -> dict:
-    i = int(np.nanargmax(along.utilisation))
+    u = np.asarray(along.utilisation, dtype=float)
+    i = int(np.nanargmax(u)) if np.isfinite(u).any() else None
     return {"x_mm": [float(x) for x in along.x_mm],
-            "utilisation": [_num(float(u)) for u in along.utilisation],
+            "utilisation": [_num(float(v)) for v in u],
             "safety": [_num(float(s)) for s in along.safety], "region": list(along.region),
-            "governing": {"x_mm": float(along.x_mm[i]),
-                          "utilisation": _num(float(along.utilisation[i])),
-                          "region": along.region[i]}}
+            "governing": None if i is None else {
+                "x_mm": float(along.x_mm[i]), "utilisation": _num(float(u[i])),
+                "region": along.region[i]}}
 
 
 def plot_fkm_along(summary: dict, variant, path) -> None:

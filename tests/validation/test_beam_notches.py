@@ -127,8 +127,28 @@ def test_a_din471_groove_takes_its_converged_kt_or_a_conservative_fit():
 
 def test_a_shaft_without_grooves_or_holes_keeps_its_notches_and_json():
     """x2_57 (no grooves, no holes): the beam's notches are its four shoulders, and their JSON
-    carries no new keys (a summary stays byte-identical)."""
+    has exactly the keys, in the order, it had before grooves and holes (a summary stays
+    byte-identical)."""
     from shaftfe.model.loader import load_variant
     (r,) = analyse(load_variant("x2_57"), 8000.0)
     assert [n.kind for n in r.notches] == ["shoulder"] * 4
-    assert all(set(d) >= {"kt", "x_mm"} and "kind" not in d for d in r.to_dict()["notches"])
+    keys = ["x_mm", "D_mm", "d_mm", "r_mm", "kt", "kt_in_range", "kt_note", "kt_tension",
+            "kt_torsion", "M_Nmm", "N_N", "T_Nmm", "sigma_nom_MPa", "sigma_peak_MPa"]
+    assert all(list(d) == keys for d in r.to_dict()["notches"])
+
+
+def test_a_sharp_shoulder_unloaded_in_a_load_has_no_nan_peak():
+    """A sharp corner (fillet 0: Kt infinite in every load) in bending only: its peak is
+    infinite (null in JSON: the singularity), and the loads it does not carry (tension,
+    torsion: zero) add nothing, not ∞ × 0 = NaN."""
+    import json
+
+    v = holed_bar("bending")
+    a, = v.segments
+    segs = (dataclasses.replace(a, length_mm=80.0, cross_holes=()),
+            dataclasses.replace(a, name="b", x_start_mm=80.0, length_mm=80.0,
+                                diameter_mm=18.0, cross_holes=()))
+    (r,) = analyse(dataclasses.replace(v, segments=segs), 0.0)
+    (n,) = r.notches
+    assert n.kt == math.inf and n.sigma_peak_MPa == math.inf
+    assert json.loads(json.dumps(r.to_dict()))["notches"][0]["sigma_peak_MPa"] is None

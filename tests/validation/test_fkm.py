@@ -173,3 +173,9 @@ def test_sorted_spectrum_against_exact_class_sums():
     for rule in fkm.MINER:
         assert half.life(rule, 0.3, 3.0) == spec.life(rule, 0.3, 1.5)
     assert fkm.Spectrum(p / 64.0, counts).scaled(0.0).life("modified", 0.3) == math.inf
+    # a hint (another node's order) that kept fewer classes than this spectrum has: every class
+    # is still counted (the same lives as without the hint, exactly: the same sort)
+    short = fkm.Spectrum(np.where(np.arange(40) < 20, 0.0, p / 64.0), counts).order
+    hinted = fkm.Spectrum(p / 64.0, counts, hint=short)
+    for rule in fkm.MINER:
+        assert hinted.life(rule, 0.3) == spec.life(rule, 0.3), rule
