@@ -345,16 +345,17 @@ def test_help_names_every_file_of_each_method(capsys):
 
 
 def test_overspeed_allowed_is_assessed_with_a_warning_and_the_design_life_in_hours(
-        cache, tmp_path, capsys):
+        seed_run, cache, tmp_path, capsys):
     """A history reaching 19 999 rpm (above the VM 450's max_rpm 9500) is refused without
     --allow-overspeed (tests/test_bad_input.py); with it, it is assessed, the warning is printed
     on stderr and written into summary.json. The design life given in hours becomes blocks of
-    the history: 1000 h of a 4 s block = 900 000 blocks (3.6e6 / 4: exact in binary)."""
+    the history: 1000 h of a 4 s block = 900 000 blocks (3.6e6 / 4: exact in binary). (The
+    seed's load case: seed_run's static solution, from the cache.)"""
     spec = tmp_path / "over.dat"
     spec.write_text("# format = rpm\n# sample_rate_hz = 1\n3000\n19999\n3000\n8000\n")
     out = tmp_path / "o"
-    rc, text, err = run(capsys, spec, "--level", "coarse", "--cache-dir", cache,
-                        "--allow-overspeed", "--design-life-h", "1000", "--out", out)
+    rc, text, err = run(capsys, spec, "--level", "coarse", "--seed-load-case", "--cache-dir",
+                        cache, "--allow-overspeed", "--design-life-h", "1000", "--out", out)
     assert rc == 0, err
     assert "shaftfe: warning:" in err and "19999" in err and "9500" in err
     s = json.loads((out / "summary.json").read_text())
