@@ -97,7 +97,9 @@ def test_html_is_well_formed_and_every_image_is_a_png(run):
     for section in ("summary", "inputs", "balancing", "static", "fatigue", "campbell", "seed",
                     "errors", "timing", "files"):
         assert section in c.ids, section
-    assert len(c.imgs) >= 12
+    # each standard along the shaft, on the page (in "Strength by standard")
+    assert {"fig-fkm_along", "fig-din743_along"} <= set(c.ids)
+    assert len(c.imgs) >= 14
     for src in c.imgs:
         head, data = src.split(",", 1)
         assert head == "data:image/png;base64"
@@ -105,7 +107,7 @@ def test_html_is_well_formed_and_every_image_is_a_png(run):
         assert png.startswith(PNG) and len(png) > 5_000
     for name in ("von_mises_3d", "displacement_3d", "safety_factor_3d", "balance_forces",
                  "balance_sweep", "deflection", "campbell", "rainflow_matrix", "damage_matrix",
-                 "haigh", "load_history", "sn_curve"):
+                 "haigh", "load_history", "sn_curve", "fkm_along", "din743_along"):
         f = out / "figures" / f"{name}.png"
         assert f.read_bytes().startswith(PNG) and f.stat().st_size > 5_000, name
 

@@ -614,6 +614,8 @@ def _strength(r) -> str:
             f"<th>life</th><th>hot-spot stress at {ref} rpm [MPa]</th></tr>"
             + "".join(f"<tr><td>{a}</td><td>{b}</td><td>{c}</td><td>{e}</td><td>{_e(h)}</td>"
                       "</tr>" for a, b, c, e, h in rows) + "</table>")
+    # each standard at every cross-section of the shaft (``shaftfe fatigue --plot``'s)
+    html += figure(r, "fkm_along") + figure(r, "din743_along")
     from shaftfe.fatigue.standards_out import elements_lines
     el = s["elements"]
     what = "Bearings (ISO 281)" + (", keys" if el.get("keys") else "") + \
