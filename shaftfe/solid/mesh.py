@@ -63,9 +63,10 @@ from shaftfe.solid.features import (
     kind_of,
     segment_of,
 )
-from shaftfe.solid.levels import DEFAULT_LEVEL, MeshLevel, mesh_level
+from shaftfe.solid.levels import DEFAULT_LEVEL, MeshLevel, level_name, mesh_level
 from shaftfe.solid.plan import Solid, groove_pieces, plan_payload, prepare, seat_span
 from shaftfe.util import paths
+from shaftfe.util.notices import warn
 
 __all__ = ["ShaftMesh", "build_mesh", "build_solid_mesh", "cache_path", "mesh_key", "mesh_plan"]
 
@@ -508,6 +509,26 @@ def _hot_field(f, xc: float, rc: float, rho: float, cfg: dict, axis: float | Non
 # 0.03 mm elements around its ring (its 3D peak is not validated; the zoned default takes a
 # groove's peak from the axisymmetric model, DIN 743 its measured β)
 GROOVE_HOT_MIN_MM = 0.05
+
+
+def unresolved_grooves(variant, level: str | MeshLevel) -> tuple:
+    """The plan's grooves (``solid.plan.Groove``) whose corner arcs the whole-shaft 3D mesh of
+    ``level`` does not refine as hot spots (``_size_fields``: a level without the local field,
+    or a radius whose elements would fall below ``GROOVE_HOT_MIN_MM``)."""
+    cfg = mesh_level(level).settings()
+    return tuple(g for g in prepare(variant).grooves
+                 if not ("k_ring" in cfg and cfg["k_fillet"] * g.rho >= GROOVE_HOT_MIN_MM))
+
+
+def warn_unresolved_grooves(variant, level: str | MeshLevel) -> None:
+    """A visible warning for each of ``unresolved_grooves``: its 3D peak reads low."""
+    for g in unresolved_grooves(variant, level):
+        warn("groove-unresolved", groove_region(g.segment, g.index),
+             f"the 3D mesh at level {level_name(level)} does not resolve this groove's corner "
+             f"radius {g.rho:g} mm (it would take elements below {GROOVE_HOT_MIN_MM:g} mm): "
+             "its peak and the fatigue there read low (measured on a DIN 471 groove: "
+             "reports/benchmarks/ring_grooves.md §3); the zoned default and --model "
+             "axisymmetric take the groove from the axisymmetric model, converged")
 
 
 def _groove_arcs(g) -> list[tuple[float, float]]:

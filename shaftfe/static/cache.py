@@ -213,12 +213,14 @@ def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = Tr
     """The static reference solution of ``variant`` with ``options`` (``StaticOptions``), read
     from the cache when the key matches, else solved (and stored). ``cache_dir`` is used for the
     mesh cache too."""
+    from shaftfe.solid.mesh import warn_unresolved_grooves
     from shaftfe.solid.plan import warn_sharp_corners
     from shaftfe.static.model import StaticOptions
     from shaftfe.util.units import REF_RPM
     t0 = time.perf_counter()
     warn_sharp_corners(variant)          # a cached solution says it as a fresh one would
     options = options if options is not None else StaticOptions()
+    warn_unresolved_grooves(variant, options.level)
     mkey = predicted_mesh_key(variant, options)
     key = static_key(variant, options, mkey, REF_RPM)
     path = cache_path(key, cache_dir)

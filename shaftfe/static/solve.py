@@ -60,6 +60,7 @@ from shaftfe.fe import recovery, reuse, supports
 from shaftfe.fe.lowrank import LowRankSolver
 from shaftfe.model.bearing_life import l10h
 from shaftfe.model.spin import centroid_rows
+from shaftfe.solid.mesh import warn_unresolved_grooves
 from shaftfe.solid.plan import warn_sharp_corners
 from shaftfe.static.model import (
     REF_RPM,
@@ -651,6 +652,7 @@ def solve_static(variant, rpm=None, options: StaticOptions = StaticOptions(), *,
     only_rpm2 = set(laws(variant)) <= {"rpm2"}
     rpms = _check_rpms(REF_RPM if rpm is None else rpm, at_rest_loads=not only_rpm2)
     warn_sharp_corners(variant)          # a fillet 0 at a loaded shoulder: not a stress there
+    warn_unresolved_grooves(variant, options.level)      # a groove's peak the mesh reads low
     t0 = time.perf_counter()
     model = build_model(variant, options, shaft_mesh=shaft_mesh, cache_dir=cache_dir)
     v, sm = model.variant, model.shaft_mesh
