@@ -147,7 +147,8 @@ def run(args) -> int:
             from shaftfe.static.outputs import write_outputs
             summary = write_outputs(args.variant, variant, opts, res, rpms, stage)
     return _report(args, summary, lambda: (_print_overrides(variant),
-                                           _print_tables(res, opts, out, _corners(variant))))
+                                           _print_tables(res, opts, out, _corners(variant),
+                                                         _low_grooves(variant, opts))))
 
 
 def _print_overrides(variant) -> None:
@@ -313,6 +314,15 @@ def _corners(variant) -> tuple:
     return (*sharp_corners(variant), *sharp_keyway_edges(variant))
 
 
+def _low_grooves(variant, opts) -> frozenset[str]:
+    """The regions of the grooves the 3D mesh does not resolve (their peaks read low;
+    ``solid.mesh.unresolved_grooves``, warned by the solve)."""
+    from shaftfe.solid.features import groove_region
+    from shaftfe.solid.mesh import unresolved_grooves
+    return frozenset(groove_region(g.segment, g.index)
+                     for g in unresolved_grooves(variant, opts.level))
+
+
 def _whole_mark(corners) -> str:
     """The whole-shaft peak's mark: not the shaft's maximum when a corner is singular (a
     sharp shoulder: unbounded; a keyway edge only marks a peak on it)."""
@@ -323,7 +333,7 @@ def _whole_mark(corners) -> str:
     return "not bounded: sharp corner " + ", ".join(c.region for c in corners)
 
 
-def _print_tables(res, opts, out, corners=()) -> None:
+def _print_tables(res, opts, out, corners=(), low=frozenset()) -> None:
     from shaftfe.solid.plan import sharp_mark
     from shaftfe.static.result import PEAK_FIT_LABEL
     d = res.diagnostics
@@ -369,6 +379,7 @@ def _print_tables(res, opts, out, corners=()) -> None:
                  f"{bars[p.region][0]:+.2f} … {bars[p.region][1]:+.2f}"
                  if p.region in bars else "-",
                  "fillet not resolved: not a stress" if p.region in unresolved
+                 else "groove not resolved: reads low (see its warning)" if p.region in low
                  else sharp_mark(corners, p.xyz_mm)]
                 for p in c.peaks if kind_of(p.region) != "end"]
         rows.append(["whole shaft", c.peak_von_mises_MPa, "-", c.peak_von_mises_xyz_mm[0],

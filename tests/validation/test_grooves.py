@@ -219,3 +219,9 @@ def test_a_groove_the_3d_mesh_does_not_resolve_is_warned():
         warn_unresolved_grooves(ring, "default")
     (w,) = [w for w in got if w.code == "groove-unresolved"]     # (Ø22's row: reconstructed)
     assert w.where == "groove:c:0" and "0.1 mm" in w.text and "axisymmetric" in w.text
+    # and `shaftfe static --model solid` marks that groove's row in its peak table
+    from types import SimpleNamespace
+
+    from shaftfe.commands.static import _low_grooves
+    assert _low_grooves(ring, SimpleNamespace(level="default")) == {"groove:c:0"}
+    assert _low_grooves(v, SimpleNamespace(level="default")) == set()
