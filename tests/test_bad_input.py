@@ -808,6 +808,10 @@ CASES.update(BEAM_LOAD_CASES)
 FP_CASES = {
     "fatigue_unknown_method": (["fatigue", "{RPM}", "--method", "goodman", "--out", "{W}/o"],
                                ["--method", "goodman", "seed | fkm | din743"]),
+    # the along-the-shaft plot is the two standards' (FKM on the field, DIN 743 on the beam);
+    # the seed method has none, and must not seem to have drawn one
+    "fatigue_seed_plot": (["fatigue", "{RPM}", "--method", "seed", "--plot", "--out", "{W}/o"],
+                          ["--plot", "fkm | din743"]),
 }
 CASES.update(FP_CASES)
 

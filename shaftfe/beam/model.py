@@ -424,10 +424,11 @@ def _shoulders(segs, x: np.ndarray, kt_fit: str) -> tuple[BeamNotch, ...]:
     return tuple(shoulders)
 
 
-def _groove_kt(D: float, g) -> dict:
+def _groove_kt(D: float, g, table: dict) -> dict:
     """{load: KtResult} of groove ``g`` in a Ø``D`` segment, nominal stresses on its bottom
-    diameter: the converged Kt where the committed tables hold it (``scf.converged_kt``: a
-    one-arc U groove of its D, d, ρ; a DIN 471 groove of its D and corner radius), else
+    diameter: the converged Kt where the committed tables hold it (``table``, the model's one
+    read of ``scf.converged_kt``: a one-arc U groove of its D, d, ρ; a DIN 471 groove of its D
+    and corner radius), else
     Roark's U-notch fit of its depth and corner radius, which for a flat-bottomed groove is an
     upper bound (the U-notch is the narrowest groove of that radius): it reads above the
     converged Kt of every DIN 471 groove measured (reports/benchmarks/ring_grooves.md), and
@@ -436,9 +437,9 @@ def _groove_kt(D: float, g) -> dict:
     d = D - 2.0 * g.depth_mm
     key = (round(D, 6), round(d, 6), round(g.radius_mm, 6))
     if g.kind == "din471":
-        row, src = converged_kt().get(("din471", *key)), KT_RING_GROOVES
+        row, src = table.get(("din471", *key)), KT_RING_GROOVES
     elif abs(g.width_mm - 2.0 * g.radius_mm) <= 1e-6:
-        row, src = converged_kt().get(("groove", *key)), KT_GROOVES
+        row, src = table.get(("groove", *key)), KT_GROOVES
     else:
         row, src = None, ""
     if row is not None:
@@ -461,12 +462,13 @@ def _grooves_and_holes(segs, x: np.ndarray) -> tuple[BeamNotch, ...]:
     """A ``BeamNotch`` at every groove's centre (a DIN 509 undercut is its shoulder's) with
     its Kt (``_groove_kt``), and at every transverse hole's centre (``scf.kt_cross_hole``)."""
     out = []
+    table = converged_kt() if any(s.grooves for s in segs) else {}
     for s in segs:
         D = s.diameter_mm
         for j, g in enumerate(s.grooves):
             if g.kind in UNDERCUTS:
                 continue
-            k = _groove_kt(D, g)
+            k = _groove_kt(D, g, table)
             out.append(_mid_notch(f"groove {s.name}:{j}",
                                   "ring_groove" if g.kind == "din471" else "groove",
                                   g.x_center_mm, x, D, D - 2.0 * g.depth_mm, g.radius_mm, k))

@@ -456,7 +456,7 @@ def _notch_at(sh, k: int, M, N, T, sigma, sigma_N, tau, vm) -> NotchResult:
         d = sh.d_mm
         sb, sn, tt = (32.0 * M[k] / (np.pi * d ** 3), 4.0 * N[k] / (np.pi * d ** 2),
                       16.0 * abs(T[k]) / (np.pi * d ** 3))
-    if sh.undercut or sh.kind != "shoulder":
+    if sh.undercut or sh.kind != "shoulder":        # the element's own is the full section's
         nom = von_mises((abs(sn) + sb, 0.0, 0.0, tt, 0.0, 0.0))
     return NotchResult(sh.x_mm, sh.D_mm, sh.d_mm, sh.r_mm, sh.kt, sh.kt_in_range,
                        _kt_note(sh, sn, tt), float(nom), float(_peak(sh, sb, sn, tt)),

@@ -169,11 +169,8 @@ def plot_fkm_along(summary: dict, variant, path) -> None:
 
 
 def shaft_diameters(variant, x) -> np.ndarray:
-    """The shaft's outer diameter at each x (a cone's linear; between segments the left's)."""
-    segs = variant.segments
-    starts = np.array([s.x_start_mm for s in segs])
-    k = np.clip(np.searchsorted(starts, x, side="right") - 1, 0, len(segs) - 1)
-    return np.array([segs[j].diameter_at(xx) for j, xx in zip(k, x, strict=True)],
+    """The shaft's outer diameter at each x (``Variant.segment_at``; a cone's linear)."""
+    return np.array([variant.segment_at(float(xx)).diameter_at(float(xx)) for xx in x],
                     dtype=float)
 
 
