@@ -364,8 +364,8 @@ class FkmAlong:
 ALONG_STEP_MM = 1.0      # FKM's cross-sections (each bin: two nodes with a stress profile)
 
 
-def assess_along(ref, history, card: StrengthCard, surfaces: Surfaces, res: FkmResult, *,
-                 ground_fillets: frozenset[str], step_mm: float = ALONG_STEP_MM) -> FkmAlong:
+def assess_along(ref, surfaces: Surfaces, res: FkmResult, *, ground_fillets: frozenset[str],
+                 step_mm: float = ALONG_STEP_MM) -> FkmAlong:
     """FKM at every cross-section: the surface nodes (the reference's face triangles') in
     bins of ``step_mm`` along x, each bin judged by its highest tensile and highest
     compressive node as ``assess_field`` judges a region's candidates (the same count, card,
@@ -388,7 +388,7 @@ def assess_along(ref, history, card: StrengthCard, surfaces: Surfaces, res: FkmR
     lo, hi = float(x.min()), float(x.max())
     nb = max(1, math.ceil((hi - lo) / step_mm))
     b = np.minimum(((x - lo) / step_mm).astype(np.int64), nb - 1)
-    node = _NodeAssessment(ref, res.cycles, card, depth_probe(ref),
+    node = _NodeAssessment(ref, res.cycles, res.card, depth_probe(ref),
                            S, dict(rules=fkm.MINER, j_D=res.j_D, damage_sum=res.damage_sum,
                                    design_life=res.design_life_blocks), res.rule)
     xs, us, ss, names, hints = [], [], [], [], {}

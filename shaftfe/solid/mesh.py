@@ -516,8 +516,14 @@ def unresolved_grooves(variant, level: str | MeshLevel) -> tuple:
     ``level`` does not refine as hot spots (``_size_fields``: a level without the local field,
     or a radius whose elements would fall below ``GROOVE_HOT_MIN_MM``)."""
     cfg = mesh_level(level).settings()
-    return tuple(g for g in prepare(variant).grooves
-                 if not ("k_ring" in cfg and cfg["k_fillet"] * g.rho >= GROOVE_HOT_MIN_MM))
+    return tuple(g for g in prepare(variant).grooves if not _groove_hot(cfg, g.rho))
+
+
+def _groove_hot(cfg: dict, rho: float) -> bool:
+    """Does a level (its ``settings()``) give a groove of corner radius ``rho`` the hot-spot
+    field about its corner arcs (``_size_fields``)? The one rule the mesh and its warning
+    (``unresolved_grooves``) read."""
+    return "k_ring" in cfg and cfg["k_fillet"] * rho >= GROOVE_HOT_MIN_MM
 
 
 def warn_unresolved_grooves(variant, level: str | MeshLevel) -> None:
@@ -606,7 +612,7 @@ def _size_fields(gmsh, sol: Solid, level: MeshLevel, cls: dict) -> None:
         h_loc = (cfg["k_ring"] if local else cfg["k_fillet"]) * g.rho
         if sol.clipped:
             h_loc = max(h_loc, g.depth)
-        elif local and cfg["k_fillet"] * g.rho >= GROOVE_HOT_MIN_MM:
+        elif _groove_hot(cfg, g.rho):
             # a groove's corner arcs are hot spots as a span fillet is (its stress peaks on
             # them): the same hot-spot field about each, in its own bending plane (measured
             # without it: an undercut's peak 15 % low at the default level, reports/

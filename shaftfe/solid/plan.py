@@ -740,11 +740,8 @@ def profile(sol: Solid) -> list[tuple[str, tuple]]:
     cut = {round(g.x_face, 9): g for g in sol.grooves if g.undercut}
     n = len(sol.radii)
     for i in range(n):
-        r = sol.radii[i]
-        part = sol.parts[i]
-        if sol.tapers:      # a cone (no stations on it): its end point at its right radius,
-            r = sol.r_right(i)  # the sloped line from the left one
-
+        r = sol.r_right(i)  # a cone (no stations on it): its end point at its right radius,
+        part = sol.parts[i]  # the sloped line from the left one
         cr = sol.chamfer(names[i], "right")                 # this segment's right edge
         cl = sol.chamfer(names[i + 1], "left") if i + 1 < n else 0.0   # the next one's left
         stations = [(x, None) for x in sol.profile_x if part.x0 + TOL < x < part.x1 - TOL]

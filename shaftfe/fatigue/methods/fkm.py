@@ -79,7 +79,7 @@ class Fkm:
             if getattr(options, "plot", False):
                 from shaftfe.fatigue.fkm_field import assess_along
                 with stage("FKM"):
-                    along = assess_along(ref, ch.history, res.card, load_surfaces(), res,
+                    along = assess_along(ref, load_surfaces(), res,
                                          ground_fillets=sd.ground_fillets(inputs.variant))
         rule, bs, v = res.rule, res.block_seconds, options.speed_kmh
 
