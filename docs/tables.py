@@ -241,12 +241,46 @@ def groove_kt_fits() -> str:
         f"{span(ring, 'roark_rel')} | {span(ring, 'din743_rel')} |"])
 
 
+def keyway_radius() -> str:
+    """A rounded keyway's peak per level against the full 3D model at fine, and its cost:
+    reports/benchmarks/keyway_radius.json (benchmarks/bench_keyway_radius.py)."""
+    import json
+    d = json.loads((ROOT / "reports" / "benchmarks" / "keyway_radius.json").read_text(
+        encoding="utf-8"))
+    bar = d["bar"]
+    out = ["| keyed Ø20 bar, r1 mm | model | level | dofs | s (bending, mesh made) | bending vM "
+           "vs full 3D fine | torsion vM vs full 3D fine |", "|---|---|---|---|---|---|---|"]
+    for rho in sorted({r["rho_mm"] for r in bar}):
+        ref = {r["load"]: r for r in bar
+               if (r["rho_mm"], r["model"], r["level"]) == (rho, "solid", "fine")}
+        for model in ("solid", "zoned"):
+            for level in ("coarse", "default", "fine"):
+                rows = {r["load"]: r for r in bar
+                        if (r["rho_mm"], r["model"], r["level"]) == (rho, model, level)}
+                if not rows:
+                    continue
+                diff = {k: 100 * (rows[k]["von_mises_MPa"] / ref[k]["von_mises_MPa"] - 1)
+                        for k in rows}
+                b = rows["bending"]
+                out.append(f"| {rho:g} | {'full 3D' if model == 'solid' else 'zoned'} | "
+                           f"{level} | {b['dofs']} | {b['seconds']:.1f} | "
+                           f"{diff['bending']:+.2f} % | {diff['torsion']:+.2f} % |")
+    x2 = d["x2_57"]
+    z = {r["keyways"]: r for r in x2 if r["model"] == "zoned"}
+    out += ["", f"x2_57 zoned at `default`, warm in process: sharp-edged keyways "
+            f"{z['sharp']['dofs']} zone dofs, {z['sharp']['seconds_warm']:.1f} s; with r1 "
+            f"{d['rho_mm']:g} mm {z['r1 0.25']['dofs']} zone dofs, "
+            f"{z['r1 0.25']['seconds_warm']:.1f} s."]
+    return "\n".join(out)
+
+
 TABLES = {"fatigue-x2_57": (DOCS / "VALIDATION.md", fatigue_x2_57),
           "truth-bars": (DOCS / "VALIDATION.md", truth_bars),
           "study-x2_tradeoff": (DOCS / "STUDIES.md", study_x2_tradeoff),
           "zoned-speed": (DOCS / "PERFORMANCE.md", zoned_speed),
           "fkm-gradient": (DOCS / "STRENGTH.md", fkm_gradient),
-          "groove-kt-fits": (DOCS / "STRENGTH.md", groove_kt_fits)}
+          "groove-kt-fits": (DOCS / "STRENGTH.md", groove_kt_fits),
+          "keyway-radius": (DOCS / "PERFORMANCE.md", keyway_radius)}
 
 
 def render(path: Path, text: str) -> str:

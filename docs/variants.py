@@ -82,6 +82,13 @@ def keys() -> list[tuple[str, str, str, str]]:
          "axial centre of the keyway"),
         ("segments.<seg>.keyways.<i>.angle_deg", "deg", "number (default 0)",
          "angular position; 0 = in line with the loads at 0°"),
+        ("segments.<seg>.keyways.<i>.bottom_radius_mm", "mm",
+         f"0 (sharp, the default) or {FILLET_MIN_MM:g} … min(0.4 × width, half the side "
+         "wall's height: depth less the surface's sagitta over the width)",
+         "radius r1 of the slot's bottom edges (DIN 6885-1: the drawing's value); meshed in "
+         "the 3D models, where the keyway's peak is then a converged stress "
+         "(reports/benchmarks/keyway_radius.md); 0: a sharp edge, whose peak is a value of "
+         "the mesh and is marked"),
         ("segments.<seg>.chamfer_left_mm", "mm", "0 (none), or > 0 on an outer edge (the "
          "shaft's end, < radius / 2, or a step down to a smaller segment, < the shoulder's "
          "flat height); leaves a straight part", "45° chamfer of the segment's left edge "

@@ -260,20 +260,24 @@ def _fkm_stub(n_cycles: int, G: float):
 def test_the_fkm_table_of_a_constant_speed_has_no_nan_and_says_no_load_cycles():
     from shaftfe.fatigue import standards_out as so
     res = _fkm_stub(0, -0.886)
-    (row,) = so.fkm_rows(res)
+    (row,) = so.fkm_rows(res, frozenset())
     assert "nan" not in " ".join(map(str, row)) and "∞" not in row
     assert row[len(so.FKM_HEAD) - 6:] == [so.NONE] * 6          # K_AK, S ×3, a, life
     assert row[3] == "-463.9" and so.FKM_HEAD[3].startswith("±σ_vM")
     assert row[4] == "-0.886*"                                   # a negative G is marked
-    notes = so.fkm_notes(res)
+    notes = so.fkm_notes(res, frozenset({"keyway:cw2_seat:0"}))
     assert notes[0] == so.FKM_SIGN_NOTE and so.FKM_G_NOTE in notes and "n_σ = 1" in so.FKM_G_NOTE
     assert so.no_load_cycles(res) and "no fatigue damage" in so.NO_LOAD_CYCLES
     # with cycles: the columns are filled, a nan still prints as '—'
-    (row,) = so.fkm_rows(_fkm_stub(3, 0.5))
+    (row,) = so.fkm_rows(_fkm_stub(3, 0.5), frozenset({"keyway:cw2_seat:0"}))
     assert row[15] == so.NONE and row[16] == "∞" and row[4] == "0.500"
-    assert so.FKM_G_NOTE not in so.fkm_notes(_fkm_stub(3, 0.5))
-    # the stub's region is a keyway: sharp-edged, its row marked and the mark explained
+    assert so.FKM_G_NOTE not in so.fkm_notes(_fkm_stub(3, 0.5), frozenset())
+    # the stub's region is a keyway: sharp-edged, its row marked and the mark explained;
+    # with a bottom radius (not in ``sharp``), neither
     assert row[0] == "keyway:cw2_seat:0†" and so.FKM_KEYWAY_NOTE in notes
+    (row,) = so.fkm_rows(_fkm_stub(3, 0.5), frozenset())
+    assert row[0] == "keyway:cw2_seat:0"
+    assert so.FKM_KEYWAY_NOTE not in so.fkm_notes(res, frozenset())
 
 
 def test_the_seed_method_on_a_given_field_says_it_scales_every_load_with_rpm2(monkeypatch):

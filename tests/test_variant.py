@@ -348,6 +348,10 @@ def test_set_with_a_wrong_path_or_kind_names_the_set_and_the_nearest_names(path,
     ("segments.collar.fillet_mm", 1.0, "r_s min of bearing 'free_side'"),     # ISO 582 abutment
     ("attachments.counterweight_2.mass_kg", 240.0, "typed in grams?"),
     ("segments.gear_seat.keyways.0.depth_mm", 12.0, "0 < depth < radius (8.5)"),
+    # a bottom radius: 0 or from 0.05 mm to 0.4 × width (2.0) and half the side wall (Ø17,
+    # 5 wide, 3 deep: 3 − (8.5 − √(8.5² − 2.5²)) = 2.624 mm, half 1.312)
+    ("segments.gear_seat.keyways.0.bottom_radius_mm", 1.4, "0 (sharp) or 0.05 … 1.31 mm"),
+    ("segments.gear_seat.keyways.0.bottom_radius_mm", 0.02, "0 (sharp) or 0.05 … 1.31 mm"),
 ])
 def test_set_out_of_range_is_checked_as_the_file_would_be_and_names_the_set(path, value, expect):
     """The loader's own range checks apply; the error names the --set, not the include file."""

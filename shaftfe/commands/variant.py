@@ -161,7 +161,9 @@ def _report(v, rpms: list[float]) -> dict:
              "fillet_mm": s.fillet_mm,
              "keyways": [{"width_mm": k.width_mm, "depth_mm": k.depth_mm,
                           "length_mm": k.length_mm, "x_center_mm": k.x_center_mm,
-                          "angle_deg": k.angle_deg} for k in s.keyways],
+                          "angle_deg": k.angle_deg,
+                          **({"bottom_radius_mm": k.bottom_radius_mm}
+                             if k.bottom_radius_mm else {})} for k in s.keyways],
              "source": {f: _src(v, f"segments.{s.name}.{f}")
                         for f in ("length_mm", "diameter_mm", "fillet_mm")}}
             for s in v.segments]
@@ -239,7 +241,9 @@ def run_show(args) -> int:
                   f"{s['diameter_mm']:.2f}→{s['diameter_right_mm']:.2f}"
                   if "diameter_right_mm" in s else s["diameter_mm"], s["fillet_mm"],
                   ", ".join(f"{k['width_mm']:g}×{k['depth_mm']:g}×{k['length_mm']:g}"
-                            f"@{k['x_center_mm']:g}" for k in s["keyways"]) or "-",
+                            f"@{k['x_center_mm']:g}" + (f" r1 {k['bottom_radius_mm']:g}"
+                                                        if "bottom_radius_mm" in k else "")
+                            for k in s["keyways"]) or "-",
                   "/".join(s["source"][f] for f in ("length_mm", "diameter_mm", "fillet_mm"))]
                  for s in rep["segments"]])
     print()

@@ -10,7 +10,6 @@ import numpy as np
 from shaftfe.fatigue import din743 as din
 from shaftfe.fatigue.assess import life_hours
 from shaftfe.fatigue.methods import METHODS
-from shaftfe.solid.features import kind_of
 from shaftfe.util.fmt import NO_FINITE_LIFE, big, json_clean, life, life_h_km, life_reason
 
 NONE = "—"        # a value the assessment has not got (nan): printed as this, never as "nan"
@@ -43,14 +42,21 @@ def _g(G: float) -> str:
     return f"{G:.3f}" + ("*" if G < 0 else "")
 
 
-def _region(name: str) -> str:
+def _region(name: str, sharp) -> str:
     """A region's name, marked '†' on a sharp-edged keyway (``FKM_KEYWAY_NOTE``)."""
-    return name + ("†" if kind_of(name) == "keyway" else "")
+    return name + ("†" if name in sharp else "")
 
 
-def fkm_rows(res) -> list[list]:
+def sharp_keyways(variant) -> frozenset[str]:
+    """The regions of the variant's sharp-edged keyways (no bottom radius)."""
+    from shaftfe.solid.plan import sharp_keyway_edges
+    return frozenset(e.region for e in sharp_keyway_edges(variant))
+
+
+def fkm_rows(res, sharp: frozenset[str]) -> list[list]:
     """The FKM table's rows; with no load cycles the columns of the cycles (K_AK of the largest
-    cycle, the safeties, the utilisation, the life) are ``NONE``."""
+    cycle, the safeties, the utilisation, the life) are ``NONE``. ``sharp``: the regions of
+    sharp-edged keyways (``sharp_keyways``), marked."""
     quiet = no_load_cycles(res)
     rows = []
     for r in res.regions:
@@ -61,7 +67,7 @@ def fkm_rows(res) -> list[list]:
                    [_f(c.K_AK_largest, ".3f"), *(_f(c.safety[k]) for k in
                                           ("elementary", "modified", "consistent")),
                     _f(c.utilisation[res.rule]), life(c.life_blocks[res.rule])])
-            rows.append([_region(r.region), c.layer, f"{r.xyz_mm[0]:.2f}",
+            rows.append([_region(r.region, sharp), c.layer, f"{r.xyz_mm[0]:.2f}",
                          f"{c.sigma_ref_MPa:+.1f}",
                          _g(c.G_per_mm), f"{c.n:.3f}", f"{c.K_d:.3f}", f"{c.R_m_MPa:.0f}",
                          f"{c.sigma_W_zd_MPa:.0f}", f"{c.Rz_um:g}", f"{c.K_R:.3f}",
@@ -90,13 +96,13 @@ FKM_KEYWAY_NOTE = ("† a sharp-edged keyway (no bottom radius is modelled): its
                    "assesses a keyway by its notch factor")
 
 
-def fkm_notes(res) -> list[str]:
+def fkm_notes(res, sharp: frozenset[str]) -> list[str]:
     """The lines under the FKM table: the sign convention, what a negative gradient does, and
-    what a keyway's row is."""
+    what a sharp-edged keyway's row is (``sharp``: as ``fkm_rows``)."""
     out = [FKM_SIGN_NOTE]
     if any(c is not None and c.G_per_mm < 0 for r in res.regions for c in (r.surface, r.core)):
         out.append(FKM_G_NOTE)
-    if any(kind_of(r.region) == "keyway" for r in res.regions):
+    if any(r.region in sharp for r in res.regions):
         out.append(FKM_KEYWAY_NOTE)
     return out
 

@@ -33,7 +33,7 @@ def four_step_shaft(*, name: str = "four_step", description: str = "synthetic fo
                     hex_end: str = "right", cw_angle: float = 30.0, hub_angle: float = 0.0,
                     washer: bool = False, thread_end: bool = False, groove: bool = False,
                     cross_hole: bool = False, chamfers: bool = False, undercut: str = "",
-                    taper: bool = False,
+                    taper: bool = False, keyway_radius: float = 0.0,
                     bearing: tuple[float, float] = (60.0, 8.0),
                     cw_seat: tuple[float, float] = (25.0, 45.0),
                     hub_seat: tuple[float, float] = (75.0, 85.0)) -> Variant:
@@ -45,8 +45,9 @@ def four_step_shaft(*, name: str = "four_step", description: str = "synthetic fo
     left end's edge (0.5 mm) and the Ø22's edge at its step down (0.5 mm), ``undercut``
     ("din509_e" | "din509_f") puts a DIN 509 undercut at the Ø17's right end, beside the
     Ø22's face, in place of the fillet there, ``taper`` makes the Ø15 a cone from Ø15 to
-    Ø17 (no step at x = 20; its end chamfer off)."""
-    kw = (Keyway(5.0, 3.0, 14.0, keyway_x, keyway_angle),) if keyway else ()
+    Ø17 (no step at x = 20; its end chamfer off), ``keyway_radius`` rounds the keyway's
+    bottom edges (r1)."""
+    kw = (Keyway(5.0, 3.0, 14.0, keyway_x, keyway_angle, keyway_radius),) if keyway else ()
     segs = (
         Segment("a", 0.0, 20.0, 15.0, 0.0, kind="thread" if thread_end else "plain",
                 chamfer_left_mm=0.5 if chamfers and not taper else 0.0,
@@ -76,12 +77,13 @@ KEYED_BAR_F_N = 1000.0        # four-point bending: a force at x = 40 and x = 12
 KEYED_BAR_T_NMM = 50_000.0    # torsion: +T at x = 40, −T at x = 120
 
 
-def keyed_bar(kind: str) -> Variant:
+def keyed_bar(kind: str, bottom_radius_mm: float = 0.0) -> Variant:
     """Ø20 × 160 mm bar, a 6 × 3.5 × 16 keyway at x = 80, supports at 10 and 150 mm, in
     four-point bending (``kind`` "bending": F at 40 and 120 mm, so M = F · 30 mm between them)
     or torsion (+T at 40, −T at 120): the zoned solve's two-cut case (tests/validation/
-    test_zoned.py, benchmarks/bench_zoned.py)."""
-    kw = (Keyway(6.0, 3.5, 16.0, 80.0, 0.0),)
+    test_zoned.py, benchmarks/bench_zoned.py); ``bottom_radius_mm``: the keyway's r1 (0:
+    sharp)."""
+    kw = (Keyway(6.0, 3.5, 16.0, 80.0, 0.0, bottom_radius_mm),)
     segs = (Segment("bar", 0.0, 160.0, 20.0, 0.0, keyways=kw),)
     brg = (Bearing("L", "x", 10.0, 10.0, 14_400.0, 10_000.0, K_SEED, axial=True),
            Bearing("R", "x", 150.0, 10.0, 14_400.0, 10_000.0, K_SEED))

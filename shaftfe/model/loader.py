@@ -251,14 +251,16 @@ def _segments(shaft: dict, src: str, ctx: Ctx, stock: float | None) -> tuple[Seg
         for j, k in enumerate(t.get("keyways", [])):
             kf = f"{fld}.keyways[{j}]"
             k = table(k, src, kf)
-            check_keys(k, {"width_mm", "depth_mm", "length_mm", "x_center_mm", "angle_deg"},
-                        src, kf)
+            check_keys(k, {"width_mm", "depth_mm", "length_mm", "x_center_mm", "angle_deg",
+                           "bottom_radius_mm"}, src, kf)
             provenance(k, src, kf, f"segments.{name}.keyways[{j}]", ctx)
             kw = Keyway(width_mm=num(k, "width_mm", src, kf),
                         depth_mm=num(k, "depth_mm", src, kf),
                         length_mm=num(k, "length_mm", src, kf),
                         x_center_mm=num(k, "x_center_mm", src, kf),
-                        angle_deg=num(k, "angle_deg", src, kf, default=0.0) or 0.0)
+                        angle_deg=num(k, "angle_deg", src, kf, default=0.0) or 0.0,
+                        bottom_radius_mm=num(k, "bottom_radius_mm", src, kf, default=0.0)
+                        or 0.0)
             need(kw.width_mm > 0, src, f"{kf}.width_mm", "> 0", kw.width_mm)
             need(0 < kw.depth_mm < 0.5 * dia, src, f"{kf}.depth_mm",
                   f"0 < depth < radius ({0.5 * dia:g})", kw.depth_mm)

@@ -92,6 +92,15 @@ def _segments(v, src: str) -> tuple[float, float]:
             if k.length_mm < k.width_mm + TOL_X_MM:
                 raise InputError(src, f"{kf}.length_mm", f">= width ({k.width_mm:g})",
                                  got=k.length_mm)
+            # the side walls' height: the depth less the sagitta of the surface over the width
+            wall = k.depth_mm - (r - math.sqrt(max(r * r - 0.25 * k.width_mm ** 2, 0.0)))
+            rb, rb_max = k.bottom_radius_mm, min(0.4 * k.width_mm, 0.5 * wall)
+            if not (_finite(rb) and (rb == 0 or FILLET_MIN_MM <= rb <= rb_max)):
+                # a flat bottom of at least a fifth of the width and a straight side wall of
+                # at least half its height remain (beyond that it is no parallel-key seat)
+                raise InputError(src, f"{kf}.bottom_radius_mm", f"0 (sharp) or "
+                                 f"{FILLET_MIN_MM:g} … {rb_max:.3g} mm (≤ 0.4 × width and ≤ "
+                                 "half the side wall's height)", got=rb)
         for side, c in (("left", s.chamfer_left_mm), ("right", s.chamfer_right_mm)):
             if not (_finite(c) and c >= 0):
                 raise InputError(src, f"{f}.chamfer_{side}_mm", ">= 0", got=c)

@@ -56,6 +56,9 @@ class Keyway:
     length_mm: float          # overall slot length including the round ends
     x_center_mm: float        # axial centre of the slot (absolute x)
     angle_deg: float = 0.0    # angular position of the slot centre line
+    # the radius r1 of the slot's bottom edges (DIN 6885-1); 0: sharp-edged, where a peak
+    # on the keyway is a value of the mesh (``solid.plan.SharpKeywayEdge``)
+    bottom_radius_mm: float = dataclasses.field(default=0.0, metadata={"omit_empty": True})
 
 
 @dataclass(frozen=True)

@@ -67,21 +67,36 @@ def slot_volume(k: Slot) -> float:
 
     straight = (k.length - k.width) * _quad(h, -a, a)
     ends = _quad(lambda s: h(s) * 2.0 * math.sqrt(max(a * a - s * s, 0.0)), -a, a)
-    return straight + ends
+    return straight + ends - slot_fillet_volume(k)
+
+
+def slot_fillet_volume(k: Slot) -> float:
+    """The material a keyway's bottom radius ρ leaves in its corners: the spandrel (1 − π/4)ρ²
+    along the two straight sides, and revolved about each round end's axis by Pappus (its
+    centroid ρ(10 − 3π)/(12 − 3π) from the wall, at radius w/2 less that)."""
+    rho, a = k.rho, 0.5 * k.width
+    spandrel = (1.0 - 0.25 * math.pi) * rho * rho
+    xbar = rho * (10.0 - 3.0 * math.pi) / (12.0 - 3.0 * math.pi)
+    return spandrel * (2.0 * (k.length - k.width) + 2.0 * math.pi * (a - xbar))
 
 
 def slot_area(k: Slot) -> float:
     """Faces of a keyway: flat bottom (stadium area), two straight walls of height
-    h(±w/2), and the two half-cylindrical end walls ∫ a·h(a sin φ) dφ over 0…2π."""
-    R, a, t = k.r, 0.5 * k.width, k.depth
+    h(±w/2), and the two half-cylindrical end walls ∫ a·h(a sin φ) dφ over 0…2π. With a bottom
+    radius ρ: the bottom's stadium of radius a − ρ, the walls ρ lower, and the fillet: a
+    quarter cylinder πρ/2 along each straight side and a quarter torus of area
+    2πρ((a − ρ)π/2 + ρ) (Pappus) round the two ends."""
+    R, a, t, rho = k.r, 0.5 * k.width, k.depth, k.rho
 
     def h(s: float) -> float:
-        return math.sqrt(R * R - s * s) - (R - t)
+        return math.sqrt(R * R - s * s) - (R - t) - rho
 
-    bottom = (k.length - k.width) * k.width + math.pi * a * a
-    walls = 2.0 * (k.length - k.width) * h(a)
+    straight = k.length - k.width
+    bottom = straight * (k.width - 2.0 * rho) + math.pi * (a - rho) ** 2
+    walls = 2.0 * straight * h(a)
     ends = _quad(lambda p: a * h(a * math.sin(p)), 0.0, 2.0 * math.pi)
-    return bottom + walls + ends
+    fillet = straight * math.pi * rho + 2.0 * math.pi * rho * ((a - rho) * 0.5 * math.pi + rho)
+    return bottom + walls + ends + fillet
 
 
 def _interval_overlap(lo: float, hi: float, a: float, b: float) -> list[tuple[float, float]]:

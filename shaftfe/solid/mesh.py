@@ -9,7 +9,9 @@ Mesh size (ours): a global size k_global × D per segment (Box fields) and, arou
 a Distance (to the fillet's two boundary circles) + Threshold field growing from h_ring within
 0.8 ρ of them to the global size with slope ``grad``; keyway edges and sharp concave shoulder
 circles get k_sharp × the smallest fillet radius of the shaft (or 0.1 × the smallest diameter
-if there is none), at most k_ring × a keyway's end radius w/2.
+if there is none), at most k_ring × a keyway's end radius w/2; a keyway's bottom radius ρ (r1)
+gets the hot-spot size k_fillet ρ along its whole length (within 0.8 ρ of its boundary curves,
+growing with grad_hot).
 
 Stress relevance (levels with ``k_ring``; the peak fillet stress is a function of the element
 size AT the hot spot, the far field barely matters):
@@ -60,6 +62,7 @@ from shaftfe.solid.features import (
     chamfer_region,
     groove_region,
     hole_region,
+    keyway_region,
     kind_of,
     segment_of,
 )
@@ -565,22 +568,25 @@ def _size_fields(gmsh, sol: Solid, level: MeshLevel, cls: dict) -> None:
     tag_of = {segment_of(g): surfs for g, surfs in cls["faces"].items()
               if kind_of(g) == "fillet"}
 
-    def threshold(h_loc: float, h_glob: float, dist: int, d_min: float) -> int:
+    def threshold(h_loc: float, h_glob: float, dist: int, d_min: float,
+                  grad: float | None = None) -> int:
         th = f.add("Threshold")
         f.setNumber(th, "InField", dist)
         f.setNumber(th, "SizeMin", h_loc)
         f.setNumber(th, "SizeMax", h_glob)
         f.setNumber(th, "DistMin", d_min)
-        f.setNumber(th, "DistMax", d_min + max(h_glob - h_loc, 0.0) / cfg["grad"])
+        f.setNumber(th, "DistMax", d_min + max(h_glob - h_loc, 0.0) / (grad or cfg["grad"]))
         return th
 
-    def near(what: str, tags, h_loc: float, h_glob: float, d_min: float, length: float) -> int:
+    def near(what: str, tags, h_loc: float, h_glob: float, d_min: float, length: float,
+             grad: float | None = None) -> int:
         """h_loc within d_min of the curves or surfaces ``tags`` (``what``: "CurvesList" |
-        "SurfacesList"), growing to h_glob; sampled every h_loc along ``length``."""
+        "SurfacesList"), growing to h_glob with slope ``grad`` (default: the level's);
+        sampled every h_loc along ``length``."""
         d = f.add("Distance")
         f.setNumbers(d, what, tags)
         f.setNumber(d, "Sampling", max(20, math.ceil(length / h_loc)))
-        return threshold(h_loc, h_glob, d, d_min)
+        return threshold(h_loc, h_glob, d, d_min, grad)
 
     def edges(surfs) -> list[int]:
         return sorted({abs(c) for _, c in gmsh.model.getBoundary(
@@ -636,6 +642,21 @@ def _size_fields(gmsh, sol: Solid, level: MeshLevel, cls: dict) -> None:
         fields.append(near("SurfacesList", cls["faces"][hole_region(h.segment, h.index)],
                            cfg["k_fillet"] * h.a, cfg["k_global"] * 2.0 * h.r, 0.3 * h.a,
                            4 * math.pi * h.a))
+    for k in sol.slots:
+        if k.rho > 0:
+            # a rounded keyway's bottom fillet is its hot spot (bending: at the slot's ends;
+            # torsion: along its sides): the hot-spot size k_fillet ρ on the whole of it, by
+            # the distance to its boundary curves as a span fillet's ring (the middle of the
+            # quarter arc lies 2ρ sin 22.5° = 0.77 ρ from both, inside DistMin 0.8 ρ), growing
+            # from there with the hot spot's slope grad_hot (its error per level:
+            # reports/benchmarks/keyway_radius.md)
+            reg = keyway_region(k.segment, k.index)
+            tags = cls["slot_fillets"][reg]
+            if not tags:
+                raise RuntimeError(f"shaft solid: no bottom fillet faces found for {reg}")
+            fields.append(near("CurvesList", edges(tags), cfg["k_fillet"] * k.rho,
+                               cfg["k_global"] * 2.0 * k.r, 0.8 * k.rho,
+                               2.0 * k.length + math.pi * k.width, cfg.get("grad_hot")))
     if cls["sharp_curves"]:
         # keyway edges / sharp shoulders; no larger than the fillet size on the slot's round
         # ends (radius w/2) so that curved P2 faces there stay valid

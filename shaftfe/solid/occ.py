@@ -28,7 +28,8 @@ def build_occ(gmsh, sol: Solid) -> dict:
     """Build the partitioned solid in the current Gmsh model and synchronise.
 
     Returns {"volumes": [...], "faces": {group: [surface tags]}, "fillet_faces": [...],
-    "sharp_curves": [...]} (sharp_curves: keyway edges and sharp concave shoulder circles)."""
+    "sharp_curves": [...], "slot_fillets": {...}} (sharp_curves: keyway edges and sharp concave
+    shoulder circles; slot_fillets: each rounded keyway's bottom fillet faces)."""
     occ = gmsh.model.occ
     prof = profile(sol)
     tags = [occ.addPoint(sol.x_left, 0.0, 0.0)]
@@ -115,17 +116,42 @@ def _seam_angle(angles: list[float]) -> float:
 
 def _slot_tool(occ, k: Slot) -> int:
     """Stadium prism from the slot bottom to beyond the surface, opening towards +y, then
-    rotated to the slot's angle."""
+    rotated to the slot's angle; with a bottom radius, its bottom edges rounded (a rolling
+    ball of radius ρ: in the shaft, a concave fillet between the bottom and the walls)."""
     a = 0.5 * k.width
     y0 = k.r - k.depth
     hgt = k.depth + 2.0
-    box = occ.addBox(k.x0 + a, y0, -a, k.length - k.width, hgt, k.width)
-    c1 = occ.addCylinder(k.x0 + a, y0, 0.0, 0.0, hgt, 0.0, a)
-    c2 = occ.addCylinder(k.x1 - a, y0, 0.0, 0.0, hgt, 0.0, a)
-    out, _ = occ.fuse([(3, box)], [(3, c1), (3, c2)])
-    tag = out[0][1]
+    if k.rho > 0:
+        tag = _rounded_stadium(occ, k.x0 + a, k.x1 - a, y0, a, hgt, k.rho)
+    else:                        # (the sharp slot's construction, whose mesh the cache holds)
+        box = occ.addBox(k.x0 + a, y0, -a, k.length - k.width, hgt, k.width)
+        c1 = occ.addCylinder(k.x0 + a, y0, 0.0, 0.0, hgt, 0.0, a)
+        c2 = occ.addCylinder(k.x1 - a, y0, 0.0, 0.0, hgt, 0.0, a)
+        out, _ = occ.fuse([(3, box)], [(3, c1), (3, c2)])
+        tag = out[0][1]
     occ.rotate([(3, tag)], 0, 0, 0, 1, 0, 0, k.angle)
     return tag
+
+
+def _rounded_stadium(occ, xa: float, xb: float, y0: float, a: float, hgt: float,
+                     rho: float) -> int:
+    """The stadium of end centres xa, xb and radius a in the plane y = y0, extruded by hgt
+    along +y, its bottom edges filleted with radius ρ. Each end is one half circle, so that
+    no edge of the fillet runs through the apex of its end, the hot spot in bending."""
+    up, ax = [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]     # the circles' plane y = y0; angle 0 = +x
+    p = [occ.addPoint(xa, y0, -a), occ.addPoint(xb, y0, -a), occ.addPoint(xb, y0, a),
+         occ.addPoint(xa, y0, a)]
+    loop = [occ.addLine(p[0], p[1]),
+            occ.addCircle(xb, y0, 0.0, a, angle1=-0.5 * math.pi, angle2=0.5 * math.pi,
+                          zAxis=up, xAxis=ax),
+            occ.addLine(p[2], p[3]),
+            occ.addCircle(xa, y0, 0.0, a, angle1=0.5 * math.pi, angle2=1.5 * math.pi,
+                          zAxis=up, xAxis=ax)]
+    s = occ.addPlaneSurface([occ.addCurveLoop(loop)])
+    ext = occ.extrude([(2, s)], 0.0, hgt, 0.0)
+    vol = next(t for d, t in ext if d == 3)
+    out = occ.fillet([vol], loop, [rho], removeVolume=True)
+    return out[0][1]
 
 
 def _hole_tool(occ, h: Hole) -> int:
@@ -265,10 +291,14 @@ def _hole_group(sol: Solid, bbox, eps: float) -> str | None:
 
 
 def _keyway_group(sol: Solid, bbox, com, eps: float) -> str | None:
-    """The keyway whose box holds the face and whose open side faces it best."""
+    """The keyway whose box holds the face and whose open side faces it best. (OCC's box of
+    a bottom fillet's torus is loose: there the centre of mass decides, the box only within
+    the slot's end radius.)"""
     best, score = None, -2.0
     for k in sol.slots:
-        if bbox[0] > k.x0 - eps and bbox[3] < k.x1 + eps:
+        loose = 0.5 * k.width if k.rho > 0 else 0.0
+        if bbox[0] > k.x0 - loose - eps and bbox[3] < k.x1 + loose + eps \
+                and k.x0 - eps < com[0] < k.x1 + eps:
             rr = math.hypot(com[1], com[2]) or 1.0
             sc = (com[1] * math.cos(k.angle) + com[2] * math.sin(k.angle)) / rr
             if sc > score:
@@ -278,7 +308,8 @@ def _keyway_group(sol: Solid, bbox, com, eps: float) -> str | None:
 
 def _sharp_curves(gmsh, sol: Solid, faces: dict, keyway_faces: list[int], eps: float
                   ) -> list[int]:
-    """Sharp re-entrant edges: keyway edges, the inner circle of a sharp concave shoulder."""
+    """Keyway edges (sized by ``k_sharp``; a rounded keyway's bottom fillet has a finer field of
+    its own, ``_slot_fillets``) and the inner circle of a sharp concave shoulder."""
     sharp: set[int] = set()
     for s in keyway_faces:
         for _, c in gmsh.model.getBoundary([(2, s)], oriented=False):
@@ -305,7 +336,8 @@ def classify(gmsh, sol: Solid) -> dict:
     radius; whatever else lies in a keyway's or the hex socket's box belongs to it. Raises
     RuntimeError for a face that fits nothing (a bug, not a user error).
 
-    Returns {"faces": {group: [surface tags]}, "fillet_faces": [...], "sharp_curves": [...]}.
+    Returns {"faces": {group: [surface tags]}, "fillet_faces": [...], "sharp_curves": [...],
+    "slot_fillets": {keyway group: [its bottom fillet's surface tags]}}.
     """
     faces: dict[str, list[int]] = {g: [] for g in sol.groups()}
     fillet_faces: list[int] = []
@@ -344,4 +376,23 @@ def classify(gmsh, sol: Solid) -> dict:
     if empty:
         raise RuntimeError(f"shaft solid: no faces found for groups {empty}")
     return {"faces": faces, "fillet_faces": sorted(fillet_faces),
-            "sharp_curves": _sharp_curves(gmsh, sol, faces, keyway_faces, eps)}
+            "sharp_curves": _sharp_curves(gmsh, sol, faces, keyway_faces, eps),
+            "slot_fillets": _slot_fillets(gmsh, sol, faces, eps)}
+
+
+def _slot_fillets(gmsh, sol: Solid, faces: dict, eps: float) -> dict[str, list[int]]:
+    """Each rounded keyway's bottom fillet faces ({region: [surface tags]}): its faces that
+    are not planes (the bottom and the straight walls are) and whose centre of mass lies
+    within ρ of the bottom plane (the round ends' walls lie above it)."""
+    out: dict[str, list[int]] = {}
+    for k in sol.slots:
+        if k.rho <= 0:
+            continue
+        reg = keyway_region(k.segment, k.index)
+        out[reg] = []
+        for s in faces[reg]:
+            com = gmsh.model.occ.getCenterOfMass(2, s)
+            n = com[1] * math.cos(k.angle) + com[2] * math.sin(k.angle)
+            if gmsh.model.getType(2, s) != "Plane" and n < k.r - k.depth + k.rho + eps:
+                out[reg].append(s)
+    return out

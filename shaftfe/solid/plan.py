@@ -83,7 +83,8 @@ class CylPart:
 
 @dataclass(frozen=True)
 class Slot:
-    """A keyway seat (stadium planform, flat bottom at depth ``depth`` below the surface)."""
+    """A keyway seat (stadium planform, flat bottom at depth ``depth`` below the surface),
+    its bottom edges rounded with radius ``rho`` (DIN 6885-1's r1; 0: sharp)."""
     segment: str
     index: int
     r: float
@@ -92,6 +93,7 @@ class Slot:
     length: float
     x_center: float
     angle: float        # rad
+    rho: float = 0.0
 
     @property
     def x0(self) -> float:
@@ -410,7 +412,8 @@ def _slots(segs, radii, parts, src: str) -> list[Slot]:
                                  "the cylindrical part of its segment with 0.5 mm to spare "
                                  f"([{p.x0:g}, {p.x1:g}])", got=k.x_center_mm)
             slots.append(Slot(s.name, j, radii[i], float(k.width_mm), float(k.depth_mm), ln,
-                              xc, math.radians(float(k.angle_deg))))
+                              xc, math.radians(float(k.angle_deg)),
+                              float(k.bottom_radius_mm)))
     return slots
 
 
@@ -708,6 +711,9 @@ def plan_payload(sol: Solid) -> dict:
     for k in LATE_FIELDS:
         if not d[k]:
             d.pop(k)
+    for k in d.get("slots", ()):        # a sharp keyway's key as before its radius existed
+        if not k["rho"]:
+            k.pop("rho")
     for g in d.get("grooves", ()):      # an undercut's fields, out of other grooves' keys
         for k, empty in (("side", ""), ("t2", 0.0)):
             if g[k] == empty:
@@ -921,8 +927,8 @@ def warn_sharp_corners(variant) -> tuple[SharpCorner, ...]:
 
 @dataclass(frozen=True)
 class SharpKeywayEdge:
-    """A keyway modelled with sharp edges: the variant gives no bottom radius (DIN 6885's r1
-    is not modelled yet). Its bottom edge is re-entrant, where linear elasticity has no finite
+    """A keyway modelled with sharp edges: the variant gives no bottom radius (DIN 6885-1's
+    r1, ``bottom_radius_mm``). Its bottom edge is re-entrant, where linear elasticity has no finite
     stress; a peak on the keyway is a value of the mesh. Measured on x2_57's gear-seat keyway
     (benchmarks/bench_keyway_edge.py → reports/benchmarks/keyway_edge.md): as the keyway
     edges' element size goes from the default level's down to 1/16 of it, the zoned von Mises
@@ -957,10 +963,11 @@ class SharpKeywayEdge:
 
 
 def sharp_keyway_edges(variant) -> tuple[SharpKeywayEdge, ...]:
-    """Every keyway, sharp-edged (``SharpKeywayEdge``): every keyway today."""
+    """Every sharp-edged keyway (``SharpKeywayEdge``): one without a bottom radius."""
     # the tolerance below the 0.5 mm a slot keeps from its segment's ends (``_slots``): a
     # fillet's peak next to a slot end is the fillet's
-    return tuple(SharpKeywayEdge(k, min(0.2 * k.width, 0.45)) for k in prepare(variant).slots)
+    return tuple(SharpKeywayEdge(k, min(0.2 * k.width, 0.45)) for k in prepare(variant).slots
+                 if k.rho == 0)
 
 
 def sharp_mark(corners, xyz) -> str:

@@ -117,9 +117,10 @@ class Fkm:
                  f"({ref.ref_rpm:g} rpm, {ref.n_nodes} points, P2 {job.level}); design life "
                  f"{design_life(res.design_life_blocks, res.block_seconds, job.speed_kmh)}; "
                  f"j_D {res.j_D:g}; D_M {res.damage_sum:g}; governing rule: {res.rule}")
-        p += table_lines(so.FKM_HEAD, so.fkm_rows(res), title="FKM, local stresses, per region "
-                         "(surface layer and core at the case depth)")
-        p += so.fkm_notes(res)
+        sharp = so.sharp_keyways(inputs.variant)
+        p += table_lines(so.FKM_HEAD, so.fkm_rows(res, sharp), title="FKM, local stresses, per "
+                         "region (surface layer and core at the case depth)")
+        p += so.fkm_notes(res, sharp)
         g, c = res.governing
         b = c.life_blocks[res.rule]
         h = float(life_hours(b, res.block_seconds))
