@@ -87,8 +87,9 @@ def keys() -> list[tuple[str, str, str, str]]:
          "wall's height: depth less the surface's sagitta over the width)",
          "radius r1 of the slot's bottom edges (DIN 6885-1: the drawing's value); meshed in "
          "the 3D models, where the keyway's peak is then a converged stress "
-         "(reports/benchmarks/keyway_radius.md); 0: a sharp edge, whose peak is a value of "
-         "the mesh and is marked"),
+         "(reports/benchmarks/keyway_radius.md), at a cost that grows as 1/r1: refused in "
+         "one line where the level's mesh of the fillets would pass 1.5 million dofs; 0: a "
+         "sharp edge, whose peak is a value of the mesh and is marked"),
         ("segments.<seg>.chamfer_left_mm", "mm", "0 (none), or > 0 on an outer edge (the "
          "shaft's end, < radius / 2, or a step down to a smaller segment, < the shoulder's "
          "flat height); leaves a straight part", "45° chamfer of the segment's left edge "

@@ -442,8 +442,43 @@ def _outboard(fl, span: tuple[float, float] | None) -> bool:
 
 def mesh_plan(variant, level: str | MeshLevel, hot_axes=None) -> Solid:
     """The solid plan ``build_mesh`` meshes (and keys the cache by): ``prepare(variant)`` with
-    the span fillets' bending planes (``with_hot_axes``)."""
-    return with_hot_axes(prepare(variant), mesh_level(level), hot_axes)
+    the span fillets' bending planes (``with_hot_axes``). Refuses (InputError) keyway bottom
+    radii whose fillets the level would mesh with more dofs than ``KEYWAY_DOFS_MAX``."""
+    sol = prepare(variant)
+    _check_keyway_fillets(variant, sol, mesh_level(level))
+    return with_hot_axes(sol, mesh_level(level), hot_axes)
+
+
+# A rounded keyway's fillet is meshed at k_fillet ρ along its whole bottom perimeter P, so its
+# dofs grow as P / (k_fillet² ρ): the keyed bar's whole dofs per unit of that, at r1 0.25 and
+# 1 mm (reports/benchmarks/keyway_radius.json), 225-234 at coarse, 341-343 at default, 372-386
+# at fine; the largest is taken (tests/validation/test_keyway_radius.py). The fine bar's 1.44
+# million dofs peaked at 17.5 GiB on this 24 GiB machine: beyond KEYWAY_DOFS_MAX for the fillets
+# (the rest of the shaft comes on top) a run would not finish, so it is refused in one line.
+KEYWAY_DOFS_PER_CELL = 387.0
+KEYWAY_DOFS_MAX = 1_500_000
+
+
+def keyway_fillet_dofs(sol: Solid, level: MeshLevel) -> float:
+    """The dofs the rounded keyways' fillets of ``sol`` take at ``level`` (an estimate, see
+    ``KEYWAY_DOFS_PER_CELL``)."""
+    k = level.k_fillet
+    return sum(KEYWAY_DOFS_PER_CELL * (2.0 * (s.length - s.width) + math.pi * s.width)
+               / (k * k * s.rho) for s in sol.slots if s.rho > 0)
+
+
+def _check_keyway_fillets(variant, sol: Solid, level: MeshLevel) -> None:
+    n = keyway_fillet_dofs(sol, level)
+    if n <= KEYWAY_DOFS_MAX:
+        return
+    from shaftfe.model.validate import source_of
+    s = min((s for s in sol.slots if s.rho > 0), key=lambda s: s.rho)
+    i = [g.name for g in variant.segments].index(s.segment)
+    raise InputError(source_of(variant), f"segments[{i}].keyways[{s.index}].bottom_radius_mm",
+                     f"a radius the {level.name} 3D mesh can hold: its keyways' fillets would "
+                     f"take about {n / 1e6:.1f} million dofs (> {KEYWAY_DOFS_MAX / 1e6:g} "
+                     "million: more memory than this machine's 24 GiB); a larger radius, or a "
+                     "coarser --level (--model axisymmetric has no keyway)", got=s.rho)
 
 
 def with_hot_axes(sol: Solid, level: MeshLevel, hot_axes=None) -> Solid:

@@ -108,3 +108,39 @@ def test_the_closed_forms_of_a_rounded_keyway_against_opencascade(rho):
             gmsh.finalize()
     assert removed == pytest.approx(slot_volume(k), rel=1e-5)
     assert slot_faces == pytest.approx(slot_area(k), rel=1e-5)
+
+
+def test_the_fillets_dofs_estimate_covers_every_measured_bar():
+    """``keyway_fillet_dofs`` (P / (k_fillet² ρ) × KEYWAY_DOFS_PER_CELL) against the keyed bar's
+    measured dofs at every level and both radii (the benchmark's full 3D rows): never below
+    them (the estimate guards the memory), and within 2 × (it is no loose bound that would
+    refuse what runs): an inequality on measured numbers."""
+    from shaftfe.solid.levels import LEVELS
+    from shaftfe.solid.mesh import keyway_fillet_dofs
+    from shaftfe.solid.plan import prepare
+    rows = [r for r in json.loads(BENCH.read_text(encoding="utf-8"))["bar"]
+            if r["model"] == "solid"]
+    assert len(rows) == 12
+    for r in rows:
+        est = keyway_fillet_dofs(prepare(keyed_bar(r["load"], r["rho_mm"])), LEVELS[r["level"]])
+        assert r["dofs"] <= est <= 2.0 * r["dofs"], r
+
+
+def test_a_radius_too_small_for_the_level_is_refused_in_one_line_before_meshing(tmp_path):
+    """x2_57 with r1 0.08 mm on both keyways at default: about 2.3 million fillet dofs, more
+    than KEYWAY_DOFS_MAX; `shaftfe static` says so in one line naming the field, exit 2, no
+    traceback, no output directory (refused at the plan, before gmsh)."""
+    import os
+    import subprocess
+    import sys
+    sets = [a for s in ("gear_seat", "cw2_seat")
+            for a in ("--set", f"segments.{s}.keyways.0.bottom_radius_mm=0.08")]
+    out = tmp_path / "out"
+    p = subprocess.run([sys.executable, "-m", "shaftfe.cli", "static", "--variant", "x2_57",
+                        *sets, "--out", str(out)], capture_output=True, text=True,
+                       env={**os.environ, "SHAFTFE_CACHE_DIR": str(tmp_path / "cache")},
+                       timeout=120)
+    assert p.returncode == 2 and "Traceback" not in p.stderr
+    (line,) = p.stderr.strip().splitlines()
+    assert "keyways[0].bottom_radius_mm" in line and "million dofs" in line
+    assert not out.exists()
