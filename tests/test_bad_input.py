@@ -504,11 +504,16 @@ B_EDITS = {
     "bearing_stiffness_1000x_stiff": (BEAR, K, "K_N_per_mm = [[35030000.0, 8756000.0], "
                                       "[8756000.0, 35030000.0]]"),
     "bearings_file_empty": (BEAR, (GEOMETRY_DIR / BEAR).read_text(encoding="utf-8"), ""),
+    # a keyway bottom radius taller than half the side wall (Ø17, 5 wide, 3 deep: 1.31 mm)
+    "keyway_radius_above_the_wall": (SHAFT, "x_center_mm = 94.5\nangle_deg = 0.0\n"
+                                     "bottom_radius_mm = 0.0", "x_center_mm = 94.5\n"
+                                     "angle_deg = 0.0\nbottom_radius_mm = 1.4"),
 }
 B_EXPECT = {
     "bearing_stiffness_1000x_soft": ["bearings.toml", "K_N_per_mm", "estimate 1.34e+05"],
     "bearing_stiffness_1000x_stiff": ["bearings.toml", "K_N_per_mm", "estimate 1.34e+05"],
     "bearings_file_empty": ["shaft_c.toml", "bearings[0].type", "[bearing_types.*] (none"],
+    "keyway_radius_above_the_wall": ["x2_57.toml", "keyways[0].bottom_radius_mm", "1.31 mm"],
 }
 VARIANT_EDITS.update(B_EDITS)
 B_CASES = {f"variant_check_{_k}": (["variant", "check", f"{{V:{_k}}}"], B_EXPECT[_k])
@@ -533,6 +538,12 @@ B_CASES.update({
     "report_sharp_shoulder": (["report", "--no-pictures", "--set",
                                "segments.collar.fillet_mm=0", "--out", "{W}/o"],
                               ["collar", "sharp corner"]),
+    # keyway bottom radii the level's 3D mesh cannot hold (about 2.3 million fillet dofs at
+    # default): refused at the plan, before gmsh (solid.mesh.KEYWAY_DOFS_MAX)
+    "static_keyway_radius_too_small_for_the_mesh": (
+        ["static", "--variant", "x2_57", "--set", "segments.gear_seat.keyways.0."
+         "bottom_radius_mm=0.08", "--set", "segments.cw2_seat.keyways.0.bottom_radius_mm=0.08",
+         "--out", "{W}/o"], ["keyways[0].bottom_radius_mm", "million dofs", "coarser --level"]),
     "variant_new_name_like_an_option": (["variant", "new", "--", "-rf"],
                                         ["NAME", "starting with a letter or digit"]),
     "variant_new_existing_name_elsewhere": (["variant", "new", "x2_31", "--out",

@@ -10,6 +10,7 @@ import numpy as np
 from shaftfe.fatigue import din743 as din
 from shaftfe.fatigue.assess import life_hours
 from shaftfe.fatigue.methods import METHODS
+from shaftfe.solid.plan import sharp_keyway_edges
 from shaftfe.util.fmt import NO_FINITE_LIFE, big, json_clean, life, life_h_km, life_reason
 
 NONE = "—"        # a value the assessment has not got (nan): printed as this, never as "nan"
@@ -49,7 +50,6 @@ def _region(name: str, sharp) -> str:
 
 def sharp_keyways(variant) -> frozenset[str]:
     """The regions of the variant's sharp-edged keyways (no bottom radius)."""
-    from shaftfe.solid.plan import sharp_keyway_edges
     return frozenset(e.region for e in sharp_keyway_edges(variant))
 
 

@@ -71,13 +71,13 @@ def slot_volume(k: Slot) -> float:
 
 
 def slot_fillet_volume(k: Slot) -> float:
-    """The material a keyway's bottom radius ρ leaves in its corners: the spandrel (1 − π/4)ρ²
-    along the two straight sides, and revolved about each round end's axis by Pappus (its
-    centroid ρ(10 − 3π)/(12 − 3π) from the wall, at radius w/2 less that)."""
-    rho, a = k.rho, 0.5 * k.width
-    spandrel = (1.0 - 0.25 * math.pi) * rho * rho
-    xbar = rho * (10.0 - 3.0 * math.pi) / (12.0 - 3.0 * math.pi)
-    return spandrel * (2.0 * (k.length - k.width) + 2.0 * math.pi * (a - xbar))
+    """The material a keyway's bottom radius ρ leaves in its corners: the spandrel
+    (``SPANDREL_AREA`` ρ²) along the two straight sides, and revolved about each round end's
+    axis by Pappus (its centroid ``SPANDREL_CENTROID`` ρ from the wall, at radius w/2 less
+    that)."""
+    a = 0.5 * k.width
+    return SPANDREL_AREA * k.rho ** 2 * (2.0 * (k.length - k.width)
+                                         + 2.0 * math.pi * (a - SPANDREL_CENTROID * k.rho))
 
 
 def slot_area(k: Slot) -> float:

@@ -444,9 +444,9 @@ def mesh_plan(variant, level: str | MeshLevel, hot_axes=None) -> Solid:
     """The solid plan ``build_mesh`` meshes (and keys the cache by): ``prepare(variant)`` with
     the span fillets' bending planes (``with_hot_axes``). Refuses (InputError) keyway bottom
     radii whose fillets the level would mesh with more dofs than ``KEYWAY_DOFS_MAX``."""
-    sol = prepare(variant)
-    _check_keyway_fillets(variant, sol, mesh_level(level))
-    return with_hot_axes(sol, mesh_level(level), hot_axes)
+    sol, lv = prepare(variant), mesh_level(level)
+    _check_keyway_fillets(variant, sol, lv)
+    return with_hot_axes(sol, lv, hot_axes)
 
 
 # A rounded keyway's fillet is meshed at k_fillet ρ along its whole bottom perimeter P, so its
@@ -463,8 +463,8 @@ def keyway_fillet_dofs(sol: Solid, level: MeshLevel) -> float:
     """The dofs the rounded keyways' fillets of ``sol`` take at ``level`` (an estimate, see
     ``KEYWAY_DOFS_PER_CELL``)."""
     k = level.k_fillet
-    return sum(KEYWAY_DOFS_PER_CELL * (2.0 * (s.length - s.width) + math.pi * s.width)
-               / (k * k * s.rho) for s in sol.slots if s.rho > 0)
+    return sum(KEYWAY_DOFS_PER_CELL * s.perimeter / (k * k * s.rho)
+               for s in sol.slots if s.rho > 0)
 
 
 def _check_keyway_fillets(variant, sol: Solid, level: MeshLevel) -> None:
@@ -610,7 +610,8 @@ def _size_fields(gmsh, sol: Solid, level: MeshLevel, cls: dict) -> None:
         f.setNumber(th, "SizeMin", h_loc)
         f.setNumber(th, "SizeMax", h_glob)
         f.setNumber(th, "DistMin", d_min)
-        f.setNumber(th, "DistMax", d_min + max(h_glob - h_loc, 0.0) / (grad or cfg["grad"]))
+        f.setNumber(th, "DistMax", d_min + max(h_glob - h_loc, 0.0)
+                    / (cfg["grad"] if grad is None else grad))
         return th
 
     def near(what: str, tags, h_loc: float, h_glob: float, d_min: float, length: float,

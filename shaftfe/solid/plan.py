@@ -100,6 +100,11 @@ class Slot:
         return self.x_center - 0.5 * self.length
 
     @property
+    def perimeter(self) -> float:
+        """The stadium's perimeter: the two straight sides and the two half circles."""
+        return 2.0 * (self.length - self.width) + math.pi * self.width
+
+    @property
     def x1(self) -> float:
         return self.x_center + 0.5 * self.length
 

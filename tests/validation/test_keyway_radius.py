@@ -4,8 +4,11 @@
   four-point bending, the zoned solve at ``coarse`` against the full 3D model at ``fine`` (the
   issue's reference for a 3D zone, #32: committed by benchmarks/bench_keyway_radius.py in
   reports/benchmarks/keyway_radius.json), within the error that benchmark measured at
-  ``coarse``, and where that benchmark found it.
-* The slot's closed-form volume and faces against OpenCASCADE's integration (no mesh).
+  ``coarse``, and where that benchmark found it. This is a CONSISTENCY check (the same finite
+  elements, a finer mesh of the uncut bar), not an independent validation of the keyway's
+  stress: no published keyseat chart at these proportions was at hand.
+* The slot's closed-form volume and faces against OpenCASCADE's integration (no mesh): an
+  independent reference.
 * The plan and the marks: a rounded keyway is no ``SharpKeywayEdge``; a sharp keyway's plan
   hashes as before the radius existed (its meshes stay in the cache).
 """
@@ -125,22 +128,3 @@ def test_the_fillets_dofs_estimate_covers_every_measured_bar():
         est = keyway_fillet_dofs(prepare(keyed_bar(r["load"], r["rho_mm"])), LEVELS[r["level"]])
         assert r["dofs"] <= est <= 2.0 * r["dofs"], r
 
-
-def test_a_radius_too_small_for_the_level_is_refused_in_one_line_before_meshing(tmp_path):
-    """x2_57 with r1 0.08 mm on both keyways at default: about 2.3 million fillet dofs, more
-    than KEYWAY_DOFS_MAX; `shaftfe static` says so in one line naming the field, exit 2, no
-    traceback, no output directory (refused at the plan, before gmsh)."""
-    import os
-    import subprocess
-    import sys
-    sets = [a for s in ("gear_seat", "cw2_seat")
-            for a in ("--set", f"segments.{s}.keyways.0.bottom_radius_mm=0.08")]
-    out = tmp_path / "out"
-    p = subprocess.run([sys.executable, "-m", "shaftfe.cli", "static", "--variant", "x2_57",
-                        *sets, "--out", str(out)], capture_output=True, text=True,
-                       env={**os.environ, "SHAFTFE_CACHE_DIR": str(tmp_path / "cache")},
-                       timeout=120)
-    assert p.returncode == 2 and "Traceback" not in p.stderr
-    (line,) = p.stderr.strip().splitlines()
-    assert "keyways[0].bottom_radius_mm" in line and "million dofs" in line
-    assert not out.exists()
