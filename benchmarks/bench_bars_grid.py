@@ -1,4 +1,6 @@
-"""The 3D levels' fillet-peak error bars measured over a grid of shoulders (issue #30 §5).
+"""The fillet-peak error bars of the 3D levels (issue #30 §5) and of the axisymmetric levels
+(issue #32: the zoned solve's and ``--model axisymmetric``'s span fillets), measured over a grid
+of shoulders.
 
 Each grid point is a stepped round bar of d = 17 mm (``bench_truth.four_point_bar``: rigid simple
 supports, two equal loads 3 D from the shoulder, the shoulder in constant moment) with D/d and
@@ -8,7 +10,12 @@ through both paths:
 * the truth: ``shaftfe.axisymmetric`` converged by Richardson over refinements 0, 1, 2 of its
   default mesh, with Roache's GCI bar (``axisymmetric.kt.converged_peaks``; the axisymmetric
   path matches an independent implementation to 1e-4);
-* the 3D path (``shaftfe.static``, P2 tets) at each mesh level.
+* the 3D path (``shaftfe.static``, P2 tets) at each mesh level;
+* the axisymmetric path (``shaftfe.axisymmetric``) at each of its own levels, refinement 0.
+  Its truth is the same method refined (its ``default`` level is refinement 0 of the truth's
+  sequence), so the axisymmetric bar is a discretisation error bar of its own method (Roache's
+  GCI), not an independent check; the independent check is the 3D path, a different model
+  (tetrahedra, another recovery), which meets the same truth within its own bars at ``fine``.
 
 Load kind: bending only. The 3D pipeline's only load is m·e·ω² on the parts' seats (radial
 forces); it applies no axial force, so a fillet in tension is never what ``shaftfe static``
@@ -22,7 +29,9 @@ The bar of a level is the envelope (min … max) over every measured grid point 
 it covers the convex hull of the measured points in the (D/d, r/d) plane
 (``shaftfe.static.truth_bars.MEASURED``; the lookup ``shaftfe.static.solve.truth_bars`` prints
 no bar outside it). x2_57's span fillets (reports/benchmarks/truth.json, bench_truth) are then
-checked against the grid's bar.
+checked against the grid's bar; for the axisymmetric levels x2_57's two span fillets are solved
+here at each level (10 000 rpm, bearing springs, spin softening on and off, as truth.json's
+truth) and enter its envelope the same way.
 
 Run in chunks (each solve is cached in ``reports/benchmarks/bars_grid.json``, so a run resumes
 where the last stopped): ``python -m benchmarks.bench_bars_grid [--budget S] [--levels a,b]
@@ -51,7 +60,9 @@ RD = (0.02, 0.05, 0.1, 0.15)
 FIT = 0.9              # an infeasible r/d is replaced by FIT × (D/d − 1)/2
 LEGACY = ((22.0, 17.0, 1.0), (22.0, 17.0, 0.5), (25.0, 17.0, 1.0))   # bench_truth's shoulders
 LEVELS = ("coarse", "default", "fine")
+AXI_LEVELS = ("coarse", "default", "fine")
 LOAD = "bending"
+X2_57_FILLETS = ("fillet:collar", "fillet:bearing_seat_gear")
 
 
 def grid() -> list[tuple[float, float]]:
@@ -108,10 +119,12 @@ def measure(levels, budget: float) -> bool:
     data = _load()
     todo = [(p, None) for p in grid()]
     todo += [(p, lv) for lv in levels for p in grid()]     # every level: the whole grid
+    todo += [(p, f"axisymmetric:{lv}") for lv in AXI_LEVELS for p in grid()]
     for (dd, rd), lv in todo:
         rec = data["points"].setdefault(_key(dd, rd), {"D/d": dd, "r/d": rd, "load": LOAD})
         what = "truth" if lv is None else lv
-        if what in rec:
+        if what in rec or (what.startswith("axisymmetric:") and
+                           what.split(":")[1] in rec.get("axisymmetric", {})):
             continue
         if time.perf_counter() - t_start > budget:
             return False
@@ -120,21 +133,63 @@ def measure(levels, budget: float) -> bool:
         v = four_point_bar(D, d, r)
         if lv is None:
             rec["truth"] = _truth(v)
+        elif lv.startswith("axisymmetric:"):
+            alv = lv.split(":")[1]
+            rec.setdefault("axisymmetric", {})[alv] = _axi(v, alv)
+            print(f"{_key(dd, rd)} {what}: {rec['axisymmetric'][alv]}", flush=True)
+            _save(data)
+            continue
         else:
             s1, vm, dofs, dt = _solid(v, lv)
             rec[lv] = {"max_principal": s1, "von_mises": vm, "dofs": dofs, "seconds": dt}
         print(f"{_key(dd, rd)} {what}: {rec[what]}", flush=True)
         _save(data)
+    x2 = data.setdefault("x2_57_axisymmetric", {})
+    for lv in AXI_LEVELS:
+        for soft in (True, False):
+            key = f"{lv}|{'on' if soft else 'off'}"
+            if key not in x2:
+                x2[key] = _axi_x2_57(lv, soft)
+                print(f"x2_57 axisymmetric {key}: {x2[key]}", flush=True)
+                _save(data)
     return True
 
 
-def errors(rec: dict, level: str) -> dict[str, tuple[float, float, float]]:
-    """{quantity: (error %, low %, high %)}: 100 (3D − truth) / truth and the same widened by
-    the truth's GCI bar."""
+def _axi(v, level: str) -> dict:
+    """The axisymmetric path's fillet peak of the grid bar at ``level`` (refinement 0), under
+    the truth's options (rigid supports, no softening)."""
+    from shaftfe.axisymmetric.model import AxiOptions
+    from shaftfe.axisymmetric.solve import solve_axisymmetric
+    t0 = time.perf_counter()
+    res = solve_axisymmetric(v, RPM, AxiOptions(level, rigid_supports=True,
+                                                spin_softening=False))
+    pk = {p.region: p for p in res.case(RPM).peaks}["fillet:a"]
+    return {"max_principal": float(pk.max_principal_MPa), "von_mises": float(pk.von_mises_MPa),
+            "nodes": int(res.n_nodes), "seconds": time.perf_counter() - t0}
+
+
+def _axi_x2_57(level: str, softening: bool) -> dict:
+    """x2_57's span-fillet peaks at the axisymmetric ``level`` under truth.json's options
+    (10 000 rpm, bearing springs, all parts, spin softening on or off)."""
+    from shaftfe.axisymmetric.model import AxiOptions
+    from shaftfe.axisymmetric.solve import solve_axisymmetric
+    from shaftfe.model.loader import load_variant
+    res = solve_axisymmetric(load_variant("x2_57"), RPM,
+                             AxiOptions(level, spin_softening=softening))
+    pk = {p.region: p for p in res.case(RPM).peaks}
+    return {f: {"max_principal": float(pk[f].max_principal_MPa),
+                "von_mises": float(pk[f].von_mises_MPa)} for f in X2_57_FILLETS} | {
+        "nodes": int(res.n_nodes)}
+
+
+def errors(rec: dict, level: str, model: str = "solid") -> dict[str, tuple[float, float, float]]:
+    """{quantity: (error %, low %, high %)}: 100 (value − truth) / truth of the 3D (``model``
+    "solid") or axisymmetric level and the same widened by the truth's GCI bar."""
     out = {}
+    at = rec[level] if model == "solid" else rec["axisymmetric"][level]
     for q in ("max_principal", "von_mises"):
         t, bar = rec["truth"][q]
-        val = rec[level][q]
+        val = at[q]
         out[q] = (100 * (val - t) / t, 100 * (val - t - bar) / t, 100 * (val - t + bar) / t)
     return out
 
@@ -145,9 +200,9 @@ def _outwards(errs) -> tuple[float, float]:
             math.ceil(max(e[2] for e in errs) * 100) / 100)
 
 
-def grid_errors(data: dict, level: str) -> list[tuple[float, float, float]]:
+def grid_errors(data: dict, level: str, model: str = "solid") -> list[tuple[float, float, float]]:
     return [e for p in grid()
-            for e in errors(data["points"][_key(*p)], level).values()]
+            for e in errors(data["points"][_key(*p)], level, model).values()]
 
 
 def x2_57_errors(level: str, path: Path = TRUTH_JSON) -> list[tuple[str, str, tuple]]:
@@ -162,6 +217,32 @@ def x2_57_errors(level: str, path: Path = TRUTH_JSON) -> list[tuple[str, str, tu
                                                        100 * (val - t - bar) / t,
                                                        100 * (val - t + bar) / t)))
     return out
+
+
+def x2_57_axi_errors(data: dict, level: str,
+                     path: Path = TRUTH_JSON) -> list[tuple[str, str, tuple]]:
+    """(fillet, quantity, (error, low, high) %) of x2_57's span fillets at the axisymmetric
+    ``level`` against truth.json's truth (spin softening on and off)."""
+    recs = json.loads(Path(path).read_text())["records"]
+    truth = {(r["case"], r["quantity"]): (r["truth_MPa"], r["truth_bar_MPa"]) for r in recs
+             if r["case"].startswith("x2_57")}
+    out = []
+    for soft in ("on", "off"):
+        vals = data["x2_57_axisymmetric"][f"{level}|{soft}"]
+        for f in X2_57_FILLETS:
+            case = f"x2_57 {f}" + ("" if soft == "on" else " (no softening)")
+            for q in ("max_principal", "von_mises"):
+                t, bar = truth[(case, q)]
+                val = vals[f][q]
+                out.append((case[6:], q, (100 * (val - t) / t, 100 * (val - t - bar) / t,
+                                          100 * (val - t + bar) / t)))
+    return out
+
+
+def axi_envelope(data: dict, level: str, path: Path = TRUTH_JSON) -> tuple[float, float]:
+    """The axisymmetric ``level``'s bar: (low, high) % over the grid and x2_57's span fillets."""
+    return _outwards(grid_errors(data, level, "axisymmetric")
+                     + [e for *_, e in x2_57_axi_errors(data, level, path)])
 
 
 def envelope(data: dict, level: str, path: Path = TRUTH_JSON) -> tuple[float, float]:
@@ -228,15 +309,53 @@ def write(data: dict, levels) -> dict:
                      f"{lo:+.2f} … {hi:+.2f} % | {secs:.0f} |")
     tsecs = sum(data["points"][_key(*p)]["truth"]["seconds"] for p in grid())
     lines += ["", f"Truth: {len(grid())} points, {tsecs:.0f} s in all."]
+    axi_bars = {lv: axi_envelope(data, lv) for lv in AXI_LEVELS}
+    lines += _axi_lines(data, axi_bars)
     (OUT / "bars_grid.md").write_text("\n".join(lines) + "\n")
-    _write_module(bars, grid())
+    _write_module(bars, grid(), axi_bars)
     print("\n".join(lines))
     return bars
 
 
-def _write_module(bars: dict, points) -> None:
+def _axi_lines(data: dict, axi_bars: dict) -> list[str]:
+    """The axisymmetric levels' section of bars_grid.md."""
+    lines = ["", "## The axisymmetric levels (the zoned solve's and --model axisymmetric's span "
+             "fillets)", "",
+             "The same bars and truth, solved by `shaftfe.axisymmetric` at each of its levels "
+             "(refinement 0; rigid supports, no softening). The truth is this method refined "
+             "(the `default` level is refinement 0 of its sequence), so this is the "
+             "discretisation error of the axisymmetric model (Roache's GCI), not an "
+             "independent check; the independent check of the truth is the 3D path above, a "
+             "different model, within its own bars at `fine`.", "",
+             "| D/d | r/d | level | meridian nodes | s | error max principal | "
+             "error von Mises |", "|---|---|---|---|---|---|---|"]
+    for dd, rd in grid():
+        rec = data["points"][_key(dd, rd)]
+        for lv in AXI_LEVELS:
+            a = rec["axisymmetric"][lv]
+            e = errors(rec, lv, "axisymmetric")
+            lines.append(f"| {dd:g} | {rd:g} | {lv} | {a['nodes']} | {a['seconds']:.2f} | "
+                         f"{e['max_principal'][0]:+.3f} % | {e['von_mises'][0]:+.3f} % |")
+    lines += ["", "x2_57's span fillets at each axisymmetric level against truth.json's truth "
+              "(10 000 rpm, bearing springs, all parts):", "",
+              "| fillet | level | quantity | error | inside the grid's envelope |",
+              "|---|---|---|---|---|"]
+    for lv in AXI_LEVELS:
+        lo, hi = _outwards(grid_errors(data, lv, "axisymmetric"))
+        lines += [f"| {c} | {lv} | {q} | {e[0]:+.3f} % | "
+                  f"{'yes' if lo <= e[0] <= hi else 'NO'} |"
+                  for c, q, e in x2_57_axi_errors(data, lv)]
+    lines += ["", "| axisymmetric level | grid envelope | bar (grid and x2_57) |", "|---|---|---|"]
+    for lv, (lo, hi) in axi_bars.items():
+        g_lo, g_hi = _outwards(grid_errors(data, lv, "axisymmetric"))
+        lines.append(f"| {lv} | {g_lo:+.2f} … {g_hi:+.2f} % | {lo:+.2f} … {hi:+.2f} % |")
+    return lines
+
+
+def _write_module(bars: dict, points, axi_bars: dict) -> None:
     when = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
     body = ",\n    ".join(f'"{lv}": ({lo:.2f}, {hi:.2f})' for lv, (lo, hi) in bars.items())
+    axi = ",\n    ".join(f'"{lv}": ({lo:.2f}, {hi:.2f})' for lv, (lo, hi) in axi_bars.items())
     pts = ",\n    ".join(f"({a!r}, {b!r})" for a, b in points)
     BARS.write_text(f'''\"\"\"The 3D levels' fillet-peak error bars and where they were measured.
 
@@ -253,12 +372,22 @@ stepped bar (d = 17 mm); the truth ``shaftfe.axisymmetric`` converged by Richard
 fillet whose (D/d, r/d) lies in the convex hull of MEASURED
 (``shaftfe.static.solve.truth_bars``), outside a keyway's zone, at the named levels under the
 measured options; a custom ``MeshLevel`` has none.
+
+AXI_ERROR_BAR_PCT[level]: the same for the axisymmetric path's levels (refinement 0), over the
+same grid and x2_57's span fillets; the truth is that method refined, so it is a discretisation
+error bar of its own method (GCI), not an independent check
+(``shaftfe.axisymmetric.solve.truth_bars``: the zoned solve's and --model axisymmetric's span
+fillets outside every zone, in bending).
 \"\"\"
 
 LOAD = "{LOAD}"
 
 ERROR_BAR_PCT: dict[str, tuple[float, float]] = {{
     {body},
+}}
+
+AXI_ERROR_BAR_PCT: dict[str, tuple[float, float]] = {{
+    {axi},
 }}
 
 MEASURED: tuple[tuple[float, float], ...] = (

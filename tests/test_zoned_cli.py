@@ -42,6 +42,11 @@ def test_the_default_static_model_is_zoned_and_writes_every_file(zoned_run):
     models = {p["region"]: p["model"] for p in s["cases"][0]["peaks"]}
     assert models["keyway:gear_seat:0"] == "zone:keyway:gear_seat:0"
     assert models["fillet:collar"] == "axisymmetric"      # the span fillets: the global model
+    # their bars: the global model's level (axisymmetric default, whatever the zones' level);
+    # the zones' peaks have none
+    from shaftfe.static.truth_bars import AXI_ERROR_BAR_PCT
+    assert s["truth_error_bar_pct"] == {f: list(AXI_ERROR_BAR_PCT["default"])
+                                        for f in ("fillet:collar", "fillet:bearing_seat_gear")}
     z = meshio.read(out / "zone_1.vtu")
     assert z.point_data["stress"].shape == (z.points.shape[0], 6)
     g = meshio.read(out / "result.vtu")

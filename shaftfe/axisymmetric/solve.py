@@ -90,6 +90,10 @@ class AxiResult:
     solution: AxiSolution | None = field(default=None, repr=False)
     notes: tuple[str, ...] = ()
     run: dict = field(default_factory=dict)
+    # the level's measured error bar (%, low, high) of each span-fillet peak (``truth_bars``)
+    # and why a span fillet has none
+    truth_error_bar_pct: dict = field(default_factory=dict)
+    truth_bar_notes: dict = field(default_factory=dict)
 
     def case(self, rpm: float) -> AxiCase:
         return next(c for c in self.cases if math.isclose(c.rpm, rpm))
@@ -113,6 +117,8 @@ class AxiResult:
                                     if self.solution is not None else None}},
             "omitted_features": list(self.omitted),
             "cases": [asdict(c) for c in self.cases],
+            "truth_error_bar_pct": self.truth_error_bar_pct,
+            "truth_bar_notes": self.truth_bar_notes,
             "notes": list(self.notes), "run": self.run,
         })
 
@@ -401,13 +407,34 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
     if options.spin_softening:
         notes.append(f"spin softening included: each attachment's m ω² u at {ref_rpm:g} rpm "
                      "(its seat's translation; its tilt left out)")
+    bars, bar_notes = truth_bars(v, options, cases[0].peaks)
     # the fields kept (``solution``, the axis) are the first speed's where the loads are not
     # all ∝ rpm²: that speed is the result's reference, as its fatigue reference says
     return AxiResult(v.name, v.content_hash, options, ref_rpm if proportional else rpms[0],
                      sol.mesh.n_nodes,
                      sol.mesh.n_elements, tuple(h.n for h in sol.harmonics),
                      sol.truncation_change, omitted, tuple(cases), ax_x, ax_u, sol,
-                     tuple(notes), run)
+                     tuple(notes), run, bars, bar_notes)
+
+
+def truth_bars(variant, options: AxiOptions, peaks) -> tuple[dict, dict]:
+    """({fillet region: (low, high) %}, {fillet region: why it has none}) of the span-fillet
+    peaks: the axisymmetric level's bar measured over the grid of shoulders
+    (``shaftfe.static.benchmark.span_fillet_bars``, ``truth_bars.AXI_ERROR_BAR_PCT``: its own
+    method refined, a discretisation error bar) for a named level used as named at refinement
+    0, under the options the bars were measured with (the uniform placement of the parts'
+    loads, every peak node kept, the default harmonic truncation); supports rigid or springs
+    and spin softening on or off were both measured (x2_57)."""
+    from shaftfe.axisymmetric.mesh import AXI_LEVELS
+    from shaftfe.static.benchmark import span_fillet_bars
+    name, d = options.level_name, AxiOptions()
+    if not isinstance(options.level, str) and options.level != AXI_LEVELS.get(name):
+        return {}, {}
+    if (options.refine, options.load_distribution, options.seed_load_case, options.exclude_mm,
+            options.truncation, options.n_max) != (0, d.load_distribution, False, 0.0,
+                                                   d.truncation, d.n_max):
+        return {}, {}
+    return span_fillet_bars(variant, name, peaks, "axisymmetric")
 
 
 GAUGE_TOL = 1e-9     # relative: Σ T = 0 per law to round-off (``model.loads.TORQUE_TOL``)

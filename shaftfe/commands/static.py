@@ -253,13 +253,15 @@ def _print_zoned(res, opts, out, corners=()) -> None:
         print_table(["station", "x mm", "deflection µm"],
                     [r[:3] for r in _station_rows(c.stations, {})])
         rows = [[p.region, p.model, p.von_mises_MPa, p.max_principal_MPa, p.xyz_mm[0],
+                 _bar(res.truth_error_bar_pct, p.region),
                  sharp_mark(corners if p.model != "axisymmetric" else
                             [c for c in corners if not isinstance(c, SharpKeywayEdge)],
                             p.xyz_mm)]
                 for p in c.peaks if p.kind not in ("end", "seat", "bearing_seat")
                 and p.region != "surface"]
-        print_table(["region", "model", "von Mises MPa", "max principal MPa", "x mm", "note"],
-                    rows)
+        print_table(["region", "model", "von Mises MPa", "max principal MPa", "x mm",
+                     "error vs truth %", "note"], rows)
+    _print_bar_notes(res, f"the axisymmetric {res.axi_level} level's")
     for n in res.notes:
         print(f"note: {n}")
     print(f"\nwrote {out / 'result.vtu'}, the zones' zone_*.vtu, {out / 'summary.json'}")
@@ -285,13 +287,34 @@ def _print_axi(res, opts, out, corners=()) -> None:
                     [r[:3] for r in _station_rows(c.stations, {})])
         rows = [[p.region, p.von_mises_MPa, p.max_principal_MPa, p.xyz_mm[0], p.theta_deg,
                  "-" if p.fillet_angle_deg is None else p.fillet_angle_deg,
+                 _bar(res.truth_error_bar_pct, p.region),
                  p.omitted_zone or "", sharp_mark(corners, p.xyz_mm)]
                 for p in c.peaks if kind_of(p.region) not in SEAT_KINDS | {"end"}]
         print_table(["region", "von Mises MPa", "max principal MPa", "x mm", "θ deg",
-                     "on fillet deg", "in the zone of", "note"], rows)
+                     "on fillet deg", "error vs truth %", "in the zone of", "note"], rows)
+    _print_bar_notes(res, f"this axisymmetric level's ({opts.level_name})")
     for n in res.notes:
         print(f"note: {n}")
     print(f"\nwrote {out / 'result.vtu'}, {out / 'summary.json'}")
+
+
+def _bar(bars: dict, region: str) -> str:
+    """A peak's measured error bar as printed ("-" where none was measured)."""
+    return f"{bars[region][0]:+.2f} … {bars[region][1]:+.2f}" if region in bars else "-"
+
+
+def _print_bar_notes(res, whose: str) -> None:
+    """What the "error vs truth" column means, and why a span fillet has no bar."""
+    if not (res.truth_error_bar_pct or res.truth_bar_notes):
+        return
+    print(f"error vs truth: {whose} measured error of span-fillet peaks (von Mises and max "
+          "principal) against the converged axisymmetric solution over a grid of shoulders in "
+          "bending (its own method refined: a discretisation bar; reports/benchmarks/"
+          "bars_grid.md); none where it was not measured (end fillets, a zone's peaks, other "
+          "options than the measured ones, a fillet outside the measured grid, an axial force "
+          "or torque)")
+    for region, why in res.truth_bar_notes.items():
+        print(f"  {region}: {why}")
 
 
 def _at_rest(rpm: float) -> None:

@@ -380,12 +380,19 @@ def _static(r) -> str:
                numeric={0, 2, 3})
     c0 = st["cases"][0]
     s += f"<h3>Peak von Mises stress per region, {num(c0['rpm'])} rpm</h3>"
+    bars = st.get("truth_error_bar_pct") or {}
     rows = [[p["region"], num(p["von_mises_MPa"], 4), num(p["xyz_mm"][0]),
-             num(p["von_mises_unfiltered_MPa"], 4)]
+             num(p["von_mises_unfiltered_MPa"], 4),
+             f"{bars[p['region']][0]:+.2f} … {bars[p['region']][1]:+.2f}"
+             if p["region"] in bars else "–"]
             for p in sorted(c0["peaks"], key=lambda p: -(p["von_mises_MPa"] or 0))
             if kind_of(p["region"]) != "end"]
-    s += table(["region", "von Mises [MPa]", "x [mm]", "unfiltered [MPa]"], rows,
-               numeric={1, 2, 3})
+    s += table(["region", "von Mises [MPa]", "x [mm]", "unfiltered [MPa]",
+                "error vs truth [%]"], rows, numeric={1, 2, 3})
+    if bars:
+        s += ("<p>error vs truth: the level's measured error of a span fillet's peak against "
+              "the converged axisymmetric solution over a grid of shoulders in bending "
+              "(reports/benchmarks/bars_grid.md); none where it was not measured.</p>")
     return s
 
 

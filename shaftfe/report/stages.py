@@ -205,6 +205,7 @@ def static_summary(res, variant) -> dict:
             "cond_S": d.get("cond_S"), "min_quality": d.get("min_quality"),
             "mesh_from_cache": getattr(res, "run", {}).get("mesh_from_cache"),
             "n_excluded_nodes": d.get("n_excluded_nodes"),
+            "truth_error_bar_pct": res.truth_error_bar_pct,
             "cases": cases, "error_estimate": res.error_estimate, "notes": list(res.notes)}
 
 
@@ -248,6 +249,7 @@ def static_summary_axisymmetric(res, variant) -> dict:
             "min_quality": None, "mesh_from_cache": res.run.get("mesh_from_cache"),
             "n_excluded_nodes": sum(p.n_excluded for p in res.cases[0].peaks),
             "omitted_features": list(res.omitted),
+            "truth_error_bar_pct": res.truth_error_bar_pct,
             "cases": cases, "error_estimate": None, "notes": list(res.notes)}
 
 
@@ -294,6 +296,7 @@ def static_summary_zoned(res, variant) -> dict:
             "global_level": axi["level"], "zones": zones, "zone_dofs": dofs,
             "n_dofs": axi["n_dofs"] + dofs,
             "solver": f"{axi['solver']}; PARDISO per zone",
+            "truth_error_bar_pct": res.truth_error_bar_pct,
             "mesh_from_cache": None, "cases": cases, "notes": list(res.notes)}
 
 

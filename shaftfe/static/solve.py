@@ -513,19 +513,12 @@ _BAR_CONDITIONS = {"order": 2, "load_distribution": "uniform", "body_force": Fal
 
 def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> tuple[dict, dict]:
     """({fillet region: (low, high) %}, {fillet region: why it has none}) for the fillet
-    peaks: a fillet gets its level's truth bar (``shaftfe.static.benchmark.fillet_bar``) when
-    its (D/d, r/d) lies in the hull of the shoulders measured at that level
-    (``shaftfe.static.truth_bars``), for a named level used as named, under the options the
-    bars were measured with (``_BAR_CONDITIONS``), on the pipeline's own mesh of the variant
-    (not a mesh the caller built otherwise), for span fillets (not end fillets, meshed apart and
-    not measured) whose peak lies outside every cut feature's zone (keyways, hex socket:
-    ``solid.features.cuts``, which the axisymmetric truth leaves out). The reasons name
-    only the geometry: a span fillet outside the measured hull."""
-    from shaftfe.solid.features import cuts, fillet_region
+    peaks: ``shaftfe.static.benchmark.span_fillet_bars`` (span fillets outside every cut
+    feature's zone, inside the measured hull, in bending) for a named level used as named,
+    under the options the bars were measured with (``_BAR_CONDITIONS``), on the pipeline's own
+    mesh of the variant (not a mesh the caller built otherwise)."""
     from shaftfe.solid.levels import LEVELS
-    from shaftfe.solid.mesh import end_fillet
-    from shaftfe.solid.plan import prepare
-    from shaftfe.static.benchmark import fillet_bar, measured_range
+    from shaftfe.static.benchmark import span_fillet_bars
     from shaftfe.static.cache import predicted_mesh_key
     from shaftfe.static.truth_bars import ERROR_BAR_PCT
     lv = options.level
@@ -536,22 +529,7 @@ def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> tuple[d
         return {}, {}
     if mesh_key != predicted_mesh_key(variant, options):
         return {}, {}
-    plan = prepare(variant)
-    span = {fillet_region(fl.segment): fl for fl in plan.fillets if not end_fillet(plan, fl)}
-    zones = [f.zone_mm for f in cuts(plan)]
-    bars, notes = {}, {}
-    for p in peaks:
-        fl = span.get(p.region)
-        if fl is None or any(lo <= p.xyz_mm[0] <= hi for lo, hi in zones):
-            continue
-        dd, rd = fl.r_large / fl.r_small, fl.rho / (2 * fl.r_small)
-        bar = fillet_bar(name, dd, rd)
-        if bar is not None:
-            bars[p.region] = bar
-        else:
-            notes[p.region] = (f"no measured bar for this geometry (D/d {dd:.3g}, r/d {rd:.3g} "
-                               f"outside the {measured_range(name)})")
-    return bars, notes
+    return span_fillet_bars(variant, name, peaks, "solid")
 
 
 def _named_case(variant, case):

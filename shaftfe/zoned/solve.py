@@ -93,6 +93,10 @@ class ZonedResult:
     global_result: object = field(default=None, repr=False)     # axisymmetric AxiResult
     plan: object = field(default=None, repr=False)         # the mesh plan the zones are cut from
     fields: tuple = field(default=(), repr=False)               # (SubModel, SubField) per zone
+    # the global model's measured error bars of the span-fillet peaks it gives (the zones'
+    # peaks have none: ``AxiResult.truth_error_bar_pct``) and why a span fillet has none
+    truth_error_bar_pct: dict = field(default_factory=dict)
+    truth_bar_notes: dict = field(default_factory=dict)
 
     def case(self, rpm: float) -> ZonedCase:
         return next(c for c in self.cases if math.isclose(c.rpm, rpm))
@@ -111,6 +115,8 @@ class ZonedResult:
             "cut_tolerance": CUT_TOL,
             "zones": [asdict(z) for z in self.zones],
             "cases": [asdict(c) for c in self.cases],
+            "truth_error_bar_pct": self.truth_error_bar_pct,
+            "truth_bar_notes": self.truth_bar_notes,
             "notes": list(self.notes), "run": self.run,
         })
 
@@ -319,9 +325,14 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
     notes.append("shaftfe report, demo and fatigue take this zoned field by default; "
                  "--model solid gives the full 3D model, whose peaks differ from these by what "
                  "reports/benchmarks/zoned.md measures")
-    notes.append("no error bars: the 3D levels' bars were measured on whole-shaft meshes and "
-                 "the axisymmetric model's error only on x2_57's span fillets "
-                 "(reports/benchmarks/zoned.md compares every peak with the full 3D model)")
+    glob = {p.region for p in cases[0].peaks if p.model == "axisymmetric"} if cases else set()
+    bars = {r: b for r, b in first_global.truth_error_bar_pct.items() if r in glob}
+    bar_notes = {r: n for r, n in first_global.truth_bar_notes.items() if r in glob}
+    notes.append("error bars: a span fillet's peak from the global model carries the "
+                 f"axisymmetric {axi_level} level's error measured over a grid of shoulders "
+                 "(its own method refined: a discretisation bar; reports/benchmarks/"
+                 "bars_grid.md); the zones' peaks have none (measured on x2_57 and one keyed "
+                 "bar only: reports/benchmarks/zoned.md, keyway_radius.md)")
     if any(k.rho == 0 for k in plan.slots):
         notes.append("a keyway without a bottom radius (bottom_radius_mm) is sharp-edged: a "
                      "peak on it is a value of the mesh that grows with refinement, not a "
@@ -338,7 +349,8 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
     run = {"plan_seconds": t_plan, "global_seconds": t_global, "zones_seconds": t_zones,
            "total_seconds": time.perf_counter() - t0}
     return ZonedResult(variant.name, variant.content_hash, options, axi_level, tuple(infos),
-                       tuple(cases), tuple(notes), run, first_global, plan, tuple(fields))
+                       tuple(cases), tuple(notes), run, first_global, plan, tuple(fields),
+                       bars, bar_notes)
 
 
 def _growth_file(plan, bands, zones, options, cache_dir):

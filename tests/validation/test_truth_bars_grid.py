@@ -1,4 +1,6 @@
-"""The 3D levels' fillet error bars, measured over a grid of shoulders (issue #30 §5, §3).
+"""The fillet error bars of the 3D levels (issue #30 §5, §3) and of the axisymmetric levels
+(issue #32: the zoned solve's and --model axisymmetric's span fillets), measured over a grid of
+shoulders.
 
 Source of the bars: benchmarks/bench_bars_grid.py, which solves four-point-bent stepped bars
 (D/d 1.1–1.5, r/d 0.02–0.15) with the 3D path at each level and with ``shaftfe.axisymmetric``
@@ -8,8 +10,14 @@ Independent check: x2_57's span fillets against the same truth, measured by
 benchmarks/bench_truth.py (reports/benchmarks/truth.json: another load case, springs, spin
 softening), which the grid's bar must contain since they lie inside the grid.
 
-Nothing here re-solves the grid: the tests read the cache and the generated module (exact
-arithmetic on their numbers) and call the lookup with the fillets' geometry (no mesh, no solve).
+The axisymmetric bars judge the axisymmetric levels against that method refined (the truth's
+sequence starts at its default mesh): a discretisation bar of its own method (Roache's GCI), not
+an independent check; what checks the truth independently is the 3D path (another model), above.
+
+Nothing here re-solves the grid but one point: the tests read the cache and the generated module
+(exact arithmetic on their numbers) and call the lookup with the fillets' geometry (no mesh, no
+solve); ``test_the_axisymmetric_bar_is_measured_on_todays_mesh`` solves one grid shoulder at the
+axisymmetric default level, so a changed mesher cannot leave the printed bar stale.
 """
 
 from __future__ import annotations
@@ -20,7 +28,7 @@ from types import SimpleNamespace
 import pytest
 
 from shaftfe.static.benchmark import fillet_bar
-from shaftfe.static.truth_bars import ERROR_BAR_PCT, MEASURED
+from shaftfe.static.truth_bars import AXI_ERROR_BAR_PCT, ERROR_BAR_PCT, MEASURED
 
 ROOT = Path(__file__).resolve().parents[2]
 X2_57 = (22.0 / 17.0, 0.6 / 17.0)          # collar and bearing-seat-gear fillets: D/d, r/d
@@ -36,14 +44,19 @@ def test_generated_bars_are_the_envelope_of_the_cached_grid(monkeypatch):
     assert tuple(MEASURED) == tuple(g.grid())
     for level, bar in ERROR_BAR_PCT.items():
         assert g.envelope(data, level) == bar, level
+    assert tuple(AXI_ERROR_BAR_PCT) == g.AXI_LEVELS
+    for level, bar in AXI_ERROR_BAR_PCT.items():
+        assert g.axi_envelope(data, level) == bar, level
 
 
-@pytest.mark.parametrize("level", sorted(ERROR_BAR_PCT))
-def test_no_bar_outside_the_measured_hull(level):
+@pytest.mark.parametrize("model,level", [("solid", lv) for lv in sorted(ERROR_BAR_PCT)]
+                         + [("axisymmetric", lv) for lv in sorted(AXI_ERROR_BAR_PCT)])
+def test_no_bar_outside_the_measured_hull(model, level):
     """Outside the convex hull of the measured (D/d, r/d) the lookup gives no bar; at every
-    measured point (a vertex or inside) it gives the level's bar."""
+    measured point (a vertex or inside) it gives the level's bar (each model its own)."""
+    bars = ERROR_BAR_PCT if model == "solid" else AXI_ERROR_BAR_PCT
     for dd, rd in MEASURED:
-        assert fillet_bar(level, dd, rd) == ERROR_BAR_PCT[level], (dd, rd)
+        assert fillet_bar(level, dd, rd, model) == bars[level], (dd, rd)
     dds = [p[0] for p in MEASURED]
     rds = [p[1] for p in MEASURED]
     outside = [(min(dds) - 0.02, 0.03),            # below the smallest D/d
@@ -53,8 +66,8 @@ def test_no_bar_outside_the_measured_hull(level):
                (17.0 / 9.08, 0.4 / 9.08),          # x2_57's thread_m10 fillet, D/d 1.87
                (1.1, 0.15)]                        # in the rectangle, not in the hull
     for dd, rd in outside:
-        assert fillet_bar(level, dd, rd) is None, (dd, rd)
-    assert fillet_bar("no_such_level", *MEASURED[0]) is None
+        assert fillet_bar(level, dd, rd, model) is None, (dd, rd)
+    assert fillet_bar("no_such_level", *MEASURED[0], model) is None
 
 
 def test_x2_57_fillets_are_inside_and_their_truth_errors_inside_the_grid_bar(monkeypatch):
@@ -77,6 +90,81 @@ def test_x2_57_fillets_are_inside_and_their_truth_errors_inside_the_grid_bar(mon
     g_lo, g_hi = g._outwards(g.grid_errors(data, "default"))
     errs = [e[0] for *_, e in g.x2_57_errors("default")]
     assert all(g_lo <= e <= g_hi for e in errs), (errs, (g_lo, g_hi))
+
+
+def test_x2_57_fillets_at_the_axisymmetric_levels_inside_their_bars(monkeypatch):
+    """x2_57's span fillets solved at each axisymmetric level (bench_bars_grid, springs, spin
+    softening on and off) against truth.json's truth: every error lies inside the printed bar
+    (the envelope includes them), and at the default level (the zoned solve's global model)
+    inside the grid's OWN envelope too: the grid bounds a shaft it did not include."""
+    from benchmarks import bench_bars_grid as g
+    monkeypatch.chdir(ROOT)
+    data = g._load()
+    for level, (lo, hi) in AXI_ERROR_BAR_PCT.items():
+        assert fillet_bar(level, *X2_57, "axisymmetric") == (lo, hi), level
+        errs = [e[0] for *_, e in g.x2_57_axi_errors(data, level)]
+        assert len(errs) == 8, level          # 2 fillets × 2 quantities × softening on/off
+        assert all(lo <= e <= hi for e in errs), (level, errs, (lo, hi))
+    g_lo, g_hi = g._outwards(g.grid_errors(data, "default", "axisymmetric"))
+    errs = [e[0] for *_, e in g.x2_57_axi_errors(data, "default")]
+    assert all(g_lo <= e <= g_hi for e in errs), (errs, (g_lo, g_hi))
+
+
+def test_the_axisymmetric_bar_is_measured_on_todays_mesh(monkeypatch):
+    """One grid shoulder (22/17/1, bench_truth's) solved now at the axisymmetric default level
+    reads what bars_grid.json holds, so the bar printed beside the zoned solve's fillets was
+    measured on this mesher: the same mesh and the same SuperLU solve (relative residual
+    ≈ 1e-16), so only round-off of another BLAS may differ, far below the 1e-6 bound; a changed
+    mesh moves the peak by 1e-4 or more (the levels differ by 0.1–1 %, bars_grid.md)."""
+    from benchmarks import bench_bars_grid as g
+    from benchmarks.bench_truth import four_point_bar
+    monkeypatch.chdir(ROOT)
+    rec = g._load()["points"][g._key(round(22 / 17, 6),
+                                     round(1 / 17, 6))]
+    now = g._axi(four_point_bar(22.0, 17.0, 1.0), "default")
+    for q in ("max_principal", "von_mises"):
+        assert now[q] == pytest.approx(rec["axisymmetric"]["default"][q], rel=1e-6), q
+    assert now["nodes"] == rec["axisymmetric"]["default"]["nodes"]
+
+
+def _axi_bars(variant, level="default"):
+    from shaftfe.axisymmetric.model import AxiOptions
+    from shaftfe.axisymmetric.solve import truth_bars
+    from shaftfe.solid.plan import prepare
+    peaks = [SimpleNamespace(region=f"fillet:{f.segment}",
+                             xyz_mm=(f.x_shoulder, 0.0, 0.0)) for f in prepare(variant).fillets]
+    return truth_bars(variant, AxiOptions(level=level), peaks)
+
+
+def test_axisymmetric_path_prints_a_bar_only_where_measured():
+    """The axisymmetric (and so the zoned) lookup, ``axisymmetric.solve.truth_bars``: x2_57's
+    two span fillets outside the zones get the level's bar, the fillets in a keyway's or the
+    hex socket's zone none; a collar fillet sharper than the grid gets none with the geometry
+    named; an axial force on the shaft withholds every bar, naming the load (the bars were
+    measured in bending); other options than the measured ones give none."""
+    from dataclasses import replace
+
+    from shaftfe.axisymmetric.model import AxiOptions
+    from shaftfe.axisymmetric.solve import truth_bars
+    from shaftfe.model.loader import load_variant
+    from shaftfe.model.loads import Load
+    v = load_variant("x2_57")
+    bars, notes = _axi_bars(v)
+    assert bars == {"fillet:collar": AXI_ERROR_BAR_PCT["default"],
+                    "fillet:bearing_seat_gear": AXI_ERROR_BAR_PCT["default"]} and not notes
+    bars, notes = _axi_bars(load_variant("x2_57", ["segments.collar.fillet_mm=0.25"]), "fine")
+    assert bars == {"fillet:bearing_seat_gear": AXI_ERROR_BAR_PCT["fine"]}
+    assert notes["fillet:collar"].startswith("no measured bar for this geometry (D/d 1.29, "
+                                             "r/d 0.0147 outside the measured grid")
+    axial = replace(v, loads=(Load("thrust", "axial_force", 55.0, (54.0, 56.0), 500.0),))
+    bars, notes = _axi_bars(axial)
+    assert not bars and set(notes) == {"fillet:collar", "fillet:bearing_seat_gear"}
+    assert "measured in bending" in notes["fillet:collar"] and "axial force" in \
+        notes["fillet:collar"]
+    peaks = [SimpleNamespace(region="fillet:collar", xyz_mm=(64.9, 0.0, 0.0))]
+    for opts in (AxiOptions(refine=1), AxiOptions(exclude_mm=0.5),
+                 AxiOptions(seed_load_case=True)):
+        assert truth_bars(v, opts, peaks) == ({}, {}), opts
 
 
 def _bars(variant, level="coarse"):
