@@ -283,3 +283,25 @@ def test_zones_covering_the_whole_shaft_are_refused_in_one_clear_error(tmp_path)
                                                  K_SEED)))
     with pytest.raises(SolverError, match=r"cover the whole shaft.*--model solid"):
         solve_zoned(v, 10_000.0, StaticOptions(level="coarse"), cache_dir=tmp_path)
+
+
+def test_the_zoned_solve_reads_its_bending_planes_from_the_cache(tmp_path, monkeypatch):
+    """``beam.planes.mesh_hot_axes(use_cache=True)`` (the zoned solve's): the first call
+    solves the beam and writes the axes, a second call reads them (no beam solve: the solver
+    is made to fail) bit for bit (JSON keeps every bit of a float: exact equality); another
+    variant (a --set of a fillet) is another key; without the cache nothing is written."""
+    from shaftfe.beam import planes
+    from shaftfe.model.loader import load_variant
+    v = load_variant("x2_57")
+    plain = planes.mesh_hot_axes(v)
+    assert not list(tmp_path.glob("axes-*.json"))
+    first = planes.mesh_hot_axes(v, cache_dir=tmp_path, use_cache=True)
+    assert first == plain and len(list(tmp_path.glob("axes-*.json"))) == 1
+
+    def no_solve(variant):
+        raise AssertionError("the beam was solved again")
+    monkeypatch.setattr(planes, "_mesh_hot_axes", no_solve)
+    assert planes.mesh_hot_axes(v, cache_dir=tmp_path, use_cache=True) == plain
+    other = load_variant("x2_57", ["segments.collar.fillet_mm=0.5"])
+    with pytest.raises(AssertionError, match="solved again"):
+        planes.mesh_hot_axes(other, cache_dir=tmp_path, use_cache=True)

@@ -424,7 +424,9 @@ def truth_bars(variant, options: AxiOptions, peaks) -> tuple[dict, dict]:
     method refined, a discretisation error bar) for a named level used as named at refinement
     0, under the options the bars were measured with (the uniform placement of the parts'
     loads, every peak node kept, the default harmonic truncation); supports rigid or springs
-    and spin softening on or off were both measured (x2_57)."""
+    and spin softening on or off were both measured (x2_57). ``converge_all_fillets`` is
+    free: it only adds harmonics, which change a span fillet's peak by less than the
+    truncation tolerance (1e-4 of the largest peak)."""
     from shaftfe.axisymmetric.mesh import AXI_LEVELS
     from shaftfe.static.benchmark import span_fillet_bars
     name, d = options.level_name, AxiOptions()

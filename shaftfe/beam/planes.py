@@ -31,6 +31,8 @@ from shaftfe.util.units import REF_RPM
 
 MIN_SHARE = 1e-3              # |M| below this share of the largest: no plane (whole ring hot)
 SNAP_RAD = 1e-9               # a line at π − 1e-9 rad is the line at 0 (round-off of M_y)
+# bump when the beam model or the rule of ``hot_axes`` changes: the cached axes are then stale
+AXES_FORMAT = 1
 
 
 def hot_axes(variant, fillets) -> dict[str, float | None]:
@@ -65,12 +67,45 @@ class _Spot:
     x_shoulder: float
 
 
-def mesh_hot_axes(variant) -> dict[str, float | None]:
+def mesh_hot_axes(variant, *, cache_dir=None, use_cache: bool = False
+                  ) -> dict[str, float | None]:
     """``hot_axes`` of every fillet of ``variant``'s solid plan (keyed by segment) and every
     groove's (keyed by its region, at its middle): what the pipeline passes to ``build_mesh``
     (static, rotor, ``shaftfe mesh``, the static cache's key). A variant the beam cannot solve
     (no axial bearing: a geometry-only study) gets {} and so the mesher's geometric rule;
-    every caller gets the same answer, hence one mesh per variant and level."""
+    every caller gets the same answer, hence one mesh per variant and level.
+
+    ``use_cache``: read the axes from, or write them to, ``axes-<key>.json`` in the cache
+    directory (``util.paths.cache_dir(cache_dir)``), keyed by the variant's content
+    (``model.variant.content_hash``: its loads and bearings included) and ``AXES_FORMAT``: a
+    warm zoned solve then needs no beam solve (and no scipy.linalg import: 0.1 s). The
+    values are the same floats either way (JSON keeps a float's every bit)."""
+    if not use_cache:
+        return _mesh_hot_axes(variant)
+    import hashlib
+    import json
+
+    from shaftfe.model.variant import content_hash
+    from shaftfe.util import paths
+    from shaftfe.util.atomic import write_atomic
+    key = hashlib.sha256(f"{AXES_FORMAT}|{content_hash(variant)}".encode()).hexdigest()[:24]
+    path = paths.cache_dir(cache_dir) / f"axes-{key}.json"
+    try:
+        data = json.loads(path.read_text())
+        if isinstance(data, dict) and all(v is None or isinstance(v, float)
+                                          for v in data.values()):
+            return data
+    except (OSError, ValueError):
+        pass
+    axes = _mesh_hot_axes(variant)
+    try:
+        write_atomic(path, json.dumps(axes, sort_keys=True))
+    except OSError:
+        pass                                   # a read-only cache only costs the time
+    return axes
+
+
+def _mesh_hot_axes(variant) -> dict[str, float | None]:
     from shaftfe.errors import InputError, SolverError
     from shaftfe.solid.features import groove_region
     from shaftfe.solid.plan import prepare

@@ -418,7 +418,7 @@ def _print_tables(res, opts, out, corners=(), low=frozenset()) -> None:
               "principal) against the converged axisymmetric solution over a grid of "
               "shoulders (reports/benchmarks/bars_grid.md); none where it was not measured "
               "(end fillets, fillets in a keyway's zone, other options than the measured ones, "
-              "a fillet's D/d, r/d outside the measured grid)")
+              "a fillet's D/d, r/d outside the measured grid, an axial force or torque)")
     for region, why in res.truth_bar_notes.items():
         print(f"  {region}: {why}")
     if res.error_estimate:

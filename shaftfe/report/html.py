@@ -389,10 +389,17 @@ def _static(r) -> str:
             if kind_of(p["region"]) != "end"]
     s += table(["region", "von Mises [MPa]", "x [mm]", "unfiltered [MPa]",
                 "error vs truth [%]"], rows, numeric={1, 2, 3})
-    if bars:
-        s += ("<p>error vs truth: the level's measured error of a span fillet's peak against "
-              "the converged axisymmetric solution over a grid of shoulders in bending "
+    why = st.get("truth_bar_notes") or {}
+    if bars or why:
+        whose = (f"the 3D {st['level']} level's" if st["model"] == "solid" else
+                 f"the axisymmetric {st.get('global_level', st['level'])} level's (its own "
+                 "method refined: a discretisation bar)")
+        s += (f"<p>error vs truth: {escape(whose)} measured error of a span fillet's peak "
+              "against the converged axisymmetric solution over a grid of shoulders in bending "
               "(reports/benchmarks/bars_grid.md); none where it was not measured.</p>")
+        if why:
+            s += "<ul>" + "".join(f"<li>{escape(r)}: {escape(w)}</li>"
+                                  for r, w in why.items()) + "</ul>"
     return s
 
 

@@ -206,6 +206,7 @@ def static_summary(res, variant) -> dict:
             "mesh_from_cache": getattr(res, "run", {}).get("mesh_from_cache"),
             "n_excluded_nodes": d.get("n_excluded_nodes"),
             "truth_error_bar_pct": res.truth_error_bar_pct,
+            "truth_bar_notes": res.truth_bar_notes,
             "cases": cases, "error_estimate": res.error_estimate, "notes": list(res.notes)}
 
 
@@ -250,6 +251,7 @@ def static_summary_axisymmetric(res, variant) -> dict:
             "n_excluded_nodes": sum(p.n_excluded for p in res.cases[0].peaks),
             "omitted_features": list(res.omitted),
             "truth_error_bar_pct": res.truth_error_bar_pct,
+            "truth_bar_notes": res.truth_bar_notes,
             "cases": cases, "error_estimate": None, "notes": list(res.notes)}
 
 
@@ -297,6 +299,7 @@ def static_summary_zoned(res, variant) -> dict:
             "n_dofs": axi["n_dofs"] + dofs,
             "solver": f"{axi['solver']}; PARDISO per zone",
             "truth_error_bar_pct": res.truth_error_bar_pct,
+            "truth_bar_notes": res.truth_bar_notes,
             "mesh_from_cache": None, "cases": cases, "notes": list(res.notes)}
 
 

@@ -215,7 +215,7 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
                                          for ld in getattr(variant, "loads", ())))
     v = variant.with_seed_load_case() if options.seed_load_case else variant
     aopts = _axi_options(options, axi_level)
-    plan = mesh_plan(v, options.level, mesh_hot_axes(v))
+    plan = mesh_plan(v, options.level, mesh_hot_axes(v, cache_dir=cache_dir, use_cache=True))
     feats = by_region(features(plan))
     bands = _bands(variant, options)
     zones = plan_zones(plan, bands)
@@ -325,14 +325,18 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
     notes.append("shaftfe report, demo and fatigue take this zoned field by default; "
                  "--model solid gives the full 3D model, whose peaks differ from these by what "
                  "reports/benchmarks/zoned.md measures")
-    glob = {p.region for p in cases[0].peaks if p.model == "axisymmetric"} if cases else set()
+    glob = {p.region for p in cases[0].peaks if p.model == "axisymmetric"}
     bars = {r: b for r, b in first_global.truth_error_bar_pct.items() if r in glob}
     bar_notes = {r: n for r, n in first_global.truth_bar_notes.items() if r in glob}
-    notes.append("error bars: a span fillet's peak from the global model carries the "
-                 f"axisymmetric {axi_level} level's error measured over a grid of shoulders "
-                 "(its own method refined: a discretisation bar; reports/benchmarks/"
-                 "bars_grid.md); the zones' peaks have none (measured on x2_57 and one keyed "
-                 "bar only: reports/benchmarks/zoned.md, keyway_radius.md)")
+    notes.append(("error bars: a span fillet's peak from the global model carries the "
+                  f"axisymmetric {axi_level} level's error measured over a grid of shoulders "
+                  "(its own method refined: a discretisation bar; reports/benchmarks/"
+                  "bars_grid.md)" if bars else
+                  "error bars: none on the global model's span fillets (other options or "
+                  "loads than the measured ones, or no span fillet inside the measured grid: "
+                  "the reasons are printed)") +
+                 "; the zones' peaks have none (measured on x2_57 and one keyed bar only: "
+                 "reports/benchmarks/zoned.md, keyway_radius.md)")
     if any(k.rho == 0 for k in plan.slots):
         notes.append("a keyway without a bottom radius (bottom_radius_mm) is sharp-edged: a "
                      "peak on it is a value of the mesh that grows with refinement, not a "
