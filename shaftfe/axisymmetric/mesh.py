@@ -313,12 +313,17 @@ def _generate(geo: MeridianGeometry, lv: AxiLevel, refine: int) -> dict:
         occ.addPlaneSurface([loop])
         occ.synchronize()
         h_far = lv.k_far * geo.d_ref
-        fields = []
+        # one hot-spot field per size: the curves and points of one size share a Distance
+        # field (its distance is the least of theirs, so the size it gives is the same float
+        # as the least of one field each), and the background mesh evaluates a few fields
+        # instead of one per point (x2_57: 3 instead of 28, generate 1.17 → 0.2 s)
+        hot: dict[float, tuple[list, list]] = {}
         for c, t in zip(geo.curves, tags, strict=True):
             if c.size:
-                fields.append(_hot(gmsh, [t], [], lv.k_fillet * c.size, lv.grad, h_far))
+                hot.setdefault(lv.k_fillet * c.size, ([], []))[0].append(t)
         for x, r, sz in geo.points:
-            fields.append(_hot(gmsh, [], [point((x, r))], lv.k_fillet * sz, lv.grad, h_far))
+            hot.setdefault(lv.k_fillet * sz, ([], []))[1].append(point((x, r)))
+        fields = [_hot(gmsh, cs, ps, size, lv.grad, h_far) for size, (cs, ps) in hot.items()]
         for x0, x1, d in geo.bands:             # the far-field size of each segment
             b = gmsh.model.mesh.field.add("Box")
             for k, val in (("VIn", lv.k_far * d), ("VOut", h_far), ("XMin", x0 - 1e-9),

@@ -14,7 +14,7 @@ are planes x = const that must lie
   local diameter from the feature (a cut nearer than that sits in the feature's own field).
 
 The nominal cut is the zone's end; when it is not admissible, the middle of the admissible gap
-nearest to it is taken (inward or outward). A zone that
+nearest to it is taken (inward or outward), on a 0.1 mm grid (``_snap``). A zone that
 reaches a shaft end has no cut there. ``grow`` moves a cut outward to the next admissible gap:
 the zoned solve does so while its cut check fails (``zoned.solve``).
 """
@@ -34,6 +34,8 @@ MIN_DISTANCE_D = 0.5       # × the local diameter, from the zone's cut features
 # submodel twice; a cut 0.5 mm from a bearing's band passes (5.7 %). The cut check still
 # decides: this only starts the zone where it would have grown to
 SEAT_CLEAR_D = 0.5
+# a cut in a gap's middle is rounded to this grid (``_snap``): half of it is the most it moves
+CUT_GRID_MM = 0.1
 TOL = 1e-9
 
 
@@ -115,9 +117,21 @@ def _place(plan, gaps, nominal: float, limit: float, side: int) -> float | None:
                 best = near
             else:
                 step = MIN_DISTANCE_D * diameter_at(plan, near)
-                best = near + max(-step, min(step, 0.5 * (a + b) - near))
+                best = _snap(near + max(-step, min(step, 0.5 * (a + b) - near)), a, b)
             dist = abs(near - nominal)
     return best
+
+
+def _snap(x: float, a: float, b: float) -> float:
+    """``x`` rounded to ``CUT_GRID_MM`` when that stays in the admissible gap [a, b] (which
+    holds every margin already), else ``x``: a cut placed in the middle of a gap follows the
+    gap's edges, and an edge is often a fillet outside the zone (x2_57's keyway zone at
+    counterweight 2: the gap starts where the collar fillet ends), so without the grid every
+    change of that fillet would move the cut by half the change and mesh and factorise the
+    zone anew; on the grid a study of the collar fillet (0.41 … 0.49 mm) keeps one zone."""
+    q = round(x / CUT_GRID_MM) * CUT_GRID_MM
+    q = round(q, 6)                         # the grid's decimal value, not its binary remainder
+    return q if a - TOL <= q <= b + TOL else x
 
 
 def plan_zones(plan, bands=()) -> tuple[Zone, ...]:
@@ -173,11 +187,13 @@ def grow(zone: Zone, plan, bands=(), side: int = 0) -> Zone | None:
     moved = False
     if side <= 0 and c0:
         left = [g for g in gaps if g[1] < x0 - CUT_MARGIN_MM]
-        x0, c0 = ((0.5 * (left[-1][0] + left[-1][1]), True) if left else (plan.x_left, False))
+        x0, c0 = ((_snap(0.5 * (left[-1][0] + left[-1][1]), *left[-1]), True) if left
+                  else (plan.x_left, False))
         moved = True
     if side >= 0 and c1:
         right = [g for g in gaps if g[0] > x1 + CUT_MARGIN_MM]
-        x1, c1 = ((0.5 * (right[0][0] + right[0][1]), True) if right else (plan.x_right, False))
+        x1, c1 = ((_snap(0.5 * (right[0][0] + right[0][1]), *right[0]), True) if right
+                  else (plan.x_right, False))
         moved = True
     if not moved:
         return None

@@ -238,3 +238,26 @@ def test_x2_57_zones_follow_the_drawing():
     # the CW2 zone's: the nominal 90.5 − 17 = 73.5 lies in the bearing band; the gap
     # (65.1 + 0.5, 66.5 − 0.5) between the collar fillet and the band: its middle
     assert math.isclose(z2.x0, 65.8)
+
+
+
+def test_a_study_of_a_fillet_outside_a_zone_keeps_the_zones_cut():
+    """A cut in a gap's middle lies on the 0.1 mm grid (``zones._snap``): the collar fillet
+    bounds the gap of the counterweight-2 zone's cut, so without the grid each collar radius
+    moved the cut by half its change (0.41 → 65.705, 0.43 → 65.715 mm) and a study meshed and
+    factorised that zone anew for every design. On the grid the cut stays at 65.7 mm for every
+    radius from 0.41 to 0.49 mm, and the clipped solid, the zone's whole mesh input, is the
+    same (exact equality of the plan payloads); each cut stays in its admissible gap."""
+    from shaftfe.model.loader import load_variant
+    from shaftfe.solid.features import features
+    from shaftfe.solid.plan import clip, plan_payload, prepare
+    from shaftfe.zoned.zones import admissible_gaps, plan_zones
+    payloads = set()
+    for r in (0.41, 0.43, 0.47, 0.49):
+        plan = prepare(load_variant("x2_57", [f"segments.collar.fillet_mm={r}"]))
+        z = plan_zones(plan)[1]
+        assert z.x0 == 65.7, (r, z.x0)
+        gaps = admissible_gaps(plan, features(plan), ())
+        assert any(a - 1e-9 <= z.x0 <= b + 1e-9 for a, b in gaps), r
+        payloads.add(repr(plan_payload(clip(plan, z.x0, z.x1))))
+    assert len(payloads) == 1
