@@ -1,6 +1,7 @@
 """Issue #32: the zoned static solve against the full 3D model, and its speed side by side with
 the tree before it (``python benchmarks/bench_zoned.py``; ~6 min on 2 cores; the speed part needs
-``SHAFTFE_BASELINE``, a checkout of the tree before the change, else it is left out).
+``SHAFTFE_BASELINE``, a checkout of the tree before the change, else it is left out;
+``SHAFTFE_BASELINE_LABEL`` names it in the tables, default "baseline, its default").
 
 Accuracy (in process, x2_57 at 10 000 rpm, all parts, bearing springs, spin softening):
 ``shaftfe static``'s zoned solve at the default level against the full 3D model at ``default``
@@ -121,21 +122,25 @@ def _static(tree: str, out: str, *extra: str) -> list[str]:
     return _shaftfe(tree, "static", "--variant", "x2_57", "--out", out, *extra)
 
 
+def _base_label() -> str:
+    return os.environ.get("SHAFTFE_BASELINE_LABEL", "baseline, its default")
+
+
 def commands(here: str, base: str, tmp: str) -> dict:
     """The whole processes timed side by side: what each tree's default gives."""
     rpm = str(HERE / "loadspectra" / "rpm.dat")
+    b = _base_label()
     return {
         "static": {"zoned (this tree, default)": _static(here, f"{tmp}/a"),
-                   "full 3D (baseline, its default)": _static(base, f"{tmp}/b"),
+                   f"{b}": _static(base, f"{tmp}/b"),
                    "full 3D (this tree, --model solid)": _static(here, f"{tmp}/c", "--model",
                                                                  "solid")},
         "fatigue": {"FKM on the zoned model (this tree, default)":
                     _shaftfe(here, "fatigue", rpm, "--out", f"{tmp}/fa"),
-                    "FKM on the full 3D model (baseline, its default; static from the cache "
-                    "when warm)": _shaftfe(base, "fatigue", rpm, "--out", f"{tmp}/fb")},
+                    f"FKM ({b}; static from the cache when warm)":
+                    _shaftfe(base, "fatigue", rpm, "--out", f"{tmp}/fb")},
         "demo": {"zoned (this tree, default)": _shaftfe(here, "demo", "--out", f"{tmp}/da"),
-                 "full 3D (baseline, its default)": _shaftfe(base, "demo", "--out",
-                                                             f"{tmp}/db")}}
+                 f"{b}": _shaftfe(base, "demo", "--out", f"{tmp}/db")}}
 
 
 def speed() -> dict | None:
@@ -146,7 +151,7 @@ def speed() -> dict | None:
     with tempfile.TemporaryDirectory() as tmp:
         for what, cmds in commands(str(HERE), base, tmp).items():
             out[what] = _time(cmds, tmp, what)
-    out["study design"] = study_design()
+    out["study design"] = study_design(base)
     return out
 
 
@@ -174,33 +179,51 @@ def _time(cmds: dict, tmp: str, what: str) -> dict:
 STUDY_FILLETS_MM = (0.41, 0.43, 0.47, 0.49)     # a new collar fillet each run: a new solid
 
 
-def study_design() -> dict:
+def study_design(base: str) -> dict:
     """One study design with a new solid at the ``default`` level (the collar fillet changed:
-    a new mesh for the full 3D model; for the zoned one a new meridian mesh and a new mesh of
-    the zone whose cut lies next to the collar), the seed method's fatigue row included, in
-    this process after one design of each (imports, the unchanged zone's mesh), on a cache of
+    a new mesh for the full 3D model; for the zoned one a new meridian mesh, and the zone whose
+    cut lies next to the collar where its cut moves with the collar), the seed method's fatigue
+    row included, after one design of each (imports, the unchanged zone's mesh), on a cache of
     its own that holds nothing of the measured designs (an earlier run's meshes would make them
-    no new solids): ``study.evaluate.evaluate_design`` with ``analyses.static.model`` solid and
-    zoned, in turn."""
+    no new solids): ``study.evaluate.evaluate_design`` with ``analyses.static.model`` solid
+    (this tree) and zoned (this tree and the baseline), each in a process of its own tree
+    (``_design_times``)."""
+    import subprocess
+    b = _base_label()
+    out: dict = {}
+    for label, model, tree in (("solid (this tree)", "solid", str(HERE)),
+                               ("zoned (this tree)", "zoned", str(HERE)),
+                               (f"zoned ({b})", "zoned", base)):
+        # shaftfe from ``tree`` (first on the path), this file's benchmarks appended after it,
+        # started outside both trees (the working directory is first on the path)
+        code = (f"import json, sys; sys.path.append({str(HERE)!r}); from benchmarks.bench_zoned "
+                f"import _design_times; print(json.dumps(_design_times({model!r})))")
+        with tempfile.TemporaryDirectory() as cwd:
+            p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                               check=True, cwd=cwd,
+                               env={**os.environ, "PYTHONPATH": tree, "MPLBACKEND": "Agg"})
+        out[label] = json.loads(p.stdout.strip().splitlines()[-1])
+    return out
+
+
+def _design_times(model: str) -> dict:
+    """The study design's times with ``model`` in this process (``study_design``)."""
     from shaftfe.study.evaluate import evaluate_design
     from shaftfe.study.spec import Analyses
     rpm = str(HERE / "loadspectra" / "rpm.dat")
-    out: dict = {}
-    for model in ("solid", "zoned"):
-        an = Analyses(static=True, static_model=model, level="default", fatigue=True,
-                      spectrum=rpm)
-        with tempfile.TemporaryDirectory() as cache:
-            evaluate_design("x2_57", {}, an, cache_dir=cache)    # warm-up
-            times = []
-            for r in STUDY_FILLETS_MM:
-                t0 = time.perf_counter()
-                row = evaluate_design("x2_57", {"segments.collar.fillet_mm": r}, an,
-                                      cache_dir=cache)
-                times.append(time.perf_counter() - t0)
-                assert row["status"] == "ok", row["error"]
-        out[model] = {"median_s": statistics.median(times), "all_s": times,
-                      "n_dofs": row["n_dofs"], "stress_max_MPa": row["stress_max_MPa"]}
-    return out
+    an = Analyses(static=True, static_model=model, level="default", fatigue=True,
+                  spectrum=rpm)
+    with tempfile.TemporaryDirectory() as cache:
+        evaluate_design("x2_57", {}, an, cache_dir=cache)    # warm-up
+        times = []
+        for r in STUDY_FILLETS_MM:
+            t0 = time.perf_counter()
+            row = evaluate_design("x2_57", {"segments.collar.fillet_mm": r}, an,
+                                  cache_dir=cache)
+            times.append(time.perf_counter() - t0)
+            assert row["status"] == "ok", row["error"]
+    return {"median_s": statistics.median(times), "all_s": times,
+            "n_dofs": row["n_dofs"], "stress_max_MPa": row["stress_max_MPa"]}
 
 
 def _pct(a: float, b: float) -> str:
@@ -296,9 +319,11 @@ def write(acc: dict, spd: dict | None) -> str:
                       "The collar fillet changed each run "
                       f"({', '.join(f'{r:g}' for r in STUDY_FILLETS_MM)} mm), the seed "
                       "method's fatigue row included, after one design of each model, on a "
-                      "cache of its own that holds none of the measured designs (each meshes "
-                      "anew).", "",
-                      "| analyses.static.model | median s | runs s | dofs | stress_max MPa |",
+                      "cache of its own that holds none of the measured designs (a new solid "
+                      "each: the meridian mesh anew; a zone whose cut moves with the collar "
+                      "anew), each tree in a process of its own.", "",
+                      "| analyses.static.model (tree) | median s | runs s | dofs | stress_max "
+                      "MPa |",
                       "|---|---|---|---|---|"]
             for model, d in sd.items():
                 lines.append(f"| {model} | {d['median_s']:.2f} | "

@@ -166,8 +166,7 @@ def zoned_speed() -> str:
     acc, spd = d["accuracy"], d["speed"] or {}
     z, fine = acc["zoned"], acc["full"]["fine"]
     dofs = {"zoned (this tree, default)": sum(q["dofs"] for q in z["zones"]),
-            "full 3D (this tree, --model solid)": acc["full"]["default"]["dofs"],
-            "full 3D (baseline, its default)": acc["full"]["default"]["dofs"]}
+            "full 3D (this tree, --model solid)": acc["full"]["default"]["dofs"]}
     out = ["| command | model | warm s | cold s | peak MiB (warm) | 3D dofs |",
            "|---|---|---|---|---|---|"]
     what = {"static": "`shaftfe static --variant x2_57`", "fatigue": "`shaftfe fatigue "
