@@ -187,17 +187,18 @@ def study_design(base: str) -> dict:
     its own that holds nothing of the measured designs (an earlier run's meshes would make them
     no new solids): ``study.evaluate.evaluate_design`` with ``analyses.static.model`` solid
     (this tree) and zoned (this tree and the baseline), each in a process of its own tree
-    (``_design_times``)."""
+    (``_DESIGN_SCRIPT``)."""
     import subprocess
     b = _base_label()
     out: dict = {}
     for label, model, tree in (("solid (this tree)", "solid", str(HERE)),
                                ("zoned (this tree)", "zoned", str(HERE)),
                                (f"zoned ({b})", "zoned", base)):
-        # shaftfe from ``tree`` (first on the path), this file's benchmarks appended after it,
-        # started outside both trees (the working directory is first on the path)
-        code = (f"import json, sys; sys.path.append({str(HERE)!r}); from benchmarks.bench_zoned "
-                f"import _design_times; print(json.dumps(_design_times({model!r})))")
+        # shaftfe from ``tree`` (its PYTHONPATH), started outside both trees (the working
+        # directory is first on the path); the script imports nothing of benchmarks/ (the
+        # baseline's tree has its own)
+        code = _DESIGN_SCRIPT.format(rpm=str(HERE / "loadspectra" / "rpm.dat"), model=model,
+                                     fillets=STUDY_FILLETS_MM)
         with tempfile.TemporaryDirectory() as cwd:
             p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                                check=True, cwd=cwd,
@@ -206,24 +207,23 @@ def study_design(base: str) -> dict:
     return out
 
 
-def _design_times(model: str) -> dict:
-    """The study design's times with ``model`` in this process (``study_design``)."""
-    from shaftfe.study.evaluate import evaluate_design
-    from shaftfe.study.spec import Analyses
-    rpm = str(HERE / "loadspectra" / "rpm.dat")
-    an = Analyses(static=True, static_model=model, level="default", fatigue=True,
-                  spectrum=rpm)
-    with tempfile.TemporaryDirectory() as cache:
-        evaluate_design("x2_57", {}, an, cache_dir=cache)    # warm-up
-        times = []
-        for r in STUDY_FILLETS_MM:
-            t0 = time.perf_counter()
-            row = evaluate_design("x2_57", {"segments.collar.fillet_mm": r}, an,
-                                  cache_dir=cache)
-            times.append(time.perf_counter() - t0)
-            assert row["status"] == "ok", row["error"]
-    return {"median_s": statistics.median(times), "all_s": times,
-            "n_dofs": row["n_dofs"], "stress_max_MPa": row["stress_max_MPa"]}
+_DESIGN_SCRIPT = """
+import json, statistics, tempfile, time
+from shaftfe.study.evaluate import evaluate_design
+from shaftfe.study.spec import Analyses
+an = Analyses(static=True, static_model={model!r}, level="default", fatigue=True,
+              spectrum={rpm!r})
+with tempfile.TemporaryDirectory() as cache:
+    evaluate_design("x2_57", {{}}, an, cache_dir=cache)    # warm-up
+    times = []
+    for r in {fillets!r}:
+        t0 = time.perf_counter()
+        row = evaluate_design("x2_57", {{"segments.collar.fillet_mm": r}}, an, cache_dir=cache)
+        times.append(time.perf_counter() - t0)
+        assert row["status"] == "ok", row["error"]
+print(json.dumps({{"median_s": statistics.median(times), "all_s": times,
+                  "n_dofs": row["n_dofs"], "stress_max_MPa": row["stress_max_MPa"]}}))
+"""
 
 
 def _pct(a: float, b: float) -> str:

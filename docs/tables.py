@@ -177,7 +177,7 @@ def zoned_speed() -> str:
                        f"{r['cold']['wall_s']:.2f} | {r['warm']['max_rss_MiB']:.0f} | "
                        f"{dofs.get(name, '-') if key == 'static' else '-'} |")
     for model, r in spd.get("study design", {}).items():
-        out.append(f"| a study design, new solid, `default` (in process) | {model} | "
+        out.append(f"| a study design, new solid, `default` (warm process) | {model} | "
                    f"{r['median_s']:.2f} | - | - | {r['n_dofs']} |")
     out += ["", "| peak (von Mises) | zoned MPa | full 3D fine MPa | difference |",
             "|---|---|---|---|"]
