@@ -201,8 +201,10 @@ def study_design(base: str) -> dict:
                                      fillets=STUDY_FILLETS_MM)
         with tempfile.TemporaryDirectory() as cwd:
             p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                               check=True, cwd=cwd,
+                               cwd=cwd,
                                env={**os.environ, "PYTHONPATH": tree, "MPLBACKEND": "Agg"})
+        if p.returncode:
+            raise RuntimeError(f"the study design of {label} failed:\n{p.stderr}")
         out[label] = json.loads(p.stdout.strip().splitlines()[-1])
     return out
 

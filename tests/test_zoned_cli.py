@@ -305,3 +305,32 @@ def test_the_zoned_solve_reads_its_bending_planes_from_the_cache(tmp_path, monke
     other = load_variant("x2_57", ["segments.collar.fillet_mm=0.5"])
     with pytest.raises(AssertionError, match="solved again"):
         planes.mesh_hot_axes(other, cache_dir=tmp_path, use_cache=True)
+
+
+def test_the_cached_bending_planes_keep_the_beam_solves_warnings(tmp_path, monkeypatch):
+    """The beam solve behind the bending planes warns (its deflection beyond the linear range,
+    the clearance, the torques: in the zoned default the only deflection check): a warm run
+    reads the planes from the cache and raises the same warnings again, so summary.json holds
+    them whether the cache was cold or warm."""
+    from shaftfe.beam import planes
+    from shaftfe.model.loader import load_variant
+    from shaftfe.util.notices import collecting, raised, warn
+    v = load_variant("x2_57")
+    plain = planes.mesh_hot_axes(v)
+
+    def warning(variant):
+        warn("deflection-large", "beam, 10000 rpm", "max deflection beyond the linear range")
+        return plain
+
+    def no_solve(variant):
+        raise AssertionError("the beam was solved again")
+    with collecting(echo=False):
+        monkeypatch.setattr(planes, "_mesh_hot_axes", warning)
+        with raised() as cold:
+            assert planes.mesh_hot_axes(v, cache_dir=tmp_path, use_cache=True) == plain
+        monkeypatch.setattr(planes, "_mesh_hot_axes", no_solve)
+    with collecting(echo=False):
+        with raised() as warm:
+            assert planes.mesh_hot_axes(v, cache_dir=tmp_path, use_cache=True) == plain
+    assert cold == warm == [{"code": "deflection-large", "where": "beam, 10000 rpm",
+                             "text": "max deflection beyond the linear range"}]

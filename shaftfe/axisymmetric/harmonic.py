@@ -272,12 +272,14 @@ def backward_error(M, z: np.ndarray, b: np.ndarray, r: np.ndarray, n_u: int | No
     return err
 
 
-# The factorisations of the last FACTORS_KEPT harmonic systems, by their matrix's content
-# (``_matrix_key``): a second solve of the same shaft in one process (another speed with spin
-# softening, whose softening enters as a low-rank term and leaves the factorised matrix as it
-# was; the unsoftened solve fatigue needs beside the softened one) factorises nothing again,
-# and gets the same factor, so the same bits. Kept: about 25 MB each at x2_57's default.
-FACTORS_KEPT = 4
+# The factorisations of the last FACTORS_KEPT harmonic systems solved with ``keep`` (the n = 0
+# and n = 1 systems of ``model.solve_model``), by their matrix's content (``_matrix_key``): a
+# second solve of the same shaft in one process (another speed with spin softening, whose
+# softening enters as a low-rank term and leaves the factorised matrix as it was; the
+# unsoftened solve fatigue needs beside the softened one) factorises nothing again, and gets
+# the same factor, so the same bits. Two: one shaft's n = 0 and n = 1 (about 25 MB each at
+# x2_57's default), so a process holds no more than the solve itself needed.
+FACTORS_KEPT = 2
 _FACTORS: OrderedDict = OrderedDict()
 _FACTORS_LOCK = threading.Lock()
 
@@ -287,13 +289,21 @@ def _matrix_key(M: sp.spmatrix, spd: bool) -> str:
     x2_57's default: 0.3–0.6 million entries)."""
     import hashlib
     M = sp.csc_matrix(M)
-    h = hashlib.sha256(f"{M.shape}|{spd}|{M.has_sorted_indices}".encode())
+    h = hashlib.sha256(f"{M.shape}|{spd}|{M.has_sorted_indices}|{M.dtype}|"
+                       f"{M.indices.dtype}".encode())
     for a in (M.indptr, M.indices, M.data):
         h.update(np.ascontiguousarray(a).tobytes())
     return h.hexdigest()
 
 
-def solve(K: sp.spmatrix, F: np.ndarray, T: sp.spmatrix, springs=(), hard=None) -> Solution:
+def clear_factors() -> None:
+    """Forget the kept factorisations (``FACTORS_KEPT``)."""
+    with _FACTORS_LOCK:
+        _FACTORS.clear()
+
+
+def solve(K: sp.spmatrix, F: np.ndarray, T: sp.spmatrix, springs=(), hard=None, *,
+          keep: bool = False) -> Solution:
     """Minimise ½ uᵀ K u + ½ Σ (R u)ᵀ C (R u) − uᵀ F with u = T û and H u = 0.
 
     ``springs``: (R (k × ndof), C (k × k)); ``hard``: H (h × ndof) or None. The saddle-point
@@ -316,9 +326,9 @@ def solve(K: sp.spmatrix, F: np.ndarray, T: sp.spmatrix, springs=(), hard=None) 
         M = Ar
     rhs = np.vstack([T.T @ F, np.zeros((nh, F.shape[1]))])
     spd = not nh and all(np.array_equal(np.asarray(C), np.asarray(C).T) for _, C in springs)
-    key = _matrix_key(M, spd)
+    key = _matrix_key(M, spd) if keep else None
     with _FACTORS_LOCK:
-        lu = _FACTORS.get(key)
+        lu = _FACTORS.get(key) if keep else None
         if lu is not None:
             _FACTORS.move_to_end(key)
     if lu is None:
@@ -332,10 +342,11 @@ def solve(K: sp.spmatrix, F: np.ndarray, T: sp.spmatrix, springs=(), hard=None) 
         except RuntimeError as exc:
             raise SolverError(f"the harmonic system is singular ({exc}): a rigid motion is not "
                               "held by the supports") from None
-        with _FACTORS_LOCK:
-            _FACTORS[key] = lu
-            while len(_FACTORS) > FACTORS_KEPT:
-                _FACTORS.popitem(last=False)
+        if keep:
+            with _FACTORS_LOCK:
+                _FACTORS[key] = lu
+                while len(_FACTORS) > FACTORS_KEPT:
+                    _FACTORS.popitem(last=False)
     z = lu.solve(rhs)
     z += lu.solve(rhs - M @ z)       # one step of iterative refinement (soft springs: a
     res = M @ z - rhs                # rigid motion on them makes the system ill-conditioned)

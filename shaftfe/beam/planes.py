@@ -31,8 +31,13 @@ from shaftfe.util.units import REF_RPM
 
 MIN_SHARE = 1e-3              # |M| below this share of the largest: no plane (whole ring hot)
 SNAP_RAD = 1e-9               # a line at π − 1e-9 rad is the line at 0 (round-off of M_y)
-# bump when the beam model or the rule of ``hot_axes`` changes: the cached axes are then stale
-AXES_FORMAT = 1
+# the cached axes' key holds the source of these modules (``static.cache.code_fingerprint``):
+# a change of the beam, the loads or the plan gives new axes, never stale ones; bump
+# AXES_FORMAT when the stored JSON changes meaning
+AXES_MODULES = ("shaftfe.beam.planes", "shaftfe.beam.solve", "shaftfe.beam.model",
+                "shaftfe.beam.elements", "shaftfe.model.loads", "shaftfe.solid.plan",
+                "shaftfe.util.units")
+AXES_FORMAT = 2
 
 
 def hot_axes(variant, fillets) -> dict[str, float | None]:
@@ -77,29 +82,38 @@ def mesh_hot_axes(variant, *, cache_dir=None, use_cache: bool = False
 
     ``use_cache``: read the axes from, or write them to, ``axes-<key>.json`` in the cache
     directory (``util.paths.cache_dir(cache_dir)``), keyed by the variant's content
-    (``model.variant.content_hash``: its loads and bearings included) and ``AXES_FORMAT``: a
-    warm zoned solve then needs no beam solve (and no scipy.linalg import: 0.1 s). The
-    values are the same floats either way (JSON keeps a float's every bit)."""
+    (``model.variant.content_hash``: its loads and bearings included), the source of
+    ``AXES_MODULES`` and ``AXES_FORMAT``: a warm zoned solve then needs no beam solve (and no
+    scipy.linalg import: 0.1 s). The values are the same floats either way (JSON keeps a
+    float's every bit), and so are the warnings: the beam solve's (its deflection beyond the
+    small-deflection range, the clearance, the torques: in the zoned default the only
+    deflection check) are stored with the axes and raised again on a hit."""
     if not use_cache:
         return _mesh_hot_axes(variant)
     import hashlib
     import json
 
     from shaftfe.model.variant import content_hash
+    from shaftfe.static.cache import code_fingerprint
     from shaftfe.util import paths
     from shaftfe.util.atomic import write_atomic
-    key = hashlib.sha256(f"{AXES_FORMAT}|{content_hash(variant)}".encode()).hexdigest()[:24]
+    from shaftfe.util.notices import raised, warn
+    key = hashlib.sha256(f"{AXES_FORMAT}|{content_hash(variant)}|"
+                         f"{code_fingerprint(AXES_MODULES)}".encode()).hexdigest()[:24]
     path = paths.cache_dir(cache_dir) / f"axes-{key}.json"
     try:
         data = json.loads(path.read_text())
-        if isinstance(data, dict) and all(v is None or isinstance(v, float)
-                                          for v in data.values()):
-            return data
-    except (OSError, ValueError):
+        axes, said = data["axes"], data["warnings"]
+        if all(v is None or isinstance(v, float) for v in axes.values()):
+            for w in said:
+                warn(w["code"], w["where"], w["text"])
+            return axes
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
         pass
-    axes = _mesh_hot_axes(variant)
+    with raised() as said:
+        axes = _mesh_hot_axes(variant)
     try:
-        write_atomic(path, json.dumps(axes, sort_keys=True))
+        write_atomic(path, json.dumps({"axes": axes, "warnings": said}, sort_keys=True))
     except OSError:
         pass                                   # a read-only cache only costs the time
     return axes

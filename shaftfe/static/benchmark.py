@@ -144,6 +144,8 @@ def in_hull(points, p, tol: float = HULL_TOL) -> bool:
             upper.pop()
         upper.append(q)
     hull = lower[:-1] + upper[:-1]
+    if len(hull) < 3:                           # no area: nothing was measured around p
+        return False
     for a, b in zip(hull, hull[1:] + hull[:1], strict=True):
         length = ((b[0] - a[0]) ** 2 + (b[1] - a[1]) ** 2) ** 0.5
         if cross(a, b, p) < -tol * length:      # outside this edge by more than tol
