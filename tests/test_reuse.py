@@ -24,21 +24,20 @@ def test_fatigue_reuses_the_static_solution_of_shaftfe_static(tmp_path):
 
 
 def test_a_second_axisymmetric_solve_of_the_same_shaft_factorises_nothing(monkeypatch):
-    """``axisymmetric.harmonic.solve`` keeps the factorisations of the last systems by their
-    matrix's content: x2_57 with spin softening at 7000 rpm after 10 000 rpm (the softening is
-    a low-rank term: the factorised matrices are the same) calls SuperLU's factorisation no
-    more, and its fields are those of a solve with the kept factors cleared, bit for bit (the
-    same matrix, the same factor)."""
+    """Inside a ``fe.reuse`` scope the axisymmetric model's n = 0 and n = 1 factorisations are
+    kept by their matrix's content: x2_57 with spin softening at 7000 rpm after 10 000 rpm (the
+    softening is a low-rank term: the factorised matrices are the same) calls SuperLU's
+    factorisation no more, and its fields are those of a solve outside the scope, which
+    factorises again, bit for bit (the same matrix, the same factor)."""
     import numpy as np
     import scipy.sparse.linalg as sla
 
-    from shaftfe.axisymmetric import harmonic as hm
     from shaftfe.axisymmetric.model import AxiOptions
     from shaftfe.axisymmetric.solve import solve_axisymmetric
+    from shaftfe.fe import reuse
     from shaftfe.model.loader import load_variant
     v = load_variant("x2_57")
     opts = AxiOptions(level="coarse")
-    solve_axisymmetric(v, 10000.0, opts)
     calls = []
     real = sla.splu
 
@@ -46,11 +45,14 @@ def test_a_second_axisymmetric_solve_of_the_same_shaft_factorises_nothing(monkey
         calls.append(1)
         return real(*a, **k)
     monkeypatch.setattr(sla, "splu", counting)
-    kept = solve_axisymmetric(v, 7000.0, opts)
-    assert not calls
-    hm.clear_factors()
-    fresh = solve_axisymmetric(v, 7000.0, opts)
-    assert len(calls) >= 2                    # n = 0 and n = 1 factorised again
+    with reuse.shared() as stats:
+        solve_axisymmetric(v, 10000.0, opts)
+        made = len(calls)
+        kept = solve_axisymmetric(v, 7000.0, opts)
+    assert made >= 2 and len(calls) == made                 # n = 0 and n = 1, once
+    assert stats["reused"] == {"harmonic n=0": 1, "harmonic n=1": 1}
+    fresh = solve_axisymmetric(v, 7000.0, opts)              # no scope: factorised again
+    assert len(calls) == 2 * made
     for a, b in zip(kept.solution.harmonics, fresh.solution.harmonics, strict=True):
         assert np.array_equal(a.sym, b.sym)
         assert (a.anti is None and b.anti is None) or np.array_equal(a.anti, b.anti)

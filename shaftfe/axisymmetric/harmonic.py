@@ -19,8 +19,6 @@ part and (u_z, θ_y) in the antisymmetric one with the same rows (θ_y = −θ_z
 from __future__ import annotations
 
 import math
-import threading
-from collections import OrderedDict
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -28,6 +26,7 @@ import scipy.sparse as sp
 
 from shaftfe.axisymmetric import kernels as kn
 from shaftfe.errors import SolverError
+from shaftfe.fe import reuse
 
 CHUNK = 4000                # elements per assembly block (memory ~ CHUNK × 25 × 6 × 18 × 8 B × 4)
 
@@ -272,38 +271,20 @@ def backward_error(M, z: np.ndarray, b: np.ndarray, r: np.ndarray, n_u: int | No
     return err
 
 
-# The factorisations of the last FACTORS_KEPT harmonic systems solved with ``keep`` (the n = 0
-# and n = 1 systems of ``model.solve_model``), by their matrix's content (``_matrix_key``): a
-# second solve of the same shaft in one process (another speed with spin softening, whose
-# softening enters as a low-rank term and leaves the factorised matrix as it was; the
-# unsoftened solve fatigue needs beside the softened one) factorises nothing again, and gets
-# the same factor, so the same bits. Two: one shaft's n = 0 and n = 1 (about 25 MB each at
-# x2_57's default), so a process holds no more than the solve itself needed.
-FACTORS_KEPT = 2
-_FACTORS: OrderedDict = OrderedDict()
-_FACTORS_LOCK = threading.Lock()
-
-
-def _matrix_key(M: sp.spmatrix, spd: bool) -> str:
+def _matrix_key(M: sp.spmatrix, spd: bool) -> tuple:
     """The content of the CSC matrix ``M`` and how it is factorised, hashed (a few ms at
-    x2_57's default: 0.3–0.6 million entries)."""
+    x2_57's default: 0.3–0.6 million entries): the key of its factorisation in ``fe.reuse``."""
     import hashlib
     M = sp.csc_matrix(M)
     h = hashlib.sha256(f"{M.shape}|{spd}|{M.has_sorted_indices}|{M.dtype}|"
                        f"{M.indices.dtype}".encode())
     for a in (M.indptr, M.indices, M.data):
         h.update(np.ascontiguousarray(a).tobytes())
-    return h.hexdigest()
-
-
-def clear_factors() -> None:
-    """Forget the kept factorisations (``FACTORS_KEPT``)."""
-    with _FACTORS_LOCK:
-        _FACTORS.clear()
+    return (h.hexdigest(),)
 
 
 def solve(K: sp.spmatrix, F: np.ndarray, T: sp.spmatrix, springs=(), hard=None, *,
-          keep: bool = False) -> Solution:
+          keep: str | None = None) -> Solution:
     """Minimise ½ uᵀ K u + ½ Σ (R u)ᵀ C (R u) − uᵀ F with u = T û and H u = 0.
 
     ``springs``: (R (k × ndof), C (k × k)); ``hard``: H (h × ndof) or None. The saddle-point
@@ -326,27 +307,24 @@ def solve(K: sp.spmatrix, F: np.ndarray, T: sp.spmatrix, springs=(), hard=None, 
         M = Ar
     rhs = np.vstack([T.T @ F, np.zeros((nh, F.shape[1]))])
     spd = not nh and all(np.array_equal(np.asarray(C), np.asarray(C).T) for _, C in springs)
-    key = _matrix_key(M, spd) if keep else None
-    with _FACTORS_LOCK:
-        lu = _FACTORS.get(key) if keep else None
-        if lu is not None:
-            _FACTORS.move_to_end(key)
-    if lu is None:
+
+    def factorise():
         try:
             # symmetric positive definite (no hard rows, symmetric springs): a symmetric
             # ordering and no pivoting (stable for SPD; measured 20 % faster and 30 % less fill
             # than COLAMD on x2_57); a saddle point (zero diagonal block) or a non-symmetric
             # spring keeps COLAMD with partial pivoting
-            lu = splu(M, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                      options={"SymmetricMode": True}) if spd else splu(M, permc_spec="COLAMD")
+            return splu(M, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                        options={"SymmetricMode": True}) if spd else \
+                splu(M, permc_spec="COLAMD")
         except RuntimeError as exc:
             raise SolverError(f"the harmonic system is singular ({exc}): a rigid motion is not "
                               "held by the supports") from None
-        if keep:
-            with _FACTORS_LOCK:
-                _FACTORS[key] = lu
-                while len(_FACTORS) > FACTORS_KEPT:
-                    _FACTORS.popitem(last=False)
+    # ``keep``: the kind under which ``fe.reuse`` shares this factorisation inside its scope
+    # (a second speed with spin softening, a low-rank term, and fatigue's unsoftened solve
+    # then factorise nothing again; the same factor, so the same bits)
+    lu = reuse.memo(keep, _matrix_key(M, spd), factorise) if keep and reuse.active() \
+        else factorise()
     z = lu.solve(rhs)
     z += lu.solve(rhs - M @ z)       # one step of iterative refinement (soft springs: a
     res = M @ z - rhs                # rigid motion on them makes the system ill-conditioned)

@@ -428,7 +428,7 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, rpm: float = REF
     all_idx = np.arange(nc)
     try:
         job0 = pool.submit(hm.solve, h.K(0), f0, h.reduction(0), hard=np.array(hard),
-                           keep=True)
+                           keep="harmonic n=0")
         job1 = pool.submit(_solve_n1, h, bearings, f1s, f1a, options.rigid_supports, soft)
         sol0, (us, ua, reac1, res1) = job0.result(), job1.result()
         relres = [sol0.relres, res1]
@@ -604,7 +604,7 @@ def _solve_n1(h, bearings, fs, fa, rigid: bool, soft=()):
     m = len(blocks)
     rows = np.array(rows).reshape(m, h.ndof)
     sol = hm.solve(K1, np.column_stack([fs, fa, *rows]), T1, springs=base, hard=hard,
-                   keep=True)
+                   keep="harmonic n=1")
     x0s, x0a, Z = sol.u[:, :nc], sol.u[:, nc:2 * nc], sol.u[:, 2 * nc:]
     mu = sol.multipliers                                       # (n_hard, 2 c + m)
     y = np.zeros((2 * m, nc))

@@ -24,6 +24,7 @@ from shaftfe.axisymmetric import recovery as rc
 from shaftfe.axisymmetric.mesh import BAND_PREFIX, arc_length_angle
 from shaftfe.axisymmetric.model import AxiOptions, AxiSolution, solve_model, superpose
 from shaftfe.errors import InputError
+from shaftfe.fe import reuse
 from shaftfe.model.bearing_life import l10h
 from shaftfe.solid.features import (
     ROUND_NOTCH_KINDS,
@@ -349,9 +350,11 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
         # the fields are the first positive speed's; a 0 rpm case (no load, no softening) is
         # the linear solve's exact zero
         r0 = next(r for r in rpms if r > 0)
-        parts = [solve_axisymmetric(variant, r, options, cache_dir=cache_dir) if r > 0 else
-                 solve_axisymmetric(variant, [r, r0], replace(options, spin_softening=False),
-                                    cache_dir=cache_dir) for r in rpms]
+        with reuse.shared():             # one factorisation per harmonic for every speed
+            parts = [solve_axisymmetric(variant, r, options, cache_dir=cache_dir) if r > 0
+                     else solve_axisymmetric(variant, [r, r0],
+                                             replace(options, spin_softening=False),
+                                             cache_dir=cache_dir) for r in rpms]
         cases = tuple(replace(p.case(r), scale=(r / r0) ** 2)
                       for p, r in zip(parts, rpms, strict=True))
         first = parts[rpms.index(r0)]

@@ -398,9 +398,7 @@ def _print_tables(res, opts, out, corners=(), low=frozenset()) -> None:
         unresolved = {*res.unresolved_fillets,
                       *(shoulder_region(segment_of(r)) for r in res.unresolved_fillets)}
         rows = [[p.region, p.von_mises_MPa, p.max_principal_MPa, p.xyz_mm[0],
-                 p.von_mises_unfiltered_MPa,
-                 f"{bars[p.region][0]:+.2f} … {bars[p.region][1]:+.2f}"
-                 if p.region in bars else "-",
+                 p.von_mises_unfiltered_MPa, _bar(bars, p.region),
                  "fillet not resolved: not a stress" if p.region in unresolved
                  else "groove not resolved: reads low (see its warning)" if p.region in low
                  else sharp_mark(corners, p.xyz_mm)]

@@ -22,6 +22,7 @@ from dataclasses import dataclass, replace
 from shaftfe.errors import InputError, SolverError
 from shaftfe.fatigue.assess import DEFAULT_DESIGN_LIFE_BLOCKS
 from shaftfe.fatigue.kernels import EQUIVALENT_STRESSES, MEAN_STRESS_THEORIES
+from shaftfe.fe import reuse
 from shaftfe.solid.levels import LEVEL_NAMES
 from shaftfe.static import MODELS, STATIC_MODELS
 from shaftfe.util.fmt import LIFE_MAX
@@ -410,9 +411,10 @@ def surface_reference(make, opts):
 
     from shaftfe.util.units import rpm2_scale
     t0 = time.perf_counter()
-    ref = make(opts)
-    if opts.spin_softening:
-        lin = make(replace(opts, spin_softening=False))
+    with reuse.shared():          # the second solve factorises what the first did not keep
+        ref = make(opts)
+        lin = make(replace(opts, spin_softening=False)) if opts.spin_softening else None
+    if lin is not None:
         if lin.xyz.shape != ref.xyz.shape or not np.array_equal(lin.xyz, ref.xyz):
             raise SolverError("fatigue reference: the unsoftened solve's points differ from "
                               "the softened one's (the zones grew differently); use "

@@ -12,7 +12,11 @@ are made once per key and reused:
     stats == {"made": {"K": 1, "factor": 1}, "reused": {"K": 15, "factor": 15}}
 
 Outside the context nothing is kept (every solve makes its own, as before), unless the process
-called ``keep()`` (a study's worker process). One entry per kind
+called ``keep()`` (a study's worker process). Inside a ``shared()`` (or after ``keep()``) a
+nested ``shared()`` shares the same store: a solve that opens its own scope (several speeds of
+one shaft, fatigue's softened and unsoftened references) reuses what its caller kept. The
+axisymmetric model's n = 0 and n = 1 factorisations are kinds of their own
+(``axisymmetric.harmonic.solve``). One entry per kind
 is held (a factorisation at the default level is ~600 MB), so a group must be evaluated in
 order, one solid after the other.
 """
@@ -41,8 +45,12 @@ def keep() -> dict:
 
 @contextmanager
 def shared() -> Iterator[dict]:
-    """Reuse K and factorisations by key inside the block; yields the counts made / reused."""
+    """Reuse K and factorisations by key inside the block; yields the counts made / reused
+    (the enclosing scope's store, and its counts, when one is open)."""
     global _store
+    if _store is not None:
+        yield _store
+        return
     prev = _store
     _store = _new()
     try:
@@ -61,6 +69,11 @@ def mesh_digest(mesh) -> str:
     h.update(np.ascontiguousarray(mesh.p).tobytes())
     h.update(np.ascontiguousarray(mesh.t).tobytes())
     return h.hexdigest()
+
+
+def active() -> bool:
+    """Whether a scope keeps what ``memo`` makes (so a key is worth computing)."""
+    return _store is not None
 
 
 def memo(kind: str, key: tuple, make: Callable[[], Any]) -> Any:

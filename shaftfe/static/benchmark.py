@@ -181,7 +181,8 @@ def span_fillet_bars(variant, level: str, peaks, model: str) -> tuple[dict, dict
     mine = [(p, span[p.region]) for p in peaks if p.region in span
             and not any(lo <= p.xyz_mm[0] <= hi for lo, hi in zones)]
     if mine and not bending_only(variant):
-        why = (f"no measured bar for this load (the bars were measured in {_load_kind()}; this "
+        from shaftfe.static.truth_bars import LOAD
+        why = (f"no measured bar for this load (the bars were measured in {LOAD}; this "
                "shaft's loads include an axial force or a torque)")
         return {}, {p.region: why for p, _ in mine}
     bars, notes = {}, {}
@@ -194,11 +195,6 @@ def span_fillet_bars(variant, level: str, peaks, model: str) -> tuple[dict, dict
             notes[p.region] = (f"no measured bar for this geometry (D/d {dd:.3g}, r/d {rd:.3g} "
                                f"outside the {measured_range(level)})")
     return bars, notes
-
-
-def _load_kind() -> str:
-    from shaftfe.static.truth_bars import LOAD
-    return LOAD
 
 
 def measured_range(level: str) -> str:

@@ -30,6 +30,7 @@ import time
 from typing import Any
 
 from shaftfe.errors import InputError, ShaftfeError
+from shaftfe.fe import reuse
 from shaftfe.solid.features import is_notch, kind_of
 from shaftfe.study.spec import Analyses
 
@@ -227,11 +228,14 @@ def evaluate_design(base: str, overrides, an: Analyses, *, shaft_mesh=None,
         if an.beam:
             row.update(beam_row(v, an))
         if an.static:
-            cols, res = static_rows(v, an, shaft_mesh, cache_dir)
-            row.update(cols)
-            if an.fatigue:
-                row.update(fatigue_row(res, an, v, cache_dir))
-            del res
+            # one design is one shaft: its static row (every speed) and fatigue's reference
+            # share what ``fe.reuse`` keeps (a study's group or worker scope when one is open)
+            with reuse.shared():
+                cols, res = static_rows(v, an, shaft_mesh, cache_dir)
+                row.update(cols)
+                if an.fatigue:
+                    row.update(fatigue_row(res, an, v, cache_dir))
+                del res
         if an.campbell:
             row.update(campbell_row(v, an))
     except (ShaftfeError, ArithmeticError, RuntimeError, ValueError) as exc:

@@ -15,6 +15,7 @@ other region the global model's. Reactions, deflections and L10h are the global 
 
 from __future__ import annotations
 
+import contextlib
 import contextvars
 import math
 import time
@@ -22,6 +23,7 @@ from dataclasses import asdict, dataclass, field
 
 from shaftfe.axisymmetric.model import AxiOptions
 from shaftfe.axisymmetric.solve import resolve_case, solve_axisymmetric
+from shaftfe.fe import reuse as fe_reuse
 from shaftfe.solid.features import by_region, features, keyway_region
 from shaftfe.solid.plan import plan_payload
 from shaftfe.static.model import StaticOptions
@@ -232,6 +234,10 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
     ready = _reusable(reuse, v, options)
     pool, pre = _prebuild(v, plan, [z for z in zones if z.name not in ready], bands,
                           grown_before, options, cache_dir)
+    # every speed's global solve shares the harmonic factorisations (spin softening is a
+    # low-rank term: ``fe.reuse``), for as long as this solve runs
+    scope = contextlib.ExitStack()
+    scope.enter_context(fe_reuse.shared())
     try:
         # no softening and every load ∝ rpm² (or one case): one global solve serves each speed
         once = None
@@ -312,6 +318,7 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
             if len(cases) == 1:
                 first_global = g
     finally:
+        scope.close()
         if pool is not None:   # on an error too: no zone built for nothing; gmsh left whole
             pool.shutdown(wait=True, cancel_futures=True)
     if grown_now != grown_before:
