@@ -455,8 +455,12 @@ def mesh_plan(variant, level: str | MeshLevel, hot_axes=None) -> Solid:
 # at fine; the largest is taken (tests/validation/test_keyway_radius.py). The fine bar's 1.44
 # million dofs peaked at 17.5 GiB on this 24 GiB machine: beyond KEYWAY_DOFS_MAX for the fillets
 # (the rest of the shaft comes on top) a run would not finish, so it is refused in one line.
+# The limit lies just above that run's own estimate (1.503 million: the estimate is the largest
+# measured ratio, so it reads 4 % above the 1.44 million it had), so the run that was measured
+# to finish, the keyed bar's reference in bench_keyway_radius, is not refused; x2_57 with r1
+# 0.25 at fine (1.67 million) and r1 0.08 at default (2.3 million) still are.
 KEYWAY_DOFS_PER_CELL = 387.0
-KEYWAY_DOFS_MAX = 1_500_000
+KEYWAY_DOFS_MAX = 1_550_000
 
 
 def keyway_fillet_dofs(sol: Solid, level: MeshLevel) -> float:

@@ -128,3 +128,19 @@ def test_the_fillets_dofs_estimate_covers_every_measured_bar():
         est = keyway_fillet_dofs(prepare(keyed_bar(r["load"], r["rho_mm"])), LEVELS[r["level"]])
         assert r["dofs"] <= est <= 2.0 * r["dofs"], r
 
+
+
+def test_the_guard_lets_the_measured_reference_run():
+    """``KEYWAY_DOFS_MAX`` refuses what would not finish, not what was measured to finish: the
+    keyed bar's reference row (r1 0.25 mm at fine, 1.44 million dofs, 17.5 GiB; bench_keyway_
+    radius) passes the plan's guard, and x2_57 with r1 0.25 mm at fine stays refused."""
+    from shaftfe.errors import InputError
+    from shaftfe.model.examples import keyed_bar
+    from shaftfe.model.loader import load_variant
+    from shaftfe.solid.mesh import mesh_plan
+    for kind in ("bending", "torsion"):
+        mesh_plan(keyed_bar(kind, 0.25), "fine")          # no refusal
+    x2 = load_variant("x2_57", ["segments.gear_seat.keyways.0.bottom_radius_mm=0.25",
+                                "segments.cw2_seat.keyways.0.bottom_radius_mm=0.25"])
+    with pytest.raises(InputError, match="bottom_radius_mm"):
+        mesh_plan(x2, "fine")
