@@ -95,6 +95,13 @@ def test_damaged_static_cache_is_recomputed_with_a_notice(tmp_path, capfd):
     assert len(err) == 1 and "static cache entry" in err[0]
 
 
+def _default_sigint() -> None:
+    """In the child before it runs Python: SIGINT back to its default. A process started with
+    SIGINT ignored (a pytest-xdist worker, a `nohup` job) passes that on, and Python then installs
+    no KeyboardInterrupt handler, so the ctrl-c test would interrupt nothing."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _shaftfe(*args, cache=None, **kw):
     env = dict(os.environ, MPLBACKEND="Agg")
     if cache is not None:
@@ -169,7 +176,7 @@ def test_ctrl_c_at_any_stage_leaves_no_partial_output(tmp_path):
     for k, delay in enumerate((0.3, 1.5, 3.0)):
         out = tmp_path / f"out{k}"
         p = _shaftfe("static", "--variant", "x2_57", "--level", "coarse",
-                     "--out", str(out), cache=tmp_path / "cache")
+                     "--out", str(out), cache=tmp_path / "cache", preexec_fn=_default_sigint)
         time.sleep(delay)
         p.send_signal(signal.SIGINT)
         _, err = p.communicate(timeout=300)
