@@ -185,6 +185,28 @@ def test_recovery_patch_test(cache, order):
     np.testing.assert_allclose(recovery.von_mises(s), vm, rtol=1e-10)     # same reason
 
 
+def test_partition_equals_slicing():
+    """fem.partition against scipy's own slicing (exact: the same entries are copied, none is
+    computed), on a random symmetric matrix: the cut holds the first and the last dof, and two
+    rows are empty (one cut, one not)."""
+    import scipy.sparse as sp
+
+    from shaftfe.fe import assembly as fem
+    rng = np.random.default_rng(3)
+    A = sp.random(60, 60, density=0.1, random_state=rng, format="csr")
+    keep = np.ones(60)
+    keep[[7, 12]] = 0.0              # two rows and columns with no entries at all
+    D = sp.diags(keep)
+    A = (D @ (A + A.T + sp.eye(60)) @ D).tocsr()
+    A.eliminate_zeros()
+    cut = np.array([0, 5, 6, 7, 31, 59])
+    free = np.setdiff1d(np.arange(60), cut)
+    K_II, K_IB = fem.partition(A, cut)
+    for got, want in ((K_II, A[free][:, free]), (K_IB, A[free][:, cut])):
+        assert got.shape == want.shape and got.has_sorted_indices
+        assert (got != want).nnz == 0
+
+
 def test_von_mises_and_principal_kernels():
     """von Mises of uniaxial σ is |σ|, of pure shear τ is √3 τ; principal stresses are the
     eigenvalues (hand-computed: [[2,1,0],[1,2,0],[0,0,5]] → 5, 3, 1)."""

@@ -205,6 +205,29 @@ def assemble_blocks(mesh, blocks: np.ndarray, d: int) -> sp.csr_matrix:
                          shape=(d * nn, d * nn)).tocsr()
 
 
+def partition(K: sp.csr_matrix, cut: np.ndarray) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """(K_II, K_IB) of the square CSR matrix K split into the dofs ``cut`` (B, sorted, unique)
+    and the rest (I, in their order): one pass over K's arrays, none of the row-permuted and
+    row-block copies that slicing makes (measured on x2_57's 32k-dof zone: the same blocks,
+    two 28 MB copies fewer while the zones factorise side by side)."""
+    n = K.shape[0]
+    inner = np.ones(n, dtype=bool)
+    inner[cut] = False
+    pos_i = np.cumsum(inner) - 1                       # old dof -> its place in I (or B)
+    pos_b = np.cumsum(~inner) - 1
+    rows = np.repeat(np.arange(n, dtype=K.indices.dtype), np.diff(K.indptr))
+    row_in = inner[rows]
+    col_in = inner[K.indices]
+    ni, nb = n - len(cut), len(cut)
+    out = []
+    for keep, pos, ncol in ((row_in & col_in, pos_i, ni), (row_in & ~col_in, pos_b, nb)):
+        indptr = np.zeros(ni + 1, dtype=K.indptr.dtype)
+        np.cumsum(np.bincount(pos_i[rows[keep]], minlength=ni), out=indptr[1:])
+        out.append(sp.csr_matrix((K.data[keep], pos[K.indices[keep]].astype(K.indices.dtype),
+                                  indptr), shape=(ni, ncol)))
+    return out[0], out[1]
+
+
 def elasticity_stiffness_skfem(mesh, E: float, nu: float) -> sp.csr_matrix:
     """The same matrix through scikit-fem's ``linear_elasticity`` form (reference)."""
     from skfem.models.elasticity import linear_elasticity

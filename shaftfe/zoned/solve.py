@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import contextlib
 import contextvars
+import itertools
 import math
 import time
 from dataclasses import asdict, dataclass, field
@@ -31,7 +32,7 @@ from shaftfe.static.solve import _check_rpms
 from shaftfe.util.notices import warn
 from shaftfe.util.units import REF_RPM
 from shaftfe.zoned import submodel as sm
-from shaftfe.zoned.zones import grow, plan_zones
+from shaftfe.zoned.zones import diameter_at, grow, plan_zones
 
 # the cut check's bound: the largest difference of von Mises or σ_xx on a cut face, relative
 # to the face's largest global von Mises. Measured on x2_57 (both zones, default level): 5.6 %
@@ -161,16 +162,36 @@ def _prebuild(v, plan, zones, bands, grown_before, options, cache_dir):
         return None, {}
     from concurrent.futures import ThreadPoolExecutor
     # one worker: two (each factorisation on MKL's two threads) were slower on 2 cores
-    # (x2_57 warm: 2.18 s with one, 2.51 s with two; 2.13 s with none)
+    # (x2_57 warm: 2.18 s with one, 2.51 s with two; 2.13 s with none). The largest zone goes
+    # first: the solve takes a zone the worker has not started yet once the global model is
+    # done (``_take``), so the smaller ones are built there beside the largest
     pool = ThreadPoolExecutor(1)
     pre = {}
-    for z0 in zones:
-        z, grown = _grown(z0, plan, bands, grown_before.get(z0.name, 0))
+    grown = {z0.name: _grown(z0, plan, bands, grown_before.get(z0.name, 0)) for z0 in zones}
+    for z0 in sorted(zones, key=lambda z0: -_volume(plan, grown[z0.name][0])):
+        z, n = grown[z0.name]
         # in this run's context: a notice the build raises reaches its summary (util.notices)
-        pre[z0.name] = (z, grown, pool.submit(contextvars.copy_context().run,
-                                              sm.build_submodel, v, plan, z, options,
-                                              cache_dir=cache_dir))
+        pre[z0.name] = (z, n, pool.submit(contextvars.copy_context().run,
+                                          sm.build_submodel, v, plan, z, options,
+                                          cache_dir=cache_dir))
     return pool, pre
+
+
+def _volume(plan, zone) -> float:
+    """The volume of the plain shaft between the zone's ends (mm³): which zone is the largest
+    (the order they are built in; no result depends on it)."""
+    xs = sorted({zone.x0, zone.x1, *(x for ab in plan.segment_x for x in ab
+                                     if zone.x0 < x < zone.x1)})
+    return sum(math.pi / 4 * (b - a) * diameter_at(plan, 0.5 * (a + b)) ** 2
+               for a, b in itertools.pairwise(xs))
+
+
+def _take(job, v, plan, zone, options, cache_dir):
+    """The submodel ``job`` builds, or, where the worker has not started it yet, built here
+    (the same function on the same inputs: the same submodel)."""
+    if job.cancel():
+        return sm.build_submodel(v, plan, zone, options, cache_dir=cache_dir)
+    return job.result()
 
 
 def _reusable(reuse, variant, options) -> dict:
@@ -268,7 +289,7 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
                         sf = sm.solve_speed(sub, g.solution, rpm_f, case)
                     elif z0.name in pre:              # built beside the global solve
                         z, grown, job = pre.pop(z0.name)
-                        sub = job.result()
+                        sub = _take(job, v, plan, z, options, cache_dir)
                         sf = sm.solve_speed(sub, g.solution, rpm_f, case)
                     else:
                         z, grown = _grown(z0, plan, bands, grown_before.get(z0.name, 0))
@@ -432,7 +453,6 @@ def _from_zone(feat, zone, plan) -> bool:
         # a body of revolution the global model holds exactly, meshed in the zone only for
         # its geometry (``solid.mesh``: a zone's groove is not refined to its radius)
         return False
-    from shaftfe.zoned.zones import diameter_at
     gap = CUT_CLEAR_D * diameter_at(plan, 0.5 * (feat.x_mm[0] + feat.x_mm[1]))
     return all(feat.x_mm[0] - x >= gap or x - feat.x_mm[1] >= gap for x in zone.cuts_mm)
 

@@ -150,12 +150,9 @@ def build_submodel(variant, plan, zone, options, *, level=None, cache_dir=None) 
     bearings = tuple((b.name, seat_rows(m, np.asarray(m.boundaries[bearing_group(b.name)]),
                                         (float(b.x_center_mm), 0.0, 0.0), rows))
                      for b in variant.bearings if bearing_group(b.name) in m.boundaries)
-    # one row permutation, [free, cut], then column blocks (slicing K's rows once)
-    nf = free.size
-    Kp = K[np.concatenate([free, cut])]
-    K_I, K_B = Kp[:nf], Kp[nf:]
-    solver = factorize(K_I[:, free], options.solver)
-    K_IB = K_I[:, cut]
+    K_II, K_IB = fem.partition(K, cut)
+    solver = factorize(K_II, options.solver)
+    del K_II
     floating = None
     if len(faces) == 2:
         fdofs = (3 * faces[1][:, None] + np.arange(3)).ravel()
@@ -163,7 +160,7 @@ def build_submodel(variant, plan, zone, options, *, level=None, cache_dir=None) 
         centre = (float(m.doflocs[0, faces[1]].mean()), 0.0, 0.0)
         Phi = fem.rigid_body_modes(m, centre)[fdofs]
         W = np.asarray(solver.solve(np.asarray(K_IB[:, pos] @ Phi)))
-        K_F = K_B[pos]
+        K_F = K[fdofs]
         K_FI = K_F[:, free]
         S = Phi.T @ (K_F[:, fdofs] @ Phi) - Phi.T @ (K_FI @ W)
         floating = FloatingCut(pos, Phi, W, S, K_FI)
