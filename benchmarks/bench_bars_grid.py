@@ -49,6 +49,8 @@ import math
 import time
 from pathlib import Path
 
+from benchmarks import _jsoncache as jsoncache
+
 OUT = Path("reports/benchmarks")
 CACHE = OUT / "bars_grid.json"
 BARS = Path("shaftfe/static/truth_bars.py")
@@ -99,17 +101,11 @@ def _truth(v) -> dict:
 
 
 def _load() -> dict:
-    try:
-        return json.loads(CACHE.read_text())
-    except (OSError, ValueError):
-        return {"points": {}}
+    return jsoncache.load(CACHE)
 
 
 def _save(data: dict) -> None:
-    OUT.mkdir(parents=True, exist_ok=True)
-    tmp = CACHE.with_suffix(".tmp")
-    tmp.write_text(json.dumps(data, indent=1) + "\n")
-    tmp.replace(CACHE)
+    jsoncache.save(CACHE, data)
 
 
 def measure(levels, budget: float) -> bool:

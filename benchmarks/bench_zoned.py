@@ -33,7 +33,8 @@ from pathlib import Path
 
 from benchmarks._timing import process
 
-RUNS = 3
+RUNS = 7       # warm runs of each command, in turn: this 2-core machine drifts by ±20 % within
+               # minutes (3 runs gave 2.02 s against 1.81 s where 10 paired ones gave 0.83)
 RPM = 10_000.0
 HERE = Path(__file__).resolve().parents[1]
 OUT = HERE / "reports" / "benchmarks"
@@ -173,6 +174,11 @@ def _time(cmds: dict, tmp: str, what: str) -> dict:
         out[name]["warm"] = {"wall_s": statistics.median(r["wall_s"] for r in rs),
                              "max_rss_MiB": max(r["max_rss_MiB"] for r in rs),
                              "all_wall_s": [r["wall_s"] for r in rs]}
+    # this tree against the baseline run by run (each pair ran back to back: the ratio holds
+    # when the machine's speed drifts between rounds), the median of the pairs
+    a, b = list(cmds)[:2]
+    out[a]["warm"]["vs_baseline_paired"] = statistics.median(
+        x["wall_s"] / y["wall_s"] for x, y in zip(runs[a], runs[b], strict=True))
     return out
 
 
@@ -306,13 +312,17 @@ def write(acc: dict, spd: dict | None) -> str:
                 continue
             lines += ["", f"## {title[what]}: whole processes, side by side", "",
                       f"Warm: the median of {RUNS} runs after one warm-up, the commands in "
-                      "turn on one warm cache; cold: an empty cache (every mesh made).", "",
-                      "| command | warm s | warm runs s | warm peak MiB | cold s | cold peak "
-                      "MiB |", "|---|---|---|---|---|---|"]
+                      "turn on one warm cache (paired: the median over the rounds of this "
+                      "tree's run / the baseline's run of the same round); cold: an empty "
+                      "cache (every mesh made).", "",
+                      "| command | warm s | warm runs s | paired / baseline | warm peak MiB | "
+                      "cold s | cold peak MiB |", "|---|---|---|---|---|---|---|"]
             for name, d in rows.items():
                 w, c = d["warm"], d["cold"]
+                pr = w.get("vs_baseline_paired")
                 lines.append(f"| {name} | {w['wall_s']:.2f} | "
                              f"{', '.join(f'{x:.2f}' for x in w['all_wall_s'])} | "
+                             f"{'-' if pr is None else f'{pr:.3f}'} | "
                              f"{w['max_rss_MiB']:.0f} | {c['wall_s']:.2f} | "
                              f"{c['max_rss_MiB']:.0f} |")
         sd = spd.get("study design")

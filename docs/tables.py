@@ -155,6 +155,13 @@ def truth_bars() -> str:
                          "axisymmetric`)", AXI_ERROR_BAR_PCT)):
         for level, (lo, hi) in bars.items():
             out.append(f"| {model} | `{level}` | {pct(lo)} … {pct(hi)} % | {where} |")
+    from shaftfe.static import groove_bars as gb
+    dd, rd = [p[0] for p in gb.MEASURED], [p[1] for p in gb.MEASURED]
+    where = (f"grooves: {len(gb.MEASURED)} U grooves × widths 2ρ and 2 × depth, D/d "
+             f"{min(dd):.3g}–{max(dd):.3g}, ρ/d {min(rd):.3g}–{max(rd):.3g}")
+    for level, (lo, hi) in gb.AXI_GROOVE_BAR_PCT.items():
+        out.append(f"| axisymmetric, groove peaks | `{level}` | {pct(lo)} … {pct(hi)} % | "
+                   f"{where} |")
     return "\n".join(out)
 
 
@@ -167,18 +174,20 @@ def zoned_speed() -> str:
     z, fine = acc["zoned"], acc["full"]["fine"]
     dofs = {"zoned (this tree, default)": sum(q["dofs"] for q in z["zones"]),
             "full 3D (this tree, --model solid)": acc["full"]["default"]["dofs"]}
-    out = ["| command | model | warm s | cold s | peak MiB (warm) | 3D dofs |",
-           "|---|---|---|---|---|---|"]
+    out = ["| command | model | warm s | paired / baseline | cold s | peak MiB (warm) | "
+           "3D dofs |", "|---|---|---|---|---|---|---|"]
     what = {"static": "`shaftfe static --variant x2_57`", "fatigue": "`shaftfe fatigue "
             "loadspectra/rpm.dat`", "demo": "`make demo`"}
     for key, label in what.items():
         for name, r in spd.get(key, {}).items():
+            pr = r["warm"].get("vs_baseline_paired")
             out.append(f"| {label} | {name} | {r['warm']['wall_s']:.2f} | "
+                       f"{'-' if pr is None else f'{pr:.3f}'} | "
                        f"{r['cold']['wall_s']:.2f} | {r['warm']['max_rss_MiB']:.0f} | "
                        f"{dofs.get(name, '-') if key == 'static' else '-'} |")
     for model, r in spd.get("study design", {}).items():
         out.append(f"| a study design, new solid, `default` (warm process) | {model} | "
-                   f"{r['median_s']:.2f} | - | - | {r['n_dofs']} |")
+                   f"{r['median_s']:.2f} | - | - | - | {r['n_dofs']} |")
     out += ["", "| peak (von Mises) | zoned MPa | full 3D fine MPa | difference |",
             "|---|---|---|---|"]
     for reg, (vm, _, model, kind) in z["peaks"].items():

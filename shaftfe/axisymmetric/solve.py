@@ -421,9 +421,10 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
 
 
 def truth_bars(variant, options: AxiOptions, peaks) -> tuple[dict, dict]:
-    """({fillet region: (low, high) %}, {fillet region: why it has none}) of the span-fillet
-    peaks: the axisymmetric level's bar measured over the grid of shoulders
-    (``shaftfe.static.benchmark.span_fillet_bars``, ``truth_bars.AXI_ERROR_BAR_PCT``: its own
+    """({region: (low, high) %}, {region: why it has none}) of the span-fillet and groove
+    peaks: the axisymmetric level's bar measured over the grid of shoulders and the grid of U
+    grooves (``shaftfe.static.benchmark.notch_bars``, ``truth_bars.AXI_ERROR_BAR_PCT``,
+    ``groove_bars.AXI_GROOVE_BAR_PCT``: its own
     method refined, a discretisation error bar) for a named level used as named at refinement
     0, under the options the bars were measured with (the uniform placement of the parts'
     loads, every peak node kept, the default harmonic truncation); supports rigid or springs
@@ -431,7 +432,7 @@ def truth_bars(variant, options: AxiOptions, peaks) -> tuple[dict, dict]:
     free: it only adds harmonics, which change a span fillet's peak by less than the
     truncation tolerance (1e-4 of the largest peak)."""
     from shaftfe.axisymmetric.mesh import AXI_LEVELS
-    from shaftfe.static.benchmark import span_fillet_bars
+    from shaftfe.static.benchmark import notch_bars
     name, d = options.level_name, AxiOptions()
     if not isinstance(options.level, str) and options.level != AXI_LEVELS.get(name):
         return {}, {}
@@ -439,7 +440,7 @@ def truth_bars(variant, options: AxiOptions, peaks) -> tuple[dict, dict]:
             options.truncation, options.n_max) != (0, d.load_distribution, False, 0.0,
                                                    d.truncation, d.n_max):
         return {}, {}
-    return span_fillet_bars(variant, name, peaks, "axisymmetric")
+    return notch_bars(variant, name, peaks, "axisymmetric")
 
 
 GAUGE_TOL = 1e-9     # relative: Σ T = 0 per law to round-off (``model.loads.TORQUE_TOL``)

@@ -307,12 +307,12 @@ def _print_bar_notes(res, whose: str) -> None:
     """What the "error vs truth" column means, and why a span fillet has no bar."""
     if not (res.truth_error_bar_pct or res.truth_bar_notes):
         return
-    print(f"error vs truth: {whose} measured error of span-fillet peaks (von Mises and max "
-          "principal) against the converged axisymmetric solution over a grid of shoulders in "
-          "bending (its own method refined: a discretisation bar; reports/benchmarks/"
-          "bars_grid.md); none where it was not measured (end fillets, a zone's peaks, other "
-          "options than the measured ones, a fillet outside the measured grid, an axial force "
-          "or torque)")
+    print(f"error vs truth: {whose} measured error of span-fillet and groove peaks (von Mises "
+          "and max principal) against the converged axisymmetric solution over a grid of "
+          "shoulders and one of U grooves in bending (its own method refined: a discretisation "
+          "bar; reports/benchmarks/bars_grid.md, groove_bars.md); none where it was not "
+          "measured (end fillets, undercuts, a zone's peaks, other options than the measured "
+          "ones, a notch outside the measured grid, an axial force or torque)")
     for region, why in res.truth_bar_notes.items():
         print(f"  {region}: {why}")
 

@@ -513,12 +513,12 @@ _BAR_CONDITIONS = {"order": 2, "load_distribution": "uniform", "body_force": Fal
 
 def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> tuple[dict, dict]:
     """({fillet region: (low, high) %}, {fillet region: why it has none}) for the fillet
-    peaks: ``shaftfe.static.benchmark.span_fillet_bars`` (span fillets outside every cut
+    peaks: ``shaftfe.static.benchmark.notch_bars`` (span fillets outside every cut
     feature's zone, inside the measured hull, in bending) for a named level used as named,
     under the options the bars were measured with (``_BAR_CONDITIONS``), on the pipeline's own
     mesh of the variant (not a mesh the caller built otherwise)."""
     from shaftfe.solid.levels import LEVELS
-    from shaftfe.static.benchmark import span_fillet_bars
+    from shaftfe.static.benchmark import notch_bars
     from shaftfe.static.cache import predicted_mesh_key
     from shaftfe.static.truth_bars import ERROR_BAR_PCT
     lv = options.level
@@ -529,7 +529,7 @@ def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> tuple[d
         return {}, {}
     if mesh_key != predicted_mesh_key(variant, options):
         return {}, {}
-    return span_fillet_bars(variant, name, peaks, "solid")
+    return notch_bars(variant, name, peaks, "solid")
 
 
 def _named_case(variant, case):

@@ -1,0 +1,128 @@
+"""The groove error bars of the axisymmetric levels (issue #33: the zoned solve's and
+--model axisymmetric's circumferential grooves), measured over a grid of U grooves.
+
+Source of the bars: benchmarks/bench_groove_bars.py, which solves four-point-bent Ø20 bars with
+one U groove (d/D 0.8, 0.9, 0.95; ρ/t 0.25, 0.5, 1; widths 2t and 2ρ) at each axisymmetric
+level and converged by Richardson (the truth, GCI bars), plus x2_57 with a U groove in the
+collar (springs, spin softening on and off), caches every solve in
+reports/benchmarks/groove_bars.json and generates ``shaftfe.static.groove_bars``.
+
+The truth is the axisymmetric method refined, so these are discretisation bars of that method
+(Roache's GCI), not an independent check; the groove peaks' independent checks are DIN 743-2's α
+(reports/benchmarks/grooves.md) and the 3D path (tests/validation/test_grooves.py).
+
+Nothing here re-solves the grid but one point: the tests read the cache and the generated module
+(exact arithmetic on their numbers) and call the lookup with the grooves' geometry;
+``test_the_groove_bar_is_measured_on_todays_mesh`` solves one grid groove at each level, so a
+changed mesher cannot leave the printed bar stale.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+from types import SimpleNamespace
+
+import pytest
+
+from shaftfe.static.benchmark import groove_bar, notch_bars
+from shaftfe.static.groove_bars import AXI_GROOVE_BAR_PCT, MEASURED
+
+ROOT = Path(__file__).resolve().parents[2]
+X2_57_COLLAR = (22.0 / 20.0, 1.0 / 20.0, 2.0, 1.0)      # D/d, ρ/d, w/t, ρ/t
+
+
+def test_generated_bars_are_the_envelope_of_the_cached_grid(monkeypatch):
+    """``groove_bars.AXI_GROOVE_BAR_PCT`` and ``MEASURED`` are what bench_groove_bars computes
+    from its cache: the same envelope rule on the same numbers, so equality is exact."""
+    from benchmarks import bench_groove_bars as g
+    monkeypatch.chdir(ROOT)
+    data = g._load()
+    assert tuple(MEASURED) == tuple(g.measured_points())
+    assert tuple(AXI_GROOVE_BAR_PCT) == g.AXI_LEVELS
+    for level, bar in AXI_GROOVE_BAR_PCT.items():
+        assert g.envelope(data, level) == bar, level
+
+
+@pytest.mark.parametrize("level", sorted(AXI_GROOVE_BAR_PCT))
+def test_no_groove_bar_outside_the_measured_grid(level):
+    """At every measured (D/d, ρ/d), both measured widths, the level's bar; outside the hull or
+    the widths 2ρ … 2t, none."""
+    from benchmarks import bench_groove_bars as g
+    bar = AXI_GROOVE_BAR_PCT[level]
+    for q, k, w in g.grid():                     # the exact grid (MEASURED is rounded to 1e-6)
+        D, t, rho, width = g.geometry(q, k, w)
+        d = D - 2 * t
+        assert groove_bar(level, D / d, rho / d, width / t, rho / t) == bar, (q, k, w)
+    dds = [p[0] for p in MEASURED]
+    rds = [p[1] for p in MEASURED]
+    outside = [(min(dds) - 0.01, 0.03),           # shallower than any measured
+               (max(dds) + 0.05, 0.05),           # deeper
+               (1.11, 0.5 * min(rds)),            # sharper corners (a DIN 471 groove's 0.1 mm)
+               (1.11, 1.5 * max(rds))]            # blunter
+    for dd, rd in outside:
+        rt = rd / ((dd - 1) / 2)
+        assert groove_bar(level, dd, rd, 2.0, rt) is None, (dd, rd)
+    dd, rd = MEASURED[0]
+    rt = rd / ((dd - 1) / 2)
+    assert groove_bar(level, dd, rd, 2.2, rt) is None           # wider than 2t
+    assert groove_bar(level, dd, rd, 1.9 * rt, rt) is None      # narrower than 2ρ
+    assert groove_bar("no_such_level", dd, rd, 2.0, rt) is None
+
+
+def test_x2_57_collar_groove_inside_the_grids_own_bar(monkeypatch):
+    """x2_57's collar U groove (D/d 1.1, ρ/d 0.05, full round: inside the hull, not a grid
+    point) gets the bar; solved at the default level (the zoned solve's global model) with
+    springs and spin softening on and off, every error lies inside the grid's OWN envelope,
+    measured without it: the grid bounds a shaft it did not include."""
+    from benchmarks import bench_groove_bars as g
+    monkeypatch.chdir(ROOT)
+    data = g._load()
+    lo, hi = g._outwards(g.grid_errors(data, "default"))
+    errs = [e[0] for *_, e in g.x2_57_errors(data, "default")]
+    assert len(errs) == 4                      # 2 quantities × softening on / off
+    assert all(lo <= e <= hi for e in errs), (errs, (lo, hi))
+    assert groove_bar("default", *X2_57_COLLAR) == AXI_GROOVE_BAR_PCT["default"]
+
+
+def _shaft(width: float, loads=None):
+    """x2_57 with a U groove of ``width`` in the collar (depth 1, corner radius 1 → 0.5 ×
+    width where narrower): the lookup sees the solid plan's groove."""
+    from benchmarks.bench_groove_bars import x2_57_grooved
+    v = x2_57_grooved()
+    segs = tuple(replace(s, grooves=(replace(s.grooves[0], width_mm=width,
+                                             radius_mm=min(1.0, 0.5 * width)),))
+                 if s.grooves else s for s in v.segments)
+    return replace(v, segments=segs, **({} if loads is None else {"loads": loads}))
+
+
+def test_the_lookup_gives_a_shafts_groove_the_bar_where_measured():
+    """A collar groove 2 × depth wide (the measured width; D/d 1.1, ρ/d 0.05 inside the hull)
+    gets the axisymmetric level's bar, in the axisymmetric model only; 3 × depth wide, none,
+    with the reason; an axial load takes it away, with the reason."""
+    peak = SimpleNamespace(region="groove:collar:0", xyz_mm=(55.75, 0.0, 11.0))
+    bars, notes = notch_bars(_shaft(2.0), "default", [peak], "axisymmetric")
+    assert bars == {peak.region: AXI_GROOVE_BAR_PCT["default"]} and notes == {}
+    assert notch_bars(_shaft(2.0), "default", [peak], "solid") == ({}, {})
+    bars, notes = notch_bars(_shaft(3.0), "default", [peak], "axisymmetric")
+    assert bars == {} and "width / depth 3" in notes[peak.region]
+    from shaftfe.model.loads import Load
+    pull = (Load("pull", "axial_force", 100.0, (99.0, 101.0), 500.0),)
+    bars, notes = notch_bars(_shaft(2.0, pull), "default", [peak], "axisymmetric")
+    assert bars == {} and "axial force or a torque" in notes[peak.region]
+
+
+@pytest.mark.parametrize("level", sorted(AXI_GROOVE_BAR_PCT))
+def test_the_groove_bar_is_measured_on_todays_mesh(monkeypatch, level):
+    """One grid groove (d/D 0.9, ρ/t 1: the full round U) solved now at each axisymmetric level
+    reads what groove_bars.json holds: the same mesh (node count equal) and the same SuperLU
+    solve, so only another BLAS's round-off may differ, far below the 1e-6 bound; a changed
+    mesh moves the peak by 1e-4 or more (the levels differ by more, groove_bars.md)."""
+    from benchmarks import bench_groove_bars as g
+    monkeypatch.chdir(ROOT)
+    rec = g._load()["points"][g._key(0.9, 1.0, "2t")]
+    now = g._axi(g.grooved_bar(*rec["D_t_rho_w_mm"]), level)
+    was = rec["axisymmetric"][level]
+    assert now["nodes"] == was["nodes"]
+    for q in ("max_principal", "von_mises"):
+        assert now[q] == pytest.approx(was[q], rel=1e-6), q
