@@ -34,7 +34,8 @@ from pathlib import Path
 from benchmarks._timing import process
 
 RUNS = 7       # warm runs of each command, in turn: this 2-core machine drifts by ±20 % within
-               # minutes (3 runs gave 2.02 s against 1.81 s where 10 paired ones gave 0.83)
+               # minutes, so 3 rounds could invert a 15 % difference (measured: 2.02 s against
+               # 1.81 s, where a separate run of 10 pairs gave a median ratio of 0.83)
 RPM = 10_000.0
 HERE = Path(__file__).resolve().parents[1]
 OUT = HERE / "reports" / "benchmarks"

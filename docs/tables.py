@@ -157,8 +157,10 @@ def truth_bars() -> str:
             out.append(f"| {model} | `{level}` | {pct(lo)} … {pct(hi)} % | {where} |")
     from shaftfe.static import groove_bars as gb
     dd, rd = [p[0] for p in gb.MEASURED], [p[1] for p in gb.MEASURED]
-    where = (f"grooves: {len(gb.MEASURED)} U grooves × widths 2ρ and 2 × depth, D/d "
-             f"{min(dd):.3g}–{max(dd):.3g}, ρ/d {min(rd):.3g}–{max(rd):.3g}")
+    rt = [p[1] / ((p[0] - 1) / 2) for p in gb.MEASURED]
+    where = (f"{len(gb.MEASURED)} (D/d, ρ/d) points of U grooves, each at the widths 2ρ and 2 "
+             f"× depth where they differ, D/d {min(dd):.3g}–{max(dd):.3g}, corner radius / "
+             f"depth {min(rt):.2g}–{max(rt):.2g}")
     for level, (lo, hi) in gb.AXI_GROOVE_BAR_PCT.items():
         out.append(f"| axisymmetric, groove peaks | `{level}` | {pct(lo)} … {pct(hi)} % | "
                    f"{where} |")

@@ -91,8 +91,8 @@ class AxiResult:
     solution: AxiSolution | None = field(default=None, repr=False)
     notes: tuple[str, ...] = ()
     run: dict = field(default_factory=dict)
-    # the level's measured error bar (%, low, high) of each span-fillet peak (``truth_bars``)
-    # and why a span fillet has none
+    # the level's measured error bar (%, low, high) of each span-fillet and groove peak
+    # (``truth_bars``) and why such a notch has none
     truth_error_bar_pct: dict = field(default_factory=dict)
     truth_bar_notes: dict = field(default_factory=dict)
 

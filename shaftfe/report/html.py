@@ -394,12 +394,13 @@ def _static(r) -> str:
         whose = (f"the 3D {st['level']} level's" if st["model"] == "solid" else
                  f"the axisymmetric {st.get('global_level', st['level'])} level's (its own "
                  "method refined: a discretisation bar)")
-        what, grids = (("span fillet's peak", "a grid of shoulders") if st["model"] == "solid"
-                       else ("span fillet's or groove's peak", "grids of shoulders and of U "
-                             "grooves (reports/benchmarks/groove_bars.md)"))
+        what, grids = (("span fillet's peak", "a grid of shoulders (reports/benchmarks/"
+                        "bars_grid.md)") if st["model"] == "solid" else
+                       ("span fillet's or groove's peak", "grids of shoulders and of U "
+                        "grooves (reports/benchmarks/bars_grid.md, groove_bars.md)"))
         s += (f"<p>error vs truth: {escape(whose)} measured error of a {what} against the "
-              f"converged axisymmetric solution over {grids} in bending "
-              "(reports/benchmarks/bars_grid.md); none where it was not measured.</p>")
+              f"converged axisymmetric solution over {grids} in bending; none where it was "
+              "not measured.</p>")
         if why:
             s += "<ul>" + "".join(f"<li>{escape(r)}: {escape(w)}</li>"
                                   for r, w in why.items()) + "</ul>"

@@ -32,7 +32,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from shaftfe.solid.features import fillet_region
+from shaftfe.solid.features import cuts, features, fillet_region, groove_region
+from shaftfe.static import groove_bars
 from shaftfe.util.paths import BENCHMARK_JSON, TRUTH_JSON, repo_relative
 
 DOF_MATCH_RTOL = 0.10     # the all-parts load case splits the seats a little differently
@@ -141,12 +142,12 @@ def groove_bar(level: str, D_over_d: float, rho_over_d: float,
     ρ/d and width w / depth t, or None when the level has no groove bar, the point lies outside
     the convex hull of the measured (D/d, ρ/d) (``shaftfe.static.groove_bars.MEASURED``) or the
     width outside the measured 2ρ … 2t."""
-    from shaftfe.static.groove_bars import AXI_GROOVE_BAR_PCT, MEASURED
-    if level not in AXI_GROOVE_BAR_PCT:
+    bars = groove_bars.AXI_GROOVE_BAR_PCT
+    if level not in bars:
         return None
     if not 2.0 * rho_over_t * (1 - WIDTH_RTOL) <= width_over_t <= 2.0 * (1 + WIDTH_RTOL):
         return None
-    return AXI_GROOVE_BAR_PCT[level] if in_hull(MEASURED, (D_over_d, rho_over_d)) else None
+    return bars[level] if in_hull(groove_bars.MEASURED, (D_over_d, rho_over_d)) else None
 
 
 def in_hull(points, p, tol: float = HULL_TOL) -> bool:
@@ -192,12 +193,12 @@ def notch_bars(variant, level: str, peaks, model: str) -> tuple[dict, dict]:
     the axisymmetric ``model``) the groove peaks in ``peaks`` (objects with ``region`` and
     ``xyz_mm``) at the named ``level`` of ``model``. A span fillet (not an end fillet: meshed
     apart, not measured) or a groove on a straight part (not a DIN 509 undercut at a
-    shoulder) whose peak lies outside every cut feature's zone (keyways, hex socket, cross
-    holes: ``solid.features.cuts``, which the truth leaves out) gets the level's bar when its
-    geometry lies in the measured grid (``fillet_bar``, ``groove_bar``) and every load bends
-    the shaft (``bending_only``); the reasons name the geometry or the load. The caller checks
-    that the level and options are those the bars were measured under."""
-    from shaftfe.solid.features import cuts, groove_region
+    shoulder) whose faces lie outside every cut feature's zone of influence (keyways, hex
+    socket, cross holes: ``solid.features.cuts``, which the truth leaves out) gets the
+    level's bar when its geometry lies in the measured grid (``fillet_bar``, ``groove_bar``)
+    and every load bends the shaft (``bending_only``); the reasons name the geometry or the
+    load. The caller checks that the level and options are those the bars were measured
+    under."""
     from shaftfe.solid.mesh import end_fillet
     from shaftfe.solid.plan import prepare
     if level not in _bars_of(model):
@@ -207,8 +208,15 @@ def notch_bars(variant, level: str, peaks, model: str) -> tuple[dict, dict]:
     grooves = {groove_region(g.segment, g.index): g for g in plan.grooves} \
         if model == "axisymmetric" else {}
     zones = [f.zone_mm for f in cuts(plan)]
-    mine = [p for p in peaks if (p.region in span or p.region in grooves)
-            and not any(lo <= p.xyz_mm[0] <= hi for lo, hi in zones)]
+    extent = {f.region: f.x_mm for f in features(plan) if f.region in span or f.region in grooves}
+
+    def clear(region: str) -> bool:
+        """The notch's faces (and so its peak) outside every cut feature's zone of influence
+        (where the harmonic truncation leaves the notch out too, ``axisymmetric.model``)."""
+        a, b = extent[region]
+        return not any(b >= lo and a <= hi for lo, hi in zones)
+
+    mine = [p for p in peaks if p.region in extent and clear(p.region)]
     if mine and not bending_only(variant):
         from shaftfe.static.truth_bars import LOAD
         why = (f"no measured bar for this load (the bars were measured in {LOAD}; this "
@@ -233,7 +241,7 @@ def notch_bars(variant, level: str, peaks, model: str) -> tuple[dict, dict]:
 
 def _groove_bar(g, level: str) -> tuple[tuple[float, float] | None, str]:
     """(bar or None, why none) of the solid plan's groove ``g`` at the axisymmetric ``level``."""
-    if g.side:
+    if g.undercut:
         return None, ("no measured bar for a DIN 509 undercut (the grid of grooves holds U "
                       "grooves on a straight part, reports/benchmarks/groove_bars.md)")
     d = 2.0 * g.r_bottom
@@ -245,14 +253,15 @@ def _groove_bar(g, level: str) -> tuple[tuple[float, float] | None, str]:
 
 def groove_range(level: str) -> str:
     """The measured grid of grooves of ``level`` in words, for the "no measured bar" note."""
-    from shaftfe.static.groove_bars import LOAD, MEASURED
-    if not MEASURED:
+    pts = groove_bars.MEASURED
+    if not pts:
         return "measured grid of U grooves: none (benchmarks/bench_groove_bars.py)"
-    dd = [p[0] for p in MEASURED]
-    rd = [p[1] for p in MEASURED]
+    dd = [p[0] for p in pts]
+    rt = [p[1] / ((p[0] - 1) / 2) for p in pts]           # ρ/t = (ρ/d) / (t/d)
     return (f"measured grid of U grooves at level {level}: D/d {min(dd):.3g}–{max(dd):.3g}, "
-            f"ρ/d {min(rd):.3g}–{max(rd):.3g}, width 2ρ … 2 × depth, {len(MEASURED)} grooves "
-            f"in {LOAD}, reports/benchmarks/groove_bars.md")
+            f"corner radius / depth {min(rt):.2g}–{max(rt):.2g}, width 2ρ … 2 × depth, "
+            f"{len(pts)} (D/d, ρ/d) points in {groove_bars.LOAD}, "
+            "reports/benchmarks/groove_bars.md")
 
 
 def measured_range(level: str) -> str:

@@ -96,8 +96,9 @@ class ZonedResult:
     global_result: object = field(default=None, repr=False)     # axisymmetric AxiResult
     plan: object = field(default=None, repr=False)         # the mesh plan the zones are cut from
     fields: tuple = field(default=(), repr=False)               # (SubModel, SubField) per zone
-    # the global model's measured error bars of the span-fillet peaks it gives (the zones'
-    # peaks have none: ``AxiResult.truth_error_bar_pct``) and why a span fillet has none
+    # the global model's measured error bars of the span-fillet and groove peaks it gives
+    # outside every 3D zone (the zones' peaks have none: ``AxiResult.truth_error_bar_pct``),
+    # and why such a notch has none
     truth_error_bar_pct: dict = field(default_factory=dict)
     truth_bar_notes: dict = field(default_factory=dict)
 
@@ -163,8 +164,8 @@ def _prebuild(v, plan, zones, bands, grown_before, options, cache_dir):
     from concurrent.futures import ThreadPoolExecutor
     # one worker: two (each factorisation on MKL's two threads) were slower on 2 cores
     # (x2_57 warm: 2.18 s with one, 2.51 s with two; 2.13 s with none). The largest zone goes
-    # first: the solve takes a zone the worker has not started yet once the global model is
-    # done (``_take``), so the smaller ones are built there beside the largest
+    # first; once the global model is done the solve builds every zone the worker has not
+    # started yet itself (``_take``), so the smaller ones are built beside the largest
     pool = ThreadPoolExecutor(1)
     pre = {}
     grown = {z0.name: _grown(z0, plan, bands, grown_before.get(z0.name, 0)) for z0 in zones}
@@ -186,12 +187,21 @@ def _volume(plan, zone) -> float:
                for a, b in itertools.pairwise(xs))
 
 
-def _take(job, v, plan, zone, options, cache_dir):
-    """The submodel ``job`` builds, or, where the worker has not started it yet, built here
-    (the same function on the same inputs: the same submodel)."""
+def _take(name, pre, v, plan, options, cache_dir):
+    """The submodel of zone ``name`` from ``pre`` (``_prebuild``): built here where the worker
+    has not started it yet; where the worker is on it, the zones it has not started are built
+    here meanwhile (kept in ``pre`` as done). The same function on the same inputs: the same
+    submodels, whichever thread builds them."""
+    from concurrent.futures import Future
+    z, grown, job = pre.pop(name)
     if job.cancel():
-        return sm.build_submodel(v, plan, zone, options, cache_dir=cache_dir)
-    return job.result()
+        return z, grown, sm.build_submodel(v, plan, z, options, cache_dir=cache_dir)
+    for other, (zo, go, jo) in list(pre.items()):
+        if not job.done() and jo.cancel():
+            done = Future()
+            done.set_result(sm.build_submodel(v, plan, zo, options, cache_dir=cache_dir))
+            pre[other] = (zo, go, done)
+    return z, grown, job.result()
 
 
 def _reusable(reuse, variant, options) -> dict:
@@ -288,8 +298,7 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
                         z = sub.zone
                         sf = sm.solve_speed(sub, g.solution, rpm_f, case)
                     elif z0.name in pre:              # built beside the global solve
-                        z, grown, job = pre.pop(z0.name)
-                        sub = _take(job, v, plan, z, options, cache_dir)
+                        z, grown, sub = _take(z0.name, pre, v, plan, options, cache_dir)
                         sf = sm.solve_speed(sub, g.solution, rpm_f, case)
                     else:
                         z, grown = _grown(z0, plan, bands, grown_before.get(z0.name, 0))
@@ -354,15 +363,26 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
                  "--model solid gives the full 3D model, whose peaks differ from these by what "
                  "reports/benchmarks/zoned.md measures")
     glob = {p.region for p in cases[0].peaks if p.model == "axisymmetric"}
-    bars = {r: b for r, b in first_global.truth_error_bar_pct.items() if r in glob}
-    bar_notes = {r: n for r, n in first_global.truth_bar_notes.items() if r in glob}
-    notes.append(("error bars: a span fillet's peak from the global model carries the "
-                  f"axisymmetric {axi_level} level's error measured over a grid of shoulders "
-                  "(its own method refined: a discretisation bar; reports/benchmarks/"
-                  "bars_grid.md)" if bars else
-                  "error bars: none on the global model's span fillets (other options or "
-                  "loads than the measured ones, or no span fillet inside the measured grid: "
-                  "the reasons are printed)") +
+    # a notch the global model gives but whose faces reach into a 3D zone (a zone's cut lies
+    # beyond its nominal reach, or the cut check grew it): the cut features' field acts there,
+    # which the bars' grids did not hold
+    solved = [(sub.zone.name, sub.zone.x0, sub.zone.x1) for sub in subs.values()]
+    in_zone = {r: name for r in glob if r in feats for name, x0, x1 in solved
+               if feats[r].x_mm[1] > x0 and feats[r].x_mm[0] < x1}
+    bars = {r: b for r, b in first_global.truth_error_bar_pct.items()
+            if r in glob and r not in in_zone}
+    bar_notes = {r: n for r, n in first_global.truth_bar_notes.items()
+                 if r in glob and r not in in_zone}
+    bar_notes |= {r: f"no measured bar: it lies in the 3D zone {name}, whose cut features' "
+                     "field the measured grids did not hold"
+                  for r, name in in_zone.items() if r in first_global.truth_error_bar_pct}
+    notes.append(("error bars: a span fillet's or groove's peak from the global model carries "
+                  f"the axisymmetric {axi_level} level's error measured over a grid of "
+                  "shoulders or of U grooves (its own method refined: a discretisation bar; "
+                  "reports/benchmarks/bars_grid.md, groove_bars.md)" if bars else
+                  "error bars: none on the global model's span fillets and grooves (other "
+                  "options or loads than the measured ones, or no such notch inside the "
+                  "measured grids: the reasons are printed)") +
                  "; the zones' peaks have none (measured on x2_57 and one keyed bar only: "
                  "reports/benchmarks/zoned.md, keyway_radius.md)")
     if any(k.rho == 0 for k in plan.slots):

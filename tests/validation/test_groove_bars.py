@@ -55,14 +55,15 @@ def test_no_groove_bar_outside_the_measured_grid(level):
         d = D - 2 * t
         assert groove_bar(level, D / d, rho / d, width / t, rho / t) == bar, (q, k, w)
     dds = [p[0] for p in MEASURED]
-    rds = [p[1] for p in MEASURED]
-    outside = [(min(dds) - 0.01, 0.03),           # shallower than any measured
-               (max(dds) + 0.05, 0.05),           # deeper
-               (1.11, 0.5 * min(rds)),            # sharper corners (a DIN 471 groove's 0.1 mm)
-               (1.11, 1.5 * max(rds))]            # blunter
-    for dd, rd in outside:
-        rt = rd / ((dd - 1) / 2)
-        assert groove_bar(level, dd, rd, 2.0, rt) is None, (dd, rd)
+    # outside the hull, each with a width the width rule accepts (ρ/t ≤ 1, w = 2t), so only
+    # the hull refuses: (D/d, ρ/t)
+    outside = [(min(dds) - 0.01, 0.5),            # shallower than any measured
+               (max(dds) + 0.05, 0.5),            # deeper
+               (1.11, 0.1)]                       # sharper corners (DIN 471's are sharper yet)
+    for dd, rt in outside:
+        rd = rt * (dd - 1) / 2                    # ρ/d = (ρ/t)(t/d)
+        assert groove_bar(level, dd, rd, 2.0, rt) is None, (dd, rt)
+    assert groove_bar(level, 1.11, 0.5 * (1.11 - 1) / 2, 2.0, 0.5) == bar    # inside: a bar
     dd, rd = MEASURED[0]
     rt = rd / ((dd - 1) / 2)
     assert groove_bar(level, dd, rd, 2.2, rt) is None           # wider than 2t
@@ -85,14 +86,15 @@ def test_x2_57_collar_groove_inside_the_grids_own_bar(monkeypatch):
     assert groove_bar("default", *X2_57_COLLAR) == AXI_GROOVE_BAR_PCT["default"]
 
 
-def _shaft(width: float, loads=None):
-    """x2_57 with a U groove of ``width`` in the collar (depth 1, corner radius 1 → 0.5 ×
-    width where narrower): the lookup sees the solid plan's groove."""
-    from benchmarks.bench_groove_bars import x2_57_grooved
-    v = x2_57_grooved()
-    segs = tuple(replace(s, grooves=(replace(s.grooves[0], width_mm=width,
-                                             radius_mm=min(1.0, 0.5 * width)),))
-                 if s.grooves else s for s in v.segments)
+def _shaft(width: float, loads=None, *, segment: str = "collar", x_mm: float = 55.75,
+           depth: float = 1.0, radius: float = 1.0):
+    """x2_57 with one U groove of ``width`` on ``segment`` (its corner radius at most half
+    the width): the lookup sees the solid plan's groove."""
+    from shaftfe.model.loader import load_variant
+    from shaftfe.model.variant import Groove
+    v = load_variant("x2_57")
+    g = Groove("u", x_mm, width, depth, min(radius, 0.5 * width))
+    segs = tuple(replace(s, grooves=(g,)) if s.name == segment else s for s in v.segments)
     return replace(v, segments=segs, **({} if loads is None else {"loads": loads}))
 
 
@@ -110,6 +112,20 @@ def test_the_lookup_gives_a_shafts_groove_the_bar_where_measured():
     pull = (Load("pull", "axial_force", 100.0, (99.0, 101.0), 500.0),)
     bars, notes = notch_bars(_shaft(2.0, pull), "default", [peak], "axisymmetric")
     assert bars == {} and "axial force or a torque" in notes[peak.region]
+
+
+def test_no_groove_bar_in_a_keyways_zone_or_for_an_undercut():
+    """A groove whose geometry lies in the grid (D/d 17/16, ρ/t 0.5, w = 2t) but on the gear
+    hub boss, inside the gear seat keyway's zone of influence, gets no bar (the cut feature's
+    field was not in the grid); a DIN 509 undercut gets none, with its reason."""
+    from shaftfe.static.benchmark import _groove_bar
+    assert groove_bar("default", 17 / 16, 0.25 / 16, 2.0, 0.5) is not None
+    v = _shaft(1.0, segment="gear_hub_boss", x_mm=27.0, depth=0.5, radius=0.25)
+    peak = SimpleNamespace(region="groove:gear_hub_boss:0", xyz_mm=(27.0, 0.0, 8.0))
+    assert notch_bars(v, "default", [peak], "axisymmetric") == ({}, {})
+    undercut = SimpleNamespace(undercut=True)
+    bar, why = _groove_bar(undercut, "default")
+    assert bar is None and "DIN 509 undercut" in why
 
 
 @pytest.mark.parametrize("level", sorted(AXI_GROOVE_BAR_PCT))
