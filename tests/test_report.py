@@ -438,8 +438,8 @@ def test_life_error_row_when_the_hot_spot_fails_in_the_first_block():
 
 def test_pictures_render_here_when_no_second_process_can(monkeypatch):
     """``report.pictures``: where the second process cannot start (``Renderer``) or dies
-    (BrokenProcessPool), the pictures are rendered in this process; an error of the rendering
-    itself is raised, not hidden."""
+    (BrokenProcessPool), the pictures (and the figure jobs handed to it) are made in this
+    process; an error of the rendering itself is raised, not hidden."""
     import concurrent.futures
     from concurrent.futures.process import BrokenProcessPool
 
@@ -466,3 +466,13 @@ def test_pictures_render_here_when_no_second_process_can(monkeypatch):
         raise OSError("no processes here")
     monkeypatch.setattr(concurrent.futures, "ProcessPoolExecutor", refuse)
     assert pictures.Renderer().start(job).result() is here
+
+    # a figure job (``Renderer.draw``): drawn here without a second process or when it died,
+    # its own error raised
+    drawn = []
+    pictures.Renderer().draw(drawn.append, "balance").wait()
+    pictures.Drawing(drawn.append, ("again",), Broken()).wait()
+    assert drawn == ["balance", "again"]
+    with pytest.raises(ValueError, match="no such field"):
+        pictures.Drawing(drawn.append, ("never",), Failing()).wait()
+    assert drawn == ["balance", "again"]

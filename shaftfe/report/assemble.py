@@ -321,6 +321,12 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     try:
         with prog.stage("balancing"):             # only for a shaft of a named engine
             bal, fres, sw, _ = balancing(engine, variant, seedmod) if engine else (None,) * 4
+            fig_dir.mkdir(parents=True, exist_ok=True)
+            # its figures need nothing of the solve: the second process draws them meanwhile
+            drawing = None
+            if fres is not None:
+                drawing = renderer.draw(draw_balance, fres, sw, fig_dir) if renderer else \
+                    pictures.Drawing(draw_balance, (fres, sw, fig_dir))
         with prog.stage("beam check"):
             beam_out, _ = beam_check(variant, o.design_rpm)
         res, ref = _static(o, variant, prog)
@@ -344,8 +350,8 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     with prog.stage("strength by standard"):
         strength = _strength(o, variant, ref, history, ff.result.cycles)
     with prog.stage("plots"):
-        _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, cres,
-               camp, files["vtu_rpm"], add_fig)
+        _plots(o, out, fig_dir, variant, drawing, fres, sw, res, ref, ff, history, material,
+               cres, camp, files["vtu_rpm"], add_fig)
         _din743_along_plot(strength, fig_dir, add_fig)
         _fkm_along_plot(strength, variant, fig_dir, add_fig)
     picture_seconds = None
@@ -444,10 +450,11 @@ def _picture_job(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> pictu
                                tuple(pictures.Shot(*s) for s in shots))
 
 
-def _plots(o, out, fig_dir, variant, fres, sw, res, ref, ff, history, material, cres, camp,
-           rpm_vtu, add_fig) -> None:
+def _plots(o, out, fig_dir, variant, drawing, fres, sw, res, ref, ff, history, material, cres,
+           camp, rpm_vtu, add_fig) -> None:
     if fres is not None:                      # a shaft of a named engine
-        _balance_plots(fres, sw, fig_dir, add_fig)
+        drawing.wait()                        # drawn by the second process, or here
+        _balance_captions(fres, sw, add_fig)
     _other_plots(o, fig_dir, variant, res, ref, ff, history, material, cres, rpm_vtu, add_fig)
 
 
@@ -478,15 +485,19 @@ def _fkm_along_plot(strength: dict, variant, fig_dir, add_fig) -> None:
             "named), against the limit 1; the shaft's outline below")
 
 
-def _balance_plots(fres, sw, fig_dir, add_fig) -> None:
+def draw_balance(fres, sw, fig_dir) -> None:
+    """The balancing figures' files (in the pictures' process when there is one)."""
     from shaftfe.balance import plots
-    plots.plot_forces(fres, fig_dir / "balance_forces.png")
+    plots.plot_forces(fres, Path(fig_dir) / "balance_forces.png")
+    plots.plot_sweep(sw, Path(fig_dir) / "balance_sweep.png")
+
+
+def _balance_captions(fres, sw, add_fig) -> None:
     add_fig("balance_forces", "shaking forces over one revolution",
             f"{fres.engine}, crank C X = {100 * fres.X:.1f} %, balancer X2 = "
             f"{100 * fres.X2:.2f} % (this variant), {fres.rpm:g} rpm, engine frame (tilt "
             f"{fres.tilt_deg:g}°): Fx, Fy, |F| [N] against the crank angle [°]; polar plot of "
             "|F| against its direction; hodograph Fy(Fx) [N].")
-    plots.plot_sweep(sw, fig_dir / "balance_sweep.png")
     add_fig("balance_sweep", "balancing curves over X2",
             f"max|Fx|, max|Fy|, RMS|F|, max|F| [N] against the balancer ratio X2 [%] for crank "
             f"C (X = {100 * sw.X[0]:.1f} %), {sw.rpm:g} rpm, cylinder frame (as the seed's "

@@ -1,6 +1,7 @@
 """The report's three PyVista pictures (von Mises, displacement, the seed method's safety
 factor), rendered from the run's VTU in a second process while the first one computes the
-strength section and draws the plots.
+strength section and draws the plots; before them, that process draws the figures that need
+nothing of the solve (the balancing figures: ``Renderer.draw``) while the static model solves.
 
 A process, not a thread: matplotlib draws holding the interpreter's lock, so in one
 interpreter the two would take turns. Measured on x2_57's demo (2-core machine): the pictures
@@ -63,6 +64,26 @@ def render_all(job: PictureJob) -> tuple[list[tuple[str, str, str]], float]:
     return out, time.perf_counter() - t0
 
 
+class Drawing:
+    """A figure job (a module-level function and its arguments, which write files and return
+    nothing) being drawn in the second process (``Renderer.draw``); ``wait`` returns once its
+    files are written, drawing them here where that process could not take the job or died
+    (an error of the drawing itself is raised as it would be here)."""
+
+    def __init__(self, fn, args: tuple, future=None):
+        self._fn, self._args, self._future = fn, args, future
+
+    def wait(self) -> None:
+        from concurrent.futures.process import BrokenProcessPool
+        if self._future is not None:
+            try:
+                self._future.result()
+                return
+            except BrokenProcessPool:
+                pass
+        self._fn(*self._args)
+
+
 class Rendering:
     """The pictures of one job, being rendered in a second process (``Renderer.start``)."""
 
@@ -107,6 +128,17 @@ class Renderer:
         except (OSError, RuntimeError, ValueError):  # no second process here
             self._pool = None
 
+    def draw(self, fn, *args) -> Drawing:
+        """Hand the second process a figure job that needs nothing of the solve (it runs there
+        while the static model solves here, before the pictures); drawn by ``Drawing.wait``
+        in this process where there is no second one."""
+        if self._pool is None:
+            return Drawing(fn, args)
+        try:
+            return Drawing(fn, args, self._pool.submit(fn, *args))
+        except (OSError, RuntimeError):              # the process is gone: draw here
+            return Drawing(fn, args)
+
     def start(self, job: PictureJob) -> Rendering:
         if self._pool is None:
             return Rendering(job)
@@ -119,9 +151,12 @@ class Renderer:
         return Rendering(job, fut)
 
     def close(self) -> None:
-        """Stop the second process when no job will come (an error before the pictures)."""
+        """Stop the second process when no job will come (an error before the pictures): the
+        jobs not started are dropped, and a figure it is drawing is waited for, so that no file
+        lands in the output folder after the run has removed it (a run writes all its outputs
+        or none)."""
         if self._pool is not None:
-            self._pool.shutdown(wait=False, cancel_futures=True)
+            self._pool.shutdown(wait=True, cancel_futures=True)
 
 
-__all__ = ["PictureJob", "Renderer", "Rendering", "Shot", "render_all"]
+__all__ = ["Drawing", "PictureJob", "Renderer", "Rendering", "Shot", "render_all"]
