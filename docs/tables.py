@@ -167,6 +167,23 @@ def truth_bars() -> str:
     return "\n".join(out)
 
 
+def groove_truth_check() -> str:
+    """The groove bars' truth against the full 3D model at ``fine``, over the grid
+    (benchmarks/bench_groove_bars.py: reports/benchmarks/groove_bars.json)."""
+    import json
+    import sys
+    sys.path.insert(0, str(ROOT))
+    from benchmarks import bench_groove_bars as g
+    data = json.loads((ROOT / "reports" / "benchmarks" / "groove_bars.json").read_text())
+    se = g.solid_errors(data)
+    dofs = [rec["solid_fine"]["dofs"] for _, rec in g.checked(data)]
+    return ("| independent check of the groove truth | grooves | 3D dofs | 3D fine − truth |\n"
+            "|---|---|---|---|\n"
+            f"| full 3D model, `fine` (P2 tetrahedra, its own recovery) | "
+            f"{len(dofs)} of {len(g.grid())} (ρ ≥ {g.SOLID_CHECK_RHO_MM:g} mm) | "
+            f"{min(dofs)}–{max(dofs)} | {min(se):+.3f} … {max(se):+.3f} % |")
+
+
 def zoned_speed() -> str:
     """``shaftfe static`` zoned against the full 3D model: whole processes side by side and
     the keyway peaks against the full 3D fine model (benchmarks/bench_zoned.py)."""
@@ -290,6 +307,7 @@ def keyway_radius() -> str:
 
 TABLES = {"fatigue-x2_57": (DOCS / "VALIDATION.md", fatigue_x2_57),
           "truth-bars": (DOCS / "VALIDATION.md", truth_bars),
+          "groove-truth-check": (DOCS / "VALIDATION.md", groove_truth_check),
           "study-x2_tradeoff": (DOCS / "STUDIES.md", study_x2_tradeoff),
           "zoned-speed": (DOCS / "PERFORMANCE.md", zoned_speed),
           "fkm-gradient": (DOCS / "STRENGTH.md", fkm_gradient),

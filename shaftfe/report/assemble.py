@@ -321,7 +321,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     try:
         with prog.stage("balancing"):             # only for a shaft of a named engine
             bal, fres, sw, _ = balancing(engine, variant, seedmod) if engine else (None,) * 4
-            fig_dir.mkdir(parents=True, exist_ok=True)
+            fig_dir.mkdir(parents=True, exist_ok=True)        # every figure's folder
             # its figures need nothing of the solve: the second process draws them meanwhile
             drawing = None
             if fres is not None:
@@ -339,7 +339,6 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
             camp, cres, rotor_model = campbell(variant, o)
         with prog.stage("VTU"):
             files = _vtu(o, out, variant, res, ref, ff, rotor_model, cres)
-            fig_dir.mkdir(parents=True, exist_ok=True)
             # the pictures render in a second process beside the strength section and the plots
             rendering = renderer.start(_picture_job(o, out / files["vtu"], fig_dir, ff,
                                                     files["vtu_rpm"], st)) if renderer else None

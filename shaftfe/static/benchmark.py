@@ -32,7 +32,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from shaftfe.solid.features import cuts, features, fillet_region, groove_region
+from shaftfe.solid.features import features, fillet_region, groove_region
 from shaftfe.static import groove_bars
 from shaftfe.util.paths import BENCHMARK_JSON, TRUTH_JSON, repo_relative
 
@@ -207,8 +207,9 @@ def notch_bars(variant, level: str, peaks, model: str) -> tuple[dict, dict]:
     span = {fillet_region(fl.segment): fl for fl in plan.fillets if not end_fillet(plan, fl)}
     grooves = {groove_region(g.segment, g.index): g for g in plan.grooves} \
         if model == "axisymmetric" else {}
-    zones = [f.zone_mm for f in cuts(plan)]
-    extent = {f.region: f.x_mm for f in features(plan) if f.region in span or f.region in grooves}
+    feats = features(plan)
+    zones = [f.zone_mm for f in feats if f.cut]
+    extent = {f.region: f.x_mm for f in feats if f.region in span or f.region in grooves}
 
     def clear(region: str) -> bool:
         """The notch's faces (and so its peak) outside every cut feature's zone of influence

@@ -19,7 +19,6 @@ changed mesher cannot leave the printed bar stale.
 
 from __future__ import annotations
 
-from dataclasses import replace
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -42,6 +41,20 @@ def test_generated_bars_are_the_envelope_of_the_cached_grid(monkeypatch):
     assert tuple(AXI_GROOVE_BAR_PCT) == g.AXI_LEVELS
     for level, bar in AXI_GROOVE_BAR_PCT.items():
         assert g.envelope(data, level) == bar, level
+
+
+def test_the_groove_truth_holds_against_another_model(monkeypatch):
+    """The truth is the axisymmetric method refined, the method the bars judge; the full 3D
+    model at fine (P2 tetrahedra, another recovery: bench_groove_bars' independent check) meets
+    it within 1 % on every grid groove it could mesh (ρ ≥ 0.5 mm, 9 of 15): the 3D fine level's
+    own error on shoulders is −0.55 … +0.43 % (reports/benchmarks/bars_grid.md), so a truth
+    off by more than that plus its bar fails here. Both quantities, every groove checked."""
+    from benchmarks import bench_groove_bars as g
+    monkeypatch.chdir(ROOT)
+    data = g._load()
+    errs = g.solid_errors(data)
+    assert len(errs) == 2 * len(g.checked(data)) >= 2 * 9
+    assert all(abs(e) < 1.0 for e in errs), errs
 
 
 @pytest.mark.parametrize("level", sorted(AXI_GROOVE_BAR_PCT))
@@ -90,12 +103,8 @@ def _shaft(width: float, loads=None, *, segment: str = "collar", x_mm: float = 5
            depth: float = 1.0, radius: float = 1.0):
     """x2_57 with one U groove of ``width`` on ``segment`` (its corner radius at most half
     the width): the lookup sees the solid plan's groove."""
-    from shaftfe.model.loader import load_variant
-    from shaftfe.model.variant import Groove
-    v = load_variant("x2_57")
-    g = Groove("u", x_mm, width, depth, min(radius, 0.5 * width))
-    segs = tuple(replace(s, grooves=(g,)) if s.name == segment else s for s in v.segments)
-    return replace(v, segments=segs, **({} if loads is None else {"loads": loads}))
+    from benchmarks.bench_groove_bars import x2_57_grooved
+    return x2_57_grooved((x_mm, width, depth, min(radius, 0.5 * width)), segment, loads)
 
 
 def test_the_lookup_gives_a_shafts_groove_the_bar_where_measured():
