@@ -27,8 +27,8 @@ def test_a_second_axisymmetric_solve_of_the_same_shaft_factorises_nothing(monkey
     """Inside a ``fe.reuse`` scope the axisymmetric model's n = 0 and n = 1 factorisations are
     kept by their matrix's content: x2_57 with spin softening at 7000 rpm after 10 000 rpm (the
     softening is a low-rank term: the factorised matrices are the same) calls SuperLU's
-    factorisation no more, and its fields are those of a solve outside the scope, which
-    factorises again, bit for bit (the same matrix, the same factor)."""
+    factorisation no more (nor assembles), and its fields are those of a solve outside the
+    scope, which factorises again, bit for bit (the same matrix, the same factor)."""
     import numpy as np
     import scipy.sparse.linalg as sla
 
@@ -50,7 +50,9 @@ def test_a_second_axisymmetric_solve_of_the_same_shaft_factorises_nothing(monkey
         made = len(calls)
         kept = solve_axisymmetric(v, 7000.0, opts)
     assert made >= 2 and len(calls) == made                 # n = 0 and n = 1, once
-    assert stats["reused"] == {"harmonic n=0": 1, "harmonic n=1": 1}
+    # the assembled matrices too (made or loaded once: ``axisymmetric.harmonic.assemble``)
+    assert stats["reused"] == {"harmonic n=0": 1, "harmonic n=1": 1,
+                               "axisymmetric assembly": 1}
     fresh = solve_axisymmetric(v, 7000.0, opts)              # no scope: factorised again
     assert len(calls) == 2 * made
     for a, b in zip(kept.solution.harmonics, fresh.solution.harmonics, strict=True):

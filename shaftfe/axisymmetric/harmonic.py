@@ -138,7 +138,20 @@ def assembly_key(mesh, E: float, nu: float) -> str:
 def assemble(mesh, E: float, nu: float, *, cache_dir=None, use_cache: bool = True) -> Harmonics:
     """K00, K01 + K01ᵀ, K11 of ``mesh``. Cached as ``axik-<key>.npz`` (one sparsity pattern,
     three data arrays; ``util.cachefile``) when the mesh has a content key (a mesh from
-    ``mesh.mesh_geometry``): loading costs a fifth of assembling."""
+    ``mesh.mesh_geometry``): loading costs a fifth of assembling. Inside ``fe.reuse``'s scope
+    (several speeds with spin softening, fatigue's unsoftened solve, a study's designs) the
+    matrices of one key are made or loaded once and shared."""
+    if use_cache and mesh.key and reuse.active():
+        key = assembly_key(mesh, E, nu)
+        return reuse.memo("axisymmetric assembly", (key,),
+                          lambda: _assemble(mesh, E, nu, key, cache_dir))
+    return _assemble(mesh, E, nu, assembly_key(mesh, E, nu) if use_cache and mesh.key
+                     else None, cache_dir)
+
+
+def _assemble(mesh, E: float, nu: float, key: str | None, cache_dir) -> Harmonics:
+    """``assemble``: from the cache file of ``key`` when there is one, else assembled (and
+    saved under ``key``; None: no cache)."""
     import time
     from pathlib import Path
 
@@ -146,9 +159,8 @@ def assemble(mesh, E: float, nu: float, *, cache_dir=None, use_cache: bool = Tru
     t0 = time.perf_counter()
     N = mesh.n_nodes
     shape = (3 * N, 3 * N)
-    path = key = None
-    if use_cache and mesh.key:
-        key = assembly_key(mesh, E, nu)
+    path = None
+    if key is not None:
         path = Path(paths.cache_dir(cache_dir)) / f"axik-{key[:24]}.npz"
         if path.exists():
             got = cachefile.load(path, key, "axisymmetric assembly")

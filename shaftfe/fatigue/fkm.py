@@ -277,24 +277,67 @@ class Spectrum:
         λ = (life/blocks)^(1/k) in closed form, the other rules by bisection in log λ (their
         life falls monotonically with λ). The consistent rule's life is infinite until the
         largest cycle reaches the knee and finite from there: where that jump already passes
-        the design life, λ* is the jump (the load at which damage starts at all)."""
+        the design life, λ* is the jump (the load at which damage starts at all).
+
+        The bisection runs between two neighbouring knees λ = 1/s_i, where m(λ) is constant:
+        the lives at every knee in one vectorised pass find them (``_lives``), and the life
+        between them is then a closed expression of λ in plain floats (``_life_at``)."""
         if self.n == 0:
             return math.inf
         life1 = self.life(rule, damage_sum)
         if rule == "elementary":
             return (life1 / blocks) ** (1.0 / self.k)
         lo, hi = 1e-6, 1e6
-
-        def f(lam):
-            return self.life(rule, damage_sum, lam) - blocks
-        if f(hi) > 0:
+        if self.life(rule, damage_sum, hi) - blocks > 0:
             return hi
+        knees = 1.0 / (self.factor * self.s)          # ascending: s is descending
+        knees = knees[(knees > lo) & (knees < hi)]
+        if knees.size:
+            short = np.flatnonzero(self._lives(rule, damage_sum, knees) - blocks <= 0)
+            j = int(short[0]) if short.size else knees.size
+            if j < knees.size:
+                hi = float(knees[j])
+            if j > 0:
+                lo = float(knees[j - 1])
+        life = self._life_at(rule, damage_sum, self._m(math.sqrt(lo * hi) * self.factor))
         for _ in range(200):
             mid = math.sqrt(lo * hi)
-            if f(mid) > 0:
+            if life(mid) - blocks > 0:
                 lo = mid
             else:
                 hi = mid
             if hi / lo - 1.0 < 1e-13:
                 break
         return math.sqrt(lo * hi)
+
+    def _lives(self, rule: str, damage_sum: float, lams: np.ndarray) -> np.ndarray:
+        """``life`` at each load factor of ``lams`` (modified, consistent), vectorised."""
+        lam = np.asarray(lams, dtype=float) * self.factor
+        m = np.searchsorted(self._neg, -1.0 / lam, side="right")
+        A = np.concatenate([[0.0], self.A])[m]                 # A_{m−1}, 0 for m = 0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            if rule == "modified":
+                d = (lam ** self.k * A + lam ** (2 * self.k - 1) * self.B[m]) / self.n_knee
+                return np.where(d > 0, damage_sum / d, np.inf)
+            first = (lam ** -self.k - self.sk[m]) / A
+            return np.where(m > 0, damage_sum * self.n_knee * (first + self.T[m]), np.inf)
+
+    def _life_at(self, rule: str, damage_sum: float, m: int):
+        """λ ↦ ``life`` at λ for the m(λ) = ``m`` of an interval between two knees: the same
+        expression as ``life`` in plain floats."""
+        k, f, nk = self.k, self.factor, self.n_knee
+        if rule == "modified":
+            a = float(self.A[m - 1]) if m else 0.0
+            b = float(self.B[m])
+
+            def life(lam: float) -> float:
+                lam = lam * f
+                d = (lam ** k * a + lam ** (2 * k - 1) * b) / nk
+                return damage_sum / d if d > 0 else math.inf
+            return life
+        if rule != "consistent":
+            raise ValueError(f"rule {rule!r}: one of {MINER}")
+        if m == 0:
+            return lambda lam: math.inf
+        a, skm, t = float(self.A[m - 1]), float(self.sk[m]), float(self.T[m])
+        return lambda lam: damage_sum * nk * (((lam * f) ** -k - skm) / a + t)

@@ -516,52 +516,71 @@ def safety_factor(sigma_eq, cycles: Cycles, material: FatigueMaterial, design_li
 
 def _beta_roots(sign: float, cycles: Cycles, material: FatigueMaterial, theory: str,
                 kf: float, design_life: float, beta) -> np.ndarray | float:
-    """x*(β) of ``_unit_root`` for nodes of one sign: one root without softening or with one
-    β; else roots at ``BETA_GRID`` quantiles of β (and its extremes), log x* interpolated
-    linearly in β (module docstring)."""
+    """x*(β) of ``_unit_roots`` for nodes of one sign: one root without softening or with one
+    β; else roots at ``BETA_GRID`` quantiles of β (and its extremes), bisected together, log
+    x* interpolated linearly in β (module docstring)."""
     if beta is None or float(beta.min()) == float(beta.max()):
         b0 = 0.0 if beta is None else float(beta[0])
-        return _unit_root(sign, cycles, material, theory, kf, design_life, b0)
+        return float(_unit_roots(sign, cycles, material, theory, kf, design_life,
+                                 np.array([b0]))[0])
     grid = np.unique(np.quantile(beta, np.linspace(0.0, 1.0, BETA_GRID)))
-    roots = np.array([_unit_root(sign, cycles, material, theory, kf, design_life, float(g))
-                      for g in grid])
+    roots = _unit_roots(sign, cycles, material, theory, kf, design_life, grid)
     with np.errstate(divide="ignore"):
         lr = np.log(np.clip(roots, 1e-300, 1e300))
     return np.exp(np.interp(beta, grid, lr))
 
 
-def _unit_root(sign: float, cycles: Cycles, material: FatigueMaterial, theory: str,
-               kf: float, design_life: float, beta: float = 0.0) -> float:
-    """x > 0 with design_life · D(sign · x) = 1 for a node of unit σ_eq and softening
-    ``beta`` (∞: never fails, 0: fails at any stress), bracketed and bisected in log x to
-    machine precision."""
+def _unit_roots(sign: float, cycles: Cycles, material: FatigueMaterial, theory: str,
+                kf: float, design_life: float, beta: np.ndarray) -> np.ndarray:
+    """Per softening coefficient of ``beta`` (1-D): the x > 0 with design_life · D(sign · x) = 1
+    for a node of unit σ_eq and that β (∞: never fails, 0: fails at any stress), bracketed
+    and bisected in log x to machine precision; every β's bracket moves in one vectorised
+    pass. The classes without damage at the largest x still bracketed and the largest β
+    still bisected are dropped as the brackets shrink (exact: σ_ar grows with x and β)."""
+    b = np.asarray(beta, dtype=float)
+    soft = bool(np.any(b))
+    out = np.full(b.size, np.nan)            # NaN: not solved yet
 
-    active = cycles
-    bb = np.array([beta]) if beta else None
+    def fails(x: np.ndarray, idx: np.ndarray, active: Cycles) -> np.ndarray:
+        d = _damage(sign * x, active, material, theory, kf, b[idx] if soft else None)
+        return design_life * d > 1.0
 
-    def fails(x: float) -> bool:
-        d = _damage(np.array([sign * x]), active, material, theory, kf, bb)[0]
-        return bool(design_life * d > 1.0)
+    def pruned(active: Cycles, idx: np.ndarray) -> Cycles:
+        return active_cycles(active, sign * float(hi[idx].max()), material, theory, kf,
+                             beta=float(b[idx].max()))
 
-    hi = 1.0
-    while not fails(hi):
-        hi *= 2.0
-        if hi > 1e300:
-            return math.inf
-    # every x tried from here on is <= hi: the classes without damage at hi can go (exact)
-    active = active_cycles(cycles, sign * hi, material, theory, kf, beta=beta)
-    lo = hi / 2.0 if hi > 1.0 else 1.0
-    while fails(lo):
-        lo /= 2.0
-        if lo < 1e-300:
-            return 0.0
-    for _ in range(200):                  # lo never fails, hi always fails
-        mid = math.sqrt(lo * hi)
-        if not lo < mid < hi:
+    hi = np.ones(b.size)
+    idx = np.arange(b.size)                  # not failing at hi yet: double hi
+    while idx.size:
+        idx = idx[~fails(hi[idx], idx, cycles)]
+        hi[idx] *= 2.0
+        never = hi[idx] > 1e300
+        out[idx[never]] = math.inf
+        idx = idx[~never]
+    run = np.flatnonzero(np.isnan(out))
+    if not run.size:
+        return out
+    active = pruned(cycles, run)             # every x tried from here on is <= its hi
+    lo = np.where(hi > 1.0, hi / 2.0, 1.0)
+    idx = run                                # still failing at lo: halve lo
+    while idx.size:
+        idx = idx[fails(lo[idx], idx, active)]
+        lo[idx] /= 2.0
+        zero = lo[idx] < 1e-300
+        out[idx[zero]] = 0.0
+        idx = idx[~zero]
+    run = np.flatnonzero(np.isnan(out))
+    for _ in range(200):                     # lo never fails, hi always fails
+        mid = np.sqrt(lo[run] * hi[run])
+        inside = (lo[run] < mid) & (mid < hi[run])
+        run, mid = run[inside], mid[inside]
+        if not run.size:
             break
-        if fails(mid):
-            hi = mid
-            active = active_cycles(active, sign * hi, material, theory, kf, beta=beta)
-        else:
-            lo = mid
-    return hi
+        f = fails(mid, run, active)
+        hi[run[f]] = mid[f]
+        lo[run[~f]] = mid[~f]
+        if f.any():
+            active = pruned(active, run)
+    left = np.isnan(out)
+    out[left] = hi[left]
+    return out

@@ -11,6 +11,7 @@ import numpy as np
 
 from shaftfe.fatigue.counting import CycleMatrix, Cycles
 from shaftfe.fatigue.sn import FatigueMaterial
+from shaftfe.util.figures import log_ticks
 
 
 def _plt():
@@ -70,6 +71,7 @@ def plot_sn_curve(material: FatigueMaterial, path, kf: float = 1.0) -> Path:
                   label="endurance (no damage below)")
     if kf != 1.0:
         ax.loglog(n, kf * s, "-", color="tab:red", label=f"× kf = {kf:g}")
+    log_ticks(ax.xaxis, ax.yaxis)
     ax.set_xlabel("cycles to failure N [-]")
     ax.set_ylabel("alternating stress [MPa] (mean 0)")
     ax.set_title(material.name)
@@ -256,6 +258,7 @@ def plot_din743_safeties(rows: list[dict], s_min: float, path, title: str = "") 
                     va="center", fontsize=7)
     ax.axvline(s_min, color="r", lw=1.5, label=f"S_min = {s_min:g}")
     ax.set_xscale("log")
+    log_ticks(ax.xaxis)
     ax.set_xlim(min(0.5, float(finite.min()) * 0.8), top * 2.0)
     ax.set_yticks(y, names, fontsize=8)
     worst = int(np.argmin(np.minimum(vals["S_D"], vals["S_F"])))
@@ -298,6 +301,7 @@ def plot_din743_along(along: dict, notches: list[dict], s_min: float, path,
                     fontsize=6, rotation=-35, ha="left", va="top")
     ax.axhline(s_min, color="r", lw=1.2, label=f"S_min = {s_min:g}")
     ax.set_yscale("log")
+    log_ticks(ax.yaxis)
     ax.set_ylim(lo, top * 1.05)
     ax.set_ylabel("safety [-] (log scale)")
     ax.grid(which="both", alpha=0.3)

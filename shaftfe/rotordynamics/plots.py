@@ -9,6 +9,7 @@ import numpy as np
 from shaftfe.rotordynamics.campbell import CampbellResult
 from shaftfe.rotordynamics.kernels import WHIRL_LABELS
 from shaftfe.rotordynamics.options import SEPARATION_MARGIN
+from shaftfe.util.figures import log_ticks
 
 _WHIRL_STYLE = {"forward": ("tab:red", "-"), "backward": ("tab:blue", "--"),
                 "torsional": ("tab:green", "-."), "axial": ("tab:purple", ":"),
@@ -82,6 +83,7 @@ def plot_campbell(res: CampbellResult, title: str = "", fmt: str = "png") -> byt
     lo, hi = campbell_limits_hz(res)
     x_max = float(res.rpm.max())
     ax.set_yscale("log")
+    log_ticks(ax.yaxis)
     ax.set_ylim(lo, hi)
     ax.set_xlim(float(res.rpm.min()), x_max * 1.07 if x_max > 0 else 1.0)
     used = set()

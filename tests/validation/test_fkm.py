@@ -120,6 +120,26 @@ def test_scale_for_life_inverts_the_life():
         assert fkm.blocks_to_failure(lam * s, c, rule, 0.3) == pytest.approx(300.0, rel=1e-9)
 
 
+
+@pytest.mark.parametrize("seed", range(6))
+def test_scale_for_life_brackets_the_exact_life(seed):
+    """λ* of the modified and consistent rules (found between two knees 1/s_i, then bisected)
+    against the lives in exact rational arithmetic (``_exact_lives``, class by class): the
+    exact life at λ* (1 − 1e-9) is at least L and at λ* (1 + 1e-9) at most L (the bisection
+    stops at 1e-13, far inside; the lives are powers ≤ 9 of λ, so 1e-9 is a visible step).
+    The targets span lives below, at and above the knees, the consistent rule's jump (life
+    infinite below the largest class's knee) included."""
+    rng = np.random.default_rng(seed)
+    s = np.sort(rng.lognormal(-0.7, 0.8, 20))[::-1]
+    c = rng.integers(1, 5000, 20).astype(float)
+    for rule in ("modified", "consistent"):
+        for L in (1e-2, 3.0, 300.0, 1e5, 1e8):
+            lam = fkm.scale_for_life(s, c, rule, 0.3, L)
+            lo = _exact_lives(s, c, Fraction(lam * (1 - 1e-9)))[rule]
+            hi = _exact_lives(s, c, Fraction(lam * (1 + 1e-9)))[rule]
+            assert lo >= L >= hi, (rule, L, lam, float(lo), float(hi))
+
+
 def _exact_lives(s, c, lam, k=5, n_d=10 ** 6, d_m=Fraction(3, 10)):
     """The three Miner rules in exact rational arithmetic, class by class (FKM ch. 4.4 written
     out): elementary Σ n (λs)^k / N_D, modified (λs)^(2k−1) below the knee, consistent the
