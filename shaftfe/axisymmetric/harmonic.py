@@ -183,6 +183,9 @@ def _assemble(mesh, E: float, nu: float, key: str | None, cache_dir) -> Harmonic
     mats = [sp.csr_matrix((np.concatenate(p), (rows, cols)), shape=shape) for p in parts]
     same = all(np.array_equal(m.indptr, mats[0].indptr)
                and np.array_equal(m.indices, mats[0].indices) for m in mats[1:])
+    if same:                               # one pattern held once, as when loaded
+        mats = [mats[0]] + [sp.csr_matrix((m.data, mats[0].indices, mats[0].indptr),
+                                          shape=shape, copy=False) for m in mats[1:]]
     if path is not None and same:          # one pattern (the same rows and columns summed)
         try:
             cachefile.save(path, {"indptr": mats[0].indptr, "indices": mats[0].indices,

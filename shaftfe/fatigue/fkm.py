@@ -277,11 +277,13 @@ class Spectrum:
         λ = (life/blocks)^(1/k) in closed form, the other rules by bisection in log λ (their
         life falls monotonically with λ). The consistent rule's life is infinite until the
         largest cycle reaches the knee and finite from there: where that jump already passes
-        the design life, λ* is the jump (the load at which damage starts at all).
+        the design life, λ* is the jump (the load at which damage starts at all; returned
+        just below it, where the life is still infinite).
 
-        The bisection runs between two neighbouring knees λ = 1/s_i, where m(λ) is constant:
-        the lives at every knee in one vectorised pass find them (``_lives``), and the life
-        between them is then a closed expression of λ in plain floats (``_life_at``)."""
+        The bisection runs between two neighbouring knees λ_i = 1 / (factor s_i), where m(λ)
+        is constant: a binary search over the knees finds them (O(log n) lives, each a binary
+        search itself), and the life between them is a closed expression of λ evaluated in
+        plain floats (``_life_at``)."""
         if self.n == 0:
             return math.inf
         life1 = self.life(rule, damage_sum)
@@ -290,16 +292,22 @@ class Spectrum:
         lo, hi = 1e-6, 1e6
         if self.life(rule, damage_sum, hi) - blocks > 0:
             return hi
-        knees = 1.0 / (self.factor * self.s)          # ascending: s is descending
-        knees = knees[(knees > lo) & (knees < hi)]
-        if knees.size:
-            short = np.flatnonzero(self._lives(rule, damage_sum, knees) - blocks <= 0)
-            j = int(short[0]) if short.size else knees.size
-            if j < knees.size:
-                hi = float(knees[j])
-            if j > 0:
-                lo = float(knees[j - 1])
-        life = self._life_at(rule, damage_sum, self._m(math.sqrt(lo * hi) * self.factor))
+        # the knees strictly inside (lo, hi): s_i in (1 / (hi f), 1 / (lo f)), s descending
+        f = self.factor
+        i0 = int(np.searchsorted(self._neg, -1.0 / (lo * f), side="right"))
+        i1 = int(np.searchsorted(self._neg, -1.0 / (hi * f), side="left"))
+        a, b = i0, i1                 # the first knee i in [i0, i1) whose life is ≤ blocks
+        while a < b:
+            mid = (a + b) // 2
+            if self.life(rule, damage_sum, 1.0 / (f * float(self.s[mid]))) - blocks <= 0:
+                b = mid
+            else:
+                a = mid + 1
+        if a < i1:
+            hi = 1.0 / (f * float(self.s[a]))
+        if a > i0:
+            lo = 1.0 / (f * float(self.s[a - 1]))
+        life = self._life_at(rule, damage_sum, self._m(math.sqrt(lo * hi) * f))
         for _ in range(200):
             mid = math.sqrt(lo * hi)
             if life(mid) - blocks > 0:
@@ -309,18 +317,6 @@ class Spectrum:
             if hi / lo - 1.0 < 1e-13:
                 break
         return math.sqrt(lo * hi)
-
-    def _lives(self, rule: str, damage_sum: float, lams: np.ndarray) -> np.ndarray:
-        """``life`` at each load factor of ``lams`` (modified, consistent), vectorised."""
-        lam = np.asarray(lams, dtype=float) * self.factor
-        m = np.searchsorted(self._neg, -1.0 / lam, side="right")
-        A = np.concatenate([[0.0], self.A])[m]                 # A_{m−1}, 0 for m = 0
-        with np.errstate(divide="ignore", invalid="ignore"):
-            if rule == "modified":
-                d = (lam ** self.k * A + lam ** (2 * self.k - 1) * self.B[m]) / self.n_knee
-                return np.where(d > 0, damage_sum / d, np.inf)
-            first = (lam ** -self.k - self.sk[m]) / A
-            return np.where(m > 0, damage_sum * self.n_knee * (first + self.T[m]), np.inf)
 
     def _life_at(self, rule: str, damage_sum: float, m: int):
         """λ ↦ ``life`` at λ for the m(λ) = ``m`` of an interval between two knees: the same

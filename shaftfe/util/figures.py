@@ -8,14 +8,14 @@ _SUPERSCRIPT = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 
 
 def power_label(x: float) -> str:
-    """A log axis's tick label in plain text: 10³, 2×10⁻⁴ (matplotlib's default label, the
-    same text set as TeX math)."""
+    """A log axis's tick label in plain text: 10³, 2×10⁻⁴, 1.001×10² (the mantissa by
+    ``%g``, as matplotlib's default label, which sets the same text as TeX math)."""
     if x == 0 or not math.isfinite(x):
         return f"{x:g}"
     e = math.floor(math.log10(abs(x)) + 1e-9)
     m = x / 10.0 ** e
     power = f"10{str(e).translate(_SUPERSCRIPT)}"
-    return power if math.isclose(m, 1.0, rel_tol=1e-9) else f"{m:.3g}×{power}"
+    return power if math.isclose(m, 1.0, rel_tol=1e-9) else f"{m:g}×{power}"
 
 
 def log_ticks(*axes) -> None:

@@ -121,23 +121,36 @@ def test_scale_for_life_inverts_the_life():
 
 
 
-@pytest.mark.parametrize("seed", range(6))
+
+@pytest.mark.parametrize("seed", range(4))
 def test_scale_for_life_brackets_the_exact_life(seed):
-    """λ* of the modified and consistent rules (found between two knees 1/s_i, then bisected)
-    against the lives in exact rational arithmetic (``_exact_lives``, class by class): the
-    exact life at λ* (1 − 1e-9) is at least L and at λ* (1 + 1e-9) at most L (the bisection
-    stops at 1e-13, far inside; the lives are powers ≤ 9 of λ, so 1e-9 is a visible step).
-    The targets span lives below, at and above the knees, the consistent rule's jump (life
-    infinite below the largest class's knee) included."""
+    """λ* of the modified and consistent rules (found between two knees λ_i = 1/(f s_i), then
+    bisected) against the lives in exact rational arithmetic (``_exact_lives``, class by
+    class): the exact life at λ* (1 − 1e-9) is at least L and at λ* (1 + 1e-9) at most L, a
+    step far outside the bisection's 1e-13 and exact to evaluate. Spectra of s = p/64 with
+    ties (p drawn with repeats), one of a single class, scaled by f (``Spectrum.scaled``, the
+    core's check); targets: the exact lives at three knees (λ* on a knee) and between them,
+    below the first knee (the consistent rule's jump) and beyond the last."""
     rng = np.random.default_rng(seed)
-    s = np.sort(rng.lognormal(-0.7, 0.8, 20))[::-1]
-    c = rng.integers(1, 5000, 20).astype(float)
+    n = 1 if seed == 0 else 25
+    p = rng.integers(3, 141, size=n)
+    counts = rng.integers(1, 500, size=n)
+    f = (Fraction(1), Fraction(1, 3), Fraction(5, 2), Fraction(7, 8))[seed]
+    s_exact = [Fraction(int(v), 64) * f for v in p]
+    c_exact = [int(v) for v in counts]
+    spec = fkm.Spectrum(p / 64.0, counts.astype(float)).scaled(float(f))
+    knees = sorted({1 / v for v in s_exact})
     for rule in ("modified", "consistent"):
-        for L in (1e-2, 3.0, 300.0, 1e5, 1e8):
-            lam = fkm.scale_for_life(s, c, rule, 0.3, L)
-            lo = _exact_lives(s, c, Fraction(lam * (1 - 1e-9)))[rule]
-            hi = _exact_lives(s, c, Fraction(lam * (1 + 1e-9)))[rule]
-            assert lo >= L >= hi, (rule, L, lam, float(lo), float(hi))
+        targets = {1e-3, 1e9}
+        for lam in (knees[0], knees[len(knees) // 2], knees[-1]):
+            life = _exact_lives(s_exact, c_exact, lam)[rule]
+            if life != math.inf:
+                targets |= {float(life), float(life) * 0.7, float(life) * 1.3}
+        for L in sorted(targets):
+            lam = spec.scale_for_life(rule, 0.3, L)
+            lo = _exact_lives(s_exact, c_exact, Fraction(lam) * (1 - Fraction(1, 10 ** 9)))
+            hi = _exact_lives(s_exact, c_exact, Fraction(lam) * (1 + Fraction(1, 10 ** 9)))
+            assert lo[rule] >= L >= hi[rule], (rule, L, lam)
 
 
 def _exact_lives(s, c, lam, k=5, n_d=10 ** 6, d_m=Fraction(3, 10)):
