@@ -1,6 +1,6 @@
 """Fatigue post-processing of the full default-level static field of x2_57 (issue 5).
 
-Given the static reference solution (``shaftfe.static.cache.load_or_solve``: default mesh level,
+Given the static reference solution (``shaftfe.static.solve.load_or_solve``: default mesh level,
 seed load case, bearing springs; solved once if the cache is empty — not timed), time (best of
 5) ``shaftfe.fatigue.field.evaluate`` on every node with the seed's settings and the rebuilt
 rpm.dat: re-referencing the history to the static speed, rainflow counting, von Mises,
@@ -34,8 +34,8 @@ def main() -> None:
     from shaftfe.fatigue.field import evaluate, write_vtu
     from shaftfe.fatigue.history import read_history
     from shaftfe.model.loader import load_variant
-    from shaftfe.static.cache import load_or_solve
     from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import load_or_solve
 
     t = time.perf_counter()
     ref = load_or_solve(load_variant("x2_57"), StaticOptions(level="default",

@@ -109,8 +109,8 @@ def x2_57() -> dict:
     from shaftfe.axisymmetric.reference import static_reference
     from shaftfe.axisymmetric.solve import solve_axisymmetric
     from shaftfe.model.loader import load_variant
-    from shaftfe.static.cache import load_or_solve
     from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import load_or_solve
     v = load_variant("x2_57")
     rows = []
     for level, refine in (("coarse", 0), ("default", 0), ("fine", 0), ("fine", 1), ("fine", 2)):

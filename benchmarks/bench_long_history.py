@@ -78,9 +78,9 @@ def check_prefix(kind: str) -> float:
     from shaftfe.fatigue.history import from_rpm
     from shaftfe.fatigue.sn import load_material
     from shaftfe.model.loader import load_variant
-    from shaftfe.static import cache as static_cache
+    from shaftfe.static import solve as static_solve
     from shaftfe.static.model import StaticOptions
-    ref = static_cache.load_or_solve(load_variant("x2_57"), StaticOptions())
+    ref = static_solve.load_or_solve(load_variant("x2_57"), StaticOptions())
     h = from_rpm(history(kind, 100_000), sample_rate_hz=100.0)
     mat = load_material("structural_steel")
     ff = evaluate(ref, h, mat)

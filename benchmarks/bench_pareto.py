@@ -179,7 +179,7 @@ def _c_fatigue(spec: dict) -> dict:
     from shaftfe.fatigue.field import evaluate
     from shaftfe.fatigue.run import read_spectrum
     from shaftfe.model.loader import load_variant
-    from shaftfe.static import cache as static_cache
+    from shaftfe.static import solve as static_solve
     from shaftfe.static.model import StaticOptions
     a = _fatigue_defaults()
     v = load_variant(VARIANT)
@@ -188,7 +188,7 @@ def _c_fatigue(spec: dict) -> dict:
     with _Clock() as ck:
         history = read_spectrum(str(SPECTRUM), a.ref_rpm, a.sample_rate)
         material = _material(a)
-        ref = static_cache.load_or_solve(v, opts, spec["cache"], use_cache=False)
+        ref = static_solve.load_or_solve(v, opts, spec["cache"], use_cache=False)
         t0 = time.perf_counter()
         ff = evaluate(ref, history, material, equivalent=a.equivalent, theory=a.mean_stress,
                       kf=a.kf, design_life_blocks=a.design_life, speed_kmh=a.speed_kmh)
@@ -458,7 +458,7 @@ def _fingerprints() -> dict:
     b.update(load_variant(VARIANT).content_hash.encode())
     out = {"beam": b.hexdigest()[:16]}
     fe = b.copy()
-    fe.update(static_cache.code_fingerprint().encode())
+    fe.update(static_cache.code_fingerprint(static_cache.FINGERPRINT_MODULES).encode())
     for mod in ("solid/mesh", "solid/levels", "static/cache", "fe/solvers", "fe/lowrank"):
         fe.update((ROOT / "shaftfe" / f"{mod}.py").read_bytes())
     fe.update(json.dumps([GMSH_OPTIONS, CACHE_FORMAT], sort_keys=True).encode())

@@ -26,7 +26,7 @@ def fatigue_x2_57() -> str:
     from shaftfe.fatigue.run import SEED, read_spectrum
     from shaftfe.fatigue.sn import load_material
     from shaftfe.model.loader import load_variant
-    from shaftfe.static import cache as static_cache
+    from shaftfe.static import solve as static_solve
     from shaftfe.static.model import StaticOptions, load_case_label
     from shaftfe.util.fmt import big as _big
     from shaftfe.util.paths import DEFAULT_SPECTRUM
@@ -38,7 +38,7 @@ def fatigue_x2_57() -> str:
             f"{_big(SEED['life_blocks'])} blocks, {_big(SEED['life_hours'])} h, "
             f"{_big(SEED['life_km'])} km |"]
     for seed_case in (True, False):
-        ref = static_cache.load_or_solve(v, StaticOptions(level="default",
+        ref = static_solve.load_or_solve(v, StaticOptions(level="default",
                                                           seed_load_case=seed_case))
         hs = evaluate(ref, history, material).hot_spot
         rows.append(

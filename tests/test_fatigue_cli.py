@@ -71,7 +71,7 @@ def test_seed_run_outputs_and_cache(seed_run):
     assert "static: from cache" in second
     s = json.loads((out / "summary.json").read_text())
     assert s["static"]["notes"] == []                      # the mesh key was predicted: cached
-    from shaftfe.fatigue.standards_out import OUTPUT_FILES
+    from shaftfe.fatigue.methods import OUTPUT_FILES
     assert sorted(p.name for p in out.iterdir()) == sorted(OUTPUT_FILES["seed"])
     assert s["warnings"] == []
     res = s["result"]
@@ -200,9 +200,9 @@ def test_static_cache_roundtrip_corruption_and_key(tmp_path):
     analysis's (``diagnostics['n_excluded_nodes']``, the node and excluded counts of every
     region peak); the static case at half the speed is the cached field × 1/4; a corrupt or
     truncated file is recomputed; a changed option changes the key."""
-    from shaftfe.static.cache import cache_path, from_result, load_or_solve
+    from shaftfe.static.cache import cache_path, from_result
     from shaftfe.static.model import StaticOptions
-    from shaftfe.static.solve import solve_static
+    from shaftfe.static.solve import load_or_solve, solve_static
     v = cylinder()
     o = StaticOptions(level="coarse", spin_softening=False)      # ∝ rpm² checked below
     a = load_or_solve(v, o, tmp_path)
@@ -260,7 +260,7 @@ def test_standard_methods_write_their_summary(cache, tmp_path, capsys, method):
         raise AssertionError(f"{c} in summary.json")
     s = json.loads((out / "summary.json").read_text(), parse_constant=no_inf_nan)
     assert s["method"] == method and s["warnings"] == []
-    from shaftfe.fatigue.standards_out import OUTPUT_FILES
+    from shaftfe.fatigue.methods import OUTPUT_FILES
     assert sorted(p.name for p in out.iterdir()) == sorted(OUTPUT_FILES[method])
     assert all(f"{out / f}" in text for f in OUTPUT_FILES[method])
     if method == "fkm":
@@ -295,8 +295,9 @@ def test_din743_plot_gives_the_safety_along_the_shaft(tmp_path, capsys):
     sit beside a summary without "along"). ``--plot`` with another method is refused."""
     import numpy as np
 
+    from shaftfe.beam.solve import beam_at_ref
     from shaftfe.fatigue import din743 as din
-    from shaftfe.fatigue.standards import StrengthOptions, beam_at_ref, din743_card
+    from shaftfe.fatigue.standards import StrengthOptions, din743_card
     from shaftfe.model.loader import load_variant
     out = tmp_path / "d"
     rc, text, err = run(capsys, RPM_DAT, "--method", "din743", "--plot", "--out", out)
@@ -330,9 +331,9 @@ def test_din743_plot_gives_the_safety_along_the_shaft(tmp_path, capsys):
 
 def test_help_names_every_file_of_each_method(capsys):
     """`fatigue --help` tells the truth per method: every file a method writes
-    (``standards_out.OUTPUT_FILES``, which the runs above check against the folder) is named
+    (``fatigue.methods.OUTPUT_FILES``, which the runs above check against the folder) is named
     in the method's clause of the description."""
-    from shaftfe.fatigue.standards_out import OUTPUT_FILES
+    from shaftfe.fatigue.methods import OUTPUT_FILES
     with pytest.raises(SystemExit):
         main(["fatigue", "--help"])
     text = " ".join(capsys.readouterr().out.split())

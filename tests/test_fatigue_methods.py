@@ -187,11 +187,12 @@ def test_fkm_through_the_protocol_is_run_fkm_exactly(coarse):
 
 
 def test_din743_through_the_protocol_is_run_din743_exactly(coarse):
+    from shaftfe.beam.solve import beam_at_ref
     from shaftfe.fatigue import din743
     from shaftfe.fatigue import standards as sd
     from shaftfe.fatigue import standards_out as so
     job, got, _ = coarse
-    beam = sd.beam_at_ref(got.variant)
+    beam = beam_at_ref(got.variant)
     old = sd.run_din743(job, sd.StrengthOptions(), got, beam)
     new = get_method("din743").assess(AssessmentInputs.one_channel(
         got.variant, got.history, beam=beam), job)

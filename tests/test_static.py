@@ -249,10 +249,11 @@ def test_static_cache_keeps_the_relative_residual(base, cache):
     """The static reference that ``shaftfe fatigue`` reuses carries the solve's relative
     residual, through the disk cache too (reference: the solve's own diagnostics)."""
     from shaftfe.static import cache as static_cache
+    from shaftfe.static.solve import load_or_solve
     opts = _opts(level="default")
     ref = static_cache.store(cylinder(), opts, base, cache)
     assert ref.relative_residual == base.diagnostics["relative_residual"] <= 1e-8   # contract
-    hit = static_cache.load_or_solve(cylinder(), opts, cache)
+    hit = load_or_solve(cylinder(), opts, cache)
     assert hit.from_cache and hit.relative_residual == ref.relative_residual
 
 

@@ -219,8 +219,8 @@ def test_every_input_checked_before_the_first_design(tmp_path):
 def test_refusal_names_the_study_parameter():
     """A value derived from a parameter (a counterweight's mass from its shape) is named with
     the parameter that gave it, not as a --set the user never wrote nor 'typed in grams'."""
-    from shaftfe.study.check import refusal
     from shaftfe.study.evaluate import load_design
+    from shaftfe.study.spec import refusal
     ov = {"attachments.counterweight_2.shape.outer_radius_mm": 400.0}
     with pytest.raises(InputError) as e:
         load_design("x2_57", ov)

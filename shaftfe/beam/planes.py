@@ -31,7 +31,7 @@ from shaftfe.util.units import REF_RPM
 
 MIN_SHARE = 1e-3              # |M| below this share of the largest: no plane (whole ring hot)
 SNAP_RAD = 1e-9               # a line at π − 1e-9 rad is the line at 0 (round-off of M_y)
-# the cached axes' key holds the source of these modules (``static.cache.code_fingerprint``):
+# the cached axes' key holds the source of these modules (``util.cachefile.code_fingerprint``):
 # a change of the beam, the loads or the plan gives new axes, never stale ones; bump
 # AXES_FORMAT when the stored JSON changes meaning
 AXES_MODULES = ("shaftfe.beam.planes", "shaftfe.beam.solve", "shaftfe.beam.model",
@@ -94,9 +94,9 @@ def mesh_hot_axes(variant, *, cache_dir=None, use_cache: bool = False
     import json
 
     from shaftfe.model.variant import content_hash
-    from shaftfe.static.cache import code_fingerprint
     from shaftfe.util import paths
     from shaftfe.util.atomic import write_atomic
+    from shaftfe.util.cachefile import code_fingerprint
     from shaftfe.util.notices import raised, warn
     key = hashlib.sha256(f"{AXES_FORMAT}|{content_hash(variant)}|"
                          f"{code_fingerprint(AXES_MODULES)}".encode()).hexdigest()[:24]

@@ -532,3 +532,9 @@ def analyse(variant, rpm: float | Sequence[float], **options) -> tuple[BeamResul
     """``build_model`` + ``solve`` in one call (options as for ``build_model``)."""
     return solve(build_model(variant, **options), rpm)
 
+
+def beam_at_ref(variant) -> BeamResult:
+    """The beam solution at ``util.units.REF_RPM`` (DIN 743's and the bearings' input)."""
+    from shaftfe.util.units import REF_RPM
+    return analyse(variant, REF_RPM)[0]
+

@@ -342,12 +342,12 @@ def static_reference(variant, job: FatigueJob):
     job = resolve_model(job)
     if job.model in ("axisymmetric", "zoned"):
         return _cached_surface_reference(variant, job)
-    from shaftfe.static import cache as static_cache
     from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import load_or_solve
     extra = {"exclude_mm": job.exclude_mm} if job.exclude_mm > 0 else {}
     opts = StaticOptions(level=job.level, seed_load_case=job.seed_load_case,
                          spin_softening=job.spin_softening, **extra)
-    return static_cache.load_or_solve(variant, opts, job.cache_dir)
+    return load_or_solve(variant, opts, job.cache_dir)
 
 
 def _cached_surface_reference(variant, job: FatigueJob):

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from shaftfe.beam.scf import KT_GROOVES, KT_UNDERCUTS, converged_kt, undercut_kt
+from shaftfe.beam.solve import beam_at_ref
 from shaftfe.errors import InputError
 from shaftfe.fatigue import din743, fkm
 from shaftfe.model.grooves import UNDERCUTS, undercut_at
@@ -314,11 +315,6 @@ def size_diameters_note(rows) -> str:
             "(the larger diameter D at a shoulder) and the geometric K2 (and K3) at the notch "
             f"diameter d ({each}); FKM takes its K_d,m at the diameter of the round section "
             "through its hot spot (about d on a fillet): the two standards' rules differ")
-
-
-def beam_at_ref(variant):
-    from shaftfe.beam.solve import analyse
-    return analyse(variant, REF_RPM)[0]
 
 
 def din743_card(variant, opts: StrengthOptions):

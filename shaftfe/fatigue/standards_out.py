@@ -9,7 +9,6 @@ import numpy as np
 
 from shaftfe.fatigue import din743 as din
 from shaftfe.fatigue.assess import life_hours
-from shaftfe.fatigue.methods import METHODS
 from shaftfe.solid.plan import sharp_keyway_edges
 from shaftfe.util.fmt import NO_FINITE_LIFE, big, json_clean, life, life_h_km, life_reason
 
@@ -300,9 +299,6 @@ def compute_elements(variant, history, kappa: float, e_c: float, speed_kmh: floa
 
 
 FKM_FIELDS = ("fkm_utilisation", "fkm_safety", "von_mises_ref")
-# the files each method writes (``fatigue.methods``: each method's ``files``); `shaftfe
-# fatigue --help` names them
-OUTPUT_FILES = {n: m.files for n, m in METHODS.items()}
 
 
 def write_fkm_files(res, ref, out) -> tuple[dict, dict]:

@@ -32,6 +32,8 @@ import threading
 import numpy as np
 import scipy.sparse as sp
 
+from shaftfe.fe.facets import facet_quadrature, is_quadratic, n_nodes
+
 ASSEMBLY_CHUNK = 4096     # elements per block of element matrices in elasticity_stiffness
 
 
@@ -46,20 +48,11 @@ def scalar_element(mesh):
     return ElementTetP2() if isinstance(mesh, MeshTet2) else ElementTetP1()
 
 
-def is_quadratic(mesh) -> bool:
-    from skfem import MeshTet2
-    return isinstance(mesh, MeshTet2)
-
-
 def vector_basis(mesh, intorder: int | None = None):
     from skfem import Basis, ElementVector
     if intorder is None:
         intorder = 2 if is_quadratic(mesh) else 1
     return Basis(mesh, ElementVector(scalar_element(mesh)), intorder=intorder)
-
-
-def n_nodes(mesh) -> int:
-    return int(mesh.doflocs.shape[1])
 
 
 # --------------------------------------------------------------------------- stiffness
@@ -315,7 +308,6 @@ def rigid_rows(mesh, facets, center) -> np.ndarray:
     centred on the axis the translation rows are the area means (1/A) ∫ u_y dA etc. and the
     twist row is ∫ (y u_z − z u_y) dA / ∫ (y² + z²) dA. A rigid motion of the face is
     reproduced exactly; the coupling adds no stiffness of its own."""
-    from shaftfe.fe.facets import facet_quadrature
     fq = facet_quadrature(mesh, facets)
     center = np.asarray(center, dtype=float)
     rows = [fq.vector_load(_rigid_field(fq.x, k, center)) for k in range(6)]
@@ -348,7 +340,6 @@ def surface_load(mesh, facets, force, direction, distribution: str = "uniform",
     ``cache``: a dict shared by the calls of ONE model build (same mesh); the facet basis, the
     correction vectors and (uniform) the unscaled pressure vector are reused for a facet set
     seen before (several parts on one seat): the same numbers, bit for bit."""
-    from shaftfe.fe.facets import facet_quadrature
     e = np.asarray(direction, dtype=float)
     facets = np.asarray(facets)
     key = (facets.dtype.str, facets.tobytes())

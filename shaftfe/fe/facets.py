@@ -52,12 +52,22 @@ class FacetQuadrature:
 _EDGES = ((0, 1), (1, 2), (0, 2))     # mid-side nodes 3, 4, 5 of the 6-node triangle
 
 
+def n_nodes(mesh) -> int:
+    """The mesh's nodes (corners and, P2, mid-side nodes)."""
+    return int(mesh.doflocs.shape[1])
+
+
+def is_quadratic(mesh) -> bool:
+    """A P2 (10-node) tetrahedral mesh."""
+    from skfem import MeshTet2
+    return isinstance(mesh, MeshTet2)
+
+
 def facet_nodes(mesh, facets) -> np.ndarray:
     """(3 or 6, nf) nodes of BOUNDARY facets: the 3 corners, then (P2) the mid-side nodes of the
     edges 01, 12, 02 (matched by their end nodes); ordered so that (x1 − x0) × (x2 − x0)
     points out of the solid (away from the element behind the facet). A facet between two
     elements is refused (ValueError): it has no outside."""
-    from shaftfe.fe.assembly import is_quadratic
     facets = np.asarray(facets)
     if facets.size and (mesh.f2t[1, facets] != -1).any():
         raise ValueError("facet_nodes: interior facets have no outward side")
@@ -91,7 +101,6 @@ def facet_quadrature(mesh, facets, intorder: int | None = None) -> FacetQuadratu
     from skfem.quadrature import get_quadrature
     from skfem.refdom import RefTri
 
-    from shaftfe.fe.assembly import is_quadratic, n_nodes
     facets = np.asarray(facets)
     quad = is_quadratic(mesh)
     if intorder is None:

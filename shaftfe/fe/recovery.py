@@ -79,14 +79,6 @@ def hooke(grad: np.ndarray, E: float, nu: float) -> np.ndarray:
                      mu * (grad[1, 2] + grad[2, 1]), mu * (grad[0, 2] + grad[2, 0])])
 
 
-def hooke_plane_stress(eps: np.ndarray, P: np.ndarray, E: float, nu: float) -> np.ndarray:
-    """Voigt stress (k, 6) of plane stress in the tangent planes P = I − n nᵀ (k, 3, 3) from the
-    in-plane strain tensors eps (k, 3, 3): σ = E/(1+ν) ε + E ν/(1−ν²) tr(ε) P."""
-    tr = np.trace(eps, axis1=1, axis2=2)
-    s = E / (1 + nu) * eps + (E * nu / (1 - nu ** 2)) * tr[:, None, None] * P
-    return np.stack([s[:, 0, 0], s[:, 1, 1], s[:, 2, 2], s[:, 0, 1], s[:, 1, 2], s[:, 0, 2]], -1)
-
-
 # --------------------------------------------------------------------------- recovery
 
 def node_gradients(mesh):

@@ -45,7 +45,6 @@ import numpy as np
 import scipy.sparse as sp
 
 from shaftfe.fe.facets import facet_nodes
-from shaftfe.fe.recovery import hooke_plane_stress as _plane_stress
 
 KINK_DEG = 20.0                       # facets' normals at a node farther apart: a sharp edge
 GAUSS3 = np.array([[1 / 6, 1 / 6], [2 / 3, 1 / 6], [1 / 6, 2 / 3]])
@@ -53,6 +52,14 @@ _EDGES = ((0, 1), (1, 2), (0, 2))     # mid-side nodes 3, 4, 5 of the 6-node tri
 
 
 # --------------------------------------------------------------------------- pure kernels
+
+def hooke_plane_stress(eps: np.ndarray, P: np.ndarray, E: float, nu: float) -> np.ndarray:
+    """Voigt stress (k, 6) of plane stress in the tangent planes P = I − n nᵀ (k, 3, 3) from the
+    in-plane strain tensors eps (k, 3, 3): σ = E/(1+ν) ε + E ν/(1−ν²) tr(ε) P."""
+    tr = np.trace(eps, axis1=1, axis2=2)
+    s = E / (1 + nu) * eps + (E * nu / (1 - nu ** 2)) * tr[:, None, None] * P
+    return np.stack([s[:, 0, 0], s[:, 1, 1], s[:, 2, 2], s[:, 0, 1], s[:, 1, 2], s[:, 0, 2]], -1)
+
 
 def tri6_shape(xi: float, eta: float) -> tuple[np.ndarray, np.ndarray]:
     """Values (6,) and (ξ, η) derivatives (6, 2) of the 6-node triangle's shape functions;
@@ -88,7 +95,7 @@ def trace_stress(X: np.ndarray, U: np.ndarray, E: float, nu: float, points=GAUSS
         n /= np.linalg.norm(n, axis=1)[:, None]
         P = np.eye(3)[None] - n[:, :, None] * n[:, None, :]
         eps = P @ (0.5 * (G + G.transpose(0, 2, 1))) @ P
-        S.append(_plane_stress(eps, P, E, nu))
+        S.append(hooke_plane_stress(eps, P, E, nu))
         nrm.append(n)
         pts.append(np.einsum("cnf,n->fc", X, N))
     return np.stack(S, 1), np.stack(nrm, 1), np.stack(pts, 1)

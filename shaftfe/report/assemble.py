@@ -385,6 +385,7 @@ def _strength(o: ReportOptions, variant, ref, history, cycles=None) -> dict:
     ``shaftfe fatigue --method fkm | din743``."""
     import dataclasses
 
+    from shaftfe.beam.solve import beam_at_ref
     from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
     from shaftfe.errors import InputError
     from shaftfe.fatigue import standards as sd
@@ -403,7 +404,7 @@ def _strength(o: ReportOptions, variant, ref, history, cycles=None) -> dict:
     fkm = get_method("fkm").assess(AssessmentInputs.one_channel(
         variant, history, field=ref, cycles=cycles), dataclasses.replace(job, plot=True))
     out["fkm"] = so.fkm_summary(fkm.detail.result, fkm.detail.along)
-    beam = sd.beam_at_ref(variant)              # one beam solve for DIN 743 and the bearings
+    beam = beam_at_ref(variant)              # one beam solve for DIN 743 and the bearings
     # DIN 743 with its safety at every cross-section (the report plots it along the shaft)
     din = get_method("din743").assess(AssessmentInputs.one_channel(variant, history, beam=beam),
                                       dataclasses.replace(job, plot=True))

@@ -2,9 +2,10 @@
 
 The fatigue evaluation needs only the nodal stresses at the static reference speed, the node
 coordinates, the named face regions, the singular-point exclusion and (for ``fatigue.vtu``) the
-cells. ``load_or_solve(variant, options, cache_dir)`` returns them as a ``StaticReference``,
-from ``<dir>/static-<key[:24]>.npz`` when the model is unchanged, otherwise by one
-``shaftfe.static.solve.solve_static`` at its ``REF_RPM`` (the file is then written).
+cells. ``static.solve.load_or_solve(variant, options, cache_dir)`` returns them as a
+``StaticReference``, from ``<dir>/static-<key[:24]>.npz`` when the model is unchanged,
+otherwise by one ``shaftfe.static.solve.solve_static`` at its ``REF_RPM`` (the file is then
+written).
 
 Key (sha256 of a canonical JSON): ``STATIC_CACHE_FORMAT``; the variant's content hash
 (``Variant.content_hash``: geometry, bearings, attachments, materials); the static options
@@ -39,7 +40,6 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
-import importlib.util
 import json
 import math
 import time
@@ -49,8 +49,8 @@ from pathlib import Path
 import numpy as np
 
 from shaftfe.solid.features import is_patch
-from shaftfe.static.result import warn_unresolved_fillets
 from shaftfe.util import paths
+from shaftfe.util.cachefile import code_fingerprint
 
 STATIC_CACHE_FORMAT = 3          # 2: spin softening's unsoftened stress (stress_linear)
 #                                  3: the per-pattern stresses (pattern_stress, patterns)
@@ -124,18 +124,6 @@ def _readonly(a) -> np.ndarray:
 
 # --------------------------------------------------------------------------- key
 
-def code_fingerprint(modules: tuple[str, ...] = FINGERPRINT_MODULES) -> str:
-    """sha256 over the source files of ``modules`` (found without importing)."""
-    h = hashlib.sha256()
-    for name in modules:
-        spec = importlib.util.find_spec(name)
-        origin = spec.origin if spec is not None else None
-        h.update(name.encode())
-        if origin and Path(origin).is_file():
-            h.update(Path(origin).read_bytes())
-    return h.hexdigest()
-
-
 def predicted_mesh_key(variant, options) -> str:
     """The key ``shaftfe.solid.mesh.build_mesh`` gives the mesh the static solve will use (the seed
     load case meshes the variant reduced to the seed's parts, as ``static.build_model``)."""
@@ -207,38 +195,6 @@ def facet_cells(mesh) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
 
 
 # --------------------------------------------------------------------------- load / solve
-
-def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = True,
-                  solve_kwargs: dict | None = None) -> StaticReference:
-    """The static reference solution of ``variant`` with ``options`` (``StaticOptions``), read
-    from the cache when the key matches, else solved (and stored). ``cache_dir`` is used for the
-    mesh cache too."""
-    from shaftfe.solid.mesh import warn_unresolved_grooves
-    from shaftfe.solid.plan import warn_sharp_corners
-    from shaftfe.static.model import StaticOptions
-    from shaftfe.util.units import REF_RPM
-    t0 = time.perf_counter()
-    warn_sharp_corners(variant)          # a cached solution says it as a fresh one would
-    options = options if options is not None else StaticOptions()
-    warn_unresolved_grooves(variant, options.level)
-    mkey = predicted_mesh_key(variant, options)
-    key = static_key(variant, options, mkey, REF_RPM)
-    path = cache_path(key, cache_dir)
-    if use_cache and path.exists():
-        ref = _load(path, key, variant.name, t0)
-        if ref is not None:
-            # as a fresh solve would say it (on the nodal values the cache holds)
-            warn_unresolved_fillets(region_peaks(ref), "largest nodal values")
-            return ref
-    from shaftfe.static.solve import solve_static
-    res = solve_static(variant, REF_RPM, options, cache_dir=cache_dir, beam=False,
-                       linear_stress=True, **(solve_kwargs or {}))
-    if use_cache:
-        ref = store(variant, options, res, cache_dir)
-    else:
-        ref = from_result(res, key)
-    return dataclasses.replace(ref, seconds=time.perf_counter() - t0)
-
 
 def kept_nodes(ref) -> np.ndarray:
     """The mask of the reference's nodes outside the singular-point exclusion (``excluded``)."""

@@ -49,7 +49,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -62,6 +62,7 @@ from shaftfe.model.bearing_life import l10h
 from shaftfe.model.spin import centroid_rows
 from shaftfe.solid.mesh import warn_unresolved_grooves
 from shaftfe.solid.plan import warn_sharp_corners
+from shaftfe.static import cache as sc
 from shaftfe.static.model import (
     REF_RPM,
     StaticModel,
@@ -519,7 +520,6 @@ def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> tuple[d
     mesh of the variant (not a mesh the caller built otherwise)."""
     from shaftfe.solid.levels import LEVELS
     from shaftfe.static.benchmark import notch_bars
-    from shaftfe.static.cache import predicted_mesh_key
     from shaftfe.static.truth_bars import ERROR_BAR_PCT
     lv = options.level
     name = lv if isinstance(lv, str) else lv.name
@@ -527,7 +527,7 @@ def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> tuple[d
         return {}, {}
     if any(getattr(options, k) != want for k, want in _BAR_CONDITIONS.items()):
         return {}, {}
-    if mesh_key != predicted_mesh_key(variant, options):
+    if mesh_key != sc.predicted_mesh_key(variant, options):
         return {}, {}
     return notch_bars(variant, name, peaks, "solid")
 
@@ -790,3 +790,28 @@ def _beam_summary(br) -> dict:
             "uy_line_mm": br.uy.tolist(), "uz_line_mm": br.uz.tolist()}
 
 
+def load_or_solve(variant, options=None, cache_dir=None, *, use_cache: bool = True,
+                  solve_kwargs: dict | None = None) -> sc.StaticReference:
+    """The static reference solution of ``variant`` with ``options`` (``StaticOptions``), read
+    from the cache when the key matches, else solved (and stored). ``cache_dir`` is used for the
+    mesh cache too."""
+    t0 = time.perf_counter()
+    warn_sharp_corners(variant)          # a cached solution says it as a fresh one would
+    options = options if options is not None else StaticOptions()
+    warn_unresolved_grooves(variant, options.level)
+    mkey = sc.predicted_mesh_key(variant, options)
+    key = sc.static_key(variant, options, mkey, REF_RPM)
+    path = sc.cache_path(key, cache_dir)
+    if use_cache and path.exists():
+        ref = sc._load(path, key, variant.name, t0)
+        if ref is not None:
+            # as a fresh solve would say it (on the nodal values the cache holds)
+            warn_unresolved_fillets(sc.region_peaks(ref), "largest nodal values")
+            return ref
+    res = solve_static(variant, REF_RPM, options, cache_dir=cache_dir, beam=False,
+                       linear_stress=True, **(solve_kwargs or {}))
+    if use_cache:
+        ref = sc.store(variant, options, res, cache_dir)
+    else:
+        ref = sc.from_result(res, key)
+    return replace(ref, seconds=time.perf_counter() - t0)

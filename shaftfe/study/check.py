@@ -30,7 +30,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from shaftfe.errors import InputError
-from shaftfe.study.spec import StudySpec, check_designs
+from shaftfe.study.spec import StudySpec, check_designs, parameter_of, refusal
 
 # A part's mass or eccentricity set directly may move by at most this factor from the base
 # variant's value: the smallest unit slip (mm typed as cm, ×10) is outside, a real redesign of
@@ -58,49 +58,6 @@ class Checked:
             shown = ", ".join(map(str, ns[:limit])) + (", …" if len(ns) > limit else "")
             out.append(f"{len(ns)} design{'s' if len(ns) > 1 else ''} refused ({shown}): {why}")
         return out
-
-
-def _shown(v) -> str:
-    return f"{v:g}" if isinstance(v, float) else repr(v)
-
-
-def parameter_of(spec: StudySpec, path: str) -> str:
-    """How the study file names the parameter that sets ``path``."""
-    for q in spec.parameters:
-        if path in q.paths:
-            return f"parameter '{q.name}'" if q.name != path else f"parameter {path}"
-    return f"parameter {path}"
-
-
-_HINTS = (" (typed in grams?)", " (typed in metres?)", " (typed in µm?)", " (typed in tonnes?)")
-
-
-def refusal(spec: StudySpec | None, overrides, exc: InputError) -> tuple[str, str]:
-    """(reason, rule) of the loader's refusal of a design, in the study's terms: a key the
-    study set is named as its parameter with the value the file gives; a key derived from the
-    parameters (a counterweight's mass from its shape, the [balance] statement) as derived from
-    them (no "typed in grams?": nobody typed it). ``rule``: the reason without the design's
-    values (designs refused by one rule are listed together)."""
-    ov = dict(overrides)
-    src = str(exc.source)
-    allowed = str(exc.allowed)
-    for h in _HINTS:
-        allowed = allowed.replace(h, "")
-    rule = f"{exc.field}: allowed {allowed}"
-    path = src[len("--set "):].split("=", 1)[0] if src.startswith("--set ") else None
-    if path in ov:
-        name = parameter_of(spec, path) if spec else f"parameter {path}"
-        what = "" if exc.field == path else f" ({exc.field} = {exc.got!r})"
-        return f"{name} = {_shown(ov[path])}{what} is refused; allowed: {exc.allowed}", rule
-    part = path.split(".")[1] if path and path.startswith("attachments.") else None
-    causes = [p for p in ov if part and p.startswith(f"attachments.{part}.shape.")] or list(ov)
-
-    def label(p: str) -> str:
-        name = parameter_of(spec, p) if spec else f"parameter {p}"
-        return name if name.endswith(p) else f"{name} ({p})"
-    given = ", ".join(f"{label(p)} = {_shown(ov[p])}" for p in causes)
-    return (f"{exc.field} = {_shown(exc.got)} (derived from {given}) is refused; allowed: "
-            f"{allowed}"), rule
 
 
 def _unit_slip(spec: StudySpec, designs) -> None:
@@ -147,8 +104,7 @@ def check_study(spec: StudySpec, designs) -> Checked:
     """Check every input of the study (see the module docstring); InputError if the study is
     refused, else the designs the loader refuses and the 3D designs' mesh groups."""
     from shaftfe.model.fields import ImplausibleValue
-    from shaftfe.study.evaluate import load_design
-    from shaftfe.study.runner import group_of
+    from shaftfe.study.evaluate import group_of, load_design
     check_designs(spec, designs)
     _unit_slip(spec, designs)
     _files(spec)

@@ -32,7 +32,7 @@ from typing import Any
 from shaftfe.errors import InputError, ShaftfeError
 from shaftfe.fe import reuse
 from shaftfe.solid.features import is_notch, kind_of
-from shaftfe.study.spec import Analyses
+from shaftfe.study.spec import Analyses, refusal
 
 # The Campbell sweep's default top: a stiff balancer shaft's first bending critical lies far
 # above the engine's speeds (x2_57 beam rotor: 39 700 rpm, 4.2 × the VM 450's 9500 rpm), and a
@@ -211,6 +211,14 @@ def campbell_row(v, an: Analyses) -> dict:
             "campbell_top_rpm": float(rpms[-1])}
 
 
+def group_of(v, level: str) -> tuple:
+    """(mesh key, E, ν) of a loaded design's solid: the designs that share one mesh and one
+    factorisation."""
+    from shaftfe.static.cache import predicted_mesh_key
+    from shaftfe.static.model import StaticOptions
+    return (predicted_mesh_key(v, StaticOptions(level=level)), v.material.E_MPa, v.material.nu)
+
+
 def evaluate_design(base: str, overrides, an: Analyses, *, shaft_mesh=None,
                     cache_dir=None) -> dict:
     """The result row of one design (never raises for the design's own faults)."""
@@ -219,7 +227,6 @@ def evaluate_design(base: str, overrides, an: Analyses, *, shaft_mesh=None,
     try:
         v, _ = load_design(base, overrides, an.static and an.fatigue)
     except InputError as exc:
-        from shaftfe.study.check import refusal
         return {"status": "refused", "error": refusal(None, overrides, exc)[0],
                 "seconds": time.perf_counter() - t0}
     row["variant_hash"] = v.content_hash

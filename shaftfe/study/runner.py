@@ -190,17 +190,9 @@ def evaluate_task(base: str, items, analyses, shaft_mesh=None,
 
 # --------------------------------------------------------------------------- planning
 
-def group_of(v, level: str) -> tuple:
-    """(mesh key, E, ν) of a loaded design's solid: the designs that share one mesh and one
-    factorisation."""
-    from shaftfe.static.cache import predicted_mesh_key
-    from shaftfe.static.model import StaticOptions
-    return (predicted_mesh_key(v, StaticOptions(level=level)), v.material.E_MPa, v.material.nu)
-
-
 def _group_key(base: str, design: Design, level: str) -> tuple:
     """``group_of`` a design, or ("refused",) if it cannot be loaded."""
-    from shaftfe.study.evaluate import load_design
+    from shaftfe.study.evaluate import group_of, load_design
     try:
         v, _ = load_design(base, design.overrides)
         return group_of(v, level)

@@ -489,3 +489,48 @@ def check_designs(spec: StudySpec, designs) -> None:
                 if not (math.isfinite(value) and lo <= value <= hi):
                     raise InputError(spec.path, where, f"in [{lo:g}, {hi:g}] {unit} (the "
                                      "key's range, docs/VARIANTS.md)", got=value)
+
+
+# ------------------------------------------------- a design's refusal in the study's terms
+
+def _shown(v) -> str:
+    return f"{v:g}" if isinstance(v, float) else repr(v)
+
+
+def parameter_of(spec: StudySpec, path: str) -> str:
+    """How the study file names the parameter that sets ``path``."""
+    for q in spec.parameters:
+        if path in q.paths:
+            return f"parameter '{q.name}'" if q.name != path else f"parameter {path}"
+    return f"parameter {path}"
+
+
+_HINTS = (" (typed in grams?)", " (typed in metres?)", " (typed in µm?)", " (typed in tonnes?)")
+
+
+def refusal(spec: StudySpec | None, overrides, exc: InputError) -> tuple[str, str]:
+    """(reason, rule) of the loader's refusal of a design, in the study's terms: a key the
+    study set is named as its parameter with the value the file gives; a key derived from the
+    parameters (a counterweight's mass from its shape, the [balance] statement) as derived from
+    them (no "typed in grams?": nobody typed it). ``rule``: the reason without the design's
+    values (designs refused by one rule are listed together)."""
+    ov = dict(overrides)
+    src = str(exc.source)
+    allowed = str(exc.allowed)
+    for h in _HINTS:
+        allowed = allowed.replace(h, "")
+    rule = f"{exc.field}: allowed {allowed}"
+    path = src[len("--set "):].split("=", 1)[0] if src.startswith("--set ") else None
+    if path in ov:
+        name = parameter_of(spec, path) if spec else f"parameter {path}"
+        what = "" if exc.field == path else f" ({exc.field} = {exc.got!r})"
+        return f"{name} = {_shown(ov[path])}{what} is refused; allowed: {exc.allowed}", rule
+    part = path.split(".")[1] if path and path.startswith("attachments.") else None
+    causes = [p for p in ov if part and p.startswith(f"attachments.{part}.shape.")] or list(ov)
+
+    def label(p: str) -> str:
+        name = parameter_of(spec, p) if spec else f"parameter {p}"
+        return name if name.endswith(p) else f"{name} ({p})"
+    given = ", ".join(f"{label(p)} = {_shown(ov[p])}" for p in causes)
+    return (f"{exc.field} = {_shown(exc.got)} (derived from {given}) is refused; allowed: "
+            f"{allowed}"), rule

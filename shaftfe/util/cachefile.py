@@ -13,6 +13,7 @@ rebuilding``; an entry of an older format without a checksum is rebuilt silently
 from __future__ import annotations
 
 import hashlib
+import importlib.util
 import json
 import sys
 from pathlib import Path
@@ -91,3 +92,15 @@ def cached_csr(path: Path, key: str, what: str, make):
     z, meta = cached(path, key, what, arrays)
     return sp.csr_matrix((z["data"], z["indices"], z["indptr"]), shape=tuple(meta["shape"]),
                          copy=False)
+
+
+def code_fingerprint(modules: tuple[str, ...]) -> str:
+    """sha256 over the source files of ``modules`` (found without importing)."""
+    h = hashlib.sha256()
+    for name in modules:
+        spec = importlib.util.find_spec(name)
+        origin = spec.origin if spec is not None else None
+        h.update(name.encode())
+        if origin and Path(origin).is_file():
+            h.update(Path(origin).read_bytes())
+    return h.hexdigest()

@@ -23,8 +23,8 @@ RPM_DAT = ROOT / "loadspectra" / "rpm.dat"
 @pytest.fixture(scope="module")
 def ref(tmp_path_factory):
     from shaftfe.model.loader import load_variant
-    from shaftfe.static.cache import load_or_solve
     from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import load_or_solve
     cache = tmp_path_factory.getbasetemp() / "shaftfe-fatigue-cache"
     # the seed's setting: its load case, no spin softening (proportional loading, which the
     # references below assume; tests/validation/test_fatigue_spin_softening.py has the rest)

@@ -32,8 +32,8 @@ def cache(tmp_path_factory):
 @pytest.fixture(scope="module")
 def ref(cache):
     from shaftfe.model.loader import load_variant
-    from shaftfe.static.cache import load_or_solve
     from shaftfe.static.model import StaticOptions
+    from shaftfe.static.solve import load_or_solve
     return load_or_solve(load_variant("x2_57"), StaticOptions(level="coarse"), cache)
 
 

@@ -138,8 +138,9 @@ def test_din743_takes_the_converged_kt_only_for_a_one_arc_groove():
     import dataclasses
 
     from shaftfe.beam.scf import converged_kt
+    from shaftfe.beam.solve import beam_at_ref
     from shaftfe.fatigue.cards import load_surfaces
-    from shaftfe.fatigue.standards import beam_at_ref, din743_notches
+    from shaftfe.fatigue.standards import din743_notches
     from shaftfe.model.examples import holed_bar
     from shaftfe.model.variant import Groove
     table = converged_kt()

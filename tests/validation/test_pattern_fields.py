@@ -142,10 +142,9 @@ def test_a_softened_reference_holds_the_unsoftened_patterns(cache):
 def test_the_patterns_are_named_as_the_full_3d_model_names_them(refs, cache):
     """The same variant through the full 3D model (its ``static.model.LoadPattern`` keys, the
     load case's factored load split off): the same labels and laws."""
-    from shaftfe.static import cache as static_cache
     from shaftfe.static.model import StaticOptions
-    solid = static_cache.load_or_solve(_bar(), StaticOptions(level="coarse",
-                                                             spin_softening=False), cache)
+    from shaftfe.static.solve import load_or_solve
+    solid = load_or_solve(_bar(), StaticOptions(level="coarse", spin_softening=False), cache)
     want = {(p["key"], p["scales_with"]) for p in solid.patterns}
     assert "rpm2:10000:load:p3" in {k for k, _ in want}
     for model in ("axisymmetric", "zoned"):

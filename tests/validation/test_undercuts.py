@@ -166,9 +166,10 @@ def test_din743_assesses_an_undercut_as_its_table_kt_or_the_shoulder_formula():
     reports/benchmarks/kt_undercuts.json where it holds (kind, D, d, r); a radius it lacks
     takes DIN 743-2's shoulder α from the bottom diameter (the formula by hand, 1e-12)."""
     from shaftfe.beam.scf import converged_kt
+    from shaftfe.beam.solve import beam_at_ref
     from shaftfe.fatigue import din743 as din
     from shaftfe.fatigue.cards import load_surfaces
-    from shaftfe.fatigue.standards import beam_at_ref, din743_notches
+    from shaftfe.fatigue.standards import din743_notches
     from shaftfe.model.loader import load_variant
     table = converged_kt()
     v = load_variant("x2_57")

@@ -19,7 +19,7 @@ from shaftfe.fatigue.methods.protocol import (
     Location,
 )
 
-__all__ = ["DEFAULT_METHOD", "METHODS", "AssessmentInputs", "FatigueAssessment",
+__all__ = ["DEFAULT_METHOD", "METHODS", "OUTPUT_FILES", "AssessmentInputs", "FatigueAssessment",
            "FatigueMethod", "LoadChannel", "Location", "get_method"]
 
 # the order of --help and of every listing (the seed's first: the original method)
@@ -29,6 +29,8 @@ METHODS: dict[str, FatigueMethod] = {
     "din743": din743.METHOD,
 }
 DEFAULT_METHOD = "fkm"
+# the files each method writes (each method's ``files``); `shaftfe fatigue --help` names them
+OUTPUT_FILES = {n: m.files for n, m in METHODS.items()}
 
 
 def get_method(name: str, source: str = "command line",

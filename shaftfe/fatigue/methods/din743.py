@@ -40,6 +40,7 @@ class Din743:
     def assess(self, inputs: AssessmentInputs, options, progress=None) -> FatigueAssessment:
         from contextlib import nullcontext
 
+        from shaftfe.beam.solve import beam_at_ref
         from shaftfe.fatigue import din743
         from shaftfe.fatigue import standards as sd
         from shaftfe.fatigue.run import FatigueInputs
@@ -54,7 +55,7 @@ class Din743:
         with raised() as warned, (progress.stage(self.stages[0]) if progress is not None
                                   else nullcontext()):
             # one beam solve for DIN 743 and the bearings
-            beam = ch.beam if ch.beam is not None else sd.beam_at_ref(inputs.variant)
+            beam = ch.beam if ch.beam is not None else beam_at_ref(inputs.variant)
             run = sd.run_din743(options, sd.strength_options(options),
                                 FatigueInputs(ch.history, None, inputs.variant), beam)
             static = (din743_static(inputs.variant, case, sd.strength_options(options))
