@@ -25,6 +25,7 @@ import time
 from pathlib import Path
 
 from benchmarks._timing import best_of
+from shaftfe.util import paths
 
 OUT = Path("reports/benchmarks")
 VARIANTS = ("x2_31", "x2_42", "x2_50", "x2_57")
@@ -261,7 +262,7 @@ def main() -> None:
           ""]
     table = _kt_tables(kt, grid=os.environ.get("AXI_BENCH_GRID", "1") != "0")
     (OUT / "kt_reference.md").write_text("\n".join(kt) + "\n")
-    (OUT / "kt_reference.json").write_text(json.dumps(table, indent=1) + "\n")
+    paths.KT_SHOULDERS_JSON.write_text(json.dumps(table, indent=1) + "\n")
     print("\n".join(kt))
 
 

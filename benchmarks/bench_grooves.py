@@ -25,6 +25,7 @@ from pathlib import Path
 
 from benchmarks._shaft_files import write_report, x2_57_with
 from benchmarks._timing import process
+from shaftfe.util import paths
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "reports" / "benchmarks" / "grooves"
@@ -35,7 +36,7 @@ GRID = [(D_BAR, D_BAR * q, 0.5 * D_BAR * (1 - q) * k) for q in (0.8, 0.9)
 # the converged Kt of these grooves go into the table DIN 743 and the beam read (beam.scf.
 # converged_kt, as the shoulders' kt_reference.json; one-arc grooves only, width 2ρ): the grid
 # and a groove of the collar's D, d and ρ
-KT_TABLE = ROOT / "reports" / "benchmarks" / "kt_grooves.json"
+KT_TABLE = paths.KT_GROOVES_JSON
 SHAFT_GROOVES = [(22.0, 20.0, 1.0)]
 RUNS = 3
 

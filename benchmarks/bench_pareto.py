@@ -442,12 +442,13 @@ def _name(spec: dict) -> str:
 def _fingerprints() -> dict:
     """Input fingerprints per family of runs (the --resume key): ``beam`` = the beam, rotor,
     Kt and fatigue code, the variant's content and the spectrum; ``fe:<level>`` = that plus the
-    static/mesh code (``static_cache.code_fingerprint`` + mesh, solid, static_cache) and the
+    static/mesh code (``util.cachefile.code_fingerprint`` + mesh, solid, static_cache) and the
     level's settings, Gmsh options and mesh cache format."""
     from shaftfe.model.loader import load_variant
     from shaftfe.solid.levels import LEVELS
     from shaftfe.solid.mesh import CACHE_FORMAT, GMSH_OPTIONS
     from shaftfe.static import cache as static_cache
+    from shaftfe.util.cachefile import code_fingerprint
     b = hashlib.sha256()
     for pkg in ("beam", "model", "rotordynamics", "solid"):
         for f in sorted((ROOT / "shaftfe" / pkg).glob("*.py")):
@@ -458,7 +459,7 @@ def _fingerprints() -> dict:
     b.update(load_variant(VARIANT).content_hash.encode())
     out = {"beam": b.hexdigest()[:16]}
     fe = b.copy()
-    fe.update(static_cache.code_fingerprint(static_cache.FINGERPRINT_MODULES).encode())
+    fe.update(code_fingerprint(static_cache.FINGERPRINT_MODULES).encode())
     for mod in ("solid/mesh", "solid/levels", "static/cache", "fe/solvers", "fe/lowrank"):
         fe.update((ROOT / "shaftfe" / f"{mod}.py").read_bytes())
     fe.update(json.dumps([GMSH_OPTIONS, CACHE_FORMAT], sort_keys=True).encode())

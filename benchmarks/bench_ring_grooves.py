@@ -39,11 +39,12 @@ import tempfile
 from pathlib import Path
 
 from benchmarks._shaft_files import write_kt_table, write_report
+from shaftfe.util import paths
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "reports" / "benchmarks" / "ring_grooves"
-U_TABLE = ROOT / "reports" / "benchmarks" / "kt_grooves.json"
-KT_TABLE = ROOT / "reports" / "benchmarks" / "kt_ring_grooves.json"
+U_TABLE = paths.KT_GROOVES_JSON
+KT_TABLE = paths.KT_RING_GROOVES_JSON
 # (D, corner radius): DIN 471's rows at the default 0.1 mm, and larger radii at D 17 and 30
 GRID = ([(D, 0.1) for D in (10.0, 12.0, 15.0, 17.0, 20.0, 25.0, 30.0, 35.0, 40.0)]
         + [(D, r) for D in (17.0, 30.0) for r in (0.2, 0.3)])

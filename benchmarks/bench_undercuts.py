@@ -44,10 +44,11 @@ import tempfile
 from pathlib import Path
 
 from benchmarks._timing import process
+from shaftfe.util import paths
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "reports" / "benchmarks" / "undercuts"
-KT_TABLE = ROOT / "reports" / "benchmarks" / "kt_undercuts.json"
+KT_TABLE = paths.KT_UNDERCUTS_JSON
 # (kind, D, d, radius or None for the default row)
 GRID = ([(k, round(d * q, 6), d, None) for k in ("din509_e", "din509_f")
          for d in (12.0, 17.0, 25.0, 40.0) for q in (1.3, 1.6)]

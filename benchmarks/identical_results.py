@@ -14,7 +14,8 @@ so each record solves everything. Left out of the comparison, because they measu
 not the result: ``run``, ``timing``, ``timings(_s)``, ``sub_timings(_s)``, ``machine``,
 ``created_utc`` and every key named ``seconds``, ``*_seconds``, ``from_cache`` or
 ``mesh_from_cache``; and ``cache_key``, the static cache's key, which hashes the source code of
-the static modules (``shaftfe.static.cache.code_fingerprint``) so that any edit of that code
+the static modules (``shaftfe.util.cachefile.code_fingerprint`` of
+``static.cache.FINGERPRINT_MODULES``) so that any edit of that code
 invalidates the cache: it changes with every code change by design and says nothing of the
 result (the mesh key and the variant hash, which do describe the model, stay compared).
 The checkout's own path (the default spectrum of ``report`` is an absolute path) is written as

@@ -67,7 +67,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from shaftfe.util.paths import REPO_DIR
+from shaftfe.util.paths import (
+    KT_GROOVES_JSON,
+    KT_RING_GROOVES_JSON,
+    KT_SHOULDERS_JSON,
+    KT_UNDERCUTS_JSON,
+    repo_relative,
+)
 
 # (a, b, c) for C1..C4, C_i = a + b √(h/r) + c (h/r); rows: C1, C2, C3, C4.
 _ROARK_LOW = np.array([[0.927, 1.149, -0.086],
@@ -241,12 +247,11 @@ def net_section_moduli(d: float, dh: float) -> tuple[float, float, float]:
             math.pi * d ** 3 / 16 - dh * d * d / 6)
 
 
-# the committed tables of converged Kt (the harmonic axisymmetric model, 3 uniform refinements
-# and Richardson), each written by its benchmark
-KT_TABLE = "reports/benchmarks/kt_reference.json"
-KT_GROOVES = "reports/benchmarks/kt_grooves.json"
-KT_UNDERCUTS = "reports/benchmarks/kt_undercuts.json"
-KT_RING_GROOVES = "reports/benchmarks/kt_ring_grooves.json"
+# the committed tables of converged Kt (``util.paths``), as the messages name them
+KT_TABLE = repo_relative(KT_SHOULDERS_JSON)
+KT_GROOVES = repo_relative(KT_GROOVES_JSON)
+KT_UNDERCUTS = repo_relative(KT_UNDERCUTS_JSON)
+KT_RING_GROOVES = repo_relative(KT_RING_GROOVES_JSON)
 
 
 def converged_kt() -> dict:
@@ -322,10 +327,10 @@ def _through(x: np.ndarray, y: np.ndarray, at: float) -> float:
 @functools.cache
 def _tables() -> tuple:
     out = []
-    for name, rows in ((KT_TABLE, "fillets"), (KT_GROOVES, "grooves"),
-                       (KT_UNDERCUTS, "undercuts"), (KT_RING_GROOVES, "ring_grooves")):
+    for path, rows in ((KT_SHOULDERS_JSON, "fillets"), (KT_GROOVES_JSON, "grooves"),
+                       (KT_UNDERCUTS_JSON, "undercuts"), (KT_RING_GROOVES_JSON, "ring_grooves")):
         try:
-            t = json.loads((REPO_DIR / name).read_text(encoding="utf-8"))
+            t = json.loads(path.read_text(encoding="utf-8"))
         except (OSError, ValueError):
             continue
         tag = {"fillets": lambda r: (), "grooves": lambda r: ("groove",),

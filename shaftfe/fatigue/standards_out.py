@@ -272,10 +272,10 @@ def compute_elements(variant, history, kappa: float, e_c: float, speed_kmh: floa
     [duty] names (``elements``; none: no key or gear check). The seed's single-point bearing
     lives stand beside ours for the seed's shaft only."""
     from shaftfe.elements import bearings, drive, gear, key
+    from shaftfe.fatigue.run import SEED_VARIANT
     from shaftfe.model.mass import mass_properties
-    from shaftfe.report.seed import VARIANT
     elements = variant.duty.elements if variant.duty is not None else None
-    seed = variant.name == VARIANT
+    seed = variant.name == SEED_VARIANT
     duty = bearings.duty(variant, history, kappa, e_c, speed_kmh=speed_kmh, beam=beam)
     if elements is None:
         return elements_summary(duty, [], None, kappa, e_c, seed=seed)

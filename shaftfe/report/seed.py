@@ -8,13 +8,14 @@ and the whole-balancer figures of each variant in its file (``Variant.balance_ta
 from __future__ import annotations
 
 from shaftfe.fatigue.run import SEED as FATIGUE
+from shaftfe.fatigue.run import SEED_VARIANT as VARIANT
 
 __all__ = ["BALANCING", "CAMPBELL", "CRANK_C_X", "ENGINE", "FATIGUE", "SEED_PARTS", "SOURCES",
            "STATIC", "VARIANT"]
 
-# The variant the seed's static, fatigue and rotor-dynamics studies are of (X2 = 57 %); for
-# another variant only the balancing and its own balance-table rows are compared.
-VARIANT = "x2_57"
+# VARIANT: the variant the seed's static, fatigue and rotor-dynamics studies are of (X2 =
+# 57 %; ``fatigue.run.SEED_VARIANT``); for another variant only the balancing and its own
+# balance-table rows are compared.
 # The parts whose forces the seed states (seed 000 §8.2.2): the gear, counterweight 1 (bolted
 # to the gear, F1 = both) and counterweight 2 (Fv2), by their names in the variant files.
 SEED_PARTS = ("gear", "counterweight_1", "counterweight_2")

@@ -20,8 +20,14 @@ ENGINES_DIR = GEOMETRY_DIR / "engines"
 SN_FILE = COMMON_DIR / "sn_curves.toml"
 LOADSPECTRA_DIR = REPO_DIR / "loadspectra"
 DEFAULT_SPECTRUM = LOADSPECTRA_DIR / "rpm.dat"
-BENCHMARK_JSON = REPO_DIR / "reports" / "benchmarks" / "static.json"
-TRUTH_JSON = REPO_DIR / "reports" / "benchmarks" / "truth.json"
+BENCHMARKS_DIR = REPO_DIR / "reports" / "benchmarks"    # the measured tables the package reads
+BENCHMARK_JSON = BENCHMARKS_DIR / "static.json"
+TRUTH_JSON = BENCHMARKS_DIR / "truth.json"
+# the converged Kt tables (the axisymmetric model, 3 uniform refinements and Richardson), each
+# written by its benchmark: shoulders, U grooves, DIN 509 undercuts, DIN 471 ring grooves
+KT_SHOULDERS_JSON, KT_GROOVES_JSON, KT_UNDERCUTS_JSON, KT_RING_GROOVES_JSON = (
+    BENCHMARKS_DIR / f"kt_{name}.json" for name in ("reference", "grooves", "undercuts",
+                                                     "ring_grooves"))
 CACHE_ENV = "SHAFTFE_CACHE_DIR"
 
 
