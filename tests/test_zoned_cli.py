@@ -44,8 +44,8 @@ def test_the_default_static_model_is_zoned_and_writes_every_file(zoned_run):
     assert models["fillet:collar"] == "axisymmetric"      # the span fillets: the global model
     # their bars: the global model's level (axisymmetric default, whatever the zones' level);
     # the zones' peaks have none
-    from shaftfe.static.truth_bars import AXI_ERROR_BAR_PCT
-    assert s["truth_error_bar_pct"] == {f: list(AXI_ERROR_BAR_PCT["default"])
+    from shaftfe.static.benchmark import shoulder_bars
+    assert s["truth_error_bar_pct"] == {f: list(shoulder_bars().bars["axisymmetric"]["default"])
                                         for f in ("fillet:collar", "fillet:bearing_seat_gear")}
     z = meshio.read(out / "zone_1.vtu")
     assert z.point_data["stress"].shape == (z.points.shape[0], 6)

@@ -423,8 +423,7 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
 def truth_bars(variant, options: AxiOptions, peaks) -> tuple[dict, dict]:
     """({region: (low, high) %}, {region: why it has none}) of the span-fillet and groove
     peaks: the axisymmetric level's bar measured over the grid of shoulders and the grid of U
-    grooves (``shaftfe.static.benchmark.notch_bars``, ``truth_bars.AXI_ERROR_BAR_PCT``,
-    ``groove_bars.AXI_GROOVE_BAR_PCT``: its own
+    grooves (``shaftfe.static.benchmark.notch_bars``, ``shoulder_bars``, ``groove_bars``: its own
     method refined, a discretisation error bar) for a named level used as named at refinement
     0, under the options the bars were measured with (the uniform placement of the parts'
     loads, every peak node kept, the default harmonic truncation); supports rigid or springs

@@ -519,11 +519,11 @@ def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> tuple[d
     under the options the bars were measured with (``_BAR_CONDITIONS``), on the pipeline's own
     mesh of the variant (not a mesh the caller built otherwise)."""
     from shaftfe.solid.levels import LEVELS
-    from shaftfe.static.benchmark import notch_bars
-    from shaftfe.static.truth_bars import ERROR_BAR_PCT
+    from shaftfe.static.benchmark import notch_bars, shoulder_bars
     lv = options.level
     name = lv if isinstance(lv, str) else lv.name
-    if name not in ERROR_BAR_PCT or (not isinstance(lv, str) and lv != LEVELS.get(name)):
+    bars = shoulder_bars().bars["solid"]
+    if name not in bars or (not isinstance(lv, str) and lv != LEVELS.get(name)):
         return {}, {}
     if any(getattr(options, k) != want for k, want in _BAR_CONDITIONS.items()):
         return {}, {}

@@ -5,7 +5,7 @@ Source of the bars: benchmarks/bench_groove_bars.py, which solves four-point-ben
 one U groove (d/D 0.8, 0.9, 0.95; ρ/t 0.25, 0.5, 1; widths 2t and 2ρ) at each axisymmetric
 level and converged by Richardson (the truth, GCI bars), plus x2_57 with a U groove in the
 collar (springs, spin softening on and off), caches every solve in
-reports/benchmarks/groove_bars.json and generates ``shaftfe.static.groove_bars``.
+reports/benchmarks/groove_bars.json and generates reports/benchmarks/error_bars_grooves.json.
 
 The truth is the axisymmetric method refined, so these are discretisation bars of that method
 (Roache's GCI), not an independent check; the groove peaks' independent checks are DIN 743-2's α
@@ -24,16 +24,18 @@ from types import SimpleNamespace
 
 import pytest
 
-from shaftfe.static.benchmark import groove_bar, notch_bars
-from shaftfe.static.groove_bars import AXI_GROOVE_BAR_PCT, MEASURED
+from shaftfe.static.benchmark import groove_bar, groove_bars, notch_bars
+
+AXI_GROOVE_BAR_PCT = groove_bars().bars["axisymmetric"]
+MEASURED = groove_bars().measured
 
 ROOT = Path(__file__).resolve().parents[2]
 X2_57_COLLAR = (22.0 / 20.0, 1.0 / 20.0, 2.0, 1.0)      # D/d, ρ/d, w/t, ρ/t
 
 
 def test_generated_bars_are_the_envelope_of_the_cached_grid(monkeypatch):
-    """``groove_bars.AXI_GROOVE_BAR_PCT`` and ``MEASURED`` are what bench_groove_bars computes
-    from its cache: the same envelope rule on the same numbers, so equality is exact."""
+    """The groove bars and their ``measured`` points are what bench_groove_bars computes from
+    its cache: the same envelope rule on the same numbers, so equality is exact."""
     from benchmarks import bench_groove_bars as g
     monkeypatch.chdir(ROOT)
     data = g._load()

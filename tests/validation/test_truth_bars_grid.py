@@ -5,7 +5,8 @@ shoulders.
 Source of the bars: benchmarks/bench_bars_grid.py, which solves four-point-bent stepped bars
 (D/d 1.1–1.5, r/d 0.02–0.15) with the 3D path at each level and with ``shaftfe.axisymmetric``
 converged by Richardson (the truth; GCI bars, reports/benchmarks/bars_grid.md), caches every
-solve in reports/benchmarks/bars_grid.json and generates ``shaftfe.static.truth_bars``.
+solve in reports/benchmarks/bars_grid.json and generates
+reports/benchmarks/error_bars_shoulders.json.
 Independent check: x2_57's span fillets against the same truth, measured by
 benchmarks/bench_truth.py (reports/benchmarks/truth.json: another load case, springs, spin
 softening), which the grid's bar must contain since they lie inside the grid.
@@ -27,16 +28,19 @@ from types import SimpleNamespace
 
 import pytest
 
-from shaftfe.static.benchmark import fillet_bar
-from shaftfe.static.truth_bars import AXI_ERROR_BAR_PCT, ERROR_BAR_PCT, MEASURED
+from shaftfe.static.benchmark import fillet_bar, shoulder_bars
+
+ERROR_BAR_PCT = shoulder_bars().bars["solid"]
+AXI_ERROR_BAR_PCT = shoulder_bars().bars["axisymmetric"]
+MEASURED = shoulder_bars().measured
 
 ROOT = Path(__file__).resolve().parents[2]
 X2_57 = (22.0 / 17.0, 0.6 / 17.0)          # collar and bearing-seat-gear fillets: D/d, r/d
 
 
 def test_generated_bars_are_the_envelope_of_the_cached_grid(monkeypatch):
-    """``truth_bars.ERROR_BAR_PCT`` and ``MEASURED`` are what bench_bars_grid computes from its
-    cache (the module cannot go stale against the measurements unnoticed): the same envelope
+    """The shoulder bars and their ``measured`` points are what bench_bars_grid computes from
+    its cache (the file cannot go stale against the measurements unnoticed): the same envelope
     rule on the same numbers, so equality is exact."""
     from benchmarks import bench_bars_grid as g
     monkeypatch.chdir(ROOT)
