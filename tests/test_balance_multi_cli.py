@@ -79,6 +79,8 @@ def test_inline_table_and_plot(tmp_path):
     (["twin", "--delta", "60", "--x", "50,50,50"], "--x"),
     (["twin", "--delta", "60", "--x", "50,,50"], "--x"),
     (["twin", "--delta", "60", "--rpm", "-100"], "--rpm"),
+    # the one speed ceiling of every command (util.limits.RPM_CEILING, 20 000 rpm)
+    (["twin", "--delta", "60", "--rpm", "50000"], "(0, 20000] rpm"),
     (["twin", "--delta", "60", "--engine", "nosuch"], "--engine"),
     (["twin", "--delta", "60", "--plot", "out.txt"], "--plot"),
     (["inline", "--pins", "0,120,240", "--spacing-mm", "80,80,80"], "--spacing-mm"),

@@ -245,6 +245,20 @@ def test_run_time_entries_are_kept_out_of_the_diagnostics(base):
     assert d["run"] == base.run and not run_keys & set(d["diagnostics"])
 
 
+def test_the_options_refuse_the_band_the_command_line_refuses():
+    """One rule for ``--exclude-mm`` (``util.limits.check_exclude_mm``): options built in
+    Python meet the command line's bounds, [0, 5] mm."""
+    from shaftfe.axisymmetric.model import AxiOptions, check_options
+    from shaftfe.static.model import _check_options
+    for bad in (-0.1, 5.5, float("nan")):
+        with pytest.raises(InputError, match=r"\[0, 5\] mm"):
+            _check_options(_opts(exclude_mm=bad))
+        with pytest.raises(InputError, match=r"\[0, 5\] mm"):
+            check_options(AxiOptions(exclude_mm=bad))
+    _check_options(_opts(exclude_mm=5.0))
+    check_options(AxiOptions(exclude_mm=0.0))
+
+
 def test_static_cache_keeps_the_relative_residual(base, cache):
     """The static reference that ``shaftfe fatigue`` reuses carries the solve's relative
     residual, through the disk cache too (reference: the solve's own diagnostics)."""

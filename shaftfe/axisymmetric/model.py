@@ -77,6 +77,7 @@ from shaftfe.solid.features import (
     seat_group,
 )
 from shaftfe.static.model import DISTRIBUTIONS, load_case_label
+from shaftfe.util.limits import check_exclude_mm
 from shaftfe.util.units import REF_RPM, omega, von_mises
 
 N_MAX = 199
@@ -118,8 +119,7 @@ def check_options(o: AxiOptions) -> None:
         raise InputError("options", "n_max", "1 ... 999", got=o.n_max)
     if not (math.isfinite(o.truncation) and 0 < o.truncation < 1):
         raise InputError("options", "truncation", "0 < truncation < 1", got=o.truncation)
-    if not (math.isfinite(o.exclude_mm) and o.exclude_mm >= 0):
-        raise InputError("--exclude-mm", "exclude_mm", ">= 0", got=o.exclude_mm)
+    check_exclude_mm(o.exclude_mm)             # the one rule of the band (``util.limits``)
 
 
 @dataclass(frozen=True)

@@ -16,6 +16,7 @@ import math
 from shaftfe.commands._common import print_json, print_table, write_atomic
 from shaftfe.errors import InputError
 from shaftfe.util import units
+from shaftfe.util.limits import check_rpm
 
 _PLOT_SUFFIXES = (".png", ".pdf", ".svg")
 
@@ -127,8 +128,7 @@ def _setup(args):
     m_pos = args.m_pos_kg if args.m_pos_kg is not None else eng.m_pos_kg
     rpm = args.rpm if args.rpm is not None else eng.rpm
     label = eng.name
-    if not (math.isfinite(rpm) and 0 < rpm <= 100_000):
-        raise InputError("--rpm", "rpm", "0 < rpm <= 100000", got=rpm)
+    check_rpm(rpm, "--rpm", positive=True)      # the one speed ceiling (``util.limits``)
     if T1 <= R:
         raise InputError("--rod-mm/--radius-mm", "rod length", f"> crank radius {R:g} mm",
                          got=T1)

@@ -43,6 +43,7 @@ from shaftfe.solid.features import (
     seat_halves,
 )
 from shaftfe.solid.levels import MeshLevel
+from shaftfe.util.limits import check_exclude_mm
 from shaftfe.util.units import REF_RPM, omega
 
 DISTRIBUTIONS = ("uniform", "cosine")
@@ -241,8 +242,7 @@ def _check_options(o: StaticOptions) -> None:
     if o.load_distribution not in DISTRIBUTIONS:
         raise InputError("--load-distribution", "load_distribution", " | ".join(DISTRIBUTIONS),
                          got=o.load_distribution)
-    if not (math.isfinite(o.exclude_mm) and o.exclude_mm >= 0):
-        raise InputError("--exclude-mm", "exclude_mm", ">= 0", got=o.exclude_mm)
+    check_exclude_mm(o.exclude_mm)             # the one rule of the band (``util.limits``)
     from shaftfe.fe.solvers import METHODS
     if o.solver not in METHODS:
         raise InputError("--solver", "solver", " | ".join(METHODS), got=o.solver)
