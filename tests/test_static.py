@@ -249,7 +249,7 @@ def test_the_options_refuse_the_band_the_command_line_refuses():
     """One rule for ``--exclude-mm`` (``util.limits.check_exclude_mm``): options built in
     Python meet the command line's bounds, [0, 5] mm."""
     from shaftfe.axisymmetric.model import AxiOptions, check_options
-    from shaftfe.static.model import _check_options
+    from shaftfe.static.model import check_options as _check_options
     for bad in (-0.1, 5.5, float("nan")):
         with pytest.raises(InputError, match=r"\[0, 5\] mm"):
             _check_options(_opts(exclude_mm=bad))
@@ -257,6 +257,19 @@ def test_the_options_refuse_the_band_the_command_line_refuses():
             check_options(AxiOptions(exclude_mm=bad))
     _check_options(_opts(exclude_mm=5.0))
     check_options(AxiOptions(exclude_mm=0.0))
+
+
+@pytest.mark.parametrize("bad,option", [({"order": 3}, "--order"), ({"level": "huge"}, "--level"),
+                                        ({"solver": "foo"}, "--solver"),
+                                        ({"load_distribution": "x"}, "--load-distribution")])
+def test_the_static_options_hold_the_command_lines_rules(bad, option):
+    """``static.model.check_options`` is the one set of rules ``shaftfe static`` applies to its
+    options (the command builds ``StaticOptions`` and calls it): a caller in Python meets the
+    same refusal, naming the command line's option."""
+    from shaftfe.static.model import check_options
+    with pytest.raises(InputError) as e:
+        check_options(_opts(**bad))
+    assert e.value.source == option
 
 
 def test_static_cache_keeps_the_relative_residual(base, cache):

@@ -108,18 +108,10 @@ def run(args) -> int:
     else:
         rpms = design_speeds(args.rpm, variant, first=True)
     check_speeds(rpms, args, variant)
-    if args.order not in (1, 2):
-        raise InputError("--order", "--order", "1 | 2", got=args.order)
-    if args.level not in LEVEL_NAMES:
-        raise InputError("--level", "--level", " | ".join(LEVEL_NAMES), got=args.level)
-    if args.load_distribution not in ("uniform", "cosine"):
-        raise InputError("--load-distribution", "--load-distribution", "uniform | cosine",
-                         got=args.load_distribution)
-    from shaftfe.util.limits import check_exclude_mm
-    check_exclude_mm(args.exclude_mm)
-    if args.solver not in ("auto", "superlu", "pardiso", "amg"):
-        raise InputError("--solver", "--solver", "auto | superlu | pardiso | amg",
-                         got=args.solver)
+    from shaftfe.static.model import StaticOptions, check_options
+    check_options(StaticOptions(level=args.level, order=args.order,
+                                load_distribution=args.load_distribution,
+                                exclude_mm=args.exclude_mm, solver=args.solver))
     if args.model == "axisymmetric":
         return _run_axisymmetric(args, rpms, variant)
     if args.model == "zoned":

@@ -238,7 +238,13 @@ def _direction(angle_deg: float) -> np.ndarray:
     return np.array([0.0, math.cos(a), math.sin(a)])
 
 
-def _check_options(o: StaticOptions) -> None:
+def check_options(o: StaticOptions) -> None:
+    """Every rule of the static options, one place for the command line and a caller in
+    Python (InputError naming the command line's option)."""
+    from shaftfe.solid.levels import mesh_level
+    if o.order not in (1, 2):
+        raise InputError("--order", "order", "1 | 2", got=o.order)
+    mesh_level(o.level)
     if o.load_distribution not in DISTRIBUTIONS:
         raise InputError("--load-distribution", "load_distribution", " | ".join(DISTRIBUTIONS),
                          got=o.load_distribution)
@@ -251,7 +257,7 @@ def _check_options(o: StaticOptions) -> None:
 def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh=None,
                 cache_dir=None) -> StaticModel:
     """Mesh (or take ``shaft_mesh``), assemble K, couple the bearings, build the loads."""
-    _check_options(options)
+    check_options(options)
     if options.seed_load_case:
         variant = variant.with_seed_load_case()
     validate_variant(variant, springs=not options.rigid_supports)
