@@ -26,7 +26,6 @@ the two-point table (N_D/1000, S_D·1000^(1/k)), (N_D, S_D), which is the same p
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -36,6 +35,8 @@ from shaftfe.errors import InputError
 from shaftfe.fatigue.cards import card_of
 from shaftfe.fatigue.fkm import GROUPS
 from shaftfe.model.loader import material_record
+from shaftfe.model.sn_file import card_names as known_materials
+from shaftfe.model.sn_file import read_cards
 from shaftfe.util.paths import SN_FILE
 
 BEYOND_LAST = ("cutoff", "extrapolate")
@@ -137,14 +138,10 @@ _CARD_KEYS = {"description", "source", "material", "yield_MPa", "ultimate_MPa", 
               "knee_alternating_MPa", "slope_k", "note"}
 
 
-def known_materials(path: str | Path = SN_FILE) -> list[str]:
-    return sorted(_read(Path(path)).keys())
-
-
 def card_of_material(material: str, path: str | Path = SN_FILE) -> str | None:
     """The name of the S-N card whose ``material`` is the record ``material`` (the first in
     name order), or None."""
-    cards = _read(Path(path))
+    cards = read_cards(path)
     return next((n for n in sorted(cards) if cards[n].get("material") == material), None)
 
 
@@ -171,7 +168,7 @@ def load_material(name: str, path: str | Path = SN_FILE, *,
     """Material card ``name`` from ``path`` (default ``geometry/common/sn_curves.toml``); the
     optional arguments override the card's endurance treatment."""
     path = Path(path)
-    cards = _read(path)
+    cards = read_cards(path)
     if name not in cards:
         raise InputError(str(path), "material", f"one of {sorted(cards)}", got=name)
     card = cards[name]
@@ -238,18 +235,3 @@ def material_knee(rec) -> float:
     strength reference diameter (no size, surface or notch factor: the seed method's kf)."""
     card = card_of(rec, "geometry/common/materials.toml")     # the one group rule
     return GROUPS[card.group].f_w_sigma * card.rm_n_MPa
-
-
-def _read(path: Path) -> dict:
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise InputError(str(path), "file", "an existing S-N card file",
-                         reason="does not exist") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError(str(path), "TOML", "valid TOML", reason=f"does not parse ({exc})")\
-            from None
-    cards = data.get("sn_curves")
-    if not isinstance(cards, dict) or not cards:
-        raise InputError(str(path), "sn_curves", "a table [sn_curves.<name>]", reason="is missing")
-    return cards

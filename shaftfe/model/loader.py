@@ -874,8 +874,8 @@ def _duty(merged: dict, ctx: Ctx, top: str) -> Duty | None:
         if "elements" in t else None
     sn = t.get("sn_curve")
     if sn is not None:
-        from shaftfe.fatigue.sn import known_materials
-        cards = known_materials()
+        from shaftfe.model.sn_file import card_names
+        cards = card_names()
         need(sn in cards, src, "duty.sn_curve", one_of(cards, "sn_curves"), sn)
     return Duty(source=src, speed_range_rpm=(lo, hi),
                 design_speeds_rpm=tuple(float(r) for r in ds), campbell_range_rpm=camp,
