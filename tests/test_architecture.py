@@ -130,6 +130,40 @@ def test_no_import_circles_but_the_known_ones():
     assert KNOWN_CIRCLES - found == set(), "a known circle is gone: take it off the list"
 
 
+# The pipeline's order, lowest first (docs/ARCHITECTURE.md's picture; "shaftfe" is the package's
+# face, its version and a lazy table): a module imports only modules of its own package or of
+# packages before its own, except the arrows ARCHITECTURE.md's "Rules the layout keeps" names
+# with their reasons (``UPWARD_ARROWS``).
+PIPELINE = ("errors", "shaftfe", "util", "balance", "model", "solid", "fe", "beam", "elements",
+            "io", "static", "axisymmetric", "zoned", "rotordynamics", "fatigue", "report",
+            "study", "commands", "cli", "__main__")
+UPWARD_ARROWS = {
+    ("shaftfe.model.loader", "shaftfe.solid.plan"),    # a file is refused when it is read
+    ("shaftfe.solid.mesh", "shaftfe.fe.assembly"),     # every P2 mesh inverts curved tets
+}
+
+
+def _package(module: str) -> str:
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else parts[0]
+
+
+def test_imports_run_down_the_pipeline():
+    """Every import (those inside functions too) runs down ``PIPELINE`` or stays in its own
+    package, but the ``UPWARD_ARROWS`` ARCHITECTURE.md names; a new package must take its
+    place in the pipeline first."""
+    graph = import_graph()
+    rank = {p: i for i, p in enumerate(PIPELINE)}
+    assert {_package(m) for m in graph} <= set(rank), "a package not placed in PIPELINE"
+    up = {(a, b) for a, bs in graph.items() for b in bs
+          if rank[_package(b)] > rank[_package(a)]}
+    assert up == UPWARD_ARROWS, sorted(up ^ UPWARD_ARROWS)
+    text = (ROOT / "docs" / "ARCHITECTURE.md").read_text(encoding="utf-8")
+    for a, b in UPWARD_ARROWS:                  # both ends named there, with the reason
+        for m in (a, b):
+            assert f"`{m.removeprefix('shaftfe.')}" in text, m
+
+
 def _where_things_go() -> list[str]:
     """The backticked names of the section, a name broken over two lines joined again."""
     text = (ROOT / "docs" / "ARCHITECTURE.md").read_text(encoding="utf-8")

@@ -9,6 +9,7 @@ import math
 
 import pytest
 
+from shaftfe.balance import engines
 from shaftfe.cli import build_parser
 from shaftfe.errors import InputError
 from shaftfe.fatigue import history as hist
@@ -19,9 +20,9 @@ from shaftfe.util import fmt, limits
 
 
 def test_the_speed_limit_is_the_engine_files_max_rpm():
-    assert limits.engine_speed_limit("vm450") == (
+    assert engines.engine_speed_limit("vm450") == (
         9500.0, "max_rpm of VM 450 in geometry/engines/vm450.toml")
-    top, where = limits.engine_speed_limit("fe570")          # no max_rpm in that file
+    top, where = engines.engine_speed_limit("fe570")          # no max_rpm in that file
     assert top == limits.RPM_CEILING and "RPM_CEILING" in where
 
 
@@ -36,10 +37,10 @@ def test_a_history_at_the_limit_passes_above_it_is_refused_or_warned():
 
 
 def test_a_proof_check_may_go_to_1_2_times_max_rpm():
-    limits.check_operating_speed(11_400.0, "vm450", False, "command line", "--rpm",
+    engines.check_operating_speed(11_400.0, "vm450", False, "command line", "--rpm",
                                  factor=limits.PROOF_FACTOR)   # 1.2 × 9500, exact
     with pytest.raises(InputError, match=r"11400 rpm = 1\.2 × the max_rpm"):
-        limits.check_operating_speed(11_401.0, "vm450", False, "command line", "--rpm",
+        engines.check_operating_speed(11_401.0, "vm450", False, "command line", "--rpm",
                                      factor=limits.PROOF_FACTOR)
 
 

@@ -27,6 +27,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from shaftfe.errors import InputError
+from shaftfe.util.limits import OVERSPEED_HINT, RPM_CEILING
+from shaftfe.util.notices import warn
 from shaftfe.util.paths import ENGINES_DIR
 
 # key → (allowed text, predicate); all numeric keys the loader understands.
@@ -277,3 +279,48 @@ def engine_from_dict(data: dict, source: str, default_name: str = "engine") -> E
                          "masses giving a crank balance ratio X in [-200, 200] %",
                          got=round(100 * eng.X, 2))
     return eng
+
+
+# --------------------------------------------------------------------------- the engine's limit
+# A stress or life assessment at operating speeds (a fatigue history, the report's spectrum,
+# ``static --rpm``, ``beam --rpm``) is bounded by the engine's ``max_rpm``, below the absolute
+# ``util.limits.RPM_CEILING`` (the module docstring of ``util.limits`` says why each bound).
+
+DEFAULT_ENGINE = "vm450"     # the x2_* balancer shafts' engine (``util.limits``' docstring)
+
+
+def engine_speed_limit(engine=DEFAULT_ENGINE) -> tuple[float, str]:
+    """(the engine's max_rpm, where it comes from); an engine file without max_rpm: the
+    absolute ``RPM_CEILING``. ``engine`` is an engine name or file, or a variant's duty
+    (``model.variant.Duty``: the highest speed of its speed range), or None (no engine and no
+    duty: ``RPM_CEILING``)."""
+    if engine is None:
+        return RPM_CEILING, "shaftfe.util.limits.RPM_CEILING (no engine, no [duty] speed range)"
+    if hasattr(engine, "speed_limit"):
+        return engine.speed_limit()
+    from shaftfe.util.paths import repo_relative
+    e = load_engine(engine)
+    if e.max_rpm is None:
+        return RPM_CEILING, (f"shaftfe.util.limits.RPM_CEILING ({repo_relative(e.source)} "
+                             "gives no max_rpm)")
+    return float(e.max_rpm), f"max_rpm of {e.name} in {repo_relative(e.source)}"
+
+
+def check_operating_speed(rpm: float, engine: str, allow_overspeed: bool, source: str,
+                          what: str, *, factor: float = 1.0, hint: str = OVERSPEED_HINT) -> None:
+    """``rpm``, the highest speed of an assessment, against ``factor`` × the engine's max_rpm
+    (1: an operating history; ``PROOF_FACTOR``: a proof check): above it, refused unless
+    ``allow_overspeed``, then assessed with a visible warning. ``hint``: how the caller's user
+    goes past it (the commands' option; a caller without one says so)."""
+    max_rpm, where = engine_speed_limit(engine)
+    limit = min(factor * max_rpm, RPM_CEILING)
+    if rpm <= limit:
+        return
+    bound = f"{limit:g} rpm, the {where}" if factor == 1 else \
+        f"{limit:g} rpm = {factor:g} × the {where} ({max_rpm:g} rpm: an overspeed proof check)"
+    if not allow_overspeed:
+        raise InputError(source, what, f"at most {bound}{hint}", got=float(rpm),
+                         reason="is above the engine's maximum speed")
+    warn("overspeed", source, f"{what} = {rpm:g} rpm is above {bound}: assessed as asked "
+         "(--allow-overspeed); the engine does not run there, so a life at it is not an "
+         "operating life")

@@ -72,7 +72,7 @@ def parse_range(text: str, option: str, *, lo: float | None = None,
 def add_engine_option(p, engine_help: str | None = None,
                       overspeed_help: str | None = None) -> None:
     """``--engine`` and ``--allow-overspeed`` of a command that assesses operating speeds: the
-    engine's max_rpm is the limit (``util.limits.engine_speed_limit``). Without help texts: a
+    engine's max_rpm is the limit (``balance.engines.engine_speed_limit``). Without help texts: a
     command of checking speeds (static, beam), up to ``PROOF_FACTOR`` × max_rpm."""
     from shaftfe.util.limits import PROOF_FACTOR
     p.add_argument("--engine", default=None, help=engine_help or (
@@ -86,7 +86,8 @@ def add_engine_option(p, engine_help: str | None = None,
 def check_speeds(rpms, args, variant=None) -> None:
     """The checking speeds against the engine's limit for a proof check (util.limits): the
     --engine given, else the variant's [duty] speed range."""
-    from shaftfe.util.limits import PROOF_FACTOR, check_operating_speed
+    from shaftfe.balance.engines import check_operating_speed
+    from shaftfe.util.limits import PROOF_FACTOR
     limit = args.engine or (variant.duty if variant is not None else None)
     check_operating_speed(max(rpms), limit, args.allow_overspeed, "command line",
                           "--rpm", factor=PROOF_FACTOR)
@@ -113,7 +114,7 @@ def parse_rpm_list(text: str, option: str = "--rpm") -> list[float]:
     [0, limits.RPM_CEILING]; an empty item (``10000,,7000``) is an error."""
     from shaftfe.util.limits import RPM_CEILING
     allowed = (f"comma-separated speeds in rpm, each in [0, {RPM_CEILING:g}] (then at most the "
-               "engine's own limit: util.limits.check_operating_speed)")
+               "engine's own limit: balance.engines.check_operating_speed)")
     items = [t.strip() for t in text.split(",")]
     try:
         vals = [float(t) for t in items]

@@ -193,9 +193,9 @@ def resolve_design_life(job: FatigueJob, history, duty=None) -> FatigueJob:
 def check_history(history, engine: str, allow_overspeed: bool, hint: str = OVERSPEED_HINT):
     """The speeds of a history for a stress or life assessment: some above 0 rpm (an engine
     at rest has no load: no damage, no bearing wear: nothing to assess) and none above the
-    engine's max_rpm (``util.limits.engine_speed_limit``) unless ``allow_overspeed``, then with
+    engine's max_rpm (``balance.engines.engine_speed_limit``) unless ``allow_overspeed``, then with
     a warning. Shared by ``shaftfe fatigue`` (every method) and ``shaftfe report``."""
-    from shaftfe.util.limits import check_operating_speed
+    from shaftfe.balance.engines import check_operating_speed
     top = float(history.rpm.max())
     if not top > 0:
         raise InputError(history.source, "rpm", "a history with the engine turning (some "

@@ -83,11 +83,11 @@ def _unit_slip(spec: StudySpec, designs) -> None:
 def _files(spec: StudySpec) -> None:
     """The files every design reads, read once here (their own one-line errors), and the
     speeds against the engine's own limit by the rule of ``shaftfe fatigue``
-    (``util.limits.check_operating_speed``, ``fatigue.run.check_history``; a study has no
+    (``balance.engines.check_operating_speed``, ``fatigue.run.check_history``; a study has no
     --allow-overspeed)."""
+    from shaftfe.balance.engines import check_operating_speed
     from shaftfe.fatigue.run import check_history
     from shaftfe.study.evaluate import _engine, _fatigue_inputs
-    from shaftfe.util.limits import check_operating_speed
     an = spec.analyses
     _engine(an.engine)
     hint = " (a study assesses operating speeds only: it has no --allow-overspeed)"

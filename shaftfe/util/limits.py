@@ -9,8 +9,9 @@ The engine's own limit. ``RPM_CEILING`` is the absolute bound of any speed; a st
 assessment at operating speeds (a fatigue history, the report's spectrum, ``static --rpm``,
 ``beam --rpm``) is bounded by the engine's ``max_rpm`` (``geometry/engines/<engine>.toml``;
 the x2_* balancer shafts are the VM 450's: their [balance] m_pos 0.473 kg and R 30.2 mm are its
-crank's, seed 000 §8.1), ``engine_speed_limit``. A history above it is refused unless the
-user allows the overspeed (``--allow-overspeed``), then assessed with a warning: a spectrum at
+crank's, seed 000 §8.1), ``balance.engines.engine_speed_limit``. A history above it is refused
+unless the user allows the overspeed (``--allow-overspeed``), then assessed with a warning
+(``balance.engines.check_operating_speed``): a spectrum at
 19 999 rpm gave a 7 h life for an engine that never turns above 9500. The single checking
 speeds of ``static`` / ``beam --rpm`` may go up to ``PROOF_FACTOR`` × max_rpm: an overspeed
 (proof) check of the rotor's strength, as the seed's own static check at 10 000 rpm (5 % above
@@ -61,47 +62,5 @@ def check_exclude_mm(v: float) -> None:
                          f"a band in [0, {EXCLUDE_MM_MAX:g}] mm", got=v)
 
 
-DEFAULT_ENGINE = "vm450"     # the x2_* balancer shafts' engine (see the module docstring)
 PROOF_FACTOR = 1.2           # static / beam checking speeds: up to 1.2 × max_rpm (docstring)
-
-
-def engine_speed_limit(engine=DEFAULT_ENGINE) -> tuple[float, str]:
-    """(the engine's max_rpm, where it comes from); an engine file without max_rpm: the
-    absolute ``RPM_CEILING``. ``engine`` is an engine name or file, or a variant's duty
-    (``model.variant.Duty``: the highest speed of its speed range), or None (no engine and no
-    duty: ``RPM_CEILING``)."""
-    from shaftfe.balance.engines import load_engine
-    if engine is None:
-        return RPM_CEILING, "shaftfe.util.limits.RPM_CEILING (no engine, no [duty] speed range)"
-    if hasattr(engine, "speed_limit"):
-        return engine.speed_limit()
-    from shaftfe.util.paths import repo_relative
-    e = load_engine(engine)
-    if e.max_rpm is None:
-        return RPM_CEILING, (f"shaftfe.util.limits.RPM_CEILING ({repo_relative(e.source)} "
-                             "gives no max_rpm)")
-    return float(e.max_rpm), f"max_rpm of {e.name} in {repo_relative(e.source)}"
-
-
 OVERSPEED_HINT = "; --allow-overspeed to assess it anyway"
-
-
-def check_operating_speed(rpm: float, engine: str, allow_overspeed: bool, source: str,
-                          what: str, *, factor: float = 1.0, hint: str = OVERSPEED_HINT) -> None:
-    """``rpm``, the highest speed of an assessment, against ``factor`` × the engine's max_rpm
-    (1: an operating history; ``PROOF_FACTOR``: a proof check): above it, refused unless
-    ``allow_overspeed``, then assessed with a visible warning. ``hint``: how the caller's user
-    goes past it (the commands' option; a caller without one says so)."""
-    from shaftfe.util.notices import warn
-    max_rpm, where = engine_speed_limit(engine)
-    limit = min(factor * max_rpm, RPM_CEILING)
-    if rpm <= limit:
-        return
-    bound = f"{limit:g} rpm, the {where}" if factor == 1 else \
-        f"{limit:g} rpm = {factor:g} × the {where} ({max_rpm:g} rpm: an overspeed proof check)"
-    if not allow_overspeed:
-        raise InputError(source, what, f"at most {bound}{hint}", got=float(rpm),
-                         reason="is above the engine's maximum speed")
-    warn("overspeed", source, f"{what} = {rpm:g} rpm is above {bound}: assessed as asked "
-         "(--allow-overspeed); the engine does not run there, so a life at it is not an "
-         "operating life")
