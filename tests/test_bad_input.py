@@ -555,7 +555,7 @@ B_CASES.update({
 CASES.update(B_CASES)          # counted by the catalogue's coverage test
 
 # --- issue #30 §1-2, slice a1 (the fatigue command's inputs) ---------------------------------
-# The engine's speed limit (util.limits: max_rpm of geometry/engines/vm450.toml, 9500 rpm; a
+# The engine's speed limit (balance.engines: max_rpm of geometry/engines/vm450.toml, 9500 rpm; a
 # static/beam proof check up to 1.2 × = 11 400 rpm), absurd sample rates and design lives
 # (history.SAMPLE_RATE_HZ, run.DESIGN_LIFE_*), options the chosen method does not use
 # (fatigue.method_options), an engine at rest, and endless or binary streams (history.MAX_*).

@@ -119,7 +119,7 @@ def check_options(o: AxiOptions) -> None:
         raise InputError("options", "n_max", "1 ... 999", got=o.n_max)
     if not (math.isfinite(o.truncation) and 0 < o.truncation < 1):
         raise InputError("options", "truncation", "0 < truncation < 1", got=o.truncation)
-    check_exclude_mm(o.exclude_mm)             # the one rule of the band (``util.limits``)
+    check_exclude_mm(o.exclude_mm, "--exclude-mm", "exclude_mm")   # ``util.limits``' rule
 
 
 @dataclass(frozen=True)

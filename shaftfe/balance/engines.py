@@ -33,6 +33,8 @@ from shaftfe.util.paths import ENGINES_DIR
 
 # key → (allowed text, predicate); all numeric keys the loader understands.
 _POS = ("> 0", lambda v: v > 0)
+# an engine speed: the one ceiling of every speed (``util.limits.RPM_CEILING``)
+_SPEED = (f"in (0, {RPM_CEILING:g}] rpm", lambda v: 0 < v <= RPM_CEILING)
 _NONNEG = (">= 0", lambda v: v >= 0)
 _KEYS: dict[str, tuple[str, object]] = {
     "crank_radius_mm": _POS,
@@ -54,9 +56,9 @@ _KEYS: dict[str, tuple[str, object]] = {
     "crank_balance_percent": ("in [0, 200]", lambda v: 0 <= v <= 200),
     "balancer_balance_percent": ("in [0, 200]", lambda v: 0 <= v <= 200),
     "tilt_deg": ("in [-180, 180]", lambda v: -180 <= v <= 180),
-    "idle_rpm": _POS,
-    "max_rpm": _POS,
-    "rpm": _POS,
+    "idle_rpm": _SPEED,
+    "max_rpm": _SPEED,
+    "rpm": _SPEED,
 }
 _TEXT_KEYS = ("name", "description")
 

@@ -84,7 +84,8 @@ def add_engine_option(p, engine_help: str | None = None,
 
 
 def check_speeds(rpms, args, variant=None) -> None:
-    """The checking speeds against the engine's limit for a proof check (util.limits): the
+    """The checking speeds against the engine's limit for a proof check
+    (``balance.engines.check_operating_speed``): the
     --engine given, else the variant's [duty] speed range."""
     from shaftfe.balance.engines import check_operating_speed
     from shaftfe.util.limits import PROOF_FACTOR

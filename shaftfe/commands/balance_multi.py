@@ -126,9 +126,10 @@ def _setup(args):
     R = args.radius_mm if args.radius_mm is not None else eng.crank_radius_mm
     T1 = args.rod_mm if args.rod_mm is not None else eng.rod_length_mm
     m_pos = args.m_pos_kg if args.m_pos_kg is not None else eng.m_pos_kg
+    if args.rpm is not None:
+        check_rpm(args.rpm, "--rpm", positive=True)    # the one speed ceiling (``util.limits``)
     rpm = args.rpm if args.rpm is not None else eng.rpm
     label = eng.name
-    check_rpm(rpm, "--rpm", positive=True)      # the one speed ceiling (``util.limits``)
     if T1 <= R:
         raise InputError("--rod-mm/--radius-mm", "rod length", f"> crank radius {R:g} mm",
                          got=T1)

@@ -285,7 +285,8 @@ class Duty:
         return self.speed_range_rpm[1]
 
     def speed_limit(self) -> tuple[float, str]:
-        """(the highest operating speed, where it comes from): ``util.limits``' bound."""
+        """(the highest operating speed, where it comes from): the bound
+        ``balance.engines.engine_speed_limit`` gives a variant's duty."""
         return self.max_rpm, f"highest speed of speed_range_rpm in {self.source} [duty]"
 
 

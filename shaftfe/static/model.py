@@ -248,7 +248,7 @@ def check_options(o: StaticOptions) -> None:
     if o.load_distribution not in DISTRIBUTIONS:
         raise InputError("--load-distribution", "load_distribution", " | ".join(DISTRIBUTIONS),
                          got=o.load_distribution)
-    check_exclude_mm(o.exclude_mm)             # the one rule of the band (``util.limits``)
+    check_exclude_mm(o.exclude_mm, "--exclude-mm", "exclude_mm")   # ``util.limits``' rule
     from shaftfe.fe.solvers import METHODS
     if o.solver not in METHODS:
         raise InputError("--solver", "solver", " | ".join(METHODS), got=o.solver)

@@ -55,11 +55,11 @@ def check_max_element(v: float, option: str = "--max-element") -> float:
     return float(v)
 
 
-def check_exclude_mm(v: float) -> None:
-    """``--exclude-mm`` of static and fatigue: a finite band in [0, EXCLUDE_MM_MAX] mm."""
+def check_exclude_mm(v: float, source: str = "command line", field: str = "--exclude-mm") -> None:
+    """``--exclude-mm`` of static and fatigue: a finite band in [0, EXCLUDE_MM_MAX] mm
+    (``source``, ``field``: where the value came from; the options classes name theirs)."""
     if not (math.isfinite(v) and 0 <= v <= EXCLUDE_MM_MAX):
-        raise InputError("command line", "--exclude-mm",
-                         f"a band in [0, {EXCLUDE_MM_MAX:g}] mm", got=v)
+        raise InputError(source, field, f"a band in [0, {EXCLUDE_MM_MAX:g}] mm", got=v)
 
 
 PROOF_FACTOR = 1.2           # static / beam checking speeds: up to 1.2 × max_rpm (docstring)
