@@ -32,6 +32,7 @@ import threading
 import numpy as np
 import scipy.sparse as sp
 
+from shaftfe.errors import SolverError
 from shaftfe.fe.facets import facet_quadrature, is_quadratic, n_nodes
 
 ASSEMBLY_CHUNK = 4096     # elements per block of element matrices in elasticity_stiffness
@@ -103,7 +104,6 @@ def _refuse_bad_elements(mesh, det: np.ndarray) -> None:
     """One-line ``SolverError`` naming the worst element with det J ≤ 0 (or not finite) at a
     quadrature point: a tangled or inverted element would otherwise be integrated with |det J|
     and give a plausible-looking but wrong result."""
-    from shaftfe.errors import SolverError
     if not det.size:
         raise SolverError("the mesh has no elements")
     worst = np.where(np.isfinite(det), det, -np.inf).min(axis=1)

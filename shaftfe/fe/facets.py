@@ -24,6 +24,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from shaftfe.errors import SolverError
+
 
 @dataclass(frozen=True, eq=False)
 class FacetQuadrature:
@@ -119,7 +121,6 @@ def facet_quadrature(mesh, facets, intorder: int | None = None) -> FacetQuadratu
     c = np.cross(t1, t2, axis=0)                                     # (3, nf, nq), outward
     area = np.linalg.norm(c, axis=0)
     if not (area > 0).all():
-        from shaftfe.errors import SolverError
         f = int(facets[np.argmin(area.min(axis=1))])
         raise SolverError(f"boundary facet {f} has a zero or undefined area element: a "
                           "degenerate or tangled facet; remesh")

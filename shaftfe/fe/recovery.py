@@ -48,6 +48,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from shaftfe.fe import assembly as fem
+from shaftfe.fe.surface import local_peak
 from shaftfe.util.units import von_mises
 
 STRESS_COMPONENTS = ("xx", "yy", "zz", "xy", "yz", "xz")
@@ -84,7 +86,6 @@ def hooke(grad: np.ndarray, E: float, nu: float) -> np.ndarray:
 def node_gradients(mesh):
     """(∂φ at every element's own nodes (ne, nloc, nloc, 3), the node numbers (nloc, ne)): what
     ``element_node_stress`` needs of the mesh, computed once for several fields on it."""
-    from shaftfe.fe import assembly as fem
     e = fem.scalar_element(mesh)
     X = np.asarray(e.doflocs, dtype=float).T                # reference node coordinates
     dN, _ = fem.gradients_at(mesh, X)                        # (ne, nq, nloc, 3), q = nodes
@@ -125,7 +126,6 @@ def average_to_nodes(mesh, s: np.ndarray, nodes: np.ndarray) -> np.ndarray:
 def patch_edge_nodes(mesh, patch_facets: np.ndarray) -> np.ndarray:
     """Nodes on the boundary curve of a face patch: nodes shared by a patch facet and a
     boundary facet outside the patch."""
-    from shaftfe.fe import assembly as fem
     boundary = mesh.boundary_facets()
     outside = np.setdiff1d(boundary, patch_facets)
     return np.intersect1d(fem.face_nodes(mesh, patch_facets), fem.face_nodes(mesh, outside))
@@ -135,7 +135,6 @@ def excluded_nodes(mesh, patches: list[np.ndarray], distance_mm: float = 0.0) ->
     """Nodes of every element that touches a patch edge (the singular-point rule) and, with
     ``distance_mm`` > 0, also every node closer than that to a patch-edge node (a
     mesh-independent band, so that the filtered peak converges under refinement)."""
-    from shaftfe.fe import assembly as fem
     edge = np.unique(np.concatenate([patch_edge_nodes(mesh, p) for p in patches])) \
         if patches else np.zeros(0, dtype=np.int64)
     ed = fem.element_nodes(mesh)
@@ -184,7 +183,6 @@ def _field_peak(kind, stress: np.ndarray, xyz: np.ndarray, nodes: np.ndarray, su
     best, where = float("-inf"), _NAN3
     rest = nodes
     if surf is not None:
-        from shaftfe.fe.surface import local_peak
         ok = surf.nodes[np.isfinite(surf.stress[0])]
         cov = np.intersect1d(nodes, ok)
         rest = np.setdiff1d(nodes, cov)

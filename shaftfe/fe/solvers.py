@@ -35,6 +35,10 @@ import numpy as np
 os.environ.setdefault("MKL_CBWR", "AUTO,STRICT")
 import scipy.sparse as sp
 
+from shaftfe.errors import SolverError
+from shaftfe.util.atomic import write_atomic
+from shaftfe.util.paths import cache_dir
+
 METHODS = ("auto", "superlu", "pardiso", "amg")
 
 
@@ -184,7 +188,6 @@ def _ordering_file(ia: np.ndarray, ja: np.ndarray, mtype: int, iparm: np.ndarray
         return None
     import hashlib
 
-    from shaftfe.util.paths import cache_dir
     settings = iparm.copy()
     settings[4] = 0                                  # iparm(5): how the ordering is passed
     h = hashlib.blake2b(digest_size=16)
@@ -211,7 +214,6 @@ def _save_ordering(path, perm: np.ndarray) -> None:
         return
     import io
 
-    from shaftfe.util.atomic import write_atomic
     buf = io.BytesIO()
     np.save(buf, perm, allow_pickle=False)
     try:
@@ -277,7 +279,6 @@ class _MKL:
                  ct.byref(ct.c_int32(0)), b.ctypes.data_as(f64), x.ctypes.data_as(f64),
                  ct.byref(err))
         if err.value != 0:
-            from shaftfe.errors import SolverError
             exc = SolverError(f"PARDISO failed in phase {phase} with error {err.value}")
             exc.code = err.value
             raise exc
@@ -305,7 +306,6 @@ class _Pardiso:
     name = "pardiso"
 
     def __init__(self, A, diag_add=None):
-        from shaftfe.errors import SolverError
         t0 = time.perf_counter()
         U = upper_triangle(A, diag_add)
         self.indefinite = False

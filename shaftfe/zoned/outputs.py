@@ -9,16 +9,17 @@ from __future__ import annotations
 
 from dataclasses import asdict
 
+from shaftfe.axisymmetric.outputs import SECTORS, write_surface_vtu
+from shaftfe.fe import recovery
+from shaftfe.io.vtu import write_fields_vtu
+from shaftfe.static.outputs import write_summary
+
 
 def zone_file(k: int) -> str:
     return f"zone_{k + 1}.vtu"
 
 
 def write_outputs(variant_arg: str, variant, opts, res, rpms, out) -> dict:
-    from shaftfe.axisymmetric.outputs import SECTORS, write_surface_vtu
-    from shaftfe.fe import recovery
-    from shaftfe.io.vtu import write_fields_vtu
-    from shaftfe.static.outputs import write_summary
     rpm_vtu = rpms[0]
     scale = res.case(rpm_vtu).scale
     path = write_surface_vtu(res.global_result.solution, scale, out / "result.vtu")

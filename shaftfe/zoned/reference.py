@@ -21,13 +21,15 @@ from functools import cached_property
 
 import numpy as np
 
-from shaftfe.axisymmetric.reference import pattern_views
+from shaftfe.axisymmetric.reference import SurfaceProbe, pattern_views
 from shaftfe.axisymmetric.reference import static_reference as axi_reference
+from shaftfe.axisymmetric.reference import surface_displacement as axi_displacement
 from shaftfe.fe import assembly as fem
 from shaftfe.fe import recovery
 from shaftfe.fe.pointeval import TetProbe
 from shaftfe.static.cache import StaticReference, facet_cells
 from shaftfe.zoned.solve import CUT_CLEAR_D
+from shaftfe.zoned.submodel import pattern_stress
 from shaftfe.zoned.zones import diameter_at
 
 
@@ -89,7 +91,6 @@ def _pattern_stress(res, g, keeps, views) -> dict:
     pattern_stress``, on its factorised stiffness, one gradient operator per zone)."""
     if not g.pattern_stress:
         return {}
-    from shaftfe.zoned.submodel import pattern_stress
     grads = [recovery.node_gradients(sub.shaft_mesh.mesh) for sub, _ in res.fields]
     out = {}
     for key, info, view in views:
@@ -157,7 +158,6 @@ class ZonedProbe:
     def from_arrays(cls, a: dict) -> ZonedProbe:
         from types import SimpleNamespace
 
-        from shaftfe.axisymmetric.reference import SurfaceProbe
         self = cls.__new__(cls)
         self.owner, self.local = a["owner"], a["local"]
         self.sizes = tuple(int(s) for s in a["sizes"])
@@ -232,7 +232,6 @@ def surface_displacement(res, ref) -> np.ndarray:
     surface_displacement``), each submodel's own nodal values in its zone."""
     from types import SimpleNamespace
 
-    from shaftfe.axisymmetric.reference import surface_displacement as axi_displacement
     p = ref.depth_probe
     out = np.empty((ref.n_nodes, 3))
     on = p.owner == 0

@@ -24,11 +24,17 @@ from dataclasses import asdict, dataclass, field
 
 from shaftfe.axisymmetric.model import AxiOptions
 from shaftfe.axisymmetric.solve import resolve_case, solve_axisymmetric
+from shaftfe.beam.planes import mesh_hot_axes
 from shaftfe.fe import reuse as fe_reuse
+from shaftfe.model.loads import actions
 from shaftfe.solid.features import by_region, features, keyway_region
+from shaftfe.solid.mesh import mesh_plan
 from shaftfe.solid.plan import plan_payload
 from shaftfe.static.model import StaticOptions
 from shaftfe.static.solve import _check_rpms
+from shaftfe.util import paths
+from shaftfe.util.atomic import write_atomic
+from shaftfe.util.fmt import json_clean
 from shaftfe.util.notices import warn
 from shaftfe.util.units import REF_RPM
 from shaftfe.zoned import submodel as sm
@@ -106,7 +112,6 @@ class ZonedResult:
         return next(c for c in self.cases if math.isclose(c.rpm, rpm))
 
     def to_dict(self) -> dict:
-        from shaftfe.util.fmt import json_clean
         g = self.global_result
         opts = {**asdict(self.options), "level": getattr(self.options.level, "name",
                                                          self.options.level)}
@@ -133,7 +138,6 @@ def _axi_options(o: StaticOptions, axi_level: str) -> AxiOptions:
 
 def _bands(variant, options) -> tuple:
     """The load bands that are not a part's seat (the seats are features already)."""
-    from shaftfe.model.loads import actions
     acts, _ = actions(variant.with_seed_load_case() if options.seed_load_case else variant,
                       seed_placement=options.seed_load_case)
     return tuple(a.band_mm for a in acts if not a.seat)
@@ -239,8 +243,6 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
     as they are (``_reusable``: the same zone, the same options but spin softening, which
     enters a submodel as loads, never in its stiffness): the unsoftened solve that fatigue's
     reference needs beside the softened one then factorises no zone again."""
-    from shaftfe.beam.planes import mesh_hot_axes
-    from shaftfe.solid.mesh import mesh_plan
     t0 = time.perf_counter()
     case = resolve_case(variant, case)
     rpms = _check_rpms(case.rpm if case is not None else rpm,
@@ -414,7 +416,6 @@ def _growth_file(plan, bands, zones, options, cache_dir):
     import hashlib
     import json
 
-    from shaftfe.util import paths
     payload = json.dumps([plan_payload(plan), list(bands), [(z.x0, z.x1) for z in zones],
                           str(options.level), options.order],
                          sort_keys=True, default=repr)
@@ -434,7 +435,6 @@ def _read_growth(path) -> dict:
 def _write_growth(path, grown: dict) -> None:
     import json
 
-    from shaftfe.util.atomic import write_atomic
     try:
         write_atomic(path, json.dumps(grown, sort_keys=True))
     except OSError:

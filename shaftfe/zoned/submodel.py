@@ -37,12 +37,15 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from shaftfe.axisymmetric import pointeval
+from shaftfe.errors import SolverError
 from shaftfe.fe import assembly as fem
-from shaftfe.fe import recovery
+from shaftfe.fe import recovery, surface
+from shaftfe.fe.solvers import factorize
 from shaftfe.solid.features import END_LEFT, END_RIGHT, bearing_group, is_patch
 from shaftfe.solid.mesh import build_solid_mesh
 from shaftfe.solid.plan import clip
 from shaftfe.static.model import load_patterns, mass_times, region_nodes, seat_rows, spin_seats
+from shaftfe.util import cachefile, paths
 from shaftfe.util.units import omega, von_mises
 
 
@@ -120,7 +123,6 @@ def _inside(zone, act) -> bool:
 def build_submodel(variant, plan, zone, options, *, level=None, cache_dir=None) -> SubModel:
     """Mesh, assemble and factorise the submodel of ``zone`` (``plan``: the whole shaft's mesh
     plan, ``solid.mesh.mesh_plan``, so the zone keeps the whole model's hot-spot sizing)."""
-    from shaftfe.fe.solvers import factorize
     t0 = time.perf_counter()
     sm = build_solid_mesh(clip(plan, zone.x0, zone.x1), level or options.level, options.order,
                           cache_dir=cache_dir, name=f"{variant.name}:{zone.name}")
@@ -131,7 +133,6 @@ def build_submodel(variant, plan, zone, options, *, level=None, cache_dir=None) 
                        if on)
     if not cut_groups:
         # a zone with no cut is the whole shaft: nothing drives it (its rigid motions are free)
-        from shaftfe.errors import SolverError
         raise SolverError(f"{variant.name}: the 3D zones of the features that are not round "
                           f"({', '.join(f.region for f in zone.features)}) cover the whole "
                           "shaft, so there is no global model to drive them: use --model solid")
@@ -184,7 +185,6 @@ def stiffness(sm, E: float, nu: float, cache_dir=None):
     gear-seat zone)."""
     import hashlib
 
-    from shaftfe.util import cachefile, paths
     key = hashlib.sha256(f"{sm.key}|{E!r}|{nu!r}|elasticity".encode()).hexdigest()
     path = paths.cache_dir(cache_dir) / f"zonek-{key[:24]}.npz"
     return cachefile.cached_csr(path, key, "zone stiffness",
@@ -198,7 +198,6 @@ def located(sub: SubModel, mesh):
     k-d tree (its import, scipy.spatial, is 0.2 s of x2_57's warm static run)."""
     import hashlib
 
-    from shaftfe.util import cachefile, paths
     xyz = sub.shaft_mesh.mesh.doflocs
     x, r = xyz[0], np.hypot(xyz[1], xyz[2])
     if not (sub.shaft_mesh.key and mesh.key):
@@ -274,7 +273,6 @@ def _recover(sub: SubModel, u: np.ndarray, grad=None):
     """(stress, averaged, surface) of the submodel's displacement ``u``: the nodal stresses
     with the free surface's surface-recovered ones (P2), the averaged nodal stresses alone,
     and the surface recovery (None for P1)."""
-    from shaftfe.fe import surface
     m = sub.shaft_mesh.mesh
     mat = sub.variant.material
     stress = recovery.nodal_stress(m, u, mat.E_MPa, mat.nu, grad)
