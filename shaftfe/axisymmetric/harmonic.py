@@ -27,6 +27,7 @@ import scipy.sparse as sp
 from shaftfe.axisymmetric import kernels as kn
 from shaftfe.errors import SolverError
 from shaftfe.fe import reuse
+from shaftfe.util import cachefile, paths
 
 CHUNK = 4000                # elements per assembly block (memory ~ CHUNK × 25 × 6 × 18 × 8 B × 4)
 
@@ -155,7 +156,6 @@ def _assemble(mesh, E: float, nu: float, key: str | None, cache_dir) -> Harmonic
     import time
     from pathlib import Path
 
-    from shaftfe.util import cachefile, paths
     t0 = time.perf_counter()
     N = mesh.n_nodes
     shape = (3 * N, 3 * N)

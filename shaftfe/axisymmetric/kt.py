@@ -35,6 +35,9 @@ from shaftfe.axisymmetric.mesh import (
     arc_length_angle,
     mesh_geometry,
 )
+from shaftfe.axisymmetric.model import AxiOptions
+from shaftfe.axisymmetric.solve import solve_axisymmetric
+from shaftfe.model.grooves import din471, din509
 from shaftfe.solid.features import (
     END_LEFT,
     END_RIGHT,
@@ -42,6 +45,7 @@ from shaftfe.solid.features import (
     groove_region,
     shoulder_region,
 )
+from shaftfe.solid.plan import Groove, _undercut_profile, groove_pieces
 
 # the bar's mesh: fillet elements 0.1 ρ (at 0.2 ρ the first level is still pre-asymptotic:
 # measured on D/d 1.5, r/d 0.1, the three levels then spread 5e-3 against 1.6e-4)
@@ -96,8 +100,6 @@ def ring_groove_bar(D: float, rho: float) -> MeridianGeometry:
     """A round bar of diameter D, 8 D long, with DIN 471's retaining-ring groove for D at its
     middle (width m and depth t from ``model.grooves.din471``), flat-bottomed, its two bottom
     corners of radius ρ: the groove's outline as the shaft's (``solid.plan._groove_profile``)."""
-    from shaftfe.model.grooves import din471
-    from shaftfe.solid.plan import Groove, groove_pieces
     mt = din471(D)
     if mt is None:
         raise ValueError(f"DIN 471 has no groove for diameter {D:g}")
@@ -124,8 +126,6 @@ def undercut_bar(D: float, d: float, kind: str, rho: float | None = None):
     fillet, the DIN 509 undercut ``kind`` ("din509_e" | "din509_f") of radius ``rho`` (None:
     the default row for d, ``model.grooves.din509``) in the Ø d at the step, as the shaft's
     outline draws it (``solid.plan``): (geometry, the plan's ``Groove``)."""
-    from shaftfe.model.grooves import din509
-    from shaftfe.solid.plan import Groove, _undercut_profile
     u = din509(d, rho)
     if u is None:
         raise ValueError(f"DIN 509 has no undercut of radius {rho} for diameter {d:g}")
@@ -364,8 +364,6 @@ def converged_peaks(variant, rpm: float, regions, level="default", levels: int =
     axisymmetric solve at ``levels`` uniform refinements of ``level`` (``AxiOptions`` fields in
     ``options``), ``richardson`` of each region's von Mises and max principal peak:
     {region: {"von_mises": …, "max_principal": …}, "nodes": [...]}, each with its "values"."""
-    from shaftfe.axisymmetric.model import AxiOptions
-    from shaftfe.axisymmetric.solve import solve_axisymmetric
     vals = {r: {"von_mises": [], "max_principal": []} for r in regions}
     nodes = []
     for ref in range(levels):

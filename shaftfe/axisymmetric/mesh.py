@@ -40,6 +40,8 @@ from shaftfe.solid.features import (
     taper_region,
 )
 from shaftfe.solid.mesh import GMSH_LOCK, gmsh_version
+from shaftfe.solid.plan import TOL, profile
+from shaftfe.util import cachefile, paths
 
 CACHE_FORMAT = 1
 
@@ -140,7 +142,6 @@ def shaft_geometry(sol, bands=()) -> MeridianGeometry:
     ``[[loads]]`` entry that is not a part's seat): the straight outline is split at their ends
     and every outline piece off the axis and the end faces whose middle lies in [x0, x1] gets
     the group; no bands, the outline of the plan alone (the mesh key unchanged)."""
-    from shaftfe.solid.plan import TOL, profile
     prof = profile(sol)
     fil = {round(f.x_shoulder, 9): f for f in sol.fillets}
     undercut = {round(g.x_face, 9) for g in sol.grooves if g.undercut}
@@ -256,7 +257,6 @@ def mesh_key(geometry: MeridianGeometry, level: AxiLevel, refine: int, gmsh_vers
 def mesh_geometry(geometry: MeridianGeometry, level: str | AxiLevel = "default",
                   refine: int = 0, *, cache_dir=None, use_cache: bool = True) -> MeridianMesh:
     """Mesh the outline (cached, see the module docstring)."""
-    from shaftfe.util import cachefile, paths
     t0 = time.perf_counter()
     lv = axi_level(level)
     if not (isinstance(refine, int) and 0 <= refine <= 6):

@@ -61,6 +61,7 @@ from shaftfe.axisymmetric import harmonic as hm
 from shaftfe.axisymmetric import kernels as kn
 from shaftfe.axisymmetric import recovery as rc
 from shaftfe.axisymmetric.mesh import (
+    BAND_PREFIX,
     AxiLevel,
     axi_level,
     mesh_geometry,
@@ -68,6 +69,7 @@ from shaftfe.axisymmetric.mesh import (
 )
 from shaftfe.errors import InputError, SolverError
 from shaftfe.model.loads import actions, check_torque_path, law_factor, pattern_key
+from shaftfe.model.spin import spinning_parts
 from shaftfe.model.validate import validate_variant
 from shaftfe.solid.features import (
     ROUND_NOTCH_KINDS,
@@ -76,7 +78,8 @@ from shaftfe.solid.features import (
     kind_of,
     seat_group,
 )
-from shaftfe.static.model import DISTRIBUTIONS, load_case_label
+from shaftfe.solid.plan import prepare
+from shaftfe.static.model import DISTRIBUTIONS, legendre_ritz, load_case_label
 from shaftfe.util.limits import check_exclude_mm
 from shaftfe.util.units import REF_RPM, omega, von_mises
 
@@ -288,7 +291,6 @@ def _components(acts, body, pressed: bool) -> list[Component]:
 
 def _band_group(a, plan) -> str:
     """The mesh group a remote action is delivered through: its part's seat, else its band."""
-    from shaftfe.axisymmetric.mesh import BAND_PREFIX
     seats = {st.name: st for st in plan.seats}
     st = seats.get(seat_group(a.seat))
     if st is not None and np.allclose((st.x0, st.x1), a.band_mm, atol=1e-6):
@@ -299,7 +301,6 @@ def _band_group(a, plan) -> str:
 def load_bands(variant, plan, seed_placement: bool) -> tuple:
     """(group, x0, x1) of every remote action's band that is not a part's seat (for
     ``mesh.shaft_geometry``)."""
-    from shaftfe.axisymmetric.mesh import BAND_PREFIX
     acts, _ = actions(variant, seed_placement=seed_placement)
     out = {}
     for a in acts:
@@ -378,7 +379,6 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, rpm: float = REF
         variant = variant.with_seed_load_case()
     validate_variant(variant, springs=not options.rigid_supports)
     check_torque_path(variant)
-    from shaftfe.solid.plan import prepare
     plan = prepare(variant)                      # the solid plan: outline, seats, omissions
     acts, body = actions(variant, seed_placement=options.seed_load_case)
     mesh = mesh_geometry(shaft_geometry(plan, load_bands(variant, plan, options.seed_load_case)),
@@ -527,8 +527,6 @@ def _softening(h, mesh, variant, omega2: float):
     motion × its m ω²) of the co-rotating softening at ω² (module docstring). A seat's tilt
     row ``tz`` reads (θ_z, −θ_y) on the two parts: the tilt matrix T on (θ_y, θ_z) acts there
     as P T Pᵀ, P = [[0, 1], [−1, 0]]."""
-    from shaftfe.model.spin import spinning_parts
-    from shaftfe.static.model import legendre_ritz
     P = np.array([[0.0, 1.0], [-1.0, 0.0]])
     soft, centroid = [], []
     for p in spinning_parts(variant):

@@ -11,6 +11,8 @@ from dataclasses import asdict
 import numpy as np
 
 from shaftfe.axisymmetric import recovery as rc
+from shaftfe.io.vtu import write_point_fields
+from shaftfe.static.outputs import write_summary
 from shaftfe.util.units import von_mises
 
 SECTORS = 36          # 10°: a viewing mesh (the peaks come from the 1° analysis); 72 doubles the
@@ -53,7 +55,6 @@ def revolved_fields(sol, scale: float, sectors: int = SECTORS):
 def write_revolved_vtu(sol, scale: float, path):
     """The meridian solution ``sol`` × ``scale`` revolved (``revolved_fields``) into ``path``:
     point data ``displacement_mm`` and ``von_mises_MPa``, cell data ``region`` 0."""
-    from shaftfe.io.vtu import write_point_fields
     pts, cells, disp, vm = revolved_fields(sol, scale)
     write_point_fields(pts, [("wedge", cells)], [np.zeros(cells.shape[0], dtype=np.int32)],
                        path, {"displacement_mm": disp, "von_mises_MPa": vm})
@@ -92,7 +93,6 @@ def revolved_surface(sol, scale: float, sectors: int = SECTORS):
 def write_surface_vtu(sol, scale: float, path):
     """The revolved outline (``revolved_surface``) into ``path``: point data
     ``displacement_mm`` and ``von_mises_MPa``, cell data ``region`` 0."""
-    from shaftfe.io.vtu import write_point_fields
     pts, cells, disp, vm = revolved_surface(sol, scale)
     write_point_fields(pts, [("quad", cells)], [np.zeros(cells.shape[0], dtype=np.int32)],
                        path, {"displacement_mm": disp, "von_mises_MPa": vm})
@@ -100,7 +100,6 @@ def write_surface_vtu(sol, scale: float, path):
 
 
 def write_outputs(variant_arg: str, variant, opts, res, rpms, out) -> dict:
-    from shaftfe.static.outputs import write_summary
     rpm_vtu = rpms[0]
     path = write_revolved_vtu(res.solution, res.case(rpm_vtu).scale, out / "result.vtu")
     return write_summary(out, variant_arg, variant, rpms,

@@ -23,6 +23,8 @@ from functools import cached_property
 import numpy as np
 
 from shaftfe.axisymmetric import recovery as rc
+from shaftfe.axisymmetric.model import superpose
+from shaftfe.axisymmetric.pointeval import StressField
 from shaftfe.axisymmetric.solve import (
     excluded_nodes,
     loaded_seat_angles,
@@ -30,7 +32,10 @@ from shaftfe.axisymmetric.solve import (
     seat_edge_band,
     surface_sigma,
 )
+from shaftfe.fe.recovery import von_mises
+from shaftfe.io.vtu import span_envelope, write_point_fields
 from shaftfe.model.loads import factored_loads, pattern_label, solve_pattern
+from shaftfe.static.cache import StaticReference
 
 
 def local_to_cartesian(s: np.ndarray, tangent: np.ndarray, sign: np.ndarray,
@@ -114,7 +119,6 @@ def pattern_views(res) -> tuple[tuple, tuple]:
     solve's columns are softened, so fatigue takes these from its unsoftened solve
     (``fatigue.run.surface_reference``), as the full 3D model's reference holds unsoftened
     per-pattern stresses."""
-    from shaftfe.axisymmetric.model import superpose
     sol = res.solution
     cols = getattr(sol, "columns", None)
     if cols is None:
@@ -131,7 +135,6 @@ def static_reference(res, seconds: float | None = None, views=None):
     """The ``StaticReference`` (see the module docstring) of an ``AxiResult`` at its
     reference speed, with the per-pattern fields of ``pattern_views`` (``views``: its result,
     when the caller has it already)."""
-    from shaftfe.static.cache import StaticReference
     t0 = time.perf_counter()
     sol = res.solution
     mesh, S = sol.mesh, sol.surface
@@ -168,7 +171,6 @@ def static_reference(res, seconds: float | None = None, views=None):
         lookup[c] = names.index(name)
     gid = lookup[cur]
     ok = gid >= 0
-    from shaftfe.fe.recovery import von_mises
     vm = von_mises(stress)
     o = res.options
     return StaticReference(
@@ -216,7 +218,6 @@ class SurfaceProbe:
     def field(self):
         """The harmonics' nodal stresses and the element tree, made when FKM first asks (the
         seed method never does)."""
-        from shaftfe.axisymmetric.pointeval import StressField
         return StressField.of(self.sol)
 
     def arrays(self) -> dict[str, np.ndarray]:
@@ -235,7 +236,6 @@ class SurfaceProbe:
     def from_arrays(cls, a: dict) -> SurfaceProbe:
         from types import SimpleNamespace
 
-        from shaftfe.axisymmetric.pointeval import StressField
         self = cls.__new__(cls)
         self.sol = None
         self.theta, self.n_xr, self.h = a["theta"], a["n_xr"], a["h"]
@@ -269,7 +269,6 @@ def surface_displacement(res, ref) -> np.ndarray:
 def surface_envelope(ref, n_slices: int = 120) -> tuple[np.ndarray, np.ndarray]:
     """The von Mises envelope along x of the revolved surface at the reference speed: the
     largest value of the triangles spanning each slice (``io.vtu.span_envelope``)."""
-    from shaftfe.io.vtu import span_envelope
     x = ref.xyz[0][ref.face_cells]
     v = ref.von_mises_ref[ref.face_cells].max(axis=1)
     return span_envelope(x.min(axis=1), x.max(axis=1), v,
@@ -279,7 +278,6 @@ def surface_envelope(ref, n_slices: int = 120) -> tuple[np.ndarray, np.ndarray]:
 def write_surface_vtu(ref, path, point_data: dict):
     """The revolved surface of ``ref`` (triangles, cell data ``region`` = index + 1 into
     ``ref.face_groups``) with the given point fields (``io.vtu.write_point_fields``)."""
-    from shaftfe.io.vtu import write_point_fields
     return write_point_fields(ref.xyz.T, [("triangle", ref.face_cells)],
                               [np.asarray(ref.face_group, dtype=np.int32) + 1], path,
                               point_data)

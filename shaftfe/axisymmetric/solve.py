@@ -21,7 +21,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from shaftfe.axisymmetric import recovery as rc
-from shaftfe.axisymmetric.mesh import BAND_PREFIX, arc_length_angle
+from shaftfe.axisymmetric.mesh import AXI_LEVELS, BAND_PREFIX, arc_length_angle
 from shaftfe.axisymmetric.model import AxiOptions, AxiSolution, solve_model, superpose
 from shaftfe.errors import InputError
 from shaftfe.fe import reuse
@@ -37,7 +37,12 @@ from shaftfe.solid.features import (
     region_of,
     seat_region,
 )
+from shaftfe.solid.plan import warn_sharp_corners
+from shaftfe.static.benchmark import notch_bars
 from shaftfe.static.result import BearingReaction, Station
+from shaftfe.static.solve import _check_rpms
+from shaftfe.util.fmt import json_clean
+from shaftfe.util.notices import warn
 from shaftfe.util.units import REF_RPM, rpm2_scale, von_mises
 
 SEAT_EDGE_BAND_DEG = 10.0
@@ -100,7 +105,6 @@ class AxiResult:
         return next(c for c in self.cases if math.isclose(c.rpm, rpm))
 
     def to_dict(self) -> dict:
-        from shaftfe.util.fmt import json_clean
         opts = {**asdict(self.options), "level": self.options.level_name}
         return json_clean({
             "model": "axisymmetric", "variant": self.variant, "variant_hash": self.variant_hash,
@@ -340,11 +344,9 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
     solve each, on the same cached mesh), the fields are the first speed's."""
     from dataclasses import replace
 
-    from shaftfe.static.solve import _check_rpms
     t0 = time.perf_counter()
     case = resolve_case(variant, case)
     rpms = _check_rpms(case.rpm if case is not None else rpm)
-    from shaftfe.solid.plan import warn_sharp_corners
     warn_sharp_corners(variant)          # a fillet 0 at a loaded shoulder: not a stress there
     if options.spin_softening and len(rpms) > 1:
         # the fields are the first positive speed's; a 0 rpm case (no load, no softening) is
@@ -430,8 +432,6 @@ def truth_bars(variant, options: AxiOptions, peaks) -> tuple[dict, dict]:
     and spin softening on or off were both measured (x2_57). ``converge_all_fillets`` is
     free: it only adds harmonics, which change a span fillet's peak by less than the
     truncation tolerance (1e-4 of the largest peak)."""
-    from shaftfe.axisymmetric.mesh import AXI_LEVELS
-    from shaftfe.static.benchmark import notch_bars
     name, d = options.level_name, AxiOptions()
     if not isinstance(options.level, str) and options.level != AXI_LEVELS.get(name):
         return {}, {}
@@ -448,7 +448,6 @@ GAUGE_TOL = 1e-9     # relative: Σ T = 0 per law to round-off (``model.loads.TO
 def _load_notes(sol: AxiSolution, cases) -> list[str]:
     """How the loads enter (the placement, the twist's support) and the torsion gauge's
     check: its reaction must vanish against the applied torques (a warning if it does not)."""
-    from shaftfe.util.notices import warn
     cols = sol.columns
     out = []
     if not sol.options.seed_load_case and any(a.force_N(REF_RPM) for a in
