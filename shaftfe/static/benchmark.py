@@ -35,7 +35,12 @@ import json
 from dataclasses import dataclass
 from pathlib import Path
 
+from shaftfe.model.loader import load_variant
+from shaftfe.model.loads import actions
 from shaftfe.solid.features import features, fillet_region, groove_region
+from shaftfe.solid.levels import LEVELS
+from shaftfe.solid.mesh import end_fillet
+from shaftfe.solid.plan import prepare
 from shaftfe.util.paths import (
     BENCHMARK_JSON,
     GROOVE_BARS_JSON,
@@ -57,7 +62,6 @@ HULL_TOL = 1e-6
 
 def measured_variant_hash() -> str:
     """The content hash of the shipped variant whose fillets truth.json measured."""
-    from shaftfe.model.loader import load_variant
     return load_variant(MEASURED_VARIANT).content_hash
 
 
@@ -93,7 +97,6 @@ def benchmark_errors(level: str, order: int = 2, path: Path = BENCHMARK_JSON,
 
 
 def _deflection_error(level: str, order: int, path: Path) -> dict | None:
-    from shaftfe.solid.levels import LEVELS
     try:
         rows = json.loads(Path(path).read_text())
     except (OSError, ValueError):
@@ -237,7 +240,6 @@ def in_hull(points, p, tol: float = HULL_TOL) -> bool:
 def bending_only(variant) -> bool:
     """Every load of ``variant`` bends the shaft (the bars' load kind, ``MeasuredBars.load``): no
     action has an axial force or a torque, and no body force acts along the axis."""
-    from shaftfe.model.loads import actions
     acts, body = actions(variant)
     return all(a.F_N[0] == 0 and a.M_Nmm[0] == 0 for a in acts) and \
         all(b.accel_mm_s2[0] == 0 for b in body)
@@ -254,8 +256,6 @@ def notch_bars(variant, level: str, peaks, model: str) -> tuple[dict, dict]:
     and every load bends the shaft (``bending_only``); the reasons name the geometry or the
     load. The caller checks that the level and options are those the bars were measured
     under."""
-    from shaftfe.solid.mesh import end_fillet
-    from shaftfe.solid.plan import prepare
     if level not in _bars_of(model):
         return {}, {}
     plan = prepare(variant)

@@ -48,9 +48,16 @@ from pathlib import Path
 
 import numpy as np
 
+from shaftfe.beam.planes import mesh_hot_axes
+from shaftfe.fe import assembly as fem
+from shaftfe.fe import recovery
+from shaftfe.model.variant import content_hash
+from shaftfe.solid import mesh as mesh_mod
 from shaftfe.solid.features import is_patch
-from shaftfe.util import paths
+from shaftfe.static.model import region_nodes
+from shaftfe.util import cachefile, paths
 from shaftfe.util.cachefile import code_fingerprint
+from shaftfe.util.units import REF_RPM
 
 STATIC_CACHE_FORMAT = 3          # 2: spin softening's unsoftened stress (stress_linear)
 #                                  3: the per-pattern stresses (pattern_stress, patterns)
@@ -127,8 +134,6 @@ def _readonly(a) -> np.ndarray:
 def predicted_mesh_key(variant, options) -> str:
     """The key ``shaftfe.solid.mesh.build_mesh`` gives the mesh the static solve will use (the seed
     load case meshes the variant reduced to the seed's parts, as ``static.build_model``)."""
-    from shaftfe.beam.planes import mesh_hot_axes
-    from shaftfe.solid import mesh as mesh_mod
     v = variant.with_seed_load_case() if options.seed_load_case else variant
     plan = mesh_mod.mesh_plan(v, options.level, mesh_hot_axes(v))
     return mesh_mod.mesh_key(plan, options.level, options.order, mesh_mod.gmsh_version())
@@ -151,7 +156,6 @@ def variant_hash(variant) -> str:
     """The variant's content hash, always computed from its content: a variant changed in code
     (``dataclasses.replace(v, loads=...)``) keeps the loaded file's ``content_hash`` field, and
     trusting that field would return the unchanged variant's cached solution."""
-    from shaftfe.model.variant import content_hash
     return content_hash(variant)
 
 
@@ -169,7 +173,6 @@ def singular_patches(mesh) -> list[np.ndarray]:
 def facet_cells(mesh) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
     """Triangles (triangle6 for P2: corners, then the mid-side nodes of edges 01, 12, 20) of
     every named face group, the group index of each, and the group names (sorted)."""
-    from shaftfe.fe import assembly as fem
     names = tuple(sorted(mesh.boundaries))
     if not names:
         return np.zeros((0, 6 if fem.is_quadratic(mesh) else 3), np.int64), \
@@ -219,7 +222,6 @@ def region_peaks(ref: StaticReference) -> dict[str, float]:
 def store(variant, options, res, cache_dir=None) -> StaticReference:
     """Put a ``StaticResult`` solved elsewhere (``shaftfe static``) into the cache, so that a
     later ``shaftfe fatigue`` on the same model reuses it instead of solving again."""
-    from shaftfe.util.units import REF_RPM
     mkey = predicted_mesh_key(variant, options)
     key = static_key(variant, options, mkey, REF_RPM)
     ref = from_result(res, key)
@@ -247,9 +249,6 @@ def store(variant, options, res, cache_dir=None) -> StaticReference:
 
 def from_result(res, key: str = "", seconds: float = 0.0) -> StaticReference:
     """A ``StaticReference`` from a ``shaftfe.static.result.StaticResult`` (not cached)."""
-    from shaftfe.fe import assembly as fem
-    from shaftfe.fe import recovery
-    from shaftfe.static.model import region_nodes
     m = res.mesh.mesh
     band = float(getattr(res.options, "exclude_mm", 0.0))
     excl = (recovery.excluded_nodes(m, singular_patches(m), band) if band > 0
@@ -291,7 +290,6 @@ def _save(path: Path, ref: StaticReference, extra: dict | None = None,
           extra_meta: dict | None = None) -> None:
     """Write ``ref`` as one checksummed file; ``extra``: more arrays in the same file (read
     back by ``_load_entry``), ``extra_meta`` their description."""
-    from shaftfe.util import cachefile
     names = sorted(ref.regions)
     meta = {"format": STATIC_CACHE_FORMAT, "key": ref.key, "variant": ref.variant,
             "variant_hash": ref.variant_hash, "options": ref.options, "ref_rpm": ref.ref_rpm,
@@ -321,7 +319,6 @@ def _load(path: Path, key: str, name: str, t0: float) -> StaticReference | None:
 
 def _load_entry(path: Path, key: str, name: str, t0: float, what: str = "static"):
     """(reference, extra arrays, extra meta) of a cache file (``_save``), or None."""
-    from shaftfe.util import cachefile
     got = cachefile.load(path, key, what)
     if got is None:
         return None

@@ -6,8 +6,10 @@ import math
 from dataclasses import replace
 
 from shaftfe.solid.features import is_notch
+from shaftfe.solid.levels import ESTIMATE_PAIR, level_name, mesh_level
 from shaftfe.static.model import StaticOptions
 from shaftfe.static.result import StaticResult
+from shaftfe.static.solve import solve_static
 
 
 def with_error_estimate(res: StaticResult, variant, options: StaticOptions, cache_dir=None,
@@ -29,10 +31,8 @@ def estimate_error(res: StaticResult, variant, options: StaticOptions, cache_dir
     for stress peaks; (N_fine/N_coarse)^(1/3) from the element counts for deflections. Orders
     assumed: p = 2 for recovered P2 stresses (p = 1 for P1), p = 3 for P2 displacements (2 for
     P1). An estimate, not a bound: on a graded mesh the asymptotic range is not guaranteed."""
-    from shaftfe.solid.levels import ESTIMATE_PAIR, level_name, mesh_level
     other = other_level or ESTIMATE_PAIR.get(level_name(options.level), "fine")
     k_this, k_other = mesh_level(options.level).k_fillet, mesh_level(other).k_fillet
-    from shaftfe.static.solve import solve_static
     case = getattr(res, "case_name", "") or None        # a load case: its own rpm
     res2 = solve_static(variant, None if case else [c.rpm for c in res.cases],
                         replace(options, level=other), case=case, cache_dir=cache_dir,

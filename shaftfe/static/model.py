@@ -27,9 +27,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from shaftfe.beam.planes import mesh_hot_axes
 from shaftfe.errors import InputError
 from shaftfe.fe import assembly as fem
 from shaftfe.fe import reuse, supports
+from shaftfe.fe.solvers import METHODS
 from shaftfe.model import loads as loadmodel
 from shaftfe.model.spin import DEFAULT_PART_MODEL, part_rows, spinning_part
 from shaftfe.model.validate import validate_variant
@@ -42,7 +44,8 @@ from shaftfe.solid.features import (
     seat_group,
     seat_halves,
 )
-from shaftfe.solid.levels import MeshLevel
+from shaftfe.solid.levels import MeshLevel, mesh_level
+from shaftfe.solid.mesh import build_mesh
 from shaftfe.util.limits import check_exclude_mm
 from shaftfe.util.units import REF_RPM, omega
 
@@ -241,7 +244,6 @@ def _direction(angle_deg: float) -> np.ndarray:
 def check_options(o: StaticOptions) -> None:
     """Every rule of the static options, one place for the command line and a caller in
     Python (InputError naming the command line's option)."""
-    from shaftfe.solid.levels import mesh_level
     if o.order not in (1, 2):
         raise InputError("--order", "order", "1 | 2", got=o.order)
     mesh_level(o.level)
@@ -249,7 +251,6 @@ def check_options(o: StaticOptions) -> None:
         raise InputError("--load-distribution", "load_distribution", " | ".join(DISTRIBUTIONS),
                          got=o.load_distribution)
     check_exclude_mm(o.exclude_mm, "--exclude-mm", "exclude_mm")   # ``util.limits``' rule
-    from shaftfe.fe.solvers import METHODS
     if o.solver not in METHODS:
         raise InputError("--solver", "solver", " | ".join(METHODS), got=o.solver)
 
@@ -262,8 +263,6 @@ def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh
         variant = variant.with_seed_load_case()
     validate_variant(variant, springs=not options.rigid_supports)
     if shaft_mesh is None:
-        from shaftfe.beam.planes import mesh_hot_axes
-        from shaftfe.solid.mesh import build_mesh
         shaft_mesh = build_mesh(variant, options.level, options.order, cache_dir=cache_dir,
                                 hot_axes=mesh_hot_axes(variant))
     m = shaft_mesh.mesh

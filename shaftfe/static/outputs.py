@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 from dataclasses import asdict
 
+from shaftfe.io import vtu as export
 from shaftfe.util.atomic import write_atomic
 from shaftfe.util.notices import collected
 from shaftfe.util.versions import package_versions
@@ -22,7 +23,6 @@ def clearance_of(variant) -> tuple[float, float] | None:
 def write_outputs(variant_arg: str, variant, opts, res, rpms: list[float], out) -> dict:
     """result.vtu, deflection.png and summary.json into the directory ``out``; the summary.
     ``variant_arg``: the variant as the user named it (a name or a path)."""
-    from shaftfe.io import vtu as export
     rpm_vtu = rpms[0]
     vtu, regions = export.write_vtu(res, out / "result.vtu", rpm_vtu)
     export.plot_png(res, out / "deflection.png", rpm_vtu, clearance=clearance_of(variant))

@@ -11,6 +11,8 @@ import numpy as np
 
 from shaftfe.solid.features import fillet_region, kind_of, segment_of
 from shaftfe.static.model import StaticOptions
+from shaftfe.util.fmt import json_clean
+from shaftfe.util.notices import warn
 
 # A peak stress of the 3D path is the maximum of the fitted surface stress (fe.surface), which
 # can lie between the nodes and above the largest nodal value that a VTU, `shaftfe view` and the
@@ -52,7 +54,6 @@ def unresolved_fillets(peak_of: dict[str, float],
 def warn_unresolved_fillets(peak_of: dict[str, float],
                             basis: str = PEAK_FIT_LABEL) -> dict[str, str]:
     """``unresolved_fillets`` with a visible warning for each (``shaftfe.util.notices``)."""
-    from shaftfe.util.notices import warn
     out = unresolved_fillets(peak_of, basis)
     for region, why in out.items():
         warn("unresolved-fillet", region, why)
@@ -153,7 +154,6 @@ class StaticResult:
         return next(c for c in self.cases if math.isclose(c.rpm, rpm))
 
     def to_dict(self) -> dict:
-        from shaftfe.util.fmt import json_clean
         return json_clean({
             "variant": self.variant, "variant_hash": self.variant_hash,
             "options": asdict(self.options), "load_case": self.options.load_case,

@@ -53,16 +53,22 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from shaftfe.beam import solve as beam_solve
 from shaftfe.beam.solve import check_deflection
 from shaftfe.errors import InputError, ShaftfeError, SolverError
 from shaftfe.fe import assembly as fem
-from shaftfe.fe import recovery, reuse, supports
+from shaftfe.fe import recovery, reuse, solvers, supports, surface
 from shaftfe.fe.lowrank import LowRankSolver
+from shaftfe.fe.pointeval import centroid_tree, interpolate
+from shaftfe.fe.surface import SurfaceField
 from shaftfe.model.bearing_life import l10h
+from shaftfe.model.loads import laws
 from shaftfe.model.spin import centroid_rows
+from shaftfe.solid.levels import LEVELS
 from shaftfe.solid.mesh import warn_unresolved_grooves
 from shaftfe.solid.plan import warn_sharp_corners
 from shaftfe.static import cache as sc
+from shaftfe.static.benchmark import notch_bars, shoulder_bars
 from shaftfe.static.model import (
     REF_RPM,
     StaticModel,
@@ -144,7 +150,6 @@ def solve_model(model: StaticModel, rhs: np.ndarray | None = None, *,
     """Solve the supported system for ``rhs`` (default: the model's load at REF_RPM; a 2D array
     (ndof, k) gives a list of k solutions from the same factorisation); a relative residual or
     support-row violation above ``tol`` is a SolverError."""
-    from shaftfe.fe import solvers
     m = model.shaft_mesh.mesh
     K = model.K
     free = supports.unrestrained_modes(list(model.blocks), _modes(m))
@@ -236,12 +241,10 @@ def probe(mesh, u: np.ndarray, pts: np.ndarray, tree=None) -> tuple[np.ndarray, 
     (``shaftfe.fe.pointeval.interpolate``: exact for straight elements; the axis stations
     this is used for lie in interior elements, which the mesher leaves straight). Points not
     found get NaN."""
-    from shaftfe.fe.pointeval import interpolate
     return interpolate(mesh.p, fem.element_nodes(mesh).T, u.reshape(-1, 3), pts, tree)
 
 
 def _centroid_tree(mesh):
-    from shaftfe.fe.pointeval import centroid_tree
     return centroid_tree(mesh.p, mesh.t.T)
 
 
@@ -282,7 +285,6 @@ def free_facets(mesh) -> np.ndarray:
 def _stress_field(model: StaticModel, u: np.ndarray):
     """(stress (6, n), surface recovery or None): nodal averaging everywhere, the surface
     recovery's values on the traction-free faces."""
-    from shaftfe.fe import surface
     m, mat = model.shaft_mesh.mesh, model.variant.material
     stress = recovery.nodal_stress(m, u, mat.E_MPa, mat.nu)
     surf = None
@@ -445,7 +447,6 @@ def _beam_check(v, rpms: list[float], options: StaticOptions) -> dict:
     """The beam model's answer at every rpm for the side-by-side check; a variant the beam
     cannot model (a ShaftfeError: bad input for the beam, a singular beam system) is reported
     as such, anything else is a bug and propagates."""
-    from shaftfe.beam import solve as beam_solve
     try:
         return {br.rpm: br for br in beam_solve.analyse(
             v, rpms, rigid_supports=options.rigid_supports, spread_loads=True,
@@ -518,8 +519,6 @@ def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> tuple[d
     feature's zone, inside the measured hull, in bending) for a named level used as named,
     under the options the bars were measured with (``_BAR_CONDITIONS``), on the pipeline's own
     mesh of the variant (not a mesh the caller built otherwise)."""
-    from shaftfe.solid.levels import LEVELS
-    from shaftfe.static.benchmark import notch_bars, shoulder_bars
     lv = options.level
     name = lv if isinstance(lv, str) else lv.name
     bars = shoulder_bars().bars["solid"]
@@ -561,7 +560,6 @@ def _combine_recovered(model: StaticModel, parts: list, phi: list[float],
                        options: StaticOptions) -> _Recovered:
     """A case's stresses and peaks from the per-pattern stress fields (stress, surface fit and
     its trace samples are linear in u): Σ φ_k field_k, then the peaks of the sum."""
-    from shaftfe.fe.surface import SurfaceField
     t1 = time.perf_counter()
     stress = sum(f * st for f, (st, _) in zip(phi, parts, strict=True))
     surf = None
@@ -626,7 +624,6 @@ def solve_static(variant, rpm=None, options: StaticOptions = StaticOptions(), *,
             raise InputError("--rpm", "rpm", f"absent with --case (case {lc.name!r} runs at "
                              f"{lc.rpm:g} rpm)", got=rpm)
         rpm = lc.rpm
-    from shaftfe.model.loads import laws
     only_rpm2 = set(laws(variant)) <= {"rpm2"}
     rpms = _check_rpms(REF_RPM if rpm is None else rpm, at_rest_loads=not only_rpm2)
     warn_sharp_corners(variant)          # a fillet 0 at a loaded shoulder: not a stress there
