@@ -26,10 +26,11 @@ import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
+from shaftfe.balance.kinematics import split_rod
 from shaftfe.errors import InputError
 from shaftfe.util.limits import OVERSPEED_HINT, RPM_CEILING
 from shaftfe.util.notices import warn
-from shaftfe.util.paths import ENGINES_DIR
+from shaftfe.util.paths import ENGINES_DIR, repo_relative
 
 # key → (allowed text, predicate); all numeric keys the loader understands.
 _POS = ("> 0", lambda v: v > 0)
@@ -208,7 +209,6 @@ def _rod_split(vals: dict[str, float], source: str) -> tuple[float, float]:
         return (_need(vals, source, "rod_rot_mass_kg", "given with rod_pos_mass_kg"),
                 _need(vals, source, "rod_pos_mass_kg", "given with rod_rot_mass_kg"))
     if "rod_mass_kg" in vals:
-        from shaftfe.balance.kinematics import split_rod
 
         ell = _need(vals, source, "rod_eye_distance_mm", "needed to split rod_mass_kg")
         l1 = _need(vals, source, "rod_centroid_from_big_eye_mm", "needed to split rod_mass_kg")
@@ -300,7 +300,6 @@ def engine_speed_limit(engine=DEFAULT_ENGINE) -> tuple[float, str]:
         return RPM_CEILING, "shaftfe.util.limits.RPM_CEILING (no engine, no [duty] speed range)"
     if hasattr(engine, "speed_limit"):
         return engine.speed_limit()
-    from shaftfe.util.paths import repo_relative
     e = load_engine(engine)
     if e.max_rpm is None:
         return RPM_CEILING, (f"shaftfe.util.limits.RPM_CEILING ({repo_relative(e.source)} "

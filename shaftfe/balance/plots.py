@@ -12,6 +12,7 @@ import io
 from pathlib import Path
 
 from shaftfe.errors import InputError
+from shaftfe.util.atomic import write_atomic
 
 FORMATS = ("png", "pdf", "svg")
 
@@ -25,7 +26,6 @@ def _check_path(path: str | Path, option: str = "--plot") -> str:
 
 
 def _save(fig, path: str | Path, fmt: str) -> Path:
-    from shaftfe.util.atomic import write_atomic
 
     buf = io.BytesIO()
     fig.savefig(buf, format=fmt, dpi=120, bbox_inches="tight")

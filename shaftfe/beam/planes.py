@@ -27,6 +27,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from shaftfe.beam.solve import analyse
+from shaftfe.errors import InputError, SolverError
+from shaftfe.model.variant import content_hash
+from shaftfe.solid.features import groove_region
+from shaftfe.solid.plan import prepare
+from shaftfe.util import paths
+from shaftfe.util.atomic import write_atomic
+from shaftfe.util.cachefile import code_fingerprint
+from shaftfe.util.notices import raised, warn
 from shaftfe.util.units import REF_RPM
 
 MIN_SHARE = 1e-3              # |M| below this share of the largest: no plane (whole ring hot)
@@ -45,8 +54,6 @@ def hot_axes(variant, fillets) -> dict[str, float | None]:
     ``segment`` and ``x_shoulder``, e.g. ``shaftfe.solid.plan.Fillet``), from one beam solve of
     ``variant`` at its own options (bearing springs). None where the moment there is below
     ``MIN_SHARE`` of the shaft's largest (no bending to follow)."""
-    from shaftfe.beam.solve import analyse
-    from shaftfe.errors import InputError
     try:
         res = analyse(variant, REF_RPM)[0]
     except InputError:              # no valid springs (a rigid-support study): rigid bearings
@@ -93,11 +100,6 @@ def mesh_hot_axes(variant, *, cache_dir=None, use_cache: bool = False
     import hashlib
     import json
 
-    from shaftfe.model.variant import content_hash
-    from shaftfe.util import paths
-    from shaftfe.util.atomic import write_atomic
-    from shaftfe.util.cachefile import code_fingerprint
-    from shaftfe.util.notices import raised, warn
     key = hashlib.sha256(f"{AXES_FORMAT}|{content_hash(variant)}|"
                          f"{code_fingerprint(AXES_MODULES)}".encode()).hexdigest()[:24]
     path = paths.cache_dir(cache_dir) / f"axes-{key}.json"
@@ -120,9 +122,6 @@ def mesh_hot_axes(variant, *, cache_dir=None, use_cache: bool = False
 
 
 def _mesh_hot_axes(variant) -> dict[str, float | None]:
-    from shaftfe.errors import InputError, SolverError
-    from shaftfe.solid.features import groove_region
-    from shaftfe.solid.plan import prepare
     try:
         plan = prepare(variant)
         return hot_axes(variant, [*plan.fillets, *(

@@ -67,6 +67,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from shaftfe.model.grooves import din509
 from shaftfe.util.paths import (
     KT_GROOVES_JSON,
     KT_RING_GROOVES_JSON,
@@ -276,7 +277,6 @@ def undercut_kt(kind: str, D: float, d: float, r: float, table: dict | None = No
     between the grid's: reports/benchmarks/undercuts.md §4 (Kt is concave in D/d: a linear
     interpolation read 0.7-1.8 % low there). Returns (values, "table" | "interpolated") or
     None."""
-    from shaftfe.model.grooves import din509
     table = converged_kt() if table is None else table
     exact = table.get((kind, round(D, 6), round(d, 6), round(r, 6)))
     if exact:

@@ -53,7 +53,7 @@ from shaftfe.errors import InputError, SolverError
 from shaftfe.model.bearing_life import l10h
 from shaftfe.model.loads import law_factor
 from shaftfe.util.notices import warn
-from shaftfe.util.units import von_mises
+from shaftfe.util.units import REF_RPM, von_mises
 
 # --------------------------------------------------------------------------- solve
 
@@ -349,7 +349,6 @@ def check_deflection(where: str, length_mm: float, u_max_mm: float,
     deflection at the clearance station above the clearance the variant file states
     (``shaft.clearance_to_crankshaft_mm``) means the shaft touches the crankshaft, which no model
     here includes: either is a visible warning (the numbers are not a result)."""
-    from shaftfe.util.notices import warn
     lim = SMALL_DEFLECTION_FRACTION * length_mm
     if u_max_mm > lim:
         warn("deflection-large", where, f"max deflection {u_max_mm:.4g} mm exceeds "
@@ -535,6 +534,5 @@ def analyse(variant, rpm: float | Sequence[float], **options) -> tuple[BeamResul
 
 def beam_at_ref(variant) -> BeamResult:
     """The beam solution at ``util.units.REF_RPM`` (DIN 743's and the bearings' input)."""
-    from shaftfe.util.units import REF_RPM
     return analyse(variant, REF_RPM)[0]
 

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from shaftfe.beam.solve import beam_at_ref
 from shaftfe.model import bearing_life as bl
 from shaftfe.util.units import REF_RPM, rpm2_scale
 
@@ -44,7 +45,6 @@ class BearingDuty:
 def duty(variant, history, kappa: float = KAPPA_DEFAULT, e_c: float = EC_DEFAULT,
          a1: float = 1.0, speed_kmh: float = 70.0, beam=None) -> tuple[BearingDuty, ...]:
     """``beam``: the beam solution at ``util.units.REF_RPM`` if the caller has it."""
-    from shaftfe.beam.solve import beam_at_ref
     ref_rpm = REF_RPM
     beam = beam if beam is not None else beam_at_ref(variant)
     rpm = np.asarray(history.rpm, dtype=float)

@@ -56,6 +56,8 @@ from pathlib import Path
 
 import numpy as np
 
+from shaftfe.fe import assembly as fem
+
 # Abaqus / CalculiX C3D10: mid-side nodes 5..10 on these corner pairs (0-based corners).
 TET10_EDGES = ((0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3))
 _REF_CORNERS = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
@@ -95,7 +97,6 @@ def skfem_to_abaqus_tet10() -> np.ndarray:
 def abaqus_connectivity(mesh) -> np.ndarray:
     """(ne, 10) 0-based node numbers of every P2 tet in Abaqus C3D10 order, positively
     oriented (det[x2 − x1, x3 − x1, x4 − x1] > 0 over the corners)."""
-    from shaftfe.fe import assembly as fem
     if not fem.is_quadratic(mesh):
         raise ValueError("the CalculiX export needs the P2 (MeshTet2) mesh")
     conn = fem.element_nodes(mesh)[skfem_to_abaqus_tet10()].T.copy()     # (ne, 10)
@@ -457,7 +458,6 @@ def _seat_sets(model) -> dict[str, str]:
 
 def _set_lines(mesh, couplings, seat_sets: dict, print_elements) -> list[str]:
     """``*NSET`` of every seat and, when ``print_elements`` is given, ``*ELSET`` EPRINT."""
-    from shaftfe.fe import assembly as fem
     out = []
     for c in couplings:
         out.append(f"*NSET, NSET={seat_sets[c.name]}")

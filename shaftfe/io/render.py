@@ -16,6 +16,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
+from shaftfe.errors import InputError
 from shaftfe.io.surface import boundary, element_edges, subdivision_level, surface
 from shaftfe.io.view import (
     MODE_PREFIX,
@@ -28,6 +29,7 @@ from shaftfe.io.view import (
     load,
     values,
 )
+from shaftfe.util.atomic import atomic_path, check_output_file
 
 SF_CLIP = 3.0                  # safety factor colour scale: 1.0 marked, clipped above this
 CAMERAS = ("iso", "xy", "xz", "yz")
@@ -95,7 +97,6 @@ def use_offscreen_egl() -> None:
 
 
 def parse_window_size(text: str) -> tuple[int, int]:
-    from shaftfe.errors import InputError
 
     allowed = "WIDTHxHEIGHT in pixels, each 64..8192 (e.g. 1600x900)"
     try:
@@ -109,7 +110,6 @@ def parse_window_size(text: str) -> tuple[int, int]:
 
 def parse_warp(text: str | float | None) -> float | str:
     """``auto`` or a finite factor >= 0."""
-    from shaftfe.errors import InputError
 
     if text is None:
         return 0.0
@@ -139,7 +139,6 @@ def render(path, field: str | None = None, component: str | None = None,
     pictures of one file read it once; each render sets its ``_view`` array on it)."""
     import numpy as np
 
-    from shaftfe.errors import InputError
 
     t0 = time.perf_counter()
     shot = _screenshot_option(camera, screenshot)
@@ -162,7 +161,6 @@ def render(path, field: str | None = None, component: str | None = None,
     if shot is None and off_screen:
         shot = Path(path).with_name(f"{Path(path).stem}_{choice.name}.png")
     if shot is not None:
-        from shaftfe.util.atomic import check_output_file
         check_output_file(shot, "--screenshot")
 
     surf, edge_lines = _scene(grid, choice, np.where(finite, vals, np.nan), factor,
@@ -189,7 +187,6 @@ def render(path, field: str | None = None, component: str | None = None,
 
 def _screenshot_option(camera: str, screenshot) -> Path | None:
     """Check ``--camera`` and the ``--screenshot`` suffix; the screenshot path or None."""
-    from shaftfe.errors import InputError
 
     if camera not in CAMERAS:
         raise InputError("command line", "--camera", " | ".join(CAMERAS), got=camera)
@@ -505,7 +502,6 @@ def _view_iso(p, surf, hot) -> None:
 
 def _screenshot(plotter, shot: Path) -> None:
     """Render and write the image under a temporary name, then rename (never half-written)."""
-    from shaftfe.util.atomic import atomic_path
 
     with atomic_path(shot) as tmp:
         plotter.screenshot(str(tmp))

@@ -12,6 +12,8 @@ import json
 from dataclasses import dataclass
 from pathlib import Path
 
+from shaftfe.errors import InputError
+
 # ---------------------------------------------------------------------------------------------
 # The documented fields (docs/FIELDS.md): name -> (unit, hot-spot rule, what it is).
 # Rule "max": the hot spot is the maximum; "min": the minimum (safety factor, life);
@@ -71,7 +73,6 @@ class HotSpot:
 def load(path) -> object:
     """Read a VTK XML unstructured grid (.vtu). Missing, empty or non-VTU files raise
     InputError naming the file."""
-    from shaftfe.errors import InputError
 
     p = Path(path)
     allowed = "an existing VTK XML unstructured grid file (.vtu)"
@@ -153,7 +154,6 @@ def choose_field(grid, field: str | None, component: str | None,
                  source: str = "result") -> FieldChoice:
     """Validate ``field`` / ``component`` against the grid. Unknown names raise InputError
     listing the fields (or components) present."""
-    from shaftfe.errors import InputError
 
     names = field_names(grid)
     if not names:

@@ -24,7 +24,10 @@ from pathlib import Path
 import numpy as np
 
 from shaftfe.errors import InputError
-from shaftfe.util.atomic import atomic_path
+from shaftfe.fe import assembly as fem
+from shaftfe.fe import recovery
+from shaftfe.fe.assembly import element_nodes
+from shaftfe.util.atomic import atomic_path, write_atomic
 from shaftfe.util.units import rpm2_scale
 
 
@@ -32,7 +35,6 @@ def mesh_cells(m) -> tuple[list, list, list[str]]:
     """meshio cells of a scikit-fem mesh: the volume (tetra10 / tetra), then the triangles of
     every named face group; the cell data ``region`` (0 volume, k = names[k − 1]) and the
     names."""
-    from shaftfe.fe import assembly as fem
     quad = fem.is_quadratic(m)
     vol = ("tetra10" if quad else "tetra", fem.element_nodes(m).T.astype(np.int64))
     cells = [vol]
@@ -87,7 +89,6 @@ def write_vtu(result, path, rpm: float, *,
     """Write the fields of ``result`` (a ``StaticResult``) scaled to ``rpm``, plus
     ``extra_point_data`` (name -> one value per node, or (n, k)), written unscaled. Returns the
     path and the region names (cell data ``region`` = index + 1)."""
-    from shaftfe.fe import recovery
     m = result.mesh.mesh
     s = 1.0 if rpm == result.ref_rpm else rpm2_scale(rpm, result.ref_rpm)
     stress = result.stress_ref * s
@@ -104,7 +105,6 @@ def write_vtu(result, path, rpm: float, *,
 def stress_envelope(mesh, vm: np.ndarray, n_slices: int = 120) -> tuple[np.ndarray, np.ndarray]:
     """The largest nodal von Mises of the elements that reach into each of ``n_slices`` equal
     slices along x (``span_envelope`` over the elements of ``mesh``)."""
-    from shaftfe.fe.assembly import element_nodes
     x = np.asarray(mesh.doflocs[0])
     en = element_nodes(mesh)
     return span_envelope(x[en].min(axis=0), x[en].max(axis=0), np.asarray(vm)[en].max(axis=0),
@@ -171,7 +171,6 @@ def plot_png(result, path, rpm: float, *, envelope=None, model: str = "3D FE",
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from shaftfe.util.atomic import write_atomic
     s = 1.0 if rpm == result.ref_rpm else rpm2_scale(rpm, result.ref_rpm)
     case = result.case(rpm)
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 7.6), sharex=True,

@@ -58,6 +58,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from shaftfe.errors import InputError, SolverError
+from shaftfe.fe.assembly import robust_mapping
+from shaftfe.model.validate import source_of
+from shaftfe.solid import occ
 from shaftfe.solid.features import (
     chamfer_region,
     groove_region,
@@ -68,7 +71,7 @@ from shaftfe.solid.features import (
 )
 from shaftfe.solid.levels import DEFAULT_LEVEL, MeshLevel, level_name, mesh_level
 from shaftfe.solid.plan import Solid, groove_pieces, plan_payload, prepare, seat_span
-from shaftfe.util import paths
+from shaftfe.util import cachefile, paths
 from shaftfe.util.notices import warn
 
 __all__ = ["ShaftMesh", "build_mesh", "build_solid_mesh", "cache_path", "mesh_key", "mesh_plan"]
@@ -228,7 +231,6 @@ def _skfem_mesh(data: dict):
     if cls is MeshTet2:
         # every FacetBasis on this mesh then inverts curved tets robustly
         # (shaftfe.fe.assembly.robust_mapping)
-        from shaftfe.fe.assembly import robust_mapping
         m._cached_mapping = robust_mapping(m)
     return m
 
@@ -246,7 +248,6 @@ def _finish(data: dict, name: str, level: str, order: int, key: str, t0: float,
 
 
 def _save(path: Path, data: dict) -> None:
-    from shaftfe.util import cachefile
     arrays = {"doflocs": data["doflocs"], "t": data["t"]}
     names = list(data["boundaries"])
     subs = list(data["subdomains"])
@@ -266,7 +267,6 @@ def _load(path: Path, key: str) -> dict | None:
     or not ours."""
     import numpy as np
 
-    from shaftfe.util import cachefile
     got = cachefile.load(path, key, "mesh")
     if got is None:
         return None
@@ -303,7 +303,6 @@ def _load(path: Path, key: str) -> dict | None:
 def _generate(sol: Solid, level: MeshLevel, order: int) -> dict:
     import gmsh
 
-    from shaftfe.solid import occ
     t0 = time.perf_counter()
     own = not gmsh.isInitialized()
     if own:
@@ -475,7 +474,6 @@ def _check_keyway_fillets(variant, sol: Solid, level: MeshLevel) -> None:
     n = keyway_fillet_dofs(sol, level)
     if n <= KEYWAY_DOFS_MAX:
         return
-    from shaftfe.model.validate import source_of
     s = min((s for s in sol.slots if s.rho > 0), key=lambda s: s.rho)
     i = [g.name for g in variant.segments].index(s.segment)
     raise InputError(source_of(variant), f"segments[{i}].keyways[{s.index}].bottom_radius_mm",

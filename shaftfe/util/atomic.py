@@ -11,6 +11,8 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from shaftfe.errors import InputError
+
 
 @contextmanager
 def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[Path]:
@@ -72,7 +74,6 @@ def _probe_writable(directory: Path, option: str, target: Path) -> None:
 
 
 def _not_writable(option: str, target: Path, exc: OSError | str):
-    from shaftfe.errors import InputError
     why = exc if isinstance(exc, str) else (exc.strerror or exc.__class__.__name__)
     return InputError(option, "path", "a location where shaftfe may create files",
                       got=str(target), reason=f"cannot be written ({why})")
