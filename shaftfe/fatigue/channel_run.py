@@ -29,7 +29,12 @@ from types import SimpleNamespace
 import numpy as np
 
 from shaftfe.fatigue import channels
+from shaftfe.fatigue.assess import life_hours, life_km
+from shaftfe.fatigue.run import finite_or_none
 from shaftfe.model.loads import actions, pattern_key
+from shaftfe.util.atomic import write_atomic
+from shaftfe.util.fmt import life, lives, table_lines
+from shaftfe.util.notices import warn
 from shaftfe.util.units import rpm2_scale
 
 
@@ -88,7 +93,6 @@ def space_fixed_loads(variant) -> tuple[str, ...]:
 
 def run_channels(job, variant, history, material, ref) -> ChannelRun:
     """Assess the candidates of ``ref`` under ``history`` (``job``: the resolved FatigueJob)."""
-    from shaftfe.util.notices import warn
     t0 = time.perf_counter()
     labels, sk, L = pattern_fields(ref, history)
     n = sk.shape[2]
@@ -117,8 +121,6 @@ def run_channels(job, variant, history, material, ref) -> ChannelRun:
 
 def summary(run: ChannelRun, files: dict) -> dict:
     """summary.json of a several-pattern run."""
-    from shaftfe.fatigue.assess import life_hours, life_km
-    from shaftfe.fatigue.run import finite_or_none
     lv, h = run.lives, run.history
 
     def row(i):
@@ -152,7 +154,6 @@ def write(run: ChannelRun, out) -> tuple[dict, list[str]]:
 
     import meshio
 
-    from shaftfe.util.atomic import write_atomic
     lv = run.lives
     pts = np.ascontiguousarray(run.xyz.T)
     cells = [("vertex", np.arange(pts.shape[0]).reshape(-1, 1))]
@@ -167,7 +168,6 @@ def write(run: ChannelRun, out) -> tuple[dict, list[str]]:
 
 
 def lines(run: ChannelRun, summary_: dict, out, files) -> list[str]:
-    from shaftfe.util.fmt import life, lives, table_lines
     h, lv, job = run.history, run.lives, run.job
     hot = summary_["hot_spot"]
     p = [f"{run.variant.name} fatigue on {len(run.patterns)} load patterns: {h.source} "
@@ -200,7 +200,6 @@ def warn_rpm2_only(variant, who: str) -> None:
     study) scales one field (or one beam solution) by (rpm/ref)²: the variant's loads of other
     laws are then taken at their reference values and scaled like the rest. Said once, naming
     them (``shaftfe fatigue --method seed`` assesses them per pattern: ``run_channels``)."""
-    from shaftfe.util.notices import warn
     other = [ld.name for ld in variant.loads if ld.scales_with != "rpm2"]
     if other:
         warn("loads-scaled-as-rpm2", "fatigue", f"{who} scales one stress field by "

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from shaftfe.fatigue import kernels
 from shaftfe.fatigue.assess import (
     DEFAULT_DESIGN_LIFE_BLOCKS,
     DEFAULT_SPEED_KMH,
@@ -40,6 +41,7 @@ from shaftfe.fatigue.assess import (
 )
 from shaftfe.fatigue.kernels import BETA_MIN, equivalent_stress, von_mises
 from shaftfe.fatigue.sn import FatigueMaterial
+from shaftfe.io.vtu import write_point_fields
 from shaftfe.solid.features import kind_of
 
 # a node on several regions is labelled by the first of its regions' kinds in this order
@@ -254,7 +256,6 @@ def exact_safety(res: FatigueResult, nodes, beta, material: FatigueMaterial, *, 
                  kf: float, design_life_blocks: float) -> None:
     """Re-solve the safety factor of ``nodes`` each on its own β (the field's are interpolated
     between β grid roots, ``kernels.safety_factor``) into ``res``'s arrays."""
-    from shaftfe.fatigue import kernels
     s0 = res.sigma_eq_MPa / (1.0 + beta)
     for i in dict.fromkeys(int(k) for k in nodes):
         n, st = kernels.safety_factor(s0[[i]], res.cycles, material, design_life_blocks,
@@ -302,7 +303,6 @@ def write_ref_vtu(ref, path, point_data: dict) -> object:
     """The mesh of the static reference ``ref`` (volume cells, then the face groups' triangles,
     cell data ``region``) with ``point_data``, written atomically (every fatigue method's
     fatigue.vtu)."""
-    from shaftfe.io.vtu import write_point_fields
     quad = ref.cells.shape[1] == 10
     cells, region = [], []
     if ref.cells.shape[0]:             # none for a surface-only field (axisymmetric model)

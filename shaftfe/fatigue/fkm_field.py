@@ -37,6 +37,10 @@ import numpy as np
 
 from shaftfe.fatigue import fkm
 from shaftfe.fatigue.cards import StrengthCard, Surfaces, region_rz
+from shaftfe.fatigue.counting import count_cycles
+from shaftfe.fatigue.field import softening_beta
+from shaftfe.fatigue.kernels import signed_von_mises, stress_cycles, von_mises
+from shaftfe.fe.pointeval import TetProbe
 from shaftfe.solid.features import NOTCH_KINDS, is_notch, kind_of
 
 # the regions FKM assesses: the notches and the bearing seats (ground, press-fitted)
@@ -153,7 +157,6 @@ class DepthProbe(Protocol):
 def depth_probe(ref):
     """The reference's own profile source (``StaticReference.depth_probe``: the axisymmetric
     and zoned surface references carry one) or the 3D field's (``TetProbe``)."""
-    from shaftfe.fe.pointeval import TetProbe
     return ref.depth_probe if getattr(ref, "depth_probe", None) is not None else TetProbe(ref)
 
 
@@ -172,7 +175,6 @@ def profile(ref, node: int, probe, case_depth_mm: float | None) -> Profile:
     gradient −σ'/σ is of one field: on the axisymmetric surface the reference's own stress is
     the surface recovery, which can differ from the interior field's surface value by ~1 %,
     a jump a fit over a 0.05 mm element would read as a gradient."""
-    from shaftfe.fatigue.kernels import von_mises
     n, h = probe.normal(node)
     x = np.asarray(ref.xyz, dtype=float)[:, node]
     depth = max(2.0 * h, (case_depth_mm or 0.0) + h)
@@ -255,8 +257,6 @@ def assess_field(ref, history, card: StrengthCard, surfaces: Surfaces, *,
     """Every region of the ``ASSESSED_KINDS`` of the static reference ``ref`` under ``history``.
     ``cycles``: the rainflow count of ``history`` re-referenced to ``ref.ref_rpm`` where the
     caller has it (the seed method's, ``FatigueField.result.cycles``): counted once."""
-    from shaftfe.fatigue.counting import count_cycles
-    from shaftfe.fatigue.kernels import signed_von_mises
     h = history.with_reference(ref.ref_rpm)
     if cycles is None:
         cyc = count_cycles(h.load_factor)
@@ -315,8 +315,6 @@ class _NodeAssessment:
         self.xyz = np.asarray(ref.xyz, float)
 
     def __call__(self, name: str, i: int, rz: float, hints: dict):
-        from shaftfe.fatigue.field import softening_beta
-        from shaftfe.fatigue.kernels import signed_von_mises, stress_cycles
         card, cyc, common = self.card, self.cyc, self.common
         s_soft = float(signed_von_mises(self.S[:, i]))
         beta, s_lin = 0.0, s_soft
@@ -373,7 +371,6 @@ def assess_along(ref, surfaces: Surfaces, res: FkmResult, *, ground_fillets: fro
     (its regions' candidates: so no slice reads below a hot spot in it); the worst kept (among
     equal utilisations, as ``assess_field``: the one a start-stop cycle loads most). A node's
     roughness and K_V are its region's (notches first, then the seats; the rest turned)."""
-    from shaftfe.fatigue.kernels import signed_von_mises
     S = np.asarray(ref.stress_ref, dtype=float)
     signed = signed_von_mises(S.T)
     surf = np.unique(np.asarray(ref.face_cells, dtype=np.int64))
@@ -433,7 +430,6 @@ def governing_cycles(res: FkmResult) -> dict:
     """The governing check's stress cycles and strengths, for its plots: amplitude and mean
     (MPa, the layer's: the core's are the surface's × r), count, K_AK per cycle, σ_WK, M and
     the relative amplitudes s = σ_a / (K_AK σ_WK)."""
-    from shaftfe.fatigue.kernels import stress_cycles
     reg, c = res.governing
     cyc = res.cycles
     sa, sm = stress_cycles(reg.s_lin_MPa, reg.beta if reg.beta else None, cyc)

@@ -69,7 +69,7 @@ import numpy as np
 
 from shaftfe.errors import InputError
 from shaftfe.util.limits import RPM_CEILING
-from shaftfe.util.units import rpm2_scale
+from shaftfe.util.units import omega, rpm2_scale
 
 DEFAULT_RPM_REF = 7000.0        # reference speed of the seed's static load case (seed 000 §8.3)
 SEED_SAMPLE_RATE_HZ = 1.0       # seed 000 appendix 5: one sample per second
@@ -541,7 +541,6 @@ def angular_acceleration(history: LoadHistory) -> np.ndarray:
     one-sided at the ends: ``numpy.gradient`` on the sample times; a block that repeats is
     differenced as it stands). The d'Alembert torque of a run-up follows it
     (``scales_with = "alpha_rad_s2"``)."""
-    from shaftfe.util.units import omega
     if history.n_samples < 2:
         return np.zeros(history.n_samples)
     return np.gradient(omega(history.rpm), history.time_s)

@@ -7,15 +7,20 @@ from __future__ import annotations
 
 import json
 
+from shaftfe.fatigue import kernels
+from shaftfe.fatigue import plots as fatigue_plots
+from shaftfe.fatigue.counting import rainflow_matrix
+from shaftfe.fatigue.field import write_vtu
 from shaftfe.fatigue.run import SEED, FatigueRun, finite_or_none, seed_applies
+from shaftfe.static.model import load_case_label
+from shaftfe.util.atomic import atomic_path, write_atomic
+from shaftfe.util.fmt import life_reason
+from shaftfe.util.notices import collected
+from shaftfe.util.versions import package_versions
 
 
 def write_plots(run: FatigueRun, out) -> dict[str, str]:
     """The hot spot's rainflow matrix, damage matrix and Haigh diagram (PNG)."""
-    from shaftfe.fatigue import kernels
-    from shaftfe.fatigue import plots as fatigue_plots
-    from shaftfe.fatigue.counting import rainflow_matrix
-    from shaftfe.util.atomic import atomic_path
     job, ff = run.job, run.field
     r, hot = ff.result, ff.hot_spot
     s0, beta = ff.result.linear_stress(hot.node)      # the node's S0 (λ + β λ²)
@@ -37,7 +42,6 @@ def write_plots(run: FatigueRun, out) -> dict[str, str]:
 
 
 def _inputs(job, variant) -> dict:
-    from shaftfe.static.model import load_case_label
     return {"spectrum": str(job.spectrum), "variant": job.variant, "ref_rpm": job.ref_rpm,
             "sample_rate_hz": job.sample_rate, "mean_stress": job.mean_stress,
             "equivalent": job.equivalent, "material": job.material,
@@ -72,8 +76,6 @@ def _static(run: FatigueRun) -> dict:
 
 
 def _result(run: FatigueRun) -> dict:
-    from shaftfe.fatigue import kernels
-    from shaftfe.util.fmt import life_reason
     ff = run.field
     r, hot = ff.result, ff.hot_spot
     filtered = ~ff.excluded_mask
@@ -92,8 +94,6 @@ def _result(run: FatigueRun) -> dict:
 
 def summary(run: FatigueRun, vtu_name: str, plots: dict[str, str]) -> dict:
     """The summary.json content (every number the command prints, and more)."""
-    from shaftfe.util.notices import collected
-    from shaftfe.util.versions import package_versions
     ff, ref = run.field, run.ref
     r = ff.result
     return {
@@ -124,8 +124,6 @@ def summary(run: FatigueRun, vtu_name: str, plots: dict[str, str]) -> dict:
 
 def write_outputs(run: FatigueRun, out) -> tuple[dict, dict[str, str]]:
     """fatigue.vtu, the plots and summary.json into the directory ``out``."""
-    from shaftfe.fatigue.field import write_vtu
-    from shaftfe.util.atomic import write_atomic
     vtu = out / "fatigue.vtu"
     write_vtu(run.ref, run.field, vtu)
     plots = write_plots(run, out)

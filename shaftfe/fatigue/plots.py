@@ -10,7 +10,10 @@ from pathlib import Path
 import numpy as np
 
 from shaftfe.fatigue.counting import CycleMatrix, Cycles
+from shaftfe.fatigue.fkm import mean_stress_factor
+from shaftfe.fatigue.kernels import stress_cycles
 from shaftfe.fatigue.sn import FatigueMaterial
+from shaftfe.util.atomic import atomic_path
 from shaftfe.util.figures import log_ticks
 
 
@@ -25,7 +28,6 @@ def _plt():
 
 def _save(fig, path) -> Path:
     """Write the figure atomically (never a half-written PNG) and close it."""
-    from shaftfe.util.atomic import atomic_path
 
     path = Path(path)
     try:
@@ -155,7 +157,6 @@ def plot_haigh(sigma_eq_node: float, cycles: Cycles, material: FatigueMaterial, 
     """Haigh diagram of one node (linear stress ``sigma_eq_node`` = S0, spin softening
     ``beta``): its cycles (σ_m, σ_a), marker area ∝ count, and the chosen mean-stress line
     through the endurance amplitude kf · S_e (the S-N curve's last point)."""
-    from shaftfe.fatigue.kernels import stress_cycles
     plt = _plt()
     s = float(sigma_eq_node)
     sa, sm = stress_cycles(s, float(beta) if beta else None, cycles)
@@ -196,7 +197,6 @@ def plot_fkm_haigh(gc: dict, path, title: str = "") -> Path:
     the mean stress, traced ray by ray from ``fkm.mean_stress_factor`` (σ_AK = K_AK σ_WK at
     each ratio σ_m/σ_a: the very factor the assessment divides by), and the assessed cycles
     (σ_m, σ_a) as points (area ∝ count; a long log: its largest amplitudes)."""
-    from shaftfe.fatigue.fkm import mean_stress_factor
     plt = _plt()
     s_wk, M = float(gc["sigma_WK"]), float(gc["M"])
     sa, sm, cnt = (np.asarray(gc[k], dtype=float) for k in ("amplitude", "mean", "count"))

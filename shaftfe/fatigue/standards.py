@@ -17,8 +17,13 @@ import numpy as np
 
 from shaftfe.beam.scf import KT_GROOVES, KT_UNDERCUTS, converged_kt, undercut_kt
 from shaftfe.beam.solve import beam_at_ref
+from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
 from shaftfe.errors import InputError
 from shaftfe.fatigue import din743, fkm
+from shaftfe.fatigue.cards import card_of, load_card, load_surfaces, region_rz
+from shaftfe.fatigue.counting import count_cycles
+from shaftfe.fatigue.fkm_field import assess_field, k_v_case_hardening
+from shaftfe.fatigue.run import load_inputs, resolve_design_life, resolve_model, static_reference
 from shaftfe.model.grooves import UNDERCUTS, undercut_at
 from shaftfe.solid.features import fillet_region, groove_region, hole_region
 from shaftfe.util.notices import warn
@@ -55,7 +60,6 @@ def strength_options(job) -> StrengthOptions:
 def bearing_options(job) -> tuple[float, float]:
     """(κ, e_C) of the bearings' ISO 281 life over the duty cycle: the job's or the defaults
     (``elements.bearings``), each within the standard's range."""
-    from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
     kappa = KAPPA_DEFAULT if job.kappa is None else job.kappa
     ec = EC_DEFAULT if job.ec is None else job.ec
     if not (math.isfinite(kappa) and 0.1 <= kappa <= 4.0):
@@ -70,7 +74,6 @@ def strength_card(variant, opts: StrengthOptions):
     """The strength card an assessment uses: the record named by ``opts.card`` (``--card``) if
     given, else the variant's own shaft material (the drawing's), the same record its FE model
     takes E, ν and density from."""
-    from shaftfe.fatigue.cards import card_of, load_card
     if opts.card is not None:
         return load_card(opts.card)
     return card_of(variant.material, f"variant {variant.name}")
@@ -93,14 +96,6 @@ def run_fkm(job, opts: StrengthOptions, inputs=None, ref=None, progress=None):
     ``util.progress.Progress`` with the stages "static" and "FKM"."""
     from contextlib import nullcontext
 
-    from shaftfe.fatigue.cards import load_surfaces
-    from shaftfe.fatigue.fkm_field import assess_field
-    from shaftfe.fatigue.run import (
-        load_inputs,
-        resolve_design_life,
-        resolve_model,
-        static_reference,
-    )
     check_options(opts)
     inputs = inputs or load_inputs(job)
     job = resolve_design_life(resolve_model(job), inputs.history,
@@ -177,7 +172,6 @@ def section_stresses(beam, x: float, d: float, span: float) -> tuple[float, floa
 def din743_notches(variant, beam, card, surfaces, table: dict) -> list[tuple]:
     """(x, Notch, d for the nominal stress, half-span judged around x) at every shoulder,
     groove, keyway and bearing seat."""
-    from shaftfe.fatigue.cards import region_rz
     gf = ground_fillets(variant)
     out = []
     segs = variant.segments
@@ -286,7 +280,6 @@ def din743_along(variant, beam, card, surfaces, lo: float, hi: float,
     each segment's ends): DIN 743 with α = β = 1, the local diameter for K1, K2 and the
     nominal stresses, the turned (or a bearing seat's ground) surface for K_F, K_V of an
     unnotched case-hardened section. The load cycle lo → hi is the notches' (``run_din743``)."""
-    from shaftfe.fatigue.fkm_field import k_v_case_hardening
     xs, ds, rzs = [], [], []
     for s in variant.segments:
         n = max(2, math.ceil(s.length_mm / step_mm) + 1)
@@ -328,10 +321,6 @@ def din743_card(variant, opts: StrengthOptions):
 
 
 def run_din743(job, opts: StrengthOptions, inputs=None, beam=None) -> Din743Run:
-    from shaftfe.fatigue.cards import load_surfaces
-    from shaftfe.fatigue.counting import count_cycles
-    from shaftfe.fatigue.fkm_field import k_v_case_hardening
-    from shaftfe.fatigue.run import load_inputs
     check_options(opts)
     inputs = inputs or load_inputs(job)
     card = din743_card(inputs.variant, opts)

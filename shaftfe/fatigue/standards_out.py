@@ -7,10 +7,22 @@ import math
 
 import numpy as np
 
+from shaftfe.elements import bearings, drive, gear, key
+from shaftfe.elements.bearings import SEED_POINTS
 from shaftfe.fatigue import din743 as din
+from shaftfe.fatigue import fkm
+from shaftfe.fatigue import plots as fp
 from shaftfe.fatigue.assess import life_hours
+from shaftfe.fatigue.counting import Cycles, _matrix, rainflow_matrix
+from shaftfe.fatigue.field import write_ref_vtu
+from shaftfe.fatigue.fkm_field import governing_cycles
+from shaftfe.fatigue.run import SEED_VARIANT
+from shaftfe.model.bearing_life import l10h
+from shaftfe.model.mass import mass_properties
 from shaftfe.solid.plan import sharp_keyway_edges
+from shaftfe.util.atomic import write_atomic
 from shaftfe.util.fmt import NO_FINITE_LIFE, big, json_clean, life, life_h_km, life_reason
+from shaftfe.util.notices import collected
 
 NONE = "—"        # a value the assessment has not got (nan): printed as this, never as "nan"
 
@@ -165,7 +177,6 @@ def _fkm_along(along) -> dict:
 def plot_fkm_along(summary: dict, variant, path) -> None:
     """FKM's degree of utilisation along the shaft (``summary``: the FKM summary with
     "along"), each region's governing node marked, the shaft's outline below."""
-    from shaftfe.fatigue import plots as fp
     x = np.asarray(summary["along"]["x_mm"], dtype=float)
     fp.plot_fkm_along(summary["along"], summary["regions"], summary["rule"],
                       shaft_diameters(variant, x), path,
@@ -216,8 +227,6 @@ def elements_summary(bearings, keys, gear_chk, kappa: float, e_c: float, *,
                      seed: bool = True) -> dict:
     """The element checks' summary; ``seed``: with the seed's single-point bearing lives
     (only for the seed's shaft); ``gear_chk`` None: no gear pair (the block is None)."""
-    from shaftfe.elements.bearings import SEED_POINTS
-    from shaftfe.model.bearing_life import l10h
     seed_rows = []
     for s in SEED_POINTS if seed else ():
         C = s["C_N"] if s["C_N"] else next(b.C_N for b in bearings)
@@ -271,9 +280,6 @@ def compute_elements(variant, history, kappa: float, e_c: float, speed_kmh: floa
     variant has a part named "gear"; both need the drive's data, the element-check file its
     [duty] names (``elements``; none: no key or gear check). The seed's single-point bearing
     lives stand beside ours for the seed's shaft only."""
-    from shaftfe.elements import bearings, drive, gear, key
-    from shaftfe.fatigue.run import SEED_VARIANT
-    from shaftfe.model.mass import mass_properties
     elements = variant.duty.elements if variant.duty is not None else None
     seed = variant.name == SEED_VARIANT
     duty = bearings.duty(variant, history, kappa, e_c, speed_kmh=speed_kmh, beam=beam)
@@ -309,11 +315,6 @@ def write_fkm_files(res, ref, out) -> tuple[dict, dict]:
     "vtu" block, plot name -> file)."""
     import numpy as np
 
-    from shaftfe.fatigue import fkm
-    from shaftfe.fatigue import plots as fp
-    from shaftfe.fatigue.counting import Cycles, _matrix, rainflow_matrix
-    from shaftfe.fatigue.field import write_ref_vtu
-    from shaftfe.fatigue.fkm_field import governing_cycles
     n = int(ref.n_nodes)
     util, safety = np.full(n, np.nan), np.full(n, np.nan)
     for node, u, s in res.assessed:
@@ -345,7 +346,6 @@ def write_fkm_files(res, ref, out) -> tuple[dict, dict]:
 
 def plot_din_along(summary: dict, path) -> None:
     """DIN 743's safety along the shaft (``summary``: ``din_summary`` with "along")."""
-    from shaftfe.fatigue import plots as fp
     fp.plot_din743_along(summary["along"], summary["notches"], summary["S_min"], path,
                          title=f"DIN 743 safety along the shaft, card {summary['card']}")
 
@@ -353,7 +353,6 @@ def plot_din_along(summary: dict, path) -> None:
 def write_din_files(summary: dict, out) -> dict:
     """DIN 743's plots into ``out``: S_D and S_F per notch against S_min; with the safety at
     every cross-section in the summary (``--plot``), the safety along the shaft too."""
-    from shaftfe.fatigue import plots as fp
     fp.plot_din743_safeties(summary["notches"], summary["S_min"], out / "din743_safety.png",
                             title=f"DIN 743 safeties per notch, card {summary['card']}")
     files = {"din743_safety": "din743_safety.png"}
@@ -370,8 +369,6 @@ def write_outputs(summary: dict, out) -> tuple[dict, list[str]]:
     file names."""
     import json
 
-    from shaftfe.util.atomic import write_atomic
-    from shaftfe.util.notices import collected
     summary = {**summary, "warnings": collected()}
     summary = json_clean(summary)         # JSON has no inf: null with the reason beside
     write_atomic(out / "summary.json", json.dumps(summary, indent=1, allow_nan=False) + "\n")

@@ -16,8 +16,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from shaftfe.beam.model import build_model
+from shaftfe.beam.scf import converged_kt
+from shaftfe.beam.solve import solve_cases
 from shaftfe.errors import InputError
 from shaftfe.fatigue import din743
+from shaftfe.fatigue.cards import load_surfaces
+from shaftfe.fatigue.standards import din743_card, din743_notches, notch_stresses
 
 
 @dataclass(frozen=True)
@@ -60,15 +65,6 @@ def case_of(variant, name: str, option: str = "--case"):
 def din743_static(variant, case_name: str, opts) -> StaticCheck:
     """S_F per notch of ``variant`` in its load case ``case_name`` (``opts``: the strength
     options that choose the material card, ``fatigue.standards.StrengthOptions``)."""
-    from shaftfe.beam.model import build_model
-    from shaftfe.beam.scf import converged_kt
-    from shaftfe.beam.solve import solve_cases
-    from shaftfe.fatigue.cards import load_surfaces
-    from shaftfe.fatigue.standards import (
-        din743_card,
-        din743_notches,
-        notch_stresses,
-    )
     case = case_of(variant, case_name)
     card = din743_card(variant, opts)
     beam = solve_cases(build_model(variant), [case])[0]

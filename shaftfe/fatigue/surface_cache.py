@@ -18,7 +18,10 @@ import dataclasses
 import time
 from pathlib import Path
 
+from shaftfe.axisymmetric.reference import SurfaceProbe
+from shaftfe.solid.mesh import gmsh_version
 from shaftfe.static import cache as static_cache
+from shaftfe.zoned.reference import ZonedProbe
 
 SURFACE_CACHE_FORMAT = 2       # 2: one file per entry (the probe's arrays inside)
 KEY_MODULES = (*static_cache.FINGERPRINT_MODULES,
@@ -36,7 +39,6 @@ KEY_MODULES = (*static_cache.FINGERPRINT_MODULES,
 def key(model: str, variant, options, ref_rpm: float) -> str:
     """The static cache's key (``static.cache.static_key``) with this entry's model, format
     and code (``KEY_MODULES``)."""
-    from shaftfe.solid.mesh import gmsh_version
     return static_cache.static_key(variant, options, "", ref_rpm, modules=KEY_MODULES,
                                    extra={"surface_format": SURFACE_CACHE_FORMAT,
                                           "model": model, "gmsh": gmsh_version()})
@@ -79,6 +81,4 @@ def store(ref, model: str, variant, options, cache_dir=None):
 
 
 def _probe_class(name):
-    from shaftfe.axisymmetric.reference import SurfaceProbe
-    from shaftfe.zoned.reference import ZonedProbe
     return {"SurfaceProbe": SurfaceProbe, "ZonedProbe": ZonedProbe}.get(name)

@@ -31,9 +31,34 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from shaftfe.fatigue.methods import DEFAULT_METHOD
+from shaftfe.axisymmetric import reference as axi
+from shaftfe.axisymmetric.recovery import principal_max_local
+from shaftfe.axisymmetric.reference import surface_envelope, write_surface_vtu
+from shaftfe.balance import plots
+from shaftfe.beam.solve import beam_at_ref
+from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
+from shaftfe.errors import InputError
+from shaftfe.fatigue import kernels, surface_cache
+from shaftfe.fatigue import plots as fatigue_plots
+from shaftfe.fatigue import standards as sd
+from shaftfe.fatigue import standards_out as so
+from shaftfe.fatigue.counting import rainflow_matrix
+from shaftfe.fatigue.field import hot_spot_with_factor
+from shaftfe.fatigue.methods import DEFAULT_METHOD, AssessmentInputs, get_method
+from shaftfe.fatigue.run import (
+    DEFAULT_MODEL,
+    FatigueJob,
+    level_corrected_life,
+    resolve_design_life,
+    surface_model,
+    surface_reference,
+)
+from shaftfe.io import vtu as export
+from shaftfe.model.loader import load_variant
 from shaftfe.report import pictures
+from shaftfe.report import seed as seedmod
 from shaftfe.report.comparisons import comparisons, error_estimates
+from shaftfe.report.html import PEAK_FIT_LABEL, num
 from shaftfe.report.options import (
     ERROR_STAGE,
     OTHER_LEVEL,
@@ -49,6 +74,7 @@ from shaftfe.report.stages import (
     beam_mode_fields,
     campbell,
     fatigue,
+    fatigue_job,
     file_comments,
     is_seed_engine,
     provenance_summary,
@@ -57,10 +83,21 @@ from shaftfe.report.stages import (
     static_summary_axisymmetric,
     static_summary_zoned,
 )
+from shaftfe.rotordynamics.modes_vtu import write_modes_vtu
+from shaftfe.rotordynamics.plots import plot_campbell
+from shaftfe.static import cache as static_cache
 from shaftfe.static.benchmark import benchmark_errors
-from shaftfe.util.notices import collected
+from shaftfe.static.cache import kept_nodes
+from shaftfe.static.error import estimate_error
+from shaftfe.static.model import StaticOptions
+from shaftfe.static.outputs import clearance_of
+from shaftfe.static.solve import solve_static
+from shaftfe.util.atomic import write_atomic
+from shaftfe.util.notices import collected, warn
 from shaftfe.util.paths import repo_relative
+from shaftfe.util.progress import Progress
 from shaftfe.util.units import REF_RPM, rpm2_scale
+from shaftfe.zoned import reference as zoned_ref
 
 # --------------------------------------------------------------------------- validation
 
@@ -92,7 +129,6 @@ def _life_in_blocks(o: ReportOptions, history) -> ReportOptions:
     within the fatigue command's range (``fatigue.run.resolve_design_life``)."""
     import dataclasses
 
-    from shaftfe.fatigue.run import FatigueJob, resolve_design_life
     job = resolve_design_life(FatigueJob(str(o.spectrum), design_life=o.design_life_blocks,
                                          design_life_h=o.design_life_h), history)
     return dataclasses.replace(o, design_life_blocks=job.design_life)
@@ -103,9 +139,6 @@ def _static(o: ReportOptions, variant, prog):
     --estimate-error a second solve on the neighbour level."""
     import dataclasses
 
-    from shaftfe.static import cache as static_cache
-    from shaftfe.static.model import StaticOptions
-    from shaftfe.static.solve import solve_static
     if o.model in ("axisymmetric", "zoned"):
         return _surface_static(o, variant, prog)
     with prog.stage("static (mesh + one solve)"):
@@ -116,7 +149,6 @@ def _static(o: ReportOptions, variant, prog):
         ref = static_cache.store(variant, sopts, res, o.cache_dir)   # the fatigue input
     if o.estimate_error:
         with prog.stage(ERROR_STAGE):
-            from shaftfe.static.error import estimate_error
             ee = estimate_error(res, variant, sopts, o.cache_dir,
                                 other_level=OTHER_LEVEL[o.level])
             res = dataclasses.replace(res, error_estimate=ee)
@@ -129,7 +161,6 @@ def _surface_static(o: ReportOptions, variant, prog):
     surface_reference``: one more solve at the first design speed), stored in the surface
     cache when it is at the speed ``shaftfe fatigue`` reads (as ``_static`` stores the full 3D
     model's)."""
-    from shaftfe.fatigue.run import surface_model, surface_reference
     opts, solve, reference = surface_model(o.model, level=o.level,
                                            seed_load_case=o.seed_load_case,
                                            spin_softening=o.spin_softening)
@@ -143,7 +174,6 @@ def _surface_static(o: ReportOptions, variant, prog):
     with prog.stage("static (mesh + one solve)"):
         ref = surface_reference(make, opts)
         if math.isclose(ref.ref_rpm, REF_RPM):  # what ``shaftfe fatigue`` reads next
-            from shaftfe.fatigue import surface_cache
             ref = surface_cache.store(ref, o.model, variant, opts, o.cache_dir)
     return solved[o.spin_softening], ref
 
@@ -154,7 +184,6 @@ def _nodal_peak(st: dict, ref) -> None:
     ``shaftfe view`` show beside the surface-fitted ``peak_von_mises_MPa``."""
     import numpy as np
 
-    from shaftfe.static.cache import kept_nodes
     vm = np.asarray(ref.von_mises_ref, dtype=float)
     if vm.size == 0:
         return
@@ -167,8 +196,6 @@ def _nodal_peak(st: dict, ref) -> None:
 def _fatigue(o: ReportOptions, res, ref, history, material, variant=None):
     """Fatigue on the static solution, and the hot spot's life with its stress corrected by
     the level's measured error (benchmark) or by the run's own two-level estimate."""
-    from shaftfe.fatigue.field import hot_spot_with_factor
-    from shaftfe.fatigue.run import level_corrected_life
     fat, ff = fatigue(ref, history, material, o, variant)
     life = {"theory": o.mean_stress, "design_life_blocks": o.design_life_blocks,
             "speed_kmh": o.speed_kmh}
@@ -195,9 +222,6 @@ def _axi_vtu(res, ref, ff, vtu: Path, rpm: float, zoned: bool = False) -> list[s
     the zones' free surfaces) with the static fields at ``rpm`` and the fatigue fields."""
     import numpy as np
 
-    from shaftfe.axisymmetric import reference as axi
-    from shaftfe.axisymmetric.recovery import principal_max_local
-    from shaftfe.zoned import reference as zoned_ref
     surface_displacement = (zoned_ref if zoned else axi).surface_displacement
     write_surface_vtu = axi.write_surface_vtu
     s = rpm2_scale(rpm, ref.ref_rpm)
@@ -214,7 +238,6 @@ def _axi_vtu(res, ref, ff, vtu: Path, rpm: float, zoned: bool = False) -> list[s
 def _vtu(o: ReportOptions, out: Path, variant, res, ref, ff, rotor_model, cres) -> dict:
     """The run's VTU (static + fatigue fields at the first design speed) and the mode shapes
     (a file of their own); returns the ``files`` block of the report."""
-    from shaftfe.io import vtu as export
     rpm_vtu = float(o.design_rpm[0])
     vtu = out / f"{variant.name}.vtu"
     r = ff.result
@@ -228,10 +251,8 @@ def _vtu(o: ReportOptions, out: Path, variant, res, ref, ff, rotor_model, cres) 
     modes_vtu = out / "modes.vtu"
     modes = beam_mode_fields(rotor_model, cres, ref.xyz if axi else res.mesh.mesh.doflocs)
     if o.rotor_model == "solid":                   # 3D modes on the rotor's own mesh
-        from shaftfe.rotordynamics.modes_vtu import write_modes_vtu
         write_modes_vtu(rotor_model, cres, modes_vtu)
     elif axi:                                      # beam modes on the revolved surface
-        from shaftfe.axisymmetric.reference import write_surface_vtu
         write_surface_vtu(ref, modes_vtu, modes)
     else:                                          # beam modes on the static mesh
         export.write_fields_vtu(res.mesh.mesh, modes_vtu, modes)
@@ -292,19 +313,15 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     import dataclasses
     import datetime
 
-    from shaftfe.report import seed as seedmod
-    from shaftfe.util.progress import Progress
 
     prog = progress if progress is not None else Progress(stages(o), enabled=False)
     out = Path(out)
     check_options(o)
     machine = _machine()
     with prog.stage("inputs"):
-        from shaftfe.model.loader import load_variant
         variant = load_variant(o.variant, o.overrides)
         o = with_duty(o, variant)           # what the options leave open, from its [duty]
         if o.model is None:                 # the zoned model, as every command
-            from shaftfe.fatigue.run import DEFAULT_MODEL
             o = dataclasses.replace(o, model=DEFAULT_MODEL)
         check_options(o)                    # again: what [duty] filled in
         engine, history, material = read_inputs(o, variant)
@@ -385,14 +402,6 @@ def _strength(o: ReportOptions, variant, ref, history, cycles=None) -> dict:
     ``shaftfe fatigue --method fkm | din743``."""
     import dataclasses
 
-    from shaftfe.beam.solve import beam_at_ref
-    from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
-    from shaftfe.errors import InputError
-    from shaftfe.fatigue import standards as sd
-    from shaftfe.fatigue import standards_out as so
-    from shaftfe.fatigue.methods import AssessmentInputs, get_method
-    from shaftfe.report.stages import fatigue_job
-    from shaftfe.util.notices import warn
     out = {"default_method": DEFAULT_METHOD}
     try:                    # the shaft's own material decides; not every record is assessable
         sd.din743_card(variant, sd.StrengthOptions())
@@ -418,7 +427,6 @@ def _picture_job(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> pictu
     """The three pictures' job: their fields, titles and captions (``report.pictures``)."""
     import numpy as np
 
-    from shaftfe.report.html import PEAK_FIT_LABEL, num
 
     excl = np.flatnonzero(ff.excluded_mask)
     case = next((c for c in st["cases"] if c["rpm"] == rpm), st["cases"][0])
@@ -463,7 +471,6 @@ def _din743_along_plot(strength: dict, fig_dir, add_fig) -> None:
     din = strength.get("din743")
     if not din or "along" not in din:
         return
-    from shaftfe.fatigue import standards_out as so
     so.plot_din_along(din, fig_dir / "din743_along.png")
     add_fig("din743_along", "DIN 743 safety along the shaft",
             "S_D and S_F of the unnotched section at every cross-section (every 0.25 mm, "
@@ -476,7 +483,6 @@ def _fkm_along_plot(strength: dict, variant, fig_dir, add_fig) -> None:
     fkm = strength.get("fkm")
     if not fkm or "along" not in fkm:
         return
-    from shaftfe.fatigue import standards_out as so
     so.plot_fkm_along(fkm, variant, fig_dir / "fkm_along.png")
     add_fig("fkm_along", "FKM degree of utilisation along the shaft",
             "FKM on the static field at every 1 mm of the surface (the worse of each slice's "
@@ -487,7 +493,6 @@ def _fkm_along_plot(strength: dict, variant, fig_dir, add_fig) -> None:
 
 def draw_balance(fres, sw, fig_dir) -> None:
     """The balancing figures' files (in the pictures' process when there is one)."""
-    from shaftfe.balance import plots
     plots.plot_forces(fres, Path(fig_dir) / "balance_forces.png")
     plots.plot_sweep(sw, Path(fig_dir) / "balance_sweep.png")
 
@@ -506,16 +511,8 @@ def _balance_captions(fres, sw, add_fig) -> None:
 
 def _other_plots(o, fig_dir, variant, res, ref, ff, history, material, cres, rpm_vtu,
                  add_fig) -> None:
-    from shaftfe.fatigue import kernels
-    from shaftfe.fatigue import plots as fatigue_plots
-    from shaftfe.fatigue.counting import rainflow_matrix
-    from shaftfe.io import vtu as export
-    from shaftfe.rotordynamics.plots import plot_campbell
-    from shaftfe.static.outputs import clearance_of
-    from shaftfe.util.atomic import write_atomic
     clear = clearance_of(variant)
     if o.model in ("axisymmetric", "zoned"):
-        from shaftfe.axisymmetric.reference import surface_envelope
         zoned = o.model == "zoned"
         export.plot_png(res.global_result if zoned else res, fig_dir / "deflection.png",
                         rpm_vtu, envelope=surface_envelope(ref),

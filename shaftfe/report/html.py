@@ -13,6 +13,8 @@ import math
 from html import escape
 
 from shaftfe import __version__
+from shaftfe.fatigue.standards_out import elements_lines
+from shaftfe.report.seed import VARIANT
 from shaftfe.rotordynamics.campbell import whirl_ratio_text
 from shaftfe.solid.features import kind_of
 from shaftfe.static.result import PEAK_FIT_LABEL  # what a static peak is (one definition)
@@ -498,7 +500,6 @@ def _comparison(r) -> str:
         classes.append(None)
     s += table(["quantity", "unit", "seed", "shaftfe", "difference", "how ours was computed"],
                rows, numeric={2, 3}, classes=classes)
-    from shaftfe.report.seed import VARIANT
     if r.inputs["variant"] != VARIANT:
         s += (f'<p class="note">The seed\'s static, fatigue and rotor-dynamics figures are of '
               f"variant {_e(VARIANT)}; for {_e(r.inputs['variant'])} only the balancing and "
@@ -634,7 +635,6 @@ def _strength(r) -> str:
                       "</tr>" for a, b, c, e, h in rows) + "</table>")
     # each standard at every cross-section of the shaft (``shaftfe fatigue --plot``'s)
     html += figure(r, "fkm_along") + figure(r, "din743_along")
-    from shaftfe.fatigue.standards_out import elements_lines
     el = s["elements"]
     what = "Bearings (ISO 281)" + (", keys" if el.get("keys") else "") + \
         (" and gear pair" if el.get("gear") else "")

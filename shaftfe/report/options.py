@@ -6,8 +6,12 @@ import math
 from dataclasses import dataclass
 
 from shaftfe.errors import InputError
+from shaftfe.fatigue.run import DEFAULT_MODEL, MEAN_STRESS, check_life_settings, check_model_level
+from shaftfe.fatigue.sn import variant_card
 from shaftfe.rotordynamics.options import DEFAULT_ORDERS, ROTOR_MODELS
 from shaftfe.solid.levels import ESTIMATE_PAIR_CHEAP
+from shaftfe.static import STATIC_MODELS
+from shaftfe.util.limits import RPM_CEILING, check_rpm
 
 # in the order they run; "3D pictures": the wait for what is left of them after the plots
 # (they render in a second process from the VTU stage on, ``report.pictures``)
@@ -69,8 +73,6 @@ CAMPBELL_STEP_MIN_RPM = 10.0     # ≤ 2000 speeds up to the rpm ceiling: second
 
 def check_options(o: ReportOptions) -> None:
     """Cheap checks of everything the user typed (before any computation or output)."""
-    from shaftfe.fatigue.run import DEFAULT_MODEL, check_model_level
-    from shaftfe.static import STATIC_MODELS
     check_model_level(o.model or DEFAULT_MODEL, o.level, STATIC_MODELS)
     if o.model != "solid" and o.estimate_error:
         raise InputError("command line", "--estimate-error", "with --model solid (the "
@@ -80,7 +82,6 @@ def check_options(o: ReportOptions) -> None:
     if o.rotor_model not in REPORT_ROTOR_MODELS:
         raise InputError("command line", "--rotor-model", " | ".join(REPORT_ROTOR_MODELS),
                          got=o.rotor_model)
-    from shaftfe.util.limits import RPM_CEILING, check_rpm
     if o.design_rpm is not None and not o.design_rpm:
         raise InputError("command line", "--rpm", "one or more speeds", got="")
     for r in o.design_rpm or ():
@@ -99,7 +100,6 @@ def check_options(o: ReportOptions) -> None:
                          got=o.campbell_step_rpm)
     if not (1 <= o.modes <= 50):
         raise InputError("command line", "--modes", "1..50", got=o.modes)
-    from shaftfe.fatigue.run import MEAN_STRESS, check_life_settings
     check_life_settings(o.design_life_blocks, o.speed_kmh, o.design_life_h)
     if o.mean_stress not in MEAN_STRESS:
         raise InputError("command line", "--mean-stress", " | ".join(MEAN_STRESS),
@@ -122,7 +122,6 @@ def with_duty(o: ReportOptions, variant) -> ReportOptions:
     section; no element data: no key and gear-pair checks)."""
     import dataclasses
 
-    from shaftfe.fatigue.sn import variant_card
     d = variant.duty
     where = variant.source_files[0] if variant.source_files else variant.name
     src = d.source if d is not None else where

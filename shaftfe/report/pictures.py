@@ -21,6 +21,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from shaftfe.io.render import render, use_offscreen_egl
+from shaftfe.io.view import load
+
 
 @dataclass(frozen=True)
 class Shot:
@@ -45,8 +48,6 @@ def render_all(job: PictureJob) -> tuple[list[tuple[str, str, str]], float]:
     """Render every shot of ``job``: ([(name, title, caption)], seconds)."""
     from pathlib import Path
 
-    from shaftfe.io.render import render
-    from shaftfe.io.view import load
     t0 = time.perf_counter()
     grid = load(job.vtu)                     # read once for every picture
     out = []
@@ -107,7 +108,6 @@ class Rendering:
 def _warm_up() -> str:
     """Import the renderer (VTK through PyVista: most of the second process's start) before
     the job arrives, off screen as the pictures render."""
-    from shaftfe.io.render import use_offscreen_egl
     use_offscreen_egl()
     import pyvista
     import pyvista.plotting

@@ -5,22 +5,31 @@ from __future__ import annotations
 
 import math
 
+from shaftfe.balance import single, sweep
+from shaftfe.balance.engines import load_engine
+from shaftfe.beam.elements import NDOF, RX, RY, RZ, UX, UY, UZ
+from shaftfe.beam.model import build_model
+from shaftfe.beam.solve import solve
 from shaftfe.errors import InputError
+from shaftfe.fatigue.methods import AssessmentInputs, get_method
+from shaftfe.fatigue.run import FatigueJob, check_history, read_spectrum
+from shaftfe.fatigue.sn import load_material
+from shaftfe.io.vtu import bearing_line
 from shaftfe.model.mass import mass_properties, variant_x2
 from shaftfe.report.options import ReportOptions
+from shaftfe.rotordynamics.analyse import analyse
+from shaftfe.rotordynamics.options import RotorOptions
 from shaftfe.solid.features import kind_of
+from shaftfe.solid.plan import refuse_sharp_corners
 from shaftfe.util.paths import repo_relative
 from shaftfe.util.units import omega
+from shaftfe.zoned.submodel import cut_error
 
 
 def read_inputs(o: ReportOptions, variant) -> tuple:
     """The engine (None: the variant states none and --engine is not given: no balancing),
     the rpm history (bounded by the engine's max_rpm, else the variant's [duty] speed range)
     and the seed method's S-N card of the options ``o`` (``options.with_duty``)."""
-    from shaftfe.balance.engines import load_engine
-    from shaftfe.fatigue.run import check_history, read_spectrum
-    from shaftfe.fatigue.sn import load_material
-    from shaftfe.solid.plan import refuse_sharp_corners
     refuse_sharp_corners(variant, "the report's fatigue check")     # before any solve
     engine = load_engine(o.engine) if o.engine else None
     history = read_spectrum(o.spectrum, None, None)
@@ -77,7 +86,6 @@ def balancing(engine, variant, seedmod) -> tuple[dict, object, object, object]:
     §5.4 row only on the seed's engine (``seed_row`` None otherwise)."""
     import numpy as np
 
-    from shaftfe.balance import single, sweep
 
     mp = mass_properties(variant)
     x2 = variant_x2(variant, mp, default=engine.X2 if engine.X2 is not None else 0.0)
@@ -123,8 +131,6 @@ def balancing(engine, variant, seedmod) -> tuple[dict, object, object, object]:
 
 def beam_check(variant, rpms) -> tuple[dict, object]:
     """Inventor-style beam (rigid supports, seed load case) at the design speeds ``rpms``."""
-    from shaftfe.beam.model import build_model
-    from shaftfe.beam.solve import solve
 
     v = variant.with_seed_load_case()
     rpms = [float(r) for r in rpms]
@@ -147,7 +153,6 @@ def _relative_deflection(case, x_mm: float) -> float:
     """|u| of the axis at ``x_mm`` relative to the straight line through the two bearings'
     remote points (the shaft's own bending; equals the rigid-support deflection for two
     supports with free tilt, where the reactions are statically determinate)."""
-    from shaftfe.io.vtu import bearing_line
     st = min(case.stations, key=lambda s: abs(s.x_mm - x_mm))
     line = bearing_line(case, st.x_mm)
     if line is None:
@@ -262,7 +267,6 @@ def static_summary_zoned(res, variant) -> dict:
     the largest of them; ``zones`` lists the 3D submodels with their cut checks."""
     from dataclasses import asdict
 
-    from shaftfe.zoned.submodel import cut_error
     g = res.global_result
     axi = static_summary_axisymmetric(g, variant)
     by_rpm = {c["rpm"]: c for c in axi["cases"]}
@@ -313,7 +317,6 @@ def _region_of_peak(c) -> str:
 def fatigue_job(o: ReportOptions):
     """The report's fatigue settings as the options of every fatigue method (the seed's von
     Mises, kf 1; the standards' defaults)."""
-    from shaftfe.fatigue.run import FatigueJob
     return FatigueJob(spectrum=str(o.spectrum), variant=o.variant, mean_stress=o.mean_stress,
                       material=o.material, design_life=o.design_life_blocks,
                       speed_kmh=o.speed_kmh, level=o.level, cache_dir=o.cache_dir,
@@ -324,7 +327,6 @@ def fatigue_job(o: ReportOptions):
 
 def fatigue(ref, history, material, o: ReportOptions, variant=None) -> tuple[dict, object]:
     """The seed method (by name from ``fatigue.methods``) on the report's static field."""
-    from shaftfe.fatigue.methods import AssessmentInputs, get_method
     got = get_method("seed").assess(AssessmentInputs.one_channel(variant, history, field=ref),
                                     fatigue_job(o))
     ff = got.detail.field
@@ -361,8 +363,6 @@ def campbell(variant, o: ReportOptions) -> tuple[dict, object, object]:
     rpms = [bottom + i * o.campbell_step_rpm for i in range(n + 1)]
     if top - rpms[-1] > 1e-9 * top:
         rpms.append(top)
-    from shaftfe.rotordynamics.analyse import analyse
-    from shaftfe.rotordynamics.options import RotorOptions
     if o.rotor_model == "solid":
         # the 3D solid rotor: its own mesh of the full variant (every part's seat is a face
         # group), the same level as the static mesh
@@ -408,7 +408,6 @@ def beam_mode_fields(model, res, xyz, speed_index: int = 0) -> dict:
     ``mode_<k>_<f>Hz`` (docs/FIELDS.md). Empty for a model without a beam."""
     import numpy as np
 
-    from shaftfe.beam.elements import NDOF, RX, RY, RZ, UX, UY, UZ
 
     beam = getattr(model, "beam", None)
     if beam is None or res.vectors is None:

@@ -29,7 +29,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from shaftfe.balance.engines import check_operating_speed
 from shaftfe.errors import InputError
+from shaftfe.fatigue.run import check_history
+from shaftfe.model.fields import ImplausibleValue
+from shaftfe.model.loader import _resolve, resolved_dict
+from shaftfe.study.evaluate import _engine, _fatigue_inputs, group_of, load_design
 from shaftfe.study.spec import StudySpec, check_designs, parameter_of, refusal
 
 # A part's mass or eccentricity set directly may move by at most this factor from the base
@@ -61,7 +66,6 @@ class Checked:
 
 
 def _unit_slip(spec: StudySpec, designs) -> None:
-    from shaftfe.model.loader import _resolve, resolved_dict
     base = {a.get("name"): a for a in resolved_dict(_resolve(spec.base)).get("attachments", [])}
     for d in designs:
         for path, value in d.overrides:
@@ -85,9 +89,6 @@ def _files(spec: StudySpec) -> None:
     speeds against the engine's own limit by the rule of ``shaftfe fatigue``
     (``balance.engines.check_operating_speed``, ``fatigue.run.check_history``; a study has no
     --allow-overspeed)."""
-    from shaftfe.balance.engines import check_operating_speed
-    from shaftfe.fatigue.run import check_history
-    from shaftfe.study.evaluate import _engine, _fatigue_inputs
     an = spec.analyses
     _engine(an.engine)
     hint = " (a study assesses operating speeds only: it has no --allow-overspeed)"
@@ -103,8 +104,6 @@ def _files(spec: StudySpec) -> None:
 def check_study(spec: StudySpec, designs) -> Checked:
     """Check every input of the study (see the module docstring); InputError if the study is
     refused, else the designs the loader refuses and the 3D designs' mesh groups."""
-    from shaftfe.model.fields import ImplausibleValue
-    from shaftfe.study.evaluate import group_of, load_design
     check_designs(spec, designs)
     _unit_slip(spec, designs)
     _files(spec)

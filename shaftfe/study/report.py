@@ -17,6 +17,13 @@ import math
 from pathlib import Path
 
 from shaftfe.errors import InputError
+from shaftfe.fatigue.method_options import methods_of
+from shaftfe.model.loader import _resolve, resolved_dict
+from shaftfe.model.overrides import locate, normalise
+from shaftfe.study import results
+from shaftfe.study.runner import _base_row
+from shaftfe.study.spec import OPS
+from shaftfe.util.atomic import write_atomic
 
 LABELS = {"engine_max_F_N": "engine max|F| [N]", "engine_rms_F_N": "engine RMS|F| [N]",
           "mass_kg": "balancer mass [kg]",
@@ -38,7 +45,6 @@ META_KEYS = {"study_file": str, "digest": str, "name": str, "base": str, "parame
 
 def _method(analyses: dict | None) -> tuple[str, bool]:
     """(the study's fatigue method, whether it takes the study's S-N card: ``--material``)."""
-    from shaftfe.fatigue.method_options import methods_of
     method = (analyses or {}).get("fatigue_method") or "seed"
     return method, method in methods_of("--material")
 
@@ -93,7 +99,6 @@ def _png(fig, path: Path | None = None) -> str:
     import matplotlib.pyplot as plt
     plt.close(fig)
     if path is not None:
-        from shaftfe.util.atomic import write_atomic
         write_atomic(path, buf.getvalue())
     return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode()
 
@@ -263,8 +268,6 @@ def read_meta(out: Path) -> dict:
 
 
 def write_report(out_dir) -> Path:
-    from shaftfe.study import results
-    from shaftfe.util.atomic import write_atomic
     out = Path(out_dir)
     meta = read_meta(out)
     try:
@@ -376,7 +379,6 @@ def write_report(out_dir) -> Path:
 
 
 def _ok(v, op, val) -> bool:
-    from shaftfe.study.spec import OPS
     return v is not None and not (isinstance(v, float) and math.isnan(v)) and \
         OPS[op](float(v), val)
 
@@ -384,7 +386,6 @@ def _ok(v, op, val) -> bool:
 def _base(out: Path, meta: dict, params) -> tuple[dict | None, str]:
     """The base variant's row (``base.json``, the same analyses) with its own values of the
     parameters, and its name; (None, name) if the folder has none."""
-    from shaftfe.study.runner import _base_row
     name = str(meta.get("base", "base"))
     name = Path(name).stem if name.endswith(".toml") else name
     row = _base_row(out, meta.get("base_key"))
@@ -392,8 +393,6 @@ def _base(out: Path, meta: dict, params) -> tuple[dict | None, str]:
         return None, name
     row = dict(row)
     try:
-        from shaftfe.model.loader import _resolve, resolved_dict
-        from shaftfe.model.overrides import locate, normalise
         b = str(meta.get("base"))
         merged = resolved_dict(_resolve(out / b if b.endswith(".toml") else b))
         for p in params:

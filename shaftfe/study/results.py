@@ -23,6 +23,7 @@ from typing import Any
 
 from shaftfe.errors import InputError
 from shaftfe.study.spec import FIXED, OPS, PREFIXES, StudySpec
+from shaftfe.util.atomic import atomic_path
 
 LAST = ("error", "seconds")
 
@@ -54,7 +55,6 @@ def frame(rows):
 
 def write_tables(out: Path, spec: StudySpec, rows) -> None:
     """results.parquet and results.csv (every design, all columns or those asked)."""
-    from shaftfe.util.atomic import atomic_path
     df = frame(rows)
     if spec.columns:
         inputs = [c for c in df.columns if c not in FIXED and not c.startswith(PREFIXES)

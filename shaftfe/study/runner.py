@@ -39,9 +39,18 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import shaftfe
+from shaftfe.beam.planes import mesh_hot_axes
 from shaftfe.errors import InputError
+from shaftfe.fe import reuse
+from shaftfe.model.loader import load_variant
+from shaftfe.solid.mesh import build_mesh
+from shaftfe.study import results, sampling
+from shaftfe.study.check import check_study
+from shaftfe.study.evaluate import evaluate_design, group_of, load_design
 from shaftfe.study.sampling import Design
 from shaftfe.study.spec import StudySpec
+from shaftfe.util.atomic import write_atomic
 
 MiB = 1024 ** 2
 # Resident memory one worker needs (measured as whole processes: the static command's peak RSS
@@ -79,7 +88,6 @@ _NOT_NUMBERS = ("cli.py", "study/runner.py", "study/results.py", "study/report.p
 
 def source_fingerprint() -> str:
     """sha256 of the package's analysis sources (a code change invalidates cached rows)."""
-    import shaftfe
     root = Path(shaftfe.__file__).parent
     h = hashlib.sha256()
     for p in sorted(root.rglob("*.py")):
@@ -102,7 +110,6 @@ def design_key(base_hash: str, design: Design, options: dict, code: str) -> str:
 def _write_json(path: Path, obj) -> None:
     """A row or the study's record (an infinite life stays ``Infinity``: Python's JSON reads
     it back; these files are the study's own cache, the tables are what others read)."""
-    from shaftfe.util.atomic import write_atomic
     write_atomic(path, json.dumps(obj, indent=1, default=str) + "\n")
 
 
@@ -150,9 +157,6 @@ def check_directory(out_dir: Path, spec: StudySpec) -> None:
 
 def build_group_mesh(base: str, overrides, level: str):
     """The mesh of a group's solid (one per group, built on a worker; cached on its disk)."""
-    from shaftfe.beam.planes import mesh_hot_axes
-    from shaftfe.solid.mesh import build_mesh
-    from shaftfe.study.evaluate import load_design
     v, _ = load_design(base, overrides)
     return build_mesh(v, level, 2, hot_axes=mesh_hot_axes(v))
 
@@ -165,8 +169,6 @@ def evaluate_task(base: str, items, analyses, shaft_mesh=None,
     ``after``: the previous task of the same lane (only orders the two)."""
     from contextlib import nullcontext
 
-    from shaftfe.fe import reuse
-    from shaftfe.study.evaluate import evaluate_design
     try:
         from distributed import get_worker
         single = get_worker().state.nthreads == 1
@@ -192,7 +194,6 @@ def evaluate_task(base: str, items, analyses, shaft_mesh=None,
 
 def _group_key(base: str, design: Design, level: str) -> tuple:
     """``group_of`` a design, or ("refused",) if it cannot be loaded."""
-    from shaftfe.study.evaluate import group_of, load_design
     try:
         v, _ = load_design(base, design.overrides)
         return group_of(v, level)
@@ -385,9 +386,6 @@ def run_study(spec: StudySpec, out_dir, *, workers: int | None = None,
     an unreachable scheduler leaves a fresh ``out_dir`` as it was (not created).
     ``announce(checked)``: called once the cluster is reached, before the first design runs
     (the command lists the refused designs there)."""
-    from shaftfe.model.loader import load_variant
-    from shaftfe.study import results, sampling
-    from shaftfe.study.check import check_study
     t_all = time.perf_counter()
     out = Path(out_dir)
     if scheduler is not None:                      # '' is an address given, and refused
@@ -470,7 +468,6 @@ def run_study(spec: StudySpec, out_dir, *, workers: int | None = None,
 def study_record(spec: StudySpec, out: Path, n_designs: int, base_key: str) -> dict:
     """What study.json holds: the study file (relative to the folder) and its digest, the
     parameters, objectives, requirements and analysis options, the base row's key."""
-    from shaftfe.study import results, sampling
     return {"study_file": _shown_path(spec.path, out), "digest": spec.digest,
             "name": spec.name, "base": _shown_path(spec.base, out)
             if spec.base.endswith(".toml") else spec.base,
