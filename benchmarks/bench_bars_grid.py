@@ -44,7 +44,6 @@ shoulder_bars``); ``--write`` only regenerates them from the cache.
 from __future__ import annotations
 
 import argparse
-import datetime as _dt
 import json
 import math
 import time
@@ -351,13 +350,9 @@ def _axi_lines(data: dict, axi_bars: dict) -> list[str]:
 
 
 def _write_module(bars: dict, points, axi_bars: dict) -> None:
-    """The bars as the package reads them (``static.benchmark.MeasuredBars``, at 2 decimals)."""
-    from shaftfe.static.benchmark import MeasuredBars
-    when = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
-    two = {m: {lv: (float(f"{lo:.2f}"), float(f"{hi:.2f}")) for lv, (lo, hi) in by.items()}
-           for m, by in (("solid", bars), ("axisymmetric", axi_bars))}
-    BARS.write_text(MeasuredBars(f"benchmarks/bench_bars_grid.py on {when}", LOAD, two,
-                                 tuple(points)).to_json())
+    from shaftfe.static.benchmark import write_bars
+    write_bars(BARS, "benchmarks/bench_bars_grid.py", LOAD,
+               {"solid": bars, "axisymmetric": axi_bars}, points)
 
 
 def main(argv=None) -> None:

@@ -40,7 +40,6 @@ the two measured widths, 2 ρ … 2 t (reports/benchmarks/error_bars_grooves.jso
 from __future__ import annotations
 
 import argparse
-import datetime as _dt
 import time
 from pathlib import Path
 
@@ -335,13 +334,8 @@ def write(data: dict) -> dict:
 
 
 def _write_module(bars: dict, points) -> None:
-    """The bars as the package reads them (``static.benchmark.MeasuredBars``, at 2 decimals)."""
-    from shaftfe.static.benchmark import MeasuredBars
-    when = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
-    two = {"axisymmetric": {lv: (float(f"{lo:.2f}"), float(f"{hi:.2f}"))
-                            for lv, (lo, hi) in bars.items()}}
-    BARS.write_text(MeasuredBars(f"benchmarks/bench_groove_bars.py on {when}", LOAD, two,
-                                 tuple(points)).to_json())
+    from shaftfe.static.benchmark import write_bars
+    write_bars(BARS, "benchmarks/bench_groove_bars.py", LOAD, {"axisymmetric": bars}, points)
 
 
 def main(argv=None) -> None:

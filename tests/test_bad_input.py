@@ -912,3 +912,33 @@ LATER_CASES = {**B_CASES, **MATERIAL_CASES, **F2_CASES, **LOAD_CASES, **DUTY_CAS
 @pytest.mark.parametrize("case", sorted(LATER_CASES))
 def test_later_tables_are_one_clear_line_exit_2(case, space, capsys, monkeypatch):
     test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)
+
+
+# --- issue #34, one rule per limit: every speed under util.limits.RPM_CEILING (an engine file's
+# and balance twin's --rpm too), and shaftfe static's options refused by the options class's
+# own rules (static.model.check_options)
+LIMIT_FILES = {
+    "fast_engine.toml": (GEOMETRY_DIR / "engines" / "vm450.toml").read_text(encoding="utf-8")
+    .replace("max_rpm = 9500.0", "max_rpm = 50000.0"),
+}
+LIMIT_CASES = {
+    "engine_max_rpm_above_ceiling": (["balance", "forces", "--engine", "{W}/fast_engine.toml"],
+                                     ["fast_engine.toml", "max_rpm", "(0, 20000] rpm"]),
+    "balance_twin_rpm_above_ceiling": (["balance", "twin", "--delta", "60", "--rpm", "50000"],
+                                       ["--rpm", "50000", "(0, 20000] rpm"]),
+    "static_order_3": (["static", "--variant", "x2_57", "--order", "3", "--out", "{W}/o"],
+                       ["--order", "1 | 2"]),
+    "static_solver_unknown": (["static", "--variant", "x2_57", "--solver", "umfpack", "--out",
+                               "{W}/o"], ["--solver", "auto | superlu | pardiso | amg"]),
+    "static_exclude_band_too_wide": (["static", "--variant", "x2_57", "--exclude-mm", "7",
+                                      "--out", "{W}/o"], ["--exclude-mm", "[0, 5] mm"]),
+}
+CASES.update(LIMIT_CASES)
+
+
+@pytest.mark.parametrize("case", sorted(LIMIT_CASES))
+def test_limits_are_one_rule_one_clear_line_exit_2(case, space, capsys, monkeypatch):
+    _, w = space
+    for name, text in LIMIT_FILES.items():
+        (w / name).write_text(text, encoding="utf-8")
+    test_bad_input_is_one_clear_line_exit_2_and_writes_nothing(case, space, capsys, monkeypatch)

@@ -334,3 +334,18 @@ def test_the_cached_bending_planes_keep_the_beam_solves_warnings(tmp_path, monke
             assert planes.mesh_hot_axes(v, cache_dir=tmp_path, use_cache=True) == plain
     assert cold == warm == [{"code": "deflection-large", "where": "beam, 10000 rpm",
                              "text": "max deflection beyond the linear range"}]
+
+
+def test_a_notch_in_a_solved_zone_says_why_it_has_no_bar():
+    """``zoned.solve.zone_filtered``: a notch whose faces reach into a solved zone loses its
+    bar, and a note it had (no bar for its geometry) too, for the zone's reason; one outside
+    keeps its bar or note; a notch the global model does not report keeps neither."""
+    from shaftfe.zoned.solve import zone_filtered
+    bars = {"fillet:a": (-0.3, 0.2), "fillet:b": (-0.3, 0.2), "fillet:z": (-0.3, 0.2)}
+    notes = {"groove:c:0": "no measured bar for this groove", "groove:d:0": "no bar (load)"}
+    kept, why = zone_filtered(bars, notes, {"fillet:a", "fillet:b", "groove:c:0", "groove:d:0"},
+                              {"fillet:b": "zone:k", "groove:d:0": "zone:k"})
+    assert kept == {"fillet:a": (-0.3, 0.2)}
+    assert why["groove:c:0"] == "no measured bar for this groove"
+    assert "3D zone zone:k" in why["fillet:b"] and "3D zone zone:k" in why["groove:d:0"]
+    assert "fillet:z" not in kept and "fillet:z" not in why

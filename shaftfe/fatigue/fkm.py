@@ -241,15 +241,13 @@ class Spectrum:
 
     def damage(self, rule: str, lam: float = 1.0) -> float:
         """Damage per block at load factor ``lam`` (elementary, modified)."""
-        lam = lam * self.factor
         if self.n == 0:
             return 0.0
         if rule == "elementary":
+            lam = lam * self.factor
             return float(lam ** self.k * self.A[-1] / self.n_knee)
         if rule == "modified":
-            m = self._m(lam)
-            top = lam ** self.k * self.A[m - 1] if m else 0.0
-            return float((top + lam ** (2 * self.k - 1) * self.B[m]) / self.n_knee)
+            return self._damage_at(self._m(lam * self.factor))(lam)
         raise ValueError(f"rule {rule!r}: elementary | modified (consistent: life)")
 
     def _m(self, lam: float) -> int:
@@ -260,17 +258,10 @@ class Spectrum:
         """Blocks until the damage reaches D_M at load factor ``lam`` (class docstring)."""
         if self.n == 0:
             return math.inf
-        if rule in ("elementary", "modified"):
+        if rule == "elementary":
             d = self.damage(rule, lam)
             return damage_sum / d if d > 0 else math.inf
-        if rule != "consistent":
-            raise ValueError(f"rule {rule!r}: one of {MINER}")
-        lam = lam * self.factor
-        m = self._m(lam)
-        if m == 0:
-            return math.inf      # nothing above the fatigue limit: no damage ever starts
-        first = (lam ** -self.k - self.sk[m]) / self.A[m - 1]
-        return float(damage_sum * self.n_knee * (first + self.T[m]))
+        return self._life_at(rule, damage_sum, self._m(lam * self.factor))(lam)
 
     def scale_for_life(self, rule: str, damage_sum: float, blocks: float) -> float:
         """The load factor λ at which the life is exactly ``blocks``: elementary
@@ -318,22 +309,33 @@ class Spectrum:
                 break
         return math.sqrt(lo * hi)
 
-    def _life_at(self, rule: str, damage_sum: float, m: int):
-        """λ ↦ ``life`` at λ for the m(λ) = ``m`` of an interval between two knees: the same
-        expression as ``life`` in plain floats."""
+    def _damage_at(self, m: int):
+        """λ ↦ the modified rule's damage per block at λ, for m(λ) = ``m`` (class docstring),
+        in plain floats: ``damage`` and, between two knees, ``scale_for_life``'s bisection."""
         k, f, nk = self.k, self.factor, self.n_knee
+        a, b = (float(self.A[m - 1]) if m else 0.0), float(self.B[m])
+
+        def damage(lam: float) -> float:
+            lam = lam * f
+            top = lam ** k * a if m else 0.0
+            return (top + lam ** (2 * k - 1) * b) / nk
+        return damage
+
+    def _life_at(self, rule: str, damage_sum: float, m: int):
+        """λ ↦ ``life`` (modified, consistent) at λ for m(λ) = ``m``: the one expression of
+        the life, which ``life`` evaluates at its own m and ``scale_for_life`` bisects between
+        two knees."""
         if rule == "modified":
-            a = float(self.A[m - 1]) if m else 0.0
-            b = float(self.B[m])
+            damage = self._damage_at(m)
 
             def life(lam: float) -> float:
-                lam = lam * f
-                d = (lam ** k * a + lam ** (2 * k - 1) * b) / nk
+                d = damage(lam)
                 return damage_sum / d if d > 0 else math.inf
             return life
         if rule != "consistent":
             raise ValueError(f"rule {rule!r}: one of {MINER}")
         if m == 0:
-            return lambda lam: math.inf
+            return lambda lam: math.inf  # nothing above the fatigue limit: no damage ever starts
+        k, f, nk = self.k, self.factor, self.n_knee
         a, skm, t = float(self.A[m - 1]), float(self.sk[m]), float(self.T[m])
         return lambda lam: damage_sum * nk * (((lam * f) ** -k - skm) / a + t)

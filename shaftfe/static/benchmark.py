@@ -149,6 +149,17 @@ class MeasuredBars:
                            "measured": [list(p) for p in self.measured]}, indent=1) + "\n"
 
 
+def write_bars(path: Path, benchmark: str, load: str, bars: dict, measured) -> None:
+    """Write what ``benchmark`` measured as ``read_bars`` reads it: ``bars[model][level]`` =
+    (low, high) % at two decimals (as printed), stamped with the benchmark and the UTC time."""
+    import datetime
+    when = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d %H:%M UTC")
+    two = {m: {lv: (float(f"{lo:.2f}"), float(f"{hi:.2f}")) for lv, (lo, hi) in by.items()}
+           for m, by in bars.items()}
+    Path(path).write_text(MeasuredBars(f"{benchmark} on {when}", load, two,
+                                       tuple(measured)).to_json(), encoding="utf-8")
+
+
 def read_bars(path: Path) -> MeasuredBars:
     """The ``MeasuredBars`` a benchmark wrote to ``path``."""
     d = json.loads(Path(path).read_text(encoding="utf-8"))

@@ -371,13 +371,8 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
     solved = [(sub.zone.name, sub.zone.x0, sub.zone.x1) for sub in subs.values()]
     in_zone = {r: name for r in glob if r in feats for name, x0, x1 in solved
                if feats[r].x_mm[1] > x0 and feats[r].x_mm[0] < x1}
-    bars = {r: b for r, b in first_global.truth_error_bar_pct.items()
-            if r in glob and r not in in_zone}
-    bar_notes = {r: n for r, n in first_global.truth_bar_notes.items()
-                 if r in glob and r not in in_zone}
-    bar_notes |= {r: f"no measured bar: it lies in the 3D zone {name}, whose cut features' "
-                     "field the measured grids did not hold"
-                  for r, name in in_zone.items() if r in first_global.truth_error_bar_pct}
+    bars, bar_notes = zone_filtered(first_global.truth_error_bar_pct,
+                                    first_global.truth_bar_notes, glob, in_zone)
     notes.append(("error bars: a span fillet's or groove's peak from the global model carries "
                   f"the axisymmetric {axi_level} level's error measured over a grid of "
                   "shoulders or of U grooves (its own method refined: a discretisation bar; "
@@ -405,6 +400,18 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
     return ZonedResult(variant.name, variant.content_hash, options, axi_level, tuple(infos),
                        tuple(cases), tuple(notes), run, first_global, plan, tuple(fields),
                        bars, bar_notes)
+
+
+def zone_filtered(bars: dict, notes: dict, glob: set, in_zone: dict) -> tuple[dict, dict]:
+    """The global model's bars and their notes kept for the notches it reports (``glob``),
+    but a notch whose faces reach into a solved 3D zone (``in_zone``: region → zone name),
+    which gets, in place of its bar or of its note, why it has none."""
+    kept = {r: b for r, b in bars.items() if r in glob and r not in in_zone}
+    why = {r: n for r, n in notes.items() if r in glob and r not in in_zone}
+    why |= {r: f"no measured bar: it lies in the 3D zone {name}, whose cut features' field "
+               "the measured grids did not hold"
+            for r, name in in_zone.items() if r in bars or r in notes}
+    return kept, why
 
 
 def _growth_file(plan, bands, zones, options, cache_dir):
