@@ -34,15 +34,12 @@ from pathlib import Path
 from shaftfe.axisymmetric import reference as axi
 from shaftfe.axisymmetric.recovery import principal_max_local
 from shaftfe.axisymmetric.reference import surface_envelope, write_surface_vtu
-from shaftfe.balance import plots
 from shaftfe.beam.solve import beam_at_ref
 from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
 from shaftfe.errors import InputError
-from shaftfe.fatigue import kernels, surface_cache
-from shaftfe.fatigue import plots as fatigue_plots
 from shaftfe.fatigue import standards as sd
 from shaftfe.fatigue import standards_out as so
-from shaftfe.fatigue.counting import rainflow_matrix
+from shaftfe.fatigue import surface_cache
 from shaftfe.fatigue.field import hot_spot_with_factor
 from shaftfe.fatigue.methods import DEFAULT_METHOD, AssessmentInputs, get_method
 from shaftfe.fatigue.run import (
@@ -58,6 +55,7 @@ from shaftfe.model.loader import load_variant
 from shaftfe.report import pictures
 from shaftfe.report import seed as seedmod
 from shaftfe.report.comparisons import comparisons, error_estimates
+from shaftfe.report.drawings import FatigueFigures, draw_balance, draw_fatigue
 from shaftfe.report.html import PEAK_FIT_LABEL, num
 from shaftfe.report.options import (
     ERROR_STAGE,
@@ -352,6 +350,11 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
         _nodal_peak(st, ref)
         with prog.stage("fatigue"):
             fat, ff, scaled, bench = _fatigue(o, res, ref, history, material, variant)
+            # its figures need nothing more: the second process draws them while this one
+            # solves the rotor and writes the VTU, before it renders the pictures
+            fat_figs = _fatigue_figures(ff, material, o.mean_stress, fig_dir)
+            fat_drawing = renderer.draw(draw_fatigue, fat_figs) if renderer else \
+                pictures.Drawing(draw_fatigue, (fat_figs,))
         with prog.stage("Campbell"):
             camp, cres, rotor_model = campbell(variant, o)
         with prog.stage("VTU"):
@@ -366,8 +369,8 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
     with prog.stage("strength by standard"):
         strength = _strength(o, variant, ref, history, ff.result.cycles)
     with prog.stage("plots"):
-        _plots(o, out, fig_dir, variant, drawing, fres, sw, res, ref, ff, history, material,
-               cres, camp, files["vtu_rpm"], add_fig)
+        _plots(o, out, fig_dir, variant, drawing, fat_drawing, fres, sw, res, ref, ff,
+               history, material, cres, camp, files["vtu_rpm"], add_fig)
         _din743_along_plot(strength, fig_dir, add_fig)
         _fkm_along_plot(strength, variant, fig_dir, add_fig)
     picture_seconds = None
@@ -458,12 +461,14 @@ def _picture_job(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> pictu
                                tuple(pictures.Shot(*s) for s in shots))
 
 
-def _plots(o, out, fig_dir, variant, drawing, fres, sw, res, ref, ff, history, material, cres,
-           camp, rpm_vtu, add_fig) -> None:
+def _plots(o, out, fig_dir, variant, drawing, fat_drawing, fres, sw, res, ref, ff, history,
+           material, cres, camp, rpm_vtu, add_fig) -> None:
     if fres is not None:                      # a shaft of a named engine
         drawing.wait()                        # drawn by the second process, or here
         _balance_captions(fres, sw, add_fig)
-    _other_plots(o, fig_dir, variant, res, ref, ff, history, material, cres, rpm_vtu, add_fig)
+    _other_plots(o, fig_dir, variant, res, ref, cres, rpm_vtu, add_fig)
+    fat_drawing.wait()                        # drawn by the second process, or here
+    _fatigue_captions(ff, history, material, o.mean_stress, add_fig)
 
 
 def _din743_along_plot(strength: dict, fig_dir, add_fig) -> None:
@@ -491,10 +496,26 @@ def _fkm_along_plot(strength: dict, variant, fig_dir, add_fig) -> None:
             "named), against the limit 1; the shaft's outline below")
 
 
-def draw_balance(fres, sw, fig_dir) -> None:
-    """The balancing figures' files (in the pictures' process when there is one)."""
-    plots.plot_forces(fres, Path(fig_dir) / "balance_forces.png")
-    plots.plot_sweep(sw, Path(fig_dir) / "balance_sweep.png")
+def _fatigue_figures(ff, material, mean_stress: str, fig_dir) -> FatigueFigures:
+    hot = ff.hot_spot
+    s0, beta = ff.result.linear_stress(hot.node)      # the node's S0 (λ + β λ²)
+    return FatigueFigures(ff.history, s0, beta, f"{hot.region} x = {hot.xyz_mm[0]:.1f} mm",
+                          ff.result.cycles, material, mean_stress, Path(fig_dir))
+
+
+def _fatigue_captions(ff, history, material, mean_stress: str, add_fig) -> None:
+    add_fig("load_history", "rpm history (one block)",
+            f"{Path(history.source).name}: engine speed [rpm] and load factor (n / "
+            f"{ff.ref_rpm:g})² [-] against time [s]: the factor on the static stresses at "
+            f"{ff.ref_rpm:g} rpm, the same reference as the fatigue text.")
+    add_fig("rainflow_matrix", "rainflow matrix",
+            "cycles per block at the hot spot by stress range and mean [MPa].")
+    add_fig("damage_matrix", "damage matrix",
+            "Miner damage per block at the hot spot by stress range and mean [MPa].")
+    add_fig("haigh", "Haigh diagram",
+            f"the hot spot's cycles (mean, amplitude) [MPa] and the {mean_stress} line.")
+    add_fig("sn_curve", "S-N curve", f"{material.name}: alternating stress [MPa] against "
+            "cycles to failure [-].")
 
 
 def _balance_captions(fres, sw, add_fig) -> None:
@@ -509,8 +530,7 @@ def _balance_captions(fres, sw, add_fig) -> None:
             "fig. 58: x across, y along the cylinder axis).")
 
 
-def _other_plots(o, fig_dir, variant, res, ref, ff, history, material, cres, rpm_vtu,
-                 add_fig) -> None:
+def _other_plots(o, fig_dir, variant, res, ref, cres, rpm_vtu, add_fig) -> None:
     clear = clearance_of(variant)
     if o.model in ("axisymmetric", "zoned"):
         zoned = o.model == "zoned"
@@ -535,30 +555,3 @@ def _other_plots(o, fig_dir, variant, res, ref, ff, history, material, cres, rpm
     add_fig("campbell", "Campbell diagram",
             "damped natural frequencies [Hz] against the speed [rpm], branches by whirl "
             "(forward / backward), engine-order lines k × n/60 and critical speeds (X).")
-    hot = ff.hot_spot
-    s0, beta = ff.result.linear_stress(hot.node)      # the node's S0 (λ + β λ²)
-    lbl = f"{hot.region} x = {hot.xyz_mm[0]:.1f} mm"
-    r = ff.result
-    fatigue_plots.plot_load_history(ff.history, fig_dir / "load_history.png")
-    add_fig("load_history", "rpm history (one block)",
-            f"{Path(history.source).name}: engine speed [rpm] and load factor (n / "
-            f"{ff.ref_rpm:g})² [-] against time [s]: the factor on the static stresses at "
-            f"{ff.ref_rpm:g} rpm, the same reference as the fatigue text.")
-    fatigue_plots.plot_cycle_matrix(
-        rainflow_matrix(kernels.node_stress_cycles(s0, beta, r.cycles), units="MPa"),
-        fig_dir / "rainflow_matrix.png",
-        title=f"rainflow matrix per block, hot spot {lbl}")
-    add_fig("rainflow_matrix", "rainflow matrix",
-            "cycles per block at the hot spot by stress range and mean [MPa].")
-    fatigue_plots.plot_cycle_matrix(
-        kernels.damage_matrix(s0, r.cycles, material, o.mean_stress, 1.0, beta=beta),
-        fig_dir / "damage_matrix.png", title=f"damage matrix per block, hot spot {lbl}")
-    add_fig("damage_matrix", "damage matrix",
-            "Miner damage per block at the hot spot by stress range and mean [MPa].")
-    fatigue_plots.plot_haigh(s0, r.cycles, material, fig_dir / "haigh.png",
-                             o.mean_stress, 1.0, beta)
-    add_fig("haigh", "Haigh diagram",
-            f"the hot spot's cycles (mean, amplitude) [MPa] and the {o.mean_stress} line.")
-    fatigue_plots.plot_sn_curve(material, fig_dir / "sn_curve.png")
-    add_fig("sn_curve", "S-N curve", f"{material.name}: alternating stress [MPa] against "
-            "cycles to failure [-].")

@@ -1,7 +1,8 @@
 """The report's three PyVista pictures (von Mises, displacement, the seed method's safety
 factor), rendered from the run's VTU in a second process while the first one computes the
 strength section and draws the plots; before them, that process draws the figures that need
-nothing of the solve (the balancing figures: ``Renderer.draw``) while the static model solves.
+nothing of the solve (the balancing figures: ``Renderer.draw``) while the static model solves,
+and the fatigue figures while the rotor solves (the jobs: ``report.drawings``).
 
 A process, not a thread: matplotlib draws holding the interpreter's lock, so in one
 interpreter the two would take turns. Measured on x2_57's demo (2-core machine): the pictures
