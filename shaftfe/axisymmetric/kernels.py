@@ -138,24 +138,49 @@ def strain_operators(N: np.ndarray, Nx: np.ndarray, Nr: np.ndarray, r: np.ndarra
     return B0, B1
 
 
+def _strain_coefficients() -> tuple[np.ndarray, np.ndarray]:
+    """C0, C1 (6 strains, 3 displacement components, 3 functions): B0 and B1 of
+    ``strain_operators`` written in the three functions F = (∂N/∂x, ∂N/∂r, N/r) of a node, so
+    that B_k[i, 3a + c] = Σ_f C_k[i, c, f] F_f[a]. Read off ``strain_operators`` itself (one
+    element per function, that function 1 at node 0 and the others 0), so the strain
+    definitions are written once."""
+    N = np.zeros((6, 1))
+    N[0] = 1.0                                        # N/r = 1 where r = 1, 0 where r = ∞
+    Nx, Nr = np.zeros((3, 6, 1)), np.zeros((3, 6, 1))
+    Nx[0, 0], Nr[1, 0] = 1.0, 1.0
+    r = np.array([[np.inf], [np.inf], [1.0]])
+    B0, B1 = strain_operators(N, Nx, Nr, r)           # (3 functions, 1, 6, 18)
+    return (np.ascontiguousarray(B0[:, 0, :, :3].transpose(1, 2, 0)),
+            np.ascontiguousarray(B1[:, 0, :, :3].transpose(1, 2, 0)))
+
+
 def stiffness_blocks(X: np.ndarray, R: np.ndarray, D: np.ndarray, order: int = 4):
     """Element matrices K00, K01, K11 (ne, 18, 18) of the module docstring (without w_n).
     Quadrature: ``triangle_rule(order)`` (default 16 points, degree 6: exact for the
     r-weighted products of a straight element's P2 strains with a polynomial stress, so the
-    Saint-Venant fields are reproduced to round-off)."""
+    Saint-Venant fields are reproduced to round-off).
+
+    Evaluated through the node functions F = (∂N/∂x, ∂N/∂r, N/r) (``_strain_coefficients``):
+    the integrals G_fg[a, b] = ∫ F_f[a] F_g[b] r dA (9 arrays of 6 × 6 per element) once, then
+    K_kl[3a + c, 3b + d] = Σ_fg (C_kᵀ D C_l)[c, f, d, g] G_fg[a, b]; the same sums as
+    ∫ B_kᵀ D B_l r dA, regrouped (5× fewer operations than the products of the 6 × 18
+    strain operators)."""
     pts, w = triangle_rule(order)
     _, r, det, N, Nx, Nr = element_geometry(X, R, pts)
     if np.any(det <= 0):
         raise ValueError("an element of the meridian mesh is inverted (det J <= 0)")
-    B0, B1 = strain_operators(N, Nx, Nr, r)
-    ne, q = r.shape
-    wq = (det * r * w[None])[:, :, None, None]                 # (ne, q, 1, 1)
-    B0f = B0.reshape(ne, q * 6, 18)
-    B1f = B1.reshape(ne, q * 6, 18)
-    DB0 = (np.matmul(D, B0) * wq).reshape(ne, q * 6, 18)
-    DB1 = (np.matmul(D, B1) * wq).reshape(ne, q * 6, 18)
-    B0t = B0f.transpose(0, 2, 1)
-    return B0t @ DB0, B0t @ DB1, B1f.transpose(0, 2, 1) @ DB1
+    ne = r.shape[0]
+    with np.errstate(divide="ignore", invalid="ignore"):      # r = 0: as strain_operators
+        Nor = np.where(r[:, None, :] > 0, N[None] / r[:, None, :], Nr)
+    F = np.stack([Nx, Nr, Nor])                                # (3, ne, 6, q)
+    wq = det * r * w[None]                                     # (ne, q)
+    G = np.einsum("feaq,gebq->fgeab", F * wq[None, :, None, :], F, optimize=True)
+    C0, C1 = _strain_coefficients()
+    out = []
+    for A, B in ((C0, C0), (C0, C1), (C1, C1)):
+        E = np.einsum("icf,ij,jdg->cfdg", A, D, B)
+        out.append(np.einsum("cfdg,fgeab->eacbd", E, G, optimize=True).reshape(ne, 18, 18))
+    return tuple(out)
 
 
 # ----------------------------------------------------------------------------- boundary
