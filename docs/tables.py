@@ -106,9 +106,9 @@ def study_x2_tradeoff() -> str:
             ("first critical speed, beam rotor [rpm]", "critical_rpm", "{:,.0f}")]
     r1 = "attachments.counterweight_1.shape.outer_radius_mm"
     r2 = "attachments.counterweight_2.shape.outer_radius_mm"
-    from shaftfe.model.loader import _resolve, resolved_dict
     from shaftfe.model.overrides import locate, normalise
-    merged = resolved_dict(_resolve(spec.base))
+    from shaftfe.model.parse import resolve_path, resolved_dict
+    merged = resolved_dict(resolve_path(spec.base))
 
     def base_value(path):
         parent, key, _ = locate(merged, normalise({path: 0.0})[0])

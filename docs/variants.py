@@ -4,8 +4,9 @@
     python docs/variants.py --check    # exit 1 if docs/VARIANTS.md differs from a fresh run
 
 The plausibility bounds, the smallest fillet and the balance tolerances are the loader's
-constants (``shaftfe.model.fields``, ``shaftfe.model.loader``); the other ranges (ν, ρ, the life
-exponent, chamfers, keyways) are written here from the loader's checks and are not generated:
+constants (``shaftfe.model.fields``, ``shaftfe.model.parse``); the other ranges (ν, ρ, the life
+exponent, chamfers, keyways) are written here from the variant's rules (``shaftfe.model.
+validate``) and are not generated:
 change them together. tests/test_variant.py checks that this file renders docs/VARIANTS.md,
 that every key of every shipped variant has a row, and that the example loads.
 """
@@ -32,7 +33,7 @@ def keys() -> list[tuple[str, str, str, str]]:
     from shaftfe.model import bearing_stiffness as bs
     from shaftfe.model import loads as ld
     from shaftfe.model.fields import FILLET_MIN_MM
-    from shaftfe.model.loader import BALANCE_MASS_RTOL, BALANCE_X2_TOL_POINTS
+    from shaftfe.model.parse import BALANCE_MASS_RTOL, BALANCE_X2_TOL_POINTS
     from shaftfe.model.validate import TAPER_MAX_DEG
     from shaftfe.util.units import REF_RPM
     return [
@@ -293,7 +294,7 @@ LOADS_EXAMPLE = (ROOT / "geometry" / "examples" / "drive_shaft_c.toml")
 
 
 def render() -> str:
-    from shaftfe.model.loader import BALANCE_MASS_RTOL, BALANCE_X2_TOL_POINTS
+    from shaftfe.model.parse import BALANCE_MASS_RTOL, BALANCE_X2_TOL_POINTS
     rows = "\n".join(f"| `{p}` | {u} | {a} | {m} |" for p, u, a, m in keys())
     example = EXAMPLE.read_text(encoding="utf-8").rstrip()
     loads_example = LOADS_EXAMPLE.read_text(encoding="utf-8").rstrip()

@@ -28,8 +28,9 @@ def shaft() -> shaftfe.Variant:
     segs = (shaftfe.Segment("left", 0.0, 50.0, 20.0, fillet_mm=1.0),
             shaftfe.Segment("collar", 50.0, 20.0, 24.0, fillet_mm=1.0),
             shaftfe.Segment("right", 70.0, 50.0, 20.0))
-    brg = (shaftfe.Bearing("L", "needle", 15.0, 10.0, 14_400.0, 10_000.0, K, axial=True),
-           shaftfe.Bearing("R", "needle", 105.0, 10.0, 14_400.0, 10_000.0, K))
+    brg = (shaftfe.Bearing("L", "needle", 15.0, 10.0, 14_400.0, 10_000.0, K, axial=True,
+                           bore_mm=20.0),
+           shaftfe.Bearing("R", "needle", 105.0, 10.0, 14_400.0, 10_000.0, K, bore_mm=20.0))
     part = (shaftfe.Attachment("cw", 75.0, 95.0, mass_kg=0.20, eccentricity_mm=15.0,
                                x_centroid_mm=85.0),)
     return shaftfe.Variant("custom", "custom stepped shaft", segs, brg, part, STEEL, 0.0)

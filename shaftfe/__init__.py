@@ -39,7 +39,7 @@ _API = {
     "Keyway": ("shaftfe.model.variant", "Keyway"),
     "Material": ("shaftfe.model.variant", "Material"),
     "load_variant": ("shaftfe.model.loader", "load_variant"),
-    "list_variants": ("shaftfe.model.loader", "list_variants"),
+    "list_variants": ("shaftfe.model.parse", "list_variants"),
     "validate_variant": ("shaftfe.model.validate", "validate_variant"),
     "mass_properties": ("shaftfe.model.mass", "mass_properties"),
     # balance

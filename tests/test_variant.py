@@ -10,8 +10,9 @@ from pathlib import Path
 import pytest
 
 from shaftfe.errors import InputError
-from shaftfe.model.loader import list_variants, load_variant
+from shaftfe.model.loader import load_variant
 from shaftfe.model.mass import mass_properties
+from shaftfe.model.parse import list_variants
 from shaftfe.model.variant import SOURCES
 from shaftfe.util.paths import GEOMETRY_DIR
 
@@ -147,10 +148,10 @@ BAD_CASES = {
                                   "", BEAR, "bearing_types.zkl_3203.K_N_per_mm"),
     "K_not_symmetric": (BEAR, "[[35030.0, 8756.0], [8756.0, 35030.0]]",
                         "[[35030.0, 8756.0], [8000.0, 35030.0]]",
-                        BEAR, "bearing_types.zkl_3203.K_N_per_mm"),
+                        BEAR, "bearing_types.zkl_3203.K_N_per_mm (bearing 'gear_side')"),
     "K_not_positive_definite": (BEAR, "[[35030.0, 8756.0], [8756.0, 35030.0]]",
                                 "[[5000.0, 8756.0], [8756.0, 5000.0]]",
-                                BEAR, "bearing_types.zkl_3203.K_N_per_mm"),
+                                BEAR, "bearing_types.zkl_3203.K_N_per_mm (bearing 'gear_side')"),
     "K_wrong_shape": (BEAR, "[[35030.0, 8756.0], [8756.0, 35030.0]]", "[35030.0, 8756.0]",
                       BEAR, "bearing_types.zkl_3203.K_N_per_mm"),
     "chamfer_below_iso15_minimum": (BEAR, "chamfer_mm = 2.0", "chamfer_mm = 0.4",
@@ -347,7 +348,7 @@ def test_set_with_a_wrong_path_or_kind_names_the_set_and_the_nearest_names(path,
     ("segments.collar.fillet_mm", 9.0, "<= step height 2.5"),
     ("segments.collar.fillet_mm", 1.0, "r_s min of bearing 'free_side'"),     # ISO 582 abutment
     ("attachments.counterweight_2.mass_kg", 240.0, "typed in grams?"),
-    ("segments.gear_seat.keyways.0.depth_mm", 12.0, "0 < depth < radius (8.5)"),
+    ("segments.gear_seat.keyways.0.depth_mm", 12.0, "< radius / 2 (4.25)"),
     # a bottom radius: 0 or from 0.05 mm to 0.4 × width (2.0) and half the side wall (Ø17,
     # 5 wide, 3 deep: 3 − (8.5 − √(8.5² − 2.5²)) = 2.624 mm, half 1.312)
     ("segments.gear_seat.keyways.0.bottom_radius_mm", 1.4, "0 (sharp) or 0.05 … 1.31 mm"),
@@ -376,9 +377,9 @@ def test_toml_writer_round_trips_every_resolved_variant(name):
     back the same dictionary, exactly (floats are written by repr, which round-trips)."""
     import tomllib
 
-    from shaftfe.model.loader import _resolve, resolved_dict
+    from shaftfe.model.parse import resolve_path, resolved_dict
     from shaftfe.model.tomlwrite import dumps
-    d = resolved_dict(_resolve(name))
+    d = resolved_dict(resolve_path(name))
     assert tomllib.loads(dumps(d, "a header\nof two lines")) == d
 
 
@@ -428,7 +429,7 @@ def test_every_key_of_every_shipped_variant_is_documented(name):
     import re
 
     from shaftfe.model.fields import PROV_KEYS
-    from shaftfe.model.loader import _resolve, resolved_dict
+    from shaftfe.model.parse import resolve_path, resolved_dict
     documented = {p for p, *_ in _docs_variants().keys()}
     generic = {re.sub(r"<[a-z]+>", "<>", p) for p in documented}
     found = set()
@@ -444,7 +445,7 @@ def test_every_key_of_every_shipped_variant_is_documented(name):
                     walk(e, (*path, k, "<>"))
             else:
                 found.add(".".join((*path, k)))
-    d = resolved_dict(_resolve(name))
+    d = resolved_dict(resolve_path(name))
     for table_name in ("materials", "bearing_types", "parts"):
         for entry in d.pop(table_name, {}).values():
             walk(entry, ("attachments" if table_name == "parts" else table_name, "<>"))
@@ -590,3 +591,139 @@ def test_an_empty_included_file_is_named_not_an_empty_list(tmp_path):
     with pytest.raises(InputError) as ei:
         load_variant(g / "x2_57.toml")
     assert "one of ;" not in str(ei.value) and "none is" in str(ei.value)
+
+
+# ---------------------------------------------------------------- one set of rules (issue 34)
+
+def _seg(v, i, **kw):
+    segs = list(v.segments)
+    segs[i] = dataclasses.replace(segs[i], **kw)
+    return dataclasses.replace(v, segments=tuple(segs))
+
+
+def _brg(v, i, **kw):
+    brgs = list(v.bearings)
+    brgs[i] = dataclasses.replace(brgs[i], **kw)
+    return dataclasses.replace(v, bearings=tuple(brgs))
+
+
+def _att(v, i, **kw):
+    atts = list(v.attachments)
+    atts[i] = dataclasses.replace(atts[i], **kw)
+    return dataclasses.replace(v, attachments=tuple(atts))
+
+
+def _key(v, i, **kw):
+    s = v.segments[i]
+    return _seg(v, i, keyways=(dataclasses.replace(s.keyways[0], **kw),))
+
+
+# Each rule the loader applied to a file before issue 34, broken in a Variant made in Python
+# (x2_57 with one field replaced): validate_variant refuses it as the file was refused, naming
+# the Variant's field. id -> (the change, the field named, a word of the allowed range)
+PYTHON_CASES = {
+    "length_in_metres": (lambda v: _seg(v, 3, length_mm=0.0175), "segments[3].length_mm",
+                         "metres"),
+    "diameter_above_the_stock": (lambda v: _seg(v, 4, diameter_mm=26.0),
+                                 "segments[4].diameter_mm", "stock diameter 25"),
+    "fillet_in_metres": (lambda v: _seg(v, 4, fillet_mm=0.0006), "segments[4].fillet_mm",
+                         "metres"),
+    "unknown_segment_kind": (lambda v: _seg(v, 4, kind="spline"), "segments[4].kind",
+                             "plain | seat | thread"),
+    "fillet_taller_than_its_step": (lambda v: _seg(v, 3, fillet_mm=2.6),
+                                    "segments[3].fillet_mm", "step height 2.5"),
+    "fillet_without_a_step": (lambda v: _seg(v, 1, fillet_mm=0.4), "segments[1].fillet_mm",
+                              "no step"),
+    "keyway_off_its_segment": (lambda v: _key(v, 1, x_center_mm=14.0),
+                               "segments[1].keyways[0].x_center_mm", "inside the segment"),
+    "bearing_stiffness_in_N_per_m": (
+        lambda v: _brg(v, 0, K_N_per_mm=((3.5e10, 0.0), (0.0, 3.5e10))),
+        "bearings[0].K_N_per_mm (bearing 'gear_side') (eigenvalue)", "N/m"),
+    "bearing_stiffness_not_symmetric": (
+        lambda v: _brg(v, 0, K_N_per_mm=((35030.0, 8756.0), (0.0, 35030.0))),
+        "bearings[0].K_N_per_mm", "symmetric"),
+    "C_in_kN": (lambda v: _brg(v, 1, C_N=14.4), "bearings[1].C_N", "kN"),
+    "life_exponent_zero": (lambda v: _brg(v, 1, life_exponent=0.0), "bearings[1].life_exponent",
+                           "ISO 281"),
+    "chamfer_below_the_iso15_corner": (lambda v: _brg(v, 1, chamfer_mm=0.3),
+                                       "bearings[1].chamfer_mm", "r_s_min_mm"),
+    "bearing_off_its_bore": (lambda v: _brg(v, 1, x_center_mm=56.0), "bearings[1].x_center_mm",
+                             "= bore 17"),
+    "two_axial_bearings": (lambda v: _brg(v, 1, axial=True), "bearings[*].axial",
+                           "exactly one"),
+    "rings_sharing_a_seat": (lambda v: _brg(v, 1, x_center_mm=38.25),
+                             "bearings[1].x_center_mm", "clear of bearing 'gear_side'"),
+    "fillet_above_the_ring_corner": (lambda v: _brg(v, 0, r_s_min_mm=0.3, chamfer_mm=0.3),
+                                     "segments[3].fillet_mm", "ISO 582"),
+    "mass_in_grams": (lambda v: _att(v, 9, mass_kg=240.0), "attachments[9].mass_kg", "grams"),
+    "centroid_far_off_the_shaft": (lambda v: _att(v, 9, x_centroid_mm=94500.0),
+                                   "attachments[9].x_centroid_mm", "within 100 mm"),
+    "negative_inertia": (lambda v: _att(v, 0, polar_inertia_kg_mm2=-1.0),
+                         "attachments[0].polar_inertia_kg_mm2", ">= 0"),
+    "seat_given_backwards": (lambda v: _att(v, 0, seat_x_start_mm=16.0, seat_x_end_mm=6.0),
+                             "attachments[0].seat_x_mm", "x_start < x_end"),
+    "hex_corners_through_the_end": (
+        lambda v: dataclasses.replace(v, hex_socket=dataclasses.replace(
+            v.hex_socket, across_flats_mm=13.0)), "hex_socket.across_flats_mm", "across-corners"),
+    "parting_plane_off_the_shaft": (lambda v: dataclasses.replace(v, parting_plane_x_mm=500.0),
+                                    "parting_plane_x_mm", "on the shaft"),
+    "E_in_GPa": (lambda v: dataclasses.replace(v, material=dataclasses.replace(
+        v.material, E_MPa=210.0)), "material.E_MPa", "GPa"),
+    "ultimate_below_yield": (lambda v: dataclasses.replace(v, material=dataclasses.replace(
+        v.material, ultimate_MPa=100.0)), "material.ultimate_MPa", ">= yield_MPa"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(PYTHON_CASES))
+def test_a_variant_made_in_python_meets_the_rules_a_file_meets(case):
+    """One set of rules (issue 34): what the loader refused in a file before, validate_variant
+    refuses in a Variant however it was made, naming the Variant's field and the variant."""
+    from shaftfe.model.validate import validate_variant
+    change, field, word = PYTHON_CASES[case]
+    x2 = load_variant("x2_57")
+    validate_variant(x2)                                  # as loaded: every rule holds
+    with pytest.raises(InputError) as e:
+        validate_variant(change(x2))
+    assert e.value.field.startswith(field) and word in str(e.value)
+    assert e.value.source == "geometry/x2_57.toml"        # source_of: the variant's first file
+
+
+def test_the_plausible_ranges_are_for_typed_values_not_for_the_solvers():
+    """A stiffness of 1e12 N/mm is a unit slip where a person typed it (the loader, ``--set``,
+    validate_variant by hand) and a value the solvers take (their stability sweeps)."""
+    from shaftfe.model.validate import validate_variant
+    stiff = _brg(load_variant("x2_57"), 0, K_N_per_mm=((1e12, 0.0), (0.0, 1e12)))
+    with pytest.raises(InputError, match="plausible"):
+        validate_variant(stiff)
+    validate_variant(stiff, typed=False)
+    with pytest.raises(InputError, match="positive definite"):     # a rule, typed or not
+        validate_variant(_brg(stiff, 0, K_N_per_mm=((1.0, 2.0), (2.0, 1.0))), typed=False)
+    # a model made for a solver may leave the axial bearing to it (the first coupling, or its
+    # SolverError); a typed design states exactly one
+    x2 = load_variant("x2_57")
+    free = dataclasses.replace(x2, bearings=tuple(dataclasses.replace(b, axial=False)
+                                                  for b in x2.bearings))
+    validate_variant(free, typed=False)
+    with pytest.raises(InputError, match="exactly one bearing with axial"):
+        validate_variant(free)
+
+
+def test_a_typed_design_states_each_bearing_s_bore_and_a_slip_is_named_before_the_standards():
+    """A bearing record's bore of 0 is refused where it is typed (a Variant made for a solver
+    may leave it out); a segment's diameter in metres is named as such, not as the DIN 471
+    groove its size would be looked up for."""
+    with pytest.raises(InputError, match=r"bore_mm.*plausible"):
+        load_variant("x2_57", {"bearing_types.zkl_3203.bore_mm": 0.0})
+
+
+def test_a_unit_slip_under_a_din_groove_is_named_as_a_unit_slip(tmp_path):
+    from shaftfe.model.fields import ImplausibleValue
+    geo = _copy_geometry(tmp_path)
+    shaft = geo / "common" / "shaft_c.toml"
+    _edit(shaft, 'spot (§8.3)."""\n', 'spot (§8.3)."""\n[[shaft.segments.grooves]]\n'
+          'kind = "din471"\nx_center_mm = 55.0\nreconstructed = ["x_center_mm"]\n')
+    load_variant(geo / "x2_57.toml")                      # the groove as written is valid
+    _edit(shaft, "length_mm = 17.5\ndiameter_mm = 22.0", "length_mm = 17.5\ndiameter_mm = 0.022")
+    with pytest.raises(ImplausibleValue) as e:
+        load_variant(geo / "x2_57.toml")
+    assert e.value.field == "segments[4].diameter_mm" and "metres" in str(e.value)

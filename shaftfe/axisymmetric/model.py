@@ -377,7 +377,7 @@ def solve_model(variant, options: AxiOptions = AxiOptions(), *, rpm: float = REF
     check_options(options)
     if options.seed_load_case:
         variant = variant.with_seed_load_case()
-    validate_variant(variant, springs=not options.rigid_supports)
+    validate_variant(variant, springs=not options.rigid_supports, typed=False)
     check_torque_path(variant)
     plan = prepare(variant)                      # the solid plan: outline, seats, omissions
     acts, body = actions(variant, seed_placement=options.seed_load_case)

@@ -197,7 +197,7 @@ class BeamModel:
 def _validate(variant, max_element_mm: float, rigid_supports: bool) -> None:
     if not (max_element_mm > 0):
         raise InputError("--max-element", "max_element_mm", "> 0", got=max_element_mm)
-    validate_variant(variant, springs=not rigid_supports)
+    validate_variant(variant, springs=not rigid_supports, typed=False)
 
 
 def _mesh(key_x: np.ndarray, max_len: float) -> np.ndarray:

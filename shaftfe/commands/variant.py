@@ -71,7 +71,8 @@ def run_new(args) -> int:
 
     from shaftfe.errors import InputError
     from shaftfe.model import overrides as ov
-    from shaftfe.model.loader import _resolve, check_new_name, load_variant, resolved_dict
+    from shaftfe.model.loader import load_variant
+    from shaftfe.model.parse import check_new_name, resolve_path, resolved_dict
     from shaftfe.model.tomlwrite import dumps
     from shaftfe.util.atomic import check_output_file, write_atomic
     from shaftfe.util.paths import GEOMETRY_DIR, repo_relative
@@ -85,7 +86,7 @@ def run_new(args) -> int:
         raise InputError(*opt, "a file that does not exist yet (not overwritten)"
                          + ("" if args.out else ": another NAME, or --out"), got=str(out))
     check_output_file(out, opt[0])
-    src = _resolve(args.source)
+    src = resolve_path(args.source)
     sets = ov.normalise(tuple(args.set or ()))
     base = load_variant(src, sets)                  # the source itself must be valid
     merged = resolved_dict(src)
@@ -122,8 +123,9 @@ def run_new(args) -> int:
 
 def run_list(args) -> int:
     from shaftfe.commands._common import print_json, print_table
-    from shaftfe.model.loader import list_variants, load_variant
+    from shaftfe.model.loader import load_variant
     from shaftfe.model.mass import mass_properties
+    from shaftfe.model.parse import list_variants
 
     rows = []
     for name in list_variants():

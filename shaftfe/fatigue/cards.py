@@ -16,7 +16,7 @@ from pathlib import Path
 
 from shaftfe.errors import InputError
 from shaftfe.fatigue import fkm
-from shaftfe.model.loader import material_record
+from shaftfe.model.parse import material_record
 from shaftfe.solid.features import kind_of
 from shaftfe.util.paths import COMMON_DIR
 

@@ -34,7 +34,7 @@ import numpy as np
 from shaftfe.errors import InputError
 from shaftfe.fatigue.cards import card_of
 from shaftfe.fatigue.fkm import GROUPS
-from shaftfe.model.loader import material_record
+from shaftfe.model.parse import material_record
 from shaftfe.model.sn_file import card_names as known_materials
 from shaftfe.model.sn_file import read_cards
 from shaftfe.util.paths import SN_FILE

@@ -48,12 +48,12 @@ def _digits(v: float) -> float:
 def design_overrides(base, overrides) -> dict[str, Any]:
     """{path: value}: ``overrides`` (canonical paths, as applied) and the derived keys."""
     from shaftfe.model import overrides as ov
-    from shaftfe.model.loader import _resolve, parts_variant, resolved_dict
     from shaftfe.model.mass import balance_ratio, mass_properties
+    from shaftfe.model.parse import parts_variant, resolve_path, resolved_dict
     from shaftfe.model.shapes import shape_mass_properties
 
     sets = ov.normalise(overrides)
-    merged = resolved_dict(_resolve(base))
+    merged = resolved_dict(resolve_path(base))
     applied = ov.apply(merged, sets)
     out: dict[str, Any] = {o.path: o.value for o in applied}
     shaped = {o.path.split(".")[1] for o in applied

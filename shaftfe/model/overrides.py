@@ -18,7 +18,7 @@ the file said it. Provenance lists and notes are not settable. A wrong name list
 valid ones. VALUE is read as a TOML value (``1.0``, ``"14220"``, ``[1, 2]``), or as a bare
 string when it is not one (``--set shaft.material=14220``).
 
-Pure functions on the merged TOML dictionary (``shaftfe.model.loader``); the loader applies them
+Pure functions on the merged TOML dictionary (``shaftfe.model.parse``); the parser applies them
 before it builds the ``Variant`` and records them in ``Variant.overrides``.
 """
 

@@ -1,7 +1,7 @@
 """The S-N card file (``geometry/common/sn_curves.toml``) as it is written: its cards by name.
 
 Read here, at the model's layer, so that a variant's ``[duty] sn_curve`` is checked when the
-variant is read (``model.loader``); ``fatigue.sn`` turns a card into an S-N curve.
+variant is read (``model.parse``); ``fatigue.sn`` turns a card into an S-N curve.
 """
 
 from __future__ import annotations

@@ -1,33 +1,51 @@
 """ONE set of rules for a variant, whoever made it (a TOML file, a notebook, a test).
 
-``validate_variant(v)`` checks what every analysis assumes: contiguous segments of positive
-length and diameter, a material with E > 0 and −1 < ν < 0.5, unique non-empty names, bearings
-inside the shaft (a width of 0 is a point support: the beam's idealisation) with a symmetric
-positive-definite 2×2 radial stiffness (a bearing that gives no stiffness in some direction
-leaves the shaft free there: refused as input, in the beam and in 3D alike), attachments inside
-the shaft with mass and eccentricity ≥ 0, keyways of positive size, grooves inside their
-segment with a depth below a quarter of its diameter and a corner radius the groove holds, DIN
-509 undercuts of the standard's size at a step up whose fillet is 0, and a hex socket at one
-end, shorter than the shaft. The loader
-(``shaftfe.model.loader.load_variant``) calls it after parsing; the beam, the solid plan and
-the static model call it on the variant they are given.
-The rules that need the solid's plan (a ring of positive width with a chamfer below a quarter
-of it, a keyway inside the straight part of its segment, a contact band clear of the fillets,
-the hex socket's corners) are the solid's construction rules: ``shaftfe.solid.plan.prepare``.
+``validate_variant(v)`` checks what every analysis assumes of a Variant's fields (the parser,
+``model.parse``, keeps only what the Variant does not hold: types, keys, references, the
+[duty] table, the [balance] statement, a bearing record's catalogue data and its stiffness
+against them, a part's shape, the standards' tables): segments contiguous, of positive and plausible
+length and diameter, no wider than the bar stock, of a known kind, each fillet 0 or at least
+``FILLET_MIN_MM`` and no larger than its step (0 where there is none); keyways of positive
+size inside their segment; grooves inside their segment with a depth below a quarter of its
+diameter and a corner radius the groove holds; DIN 509 undercuts of the standard's size at a
+step up whose fillet is 0; cross holes within the charts; cones and their neighbours; the
+material's record (E, ν, density, strengths, group, its size and case data); each bearing's
+own data (a finite, symmetric, positive-definite 2×2 radial stiffness; width, ratings, bore,
+life exponent, the ring's chamfer against its ISO 15 corner) and its place (its centre on the
+shaft, on a seat of its bore, clear of the other rings, one axial bearing, the shoulder fillet
+its ring abuts no larger than that corner: ISO 582); attachments with finite data, a seat on
+the shaft, plausible mass and eccentricity, a centroid beside the shaft, inertias ≥ 0; the
+loads' positions and torque path; a hex socket at one end, its corners inside the end's
+diameter, shorter than the shaft; the parting plane and the clearance station on the shaft.
+An r_s min of 0 is not given; in a model made for a solver (untyped, below), so is a
+bore, and a width of 0 is a point support (the beam's idealisation).
 
-Each failure is one ``InputError(source, field, allowed, got)`` with the variant's first
-source file as the source.
+The plausible ranges (``fields.PLAUSIBLE``: a diameter in metres, a mass in grams, a stiffness
+in N/m, a density in kg/mm³) catch a unit slip in typed values, and a typed design states all
+of itself (a bore and a width for each bearing, exactly one axial bearing): ``typed=True``,
+the loader, ``--set``, a study, a check by hand. The solvers check the variant they are
+given with ``typed=False`` and take any value they can solve (a point support, a massless
+shaft, a stiffness of 1e12 N/mm, no axial bearing: their own error then).
+
+The rules that need the solid's plan (a ring of positive width, a keyway inside the straight
+part of its segment, a contact band clear of the fillets, the hex socket's corners against the
+keyways) are the solid's construction rules: ``shaftfe.solid.plan.prepare``, which calls this
+first.
+
+Each failure is one ``InputError(source, field, allowed, got)`` naming the field as the
+Variant holds it and the variant's first source file (``source_of``); the loader re-words it
+to the file and the key the value was written under (``shaftfe.model.origins``).
 """
-
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
 
 from shaftfe.errors import InputError
 from shaftfe.model import grooves
-from shaftfe.model.fields import FILLET_MIN_MM
+from shaftfe.model.fields import FILLET_MIN_MM, plausible
 from shaftfe.model.loads import check_torque_path
 
 TOL_X_MM = 1e-6       # mm: segment ends closer than this are the same station
@@ -35,7 +53,12 @@ TOL_X_MM = 1e-6       # mm: segment ends closer than this are the same station
 
 def source_of(variant) -> str:
     """The file a variant came from (its first source), else ``variant <name>``."""
-    return variant.source_files[0] if variant.source_files else f"variant {variant.name}"
+    return first_source(variant.source_files, variant.name)
+
+
+def first_source(files, name: str) -> str:
+    """``source_of`` a variant of ``files`` (in the order read) and ``name``."""
+    return files[0] if files else f"variant {name}"
 
 
 def _finite(x) -> bool:
@@ -55,6 +78,15 @@ def _nonneg(src: str, fld: str, x) -> None:
         raise InputError(src, fld, ">= 0", got=x)
 
 
+def _plausible(x, kind: str, src: str, fld: str, typed: bool) -> None:
+    """A finite number, and with ``typed`` in ``fields.PLAUSIBLE[kind]`` (else a unit slip,
+    named as one: ``validate_variant``'s ``typed``)."""
+    if not _finite(x):
+        raise InputError(src, fld, "a finite number", got=x)
+    if typed:
+        plausible(float(x), kind, src, fld)
+
+
 def _unique(src: str, what: str, names) -> None:
     seen: set[str] = set()
     for i, n in enumerate(names):
@@ -63,18 +95,41 @@ def _unique(src: str, what: str, names) -> None:
         seen.add(n)
 
 
-def _segments(v, src: str) -> tuple[float, float]:
-    segs = v.segments
+def check_segments(segs, src: str, stock: float | None = None, *, typed: bool = True
+                   ) -> tuple[float, float]:
+    """The segments' rules (with their keyways, grooves, cross holes, chamfers and cones), on
+    their own: the loader applies them before it places anything on the segments, so that a
+    length typed in metres is named as such and not as the bearing it moved off the shaft.
+    ``stock``: the bar's diameter (no segment wider); ``typed``: as ``validate_variant``.
+    Returns the shaft's ends (x0, x1)."""
     if not segs:
         raise InputError(src, "segments", "at least one segment", got=0)
+    if stock is not None and not (_finite(stock) and stock > 0):
+        raise InputError(src, "stock_diameter_mm", "> 0 mm (or absent)", got=stock)
     _unique(src, "segments", [s.name for s in segs])
     for i, s in enumerate(segs):
         f = f"segments[{i}]"
         if not _finite(s.x_start_mm):
             raise InputError(src, f"{f}.x_start_mm", "a finite number", got=s.x_start_mm)
+        _plausible(s.length_mm, "length_mm", src, f"{f}.length_mm", typed)
+        _plausible(s.diameter_mm, "diameter_mm", src, f"{f}.diameter_mm", typed)
         _positive(src, f"{f}.length_mm", s.length_mm)
         _positive(src, f"{f}.diameter_mm", s.diameter_mm)
         _nonneg(src, f"{f}.fillet_mm", s.fillet_mm)
+        if s.diameter_right_mm and _finite(s.diameter_right_mm):
+            _plausible(s.diameter_right_mm, "diameter_mm", src, f"{f}.diameter_right_mm",
+                       typed)
+        for key in ("diameter_mm", "diameter_right_mm"):
+            d = getattr(s, key)
+            if stock is not None and d and d > stock + 1e-9:
+                raise InputError(src, f"{f}.{key}", f"<= stock diameter {stock:g} mm", got=d)
+        # a fillet is meshed at a fraction of its radius: a 1 µm "fillet" (a radius typed in
+        # metres) would ask for millions of elements; below FILLET_MIN_MM it is a sharp corner
+        if not (s.fillet_mm == 0 or s.fillet_mm >= FILLET_MIN_MM):
+            raise InputError(src, f"{f}.fillet_mm", f"0 (sharp) or >= {FILLET_MIN_MM:g} mm "
+                             "(typed in metres?)", got=s.fillet_mm)
+        if s.kind not in SEGMENT_KINDS:
+            raise InputError(src, f"{f}.kind", " | ".join(SEGMENT_KINDS), got=s.kind)
         if i and abs(s.x_start_mm - segs[i - 1].x_end_mm) > TOL_X_MM:
             raise InputError(src, f"{f}.x_start_mm", f"= x_end of segments[{i - 1}] "
                              f"({segs[i - 1].x_end_mm:g}): segments are contiguous",
@@ -92,6 +147,12 @@ def _segments(v, src: str) -> tuple[float, float]:
             if k.length_mm < k.width_mm + TOL_X_MM:
                 raise InputError(src, f"{kf}.length_mm", f">= width ({k.width_mm:g})",
                                  got=k.length_mm)
+            if not _finite(k.x_center_mm):
+                raise InputError(src, f"{kf}.x_center_mm", "a finite number", got=k.x_center_mm)
+            lo, hi = k.x_center_mm - 0.5 * k.length_mm, k.x_center_mm + 0.5 * k.length_mm
+            if not (s.x_start_mm - 1e-9 <= lo and hi <= s.x_end_mm + 1e-9):
+                raise InputError(src, f"{kf}.x_center_mm", f"slot [{lo:g}, {hi:g}] inside the "
+                                 f"segment [{s.x_start_mm:g}, {s.x_end_mm:g}]", got=k.x_center_mm)
             # the side walls' height: the depth less the sagitta of the surface over the width
             wall = k.depth_mm - (r - math.sqrt(max(r * r - 0.25 * k.width_mm ** 2, 0.0)))
             rb, rb_max = k.bottom_radius_mm, min(0.4 * k.width_mm, 0.5 * wall)
@@ -119,7 +180,27 @@ def _segments(v, src: str) -> tuple[float, float]:
                 _groove(src, f"{f}.grooves[{j}]", s, g)
         for j, h in enumerate(s.cross_holes):
             _cross_hole(src, f"{f}.cross_holes[{j}]", s, h)
+    _step_fillets(segs, src)
     return segs[0].x_start_mm, segs[-1].x_end_mm
+
+
+SEGMENT_KINDS = ("plain", "seat", "thread")
+
+
+def _step_fillets(segs, src: str) -> None:
+    """A shoulder fillet fits its step: no larger than the step's height nor than the
+    smaller segment's length, and 0 where there is no step."""
+    for i, (a, b) in enumerate(itertools.pairwise(segs)):
+        fld = f"segments[{i}].fillet_mm"
+        step = 0.5 * abs(a.d_right_mm - b.diameter_mm)
+        if step < 1e-9:
+            if a.fillet_mm != 0:
+                raise InputError(src, fld, "0 (no step to the next segment)", got=a.fillet_mm)
+            continue
+        small = a if a.d_right_mm < b.diameter_mm else b
+        if a.fillet_mm > min(step, small.length_mm) + 1e-12:
+            raise InputError(src, fld, f"<= step height {step:g} and <= length of the smaller "
+                             f"segment {small.length_mm:g}", got=a.fillet_mm)
 
 
 def _groove(src: str, gf: str, s, g) -> None:
@@ -264,49 +345,196 @@ def _cross_hole(src: str, hf: str, s, h) -> None:
                          f"{s.x_end_mm:g}]", got=h.x_center_mm)
 
 
-def _material(v, src: str) -> None:
-    m = v.material
-    _positive(src, "material.E_MPa", m.E_MPa)
-    if not (_finite(m.nu) and -1.0 < m.nu < 0.5):
-        raise InputError(src, "material.nu", "-1 < nu < 0.5", got=m.nu)
+# the standards' material groups a record may name (shaftfe.fatigue.fkm.GROUPS, without the
+# guideline example's grey cast iron)
+MATERIAL_GROUPS = ("case_hardening_steel", "qt_steel", "structural_steel")
 
 
-def check_bearing_stiffness(K, src: str, fld: str) -> None:
-    """A symmetric positive-definite 2×2 radial stiffness (N/mm)."""
+def check_material(m, src: str, fld: str, *, typed: bool = True) -> None:
+    """A material record's own rules (the variant's shaft material, every record of a
+    materials file, an S-N card's ``material``): plausible E and strengths (a unit slip),
+    0 < ν < 0.5, a density in t/mm³, ultimate >= yield, a known group, and the optional size
+    and case data in their ranges."""
+    for name in ("E_MPa", "nu", "density_t_mm3", "yield_MPa", "ultimate_MPa"):
+        if not _finite(getattr(m, name)):
+            raise InputError(src, f"{fld}.{name}", "a finite number", got=getattr(m, name))
+    _plausible(m.E_MPa, "E_MPa", src, f"{fld}.E_MPa", typed)
+    _positive(src, f"{fld}.E_MPa", m.E_MPa)
+    if not 0.0 < m.nu < 0.5:
+        raise InputError(src, f"{fld}.nu", "0 < nu < 0.5", got=m.nu)
+    if typed and not 0 < m.density_t_mm3 < 1e-7:        # kg/mm³ is the usual slip
+        raise InputError(src, f"{fld}.density_t_mm3", "0 < value < 1e-7 t/mm³",
+                         got=m.density_t_mm3)
+    _nonneg(src, f"{fld}.density_t_mm3", m.density_t_mm3)     # a massless model: 0
+    _plausible(m.yield_MPa, "strength_MPa", src, f"{fld}.yield_MPa", typed)
+    if not m.ultimate_MPa >= m.yield_MPa:
+        raise InputError(src, f"{fld}.ultimate_MPa", f">= yield_MPa ({m.yield_MPa})",
+                         got=m.ultimate_MPa)
+    if m.group not in MATERIAL_GROUPS and m.group != "":
+        raise InputError(src, f"{fld}.group", " | ".join(MATERIAL_GROUPS), got=m.group)
+    for name, lo, hi, allowed in (
+            ("strength_reference_diameter_mm", 1.0, 1000.0, "a diameter in [1, 1000] mm"),
+            ("case_hardness_HRC", 20.0, 70.0, "in [20, 70]"),
+            ("case_depth_mm", 0.05, 5.0, "a depth in [0.05, 5] mm")):
+        x = getattr(m, name)
+        if x is not None and not (_finite(x) and lo <= x <= hi):
+            raise InputError(src, f"{fld}.{name}", allowed, got=x)
+
+
+def _material(v, src: str, typed: bool) -> None:
+    check_material(v.material, src, "material", typed=typed)
+    for i, m in enumerate(v.materials):
+        if m is not v.material:
+            check_material(m, src, f"materials[{i}]", typed=typed)
+
+
+def check_bearing_stiffness(K, src: str, fld: str, *, typed: bool = True) -> None:
+    """A 2×2 radial stiffness (N/mm): finite, symmetric, positive definite, and with ``typed``
+    both eigenvalues plausible (a typed spring softer than the bound leaves the shaft floating
+    on a support the solver cannot tell from none: 1e-9 N/mm gave a residual of 5.6 instead of
+    1e-8; one stiffer than it is a unit slip. The solvers themselves take 1e-1 … 1e12 N/mm:
+    tests/test_stability.py)."""
     try:
         A = np.asarray(K, dtype=float)
     except (TypeError, ValueError):
         A = np.full(1, np.nan)
-    if A.shape != (2, 2) or not np.all(np.isfinite(A)) or not np.allclose(A, A.T, rtol=1e-12) \
-            or np.linalg.eigvalsh(0.5 * (A + A.T)).min() <= 0:
-        raise InputError(src, fld, "a symmetric positive-definite 2×2 matrix",
-                         got=A.tolist() if A.ndim == 2 else K)
+    if A.shape != (2, 2):
+        raise InputError(src, fld, "[[K11, K12], [K21, K22]] in N/mm", got=K)
+    if not np.all(np.isfinite(A)):
+        raise InputError(src, fld, "finite stiffnesses in N/mm (a rigid support: "
+                         "--rigid-supports)", got=A.tolist())
+    (k11, k12), (k21, k22) = A.tolist()
+    if abs(k12 - k21) > 1e-9 * max(abs(k11), abs(k22), 1.0) \
+            or not np.allclose(A, A.T, rtol=1e-12):
+        raise InputError(src, fld, "symmetric (K12 = K21)", got=A.tolist())
+    if not (k11 > 0 and k22 > 0 and k11 * k22 - k12 * k21 > 0):
+        raise InputError(src, fld, "positive definite (K11 > 0, K22 > 0, K11 K22 - K12² > 0)",
+                          got=A.tolist())
+    half = math.hypot(0.5 * (k11 - k22), k12)
+    for kk in (0.5 * (k11 + k22) - half, 0.5 * (k11 + k22) + half):
+        _plausible(kk, "K_N_per_mm", src, f"{fld} (eigenvalue)", typed)
 
 
-def _bearings(v, src: str, x0: float, x1: float, springs: bool) -> None:
+def _bearing_type(b, src: str, f: str, springs: bool, typed: bool) -> None:
+    """A bearing's own data (its type's record: ring, ratings, stiffness, life exponent).
+    Untyped (a model made for a solver), a width of 0 is a point support (the beam's
+    idealisation) and a bore of 0 is not given."""
+    if springs:
+        check_bearing_stiffness(b.K_N_per_mm, src, f"{f}.K_N_per_mm (bearing {b.name!r})",
+                                typed=typed)
+    _nonneg(src, f"{f}.width_mm", b.width_mm)
+    for name, kind in (("width_mm", "length_mm"), ("C_N", "C_N"), ("C0_N", "C_N"),
+                       ("bore_mm", "diameter_mm")):
+        # a typed design states them all; in a model made for a solver a width of 0 is a
+        # point support and a bore of 0 is not given
+        if typed or getattr(b, name) or name in ("C_N", "C0_N"):
+            _plausible(getattr(b, name), kind, src, f"{f}.{name}", typed)
+    _positive(src, f"{f}.C_N", b.C_N)
+    _positive(src, f"{f}.C0_N", b.C0_N)
+    _nonneg(src, f"{f}.tilt_stiffness_Nmm_per_rad", b.tilt_stiffness_Nmm_per_rad)
+    if not (_finite(b.life_exponent) and 1.0 <= b.life_exponent <= 10.0):
+        raise InputError(src, f"{f}.life_exponent", "in [1, 10] (ISO 281: 3 for ball, 10/3 "
+                         "for roller bearings)", got=b.life_exponent)
+    if not (_finite(b.chamfer_mm) and (b.chamfer_mm == 0 or 0.0 < b.chamfer_mm
+                                       < 0.25 * b.width_mm)):
+        raise InputError(src, f"{f}.chamfer_mm", f">= 0 and < width / 4 "
+                         f"({0.25 * b.width_mm:g})", got=b.chamfer_mm)
+    _nonneg(src, f"{f}.r_s_min_mm", b.r_s_min_mm)
+    if not (b.r_s_min_mm <= b.chamfer_mm or b.chamfer_mm == 0):
+        raise InputError(src, f"{f}.chamfer_mm", f">= r_s_min_mm ({b.r_s_min_mm:g}): an "
+                         "actual chamfer is at least the ISO 15 minimum (or 0 = no chamfer "
+                         "modelled)", got=b.chamfer_mm)
+
+
+def _bearings(v, src: str, x0: float, x1: float, springs: bool, typed: bool) -> None:
+    """Each bearing's own data, then its place: its ring on the shaft, on a seat of its bore
+    (where the bore is given), clear of the other rings, one bearing holding the axial load, and
+    the shoulder fillets its ring abuts no larger than the ring's corner (ISO 582)."""
     _unique(src, "bearings", [b.name for b in v.bearings])
     for i, b in enumerate(v.bearings):
         f = f"bearings[{i}]"
+        _bearing_type(b, src, f, springs, typed)
+        # its centre on the shaft (a support at an end is the beam's idealisation); the ring's
+        # contact band on a seat is the solid's rule (``solid.plan``)
         if not (_finite(b.x_center_mm) and x0 - 1e-9 <= b.x_center_mm <= x1 + 1e-9):
-            raise InputError(src, f"{f}.x_center_mm", f"in [{x0:g}, {x1:g}]", got=b.x_center_mm)
-        if springs:
-            check_bearing_stiffness(b.K_N_per_mm, src, f"{f}.K_N_per_mm (bearing {b.name!r})")
-        _nonneg(src, f"{f}.tilt_stiffness_Nmm_per_rad", b.tilt_stiffness_Nmm_per_rad)
+            raise InputError(src, f"{f}.x_center_mm", f"on the shaft [{x0:g}, {x1:g}]",
+                             got=b.x_center_mm)
+        lo, hi = b.x_start_mm, b.x_end_mm
+        if b.bore_mm:
+            bad = [s.name for s in v.segments if s.x_end_mm > lo + 1e-9
+                   and s.x_start_mm < hi - 1e-9 and abs(s.diameter_mm - b.bore_mm) > 1e-6]
+            if bad:
+                raise InputError(src, f"{f}.x_center_mm", f"a bearing seat of diameter = bore "
+                                 f"{b.bore_mm:g} mm over [{lo:g}, {hi:g}]",
+                                 got=f"{b.x_center_mm:g} (over {', '.join(bad)})")
+    # a design states which bearing holds the axial load; a model made for a solver may leave
+    # it to the solver (the first coupling, or a SolverError naming it)
+    n_axial = sum(b.axial is True for b in v.bearings)
+    if typed and v.bearings and n_axial != 1:
+        raise InputError(src, "bearings[*].axial", "exactly one bearing with axial = true",
+                         got=n_axial)
+    order = sorted(range(len(v.bearings)), key=lambda i: v.bearings[i].x_center_mm)
+    for i, j in itertools.pairwise(order):      # two rings cannot share a seat
+        a, b = v.bearings[i], v.bearings[j]
+        if a.x_end_mm > b.x_start_mm + 1e-9:
+            raise InputError(src, f"bearings[{j}].x_center_mm ({b.name!r})", f"clear of "
+                             f"bearing {a.name!r} (its ring ends at {a.x_end_mm:g} mm)",
+                             got=b.x_center_mm)
+    _abutment_fillets(v, src)
 
 
-def _attachments(v, src: str, x0: float, x1: float) -> None:
+def _abutment_fillets(v, src: str) -> None:
+    """The bearing's own abutment rule (ISO 582): the shaft fillet at the shoulder a ring
+    abuts may not exceed the ring's corner r_s min (r_as max = r_s min), or the ring rides on
+    the fillet instead of seating against the shoulder."""
+    segs = v.segments
+    for b in v.bearings:
+        if b.r_s_min_mm <= 0:
+            continue
+        for i, (a, c) in enumerate(itertools.pairwise(segs)):
+            if a.fillet_mm <= 0 or abs(a.diameter_mm - c.diameter_mm) < 1e-9:
+                continue
+            small, big = (a, c) if a.diameter_mm < c.diameter_mm else (c, a)
+            at_ring = abs(a.x_end_mm - b.x_start_mm) <= a.fillet_mm + 1e-6 \
+                or abs(a.x_end_mm - b.x_end_mm) <= a.fillet_mm + 1e-6
+            if at_ring and abs(small.diameter_mm - b.bore_mm) < 1e-6 \
+                    and big.diameter_mm > b.bore_mm and a.fillet_mm > b.r_s_min_mm + 1e-12:
+                raise InputError(src, f"segments[{i}].fillet_mm", f"<= {b.r_s_min_mm:g} mm, "
+                                 f"the corner radius r_s min of bearing {b.name!r} "
+                                 f"({b.designation}) that abuts this shoulder (ISO 582)",
+                                 got=a.fillet_mm)
+
+
+# an attachment's centroid may lie beside its seat (a counterweight overhanging the shaft's
+# end), but not further than this from the shaft: a position typed in the wrong unit
+CENTROID_REACH_MM = 100.0
+
+
+def _attachments(v, src: str, x0: float, x1: float, typed: bool) -> None:
     _unique(src, "attachments", [a.name for a in v.attachments])
     for i, a in enumerate(v.attachments):
         f = f"attachments[{i}]"
-        for name in ("seat_x_start_mm", "seat_x_end_mm", "angle_deg"):
+        for name in ("seat_x_start_mm", "seat_x_end_mm", "angle_deg", "x_centroid_mm",
+                     "mass_kg", "eccentricity_mm", "polar_inertia_kg_mm2",
+                     "diametral_inertia_kg_mm2"):
             if not _finite(getattr(a, name)):
                 raise InputError(src, f"{f}.{name}", "a finite number", got=getattr(a, name))
-        lo, hi = sorted((a.seat_x_start_mm, a.seat_x_end_mm))
+        lo, hi = a.seat_x_start_mm, a.seat_x_end_mm
+        if not hi > lo:
+            raise InputError(src, f"{f}.seat_x_mm", "x_start < x_end", got=[lo, hi])
         if lo < x0 - 1e-9 or hi > x1 + 1e-9:
-            raise InputError(src, f"{f}.seat", f"inside [{x0:g}, {x1:g}]",
-                             got=(a.seat_x_start_mm, a.seat_x_end_mm))
+            raise InputError(src, f"{f}.seat_x_mm", f"on the shaft [{x0:g}, {x1:g}]",
+                             got=[lo, hi])
+        _plausible(a.mass_kg, "mass_kg", src, f"{f}.mass_kg", typed)
+        _plausible(a.eccentricity_mm, "eccentricity_mm", src, f"{f}.eccentricity_mm", typed)
         _nonneg(src, f"{f}.mass_kg", a.mass_kg)
         _nonneg(src, f"{f}.eccentricity_mm", a.eccentricity_mm)
+        if typed and not x0 - CENTROID_REACH_MM <= a.x_centroid_mm <= x1 + CENTROID_REACH_MM:
+            raise InputError(src, f"{f}.x_centroid_mm", f"within {CENTROID_REACH_MM:g} mm of "
+                             f"the shaft [{x0:g}, {x1:g}] (a part beside its seat)",
+                             got=a.x_centroid_mm)
+        _nonneg(src, f"{f}.polar_inertia_kg_mm2", a.polar_inertia_kg_mm2)
+        _nonneg(src, f"{f}.diametral_inertia_kg_mm2", a.diametral_inertia_kg_mm2)
 
 
 def _loads(v, src: str, x0: float, x1: float) -> None:
@@ -329,23 +557,38 @@ def _hex_socket(v, src: str, x0: float, x1: float) -> None:
         return
     if h.end not in ("left", "right"):
         raise InputError(src, "hex_socket.end", "left | right", got=h.end)
-    _positive(src, "hex_socket.across_flats_mm", h.across_flats_mm)
-    _positive(src, "hex_socket.depth_mm", h.depth_mm)
-    if h.depth_mm >= x1 - x0 - TOL_X_MM:
-        raise InputError(src, "hex_socket.depth_mm", "< shaft length", got=h.depth_mm)
+    end = v.segments[-1] if h.end == "right" else v.segments[0]
+    corners = 2.0 * h.across_flats_mm / math.sqrt(3.0) if _finite(h.across_flats_mm) else 0.0
+    if not (_finite(h.across_flats_mm) and 0 < h.across_flats_mm
+            and corners < end.diameter_mm):
+        raise InputError(src, "hex_socket.across_flats_mm", f"> 0 with across-corners "
+                         f"{corners:.3f} < end diameter {end.diameter_mm:g}",
+                         got=h.across_flats_mm)
+    if not (_finite(h.depth_mm) and 0 < h.depth_mm < x1 - x0 - TOL_X_MM):
+        raise InputError(src, "hex_socket.depth_mm", f"0 < depth < shaft length {x1 - x0:g}",
+                         got=h.depth_mm)
 
 
-def validate_variant(variant, *, springs: bool = True) -> None:
+def validate_variant(variant, *, springs: bool = True, typed: bool = True) -> None:
     """Raise ``InputError`` on the first rule ``variant`` breaks (see the module docstring).
-    ``springs=False``: a model on rigid supports, which never reads the bearing stiffness."""
+    ``springs=False``: a model on rigid supports, which never reads the bearing stiffness.
+    ``typed=False``: leave out the plausible ranges (``fields.PLAUSIBLE``: a diameter in
+    metres, a mass in grams, a stiffness in N/m), which catch a unit slip in what a person
+    typed (the loader, ``--set``, a study, a Variant checked here by hand), but not a value a
+    solver can take: the solvers check the variant they are given with ``typed=False`` (their
+    stability tests sweep a bearing's stiffness from 0.1 to 1e12 N/mm)."""
     src = source_of(variant)
-    x0, x1 = _segments(variant, src)
-    _material(variant, src)
-    _bearings(variant, src, x0, x1, springs)
-    _attachments(variant, src, x0, x1)
+    x0, x1 = check_segments(variant.segments, src, variant.stock_diameter_mm, typed=typed)
+    _material(variant, src, typed)
+    _bearings(variant, src, x0, x1, springs, typed)
+    _attachments(variant, src, x0, x1, typed)
     _loads(variant, src, x0, x1)
     _hex_socket(variant, src, x0, x1)
     _off_cones(variant, src)
     cs = variant.clearance_station_x_mm
     if cs is not None and not (x0 - 1e-9 <= cs <= x1 + 1e-9):
-        raise InputError(src, "clearance_station_x_mm", f"in [{x0:g}, {x1:g}]", got=cs)
+        raise InputError(src, "clearance_station_x_mm", f"on the shaft [{x0:g}, {x1:g}]",
+                         got=cs)
+    pp = variant.parting_plane_x_mm
+    if not (_finite(pp) and x0 - 1e-9 <= pp <= x1 + 1e-9):
+        raise InputError(src, "parting_plane_x_mm", f"on the shaft [{x0:g}, {x1:g}]", got=pp)

@@ -266,7 +266,7 @@ class MassProperties:
 class Duty:
     """What the shaft is asked to do (the variant's ``[duty]`` table): its speeds, its rpm
     history and design life, the engine it balances and the data of its element checks.
-    Files are resolved paths (``loader._duty``: relative to the file stating [duty], else a bare
+    Files are resolved paths (``parse._duty``: relative to the file stating [duty], else a bare
     name in its standard directory). ``None`` = not stated: a command needing it asks for it
     on the command line; nothing falls back to the seed's values."""
     source: str                                   # the file that states [duty]

@@ -151,7 +151,7 @@ def build_harmonic_rotor(variant, options: HarmonicOptions = HarmonicOptions(), 
 
     if options.coupling not in COUPLINGS:
         raise InputError("--coupling", "coupling", " | ".join(COUPLINGS), got=options.coupling)
-    validate_variant(variant, springs=not options.rigid_supports)
+    validate_variant(variant, springs=not options.rigid_supports, typed=False)
     t0 = time.perf_counter()
     plan = prepare(plan_variant or variant)
     mesh = mesh_geometry(shaft_geometry(plan), options.level, cache_dir=cache_dir)

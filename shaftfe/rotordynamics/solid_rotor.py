@@ -360,7 +360,8 @@ def build_solid_rotor(variant, options: SolidOptions = SolidOptions(), *, shaft_
     from shaftfe.model.validate import validate_variant
 
     _check_options(options)
-    validate_variant(variant, springs=supported and not options.rigid_supports)
+    validate_variant(variant, springs=supported and not options.rigid_supports,
+                     typed=False)
     if shaft_mesh is None:
         from shaftfe.beam.planes import mesh_hot_axes
         from shaftfe.solid.mesh import build_mesh

@@ -261,7 +261,7 @@ def build_model(variant, options: StaticOptions = StaticOptions(), *, shaft_mesh
     check_options(options)
     if options.seed_load_case:
         variant = variant.with_seed_load_case()
-    validate_variant(variant, springs=not options.rigid_supports)
+    validate_variant(variant, springs=not options.rigid_supports, typed=False)
     if shaft_mesh is None:
         shaft_mesh = build_mesh(variant, options.level, options.order, cache_dir=cache_dir,
                                 hot_axes=mesh_hot_axes(variant))

@@ -33,7 +33,7 @@ from shaftfe.balance.engines import check_operating_speed
 from shaftfe.errors import InputError
 from shaftfe.fatigue.run import check_history
 from shaftfe.model.fields import ImplausibleValue
-from shaftfe.model.loader import _resolve, resolved_dict
+from shaftfe.model.parse import resolve_path, resolved_dict
 from shaftfe.study.evaluate import _engine, _fatigue_inputs, group_of, load_design
 from shaftfe.study.spec import StudySpec, check_designs, parameter_of, refusal
 
@@ -66,7 +66,7 @@ class Checked:
 
 
 def _unit_slip(spec: StudySpec, designs) -> None:
-    base = {a.get("name"): a for a in resolved_dict(_resolve(spec.base)).get("attachments", [])}
+    base = {a.get("name"): a for a in resolved_dict(resolve_path(spec.base)).get("attachments", [])}
     for d in designs:
         for path, value in d.overrides:
             parts = path.split(".")

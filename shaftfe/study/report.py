@@ -18,8 +18,8 @@ from pathlib import Path
 
 from shaftfe.errors import InputError
 from shaftfe.fatigue.method_options import methods_of
-from shaftfe.model.loader import _resolve, resolved_dict
 from shaftfe.model.overrides import locate, normalise
+from shaftfe.model.parse import resolve_path, resolved_dict
 from shaftfe.study import results
 from shaftfe.study.runner import _base_row
 from shaftfe.study.spec import OPS
@@ -394,7 +394,7 @@ def _base(out: Path, meta: dict, params) -> tuple[dict | None, str]:
     row = dict(row)
     try:
         b = str(meta.get("base"))
-        merged = resolved_dict(_resolve(out / b if b.endswith(".toml") else b))
+        merged = resolved_dict(resolve_path(out / b if b.endswith(".toml") else b))
         for p in params:
             parent, key, _ = locate(merged, normalise({p: 0.0})[0])
             row[p] = parent[key]

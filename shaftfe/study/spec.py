@@ -469,8 +469,8 @@ def check_designs(spec: StudySpec, designs) -> None:
 
     from shaftfe.model import overrides as ov
     from shaftfe.model.fields import is_num, key_range
-    from shaftfe.model.loader import _resolve, resolved_dict
-    merged = resolved_dict(_resolve(spec.base))
+    from shaftfe.model.parse import resolve_path, resolved_dict
+    merged = resolved_dict(resolve_path(spec.base))
     seen: set[tuple[str, str]] = set()
     for d in designs:
         for path, value in d.overrides:

@@ -19,7 +19,8 @@ from shaftfe.fatigue import fkm
 from shaftfe.fatigue.cards import CARDS_FILE, load_card
 from shaftfe.fatigue.sn import load_material
 from shaftfe.fatigue.standards import StrengthOptions, strength_card
-from shaftfe.model.loader import load_variant, material_record
+from shaftfe.model.loader import load_variant
+from shaftfe.model.parse import material_record
 
 
 def test_every_consumer_reads_the_one_record_of_14220():

@@ -30,7 +30,7 @@ RPMS = (5_000.0, 10_000.0)
 
 
 def _variants() -> list[str]:
-    from shaftfe.model.loader import list_variants
+    from shaftfe.model.parse import list_variants
     return list_variants()
 
 
