@@ -934,6 +934,32 @@ LIMIT_CASES = {
                                "{W}/o"], ["--solver", "auto | superlu | pardiso | amg"]),
     "static_exclude_band_too_wide": (["static", "--variant", "x2_57", "--exclude-mm", "7",
                                       "--out", "{W}/o"], ["--exclude-mm", "[0, 5] mm"]),
+    # one rule of output file names (util.atomic.check_suffix), whichever command
+    "forces_plot_as_jpg": (["balance", "forces", "--plot", "{W}/f.jpg"],
+                           ["--plot", "file extension", ".png | .pdf | .svg"]),
+    "twin_plot_as_txt": (["balance", "twin", "--delta", "60", "--plot", "{W}/t.txt"],
+                         ["--plot", "file extension", ".png | .pdf | .svg"]),
+    "beam_plot_as_txt": (["beam", "--variant", "x2_57", "--plot", "{W}/b.txt"],
+                         ["--plot", "file extension", ".png | .pdf | .svg"]),
+    "mesh_out_as_stl": (["mesh", "--variant", "x2_57", "--out", "{W}/m.stl"],
+                        ["--out", "file extension", ".vtu | .msh"]),
+    "view_screenshot_as_bmp": (["view", "{W}/afile", "--screenshot", "{W}/v.bmp"],
+                               ["--screenshot", "file extension", ".png | .jpg | .jpeg"]),
+    # the crank mechanism's and the layouts' rules, in balance.multi (the command parses only)
+    "twin_offset_negative": (["balance", "twin", "--delta", "60", "--offset-mm", "-5"],
+                             ["--offset-mm", "-5", ">= 0 mm"]),
+    "inline_gap_negative": (["balance", "inline", "--pins", "0,180", "--spacing-mm", "-80"],
+                            ["--spacing-mm", "-80", "gaps >= 0 mm"]),
+    "twin_samples_too_few": (["balance", "twin", "--delta", "60", "--samples", "4"],
+                             ["--samples", "8 <= samples <= 1000000"]),
+    "twin_rod_shorter_than_crank": (["balance", "twin", "--delta", "60", "--rod-mm", "20",
+                                     "--radius-mm", "30"], ["rod length", "> crank radius 30"]),
+    "inline_orders_past_nyquist": (["balance", "inline", "--pins", "0,180", "--spacing-mm",
+                                    "80", "--samples", "16", "--orders", "9"],
+                                   ["--orders", "integers in [1, 7]"]),
+    # a sweep's size, in rotordynamics.options (the command and analyse apply the same rule)
+    "campbell_modes_too_many": (["campbell", "0:8000", "--modes", "500"], ["--modes", "1..200"]),
+    "campbell_speeds_too_many": (["campbell", "0:8000:1"], ["RANGE/--step", "2001 speeds"]),
 }
 CASES.update(LIMIT_CASES)
 

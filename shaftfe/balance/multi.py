@@ -163,10 +163,44 @@ def _pick(orders: tuple[Order, ...], k: int) -> Order:
     raise KeyError(f"order {k} was not computed")
 
 
+# the samples per revolution: at least 8 (orders 1..3), at most a million (memory: N × n × 8 B)
+MIN_SAMPLES, MAX_SAMPLES = 8, 1_000_000
+
+
+def check_samples(n: int) -> int:
+    """``n`` samples per revolution, within [MIN_SAMPLES, MAX_SAMPLES]."""
+    if not (isinstance(n, int | np.integer) and MIN_SAMPLES <= n <= MAX_SAMPLES):
+        raise InputError("--samples", "samples", f"{MIN_SAMPLES} <= samples <= {MAX_SAMPLES}",
+                         got=n)
+    return int(n)
+
+
+def check_orders(orders: Sequence[int], n: int) -> list[int]:
+    """The harmonic orders ``orders`` that ``n`` samples per revolution resolve (1 <= k < n/2),
+    sorted and unique."""
+    hi = math.ceil(n / 2) - 1
+    bad = [k for k in orders if not 1 <= k <= hi]
+    if not orders or bad:
+        raise InputError("--orders", "orders", f"integers in [1, {hi}]",
+                         got=bad[0] if bad else "none")
+    return sorted(set(int(k) for k in orders))
+
+
+def mechanism(radius_mm: float, rod_mm: float, m_pos_kg: float) -> Mechanism:
+    """The crank mechanism from its data in mm and kg (finite, > 0, the rod longer than the
+    crank radius), in the SI units the kernels take."""
+    for opt, v in (("--radius-mm", radius_mm), ("--rod-mm", rod_mm), ("--m-pos-kg", m_pos_kg)):
+        if not (math.isfinite(v) and v > 0):
+            raise InputError(opt, opt.lstrip("-"), "> 0", got=v)
+    if rod_mm <= radius_mm:
+        raise InputError("--rod-mm/--radius-mm", "rod length", f"> crank radius {radius_mm:g} "
+                         "mm", got=rod_mm)
+    return Mechanism(R=radius_mm / 1000.0, T1=rod_mm / 1000.0, m_pos=m_pos_kg)
+
+
 def crank_angles(n: int = DEFAULT_SAMPLES) -> NDArray[np.float64]:
     """n uniform crank angles over one revolution, 0 included, 2π excluded."""
-    if n < 8:
-        raise InputError("--samples", "samples", ">= 8", got=n)
+    n = check_samples(n)
     return np.arange(n) * (2.0 * np.pi / n)
 
 
@@ -188,10 +222,7 @@ def harmonic_orders(vx: NDArray[np.float64], vy: NDArray[np.float64],
     vx = np.asarray(vx, dtype=float)
     vy = np.asarray(vy, dtype=float)
     n = vx.shape[-1]
-    bad = [k for k in orders if not 1 <= k < n / 2]
-    if bad:
-        raise InputError("--orders", "orders", f"integers in [1, {math.ceil(n / 2) - 1}]",
-                         got=bad[0])
+    orders = check_orders(orders, n)
     c = np.fft.fft(vx + 1j * vy) / n
     cx = np.fft.rfft(vx) / n
     cy = np.fft.rfft(vy) / n
@@ -276,8 +307,8 @@ def twin(delta_deg: float, epsilon_deg: float | None = None, *, shared_pin: bool
             raise InputError("--epsilon", "epsilon", "-360 <= epsilon <= 360 deg",
                              got=epsilon_deg)
         eps = float(epsilon_deg)
-    if not math.isfinite(offset_m):
-        raise InputError("--offset-mm", "offset", "a finite number", got=offset_m)
+    if not (math.isfinite(offset_m) and offset_m >= 0.0):
+        raise InputError("--offset-mm", "offset", ">= 0 mm", got=1000.0 * offset_m)
 
     if X is None:
         xs = (1.0, 0.0) if shared_pin else (0.5, 0.5)
@@ -317,7 +348,8 @@ def inline(pins_deg: Sequence[float], spacing_m: Sequence[float] | float,
                          f"for {n} cylinders)", got=len(gaps), reason="has the wrong count")
     gaps = gaps[: max(n - 1, 0)]
     if not all(math.isfinite(g) and g >= 0.0 for g in gaps):
-        raise InputError("--spacing-mm", "spacing", ">= 0 mm", got=min(gaps))
+        raise InputError("--spacing-mm", "spacing", "gaps >= 0 mm",
+                         got=",".join(f"{1000.0 * g:g}" for g in gaps))
     z = np.concatenate([[0.0], np.cumsum(gaps)]) if gaps else np.zeros(1)
     if X is None:
         xs = [0.0] * n

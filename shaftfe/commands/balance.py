@@ -146,11 +146,10 @@ def _engine_info(eng) -> dict:
             "m_rot_kg": eng.m_rot_kg}
 
 
-def _check_out(path: str | None, option: str, exts: tuple[str, ...]) -> None:
-    if path is not None and not any(path.lower().endswith("." + e) for e in exts):
-        raise InputError(option, "file extension", ", ".join("." + e for e in exts), got=path)
-    from shaftfe.util.atomic import check_output_file
-    check_output_file(path, option)
+def _check_out(path: str | None, option: str, suffixes: tuple[str, ...] | None = None) -> None:
+    """``util.atomic.check_output_file`` (``suffixes``: a figure's by default)."""
+    from shaftfe.util.atomic import PLOT_SUFFIXES, check_output_file
+    check_output_file(path, option, PLOT_SUFFIXES if suffixes is None else suffixes)
 
 
 # ----------------------------------------------------------------------------- handlers
@@ -158,8 +157,8 @@ def _forces(args) -> int:
     from shaftfe.balance.single import forces
     from shaftfe.commands._common import print_json, print_table
 
-    _check_out(args.plot, "--plot", ("png", "pdf", "svg"))
-    _check_out(args.csv, "--csv", ("csv",))
+    _check_out(args.plot, "--plot")
+    _check_out(args.csv, "--csv", (".csv",))
     _finite(args.start_deg, "--start-deg", "a finite angle", lambda v: True)
     X = _ratio_arg(args.x, "--x", args.crank_mass_kg is not None)
     X2 = _ratio_arg(args.x2, "--x2", args.balancer_mass_kg is not None)
@@ -214,8 +213,8 @@ def _sweep(args) -> int:
     from shaftfe.balance.sweep import METRICS, percent_grid, sweep
     from shaftfe.commands._common import parse_range, print_json, print_table
 
-    _check_out(args.plot, "--plot", ("png", "pdf", "svg"))
-    _check_out(args.csv, "--csv", ("csv",))
+    _check_out(args.plot, "--plot")
+    _check_out(args.csv, "--csv", (".csv",))
     x2 = percent_grid(*parse_range(args.x2, "--x2", lo=0, hi=200), "--x2")
     if args.x is not None:
         if args.crank_mass_kg is not None:

@@ -18,8 +18,6 @@ from shaftfe.errors import InputError
 from shaftfe.util import units
 from shaftfe.util.limits import check_rpm
 
-_PLOT_SUFFIXES = (".png", ".pdf", ".svg")
-
 
 def register(bsub) -> None:
     """Add the multi-cylinder subcommands to the `balance` group."""
@@ -94,32 +92,24 @@ def parse_floats(text: str, option: str) -> list[float]:
 
 
 def _parse_orders(text: str, samples: int) -> list[int]:
-    hi = math.ceil(samples / 2) - 1
-    allowed = f"comma-separated integers in [1, {hi}]"
+    """'1,2,4' → the orders (their range: ``balance.multi.check_orders``)."""
+    from shaftfe.balance.multi import check_orders
     try:
         ks = [int(s.strip()) for s in str(text).split(",")]
     except ValueError:
-        raise InputError("--orders", "orders", allowed, got=text) from None
-    if not ks or any(not 1 <= k <= hi for k in ks):
-        raise InputError("--orders", "orders", allowed, got=text)
-    return sorted(set(ks))
+        raise InputError("--orders", "orders", "comma-separated integers", got=text) from None
+    return check_orders(ks, samples)
 
 
 def _setup(args):
-    """Mechanism, omega, rpm, engine label, orders — all validated before any output."""
-    from shaftfe.balance.multi import Mechanism
+    """Mechanism, omega, rpm, engine label, orders — all validated before any output (their
+    rules: ``balance.multi``)."""
+    from shaftfe.balance.multi import check_samples, mechanism
 
-    if args.samples < 8 or args.samples > 1_000_000:
-        raise InputError("--samples", "samples", "8 <= samples <= 1000000", got=args.samples)
+    check_samples(args.samples)
     orders = _parse_orders(args.orders, args.samples)
-    if args.plot is not None and not str(args.plot).lower().endswith(_PLOT_SUFFIXES):
-        raise InputError("--plot", "plot", "a path ending in .png, .pdf or .svg", got=args.plot)
-    from shaftfe.util.atomic import check_output_file
-    check_output_file(args.plot, "--plot")
-    overrides = (args.radius_mm, args.rod_mm, args.m_pos_kg)
-    for opt, v in zip(("--radius-mm", "--rod-mm", "--m-pos-kg"), overrides, strict=True):
-        if v is not None and not (math.isfinite(v) and v > 0):
-            raise InputError(opt, opt.lstrip("-"), "> 0", got=v)
+    from shaftfe.util.atomic import PLOT_SUFFIXES, check_output_file
+    check_output_file(args.plot, "--plot", PLOT_SUFFIXES)
     from shaftfe.balance.engines import load_engine
 
     eng = load_engine(args.engine)
@@ -130,10 +120,7 @@ def _setup(args):
         check_rpm(args.rpm, "--rpm", positive=True)    # the one speed ceiling (``util.limits``)
     rpm = args.rpm if args.rpm is not None else eng.rpm
     label = eng.name
-    if T1 <= R:
-        raise InputError("--rod-mm/--radius-mm", "rod length", f"> crank radius {R:g} mm",
-                         got=T1)
-    mech = Mechanism(R=R / 1000.0, T1=T1 / 1000.0, m_pos=m_pos)
+    mech = mechanism(R, T1, m_pos)
     omega = units.omega(rpm)
     return mech, omega, rpm, label, orders
 
@@ -148,8 +135,6 @@ def _run_twin(args) -> int:
     if X is not None and len(X) == 1:
         X = X[0]
     offset = args.offset_mm
-    if not math.isfinite(offset) or offset < 0:
-        raise InputError("--offset-mm", "offset", ">= 0 mm", got=offset)
     cyls = multi.twin(args.delta, args.epsilon, shared_pin=args.shared_pin, X=X,
                       offset_m=offset / 1000.0)
     res = multi.engine_forces(cyls, mech, omega, samples=args.samples, orders=orders)
@@ -168,10 +153,7 @@ def _run_inline(args) -> int:
 
     mech, omega, rpm, label, orders = _setup(args)
     pins = parse_floats(args.pins, "--pins")
-    spacing_mm = parse_floats(args.spacing_mm, "--spacing-mm")
-    if any(v < 0 for v in spacing_mm):               # checked here, so the error speaks in mm
-        raise InputError("command line", "--spacing-mm", "gaps >= 0 mm", got=args.spacing_mm)
-    spacing = [s / 1000.0 for s in spacing_mm]
+    spacing = [s / 1000.0 for s in parse_floats(args.spacing_mm, "--spacing-mm")]
     X = None if args.x is None else [v / 100.0 for v in parse_floats(args.x, "--x")]
     if X is not None and len(X) == 1:
         X = X[0]

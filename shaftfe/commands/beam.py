@@ -68,12 +68,8 @@ def run(args) -> int:
     check_max_element(args.max_element)
     plot_fmt = None
     if args.plot:
-        plot_fmt = args.plot.rsplit(".", 1)[-1].lower() if "." in args.plot else ""
-        if plot_fmt not in ("png", "pdf", "svg"):
-            raise InputError("--plot", "--plot", "a path ending in .png, .pdf or .svg",
-                             got=args.plot)
-        from shaftfe.util.atomic import check_output_file
-        check_output_file(args.plot, "--plot")
+        from shaftfe.util.atomic import PLOT_SUFFIXES, check_output_file
+        plot_fmt = check_output_file(args.plot, "--plot", PLOT_SUFFIXES).suffix[1:].lower()
 
     from shaftfe.beam.model import build_model
     from shaftfe.beam.solve import solve, solve_cases

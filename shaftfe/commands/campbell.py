@@ -23,14 +23,14 @@ from shaftfe.errors import InputError
 from shaftfe.rotordynamics.options import (
     COUPLINGS,
     DEFAULT_ORDERS,
+    MAX_SPEEDS,
     ROTOR_MODELS,
     RotorOptions,
     check_options,
+    check_sweep,
 )
 from shaftfe.solid.levels import LEVEL_NAMES
 
-_MAX_SPEEDS = 2001
-_MAX_MODES = 200
 _SHORT = {"forward": "F", "backward": "B", "torsional": "T", "axial": "A", "undetermined": "?"}
 
 
@@ -114,8 +114,8 @@ def speeds_from_range(text: str, step: float) -> list[float]:
     if b == a:
         return [a]
     count = (b - a) / st
-    if not count + 2 <= _MAX_SPEEDS:               # also an overflow to inf (a step of 1e-308)
-        raise InputError("command line", "RANGE/--step", f"at most {_MAX_SPEEDS} speeds",
+    if not count + 2 <= MAX_SPEEDS:                # also an overflow to inf (a step of 1e-308)
+        raise InputError("command line", "RANGE/--step", f"1 … {MAX_SPEEDS} speeds",
                          got=f"{text} step {st:g}")
     n = math.floor(count + 1e-9)
     out = [a + i * st for i in range(n + 1)]
@@ -136,8 +136,7 @@ def parse_orders(text: str) -> list[float]:
 
 
 def _check_common(args) -> None:
-    if not (1 <= args.modes <= _MAX_MODES):
-        raise InputError("command line", "--modes", f"1..{_MAX_MODES}", got=args.modes)
+    check_sweep(1, args.modes)          # the modes before the variant is read (the API's rule)
     if args.spin_softening:
         raise InputError("command line", "--spin-softening", "omit it (its stationary-frame "
                          "counterpart −Ω² A_θ comes with --stress-stiffening)",

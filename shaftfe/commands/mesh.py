@@ -29,16 +29,11 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from pathlib import Path
 
     from shaftfe.commands._common import print_json
-    from shaftfe.errors import InputError
-
-    out = Path(args.out) if args.out else None
-    if out is not None and out.suffix not in (".vtu", ".msh"):
-        raise InputError("--out", "out", "a path ending in .vtu or .msh", got=args.out)
+    from shaftfe.io.vtu import MESH_SUFFIXES
     from shaftfe.util.atomic import check_output_file
-    check_output_file(out, "--out")
+    out = check_output_file(args.out, "--out", MESH_SUFFIXES)
     from shaftfe.commands._common import load_variant_from
 
     variant = load_variant_from(args)

@@ -190,11 +190,7 @@ def _screenshot_option(camera: str, screenshot) -> Path | None:
 
     if camera not in CAMERAS:
         raise InputError("command line", "--camera", " | ".join(CAMERAS), got=camera)
-    shot = Path(screenshot) if screenshot is not None else None
-    if shot is not None and shot.suffix.lower() not in SCREENSHOT_SUFFIXES:
-        raise InputError("command line", "--screenshot",
-                         "a path ending in " + " | ".join(SCREENSHOT_SUFFIXES), got=str(shot))
-    return shot
+    return check_output_file(screenshot, "--screenshot", SCREENSHOT_SUFFIXES)
 
 
 def _shape_field(grid, choice: FieldChoice) -> str | None:

@@ -23,12 +23,13 @@ from pathlib import Path
 
 import numpy as np
 
-from shaftfe.errors import InputError
 from shaftfe.fe import assembly as fem
 from shaftfe.fe import recovery
 from shaftfe.fe.assembly import element_nodes
-from shaftfe.util.atomic import atomic_path, write_atomic
+from shaftfe.util.atomic import atomic_path, check_suffix, write_atomic
 from shaftfe.util.units import rpm2_scale
+
+MESH_SUFFIXES = (".vtu", ".msh")       # the mesh files ``write_mesh`` writes (meshio)
 
 
 def mesh_cells(m) -> tuple[list, list, list[str]]:
@@ -268,10 +269,8 @@ def write_mesh(sm, path) -> Path:
     ``sm.groups``."""
     import meshio
     import numpy as np
-    path = Path(path)
+    path = check_suffix(path, "--out", MESH_SUFFIXES)
     m = sm.mesh
-    if path.suffix not in (".vtu", ".msh"):
-        raise InputError("--out", "out", "a path ending in .vtu or .msh", got=str(path))
     if sm.order == 2:
         vol = ("tetra10", m.dofs.element_dofs.T.astype(np.int64))
         tri_cells = "triangle6"

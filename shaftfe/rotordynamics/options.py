@@ -20,6 +20,10 @@ DEFAULT_ORDERS: tuple[float, ...] = (1.0, 2.0)
 # response, which this undamped sweep does not compute; a branch inside the band is a critical
 # speed close enough to the excitation to need that response analysis.
 SEPARATION_MARGIN = 0.10
+# the size of a sweep: speeds (a Campbell diagram's resolution far past any plot's) and modes
+# per speed (the reduced basis grows with them)
+MAX_SPEEDS = 2001
+MAX_MODES = 200
 
 
 @dataclass(frozen=True)
@@ -33,6 +37,16 @@ class RotorOptions:
     coupling: str = "rigid"               # solid, harmonic: "rigid" | "distributing"
     stress_stiffening: bool = False       # solid: centrifugal prestress
     cache_dir: object = None
+
+
+def check_sweep(n_speeds: int, n_modes: int) -> None:
+    """A sweep's size: 1 … MAX_SPEEDS speeds, 1 … MAX_MODES modes (the model's own bound on the
+    modes, half its dofs, is ``analyse``'s)."""
+    if not (isinstance(n_modes, int) and 1 <= n_modes <= MAX_MODES):
+        raise InputError("command line", "--modes", f"1..{MAX_MODES}", got=n_modes)
+    if not 1 <= n_speeds <= MAX_SPEEDS:
+        raise InputError("command line", "RANGE/--step", f"1 … {MAX_SPEEDS} speeds",
+                         got=n_speeds)
 
 
 def check_options(o: RotorOptions) -> None:

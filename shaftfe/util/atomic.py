@@ -79,13 +79,29 @@ def _not_writable(option: str, target: Path, exc: OSError | str):
                       got=str(target), reason=f"cannot be written ({why})")
 
 
-def check_output_file(path: str | os.PathLike | None, option: str) -> Path | None:
-    """Refuse, before any work is done, an output FILE that cannot be written: a directory at
-    the path, a parent that is a file, a parent that cannot be created or written. Creates
-    nothing (a probe file is made and removed in the nearest existing directory)."""
+# the formats shaftfe's figures are written in (matplotlib infers the format from the name)
+PLOT_SUFFIXES = (".png", ".pdf", ".svg")
+
+
+def check_suffix(path: str | os.PathLike, option: str, suffixes: tuple[str, ...] = ()) -> Path:
+    """``path`` as a Path, refused in one line unless its name ends in one of ``suffixes``
+    (lower case; any name where none is given): the one rule of output file names."""
+    p = Path(path)
+    if suffixes and p.suffix.lower() not in suffixes:
+        raise InputError(option, "file extension", " | ".join(suffixes), got=str(p))
+    return p
+
+
+def check_output_file(path: str | os.PathLike | None, option: str,
+                      suffixes: tuple[str, ...] = ()) -> Path | None:
+    """Refuse, before any work is done, an output FILE that cannot be written: a name that does
+    not end in one of ``suffixes`` (lower case, e.g. ``PLOT_SUFFIXES``; any name where none is
+    given), a directory at the path, a parent that is a file, a parent that cannot be created or
+    written. Creates nothing (a probe file is made and removed in the nearest existing
+    directory). The one rule of every command's output file names."""
     if path is None or path == "":
         return None
-    p = Path(path)
+    p = check_suffix(path, option, suffixes)
     if p.is_dir():
         raise _not_writable(option, p, "it is a directory; give a file name")
     anc, _ = _nearest_existing(p.parent)
