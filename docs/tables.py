@@ -308,7 +308,59 @@ def keyway_radius() -> str:
     return "\n".join(out)
 
 
+# The pipeline's order, lowest first: a module imports only modules of its own package or of
+# packages before its own, but the arrows docs/ARCHITECTURE.md names with their reasons
+# (tests/test_architecture.py checks the import graph against it; "shaftfe" is the package's
+# face, its version and a lazy table). The floors of ARCHITECTURE.md's module index.
+PIPELINE = ("errors", "shaftfe", "util", "balance", "model", "solid", "fe", "beam", "elements",
+            "io", "static", "axisymmetric", "zoned", "rotordynamics", "fatigue", "report",
+            "study", "commands", "cli", "__main__")
+
+
+def _first_sentence(doc: str, limit: int = 220) -> str:
+    """A docstring's first sentence, on one line (cut at ``limit`` characters)."""
+    text = " ".join(doc.split("\n\n", 1)[0].split())
+    for m in re.finditer(r"(?<!e\.g)(?<!i\.e)(?<!vs)(?<!ch)(?<!Obr)(?<!eq)(?<!§\d)\.(\s|$)",
+                         text):
+        if text[:m.start()].count("``") % 2 == 0:     # not inside a ``literal``
+            text = text[:m.start() + 1]
+            break
+    return text if len(text) <= limit else text[:limit - 1].rstrip() + "…"
+
+
+def modules() -> str:
+    """docs/ARCHITECTURE.md's module index: every module of shaftfe, package by package from
+    the top of ``PIPELINE`` down, with its docstring's first sentence (the docstrings are the
+    description: a new module is listed when the index is made again)."""
+    import ast
+    pkg = ROOT / "shaftfe"
+    groups: dict[str, list[tuple[str, str]]] = {}
+    for p in sorted(pkg.rglob("*.py")):
+        rel = p.relative_to(pkg)
+        top = rel.parts[0] if len(rel.parts) > 1 else \
+            ("shaftfe" if rel.stem == "__init__" else rel.stem)
+        name = ".".join(rel.with_suffix("").parts)
+        if name.endswith("__init__") and name != "__init__":
+            continue                      # a package's face: its modules speak for it
+        doc = ast.get_docstring(ast.parse(p.read_text(encoding="utf-8"))) or ""
+        groups.setdefault(top, []).append((name if name != "__init__" else "shaftfe",
+                                           _first_sentence(doc) if doc else "(no docstring)"))
+    out = []
+    for floor, top in sorted(enumerate(PIPELINE, 1), reverse=True):
+        if top not in groups:
+            raise SystemExit(f"docs/tables.py: the package {top!r} of PIPELINE has no module")
+        where = f"`{top}/`" if (pkg / top).is_dir() else f"`{top}`"
+        out.append(f"**floor {floor}: {where}**")
+        out.append("")
+        out += [f"- `{n}`: {d}" for n, d in groups.pop(top)]
+        out.append("")
+    if groups:
+        raise SystemExit("docs/tables.py: packages not in PIPELINE: " + ", ".join(sorted(groups)))
+    return "\n".join(out).rstrip() + "\n"
+
+
 TABLES = {"fatigue-x2_57": (DOCS / "VALIDATION.md", fatigue_x2_57),
+          "modules": (DOCS / "ARCHITECTURE.md", modules),
           "truth-bars": (DOCS / "VALIDATION.md", truth_bars),
           "groove-truth-check": (DOCS / "VALIDATION.md", groove_truth_check),
           "study-x2_tradeoff": (DOCS / "STUDIES.md", study_x2_tradeoff),

@@ -1,3 +1,5 @@
+"""``python -m shaftfe``: the command line (``shaftfe.cli.main``), as the ``shaftfe`` script."""
+
 import sys
 
 from shaftfe.cli import main

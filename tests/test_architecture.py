@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import ast
 import importlib
+import importlib.util
 import re
 from pathlib import Path
 
@@ -127,13 +128,18 @@ def test_no_import_circles_but_the_known_ones():
     assert KNOWN_CIRCLES - found == set(), "a known circle is gone: take it off the list"
 
 
-# The pipeline's order, lowest first (docs/ARCHITECTURE.md's "Rules the layout keeps"; "shaftfe"
-# is the package's face, its version and a lazy table): a module imports only modules of its own
-# package or of packages before its own, except the arrows that section names with their
-# reasons (``UPWARD_ARROWS``).
-PIPELINE = ("errors", "shaftfe", "util", "balance", "model", "solid", "fe", "beam", "elements",
-            "io", "static", "axisymmetric", "zoned", "rotordynamics", "fatigue", "report",
-            "study", "commands", "cli", "__main__")
+def _tables():
+    """docs/tables.py, the generator of ARCHITECTURE.md's module index (not a package)."""
+    spec = importlib.util.spec_from_file_location("docs_tables", ROOT / "docs" / "tables.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+# The pipeline's order, lowest first (docs/tables.py: the floors of docs/ARCHITECTURE.md's
+# module index): a module imports only modules of its own package or of packages before its
+# own, except the arrows "Rules the layout keeps" names with their reasons (``UPWARD_ARROWS``).
+PIPELINE = _tables().PIPELINE
 UPWARD_ARROWS = {
     ("shaftfe.model.parse", "shaftfe.solid.plan"),     # a file is refused when it is read
     ("shaftfe.solid.mesh", "shaftfe.fe.assembly"),     # every P2 mesh inverts curved tets
@@ -226,3 +232,18 @@ def test_where_things_go_names_what_exists():
             assert re.fullmatch(r"[A-Za-z_][A-Za-z_0-9]*", n) and n in defined, n
         places += 1
     assert places > 0               # the section was found and read
+
+
+def test_the_module_index_is_every_module_floor_by_floor():
+    """docs/ARCHITECTURE.md's "Every module, floor by floor" is what docs/tables.py makes of the
+    package now: every module under its floor of ``PIPELINE``, with its docstring's first
+    sentence (a module added, moved or described anew fails here until ``make tables``)."""
+    tables = _tables()
+    text = (ROOT / "docs" / "ARCHITECTURE.md").read_text(encoding="utf-8")
+    block = re.search(r"<!-- table:modules -->\n(.*?)<!-- /table -->", text, re.S)
+    assert block is not None, "the module index's markers are missing"
+    assert block.group(1).strip() == tables.modules().strip(), "run make tables"
+    listed = set(re.findall(r"^- `([^`]+)`:", block.group(1), re.M))
+    assert listed == {m.removeprefix("shaftfe.") if m != "shaftfe" else m
+                      for m in _modules() if m == "shaftfe" or not (
+                          PKG / m.removeprefix("shaftfe.").replace(".", "/")).is_dir()}

@@ -1,5 +1,5 @@
-"""The axisymmetric solution as the fatigue stage's input: a ``shaftfe.static.cache.
-StaticReference`` on the revolved free surface.
+"""The axisymmetric solution as the fatigue stage's input: a
+``shaftfe.static.cache.StaticReference`` on the revolved free surface.
 
 Points: every outline node off the axis (``recovery.Surface``) at θ = 0°, 1°, …, 359° (the
 peaks' grid, ``recovery.theta_grid``: a peak between two samples is missed by at most

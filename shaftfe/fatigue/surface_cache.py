@@ -1,7 +1,7 @@
-"""The surface references of the axisymmetric and zoned models (``fatigue.run.
-surface_reference``) kept on disk for the next fatigue run, as the static cache keeps the full 3D
-model's (``static.cache``): a warm ``shaftfe fatigue`` reads its field instead of solving twice
-(softened and unsoftened).
+"""The surface references of the axisymmetric and zoned models
+(``fatigue.run.surface_reference``) kept on disk for the next fatigue run, as the static cache
+keeps the full 3D model's (``static.cache``): a warm ``shaftfe fatigue`` reads its field
+instead of solving twice (softened and unsoftened).
 
 An entry is one ``.npz`` (``util.cachefile``: checksummed, written atomically): the
 ``StaticReference`` in the static cache's format (``static.cache._save``, ``_load_entry``) with
