@@ -70,7 +70,8 @@ lint: $(STAMP)
 clean:
 	rm -rf $(VENV) .venv-latest .venv-lock .pytest_cache .ruff_cache build *.egg-info
 
-# The result tables the docs quote (docs/VALIDATION.md, docs/STUDIES.md), recomputed through the API (docs/tables.py).
+# The tables the docs quote (docs/VALIDATION.md, STUDIES.md, STRENGTH.md, PERFORMANCE.md; ARCHITECTURE.md's module
+# index), recomputed through the API (docs/tables.py; `python docs/tables.py modules` for the index alone).
 tables: $(STAMP)
 	$(BIN)/python docs/tables.py
 

@@ -1,10 +1,12 @@
 """The result tables the docs quote, computed by the project's own API so they cannot go stale.
 
     python docs/tables.py            # rewrite the tables in docs/*.md (make tables)
+    python docs/tables.py modules    # rewrite the named tables only (here ARCHITECTURE.md's)
     python docs/tables.py --check    # exit 1 if a quoted table differs from a fresh run
 
 Each table sits between ``<!-- table:NAME -->`` and ``<!-- /table -->`` in the file ``TABLES``
-names (docs/VALIDATION.md, docs/STUDIES.md). The
+names (docs/VALIDATION.md, docs/STUDIES.md, docs/STRENGTH.md, docs/PERFORMANCE.md, and
+docs/ARCHITECTURE.md's module index: ``python docs/tables.py modules`` makes that one alone). The
 static solutions come from the cache (``shaftfe.static.cache``) when the model is unchanged, so a
 second run takes seconds; a cold run solves x2_57 twice at the default level (≈ 30 s).
 """
@@ -317,15 +319,24 @@ PIPELINE = ("errors", "shaftfe", "util", "balance", "model", "solid", "fe", "bea
             "study", "commands", "cli", "__main__")
 
 
+# words ending in a full stop that do not end a sentence (first-sentence cuts of docstrings)
+ABBREVIATIONS = {"e.g", "i.e", "vs", "ch", "obr", "eq", "fig", "vol", "no", "cf", "et al", "al",
+                 "approx", "ref", "sec", "tab"}
+
+
 def _first_sentence(doc: str, limit: int = 220) -> str:
     """A docstring's first sentence, on one line (cut at ``limit`` characters)."""
     text = " ".join(doc.split("\n\n", 1)[0].split())
-    for m in re.finditer(r"(?<!e\.g)(?<!i\.e)(?<!vs)(?<!ch)(?<!Obr)(?<!eq)(?<!§\d)\.(\s|$)",
-                         text):
-        if text[:m.start()].count("``") % 2 == 0:     # not inside a ``literal``
+    for m in re.finditer(r"\.(\s|$)", text):
+        word = re.search(r"(\S+)$", text[:m.start()])
+        if word and word.group(1).lower() in ABBREVIATIONS:
+            continue                                   # "ch. 7", "e.g. 1", "Fig. 3"
+        if text[:m.start()].count("``") % 2 == 0:      # not inside a ``literal``
             text = text[:m.start() + 1]
             break
-    return text if len(text) <= limit else text[:limit - 1].rstrip() + "…"
+    if len(text) <= limit:
+        return text
+    return text[:limit].rsplit(" ", 1)[0].rstrip(",;:") + " …"      # cut at a word
 
 
 def modules() -> str:
@@ -370,10 +381,11 @@ TABLES = {"fatigue-x2_57": (DOCS / "VALIDATION.md", fatigue_x2_57),
           "keyway-radius": (DOCS / "PERFORMANCE.md", keyway_radius)}
 
 
-def render(path: Path, text: str) -> str:
-    """``text`` (the content of ``path``) with each of its tables recomputed."""
+def render(path: Path, text: str, names=None) -> str:
+    """``text`` (the content of ``path``) with each of its tables recomputed (those of
+    ``names`` only, where given)."""
     for name, (where, make) in TABLES.items():
-        if where != path:
+        if where != path or (names and name not in names):
             continue
         # the body up to the FIRST closing marker (an empty block too)
         pat = re.compile(rf"(<!-- table:{re.escape(name)} -->\n)(?:.*?)(<!-- /table -->)",
@@ -386,11 +398,18 @@ def render(path: Path, text: str) -> str:
 
 
 def main(argv: list[str]) -> int:
+    """``[NAME ...] [--check]``: every table, or the named ones (e.g. ``modules``)."""
+    names = {a for a in argv if not a.startswith("-")}
+    unknown = names - set(TABLES)
+    if unknown:
+        raise SystemExit(f"docs/tables.py: no table {', '.join(sorted(unknown))}; the tables: "
+                         + ", ".join(TABLES))
     status = 0
-    for path in sorted({where for where, _ in TABLES.values()}):
+    for path in sorted({where for name, (where, _) in TABLES.items()
+                        if not names or name in names}):
         rel = path.relative_to(ROOT)
         old = path.read_text(encoding="utf-8")
-        new = render(path, old)
+        new = render(path, old, names)
         if "--check" in argv:
             if new != old:
                 print(f"{rel}: the result tables are stale; run `make tables`", file=sys.stderr)

@@ -242,7 +242,8 @@ def test_the_module_index_is_every_module_floor_by_floor():
     text = (ROOT / "docs" / "ARCHITECTURE.md").read_text(encoding="utf-8")
     block = re.search(r"<!-- table:modules -->\n(.*?)<!-- /table -->", text, re.S)
     assert block is not None, "the module index's markers are missing"
-    assert block.group(1).strip() == tables.modules().strip(), "run make tables"
+    assert block.group(1).strip() == tables.modules().strip(), \
+        "run python docs/tables.py modules"
     listed = set(re.findall(r"^- `([^`]+)`:", block.group(1), re.M))
     assert listed == {m.removeprefix("shaftfe.") if m != "shaftfe" else m
                       for m in _modules() if m == "shaftfe" or not (

@@ -957,7 +957,9 @@ LIMIT_CASES = {
     "inline_orders_past_nyquist": (["balance", "inline", "--pins", "0,180", "--spacing-mm",
                                     "80", "--samples", "16", "--orders", "9"],
                                    ["--orders", "integers in [1, 7]"]),
-    # a sweep's size, in rotordynamics.options (the command and analyse apply the same rule)
+    "forces_plot_empty": (["balance", "forces", "--plot", ""], ["--plot", "a file name"]),
+    # a sweep's size, in rotordynamics.options (modes: the command and analyse; speeds: the
+    # command line's RANGE/--step)
     "campbell_modes_too_many": (["campbell", "0:8000", "--modes", "500"], ["--modes", "1..200"]),
     "campbell_speeds_too_many": (["campbell", "0:8000:1"], ["RANGE/--step", "2001 speeds"]),
 }

@@ -98,3 +98,22 @@ def test_bad_input_one_line_exit_2(args, needle, tmp_path):
     assert len(lines) == 1, r.stderr
     assert "Traceback" not in r.stderr and needle in lines[0]
     assert not plot.exists()
+
+
+def test_the_mechanism_rules_serve_api_callers_as_before():
+    """balance.multi's rules (issue #34: the command only applies them) keep what an API
+    caller got: the orders as asked (order and repeats), a whole float sample count; and
+    refuse what the command refused: a negative gap even with one cylinder."""
+    import numpy as np
+
+    from shaftfe.balance import multi
+    from shaftfe.errors import InputError
+    theta = multi.crank_angles(16.0)                       # a whole number, given as a float
+    assert theta.size == 16
+    x, y = np.cos(theta), np.sin(3 * theta)
+    assert [o.order for o in multi.harmonic_orders(x, y, (3, 1, 2, 1))] == [3, 1, 2, 1]
+    assert multi.harmonic_orders(x, y, ()) == ()
+    with pytest.raises(InputError, match="integers in"):
+        multi.harmonic_orders(x, y, (2.5,))
+    with pytest.raises(InputError, match="gaps >= 0 mm"):
+        multi.inline([0.0], -0.08)

@@ -432,3 +432,17 @@ def test_exact_formulas_against_quadrature():
     # √ singularities at the stadium ends limit dblquad: estimate 2.4e-11, measured 2.9e-11
     # relative; 1e-8 leaves 300× for other QUADPACK builds
     assert slot_volume(k) == pytest.approx(kv, rel=1e-8)
+
+
+def test_a_mesh_file_suffix_in_capitals_is_written_as_its_format(tmp_path):
+    """``mesh --out m.MSH``: the suffix rule takes any case (util.atomic.check_suffix), and so
+    does the writer (it wrote .MSH through the VTU writer, which refused it with a traceback)."""
+    from types import SimpleNamespace
+
+    import meshio
+    import skfem
+
+    from shaftfe.io.vtu import write_mesh
+    m = skfem.MeshTet()
+    p = write_mesh(SimpleNamespace(mesh=m, order=1, groups=()), tmp_path / "m.MSH")
+    assert meshio.read(p, file_format="gmsh").cells_dict["tetra"].shape[0] == m.t.shape[1]

@@ -168,22 +168,27 @@ MIN_SAMPLES, MAX_SAMPLES = 8, 1_000_000
 
 
 def check_samples(n: int) -> int:
-    """``n`` samples per revolution, within [MIN_SAMPLES, MAX_SAMPLES]."""
-    if not (isinstance(n, int | np.integer) and MIN_SAMPLES <= n <= MAX_SAMPLES):
+    """``n`` samples per revolution: a whole number (16 or 16.0) within [MIN_SAMPLES,
+    MAX_SAMPLES]."""
+    if isinstance(n, bool | np.bool_) or not (
+            isinstance(n, int | np.integer | float | np.floating) and float(n).is_integer()
+            and MIN_SAMPLES <= n <= MAX_SAMPLES):
         raise InputError("--samples", "samples", f"{MIN_SAMPLES} <= samples <= {MAX_SAMPLES}",
                          got=n)
     return int(n)
 
 
 def check_orders(orders: Sequence[int], n: int) -> list[int]:
-    """The harmonic orders ``orders`` that ``n`` samples per revolution resolve (1 <= k < n/2),
-    sorted and unique."""
+    """The harmonic orders ``orders`` (as given: their order and repeats kept) if ``n`` samples
+    per revolution resolve each (an integer, 1 <= k < n/2)."""
     hi = math.ceil(n / 2) - 1
-    bad = [k for k in orders if not 1 <= k <= hi]
-    if not orders or bad:
-        raise InputError("--orders", "orders", f"integers in [1, {hi}]",
-                         got=bad[0] if bad else "none")
-    return sorted(set(int(k) for k in orders))
+    out = []
+    for k in orders:
+        if isinstance(k, bool) or not (isinstance(k, int | np.integer | float | np.floating)
+                                       and float(k).is_integer() and 1 <= k <= hi):
+            raise InputError("--orders", "orders", f"integers in [1, {hi}]", got=k)
+        out.append(int(k))
+    return out
 
 
 def mechanism(radius_mm: float, rod_mm: float, m_pos_kg: float) -> Mechanism:
@@ -346,10 +351,11 @@ def inline(pins_deg: Sequence[float], spacing_m: Sequence[float] | float,
     if len(gaps) != max(n - 1, 0) and not (n == 1 and len(gaps) <= 1):
         raise InputError("--spacing-mm", "spacing", f"1 value or {n - 1} values (N - 1 gaps "
                          f"for {n} cylinders)", got=len(gaps), reason="has the wrong count")
-    gaps = gaps[: max(n - 1, 0)]
-    if not all(math.isfinite(g) and g >= 0.0 for g in gaps):
+    given = [float(spacing_m)] if np.isscalar(spacing_m) else gaps
+    if not all(math.isfinite(g) and g >= 0.0 for g in given):      # every gap given
         raise InputError("--spacing-mm", "spacing", "gaps >= 0 mm",
-                         got=",".join(f"{1000.0 * g:g}" for g in gaps))
+                         got=",".join(f"{1000.0 * g:g}" for g in given))
+    gaps = gaps[: max(n - 1, 0)]
     z = np.concatenate([[0.0], np.cumsum(gaps)]) if gaps else np.zeros(1)
     if X is None:
         xs = [0.0] * n

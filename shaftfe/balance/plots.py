@@ -11,18 +11,12 @@ from __future__ import annotations
 import io
 from pathlib import Path
 
-from shaftfe.errors import InputError
-from shaftfe.util.atomic import write_atomic
-
-FORMATS = ("png", "pdf", "svg")
+from shaftfe.util.atomic import PLOT_SUFFIXES, check_suffix, write_atomic
 
 
 def _check_path(path: str | Path, option: str = "--plot") -> str:
-    fmt = Path(path).suffix.lower().lstrip(".")
-    if fmt not in FORMATS:
-        raise InputError(option, "file extension", ", ".join("." + f for f in FORMATS),
-                         got=str(path))
-    return fmt
+    """The figure's format from its file name (``util.atomic.check_suffix``: the one rule)."""
+    return check_suffix(path, option, PLOT_SUFFIXES).suffix.lower().lstrip(".")
 
 
 def _save(fig, path: str | Path, fmt: str) -> Path:

@@ -98,7 +98,7 @@ def _parse_orders(text: str, samples: int) -> list[int]:
         ks = [int(s.strip()) for s in str(text).split(",")]
     except ValueError:
         raise InputError("--orders", "orders", "comma-separated integers", got=text) from None
-    return check_orders(ks, samples)
+    return sorted(set(check_orders(ks, samples)))
 
 
 def _setup(args):

@@ -26,8 +26,8 @@ from shaftfe.rotordynamics.options import (
     MAX_SPEEDS,
     ROTOR_MODELS,
     RotorOptions,
+    check_modes,
     check_options,
-    check_sweep,
 )
 from shaftfe.solid.levels import LEVEL_NAMES
 
@@ -136,7 +136,7 @@ def parse_orders(text: str) -> list[float]:
 
 
 def _check_common(args) -> None:
-    check_sweep(1, args.modes)          # the modes before the variant is read (the API's rule)
+    check_modes(args.modes)             # before the variant is read (the API's rule)
     if args.spin_softening:
         raise InputError("command line", "--spin-softening", "omit it (its stationary-frame "
                          "counterpart −Ω² A_θ comes with --stress-stiffening)",

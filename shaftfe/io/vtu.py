@@ -295,7 +295,7 @@ def write_mesh(sm, path) -> Path:
     out = meshio.Mesh(m.doflocs.T if sm.order == 2 else m.p.T, cells,
                       cell_data={"group": data})
     with atomic_path(path) as tmp:
-        if path.suffix == ".msh":
+        if path.suffix.lower() == ".msh":
             out.cell_data = {"gmsh:physical": data, "gmsh:geometrical": data}
             meshio.write(tmp, out, file_format="gmsh22", binary=False)
         else:

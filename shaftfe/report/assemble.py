@@ -362,25 +362,27 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
             # the pictures render in a second process beside the strength section and the plots
             rendering = renderer.start(_picture_job(o, out / files["vtu"], fig_dir, ff,
                                                     files["vtu_rpm"], st)) if renderer else None
+        with prog.stage("strength by standard"):
+            strength = _strength(o, variant, ref, history, ff.result.cycles)
+        with prog.stage("plots"):
+            _plots(o, out, fig_dir, variant, drawing, fat_drawing, fres, sw, res, ref, ff,
+                   history, material, cres, camp, files["vtu_rpm"], add_fig)
+            _din743_along_plot(strength, fig_dir, add_fig)
+            _fkm_along_plot(strength, variant, fig_dir, add_fig)
+        picture_seconds = None
+        with prog.stage("3D pictures"):           # what is left of them once the plots are done
+            if rendering is not None:
+                pics, picture_seconds = rendering.result()
+                n = len(figs)
+                for name, title, caption in pics:
+                    add_fig(name, title, caption)
+                figs[:] = figs[n:] + figs[:n]     # the pictures first, as the report shows them
     except BaseException:
-        if renderer is not None:          # no job will come: stop the second process
+        # nothing more may land in the output folder: the second process's jobs not started are
+        # dropped and the one it is on is waited for, before the caller removes the folder
+        if renderer is not None:
             renderer.close()
         raise
-    with prog.stage("strength by standard"):
-        strength = _strength(o, variant, ref, history, ff.result.cycles)
-    with prog.stage("plots"):
-        _plots(o, out, fig_dir, variant, drawing, fat_drawing, fres, sw, res, ref, ff,
-               history, material, cres, camp, files["vtu_rpm"], add_fig)
-        _din743_along_plot(strength, fig_dir, add_fig)
-        _fkm_along_plot(strength, variant, fig_dir, add_fig)
-    picture_seconds = None
-    with prog.stage("3D pictures"):           # what is left of them once the plots are done
-        if rendering is not None:
-            pics, picture_seconds = rendering.result()
-            n = len(figs)
-            for name, title, caption in pics:
-                add_fig(name, title, caption)
-            figs[:] = figs[n:] + figs[:n]     # the pictures first, as the report shows them
     errs = error_estimates(st, res, fat, scaled, bench, camp, beam_out,
                            seed=variant.name == seedmod.VARIANT)
     comps = comparisons(bal, beam_out, st, fat, camp, variant, seedmod,

@@ -130,9 +130,10 @@ class Renderer:
             self._pool = None
 
     def draw(self, fn, *args) -> Drawing:
-        """Hand the second process a figure job that needs nothing of the solve (it runs there
-        while the static model solves here, before the pictures); drawn by ``Drawing.wait``
-        in this process where there is no second one."""
+        """Hand the second process a figure job (``report.drawings``: the balancing figures,
+        which need nothing of the solve, while the static model solves here; the fatigue
+        figures while the rotor solves), run before the pictures; drawn by ``Drawing.wait`` in
+        this process where there is no second one."""
         if self._pool is None:
             return Drawing(fn, args)
         try:

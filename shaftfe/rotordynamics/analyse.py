@@ -19,8 +19,8 @@ from shaftfe.rotordynamics.options import (
     DEFAULT_ORDERS,
     ROTOR_MODELS,
     RotorOptions,
+    check_modes,
     check_options,
-    check_sweep,
 )
 
 if TYPE_CHECKING:
@@ -132,7 +132,7 @@ def analyse(variant, rpms, n_modes: int = 12, *, orders=DEFAULT_ORDERS,
     """Build (or take ``model``), sweep ``rpms``, and verify the reduced sweep at the top speed.
     InputError if ``n_modes`` exceeds half the model's dofs."""
     check_options(options)
-    check_sweep(len(rpms), n_modes)
+    check_modes(n_modes)
     kind = rotor_kind(options.model)
     if model is None:
         model = kind.build(variant, options)

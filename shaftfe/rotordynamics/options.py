@@ -20,8 +20,9 @@ DEFAULT_ORDERS: tuple[float, ...] = (1.0, 2.0)
 # response, which this undamped sweep does not compute; a branch inside the band is a critical
 # speed close enough to the excitation to need that response analysis.
 SEPARATION_MARGIN = 0.10
-# the size of a sweep: speeds (a Campbell diagram's resolution far past any plot's) and modes
-# per speed (the reduced basis grows with them)
+# the size of a sweep: the modes per speed (the reduced basis grows with them), and the speeds a
+# command line's RANGE/--step may ask (a Campbell diagram's resolution far past any plot's; a
+# study sets its own step, ``study.spec``)
 MAX_SPEEDS = 2001
 MAX_MODES = 200
 
@@ -39,14 +40,11 @@ class RotorOptions:
     cache_dir: object = None
 
 
-def check_sweep(n_speeds: int, n_modes: int) -> None:
-    """A sweep's size: 1 … MAX_SPEEDS speeds, 1 … MAX_MODES modes (the model's own bound on the
-    modes, half its dofs, is ``analyse``'s)."""
-    if not (isinstance(n_modes, int) and 1 <= n_modes <= MAX_MODES):
+def check_modes(n_modes: int) -> None:
+    """The modes of a sweep: 1 … MAX_MODES (the model's own bound, half its dofs, is
+    ``analyse``'s)."""
+    if isinstance(n_modes, bool) or not (isinstance(n_modes, int) and 1 <= n_modes <= MAX_MODES):
         raise InputError("command line", "--modes", f"1..{MAX_MODES}", got=n_modes)
-    if not 1 <= n_speeds <= MAX_SPEEDS:
-        raise InputError("command line", "RANGE/--step", f"1 … {MAX_SPEEDS} speeds",
-                         got=n_speeds)
 
 
 def check_options(o: RotorOptions) -> None:

@@ -94,13 +94,16 @@ def check_suffix(path: str | os.PathLike, option: str, suffixes: tuple[str, ...]
 
 def check_output_file(path: str | os.PathLike | None, option: str,
                       suffixes: tuple[str, ...] = ()) -> Path | None:
-    """Refuse, before any work is done, an output FILE that cannot be written: a name that does
+    """Refuse, before any work is done, an output FILE that cannot be written: an empty name, a
+    name that does
     not end in one of ``suffixes`` (lower case, e.g. ``PLOT_SUFFIXES``; any name where none is
     given), a directory at the path, a parent that is a file, a parent that cannot be created or
     written. Creates nothing (a probe file is made and removed in the nearest existing
     directory). The one rule of every command's output file names."""
-    if path is None or path == "":
+    if path is None:
         return None
+    if str(path) == "":
+        raise InputError(option, "path", "a file name", got="")
     p = check_suffix(path, option, suffixes)
     if p.is_dir():
         raise _not_writable(option, p, "it is a directory; give a file name")
