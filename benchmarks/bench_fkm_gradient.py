@@ -80,7 +80,7 @@ def bar() -> dict:
 def _group():
     """The FKM material group of x2_57's own strength card."""
     from shaftfe.fatigue import fkm
-    from shaftfe.fatigue.standards import StrengthOptions, strength_card
+    from shaftfe.fatigue.strength import StrengthOptions, strength_card
     from shaftfe.model.loader import load_variant
     return fkm.GROUPS[strength_card(load_variant("x2_57"), StrengthOptions()).group]
 

@@ -141,7 +141,7 @@ def reference_life(s: np.ndarray, c: np.ndarray, rule: str, damage_sum: float,
 def check_long(spectrum: Path) -> dict:
     """This tree's FKM on the full history: the governing check's lives at its own safety
     factor λ* (each rule), by ``reference_life``: relative distance to the design life."""
-    from shaftfe.fatigue import standards as sd
+    from shaftfe.fatigue import strength as sd
     from shaftfe.fatigue.fkm_field import governing_cycles
     from shaftfe.fatigue.run import FatigueJob
     job = FatigueJob(spectrum=str(spectrum), level="coarse", model="solid")

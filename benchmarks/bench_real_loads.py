@@ -36,8 +36,8 @@ def axi(v, case=None):
 def main() -> int:
     from shaftfe.beam.model import build_model
     from shaftfe.beam.solve import solve, solve_cases
-    from shaftfe.fatigue.standards import StrengthOptions
     from shaftfe.fatigue.static_check import din743_static
+    from shaftfe.fatigue.strength import StrengthOptions
     from shaftfe.model.loader import load_variant
     base = load_variant("x2_57")
     drv = load_variant(ROOT / "geometry" / "examples" / "x2_57_driven.toml")

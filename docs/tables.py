@@ -231,7 +231,7 @@ def fkm_gradient() -> str:
     out = ["| model, level | " + " | ".join(f"`{r}` G /mm (error)" for r in regs)
            + " | n_σ error |", "|---|" + "---|" * (len(regs) + 1)]
     from shaftfe.fatigue import fkm
-    from shaftfe.fatigue.standards import StrengthOptions, strength_card
+    from shaftfe.fatigue.strength import StrengthOptions, strength_card
     from shaftfe.model.loader import load_variant
     g = fkm.GROUPS[strength_card(load_variant("x2_57"), StrengthOptions()).group]
     for r in x["rows"]:

@@ -135,7 +135,7 @@ def test_a_variant_without_duty_gets_no_seed_defaults(tmp_path):
 def test_the_shafts_material_selects_its_cards(tmp_path):
     """A C45 shaft gets C45's strength card (materials.toml [materials.12050]: EN 10083-2 C45
     +QT, d <= 16 mm: R_m 700, R_e 490 MPa) and C45's S-N card (FKM: 0.45 R_m = 315 MPa)."""
-    from shaftfe.fatigue import standards as sd
+    from shaftfe.fatigue import strength as sd
     from shaftfe.fatigue.sn import load_material
     from shaftfe.report.options import ReportOptions, with_duty
     v = load_variant(_write(tmp_path))
@@ -217,7 +217,7 @@ def test_checks_run_only_where_their_element_is(tmp_path):
     points (beam model only: milliseconds); the seed's x2_57 keeps its two keys and its gear
     pair (the seed's safety 33.93, seed 000 §8.2.2: ours from the same Merritt formula)."""
     from shaftfe.fatigue.run import read_spectrum
-    from shaftfe.fatigue.standards_out import compute_elements
+    from shaftfe.fatigue.strength_outputs import compute_elements
     v = load_variant(_write(tmp_path))
     h = read_spectrum(str(tmp_path / "duty.rpm"), None, None)
     el = compute_elements(v, h, 1.0, 1.0, 70.0)

@@ -297,7 +297,7 @@ def test_din743_plot_gives_the_safety_along_the_shaft(tmp_path, capsys):
 
     from shaftfe.beam.solve import beam_at_ref
     from shaftfe.fatigue import din743 as din
-    from shaftfe.fatigue.standards import StrengthOptions, din743_card
+    from shaftfe.fatigue.strength import StrengthOptions, din743_card
     from shaftfe.model.loader import load_variant
     out = tmp_path / "d"
     rc, text, err = run(capsys, RPM_DAT, "--method", "din743", "--plot", "--out", out)

@@ -151,7 +151,7 @@ def test_a_life_past_1e9_is_no_finite_life(blocks, hours, text):
 
 def _bearing_line(L10h: float, Lnm_h: float, Lnm_km: float) -> str:
     """The printed line of one bearing with these lives (70 km/h)."""
-    from shaftfe.fatigue.standards_out import elements_lines
+    from shaftfe.fatigue.strength_outputs import elements_lines
     duty = {"name": "gear_side", "designation": "ZKL 3303", "P_eq_N": 1.0, "n_eq_rpm": 3000.0,
             "L10h": L10h, "Lnm_h": Lnm_h, "Lnm_km": Lnm_km}
     el = {"bearings": {"kappa": 1.0, "e_C": 0.3, "duty_cycle": [duty], "seed_points": []},
@@ -259,7 +259,7 @@ def _fkm_stub(n_cycles: int, G: float):
 
 
 def test_the_fkm_table_of_a_constant_speed_has_no_nan_and_says_no_load_cycles():
-    from shaftfe.fatigue import standards_out as so
+    from shaftfe.fatigue import strength_outputs as so
     res = _fkm_stub(0, -0.886)
     (row,) = so.fkm_rows(res, frozenset())
     assert "nan" not in " ".join(map(str, row)) and "∞" not in row

@@ -167,8 +167,8 @@ def test_the_seed_method_is_run_fatigue_exactly(coarse):
 
 
 def test_fkm_through_the_protocol_is_run_fkm_exactly(coarse):
-    from shaftfe.fatigue import standards as sd
-    from shaftfe.fatigue import standards_out as so
+    from shaftfe.fatigue import strength as sd
+    from shaftfe.fatigue import strength_outputs as so
     from shaftfe.fatigue.assess import life_hours
     job, got, ref = coarse
     old, _, _ = sd.run_fkm(job, sd.StrengthOptions(), got, ref)
@@ -189,8 +189,8 @@ def test_fkm_through_the_protocol_is_run_fkm_exactly(coarse):
 def test_din743_through_the_protocol_is_run_din743_exactly(coarse):
     from shaftfe.beam.solve import beam_at_ref
     from shaftfe.fatigue import din743
-    from shaftfe.fatigue import standards as sd
-    from shaftfe.fatigue import standards_out as so
+    from shaftfe.fatigue import strength as sd
+    from shaftfe.fatigue import strength_outputs as so
     job, got, _ = coarse
     beam = beam_at_ref(got.variant)
     old = sd.run_din743(job, sd.StrengthOptions(), got, beam)

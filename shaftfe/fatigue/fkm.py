@@ -1,5 +1,5 @@
 """FKM guideline, linear fatigue assessment with local (elastic) stresses: the factors and the
-variable-amplitude damage as pure functions (no I/O; ``shaftfe.fatigue.standards`` applies them
+variable-amplitude damage as pure functions (no I/O; ``shaftfe.fatigue.strength`` applies them
 to the FE field).
 
 Source: FKM-Richtlinie "Rechnerischer Festigkeitsnachweis für Maschinenbauteile", 6th ed. (VDMA

@@ -17,7 +17,7 @@ Why each option belongs where:
   axisymmetric field: ``--mean-stress``, ``--equivalent``, ``--material`` (S-N card), ``--kf``;
 * FKM (``fatigue.fkm_field``): the strength card, its Miner rule, j_D, D_M; on the static
   field of any model (its stress gradient from each field's ``DepthProbe``);
-* DIN 743 (``fatigue.standards.run_din743``): the strength card on the beam model: no mesh,
+* DIN 743 (``fatigue.strength.run_din743``): the strength card on the beam model: no mesh,
   no static 3D solution, no design life (a fatigue-limit check of the largest cycle);
 * DIN 743's safety at every cross-section along the shaft, plotted (``--plot``): a beam
   quantity, so DIN 743's alone;

@@ -90,7 +90,7 @@ class FatigueJob:
     engine: str | None = None              # whose max_rpm bounds the history (check_history);
     #                                        None: the variant's [duty] speed range
     allow_overspeed: bool = False          # assess a history above max_rpm (with a warning)
-    # the standards' options (FKM, DIN 743: fatigue.standards.strength_options)
+    # the standards' options (FKM, DIN 743: fatigue.strength.strength_options)
     card: str | None = None                # strength card; None: the variant's shaft material
     miner: str = "modified"                # FKM governing Miner rule
     consequences: str = "severe"           # FKM j_D

@@ -4,8 +4,8 @@ beam model, from the case's maxima of the nominal stresses.
 A load case (``model.loads.LoadCase``: a speed, a factor per load, the channels' values) is the
 extreme the shaft must carry once without yielding: an overload of 1.5 × torque, a run-up, the
 top speed. The beam solves it (``beam.solve.solve_cases``: every load, torsion and axial force,
-one factorisation); at each notch of ``fatigue.standards.din743_notches`` the nominal stresses
-are those the fatigue check takes (``fatigue.standards.section_stresses``: σ_zd = N/A,
+one factorisation); at each notch of ``fatigue.strength.din743_notches`` the nominal stresses
+are those the fatigue check takes (``fatigue.strength.section_stresses``: σ_zd = N/A,
 σ_b = 32 M/(π d³), τ_t = 16 T/(π d³) at the notch's judged span), entered as maxima
 (static: amplitude 0), and DIN 743-1 gives
 S_F = 1/√((σ_zd,max/σ_zdFK + σ_b,max/σ_bFK)² + (τ_t,max/τ_tFK)²) (``fatigue.din743.assess``:
@@ -22,7 +22,7 @@ from shaftfe.beam.solve import solve_cases
 from shaftfe.errors import InputError
 from shaftfe.fatigue import din743
 from shaftfe.fatigue.cards import load_surfaces
-from shaftfe.fatigue.standards import din743_card, din743_notches, notch_stresses
+from shaftfe.fatigue.strength import din743_card, din743_notches, notch_stresses
 
 
 @dataclass(frozen=True)
@@ -64,7 +64,7 @@ def case_of(variant, name: str, option: str = "--case"):
 
 def din743_static(variant, case_name: str, opts) -> StaticCheck:
     """S_F per notch of ``variant`` in its load case ``case_name`` (``opts``: the strength
-    options that choose the material card, ``fatigue.standards.StrengthOptions``)."""
+    options that choose the material card, ``fatigue.strength.StrengthOptions``)."""
     case = case_of(variant, case_name)
     card = din743_card(variant, opts)
     beam = solve_cases(build_model(variant), [case])[0]

@@ -37,8 +37,8 @@ from shaftfe.axisymmetric.reference import surface_envelope, write_surface_vtu
 from shaftfe.beam.solve import beam_at_ref
 from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
 from shaftfe.errors import InputError
-from shaftfe.fatigue import standards as sd
-from shaftfe.fatigue import standards_out as so
+from shaftfe.fatigue import strength as sd
+from shaftfe.fatigue import strength_outputs as so
 from shaftfe.fatigue import surface_cache
 from shaftfe.fatigue.field import hot_spot_with_factor
 from shaftfe.fatigue.methods import DEFAULT_METHOD, AssessmentInputs, get_method

@@ -13,7 +13,7 @@ import math
 from html import escape
 
 from shaftfe import __version__
-from shaftfe.fatigue.standards_out import elements_lines
+from shaftfe.fatigue.strength_outputs import elements_lines
 from shaftfe.report.seed import VARIANT
 from shaftfe.rotordynamics.campbell import whirl_ratio_text
 from shaftfe.solid.features import kind_of

@@ -937,8 +937,8 @@ class SharpKeywayEdge:
     edges' element size goes from the default level's down to 1/16 of it, the zoned von Mises
     peak goes from the top edge of the slot's end to its bottom edge and keeps growing. It is
     not refused (a keyway is assessed by its notch factor, DIN 743), but a peak on the keyway
-    is marked in ``shaftfe static``'s tables, and FKM's keyway rows are (``fatigue.
-    standards_out``)."""
+    is marked in ``shaftfe static``'s tables, and FKM's keyway rows are
+    (``fatigue.strength_outputs``)."""
     slot: Slot
     tol_mm: float            # how near the slot a peak is the slot's
 

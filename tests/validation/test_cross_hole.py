@@ -107,12 +107,12 @@ def test_din743_cross_hole_factors_by_hand():
 
 
 def test_din743_assesses_the_hole_on_its_net_section():
-    """``fatigue.standards.din743_notches`` + ``run_din743``: the holed bar's hole is a row
+    """``fatigue.strength.din743_notches`` + ``run_din743``: the holed bar's hole is a row
     whose nominal bending amplitude is the beam's section stress at x = 80 times the net
     section's factor (exact arithmetic)."""
     from shaftfe.beam.solve import beam_at_ref
     from shaftfe.fatigue.cards import load_surfaces
-    from shaftfe.fatigue.standards import din743_notches, section_stresses
+    from shaftfe.fatigue.strength import din743_notches, section_stresses
     v = holed_bar("bending")
     beam = beam_at_ref(v)
     rows = din743_notches(v, beam, None, load_surfaces(), {})

@@ -131,7 +131,7 @@ def test_groove_volume_and_area_against_quadrature(w, t, rho):
 
 
 def test_din743_takes_the_converged_kt_only_for_a_one_arc_groove():
-    """``fatigue.standards.din743_notches``: a U groove whose D, d, ρ the committed table holds
+    """``fatigue.strength.din743_notches``: a U groove whose D, d, ρ the committed table holds
     AND whose bottom is one arc (width 2ρ, the table's bar, ``kt.grooved_bar``) takes the
     converged Kt; the same D, d, ρ with a flat bottom (width 3) takes DIN 743-2's formula; the
     row names its source either way."""
@@ -140,7 +140,7 @@ def test_din743_takes_the_converged_kt_only_for_a_one_arc_groove():
     from shaftfe.beam.scf import converged_kt
     from shaftfe.beam.solve import beam_at_ref
     from shaftfe.fatigue.cards import load_surfaces
-    from shaftfe.fatigue.standards import din743_notches
+    from shaftfe.fatigue.strength import din743_notches
     from shaftfe.model.examples import holed_bar
     from shaftfe.model.variant import Groove
     table = converged_kt()

@@ -18,7 +18,7 @@ from shaftfe.errors import InputError
 from shaftfe.fatigue import fkm
 from shaftfe.fatigue.cards import CARDS_FILE, load_card
 from shaftfe.fatigue.sn import load_material
-from shaftfe.fatigue.standards import StrengthOptions, strength_card
+from shaftfe.fatigue.strength import StrengthOptions, strength_card
 from shaftfe.model.loader import load_variant
 from shaftfe.model.parse import material_record
 

@@ -14,8 +14,8 @@ import pytest
 
 from shaftfe.errors import InputError
 from shaftfe.fatigue import din743
-from shaftfe.fatigue.standards import StrengthOptions
 from shaftfe.fatigue.static_check import din743_static
+from shaftfe.fatigue.strength import StrengthOptions
 from shaftfe.model.loader import load_variant
 from shaftfe.util.paths import GEOMETRY_DIR
 

@@ -169,7 +169,7 @@ def test_din743_assesses_an_undercut_as_its_table_kt_or_the_shoulder_formula():
     from shaftfe.beam.solve import beam_at_ref
     from shaftfe.fatigue import din743 as din
     from shaftfe.fatigue.cards import load_surfaces
-    from shaftfe.fatigue.standards import din743_notches
+    from shaftfe.fatigue.strength import din743_notches
     from shaftfe.model.loader import load_variant
     table = converged_kt()
     v = load_variant("x2_57")

@@ -1,4 +1,4 @@
-"""DIN 743 (``fatigue.din743``, ``fatigue.standards.run_din743``): nominal stresses on the beam
+"""DIN 743 (``fatigue.din743``, ``fatigue.strength.run_din743``): nominal stresses on the beam
 model at every shoulder, keyway and press fit, a fatigue-limit check (S_D) of the history's
 largest cycle and a static check (S_F) at its highest speed; no mesh, no design life. The
 bearings' ISO 281 life and the seed's key and gear checks beside it."""
@@ -15,7 +15,7 @@ from shaftfe.fatigue.methods.protocol import AssessmentInputs, FatigueAssessment
 
 @dataclass(frozen=True, eq=False)
 class DinDetail:
-    run: object                      # fatigue.standards.Din743Run
+    run: object                      # fatigue.strength.Din743Run
     beam: object                     # the beam solution it took its moments from
     static: object = None            # fatigue.static_check.StaticCheck on --case, or None
 
@@ -33,7 +33,7 @@ class Din743:
     stages = ("beam + DIN 743",)
 
     def check(self, options) -> None:
-        from shaftfe.fatigue import standards as sd
+        from shaftfe.fatigue import strength as sd
         sd.check_options(sd.strength_options(options))
         sd.bearing_options(options)
 
@@ -42,7 +42,7 @@ class Din743:
 
         from shaftfe.beam.solve import beam_at_ref
         from shaftfe.fatigue import din743
-        from shaftfe.fatigue import standards as sd
+        from shaftfe.fatigue import strength as sd
         from shaftfe.fatigue.run import FatigueInputs
         from shaftfe.fatigue.static_check import case_of, din743_static
         case = getattr(options, "case", None)
@@ -70,7 +70,7 @@ class Din743:
                                  tuple(warned), tuple(run.notes), DinDetail(run, beam, static))
 
     def write(self, result, inputs, options, out) -> tuple[dict, list[str]]:
-        from shaftfe.fatigue import standards_out as so
+        from shaftfe.fatigue import strength_outputs as so
         run, beam = result.detail.run, result.detail.beam
         summary = standard_summary(inputs, options, so.din_summary(run), beam)
         st = result.detail.static
@@ -85,7 +85,7 @@ class Din743:
 
     def lines(self, result, inputs, options, summary, out, files) -> list[str]:
         from shaftfe.fatigue import din743
-        from shaftfe.fatigue import standards_out as so
+        from shaftfe.fatigue import strength_outputs as so
         from shaftfe.util.fmt import table_lines
         res = result.detail.run
         p = head_line(inputs, "DIN 743", res.card.name, options)

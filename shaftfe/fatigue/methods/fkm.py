@@ -1,8 +1,8 @@
 """FKM guideline (``fatigue.fkm``, ``fatigue.fkm_field``): local stresses on the static field (3D,
 axisymmetric or zoned; the stress gradient from each field's own ``DepthProbe``), the
 shaft's own strength card, the stress gradient's support factor, three Miner rules; the
-bearings' ISO 281 life and the seed's key and gear checks beside it (``fatigue.standards``,
-``fatigue.standards_out``)."""
+bearings' ISO 281 life and the seed's key and gear checks beside it (``fatigue.strength``,
+``fatigue.strength_outputs``)."""
 
 from __future__ import annotations
 
@@ -39,14 +39,14 @@ class Fkm:
     stages = ("static", "FKM")
 
     def check(self, options) -> None:
-        from shaftfe.fatigue import standards as sd
+        from shaftfe.fatigue import strength as sd
         sd.check_options(sd.strength_options(options))
         sd.bearing_options(options)
 
     def assess(self, inputs: AssessmentInputs, options, progress=None) -> FatigueAssessment:
         from contextlib import nullcontext
 
-        from shaftfe.fatigue import standards as sd
+        from shaftfe.fatigue import strength as sd
         from shaftfe.fatigue.cards import load_surfaces
         from shaftfe.fatigue.channel_run import warn_rpm2_only
         from shaftfe.fatigue.fkm_field import assess_field
@@ -94,7 +94,7 @@ class Fkm:
                                  FkmDetail(res, ref, v, along))
 
     def write(self, result, inputs, options, out) -> tuple[dict, list[str]]:
-        from shaftfe.fatigue import standards_out as so
+        from shaftfe.fatigue import strength_outputs as so
         res, ref = result.detail.result, result.detail.ref
         along = result.detail.along
         summary = standard_summary(inputs, options, so.fkm_summary(res, along))
@@ -108,7 +108,7 @@ class Fkm:
         return so.write_outputs({**summary, "vtu": vtu, "plots": plots}, out)
 
     def lines(self, result, inputs, options, summary, out, files) -> list[str]:
-        from shaftfe.fatigue import standards_out as so
+        from shaftfe.fatigue import strength_outputs as so
         from shaftfe.fatigue.assess import life_hours, life_km
         from shaftfe.util.fmt import design_life, lives, table_lines
         res, ref, job = result.detail.result, result.detail.ref, options
@@ -146,8 +146,8 @@ def standard_summary(inputs: AssessmentInputs, options, method_summary: dict,
     """summary.json of a standard (FKM, DIN 743): the method's block with the bearings' ISO 281
     life over the duty cycle and the seed's key and gear checks (``beam``: the beam solution
     when the method has one)."""
-    from shaftfe.fatigue import standards as sd
-    from shaftfe.fatigue import standards_out as so
+    from shaftfe.fatigue import strength as sd
+    from shaftfe.fatigue import strength_outputs as so
     kappa, ec = sd.bearing_options(options)
     v = inputs.variant
     el = so.compute_elements(v, inputs.history, kappa, ec, options.speed_kmh, beam)
@@ -166,6 +166,6 @@ def head_line(inputs: AssessmentInputs, label: str, card: str, job) -> list[str]
 
 def tail_lines(summary: dict, out, files, job) -> list[str]:
     """The bearings, keys and gear lines and the files written."""
-    from shaftfe.fatigue import standards_out as so
+    from shaftfe.fatigue import strength_outputs as so
     return ["", *so.elements_lines(summary["elements"], job.speed_kmh),
             "\nwrote " + ", ".join(str(out / f) for f in files)]

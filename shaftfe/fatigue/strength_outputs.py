@@ -275,7 +275,7 @@ def elements_lines(el: dict, speed_kmh: float) -> list[str]:
 def compute_elements(variant, history, kappa: float, e_c: float, speed_kmh: float,
                      beam=None) -> dict:
     """Bearings over the duty cycle, the keys and the gear pair of ``variant`` (``beam``: the
-    beam solution at ``standards.REF_RPM`` when the caller has one). Each check runs only
+    beam solution at ``util.units.REF_RPM`` when the caller has one). Each check runs only
     where its element is: the keys where a segment has a keyway, the gear pair where the
     variant has a part named "gear"; both need the drive's data, the element-check file its
     [duty] names (``elements``; none: no key or gear check). The seed's single-point bearing
