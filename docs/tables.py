@@ -314,9 +314,9 @@ def keyway_radius() -> str:
 # packages before its own, but the arrows docs/ARCHITECTURE.md names with their reasons
 # (tests/test_architecture.py checks the import graph against it; "shaftfe" is the package's
 # face, its version and a lazy table). The floors of ARCHITECTURE.md's module index.
-PIPELINE = ("errors", "shaftfe", "util", "balance", "model", "solid", "fe", "beam", "elements",
-            "io", "static", "axisymmetric", "zoned", "rotordynamics", "fatigue", "report",
-            "study", "commands", "cli", "__main__")
+PIPELINE = ("errors", "shaftfe", "util", "balance", "model", "solid", "fe", "beam",
+            "machine_elements", "io", "static", "axisymmetric", "zoned", "rotordynamics",
+            "fatigue", "report", "study", "commands", "cli", "__main__")
 
 
 # words ending in a full stop that do not end a sentence (first-sentence cuts of docstrings)

@@ -46,8 +46,8 @@ OPTIONS: dict[str, tuple[str, object]] = {
     "--consequences": ("consequences", "severe"),
     "--inspection": ("inspection", False),
     "--damage-sum": ("damage_sum", 0.3),
-    "--kappa": ("kappa", None),              # None: elements.bearings.KAPPA_DEFAULT
-    "--ec": ("ec", None),                    # None: elements.bearings.EC_DEFAULT
+    "--kappa": ("kappa", None),              # None: machine_elements.bearings.KAPPA_DEFAULT
+    "--ec": ("ec", None),                    # None: machine_elements.bearings.EC_DEFAULT
     "--mean-stress": ("mean_stress", "soderberg"),
     "--equivalent": ("equivalent", "von_mises"),
     "--material": ("material", None),        # None: the variant's (sn.variant_card)

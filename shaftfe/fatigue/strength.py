@@ -17,13 +17,13 @@ import numpy as np
 
 from shaftfe.beam.scf import KT_GROOVES, KT_UNDERCUTS, converged_kt, undercut_kt
 from shaftfe.beam.solve import beam_at_ref
-from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
 from shaftfe.errors import InputError
 from shaftfe.fatigue import din743, fkm
 from shaftfe.fatigue.cards import card_of, load_card, load_surfaces, region_rz
 from shaftfe.fatigue.counting import count_cycles
 from shaftfe.fatigue.fkm_field import assess_field, k_v_case_hardening
 from shaftfe.fatigue.run import load_inputs, resolve_design_life, resolve_model, static_reference
+from shaftfe.machine_elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
 from shaftfe.model.grooves import UNDERCUTS, undercut_at
 from shaftfe.solid.features import fillet_region, groove_region, hole_region
 from shaftfe.util.notices import warn
@@ -59,7 +59,7 @@ def strength_options(job) -> StrengthOptions:
 
 def bearing_options(job) -> tuple[float, float]:
     """(κ, e_C) of the bearings' ISO 281 life over the duty cycle: the job's or the defaults
-    (``elements.bearings``), each within the standard's range."""
+    (``machine_elements.bearings``), each within the standard's range."""
     kappa = KAPPA_DEFAULT if job.kappa is None else job.kappa
     ec = EC_DEFAULT if job.ec is None else job.ec
     if not (math.isfinite(kappa) and 0.1 <= kappa <= 4.0):

@@ -7,8 +7,6 @@ import math
 
 import numpy as np
 
-from shaftfe.elements import bearings, drive, gear, key
-from shaftfe.elements.bearings import SEED_POINTS
 from shaftfe.fatigue import din743 as din
 from shaftfe.fatigue import fkm
 from shaftfe.fatigue import plots as fp
@@ -17,6 +15,8 @@ from shaftfe.fatigue.counting import Cycles, _matrix, rainflow_matrix
 from shaftfe.fatigue.field import write_ref_vtu
 from shaftfe.fatigue.fkm_field import governing_cycles
 from shaftfe.fatigue.run import SEED_VARIANT
+from shaftfe.machine_elements import bearings, drive, gear, key
+from shaftfe.machine_elements.bearings import SEED_POINTS
 from shaftfe.model.bearing_life import l10h
 from shaftfe.model.mass import mass_properties
 from shaftfe.solid.plan import sharp_keyway_edges

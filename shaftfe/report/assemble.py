@@ -35,7 +35,6 @@ from shaftfe.axisymmetric import reference as axi
 from shaftfe.axisymmetric.recovery import principal_max_local
 from shaftfe.axisymmetric.reference import surface_envelope, write_surface_vtu
 from shaftfe.beam.solve import beam_at_ref
-from shaftfe.elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
 from shaftfe.errors import InputError
 from shaftfe.fatigue import strength as sd
 from shaftfe.fatigue import strength_outputs as so
@@ -51,6 +50,7 @@ from shaftfe.fatigue.run import (
     surface_reference,
 )
 from shaftfe.io import vtu as export
+from shaftfe.machine_elements.bearings import EC_DEFAULT, KAPPA_DEFAULT
 from shaftfe.model.loader import load_variant
 from shaftfe.report import pictures
 from shaftfe.report import seed as seedmod

@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from shaftfe.elements import drive, gear, key
+from shaftfe.machine_elements import drive, gear, key
 from shaftfe.model import bearing_life as bl
 
 
