@@ -178,41 +178,20 @@ def _describe(args, model) -> str:
 # --------------------------------------------------------------------------- handlers
 
 def _solve(args, rpms, orders, keep_vectors=False):
-    """The sweep (shaftfe.rotordynamics.analyse) and, for the solid model, the beam model's
-    sweep beside it."""
+    """The variant, and ``rotordynamics.analyse.analyse_with_beam`` on it."""
     from shaftfe.commands._common import load_variant_from
-    from shaftfe.rotordynamics.analyse import analyse
+    from shaftfe.rotordynamics.analyse import analyse_with_beam
 
     variant = load_variant_from(args)
-    run = analyse(variant, rpms, args.modes, orders=orders, options=_options(args),
-                  keep_vectors=keep_vectors, verify=args.verify)
-    beam_res = None
-    if args.model == "solid":
-        beam_res = analyse(variant, rpms, args.modes, orders=orders,
-                           options=_options(args, "beam"), verify=False).result
+    run, beam_res = analyse_with_beam(variant, rpms, args.modes, orders=orders,
+                                      options=_options(args), keep_vectors=keep_vectors,
+                                      verify=args.verify)
     return run, beam_res, variant
 
 
-def _payload(args, variant, model, res, ver, beam_res=None) -> dict:
-    d = {"variant": args.variant, "overrides": variant.overrides_map, "model": args.model,
-         "n_dof": model.n_dof,
-         "supports": "rigid" if args.rigid_supports else "springs",
-         "bearing_damping_Ns_per_mm": args.bearing_damping,
-         "stress_stiffening": bool(args.stress_stiffening), "result": res.to_dict()}
-    if args.model == "solid":
-        sm = model.shaft_mesh
-        d["solid"] = {"level": sm.level, "order": sm.order, "nodes": sm.n_nodes,
-                      "elements": sm.n_elements, "coupling": args.coupling,
-                      "attachment_bodies": [b.name for b in model.bodies]}
-    if beam_res is not None:
-        d["beam"] = beam_res.to_dict()
-        from shaftfe.rotordynamics.analyse import side_by_side
-        d["side_by_side"] = side_by_side(res, beam_res)
-    if ver is not None:
-        d["verify"] = {"rpm": ver.rpm, "freq_reduced_hz": list(ver.freq_reduced_hz),
-                       "freq_full_hz": list(ver.freq_full_hz),
-                       "max_rel_diff": ver.max_rel_diff, "n_missed": ver.n_missed}
-    return d
+def _payload(args, variant, run, beam_res=None) -> dict:
+    from shaftfe.rotordynamics.analyse import summary
+    return summary(args.variant, variant, _options(args), run, beam_res)
 
 
 def _print_side_by_side(res, beam_res) -> None:
@@ -300,7 +279,7 @@ def run_campbell(args) -> int:
 
             title = f"{variant.name}: Campbell diagram ({args.model} model)"
             png = plot_campbell(res, title=title)
-            js = json.dumps(_payload(args, variant, model, res, ver, beam_res), indent=2)
+            js = json.dumps(_payload(args, variant, run, beam_res), indent=2)
             csv = res.to_csv()
             for name, data in (("campbell.png", png), ("campbell.csv", csv),
                                ("campbell.json", js + "\n")):
@@ -308,7 +287,7 @@ def run_campbell(args) -> int:
             from shaftfe.rotordynamics.analyse import write_rest_modes
             vtu = "modes.vtu" if write_rest_modes(run, args.modes, out / "modes.vtu") else None
     if args.json:
-        print_json(_payload(args, variant, model, res, ver, beam_res))
+        print_json(_payload(args, variant, run, beam_res))
     else:
         _print_tables(args, model, res, ver)
         if beam_res is not None:
@@ -330,7 +309,7 @@ def run_modal(args) -> int:
         run, beam_res, variant = _solve(args, [args.rpm], [1.0], keep_vectors=True)
         model, res, ver = run.model, run.result, run.verification
         share = run.support_energy_share(0)
-        payload = _payload(args, variant, model, res, ver, beam_res)
+        payload = _payload(args, variant, run, beam_res)
         payload["bearing_energy_share"] = share.tolist()
         if out is not None:
             import json

@@ -144,6 +144,52 @@ def analyse(variant, rpms, n_modes: int = 12, *, orders=DEFAULT_ORDERS,
     return RotorAnalysis(model, res, ver, prov, kind)
 
 
+def analyse_with_beam(variant, rpms, n_modes: int = 12, *, orders=DEFAULT_ORDERS,
+                      options: RotorOptions = RotorOptions(), keep_vectors: bool = False,
+                      verify: bool = True):
+    """``analyse``, and for the solid model the beam model's sweep of the same speeds beside
+    it (its ``CampbellResult``; None for the other models): what ``shaftfe campbell`` and
+    ``shaftfe modal`` report. The beam has no centrifugal prestress: beside a solid sweep with
+    ``stress_stiffening`` it is the unstiffened beam (it was refused there, after the solid
+    sweep)."""
+    from dataclasses import replace
+    run = analyse(variant, rpms, n_modes, orders=orders, options=options,
+                  keep_vectors=keep_vectors, verify=verify)
+    beam = None
+    if options.model == "solid":
+        beam = analyse(variant, rpms, n_modes, orders=orders,
+                       options=replace(options, model="beam", stress_stiffening=False),
+                       verify=False).result
+    return run, beam
+
+
+def summary(label: str, variant, options: RotorOptions, run: RotorAnalysis,
+            beam_res=None) -> dict:
+    """The JSON of a rotor run (``campbell.json``, ``modal.json``, ``--json``): the variant as
+    named (``label``) with its overrides, the model and its supports, the sweep, and for the
+    solid model its mesh, the beam's sweep and the two side by side; the verification where
+    it ran."""
+    model, res, ver = run.model, run.result, run.verification
+    d = {"variant": label, "overrides": variant.overrides_map, "model": options.model,
+         "n_dof": model.n_dof,
+         "supports": "rigid" if options.rigid_supports else "springs",
+         "bearing_damping_Ns_per_mm": options.bearing_damping,
+         "stress_stiffening": bool(options.stress_stiffening), "result": res.to_dict()}
+    if options.model == "solid":
+        sm = model.shaft_mesh
+        d["solid"] = {"level": sm.level, "order": sm.order, "nodes": sm.n_nodes,
+                      "elements": sm.n_elements, "coupling": options.coupling,
+                      "attachment_bodies": [b.name for b in model.bodies]}
+    if beam_res is not None:
+        d["beam"] = beam_res.to_dict()
+        d["side_by_side"] = side_by_side(res, beam_res)
+    if ver is not None:
+        d["verify"] = {"rpm": ver.rpm, "freq_reduced_hz": list(ver.freq_reduced_hz),
+                       "freq_full_hz": list(ver.freq_full_hz),
+                       "max_rel_diff": ver.max_rel_diff, "n_missed": ver.n_missed}
+    return d
+
+
 def side_by_side(res, beam_res) -> list[dict]:
     """Per 3D mode, at the first and the last speed: the beam mode of the same family
     (lateral / torsional / axial) and the same rank within it (None if the beam's first

@@ -298,3 +298,17 @@ def test_cli_spin_softening_refused_and_stress_stiffening_solid_only(capsys):
     assert "not applicable in the stationary frame (rotating-frame term)" in err
     assert main(["modal", "--stress-stiffening"]) == 2
     assert "--model solid" in capsys.readouterr().err
+
+
+def test_cli_solid_with_stress_stiffening_reports_the_unstiffened_beam_beside_it(capsys):
+    """``shaftfe modal --model solid --stress-stiffening``: the beam's sweep beside the solid one
+    is the unstiffened beam (it has no prestress). Before, that side sweep was refused after
+    the solid one had run, so the command failed."""
+    import json
+
+    from shaftfe.cli import main
+    assert main(["modal", "--model", "solid", "--stress-stiffening", "--level", "coarse",
+                 "--modes", "4", "--rpm", "5000", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["stress_stiffening"] is True and d["model"] == "solid"
+    assert len(d["side_by_side"]) == 4 and d["beam"]["freq_hz"]
