@@ -320,7 +320,7 @@ PIPELINE = ("errors", "shaftfe", "util", "balance", "model", "solid", "fe", "bea
 
 
 # words ending in a full stop that do not end a sentence (first-sentence cuts of docstrings)
-ABBREVIATIONS = {"e.g", "i.e", "vs", "ch", "obr", "eq", "fig", "vol", "no", "cf", "et al", "al",
+ABBREVIATIONS = {"e.g", "i.e", "vs", "ch", "obr", "eq", "fig", "vol", "no", "cf", "al",
                  "approx", "ref", "sec", "tab"}
 
 
@@ -329,14 +329,18 @@ def _first_sentence(doc: str, limit: int = 220) -> str:
     text = " ".join(doc.split("\n\n", 1)[0].split())
     for m in re.finditer(r"\.(\s|$)", text):
         word = re.search(r"(\S+)$", text[:m.start()])
-        if word and word.group(1).lower() in ABBREVIATIONS:
-            continue                                   # "ch. 7", "e.g. 1", "Fig. 3"
+        token = word.group(1).lstrip("([\"'").lower() if word else ""
+        if token in ABBREVIATIONS or re.fullmatch(r"§\d+", token):
+            continue                                   # "ch. 7", "(e.g. 1", "Fig. 3", "§5."
         if text[:m.start()].count("``") % 2 == 0:      # not inside a ``literal``
             text = text[:m.start() + 1]
             break
     if len(text) <= limit:
         return text
-    return text[:limit].rsplit(" ", 1)[0].rstrip(",;:") + " …"      # cut at a word
+    cut = text[:limit].rsplit(" ", 1)[0]                               # at a word,
+    if cut.count("``") % 2:                                           # not in a ``literal``
+        cut = cut[:cut.rindex("``")].rstrip()
+    return cut.rstrip(",;:(") + " …"
 
 
 def modules() -> str:

@@ -6,8 +6,8 @@
   table, and it runs through the command's one path (files, summary, text);
 * through the protocol the three methods give EXACTLY what the functions they wrap give on the
   same inputs (the same arithmetic on the same floats: equality, no tolerance): the seed method
-  (``fatigue.run.run_fatigue`` / ``fatigue.field.evaluate``), FKM (``standards.run_fkm``,
-  ``fkm_field.assess_field``), DIN 743 (``standards.run_din743``); the report's seed stage goes
+  (``fatigue.run.run_fatigue`` / ``fatigue.field.evaluate``), FKM (``strength.run_fkm``,
+  ``fkm_field.assess_field``), DIN 743 (``strength.run_din743``); the report's seed stage goes
   through the registry.
 
 One coarse static solution of x2_57 (this module's cache), no other solve.

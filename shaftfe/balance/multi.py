@@ -171,8 +171,8 @@ def check_samples(n: int) -> int:
     """``n`` samples per revolution: a whole number (16 or 16.0) within [MIN_SAMPLES,
     MAX_SAMPLES]."""
     if isinstance(n, bool | np.bool_) or not (
-            isinstance(n, int | np.integer | float | np.floating) and float(n).is_integer()
-            and MIN_SAMPLES <= n <= MAX_SAMPLES):
+            isinstance(n, int | np.integer | float | np.floating)
+            and MIN_SAMPLES <= n <= MAX_SAMPLES and float(n).is_integer()):
         raise InputError("--samples", "samples", f"{MIN_SAMPLES} <= samples <= {MAX_SAMPLES}",
                          got=n)
     return int(n)
@@ -185,7 +185,7 @@ def check_orders(orders: Sequence[int], n: int) -> list[int]:
     out = []
     for k in orders:
         if isinstance(k, bool) or not (isinstance(k, int | np.integer | float | np.floating)
-                                       and float(k).is_integer() and 1 <= k <= hi):
+                                       and 1 <= k <= hi and float(k).is_integer()):
             raise InputError("--orders", "orders", f"integers in [1, {hi}]", got=k)
         out.append(int(k))
     return out

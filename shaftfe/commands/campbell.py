@@ -1,14 +1,15 @@
 """`shaftfe campbell` and `shaftfe modal`: natural frequencies with gyroscopic effects.
 
 Stdlib only at module level; numpy/scipy and matplotlib inside the handlers. A thin command: the
-options become a ``shaftfe.rotordynamics.analyse.RotorOptions`` and
-``shaftfe.rotordynamics.analyse.analyse`` builds the model chosen by ``--model`` — ``beam``
-(Timoshenko beam + rigid disks, milliseconds) or ``solid`` (3D P2 tets of the static model's mesh at
-``--level``, attachments as rigid bodies tied to their seats by ``--coupling``;
+options become a ``shaftfe.rotordynamics.options.RotorOptions`` and
+``shaftfe.rotordynamics.analyse.analyse_with_beam`` builds the model chosen by ``--model``
+— ``beam`` (Timoshenko beam + rigid disks, milliseconds) or ``solid`` (3D P2 tets of the static
+model's mesh at ``--level``, attachments as rigid bodies tied to their seats by ``--coupling``;
 ``shaftfe.rotordynamics.solid_rotor``) or ``harmonic`` (the round shaft's n = 0, 1 harmonics on
 the meridian mesh at ``--level`` with the same bodies; ``harmonic_rotor``) — sweeps the speeds
 and checks the reduced sweep against the full-size problem. The solid model's results are
-shown next to the beam model's (same variant and options), and with ``--out`` its mode shapes
+shown next to the beam model's (same variant and options, but no stress stiffening: the beam
+has no prestress), and with ``--out`` its mode shapes
 at rest are written as ``modes.vtu`` (docs/FIELDS.md, "Mode shapes"). ``--stress-stiffening``
 (solid model only, off by default) adds the centrifugal prestress of the shaft body
 (``shaftfe.rotordynamics.prestress``); ``--spin-softening`` is refused (a rotating-frame term,
@@ -194,7 +195,7 @@ def _payload(args, variant, run, beam_res=None) -> dict:
     return summary(args.variant, variant, _options(args), run, beam_res)
 
 
-def _print_side_by_side(res, beam_res) -> None:
+def _print_side_by_side(res, beam_res, stiffened: bool = False) -> None:
     from shaftfe.commands._common import print_table
 
     rows = []
@@ -208,7 +209,9 @@ def _print_side_by_side(res, beam_res) -> None:
     print_table(["mode", "rpm", "family", "3D solid Hz", "beam Hz", "3D vs beam %"], rows,
                 title="3D solid model next to the beam model (same variant and bearings; each "
                 "3D mode against the beam mode of the same family and rank; torsion is held at "
-                "both bearings in 3D, at one node in the beam)")
+                "both bearings in 3D, at one node in the beam"
+                + ("; the beam without the 3D model's stress stiffening: it has no prestress"
+                   if stiffened else "") + ")")
 
 
 def _print_tables(args, model, res, ver) -> None:
@@ -291,7 +294,7 @@ def run_campbell(args) -> int:
     else:
         _print_tables(args, model, res, ver)
         if beam_res is not None:
-            _print_side_by_side(res, beam_res)
+            _print_side_by_side(res, beam_res, args.stress_stiffening)
         if args.out:
             print(f"wrote {args.out}/campbell.png, campbell.csv, campbell.json"
                   + (f", {vtu}" if vtu else ""))
@@ -341,7 +344,7 @@ def run_modal(args) -> int:
     for note in res.notes:
         print(f"note: {note}")
     if beam_res is not None:
-        _print_side_by_side(res, beam_res)
+        _print_side_by_side(res, beam_res, args.stress_stiffening)
     if args.out:
         print(f"wrote {args.out}/{files}")
     return 0

@@ -153,10 +153,10 @@ class Renderer:
         return Rendering(job, fut)
 
     def close(self) -> None:
-        """Stop the second process when no job will come (an error before the pictures): the
-        jobs not started are dropped, and a figure it is drawing is waited for, so that no file
-        lands in the output folder after the run has removed it (a run writes all its outputs
-        or none)."""
+        """Stop the second process after an error of the run (before the pictures, or while the
+        strength section, the plots or the pictures are made): the jobs not started are
+        dropped, and a figure it is drawing is waited for, so that no file lands in the output
+        folder after the run has removed it (a run writes all its outputs or none)."""
         if self._pool is not None:
             self._pool.shutdown(wait=True, cancel_futures=True)
 

@@ -183,6 +183,8 @@ def summary(label: str, variant, options: RotorOptions, run: RotorAnalysis,
     if beam_res is not None:
         d["beam"] = beam_res.to_dict()
         d["side_by_side"] = side_by_side(res, beam_res)
+        if options.stress_stiffening:          # the beam has no prestress (analyse_with_beam)
+            d["beam_stress_stiffening"] = False
     if ver is not None:
         d["verify"] = {"rpm": ver.rpm, "freq_reduced_hz": list(ver.freq_reduced_hz),
                        "freq_full_hz": list(ver.freq_full_hz),

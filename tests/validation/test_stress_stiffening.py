@@ -312,3 +312,4 @@ def test_cli_solid_with_stress_stiffening_reports_the_unstiffened_beam_beside_it
     d = json.loads(capsys.readouterr().out)
     assert d["stress_stiffening"] is True and d["model"] == "solid"
     assert len(d["side_by_side"]) == 4 and d["beam"]["freq_hz"]
+    assert d["beam_stress_stiffening"] is False          # said, not implied
