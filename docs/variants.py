@@ -34,7 +34,7 @@ def keys() -> list[tuple[str, str, str, str]]:
     from shaftfe.model import loads as ld
     from shaftfe.model.fields import FILLET_MIN_MM
     from shaftfe.model.parse import BALANCE_MASS_RTOL, BALANCE_X2_TOL_POINTS
-    from shaftfe.model.validate import TAPER_MAX_DEG
+    from shaftfe.model.validate import CENTROID_REACH_MM, SEGMENT_KINDS, TAPER_MAX_DEG
     from shaftfe.util.units import REF_RPM
     return [
         # top level
@@ -56,7 +56,7 @@ def keys() -> list[tuple[str, str, str, str]]:
          "smallest clearance to the crankshaft (reported beside that deflection)"),
         ("segments.<seg>.name", "—", "unique string",
          "the segment's name: stress regions, attachment seats, --set paths"),
-        ("segments.<seg>.kind", "—", "plain | seat | thread",
+        ("segments.<seg>.kind", "—", " | ".join(SEGMENT_KINDS),
          "seat: a part or bearing sits on it; thread: modelled at the minor diameter"),
         ("segments.<seg>.length_mm", "mm", _p("length_mm"),
          "segments follow each other from x_start_mm in file order"),
@@ -191,7 +191,7 @@ def keys() -> list[tuple[str, str, str, str]]:
          "centroid offset e from the axis: force m e ω²"),
         ("attachments.<part>.angle_deg", "deg", "number (default 0)",
          "angular position of the centroid (0 = the counterweights' direction)"),
-        ("attachments.<part>.x_centroid_mm", "mm", "within 100 mm of the shaft",
+        ("attachments.<part>.x_centroid_mm", "mm", f"within {CENTROID_REACH_MM:g} mm of the shaft",
          "axial position of the centroid (mass properties, rotor)"),
         ("attachments.<part>.polar_inertia_kg_mm2", "kg·mm²", "≥ 0 (default 0)",
          "polar moment of inertia about its own centroid"),

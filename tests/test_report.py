@@ -438,8 +438,8 @@ def test_life_error_row_when_the_hot_spot_fails_in_the_first_block():
 
 def test_pictures_render_here_when_no_second_process_can(monkeypatch):
     """``report.pictures``: where the second process cannot start (``Renderer``) or dies
-    (BrokenProcessPool), the pictures (and the figure jobs handed to it) are made in this
-    process; an error of the rendering itself is raised, not hidden."""
+    (BrokenProcessPool), the pictures (and the figure jobs handed to it: one ``Job``) are made
+    in this process; an error of the rendering itself is raised, not hidden."""
     import concurrent.futures
     from concurrent.futures.process import BrokenProcessPool
 
@@ -458,9 +458,9 @@ def test_pictures_render_here_when_no_second_process_can(monkeypatch):
         def result(self):
             raise ValueError("no such field")
 
-    assert pictures.Rendering(job, Broken()).result() is here
+    assert pictures.Job(pictures.render_all, (job,), Broken()).result() is here
     with pytest.raises(ValueError, match="no such field"):
-        pictures.Rendering(job, Failing()).result()
+        pictures.Job(pictures.render_all, (job,), Failing()).result()
 
     def refuse(*a, **k):
         raise OSError("no processes here")
@@ -470,9 +470,9 @@ def test_pictures_render_here_when_no_second_process_can(monkeypatch):
     # a figure job (``Renderer.draw``): drawn here without a second process or when it died,
     # its own error raised
     drawn = []
-    pictures.Renderer().draw(drawn.append, "balance").wait()
-    pictures.Drawing(drawn.append, ("again",), Broken()).wait()
+    pictures.Renderer().draw(drawn.append, "balance").result()
+    pictures.Job(drawn.append, ("again",), Broken()).result()
     assert drawn == ["balance", "again"]
     with pytest.raises(ValueError, match="no such field"):
-        pictures.Drawing(drawn.append, ("never",), Failing()).wait()
+        pictures.Job(drawn.append, ("never",), Failing()).result()
     assert drawn == ["balance", "again"]

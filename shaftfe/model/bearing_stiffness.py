@@ -70,6 +70,15 @@ def estimate_ball(bore_mm: float, outer_diameter_mm: float, C_N: float, rows: in
     return StiffnessEstimate(1.5 * fr / delta_r, fr, dw, z)
 
 
+def radial_eigenvalues(K) -> tuple[float, float]:
+    """(smaller, larger) eigenvalue of a symmetric 2×2 radial stiffness [[K11, K12], [K12, K22]]
+    (N/mm), in closed form: the one expression the variant's rules and this estimate's check
+    read."""
+    (k11, k12), (_, k22) = K
+    half = math.hypot(0.5 * (k11 - k22), k12)
+    return 0.5 * (k11 + k22) - half, 0.5 * (k11 + k22) + half
+
+
 def check_stiffness(eigenvalues: tuple[float, float], est: StiffnessEstimate, src: str,
                     field: str, got) -> None:
     """InputError unless both eigenvalues of the stated matrix lie in ``est.band``."""

@@ -16,6 +16,7 @@ from pathlib import Path
 from types import MappingProxyType
 
 from shaftfe.errors import InputError
+from shaftfe.model import bearing_stiffness as bs
 from shaftfe.model import grooves
 from shaftfe.model import overrides as ov
 from shaftfe.model.fields import (
@@ -347,7 +348,6 @@ def _stiffness_plausible(bt: dict, tsrc: str, tf: str, bore: float, C: float, K)
     """The stated stiffness against the estimate from the bearing's own data (rule and its
     sources: ``shaftfe.model.bearing_stiffness``): a ball bearing's eigenvalues within
     1/20 … 3 × the estimate. A roller bearing has no estimate (no check)."""
-    from shaftfe.model import bearing_stiffness as bs
     kind = text(bt, "rolling_element", tsrc, tf, default="ball")
     need(kind in bs.KINDS, tsrc, f"{tf}.rolling_element", " | ".join(bs.KINDS), kind)
     rows = num(bt, "rows", tsrc, tf, default=1.0)
@@ -359,11 +359,9 @@ def _stiffness_plausible(bt: dict, tsrc: str, tf: str, bore: float, C: float, K)
     need(od > bore, tsrc, f"{tf}.outer_diameter_mm", f"> the bore {bore:g} mm", od)
     if kind != "ball":
         return
-    (k11, k12), (_, k22) = K
-    half = math.hypot(0.5 * (k11 - k22), k12)
-    eig = (0.5 * (k11 + k22) - half, 0.5 * (k11 + k22) + half)
     est = bs.estimate_ball(bore, od, C, int(rows), alpha)
-    bs.check_stiffness(eig, est, tsrc, f"{tf}.K_N_per_mm", bt.get("K_N_per_mm"))
+    bs.check_stiffness(bs.radial_eigenvalues(K), est, tsrc, f"{tf}.K_N_per_mm",
+                       bt.get("K_N_per_mm"))
 
 
 def _ring(bt: dict, tsrc: str, tf: str):

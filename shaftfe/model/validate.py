@@ -45,6 +45,7 @@ import numpy as np
 
 from shaftfe.errors import InputError
 from shaftfe.model import grooves
+from shaftfe.model.bearing_stiffness import radial_eigenvalues
 from shaftfe.model.fields import FILLET_MIN_MM, plausible
 from shaftfe.model.loads import check_torque_path
 
@@ -410,8 +411,7 @@ def check_bearing_stiffness(K, src: str, fld: str, *, typed: bool = True) -> Non
     if not (k11 > 0 and k22 > 0 and k11 * k22 - k12 * k21 > 0):
         raise InputError(src, fld, "positive definite (K11 > 0, K22 > 0, K11 K22 - K12² > 0)",
                           got=A.tolist())
-    half = math.hypot(0.5 * (k11 - k22), k12)
-    for kk in (0.5 * (k11 + k22) - half, 0.5 * (k11 + k22) + half):
+    for kk in radial_eigenvalues(A.tolist()):
         _plausible(kk, "K_N_per_mm", src, f"{fld} (eigenvalue)", typed)
 
 

@@ -341,7 +341,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
             drawing = None
             if fres is not None:
                 drawing = renderer.draw(draw_balance, fres, sw, fig_dir) if renderer else \
-                    pictures.Drawing(draw_balance, (fres, sw, fig_dir))
+                    pictures.Job(draw_balance, (fres, sw, fig_dir))
         with prog.stage("beam check"):
             beam_out, _ = beam_check(variant, o.design_rpm)
         res, ref = _static(o, variant, prog)
@@ -354,7 +354,7 @@ def run_report(o: ReportOptions, out, progress=None) -> Report:
             # solves the rotor and writes the VTU, before it renders the pictures
             fat_figs = _fatigue_figures(ff, material, o.mean_stress, fig_dir)
             fat_drawing = renderer.draw(draw_fatigue, fat_figs) if renderer else \
-                pictures.Drawing(draw_fatigue, (fat_figs,))
+                pictures.Job(draw_fatigue, (fat_figs,))
         with prog.stage("Campbell"):
             camp, cres, rotor_model = campbell(variant, o)
         with prog.stage("VTU"):
@@ -466,10 +466,10 @@ def _picture_job(o, vtu: Path, fig_dir: Path, ff, rpm: float, st: dict) -> pictu
 def _plots(o, out, fig_dir, variant, drawing, fat_drawing, fres, sw, res, ref, ff, history,
            material, cres, camp, rpm_vtu, add_fig) -> None:
     if fres is not None:                      # a shaft of a named engine
-        drawing.wait()                        # drawn by the second process, or here
+        drawing.result()                      # drawn by the second process, or here
         _balance_captions(fres, sw, add_fig)
     _other_plots(o, fig_dir, variant, res, ref, cres, rpm_vtu, add_fig)
-    fat_drawing.wait()                        # drawn by the second process, or here
+    fat_drawing.result()                      # drawn by the second process, or here
     _fatigue_captions(ff, history, material, o.mean_stress, add_fig)
 
 

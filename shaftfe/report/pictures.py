@@ -66,44 +66,24 @@ def render_all(job: PictureJob) -> tuple[list[tuple[str, str, str]], float]:
     return out, time.perf_counter() - t0
 
 
-class Drawing:
-    """A figure job (a module-level function and its arguments, which write files and return
-    nothing) being drawn in the second process (``Renderer.draw``); ``wait`` returns once its
-    files are written, drawing them here where that process could not take the job or died
-    (an error of the drawing itself is raised as it would be here)."""
+class Job:
+    """A job of the second process (a module-level function and its arguments: a figure job of
+    ``report.drawings``, which writes files and returns nothing, or ``render_all``):
+    ``result`` returns what the function returned there, or runs it here where that process
+    could not take the job or died (an error of the job itself is raised as it would be
+    here)."""
 
     def __init__(self, fn, args: tuple, future=None):
         self._fn, self._args, self._future = fn, args, future
 
-    def wait(self) -> None:
-        from concurrent.futures.process import BrokenProcessPool
-        if self._future is not None:
-            try:
-                self._future.result()
-                return
-            except BrokenProcessPool:
-                pass
-        self._fn(*self._args)
-
-
-class Rendering:
-    """The pictures of one job, being rendered in a second process (``Renderer.start``)."""
-
-    def __init__(self, job: PictureJob, future=None):
-        self.job = job
-        self._future = future
-
-    def result(self) -> tuple[list[tuple[str, str, str]], float]:
-        """``render_all(job)``: the second process's, or this one's where that process could
-        not be started or died (an error of the rendering itself is raised as it would be
-        here)."""
+    def result(self):
         from concurrent.futures.process import BrokenProcessPool
         if self._future is not None:
             try:
                 return self._future.result()
             except BrokenProcessPool:
                 pass
-        return render_all(self.job)
+        return self._fn(*self._args)
 
 
 def _warm_up() -> str:
@@ -129,28 +109,25 @@ class Renderer:
         except (OSError, RuntimeError, ValueError):  # no second process here
             self._pool = None
 
-    def draw(self, fn, *args) -> Drawing:
+    def draw(self, fn, *args) -> Job:
         """Hand the second process a figure job (``report.drawings``: the balancing figures,
         which need nothing of the solve, while the static model solves here; the fatigue
-        figures while the rotor solves), run before the pictures; drawn by ``Drawing.wait`` in
+        figures while the rotor solves), run before the pictures; run by ``Job.result`` in
         this process where there is no second one."""
         if self._pool is None:
-            return Drawing(fn, args)
+            return Job(fn, args)
         try:
-            return Drawing(fn, args, self._pool.submit(fn, *args))
-        except (OSError, RuntimeError):              # the process is gone: draw here
-            return Drawing(fn, args)
+            return Job(fn, args, self._pool.submit(fn, *args))
+        except (OSError, RuntimeError):              # the process is gone: run it here
+            return Job(fn, args)
 
-    def start(self, job: PictureJob) -> Rendering:
-        if self._pool is None:
-            return Rendering(job)
+    def start(self, job: PictureJob) -> Job:
+        """The pictures' job, the last one: the process ends once it is done."""
         try:
-            fut = self._pool.submit(render_all, job)
-        except (OSError, RuntimeError):              # the process is gone: render here
-            return Rendering(job)
+            return self.draw(render_all, job)
         finally:
-            self._pool.shutdown(wait=False)          # it ends once the job is done
-        return Rendering(job, fut)
+            if self._pool is not None:
+                self._pool.shutdown(wait=False)
 
     def close(self) -> None:
         """Stop the second process after an error of the run (before the pictures, or while the
@@ -161,4 +138,4 @@ class Renderer:
             self._pool.shutdown(wait=True, cancel_futures=True)
 
 
-__all__ = ["Drawing", "PictureJob", "Renderer", "Rendering", "Shot", "render_all"]
+__all__ = ["Job", "PictureJob", "Renderer", "Shot", "render_all"]
