@@ -149,6 +149,16 @@ class MultiResult:
     def max_couple(self) -> float:
         return float(self.M.max())
 
+    @property
+    def max_force_at_deg(self) -> float:
+        """The crank angle of the largest resultant force."""
+        return math.degrees(self.theta[int(np.argmax(self.F))])
+
+    @property
+    def max_couple_at_deg(self) -> float:
+        """The crank angle of the largest resultant couple."""
+        return math.degrees(self.theta[int(np.argmax(self.M))])
+
     def force_order(self, k: int) -> Order:
         return _pick(self.force_orders, k)
 
@@ -261,6 +271,41 @@ def engine_forces(cylinders: Sequence[Cylinder], mech: Mechanism, omega: float, 
 
 
 # --- layouts -------------------------------------------------------------------------------
+
+def twin_layout(cylinders: Sequence[Cylinder], delta_deg: float, *, shared_pin: bool,
+                offset_mm: float) -> dict:
+    """The twin's layout as the summary states it: δ, the ε the cylinders were built with,
+    the pin arrangement, the offset and the resultant crank counterweight (% of one
+    cylinder's m_pos R)."""
+    return {"delta_deg": delta_deg, "epsilon_deg": _wrap180(cylinders[1].phase_deg - delta_deg),
+            "shared_pin": bool(shared_pin), "offset_mm": offset_mm,
+            "resultant_counterweight_pct": 100.0 * resultant_counterweight(cylinders)}
+
+
+def inline_layout(pins_deg: Sequence[float], res: MultiResult) -> dict:
+    """The inline engine's layout as the summary states it: the pins and the couple's axial
+    reference (mm)."""
+    return {"pins_deg": list(pins_deg), "z_ref_mm": 1000.0 * res.z_ref_m}
+
+
+def summary(command: str, engine: str, rpm: float, mech: Mechanism, omega: float,
+            cylinders: Sequence[Cylinder], res: MultiResult, layout: dict) -> dict:
+    """What ``shaftfe balance twin | inline`` reports (its ``--json``), in the report's units
+    (mm, kg, N, N·m, deg, %)."""
+    return {
+        "command": f"balance {command}",
+        "engine": engine, "rpm": rpm, "omega_rad_s": omega,
+        "R_mm": 1000.0 * mech.R, "T1_mm": 1000.0 * mech.T1, "m_pos_kg": mech.m_pos,
+        "A_N": res.A, "samples": int(res.theta.size),
+        **layout,
+        "cylinders": [{"phase_deg": c.phase_deg, "tilt_deg": c.tilt_deg,
+                       "z_mm": 1000.0 * c.z_m, "X_pct": 100.0 * c.X} for c in cylinders],
+        "max_force_N": res.max_force, "max_force_at_deg": res.max_force_at_deg,
+        "max_couple_Nm": res.max_couple, "max_couple_at_deg": res.max_couple_at_deg,
+        "force_orders": [o.as_dict() for o in res.force_orders],
+        "couple_orders": [o.as_dict() for o in res.couple_orders],
+    }
+
 
 def _wrap180(deg: float) -> float:
     """Angle in (−180, 180]."""

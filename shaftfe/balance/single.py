@@ -125,6 +125,13 @@ class ForceResult:
     def Fy_balancer(self) -> NDArray[np.float64]:
         return self.Fy - self.Fy_crank
 
+    @property
+    def max_crank_force(self) -> tuple[float, float]:
+        """(max |F_vk| N, its crank angle in deg within one turn): the crank mechanism alone."""
+        f = np.hypot(self.Fx_crank, self.Fy_crank)
+        i = int(f.argmax())
+        return float(f[i]), float(self.alpha_deg[i] % 360.0)
+
 
 def check_ratio(value: float, option: str) -> float:
     lo, hi = RATIO_RANGE

@@ -188,17 +188,13 @@ def _forces(args) -> int:
     print(f"{eng.name} ({eng.source}): X = {100 * res.X:.2f} %, X2 = {100 * res.X2:.2f} %, "
           f"{res.rpm:g} rpm, tilt {res.tilt_deg:g} deg, m_pos = {eng.m_pos_kg:.6g} kg, "
           f"m_rot = {eng.m_rot_kg:.6g} kg, A = m_pos R w^2 = {res.first_order_amplitude:.1f} N")
-    import numpy as np
-
-    fvk = np.hypot(res.Fx_crank, res.Fy_crank)
-    ivk = int(fvk.argmax())
+    fvk, fvk_deg = res.max_crank_force
     print_table(["metric", "value [N]", "at crank angle [deg]"], [
         ["max|Fx|", round(m.max_abs_fx, 1), round(m.max_abs_fx_deg, 2)],
         ["max|Fy|", round(m.max_abs_fy, 1), round(m.max_abs_fy_deg, 2)],
         ["RMS|F|", round(m.rms_f, 1), "-"],
         ["max|F|", round(m.max_f, 1), round(m.max_f_deg, 2)],
-        ["max|F_vk| (crank alone)", round(float(fvk[ivk]), 1),
-         round(float(res.alpha_deg[ivk] % 360.0), 2)],
+        ["max|F_vk| (crank alone)", round(fvk, 1), round(fvk_deg, 2)],
         ["balancer force X2*A", round(res.X2 * res.first_order_amplitude, 1), "-"],
     ])
     for what, path in (("samples", args.csv), ("plot", args.plot)):

@@ -138,11 +138,8 @@ def _run_twin(args) -> int:
     cyls = multi.twin(args.delta, args.epsilon, shared_pin=args.shared_pin, X=X,
                       offset_m=offset / 1000.0)
     res = multi.engine_forces(cyls, mech, omega, samples=args.samples, orders=orders)
-    eps = multi._wrap180(cyls[1].phase_deg - args.delta)
-    layout = {"delta_deg": args.delta, "epsilon_deg": eps, "shared_pin": bool(args.shared_pin),
-              "offset_mm": offset,
-              "resultant_counterweight_pct": 100.0 * multi.resultant_counterweight(cyls)}
-    head = (f"layout: delta {args.delta:g} deg, epsilon {eps:g} deg, "
+    layout = multi.twin_layout(cyls, args.delta, shared_pin=args.shared_pin, offset_mm=offset)
+    head = (f"layout: delta {args.delta:g} deg, epsilon {layout['epsilon_deg']:g} deg, "
             f"{'shared pin' if args.shared_pin else 'two pins'}, resultant crank counterweight "
             f"{layout['resultant_counterweight_pct']:.2f} % of one cylinder's m_pos R")
     return _report(args, "twin", label, rpm, mech, omega, cyls, res, layout, head)
@@ -159,30 +156,16 @@ def _run_inline(args) -> int:
         X = X[0]
     cyls = multi.inline(pins, spacing[0] if len(spacing) == 1 else spacing, X=X)
     res = multi.engine_forces(cyls, mech, omega, samples=args.samples, orders=orders)
-    layout = {"pins_deg": pins, "z_ref_mm": 1000.0 * res.z_ref_m}
+    layout = multi.inline_layout(pins, res)
     head = (f"layout: {len(cyls)} cylinders inline, pins {','.join(f'{p:g}' for p in pins)} "
             f"deg; couple about z = {1000.0 * res.z_ref_m:g} mm (middle of the row)")
     return _report(args, "inline", label, rpm, mech, omega, cyls, res, layout, head)
 
 
 def _report(args, command, label, rpm, mech, omega, cyls, res, layout, head) -> int:
-    import numpy as np
+    from shaftfe.balance.multi import summary
 
-    k_f = int(np.argmax(res.F))
-    k_m = int(np.argmax(res.M))
-    data = {
-        "command": f"balance {command}",
-        "engine": label, "rpm": rpm, "omega_rad_s": omega,
-        "R_mm": 1000.0 * mech.R, "T1_mm": 1000.0 * mech.T1, "m_pos_kg": mech.m_pos,
-        "A_N": res.A, "samples": int(res.theta.size),
-        **layout,
-        "cylinders": [{"phase_deg": c.phase_deg, "tilt_deg": c.tilt_deg,
-                       "z_mm": 1000.0 * c.z_m, "X_pct": 100.0 * c.X} for c in cyls],
-        "max_force_N": res.max_force, "max_force_at_deg": math.degrees(res.theta[k_f]),
-        "max_couple_Nm": res.max_couple, "max_couple_at_deg": math.degrees(res.theta[k_m]),
-        "force_orders": [o.as_dict() for o in res.force_orders],
-        "couple_orders": [o.as_dict() for o in res.couple_orders],
-    }
+    data = summary(command, label, rpm, mech, omega, cyls, res, layout)
     from shaftfe.balance.plots import plot_multi
     png = plot_multi(res, f"balance {command}: {label}, {rpm:g} rpm",
                 args.plot.rsplit(".", 1)[-1].lower()) if args.plot else None
