@@ -253,7 +253,7 @@ def _print_zoned(res, opts, out, corners=()) -> None:
                 and p.region != "surface"]
         print_table(["region", "model", "von Mises MPa", "max principal MPa", "x mm",
                      "error vs truth %", "note"], rows)
-    _print_bar_notes(res, f"the axisymmetric {res.axi_level} level's")
+    _print_bar_notes(res, f"the axisymmetric {res.axi_level} level's", zoned=True)
     for n in res.notes:
         print(f"note: {n}")
     print(f"\nwrote {out / 'result.vtu'}, the zones' zone_*.vtu, {out / 'summary.json'}")
@@ -295,16 +295,21 @@ def _bar(bars: dict, region: str) -> str:
     return f"{bars[region][0]:+.2f} … {bars[region][1]:+.2f}" if region in bars else "-"
 
 
-def _print_bar_notes(res, whose: str) -> None:
-    """What the "error vs truth" column means, and why a span fillet has no bar."""
+def _print_bar_notes(res, whose: str, zoned: bool = False) -> None:
+    """What the "error vs truth" column means, and why a notch has no bar."""
     if not (res.truth_error_bar_pct or res.truth_bar_notes):
         return
     print(f"error vs truth: {whose} measured error of span-fillet and groove peaks (von Mises "
           "and max principal) against the converged axisymmetric solution over a grid of "
           "shoulders and one of U grooves in bending (its own method refined: a discretisation "
           "bar; reports/benchmarks/bars_grid.md, groove_bars.md); none where it was not "
-          "measured (end fillets, undercuts, a zone's peaks, other options than the measured "
-          "ones, a notch outside the measured grid, an axial force or torque)")
+          "measured (end fillets, undercuts, a zone's other peaks, other options than the "
+          "measured ones, a notch outside the measured grid, a fillet or groove under an axial "
+          "force or torque)")
+    if zoned and any(kind_of(r) in ("keyway", "cross_hole") for r in res.truth_error_bar_pct):
+        print("  a zone's rounded keyway or cross hole: the zone level's measured error against "
+              "the full 3D model at a finer level (keyways: fine; cross holes: fine × 0.7) over "
+              "a grid of keyways and one of cross holes (reports/benchmarks/zone_bars.md)")
     for region, why in res.truth_bar_notes.items():
         print(f"  {region}: {why}")
 
@@ -404,11 +409,12 @@ def _print_tables(res, opts, out, corners=(), low=frozenset()) -> None:
         print(f"peaks: the {PEAK_FIT_LABEL} (result.vtu, `shaftfe view` and the pictures hold "
               "nodal values, which can read slightly lower)")
     if res.truth_error_bar_pct or res.truth_bar_notes:
-        print("error vs truth: this level's measured error of fillet peaks (von Mises and max "
-              "principal) against the converged axisymmetric solution over a grid of "
-              "shoulders (reports/benchmarks/bars_grid.md); none where it was not measured "
-              "(end fillets, fillets in a keyway's zone, other options than the measured ones, "
-              "a fillet's D/d, r/d outside the measured grid, an axial force or torque)")
+        print("error vs truth: this level's measured error of fillet and groove peaks (von "
+              "Mises and max principal) against the converged axisymmetric solution over a grid "
+              "of shoulders and one of U grooves (reports/benchmarks/bars_grid.md, "
+              "groove_bars.md); none where it was not measured (end fillets, undercuts, notches "
+              "in a keyway's zone, other options than the measured ones, a notch's geometry "
+              "outside the measured grid, an axial force or torque)")
     for region, why in res.truth_bar_notes.items():
         print(f"  {region}: {why}")
     if res.error_estimate:

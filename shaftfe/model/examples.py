@@ -77,14 +77,15 @@ KEYED_BAR_F_N = 1000.0        # four-point bending: a force at x = 40 and x = 12
 KEYED_BAR_T_NMM = 50_000.0    # torsion: +T at x = 40, −T at x = 120
 
 
-def keyed_bar(kind: str, bottom_radius_mm: float = 0.0) -> Variant:
+def keyed_bar(kind: str, bottom_radius_mm: float = 0.0, diameter_mm: float = 20.0) -> Variant:
     """Ø20 × 160 mm bar, a 6 × 3.5 × 16 keyway at x = 80, supports at 10 and 150 mm, in
     four-point bending (``kind`` "bending": F at 40 and 120 mm, so M = F · 30 mm between them)
     or torsion (+T at 40, −T at 120): the zoned solve's two-cut case (tests/validation/
     test_zoned.py, benchmarks/bench_zoned.py); ``bottom_radius_mm``: the keyway's r1 (0:
-    sharp)."""
+    sharp); ``diameter_mm``: the bar's diameter (the keyway stays DIN 6885-1's 6 × 3.5 of
+    shafts over 17 up to 22 mm: the grid of benchmarks/bench_zone_bars.py)."""
     kw = (Keyway(6.0, 3.5, 16.0, 80.0, 0.0, bottom_radius_mm),)
-    segs = (Segment("bar", 0.0, 160.0, 20.0, 0.0, keyways=kw),)
+    segs = (Segment("bar", 0.0, 160.0, diameter_mm, 0.0, keyways=kw),)
     brg = (Bearing("L", "x", 10.0, 10.0, 14_400.0, 10_000.0, K_SEED, axial=True),
            Bearing("R", "x", 150.0, 10.0, 14_400.0, 10_000.0, K_SEED))
     if kind == "bending":

@@ -396,13 +396,16 @@ def _static(r) -> str:
         whose = (f"the 3D {st['level']} level's" if st["model"] == "solid" else
                  f"the axisymmetric {st.get('global_level', st['level'])} level's (its own "
                  "method refined: a discretisation bar)")
-        what, grids = (("span fillet's peak", "a grid of shoulders (reports/benchmarks/"
-                        "bars_grid.md)") if st["model"] == "solid" else
-                       ("span fillet's or groove's peak", "grids of shoulders and of U "
-                        "grooves (reports/benchmarks/bars_grid.md, groove_bars.md)"))
+        what, grids = ("span fillet's or groove's peak", "grids of shoulders and of U "
+                       "grooves (reports/benchmarks/bars_grid.md, groove_bars.md)")
         s += (f"<p>error vs truth: {escape(whose)} measured error of a {what} against the "
               f"converged axisymmetric solution over {grids} in bending; none where it was "
               "not measured.</p>")
+        if any(kind_of(r) in ("keyway", "cross_hole") for r in bars):
+            s += ("<p>A 3D zone's rounded keyway or cross hole: the zone level's measured error "
+                  "against the full 3D model at a finer level (keyways: fine; cross holes: fine "
+                  "× 0.7), over a grid of keyways and one of cross holes "
+                  "(reports/benchmarks/zone_bars.md).</p>")
         if why:
             s += "<ul>" + "".join(f"<li>{escape(r)}: {escape(w)}</li>"
                                   for r, w in why.items()) + "</ul>"

@@ -27,6 +27,7 @@ TRUTH_JSON = BENCHMARKS_DIR / "truth.json"
 # bench_bars_grid.py and bench_groove_bars.py; ``static.benchmark.MeasuredBars``)
 SHOULDER_BARS_JSON = BENCHMARKS_DIR / "error_bars_shoulders.json"
 GROOVE_BARS_JSON = BENCHMARKS_DIR / "error_bars_grooves.json"
+ZONE_BARS_JSON = BENCHMARKS_DIR / "error_bars_zones.json"
 # the converged Kt tables (the axisymmetric model, 3 uniform refinements and Richardson), each
 # written by its benchmark: shoulders, U grooves, DIN 509 undercuts, DIN 471 ring grooves
 KT_SHOULDERS_JSON, KT_GROOVES_JSON, KT_UNDERCUTS_JSON, KT_RING_GROOVES_JSON = (

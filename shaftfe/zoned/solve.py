@@ -27,9 +27,11 @@ from shaftfe.axisymmetric.solve import resolve_case, solve_axisymmetric
 from shaftfe.beam.planes import mesh_hot_axes
 from shaftfe.fe import reuse as fe_reuse
 from shaftfe.model.loads import actions
-from shaftfe.solid.features import by_region, features, keyway_region
+from shaftfe.solid.features import by_region, features, hole_region, keyway_region
+from shaftfe.solid.levels import LEVELS, level_name, mesh_level
 from shaftfe.solid.mesh import mesh_plan
 from shaftfe.solid.plan import plan_payload
+from shaftfe.static.benchmark import zone_bars
 from shaftfe.static.model import StaticOptions
 from shaftfe.static.solve import _check_rpms
 from shaftfe.util import paths
@@ -102,9 +104,10 @@ class ZonedResult:
     global_result: object = field(default=None, repr=False)     # axisymmetric AxiResult
     plan: object = field(default=None, repr=False)         # the mesh plan the zones are cut from
     fields: tuple = field(default=(), repr=False)               # (SubModel, SubField) per zone
-    # the global model's measured error bars of the span-fillet and groove peaks it gives
-    # outside every 3D zone (the zones' peaks have none: ``AxiResult.truth_error_bar_pct``),
-    # and why such a notch has none
+    # the measured error bars of the span-fillet and groove peaks the global model gives
+    # outside every 3D zone (``AxiResult.truth_error_bar_pct``) and of the rounded keyways'
+    # and cross holes' peaks the zones give (``static.benchmark.zone_bars``), and why such a
+    # notch has none
     truth_error_bar_pct: dict = field(default_factory=dict)
     truth_bar_notes: dict = field(default_factory=dict)
 
@@ -373,15 +376,24 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
                if feats[r].x_mm[1] > x0 and feats[r].x_mm[0] < x1}
     bars, bar_notes = zone_filtered(first_global.truth_error_bar_pct,
                                     first_global.truth_bar_notes, glob, in_zone)
-    notes.append(("error bars: a span fillet's or groove's peak from the global model carries "
+    zbars, znotes = _zone_peak_bars(v, plan, options, [p for p in cases[0].peaks
+                                                       if p.model != "axisymmetric"], infos)
+    notes.append("error bars: a span fillet's or groove's peak from the global model carries "
                   f"the axisymmetric {axi_level} level's error measured over a grid of "
                   "shoulders or of U grooves (its own method refined: a discretisation bar; "
                   "reports/benchmarks/bars_grid.md, groove_bars.md)" if bars else
                   "error bars: none on the global model's span fillets and grooves (other "
                   "options or loads than the measured ones, or no such notch inside the "
-                  "measured grids: the reasons are printed)") +
-                 "; the zones' peaks have none (measured on x2_57 and one keyed bar only: "
-                 "reports/benchmarks/zoned.md, keyway_radius.md)")
+                  "measured grids: the reasons are printed)")
+    notes.append(("error bars of the zones' peaks: a rounded keyway's or a cross hole's peak "
+                  "carries its zone level's error measured over a grid of keyways and one of "
+                  "cross holes against the full 3D model at a finer level (keyways: fine; "
+                  "cross holes: fine × 0.7; reports/benchmarks/zone_bars.md)" if zbars else
+                  "error bars of the zones' peaks: none (no rounded keyway or cross hole "
+                  "inside the measured grids, with their loads, level and clear "
+                  "surroundings: the reasons are printed)") +
+                 "; the zones' other peaks (fillets, seats, the hex socket) have none")
+    bars, bar_notes = bars | zbars, bar_notes | znotes
     if any(k.rho == 0 for k in plan.slots):
         notes.append("a keyway without a bottom radius (bottom_radius_mm) is sharp-edged: a "
                      "peak on it is a value of the mesh that grows with refinement, not a "
@@ -392,14 +404,42 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
         notes.append("keyways with a bottom radius (" + ", ".join(
             f"{keyway_region(k.segment, k.index)}: r1 {k.rho:g} mm" for k in rounded) +
             ") are meshed with it, sized as a fillet's hot spot: their peaks converge "
-            "(reports/benchmarks/keyway_radius.md measures each level's error on one keyed "
-            "bar; measured on that bar alone, it is printed as no error bar here)")
+            "(reports/benchmarks/keyway_radius.md, zone_bars.md)")
     notes += [n for n in first_global.notes if "is not modelled" not in n]
     run = {"plan_seconds": t_plan, "global_seconds": t_global, "zones_seconds": t_zones,
            "total_seconds": time.perf_counter() - t0}
     return ZonedResult(variant.name, variant.content_hash, options, axi_level, tuple(infos),
                        tuple(cases), tuple(notes), run, first_global, plan, tuple(fields),
                        bars, bar_notes)
+
+
+def _zone_peak_bars(variant, plan, options: StaticOptions, peaks,
+                    infos) -> tuple[dict, dict]:
+    """The bars of the keyway and cross-hole peaks the 3D zones give
+    (``static.benchmark.zone_bars``), for a named level used as named under the measured
+    options (P2, every peak node kept), and none in a zone whose cut check still fails
+    (``infos``: the ``ZoneInfo`` of each zone). Supports, spin softening and the loads'
+    placement are free: the grid measured rigid supports without spin, the loads outside the
+    feature's zone (``zone_bars`` refuses a load inside it), and the zones' peaks on x2_57 with
+    bearing springs and spin softening match the full 3D model at the same level
+    (reports/benchmarks/keyway_radius.md §2)."""
+    name = level_name(options.level)
+    if name not in LEVELS or mesh_level(options.level) != LEVELS[name] or options.order != 2 \
+            or options.exclude_mm != 0.0:
+        cut = {keyway_region(k.segment, k.index) for k in plan.slots} | \
+            {hole_region(h.segment, h.index) for h in plan.holes}
+        return {}, {p.region: "no measured bar for these options (measured: a named level, "
+                    "P2, every peak node kept)" for p in peaks if p.region in cut}
+    bars, notes = zone_bars(variant, plan, name, peaks)
+    for zi in infos:
+        err = sm.cut_error(zi.cut_checks)
+        if err > CUT_TOL:
+            for r in zi.features:
+                if r in bars:
+                    del bars[r]
+                    notes[r] = (f"no measured bar: the cut check of {zi.name} reads "
+                                f"{100 * err:.1f} % (> {100 * CUT_TOL:g} %)")
+    return bars, notes
 
 
 def zone_filtered(bars: dict, notes: dict, glob: set, in_zone: dict) -> tuple[dict, dict]:

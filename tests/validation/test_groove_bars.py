@@ -43,6 +43,25 @@ def test_generated_bars_are_the_envelope_of_the_cached_grid(monkeypatch):
     assert tuple(AXI_GROOVE_BAR_PCT) == g.AXI_LEVELS
     for level, bar in AXI_GROOVE_BAR_PCT.items():
         assert g.envelope(data, level) == bar, level
+    # the 3D levels': on the grooves the 3D fine mesh could hold, their own hull
+    assert tuple(groove_bars().hull("solid")) == tuple(g.solid_measured_points(data))
+    assert tuple(groove_bars().bars["solid"]) == g.SOLID_LEVELS
+    for level, bar in groove_bars().bars["solid"].items():
+        assert g.solid_envelope(data, level) == bar, level
+
+
+@pytest.mark.parametrize("level", ["coarse", "default"])
+def test_x2_57_collar_groove_inside_the_3d_levels_bar(monkeypatch, level):
+    """The full 3D model's bar on x2_57's collar groove (bearing springs, spin softening on and
+    off; not in the envelope, measured against its own truth): every error inside the bar the
+    grid of bars gives it, and the lookup gives it that bar."""
+    from benchmarks import bench_groove_bars as g
+    monkeypatch.chdir(ROOT)
+    lo, hi = groove_bars().bars["solid"][level]
+    errs = [e[0] for _, e in g.x2_57_solid_errors(g._load(), level)]
+    assert len(errs) == 4                      # 2 quantities × softening on / off
+    assert all(lo <= e <= hi for e in errs), (errs, (lo, hi))
+    assert groove_bar(level, *X2_57_COLLAR, model="solid") == (lo, hi)
 
 
 def test_the_groove_truth_holds_against_another_model(monkeypatch):
@@ -110,13 +129,15 @@ def _shaft(width: float, loads=None, *, segment: str = "collar", x_mm: float = 5
 
 
 def test_the_lookup_gives_a_shafts_groove_the_bar_where_measured():
-    """A collar groove 2 × depth wide (the measured width; D/d 1.1, ρ/d 0.05 inside the hull)
-    gets the axisymmetric level's bar, in the axisymmetric model only; 3 × depth wide, none,
-    with the reason; an axial load takes it away, with the reason."""
+    """A collar groove 2 × depth wide (the measured width; D/d 1.1, ρ/d 0.05 inside both
+    hulls) gets the axisymmetric level's bar in the axisymmetric model and the 3D level's in
+    the 3D model; 3 × depth wide, none, with the reason; an axial load takes it away, with the
+    reason."""
     peak = SimpleNamespace(region="groove:collar:0", xyz_mm=(55.75, 0.0, 11.0))
     bars, notes = notch_bars(_shaft(2.0), "default", [peak], "axisymmetric")
     assert bars == {peak.region: AXI_GROOVE_BAR_PCT["default"]} and notes == {}
-    assert notch_bars(_shaft(2.0), "default", [peak], "solid") == ({}, {})
+    assert notch_bars(_shaft(2.0), "default", [peak], "solid") == (
+        {peak.region: groove_bars().bars["solid"]["default"]}, {})
     bars, notes = notch_bars(_shaft(3.0), "default", [peak], "axisymmetric")
     assert bars == {} and "width / depth 3" in notes[peak.region]
     from shaftfe.model.loads import Load
