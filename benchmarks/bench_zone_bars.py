@@ -236,7 +236,8 @@ def bars(rows: list[dict]) -> dict:
             extra = {}
         out[feature] = {"bars": {"zoned": by}, "measured": measured,
                         "loads": [lo for lo in loads if any(e["load"] == lo for e in mine)],
-                        **extra}
+                        "cut_check_max": math.ceil(1e4 * max(e["cut_check"] for e in mine))
+                        / 1e4, **extra}
     return out
 
 

@@ -169,9 +169,11 @@ def truth_bars() -> str:
     for level, (lo, hi) in gb.bars["axisymmetric"].items():
         out.append(f"| axisymmetric, groove peaks | `{level}` | {pct(lo)} … {pct(hi)} % | "
                    f"{where} |")
+    from benchmarks.bench_groove_bars import SOLID_CHECK_RHO_MM
     pts = gb.hull("solid") if "solid" in gb.bars else ()
     dd, rd = [p[0] for p in pts] or [0.0], [p[1] for p in pts] or [0.0]
-    where = (f"{len(pts)} (D/d, ρ/d) points of the same U grooves (ρ ≥ 0.5 mm), both widths, "
+    where = (f"{len(pts)} (D/d, ρ/d) points of the same U grooves (ρ ≥ "
+             f"{SOLID_CHECK_RHO_MM:g} mm), both widths, "
              f"D/d {min(dd):.3g}–{max(dd):.3g}, ρ/d {min(rd):.3g}–{max(rd):.3g}")
     for level, (lo, hi) in gb.bars.get("solid", {}).items():
         out.append(f"| 3D (`--model solid`), groove peaks | `{level}` | {pct(lo)} … {pct(hi)} % "
@@ -228,7 +230,8 @@ def zone_bars() -> str:
         if r["model"] != "zoned" or r["level"] not in k["bars"]["zoned"]:
             continue
         v = keyed_bar(r["load"], r["rho_mm"])
-        bars, _ = lookup(v, prepare(v), r["level"], [SimpleNamespace(region=key)])
+        bars, notes = lookup(v, prepare(v), r["level"], [SimpleNamespace(region=key)])
+        d = v.segments[0].diameter_mm
         t = ref[(r["rho_mm"], r["load"])]
         es = [100.0 * (r[q] / t[q] - 1.0) for q in ("von_mises_MPa", "max_principal_MPa")]
         if key in bars:
@@ -236,8 +239,11 @@ def zone_bars() -> str:
             bar = f"{pct(lo)} … {pct(hi)} %"      # rounded outwards when written: no margin
             inside = "yes" if all(lo <= e <= hi for e in es) else "NO"
         else:
-            bar, inside = "none: outside the grid's hull", "-"
-        out.append(f"| r1 {r['rho_mm']:g} mm (r1/d {r['rho_mm'] / 20:g}), {r['load']} | "
+            why = notes[key]
+            bar = "none: " + ("its geometry outside the grid" if "convex hull" in why
+                              else why.split(" (")[0])
+            inside = "-"
+        out.append(f"| r1 {r['rho_mm']:g} mm (r1/d {r['rho_mm'] / d:g}), {r['load']} | "
                    f"`{r['level']}` | von Mises {pct(es[0])} %, max principal {pct(es[1])} % | "
                    f"{bar} | {inside} |")
     return "\n".join(out)

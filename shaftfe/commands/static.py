@@ -413,8 +413,9 @@ def _print_tables(res, opts, out, corners=(), low=frozenset()) -> None:
               "Mises and max principal) against the converged axisymmetric solution over a grid "
               "of shoulders and one of U grooves (reports/benchmarks/bars_grid.md, "
               "groove_bars.md); none where it was not measured (end fillets, undercuts, notches "
-              "in a keyway's zone, other options than the measured ones, a notch's geometry "
-              "outside the measured grid, an axial force or torque)")
+              "in a keyway's, cross hole's or hex socket's zone, other options than the "
+              "measured ones, a notch's geometry outside the measured grid, an axial force or "
+              "torque)")
     for region, why in res.truth_bar_notes.items():
         print(f"  {region}: {why}")
     if res.error_estimate:

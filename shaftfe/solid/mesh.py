@@ -559,6 +559,12 @@ def unresolved_grooves(variant, level: str | MeshLevel) -> tuple:
     return tuple(g for g in prepare(variant).grooves if not _groove_hot(cfg, g.rho))
 
 
+def groove_resolved(level: str | MeshLevel, rho: float) -> bool:
+    """Does the whole-shaft 3D mesh of ``level`` resolve a groove of corner radius ``rho``
+    (``_groove_hot``)?"""
+    return _groove_hot(mesh_level(level).settings(), rho)
+
+
 def _groove_hot(cfg: dict, rho: float) -> bool:
     """Does a level (its ``settings()``) give a groove of corner radius ``rho`` the hot-spot
     field about its corner arcs (``_size_fields``)? The one rule the mesh and its warning

@@ -514,9 +514,9 @@ _BAR_CONDITIONS = {"order": 2, "load_distribution": "uniform", "body_force": Fal
 
 
 def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> tuple[dict, dict]:
-    """({fillet region: (low, high) %}, {fillet region: why it has none}) for the fillet
-    peaks: ``shaftfe.static.benchmark.notch_bars`` (span fillets outside every cut
-    feature's zone, inside the measured hull, in bending) for a named level used as named,
+    """({region: (low, high) %}, {region: why it has none}) for the fillet and groove peaks:
+    ``shaftfe.static.benchmark.notch_bars`` (span fillets and U grooves outside every cut
+    feature's zone, inside the measured hulls, in bending) for a named level used as named,
     under the options the bars were measured with (``_BAR_CONDITIONS``), on the pipeline's own
     mesh of the variant (not a mesh the caller built otherwise)."""
     lv = options.level

@@ -27,11 +27,11 @@ from shaftfe.axisymmetric.solve import resolve_case, solve_axisymmetric
 from shaftfe.beam.planes import mesh_hot_axes
 from shaftfe.fe import reuse as fe_reuse
 from shaftfe.model.loads import actions
-from shaftfe.solid.features import by_region, features, hole_region, keyway_region
+from shaftfe.solid.features import by_region, features, hole_region, keyway_region, kind_of
 from shaftfe.solid.levels import LEVELS, level_name, mesh_level
 from shaftfe.solid.mesh import mesh_plan
 from shaftfe.solid.plan import plan_payload
-from shaftfe.static.benchmark import zone_bars
+from shaftfe.static.benchmark import zone_bars, zone_feature_bars
 from shaftfe.static.model import StaticOptions
 from shaftfe.static.solve import _check_rpms
 from shaftfe.util import paths
@@ -417,12 +417,14 @@ def _zone_peak_bars(variant, plan, options: StaticOptions, peaks,
                     infos) -> tuple[dict, dict]:
     """The bars of the keyway and cross-hole peaks the 3D zones give
     (``static.benchmark.zone_bars``), for a named level used as named under the measured
-    options (P2, every peak node kept), and none in a zone whose cut check still fails
-    (``infos``: the ``ZoneInfo`` of each zone). Supports, spin softening and the loads'
-    placement are free: the grid measured rigid supports without spin, the loads outside the
-    feature's zone (``zone_bars`` refuses a load inside it), and the zones' peaks on x2_57 with
-    bearing springs and spin softening match the full 3D model at the same level
-    (reports/benchmarks/keyway_radius.md §2)."""
+    options (P2, every peak node kept), and none in a zone whose cut check reads worse than
+    any the grid measured (``infos``: the ``ZoneInfo`` of each zone). Supports, spin softening
+    and the loads' placement are not checked: the grid measured rigid supports without spin
+    and the loads outside the feature's zone (``zone_bars`` refuses a load inside it); the
+    only evidence with bearing springs and spin softening is x2_57's keyways (r1 0.25 mm, at
+    default: the zone's peaks within 0.1 % of the full 3D model at the same level,
+    reports/benchmarks/keyway_radius.md §2), which the grid's lookup itself refuses (another
+    profile, crowded zones)."""
     name = level_name(options.level)
     if name not in LEVELS or mesh_level(options.level) != LEVELS[name] or options.order != 2 \
             or options.exclude_mm != 0.0:
@@ -431,14 +433,16 @@ def _zone_peak_bars(variant, plan, options: StaticOptions, peaks,
         return {}, {p.region: "no measured bar for these options (measured: a named level, "
                     "P2, every peak node kept)" for p in peaks if p.region in cut}
     bars, notes = zone_bars(variant, plan, name, peaks)
+    worst = {k: g.get("cut_check_max", 0.0) for k, g in zone_feature_bars().items()
+             if isinstance(g, dict)}
     for zi in infos:
         err = sm.cut_error(zi.cut_checks)
-        if err > CUT_TOL:
-            for r in zi.features:
-                if r in bars:
-                    del bars[r]
-                    notes[r] = (f"no measured bar: the cut check of {zi.name} reads "
-                                f"{100 * err:.1f} % (> {100 * CUT_TOL:g} %)")
+        for r in zi.features:
+            if r in bars and err > worst.get(kind_of(r), 0.0):
+                del bars[r]
+                notes[r] = (f"no measured bar: the cut check of {zi.name} reads "
+                            f"{100 * err:.1f} %, above the grid's worst "
+                            f"{100 * worst.get(kind_of(r), 0.0):.2f} %")
     return bars, notes
 
 

@@ -1,5 +1,6 @@
 """The groove error bars of the axisymmetric levels (issue #33: the zoned solve's and
---model axisymmetric's circumferential grooves), measured over a grid of U grooves.
+--model axisymmetric's circumferential grooves) and of the 3D levels (--model solid),
+measured over a grid of U grooves.
 
 Source of the bars: benchmarks/bench_groove_bars.py, which solves four-point-bent Ø20 bars with
 one U groove (d/D 0.8, 0.9, 0.95; ρ/t 0.25, 0.5, 1; widths 2t and 2ρ) at each axisymmetric
@@ -7,9 +8,14 @@ level and converged by Richardson (the truth, GCI bars), plus x2_57 with a U gro
 collar (springs, spin softening on and off), caches every solve in
 reports/benchmarks/groove_bars.json and generates reports/benchmarks/error_bars_grooves.json.
 
-The truth is the axisymmetric method refined, so these are discretisation bars of that method
-(Roache's GCI), not an independent check; the groove peaks' independent checks are DIN 743-2's α
-(reports/benchmarks/grooves.md) and the 3D path (tests/validation/test_grooves.py).
+The 3D levels' bars: the full 3D model at each level on the grid's grooves of ρ ≥ 0.5 mm
+(their own hull) against the same truth, an independent model; x2_57's collar groove checks
+them where they were not measured.
+
+The truth is the axisymmetric method refined, so the axisymmetric bars are discretisation bars
+of that method (Roache's GCI), not an independent check; the groove peaks' independent checks
+are DIN 743-2's α (reports/benchmarks/grooves.md) and the 3D path
+(tests/validation/test_grooves.py).
 
 Nothing here re-solves the grid but one point: the tests read the cache and the generated module
 (exact arithmetic on their numbers) and call the lookup with the grooves' geometry;
@@ -50,7 +56,7 @@ def test_generated_bars_are_the_envelope_of_the_cached_grid(monkeypatch):
         assert g.solid_envelope(data, level) == bar, level
 
 
-@pytest.mark.parametrize("level", ["coarse", "default"])
+@pytest.mark.parametrize("level", ["coarse", "default", "fine"])
 def test_x2_57_collar_groove_inside_the_3d_levels_bar(monkeypatch, level):
     """The full 3D model's bar on x2_57's collar groove (bearing springs, spin softening on and
     off; not in the envelope, measured against its own truth): every error inside the bar the
@@ -118,6 +124,34 @@ def test_x2_57_collar_groove_inside_the_grids_own_bar(monkeypatch):
     assert len(errs) == 4                      # 2 quantities × softening on / off
     assert all(lo <= e <= hi for e in errs), (errs, (lo, hi))
     assert groove_bar("default", *X2_57_COLLAR) == AXI_GROOVE_BAR_PCT["default"]
+
+
+@pytest.mark.parametrize("level", ["coarse", "default", "fine"])
+def test_the_3d_levels_groove_bar_holds_only_on_its_own_hull(level):
+    """The 3D bars were measured on the grid's grooves of ρ ≥ 0.5 mm only: those get the 3D
+    bar, the others (a hull of their own: ρ/d down to 0.0066) none from the 3D model while the
+    axisymmetric model gives them its bar; and a groove inside the 3D hull by its ratios but
+    too small for that level's mesh (Ø8, ρ 0.2 mm) gets none, with the reason."""
+    from benchmarks import bench_groove_bars as g
+    solid = groove_bars().bars["solid"][level]
+    for q, k, w in g.grid():
+        D, t, rho, width = g.geometry(q, k, w)
+        d = D - 2 * t
+        got = groove_bar(level, D / d, rho / d, width / t, rho / t, model="solid")
+        if rho >= g.SOLID_CHECK_RHO_MM:
+            assert got == solid, (q, k, w)
+        else:                     # these grid points lie outside the 3D hull, not the axisym.
+            assert got is None, (q, k, w)
+            assert groove_bar(level, D / d, rho / d, width / t, rho / t) is not None
+    small = g.grooved_bar(8.0, 0.2, 0.2, 0.4)             # D/d 1.0526, ρ/d 0.0263: a vertex
+    assert groove_bar(level, 8 / 7.6, 0.2 / 7.6, 2.0, 1.0, model="solid") == solid
+    peak = SimpleNamespace(region="groove:a:0", xyz_mm=(0.0, 0.0, 4.0))
+    from shaftfe.solid.mesh import groove_resolved
+    bars, notes = notch_bars(small, level, [peak], "solid")
+    if groove_resolved(level, 0.2):
+        assert bars == {peak.region: solid}
+    else:
+        assert bars == {} and "does not resolve" in notes[peak.region]
 
 
 def _shaft(width: float, loads=None, *, segment: str = "collar", x_mm: float = 55.75,
