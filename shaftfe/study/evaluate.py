@@ -133,9 +133,15 @@ def static_rows(v, an: Analyses, shaft_mesh=None, cache_dir=None) -> tuple[dict,
 def _zoned_rows(v, an: Analyses, opts, rpms, cache_dir) -> tuple[dict, Any]:
     """``static_rows`` of the zoned model (``shaftfe.zoned``): the same columns; n_dofs is the
     global model's and the zones' together, mesh_key the zones' (the global meridian mesh
-    follows from the same drawing)."""
+    follows from the same drawing). The zones are solved at the reference speed only: the
+    bearing speed's columns (the reactions) are the global model's, which is all a zoned case
+    takes them from, so that speed is the global solve alone (its harmonic factorisations
+    shared: the design's ``fe.reuse`` scope) and no zone is solved for it."""
+    from shaftfe.axisymmetric.solve import solve_axisymmetric
     from shaftfe.zoned.solve import solve_zoned
-    res = solve_zoned(v, rpms, opts, cache_dir=cache_dir)
+    res = solve_zoned(v, rpms[:1], opts, cache_dir=cache_dir)
+    at = res.cases[0] if an.bearing_rpm == rpms[0] else solve_axisymmetric(
+        v, an.bearing_rpm, res.global_result.options, cache_dir=cache_dir).case(an.bearing_rpm)
     c0 = res.cases[0]
     g = res.global_result
     out: dict[str, Any] = {
@@ -147,7 +153,6 @@ def _zoned_rows(v, an: Analyses, opts, rpms, cache_dir) -> tuple[dict, Any]:
             out[f"stress_{p.region}_MPa"] = _fin(p.von_mises_MPa)
     out["stress_max_MPa"] = _fin(max((p.von_mises_MPa for p in c0.peaks
                                       if kind_of(p.region) != "end"), default=None))
-    at = next(c for c in res.cases if c.rpm == an.bearing_rpm)
     out.update(_bearing_cols(at.bearings, "static_"))
     out["static_max_deflection_mm"] = c0.max_axis_deflection_mm
     return out, res
