@@ -647,6 +647,8 @@ def test_a_zoned_design_row_is_the_zoned_solve_and_needs_no_shared_solid(cache, 
     for region in ("keyway:gear_seat:0", "keyway:cw2_seat:0", "fillet:bearing_seat_gear"):
         assert row[f"stress_{region}_MPa"] == peaks[region]
     assert row["static_max_deflection_mm"] == res.cases[0].max_axis_deflection_mm
+    for b in res.case(7000.0).bearings:       # the bearing speed's columns (L10h at 7000 rpm)
+        assert row[f"static_F_{b.name}_N"] == b.F_radial_N and row[f"L10h_{b.name}_h"] == b.L10h
     assert row["fatigue_hot_spot"].startswith("fillet:")
     g = res.global_result                  # the global model's dofs and the zones' together
     assert row["n_dofs"] == 3 * g.n_nodes * len(g.harmonics) + sum(z.n_dofs for z in res.zones)
@@ -657,6 +659,12 @@ def test_a_zoned_design_row_is_the_zoned_solve_and_needs_no_shared_solid(cache, 
     assert soft["status"] == "ok", soft["error"]
     assert soft["fatigue_hot_spot"].startswith("fillet:") and soft["fatigue_sf"] > 0
     assert soft["stress_max_MPa"] > row["stress_max_MPa"]     # softening adds deflection
+    # its bearing columns: the softened zoned solve's at 7000 rpm (exact: the same global solve)
+    sres = solve_zoned(load_variant("x2_57"), [10000.0, 7000.0],
+                       StaticOptions(level="coarse", spin_softening=True))
+    for b in sres.case(7000.0).bearings:
+        assert soft[f"static_F_{b.name}_N"] == b.F_radial_N
+        assert soft[f"L10h_{b.name}_h"] == b.L10h
     assert "static_model" in an.options() and "static_model" not in Analyses().options()
     from types import SimpleNamespace
     todo = [(f"d{i}", SimpleNamespace(overrides={}, number=i)) for i in range(3)]

@@ -151,12 +151,14 @@ class MultiResult:
 
     @property
     def max_force_at_deg(self) -> float:
-        """The crank angle of the largest resultant force."""
+        """The engine crank angle θ [deg, 0 … 360) of the largest resultant force (the first
+        sample on a tie)."""
         return math.degrees(self.theta[int(np.argmax(self.F))])
 
     @property
     def max_couple_at_deg(self) -> float:
-        """The crank angle of the largest resultant couple."""
+        """The engine crank angle θ [deg, 0 … 360) of the largest resultant couple (the first
+        sample on a tie)."""
         return math.degrees(self.theta[int(np.argmax(self.M))])
 
     def force_order(self, k: int) -> Order:
@@ -274,9 +276,10 @@ def engine_forces(cylinders: Sequence[Cylinder], mech: Mechanism, omega: float, 
 
 def twin_layout(cylinders: Sequence[Cylinder], delta_deg: float, *, shared_pin: bool,
                 offset_mm: float) -> dict:
-    """The twin's layout as the summary states it: δ, the ε the cylinders were built with,
-    the pin arrangement, the offset and the resultant crank counterweight (% of one
-    cylinder's m_pos R)."""
+    """The twin's layout as the summary states it: δ, the ε the cylinders were built with
+    (read off them, normalised to (−180°, 180°]), the pin arrangement, the offset and the
+    resultant crank counterweight (% of one cylinder's m_pos R). ``delta_deg``,
+    ``shared_pin`` and ``offset_mm`` must be the ones ``twin`` built ``cylinders`` with."""
     return {"delta_deg": delta_deg, "epsilon_deg": _wrap180(cylinders[1].phase_deg - delta_deg),
             "shared_pin": bool(shared_pin), "offset_mm": offset_mm,
             "resultant_counterweight_pct": 100.0 * resultant_counterweight(cylinders)}
@@ -290,8 +293,9 @@ def inline_layout(pins_deg: Sequence[float], res: MultiResult) -> dict:
 
 def summary(command: str, engine: str, rpm: float, mech: Mechanism, omega: float,
             cylinders: Sequence[Cylinder], res: MultiResult, layout: dict) -> dict:
-    """What ``shaftfe balance twin | inline`` reports (its ``--json``), in the report's units
-    (mm, kg, N, N·m, deg, %)."""
+    """What ``shaftfe balance twin | inline`` reports (its ``--json``, but the plot's path,
+    which the command adds), in the report's units (rpm, rad/s, mm, kg, N, N·m, deg, %);
+    ``omega`` is the engine's ω at ``rpm`` (``util.units.omega``)."""
     return {
         "command": f"balance {command}",
         "engine": engine, "rpm": rpm, "omega_rad_s": omega,

@@ -9,8 +9,9 @@ Every number comes from the package's own analyses, the ones the commands use:
   ISO 281 L10h, the largest Kt × nominal stress;
 * static: the 3D solid (``static.solve.solve_static``), or the zoned model with
   ``analyses.static.model = "zoned"`` (``zoned.solve.solve_zoned``), at 10 000 rpm (the fatigue
-  reference) and ``bearing_rpm``: the filtered von Mises peak of every fillet and keyway, L10h
-  from the static reactions (replacing the beam's);
+  reference) and ``bearing_rpm`` (the zoned model: its global model there, the reactions):
+  the filtered von Mises peak of every fillet and keyway, L10h from the static reactions
+  (replacing the beam's);
 * fatigue: the study's method (the seed's by default, ``fatigue.field.evaluate``) on that
   field: the governing place's safety factor and life in blocks, hours and km;
 * campbell: the beam rotor's first forward 1× critical speed and its margin over the engine's
@@ -133,15 +134,23 @@ def static_rows(v, an: Analyses, shaft_mesh=None, cache_dir=None) -> tuple[dict,
 def _zoned_rows(v, an: Analyses, opts, rpms, cache_dir) -> tuple[dict, Any]:
     """``static_rows`` of the zoned model (``shaftfe.zoned``): the same columns; n_dofs is the
     global model's and the zones' together, mesh_key the zones' (the global meridian mesh
-    follows from the same drawing). The zones are solved at the reference speed only: the
-    bearing speed's columns (the reactions) are the global model's, which is all a zoned case
-    takes them from, so that speed is the global solve alone (its harmonic factorisations
-    shared: the design's ``fe.reuse`` scope) and no zone is solved for it."""
+    follows from the same drawing). With spin softening (each speed its own global solve) the
+    zones are solved at the reference speed only: the bearing speed's columns (the reactions)
+    are the global model's, which is all a zoned case takes them from, so that speed is the
+    global solve alone (its harmonic factorisations shared by ``evaluate_design``'s
+    ``fe.reuse`` scope) and no zone is solved for it. Without it one global solve serves both
+    speeds, as ``solve_zoned`` does."""
     from shaftfe.axisymmetric.solve import solve_axisymmetric
     from shaftfe.zoned.solve import solve_zoned
-    res = solve_zoned(v, rpms[:1], opts, cache_dir=cache_dir)
-    at = res.cases[0] if an.bearing_rpm == rpms[0] else solve_axisymmetric(
-        v, an.bearing_rpm, res.global_result.options, cache_dir=cache_dir).case(an.bearing_rpm)
+    if not opts.spin_softening:
+        # unsoftened, one global solve serves every speed (``solve_zoned``): as it was
+        res = solve_zoned(v, rpms, opts, cache_dir=cache_dir)
+        at = next(c for c in res.cases if c.rpm == an.bearing_rpm)
+    else:
+        res = solve_zoned(v, rpms[:1], opts, cache_dir=cache_dir)
+        at = res.cases[0] if an.bearing_rpm == rpms[0] else solve_axisymmetric(
+            v, an.bearing_rpm, res.global_result.options,
+            cache_dir=cache_dir).case(an.bearing_rpm)
     c0 = res.cases[0]
     g = res.global_result
     out: dict[str, Any] = {
