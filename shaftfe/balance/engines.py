@@ -94,6 +94,12 @@ class Engine:
     rpm: float = 6000.0
     description: str = ""
 
+    def info(self) -> dict:
+        """The engine as the balance commands' ``--json`` states it (mm, kg)."""
+        return {"name": self.name, "source": self.source,
+                "crank_radius_mm": self.crank_radius_mm, "rod_length_mm": self.rod_length_mm,
+                "m_pos_kg": self.m_pos_kg, "m_rot_kg": self.m_rot_kg}
+
     @property
     def m_pos_kg(self) -> float:
         """Reciprocating mass m_pos = m_piston + m_rod_pos."""

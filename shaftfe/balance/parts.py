@@ -35,6 +35,16 @@ class PartsRatios:
     P: float                   # = X + X2
     Pv: float | None           # = X2 / X (None when the crank moment is zero)
 
+    def summary(self, source: str) -> dict:
+        """What ``shaftfe balance ratios`` reports (its ``--json``): every field, X, X2, P and
+        Pv in percent (as the table and every command), and the engine file ``source``."""
+        d = {k: getattr(self, k) for k in self.__dataclass_fields__}
+        for k in ("X", "X2", "P", "Pv"):
+            v = d.pop(k)
+            d[f"{k}_percent"] = None if v is None else 100.0 * v
+        d["source"] = source
+        return d
+
 
 def ratios(engine: Engine) -> PartsRatios:
     """P and Pv of an engine (seed 003 §5.3-5.5), from parts or from a lumped description."""

@@ -125,6 +125,17 @@ class ForceResult:
     def Fy_balancer(self) -> NDArray[np.float64]:
         return self.Fy - self.Fy_crank
 
+    def summary(self, engine: Engine) -> dict:
+        """What ``shaftfe balance forces`` reports (its ``--json``, but the written files'
+        paths, which the command adds): the engine, X and X2 in %, the options, A = m_pos R ω²
+        in N and the metrics (N, deg)."""
+        return {"engine": engine.info(), "X_percent": 100 * self.X,
+                "X2_percent": 100 * self.X2, "rpm": self.rpm, "tilt_deg": self.tilt_deg,
+                "start_deg": self.start_deg, "sampling": self.sampling,
+                "samples": int(self.alpha_deg.size),
+                "first_order_amplitude_N": self.first_order_amplitude,
+                "metrics": self.metrics.as_dict()}
+
     @property
     def max_crank_force(self) -> tuple[float, float]:
         """(max |F_vk| N, its crank angle in deg within one turn): the crank mechanism alone."""

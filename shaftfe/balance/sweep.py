@@ -72,6 +72,23 @@ class SweepResult:
             out[k] = (v[np.arange(v.shape[0]), i], self.X2[i])
         return out
 
+    @property
+    def mode(self) -> int:
+        """1: one X (a sweep over X2), 2: a grid of X and X2 (the minima over X2 per X)."""
+        return 1 if self.X.size == 1 else 2
+
+    def summary(self, engine) -> dict:
+        """What ``shaftfe balance sweep`` reports (its ``--json``, but the written files'
+        paths, which the command adds): X and X2 in %, each metric's minimum over X2 per X
+        (N, and the X2 in % where it lies) and the whole grid (N)."""
+        mins = self.minima()
+        return {"engine": engine.info(), "mode": self.mode, "rpm": self.rpm,
+                "tilt_deg": self.tilt_deg, "sampling": self.sampling, "samples": self.n_angles,
+                "X_percent": (100 * self.X).tolist(), "X2_percent": (100 * self.X2).tolist(),
+                "minima": {k: {"value_N": mins[k][0].tolist(),
+                               "X2_percent": (100 * mins[k][1]).tolist()} for k in METRICS},
+                "grid_N": {k: getattr(self, k).tolist() for k in METRICS}}
+
     def seed_matrix(self) -> NDArray[np.float64]:
         """The seed's a × 8 matrix: min max|Fx|, min max|Fy|, X2 [%] of each, min RMS,
         min max|F|, X2 [%] of each (seed 000 §5.4, column order as printed there)."""

@@ -140,12 +140,6 @@ def _csv(path: str, header: list[str], rows) -> None:
     write_atomic(path, "\n".join(lines) + "\n")
 
 
-def _engine_info(eng) -> dict:
-    return {"name": eng.name, "source": eng.source, "crank_radius_mm": eng.crank_radius_mm,
-            "rod_length_mm": eng.rod_length_mm, "m_pos_kg": eng.m_pos_kg,
-            "m_rot_kg": eng.m_rot_kg}
-
-
 def _check_out(path: str | None, option: str, suffixes: tuple[str, ...] | None = None) -> None:
     """``util.atomic.check_output_file`` (``suffixes``: a figure's by default)."""
     from shaftfe.util.atomic import PLOT_SUFFIXES, check_output_file
@@ -177,13 +171,7 @@ def _forces(args) -> int:
              np.column_stack([res.alpha_deg, res.Fx, res.Fy, res.F, res.Fx_crank,
                               res.Fy_crank]))
     if args.json:
-        print_json({
-            "engine": _engine_info(eng), "X_percent": 100 * res.X, "X2_percent": 100 * res.X2,
-            "rpm": res.rpm, "tilt_deg": res.tilt_deg, "start_deg": res.start_deg,
-            "sampling": res.sampling, "samples": int(res.alpha_deg.size),
-            "first_order_amplitude_N": res.first_order_amplitude, "metrics": m.as_dict(),
-            "csv": args.csv, "plot": args.plot,
-        })
+        print_json({**res.summary(eng), "csv": args.csv, "plot": args.plot})
         return 0
     print(f"{eng.name} ({eng.source}): X = {100 * res.X:.2f} %, X2 = {100 * res.X2:.2f} %, "
           f"{res.rpm:g} rpm, tilt {res.tilt_deg:g} deg, m_pos = {eng.m_pos_kg:.6g} kg, "
@@ -227,7 +215,7 @@ def _sweep(args) -> int:
         x = np.array([100 * eng.X])
     res = sweep(eng, x / 100, x2 / 100, args.rpm, tilt_deg=args.tilt_deg,
                 sampling=args.sampling, n=args.samples)
-    mode = 1 if res.X.size == 1 else 2
+    mode = res.mode
     mins = res.minima()
     names = {"max_abs_fx": "max|Fx|", "max_abs_fy": "max|Fy|", "rms_f": "RMS|F|",
              "max_f": "max|F|"}
@@ -247,15 +235,7 @@ def _sweep(args) -> int:
                                            for h in (f"min_{k}_N", f"X2_at_min_{k}_percent")]],
                  np.column_stack(cols))
     if args.json:
-        print_json({
-            "engine": _engine_info(eng), "mode": mode, "rpm": res.rpm, "tilt_deg": res.tilt_deg,
-            "sampling": res.sampling, "samples": res.n_angles,
-            "X_percent": (100 * res.X).tolist(), "X2_percent": (100 * res.X2).tolist(),
-            "minima": {k: {"value_N": mins[k][0].tolist(),
-                           "X2_percent": (100 * mins[k][1]).tolist()} for k in METRICS},
-            "grid_N": {k: getattr(res, k).tolist() for k in METRICS},
-            "csv": args.csv, "plot": args.plot,
-        })
+        print_json({**res.summary(eng), "csv": args.csv, "plot": args.plot})
         return 0
     print(f"{eng.name}: mode {mode}, {res.rpm:g} rpm, tilt {res.tilt_deg:g} deg, "
           f"{res.sampling} sampling with {res.n_angles} angles, "
@@ -284,12 +264,7 @@ def _ratios(args) -> int:
     eng = load_engine(args.engine)
     r = ratios(eng)
     if args.json:
-        d = {k: getattr(r, k) for k in r.__dataclass_fields__}
-        for k in ("X", "X2", "P", "Pv"):            # percent, as the table and every command
-            v = d.pop(k)
-            d[f"{k}_percent"] = None if v is None else 100.0 * v
-        d["source"] = eng.source
-        print_json(d)
+        print_json(r.summary(eng.source))
         return 0
     rows = [["rod rotating share m_or (+ bearing) [g]", round(1000 * r.m_rod_rot_kg, 2)],
             ["rod reciprocating share m_op [g]", round(1000 * r.m_rod_pos_kg, 2)],
