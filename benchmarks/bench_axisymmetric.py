@@ -141,7 +141,7 @@ def _cross_check(lines: list[str]) -> None:
             lines.append(f"| {p.region} vM MPa{zone} | {p3[p.region].von_mises_MPa:.2f} | "
                          f"{p.von_mises_MPa:.2f} | "
                          f"{p3[p.region].von_mises_MPa / p.von_mises_MPa - 1:+.2%} |")
-    from shaftfe.static.benchmark import benchmark_errors
+    from shaftfe.static.measured_errors import benchmark_errors
     b = benchmark_errors("default")
     if b:
         lines += ["", f"The 3D path's own error bar at this level (its static benchmark, "

@@ -37,7 +37,7 @@ Run in chunks (each solve is cached in ``reports/benchmarks/bars_grid.json``, so
 where the last stopped): ``python -m benchmarks.bench_bars_grid [--budget S] [--levels a,b]
 [--write]``; a chunk starts no new solve after ``--budget`` seconds. When every point of every
 level asked is measured, it writes ``bars_grid.md`` and regenerates
-``reports/benchmarks/error_bars_shoulders.json`` (``shaftfe.static.benchmark.
+``reports/benchmarks/error_bars_shoulders.json`` (``shaftfe.static.measured_errors.
 shoulder_bars``); ``--write`` only regenerates them from the cache.
 """
 
@@ -350,7 +350,7 @@ def _axi_lines(data: dict, axi_bars: dict) -> list[str]:
 
 
 def _write_module(bars: dict, points, axi_bars: dict) -> None:
-    from shaftfe.static.benchmark import write_bars
+    from shaftfe.static.measured_errors import write_bars
     write_bars(BARS, "benchmarks/bench_bars_grid.py", LOAD,
                {"solid": bars, "axisymmetric": axi_bars}, points)
 

@@ -28,13 +28,13 @@ groove peaks are DIN 743-2's α (reports/benchmarks/grooves.md: −7.0 … +2.9 
 the same grooves) and the 3D path of tests/validation/test_grooves.py.
 
 Load kind: bending only (the bars are printed only for a shaft whose every load bends it,
-``static.benchmark.bending_only``).
+``static.measured_errors.bending_only``).
 
 The bar of a level is the envelope (min … max) over every grid point of 100 (value − truth) /
 truth, max principal and von Mises, each widened by the truth's own GCI bar. It covers a groove
 whose (D/d, ρ/d) lies in the convex hull of the measured points and whose width lies between
 the two measured widths, 2 ρ … 2 t (reports/benchmarks/error_bars_grooves.json; the lookup
-``shaftfe.static.benchmark.notch_bars`` prints no bar elsewhere: a DIN 471 ring groove's
+``shaftfe.static.measured_errors.notch_bars`` prints no bar elsewhere: a DIN 471 ring groove's
 0.1 mm corners, a DIN 509 undercut at a shoulder).
 
     python -m benchmarks.bench_groove_bars [--write]   # reports/benchmarks/groove_bars.md / .json
@@ -418,7 +418,7 @@ def write(data: dict) -> dict:
 
 
 def _write_module(bars: dict, points, solid: dict, solid_points) -> None:
-    from shaftfe.static.benchmark import write_bars
+    from shaftfe.static.measured_errors import write_bars
     write_bars(BARS, "benchmarks/bench_groove_bars.py", LOAD,
                {"axisymmetric": bars, "solid": solid}, points, {"solid": solid_points})
 

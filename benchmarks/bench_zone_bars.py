@@ -28,7 +28,7 @@ A level's bar is the envelope (min … max) over the grid's points and loads of
 widened by its reference's own change from ``fine`` to ``finer`` where that was run (every
 hole; one keyway point: the other keyway points carry no estimate of their reference's own
 error, which is likely largest at the smallest r1/d). It applies
-(``shaftfe.static.benchmark.zone_bars``) to a keyway whose (r1/d, b/d) lies in the convex hull
+(``shaftfe.static.measured_errors.zone_bars``) to a keyway whose (r1/d, b/d) lies in the convex hull
 of the measured points and whose t1/b and l/d lie in the measured ranges (one keyway profile,
 6 × 3.5 × 16, was measured), or to a cross hole whose d_h/d lies within the measured range,
 when every load of the shaft is of one measured kind (bending in the plane through the

@@ -44,7 +44,7 @@ def test_the_default_static_model_is_zoned_and_writes_every_file(zoned_run):
     assert models["fillet:collar"] == "axisymmetric"      # the span fillets: the global model
     # their bars: the global model's level (axisymmetric default, whatever the zones' level);
     # the zones' peaks: x2_57's keyways are sharp, so none (their reason is in truth_bar_notes)
-    from shaftfe.static.benchmark import shoulder_bars
+    from shaftfe.static.measured_errors import shoulder_bars
     assert s["truth_error_bar_pct"] == {f: list(shoulder_bars().bars["axisymmetric"]["default"])
                                         for f in ("fillet:collar", "fillet:bearing_seat_gear")}
     assert all("sharp-edged" in s["truth_bar_notes"][k]

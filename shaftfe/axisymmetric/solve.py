@@ -38,7 +38,7 @@ from shaftfe.solid.features import (
     seat_region,
 )
 from shaftfe.solid.plan import warn_sharp_corners
-from shaftfe.static.benchmark import notch_bars
+from shaftfe.static.measured_errors import notch_bars
 from shaftfe.static.result import BearingReaction, Station
 from shaftfe.static.solve import _check_rpms
 from shaftfe.util.fmt import json_clean
@@ -423,15 +423,15 @@ def solve_axisymmetric(variant, rpm=REF_RPM, options: AxiOptions = AxiOptions(),
 
 
 def truth_bars(variant, options: AxiOptions, peaks) -> tuple[dict, dict]:
-    """({region: (low, high) %}, {region: why it has none}) of the span-fillet and groove
-    peaks: the axisymmetric level's bar measured over the grid of shoulders and the grid of U
-    grooves (``shaftfe.static.benchmark.notch_bars``, ``shoulder_bars``, ``groove_bars``: its own
-    method refined, a discretisation error bar) for a named level used as named at refinement
-    0, under the options the bars were measured with (the uniform placement of the parts'
-    loads, every peak node kept, the default harmonic truncation); supports rigid or springs
-    and spin softening on or off were both measured (x2_57). ``converge_all_fillets`` is
-    free: it only adds harmonics, which change a span fillet's peak by less than the
-    truncation tolerance (1e-4 of the largest peak)."""
+    """({region: (low, high) %}, {region: why it has none}) of the span-fillet and groove peaks: the
+    axisymmetric level's bar measured over the grid of shoulders and the grid of U grooves
+    (``shaftfe.static.measured_errors.notch_bars``, ``shoulder_bars``, ``groove_bars``: its own
+    method refined, a discretisation error bar) for a named level used as named at refinement 0,
+    under the options the bars were measured with (the uniform placement of the parts' loads,
+    every peak node kept, the default harmonic truncation); supports rigid or springs and spin
+    softening on or off were both measured (x2_57). ``converge_all_fillets`` is free: it only
+    adds harmonics, which change a span fillet's peak by less than the truncation tolerance
+    (1e-4 of the largest peak)."""
     name, d = options.level_name, AxiOptions()
     if not isinstance(options.level, str) and options.level != AXI_LEVELS.get(name):
         return {}, {}

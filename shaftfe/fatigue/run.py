@@ -4,7 +4,7 @@ The static reference solution (3D FE at ``shaftfe.static.model.REF_RPM``) comes 
 cache of ``shaftfe.static.cache`` when the model is unchanged, else it is solved once. The
 history's load factor is re-referenced to the static solution's speed, every node is evaluated
 at once (``shaftfe.fatigue.field``), and where the static benchmark measured this mesh level's
-peak-stress error (``shaftfe.static.benchmark``) the hot spot's life is also given with the
+peak-stress error (``shaftfe.static.measured_errors``) the hot spot's life is also given with the
 stress corrected by it. ``shaftfe.fatigue.outputs`` writes the files; ``shaftfe fatigue`` is a
 thin command over both.
 
@@ -284,12 +284,12 @@ def finite_or_none(v: float):
 def level_corrected_life(ref, ff, history, material, bench: dict | None, n_dofs: int,
                          **settings) -> tuple[dict, dict] | None:
     """The level's measured peak-stress error (``bench`` from
-    ``shaftfe.static.benchmark.benchmark_errors``: the collar fillet) and the hot spot's life
+    ``shaftfe.static.measured_errors.benchmark_errors``: the collar fillet) and the hot spot's life
     and safety factor with its stress corrected by it (``fatigue.field.hot_spot_with_factor``);
     None where the benchmark does not cover this level's mesh. Shared by the report and
     ``run_fatigue``."""
     from shaftfe.fatigue.field import hot_spot_with_factor
-    from shaftfe.static.benchmark import bench_matches
+    from shaftfe.static.measured_errors import bench_matches
     if bench is None or not bench_matches(bench, n_dofs):
         return None
     err = float(bench["collar"]["rel_error"])
@@ -298,7 +298,7 @@ def level_corrected_life(ref, ff, history, material, bench: dict | None, n_dofs:
 
 
 def _level_correction(job: FatigueJob, ref, ff, history, material) -> dict | None:
-    from shaftfe.static.benchmark import benchmark_errors
+    from shaftfe.static.measured_errors import benchmark_errors
     # measured on x2_57 as shipped: none for another shaft or a --set geometry
     bench = benchmark_errors(job.level, variant_hash=ref.variant_hash)
     got = level_corrected_life(ref, ff, history, material, bench,

@@ -84,9 +84,9 @@ from shaftfe.report.stages import (
 from shaftfe.rotordynamics.modes_vtu import write_modes_vtu
 from shaftfe.rotordynamics.plots import plot_campbell
 from shaftfe.static import cache as static_cache
-from shaftfe.static.benchmark import benchmark_errors
 from shaftfe.static.cache import kept_nodes
 from shaftfe.static.error import estimate_error
+from shaftfe.static.measured_errors import benchmark_errors
 from shaftfe.static.model import StaticOptions
 from shaftfe.static.outputs import clearance_of
 from shaftfe.static.solve import solve_static

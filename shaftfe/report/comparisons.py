@@ -6,7 +6,7 @@ from __future__ import annotations
 from shaftfe.report.options import OTHER_LEVEL
 from shaftfe.report.results import Comparison, ErrorEstimate
 from shaftfe.solid.features import ROUND_NOTCH_KINDS, kind_of
-from shaftfe.static.benchmark import MEASURED_FILLETS, bench_matches
+from shaftfe.static.measured_errors import MEASURED_FILLETS, bench_matches
 
 
 def _richardson_rows(c0: dict, ee: dict) -> list[ErrorEstimate]:

@@ -129,8 +129,9 @@ class StaticResult:
     diagnostics: dict = field(default_factory=dict)    # results only: identical run to run
     error_estimate: dict | None = None
     # fillet region -> (low, high) %: this level's error against the axisymmetric truth
-    # (static.benchmark.shoulder_bars), for the fillets outside every keyway's / the hex's zone
-    # whose D/d, r/d lie in the measured grid's hull; the span fillets outside it: region -> why
+    # (static.measured_errors.shoulder_bars), for the fillets outside every keyway's / the
+    # hex's zone whose D/d, r/d lie in the measured grid's hull; the span fillets outside
+    # it: region -> why
     truth_error_bar_pct: dict = field(default_factory=dict)
     truth_bar_notes: dict = field(default_factory=dict)
     # fillet region -> why the mesh does not resolve it (``unresolved_fillets``; the same at

@@ -68,7 +68,7 @@ from shaftfe.solid.levels import LEVELS
 from shaftfe.solid.mesh import warn_unresolved_grooves
 from shaftfe.solid.plan import warn_sharp_corners
 from shaftfe.static import cache as sc
-from shaftfe.static.benchmark import notch_bars, shoulder_bars
+from shaftfe.static.measured_errors import notch_bars, shoulder_bars
 from shaftfe.static.model import (
     REF_RPM,
     StaticModel,
@@ -515,7 +515,7 @@ _BAR_CONDITIONS = {"order": 2, "load_distribution": "uniform", "body_force": Fal
 
 def truth_bars(variant, options: StaticOptions, peaks, mesh_key: str) -> tuple[dict, dict]:
     """({region: (low, high) %}, {region: why it has none}) for the fillet and groove peaks:
-    ``shaftfe.static.benchmark.notch_bars`` (span fillets and U grooves outside every cut
+    ``shaftfe.static.measured_errors.notch_bars`` (span fillets and U grooves outside every cut
     feature's zone, inside the measured hulls, in bending) for a named level used as named,
     under the options the bars were measured with (``_BAR_CONDITIONS``), on the pipeline's own
     mesh of the variant (not a mesh the caller built otherwise)."""

@@ -31,7 +31,7 @@ from shaftfe.solid.features import by_region, features, hole_region, keyway_regi
 from shaftfe.solid.levels import LEVELS, level_name, mesh_level
 from shaftfe.solid.mesh import mesh_plan
 from shaftfe.solid.plan import plan_payload
-from shaftfe.static.benchmark import zone_bars, zone_feature_bars
+from shaftfe.static.measured_errors import zone_bars, zone_feature_bars
 from shaftfe.static.model import StaticOptions
 from shaftfe.static.solve import _check_rpms
 from shaftfe.util import paths
@@ -106,7 +106,7 @@ class ZonedResult:
     fields: tuple = field(default=(), repr=False)               # (SubModel, SubField) per zone
     # the measured error bars of the span-fillet and groove peaks the global model gives
     # outside every 3D zone (``AxiResult.truth_error_bar_pct``) and of the rounded keyways'
-    # and cross holes' peaks the zones give (``static.benchmark.zone_bars``), and why such a
+    # and cross holes' peaks the zones give (``static.measured_errors.zone_bars``), and why such a
     # notch has none
     truth_error_bar_pct: dict = field(default_factory=dict)
     truth_bar_notes: dict = field(default_factory=dict)
@@ -416,7 +416,7 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
 def _zone_peak_bars(variant, plan, options: StaticOptions, peaks,
                     infos) -> tuple[dict, dict]:
     """The bars of the keyway and cross-hole peaks the 3D zones give
-    (``static.benchmark.zone_bars``), for a named level used as named under the measured
+    (``static.measured_errors.zone_bars``), for a named level used as named under the measured
     options (P2, every peak node kept), and none in a zone whose cut check reads worse than
     any the grid measured (``infos``: the ``ZoneInfo`` of each zone). Supports, spin softening
     and the loads' placement are not checked: the grid measured rigid supports without spin

@@ -30,7 +30,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from shaftfe.static.benchmark import groove_bar, groove_bars, notch_bars
+from shaftfe.static.measured_errors import groove_bar, groove_bars, notch_bars
 
 AXI_GROOVE_BAR_PCT = groove_bars().bars["axisymmetric"]
 MEASURED = groove_bars().measured
@@ -184,7 +184,7 @@ def test_no_groove_bar_in_a_keyways_zone_or_for_an_undercut():
     """A groove whose geometry lies in the grid (D/d 17/16, ρ/t 0.5, w = 2t) but on the gear
     hub boss, inside the gear seat keyway's zone of influence, gets no bar (the cut feature's
     field was not in the grid); a DIN 509 undercut gets none, with its reason."""
-    from shaftfe.static.benchmark import _groove_bar
+    from shaftfe.static.measured_errors import _groove_bar
     assert groove_bar("default", 17 / 16, 0.25 / 16, 2.0, 0.5) is not None
     v = _shaft(1.0, segment="gear_hub_boss", x_mm=27.0, depth=0.5, radius=0.25)
     peak = SimpleNamespace(region="groove:gear_hub_boss:0", xyz_mm=(27.0, 0.0, 8.0))

@@ -197,14 +197,14 @@ def test_stepped_shaft_fillet_kt(stepped, load):
     kt3d = peak.max_principal_MPa / nominal
     axi = _axi_kt(load)
     err = kt3d / axi - 1
-    from shaftfe.static.benchmark import shoulder_bars
+    from shaftfe.static.measured_errors import shoulder_bars
     ERROR_BAR_PCT = shoulder_bars().bars["solid"]
     print(f"{load}: Kt 3D {kt3d:.4f}, axisymmetric {axi:.4f} ({100 * err:+.2f} %), "
           f"Peterson fit {_peterson(load):.4f}; coarse bending bar {ERROR_BAR_PCT['coarse']}")
     # the bars were measured in bending: a run in tension or torsion prints none, and says why
     assert "fillet:left_seat" not in res.truth_error_bar_pct
     assert "measured in bending" in res.truth_bar_notes["fillet:left_seat"]
-    # the coarse level's bending bar (static.benchmark.shoulder_bars: the envelope of its
+    # the coarse level's bending bar (static.measured_errors.shoulder_bars: the envelope of its
     # measured error against the axisymmetric truth over a grid of shoulders: −4.39 … −1.62 %);
     # tension and torsion load the same fillet with no steeper a gradient than bending, so
     # their error stays within the bar's magnitude (measured −3.31 % tension, −0.29 % torsion)

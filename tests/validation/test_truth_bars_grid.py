@@ -28,7 +28,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from shaftfe.static.benchmark import fillet_bar, shoulder_bars
+from shaftfe.static.measured_errors import fillet_bar, shoulder_bars
 
 ERROR_BAR_PCT = shoulder_bars().bars["solid"]
 AXI_ERROR_BAR_PCT = shoulder_bars().bars["axisymmetric"]
@@ -204,7 +204,7 @@ def test_level_correction_only_for_the_measured_shaft(tmp_path):
     """``benchmark_errors`` (fatigue's and the report's per-fillet level correction, measured
     on x2_57 as shipped) gives nothing for x2_57 with another collar fillet."""
     from shaftfe.model.loader import load_variant
-    from shaftfe.static.benchmark import benchmark_errors
+    from shaftfe.static.measured_errors import benchmark_errors
     same = load_variant("x2_57").content_hash
     other = load_variant("x2_57", ["segments.collar.fillet_mm=0.5"]).content_hash
     assert benchmark_errors("default", variant_hash=same) is not None
@@ -212,7 +212,7 @@ def test_level_correction_only_for_the_measured_shaft(tmp_path):
 
 
 def test_in_hull_is_scipys_convex_hull():
-    """``static.benchmark.in_hull`` (our monotone chain) against scipy.spatial.ConvexHull's
+    """``static.measured_errors.in_hull`` (our monotone chain) against scipy.spatial.ConvexHull's
     facet equations, an independent implementation (Qhull), on the measured grid and 2000
     random points around it, with points near the edges: the same verdict wherever the
     distance to the hull's boundary exceeds 1e-9 (within ``HULL_TOL`` both count a point on
@@ -220,7 +220,7 @@ def test_in_hull_is_scipys_convex_hull():
     import numpy as np
     from scipy.spatial import ConvexHull
 
-    from shaftfe.static.benchmark import HULL_TOL, in_hull
+    from shaftfe.static.measured_errors import HULL_TOL, in_hull
     pts = np.asarray(MEASURED, dtype=float)
     eq = ConvexHull(pts).equations
     rng = np.random.default_rng(7)

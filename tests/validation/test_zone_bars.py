@@ -32,7 +32,7 @@ import pytest
 
 from shaftfe.model.examples import holed_bar, keyed_bar
 from shaftfe.solid.plan import prepare
-from shaftfe.static.benchmark import load_kinds, zone_bars, zone_feature_bars
+from shaftfe.static.measured_errors import load_kinds, zone_bars, zone_feature_bars
 
 RADIUS = Path(__file__).resolve().parents[2] / "reports" / "benchmarks" / "keyway_radius.json"
 KEY, HOLE = "keyway:bar:0", "cross_hole:bar:0"

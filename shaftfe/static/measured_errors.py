@@ -1,4 +1,8 @@
-"""The measured discretisation error of each mesh level, for the report and ``shaftfe fatigue``.
+"""The measured errors of each mesh level and its error bars over grids, for every command.
+
+The level errors on x2_57 (the report and ``shaftfe fatigue``) and the error bars measured over
+grids of shoulders, U grooves, rounded keyways and cross holes (``shaftfe static``'s "error vs
+truth" column, summary.json, the report), for the 3D, axisymmetric and zoned models.
 
 Fillet peaks (issue #12): ``reports/benchmarks/truth.json`` (written by
 ``benchmarks/bench_truth.py``: x2_57, springs, all parts, 10 000 rpm) holds each level's 3D peak
