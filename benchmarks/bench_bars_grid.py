@@ -182,10 +182,16 @@ def _axi_x2_57(level: str, softening: bool) -> dict:
 def errors(rec: dict, level: str, model: str = "solid") -> dict[str, tuple[float, float, float]]:
     """{quantity: (error %, low %, high %)}: 100 (value − truth) / truth of the 3D (``model``
     "solid") or axisymmetric level and the same widened by the truth's GCI bar."""
+    return against_truth(rec[level] if model == "solid" else rec["axisymmetric"][level],
+                         rec["truth"])
+
+
+def against_truth(at: dict, truth: dict) -> dict[str, tuple[float, float, float]]:
+    """{quantity: (error %, low %, high %)} of the peaks ``at`` against ``truth`` ({quantity:
+    (value, GCI bar)}): 100 (value − truth) / truth, and the same widened by the bar."""
     out = {}
-    at = rec[level] if model == "solid" else rec["axisymmetric"][level]
     for q in ("max_principal", "von_mises"):
-        t, bar = rec["truth"][q]
+        t, bar = truth[q]
         val = at[q]
         out[q] = (100 * (val - t) / t, 100 * (val - t - bar) / t, 100 * (val - t + bar) / t)
     return out

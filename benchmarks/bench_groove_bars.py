@@ -194,20 +194,10 @@ def solid_at(rec: dict, level: str) -> dict:
     return rec["solid_fine"] if level == "fine" else rec["solid"][level]
 
 
-def _against_truth(at: dict, truth: dict) -> list[tuple[float, float, float]]:
-    """(error, low, high) % of both quantities of ``at`` against ``truth`` (value, GCI bar)."""
-    out = []
-    for q in ("max_principal", "von_mises"):
-        t, bar = truth[q]
-        out.append((100 * (at[q] - t) / t, 100 * (at[q] - t - bar) / t,
-                    100 * (at[q] - t + bar) / t))
-    return out
-
-
 def solid_grid_errors(data: dict, level: str) -> list[tuple[float, float, float]]:
     """The 3D ``level``'s (error, low, high) % on every checked groove (ρ ≥ 0.5 mm)."""
-    return [e for _, rec in checked(data) for e in _against_truth(solid_at(rec, level),
-                                                                    rec["truth"])]
+    return [e for _, rec in checked(data)
+            for e in bars_grid.against_truth(solid_at(rec, level), rec["truth"]).values()]
 
 
 def solid_envelope(data: dict, level: str) -> tuple[float, float]:
@@ -217,20 +207,14 @@ def solid_envelope(data: dict, level: str) -> tuple[float, float]:
 
 def solid_measured_points(data: dict) -> list[tuple[float, float]]:
     """(D/d, ρ/d) of the checked grooves, each once: the 3D bars' hull."""
-    out = []
-    for (q, k, _), _rec in checked(data):
-        D, t, rho, _ = geometry(q, k, "2t")
-        p = (round(D / (D - 2 * t), 6), round(rho / (D - 2 * t), 6))
-        if p not in out:
-            out.append(p)
-    return out
+    return measured_points([p for p, _ in checked(data)])
 
 
 def x2_57_solid_errors(data: dict, level: str) -> list[tuple[str, tuple[float, float, float]]]:
     """(softening, (error, low, high) %) of x2_57's collar groove by the 3D ``level``."""
     return [(soft, e) for soft in ("on", "off")
-            for e in _against_truth(data["x2_57"][soft]["solid"][level],
-                                    data["x2_57"][soft]["truth"])]
+            for e in bars_grid.against_truth(data["x2_57"][soft]["solid"][level],
+                                             data["x2_57"][soft]["truth"]).values()]
 
 
 def _load() -> dict:
@@ -313,10 +297,11 @@ def envelope(data: dict, level: str) -> tuple[float, float]:
     return _outwards(grid_errors(data, level) + [e for *_, e in x2_57_errors(data, level)])
 
 
-def measured_points() -> list[tuple[float, float]]:
-    """(D/d, ρ/d) of the grid, each once (both widths are measured at every one)."""
+def measured_points(points=None) -> list[tuple[float, float]]:
+    """(D/d, ρ/d) of the grid's ``points`` (all by default), each once (both widths are
+    measured at every one)."""
     out = []
-    for q, k, _ in grid():
+    for q, k, _ in grid() if points is None else points:
         D, t, rho, _ = geometry(q, k, "2t")
         p = (round(D / (D - 2 * t), 6), round(rho / (D - 2 * t), 6))
         if p not in out:

@@ -53,6 +53,7 @@ import tempfile
 from pathlib import Path
 
 from benchmarks import _jsoncache as jsoncache
+from benchmarks import bench_bars_grid as bars_grid
 from benchmarks._shaft_files import write_report
 from shaftfe.util import paths
 
@@ -301,9 +302,10 @@ def report(data: dict) -> list[str]:
 
 
 def outwards(lo: float, hi: float) -> tuple[float, float]:
-    """(lo, hi) rounded outwards to 0.01 % (as the shoulders' and grooves' bars): the bar
-    written holds every measured error (and a zero is written +0.0)."""
-    return math.floor(lo * 100.0) / 100.0 + 0.0, math.ceil(hi * 100.0) / 100.0 + 0.0
+    """(lo, hi) rounded outwards to 0.01 % (``bench_bars_grid._outwards``, the shoulders' and
+    grooves' rule): the bar written holds every measured error (and a zero is written +0.0)."""
+    a, b = bars_grid._outwards([(0.0, lo, hi)])
+    return a + 0.0, b + 0.0
 
 
 def write_bars(data: dict) -> None:

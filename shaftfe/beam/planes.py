@@ -54,12 +54,7 @@ def hot_axes(variant, fillets) -> dict[str, float | None]:
     ``segment`` and ``x_shoulder``, e.g. ``shaftfe.solid.plan.Fillet``), from one beam solve of
     ``variant`` at its own options (bearing springs). None where the moment there is below
     ``MIN_SHARE`` of the shaft's largest (no bending to follow)."""
-    try:
-        res = analyse(variant, REF_RPM)[0]
-    except InputError:              # no valid springs (a rigid-support study): rigid bearings
-        res = analyse(variant, REF_RPM, rigid_supports=True)[0]
-    x, My, Mz = np.asarray(res.x_sec), np.asarray(res.My), np.asarray(res.Mz)
-    top = float(np.max(np.hypot(My, Mz))) if My.size else 0.0
+    x, My, Mz, top = section_moments(variant)
     out: dict[str, float | None] = {}
     for fl in fillets:
         my = float(np.interp(fl.x_shoulder, x, My))
@@ -67,9 +62,27 @@ def hot_axes(variant, fillets) -> dict[str, float | None]:
         if not top > 0 or math.hypot(my, mz) < MIN_SHARE * top:
             out[fl.segment] = None
         else:
-            th = math.atan2(my, -mz) % math.pi
+            th = tension_side(my, mz) % math.pi
             out[fl.segment] = 0.0 if math.pi - th < SNAP_RAD else th
     return out
+
+
+def section_moments(variant) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+    """(x, M_y, M_z, max |M|) along the shaft from one beam solve of ``variant`` at
+    ``REF_RPM`` on its bearing springs (rigid bearings where it has no valid springs: a
+    rigid-support study), every other load at its written magnitude."""
+    try:
+        res = analyse(variant, REF_RPM)[0]
+    except InputError:              # no valid springs (a rigid-support study): rigid bearings
+        res = analyse(variant, REF_RPM, rigid_supports=True)[0]
+    x, My, Mz = np.asarray(res.x_sec), np.asarray(res.My), np.asarray(res.Mz)
+    return x, My, Mz, float(np.max(np.hypot(My, Mz))) if My.size else 0.0
+
+
+def tension_side(my: float, mz: float) -> float:
+    """The angle θ (rad, from +y towards +z) of a round section's tension side under the
+    moment (0, M_y, M_z): where σ_x(θ) = (M_y sin θ − M_z cos θ) r / I peaks."""
+    return math.atan2(my, -mz)
 
 
 @dataclass(frozen=True)

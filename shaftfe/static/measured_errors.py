@@ -52,11 +52,12 @@ from pathlib import Path
 
 import numpy as np
 
-from shaftfe.beam.solve import analyse
+from shaftfe.beam.planes import section_moments, tension_side
 from shaftfe.errors import InputError, SolverError
 from shaftfe.model.loader import load_variant
 from shaftfe.model.loads import actions
 from shaftfe.solid.features import (
+    by_region,
     features,
     fillet_region,
     groove_region,
@@ -74,7 +75,6 @@ from shaftfe.util.paths import (
     ZONE_BARS_JSON,
     repo_relative,
 )
-from shaftfe.util.units import REF_RPM
 
 DOF_MATCH_RTOL = 0.10     # the all-parts load case splits the seats a little differently
 # the two fillets truth.json measured (their segments), under the keys of the benchmark
@@ -464,26 +464,29 @@ SECTION_MIN_SHARE = 1e-3
 RATIO_RTOL = 1e-5
 
 
-def zone_bars(variant, plan, level: str, peaks) -> tuple[dict, dict]:
+def zone_bars(variant, plan, level: str, peaks, feats: dict | None = None
+              ) -> tuple[dict, dict]:
     """({region: (low, high) %}, {region: why it has none}) of the keyway and cross-hole peaks
     in ``peaks`` (the ones the zoned solve's 3D zones give) at the named zone ``level``:
     ``zone_feature_bars``'s bar where the feature lies in its measured grid (a keyway: r1 > 0,
     (r1/d, b/d) in the convex hull of the measured points, t1/b and l/d in the measured
     ranges; a cross hole: d_h/d in the measured range), every load of the shaft is of one
-    measured kind (bending in the plane through the feature, as measured; or torsion; or, for
-    a hole, an axial force), and its zone of influence holds no other notch, step, end,
-    bearing or load (the grid measured each feature alone). The caller checks that the level
-    and options are the measured ones."""
+    measured kind (bending with the section's tension side through the keyway or its plane
+    through the hole's axis, as measured; or torsion; or, for a hole, an axial force that
+    stretches its section), and its zone of influence holds no other notch, step, end,
+    bearing or load (the grid measured each feature alone). ``feats``: the plan's features by
+    region (``solid.features.by_region``) where the caller has them. The caller checks that
+    the level and options are the measured ones."""
     zb = zone_feature_bars()
     slots = {keyway_region(k.segment, k.index): k for k in plan.slots}
     holes = {hole_region(h.segment, h.index): h for h in plan.holes}
     mine = [p for p in peaks if p.region in slots or p.region in holes]
     if not mine:
         return {}, {}
-    feats = {f.region: f for f in features(plan)}
+    feats = feats if feats is not None else by_region(features(plan))
     kinds = load_kinds(variant)
     acts, _ = actions(variant)
-    section = functools.cache(lambda: section_moments(variant))
+    section = functools.cache(lambda: _section_or_none(variant))
     bars, notes = {}, {}
     for p in mine:
         name = "keyway" if p.region in slots else "cross_hole"
@@ -503,7 +506,7 @@ def _zone_bar_why(name: str, cut, grid: dict | None, level: str, kinds, acts, va
                   section) -> str | None:
     """Why the keyway or cross hole ``cut`` (``solid.plan.Slot`` / ``Hole``) gets no bar from
     ``grid`` at ``level`` under loads of ``kinds`` (``acts``: the variant's actions;
-    ``section()``: ``section_moments``, solved once when first asked), or None."""
+    ``section()``: ``beam.planes.section_moments``, solved once when first asked), or None."""
     if name == "keyway" and cut.rho == 0:
         return ("no bar: a sharp-edged keyway's peak grows with refinement (a value of the "
                 "mesh; reports/benchmarks/keyway_edge.md)")
@@ -535,7 +538,7 @@ def _zone_bar_why(name: str, cut, grid: dict | None, level: str, kinds, acts, va
         m_y, m_z = float(np.interp(cut.x_center, x, my)), float(np.interp(cut.x_center, x, mz))
         if not top > 0 or math.hypot(m_y, m_z) < SECTION_MIN_SHARE * top:
             return "no measured bar: no bending moment at its section to compare"
-        tension = math.degrees(math.atan2(m_y, -m_z))
+        tension = math.degrees(tension_side(m_y, m_z))
         rel = (tension - math.degrees(cut.angle)) % 360.0
         off = min(rel, 360.0 - rel) if name == "keyway" else min(rel % 180.0,
                                                                   180.0 - rel % 180.0)
@@ -548,21 +551,12 @@ def _zone_bar_why(name: str, cut, grid: dict | None, level: str, kinds, acts, va
     return None
 
 
-def section_moments(variant):
-    """(x, M_y, M_z, max |M|) along the shaft from one beam solve of ``variant`` (bearing
-    springs, or rigid supports where it has none) at ``REF_RPM``, every other load at its
-    written magnitude (``beam.planes``' solve: the plane the mesher refines), or None where
-    the beam cannot solve it. The tension side of a round section under (0, M_y, M_z) is at
-    θ = atan2(M_y, −M_z) from +y (``beam.planes``)."""
+def _section_or_none(variant):
+    """``beam.planes.section_moments``, or None where the beam cannot solve the variant."""
     try:
-        try:
-            res = analyse(variant, REF_RPM)[0]
-        except InputError:
-            res = analyse(variant, REF_RPM, rigid_supports=True)[0]
+        return section_moments(variant)
     except (InputError, SolverError):
         return None
-    x, my, mz = (np.asarray(a, float) for a in (res.x_sec, res.My, res.Mz))
-    return x, my, mz, float(np.max(np.hypot(my, mz))) if my.size else 0.0
 
 
 def _in_range(v: float, lo: float, hi: float) -> bool:

@@ -27,7 +27,7 @@ from shaftfe.axisymmetric.solve import resolve_case, solve_axisymmetric
 from shaftfe.beam.planes import mesh_hot_axes
 from shaftfe.fe import reuse as fe_reuse
 from shaftfe.model.loads import actions
-from shaftfe.solid.features import by_region, features, hole_region, keyway_region, kind_of
+from shaftfe.solid.features import by_region, features, keyway_region, kind_of
 from shaftfe.solid.levels import LEVELS, level_name, mesh_level
 from shaftfe.solid.mesh import mesh_plan
 from shaftfe.solid.plan import plan_payload
@@ -377,7 +377,8 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
     bars, bar_notes = zone_filtered(first_global.truth_error_bar_pct,
                                     first_global.truth_bar_notes, glob, in_zone)
     zbars, znotes = _zone_peak_bars(v, plan, options, [p for p in cases[0].peaks
-                                                       if p.model != "axisymmetric"], infos)
+                                                       if p.model != "axisymmetric"], infos,
+                                    feats)
     notes.append("error bars: a span fillet's or groove's peak from the global model carries "
                   f"the axisymmetric {axi_level} level's error measured over a grid of "
                   "shoulders or of U grooves (its own method refined: a discretisation bar; "
@@ -413,8 +414,8 @@ def solve_zoned(variant, rpm=REF_RPM, options: StaticOptions = StaticOptions(), 
                        bars, bar_notes)
 
 
-def _zone_peak_bars(variant, plan, options: StaticOptions, peaks,
-                    infos) -> tuple[dict, dict]:
+def _zone_peak_bars(variant, plan, options: StaticOptions, peaks, infos,
+                    feats: dict | None = None) -> tuple[dict, dict]:
     """The bars of the keyway and cross-hole peaks the 3D zones give
     (``static.measured_errors.zone_bars``), for a named level used as named under the measured
     options (P2, every peak node kept), and none in a zone whose cut check reads worse than
@@ -428,11 +429,10 @@ def _zone_peak_bars(variant, plan, options: StaticOptions, peaks,
     name = level_name(options.level)
     if name not in LEVELS or mesh_level(options.level) != LEVELS[name] or options.order != 2 \
             or options.exclude_mm != 0.0:
-        cut = {keyway_region(k.segment, k.index) for k in plan.slots} | \
-            {hole_region(h.segment, h.index) for h in plan.holes}
         return {}, {p.region: "no measured bar for these options (measured: a named level, "
-                    "P2, every peak node kept)" for p in peaks if p.region in cut}
-    bars, notes = zone_bars(variant, plan, name, peaks)
+                    "P2, every peak node kept)" for p in peaks
+                    if kind_of(p.region) in ("keyway", "cross_hole")}
+    bars, notes = zone_bars(variant, plan, name, peaks, feats)
     worst = {k: g.get("cut_check_max", 0.0) for k, g in zone_feature_bars().items()
              if isinstance(g, dict)}
     for zi in infos:
